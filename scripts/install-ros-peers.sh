@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# Installs real ROS 1 (Debian's ros_comm 1.15.15) as a test peer for the interop tests.
+# It runs under the system interpreter (/usr/bin/python3) and is never a kame dependency.
+# Does nothing where apt is missing or we are not root: the interop tests then skip.
+set -euo pipefail
+packages=(
+  ros-core python3-genpy python3-genmsg python3-numpy
+  python3-geometry-msgs python3-sensor-msgs python3-nav-msgs python3-std-srvs python3-tf2-msgs
+  python3-actionlib
+  libroscpp-dev libstd-msgs-dev libgeometry-msgs-dev libsensor-msgs-dev libstd-srvs-dev
+  ros-std-msgs ros-std-srvs ros-geometry-msgs ros-sensor-msgs ros-nav-msgs ros-rosgraph-msgs
+  ros-actionlib-msgs ros-diagnostic-msgs ros-trajectory-msgs ros-visualization-msgs
+  ros-shape-msgs ros-stereo-msgs ros-tf2-msgs ros-roscpp-msg ros-move-base-msgs
+  g++ pkg-config
+)
+if ! command -v apt-get >/dev/null 2>&1 || [ "$(id -u)" != 0 ]; then
+  echo "install-ros-peers: no apt-get or not root; interop tests with real ROS 1 will be skipped" >&2
+  exit 0
+fi
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  exit 0
+fi
+echo "install-ros-peers: installing ${#missing[@]} Debian packages" >&2
+apt-get update -qq
+DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
