@@ -1,0 +1,32 @@
+"""Small helpers that generated message code calls on its less common paths."""
+
+from __future__ import annotations
+
+import struct
+from typing import Any
+
+
+class Truncated(Exception):
+    """Raised inside generated deserializers when a length points past the end of the data."""
+
+
+def u8_payload(value: Any) -> bytes | memoryview:
+    """A uint8[]/char[] value as something with byte length and the buffer protocol.
+
+    Lists and tuples of ints become bytes (range-checked); bytearray, memoryview, numpy
+    arrays and array.array are used in place, without a copy.
+    """
+    if isinstance(value, (list, tuple)):
+        return bytes(value)
+    if isinstance(value, str):
+        raise TypeError("a uint8[] field takes bytes or a list of ints, not str")
+    return memoryview(value).cast("B")
+
+
+def pack_array(value: Any, code: str, dtype: str) -> bytes:
+    """The bytes of a numeric array: lists and tuples through struct, arrays through numpy."""
+    if isinstance(value, (list, tuple)):
+        return struct.pack("<%d%s" % (len(value), code), *value)
+    import numpy
+
+    return numpy.asarray(value, dtype=dtype).tobytes()
