@@ -1,0 +1,1 @@
+"""Wire protocols as pure functions and state machines: bytes in, values and events out."""

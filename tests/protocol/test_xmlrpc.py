@@ -1,0 +1,232 @@
+import xmlrpc.client
+
+import pytest
+
+from kame.protocol import xmlrpc as x
+
+# Values whose encoding must equal xmlrpc.client.dumps byte for byte (rospy's own writer).
+SAMPLES = [
+    1,
+    -(2**31),
+    2**31 - 1,
+    "plain",
+    "",
+    "a&b<c>d\"e'",
+    "ünïcødé ✓",
+    True,
+    False,
+    1.5,
+    -0.0,
+    1e300,
+    b"\x00\x01binary\xff",
+    b"",
+    [],
+    {},
+    [1, "two", 3.0, [True, {"k": "v"}]],
+    {"a": {"b": {"c": [1, 2, {"d": b"x"}]}}, "e&": "f<"},
+    [1, "", 0],
+    [[["/t", ["/n1", "/n2"]]], [], [["/s", ["/n"]]]],
+]
+
+
+@pytest.mark.parametrize("value", SAMPLES)
+def test_response_bytes_equal_stdlib(value: object) -> None:
+    want = xmlrpc.client.dumps((_stdlib(value),), methodresponse=True, allow_none=False).encode()
+    assert x.encode_response(value) == want
+
+
+@pytest.mark.parametrize("value", SAMPLES)
+def test_request_bytes_equal_stdlib(value: object) -> None:
+    want = xmlrpc.client.dumps(("/caller", _stdlib(value)), "setParam").encode()
+    assert x.encode_request("setParam", ["/caller", value]) == want
+
+
+def test_empty_request_and_fault_bytes() -> None:
+    assert x.encode_request("getPid", []) == xmlrpc.client.dumps((), "getPid").encode()
+    want = xmlrpc.client.dumps(xmlrpc.client.Fault(1, "boom & <bang>"), methodresponse=True).encode()
+    assert x.encode_fault(1, "boom & <bang>") == want
+
+
+def _stdlib(v: object) -> object:
+    if isinstance(v, bytes):
+        return xmlrpc.client.Binary(v)
+    if isinstance(v, list):
+        return [_stdlib(i) for i in v]
+    if isinstance(v, dict):
+        return {k: _stdlib(i) for k, i in v.items()}
+    return v
+
+
+@pytest.mark.parametrize("value", SAMPLES)
+def test_round_trip(value: object) -> None:
+    assert x.decode_response(x.encode_response(value)) == value
+    assert x.decode_request(x.encode_request("m", [value, value])) == ("m", [value, value])
+
+
+def test_tuple_and_subclasses_encode_as_base_types() -> None:
+    class S(str):
+        pass
+
+    class I(int):  # noqa: E742 - a one-letter subclass name is clear here
+        pass
+
+    assert x.encode_response((1, S("s"), I(3))) == x.encode_response([1, "s", 3])
+
+
+@pytest.mark.parametrize(
+    ("value", "error"),
+    [(None, TypeError), ([1, None], TypeError), (2**31, OverflowError), (-(2**31) - 1, OverflowError),
+     ({1: "a"}, TypeError), (object(), TypeError)],
+)
+def test_encode_refuses(value: object, error: type[Exception]) -> None:
+    with pytest.raises(error):
+        x.encode_response(value)
+
+
+# What roscpp (XmlRpc++ 0.7) sends: untagged strings, <i4>, CRLF and tabs between elements.
+XMLRPCPP_REQUEST = (
+    b'<?xml version="1.0"?>\r\n<methodCall><methodName>registerPublisher</methodName>\r\n<params>'
+    b"<param><value>/cppnode</value></param><param><value>/chatter</value></param>"
+    b"<param><value>std_msgs/String</value></param><param><value>http://host:40123/</value></param>"
+    b"</params></methodCall>\r\n"
+)
+XMLRPCPP_RESPONSE = (
+    b'<?xml version="1.0"?>\r\n<methodResponse><params><param>\r\n\t<value><array><data>'
+    b"<value><i4>1</i4></value><value></value><value><array><data><value>TCPROS</value>"
+    b"<value>host</value><value><i4>40124</i4></value></data></array></value></data></array></value>\r\n"
+    b"</param></params></methodResponse>\r\n"
+)
+XMLRPCPP_FAULT = (
+    b'<?xml version="1.0"?>\r\n<methodResponse><fault>\r\n\t<value><struct><member><name>faultCode</name>'
+    b"<value><i4>-1</i4></value></member><member><name>faultString</name><value>getUri: unknown method "
+    b"name</value></member></struct></value>\r\n</fault></methodResponse>\r\n"
+)
+
+
+def test_decode_xmlrpcpp_request() -> None:
+    assert x.decode_request(XMLRPCPP_REQUEST) == (
+        "registerPublisher", ["/cppnode", "/chatter", "std_msgs/String", "http://host:40123/"])
+
+
+def test_decode_xmlrpcpp_response_and_fault() -> None:
+    assert x.decode_response(XMLRPCPP_RESPONSE) == [1, "", ["TCPROS", "host", 40124]]
+    with pytest.raises(x.Fault) as e:
+        x.decode_response(XMLRPCPP_FAULT)
+    assert (e.value.code, e.value.message) == (-1, "getUri: unknown method name")
+
+
+def test_decode_scalars() -> None:
+    body = (
+        b"<methodResponse><params><param><value><array><data>"
+        b"<value><i8>4294967296</i8></value><value><int> 7 </int></value><value><boolean>1</boolean></value>"
+        b"<value><double>2.5</double></value><value><base64>aGk=\n</base64></value>"
+        b"<value><dateTime.iso8601>20260101T00:00:00</dateTime.iso8601></value>"
+        b"<value><string>a&amp;b&#x263A;</string></value><value>\n  spaced  \n</value>"
+        b"<value><struct></struct></value><value><array><data></data></array></value>"
+        b"</data></array></value></param></params></methodResponse>"
+    )
+    assert x.decode_response(body) == [
+        2**32, 7, True, 2.5, b"hi", x.DateTime("20260101T00:00:00"), "a&b\u263a", "\n  spaced  \n", {}, []]
+
+
+def test_datetime_round_trips() -> None:
+    v = x.DateTime("20260101T00:00:00")
+    assert x.decode_response(x.encode_response(v)) == v
+
+
+def test_decode_request_with_no_params_element() -> None:
+    assert x.decode_request(b"<methodCall><methodName>getPid</methodName></methodCall>") == ("getPid", [])
+
+
+MALFORMED = [
+    b"",
+    b"not xml",
+    b"<methodCall><methodName>m</methodName>",  # truncated
+    b"<methodCall><methodName>m</methodName><params><param><value><nil/></value></param></params></methodCall>",
+    b"<methodCall><methodName>m</methodName><params><param><value><int>x</int></value></param></params>"
+    b"</methodCall>",
+    b"<methodCall><methodName>m</methodName><params><param><value><boolean>2</boolean></value></param>"
+    b"</params></methodCall>",
+    b"<methodCall><methodName>m</methodName><params><param><value><base64>a</base64></value></param>"
+    b"</params></methodCall>",
+    b"<methodCall><methodName>m</methodName><params><param><value><int>1</int><int>2</int></value></param>"
+    b"</params></methodCall>",
+    b"<methodCall><methodName>m</methodName><params><param></param></params></methodCall>",
+    b"<methodCall><methodName>m</methodName><params><param><value>a</value><value>b</value></param>"
+    b"</params></methodCall>",
+    b"<methodCall><methodName>m</methodName><params><param><value><struct><member><value>1</value>"
+    b"</member></struct></value></param></params></methodCall>",
+    b"<methodCall><methodName>m</methodName><params><param><value><struct><member><name>a</name>"
+    b"</member></struct></value></param></params></methodCall>",
+    b"<methodCall><methodName>m</methodName><params><param><value><struct><member><name>a</name><name>b"
+    b"</name><value>1</value></member></struct></value></param></params></methodCall>",
+    b"<methodCall><params/></methodCall>",  # no method name
+    b"<other/>",
+    b"<methodCall><methodName>m</methodName><bogus/></methodCall>",
+    b"<methodResponse><params/></methodResponse>",  # a response, not a call
+]
+
+
+@pytest.mark.parametrize("body", MALFORMED)
+def test_decode_request_refuses(body: bytes) -> None:
+    with pytest.raises(x.MalformedError):
+        x.decode_request(body)
+
+
+@pytest.mark.parametrize(
+    "body",
+    [b"<methodResponse><params></params></methodResponse>",
+     b"<methodResponse><fault><value><int>1</int></value></fault></methodResponse>",
+     b"<methodResponse><fault><value><struct></struct></value></fault></methodResponse>",
+     b"<methodCall><methodName>m</methodName></methodCall>"],
+)
+def test_decode_response_refuses(body: bytes) -> None:
+    with pytest.raises(x.MalformedError):
+        x.decode_response(body)
+
+
+def test_doctype_and_entities_refused() -> None:
+    laughs = (
+        b'<?xml version="1.0"?><!DOCTYPE lolz [<!ENTITY lol "lol">'
+        + b"".join(b'<!ENTITY lol%d "%s">' % (i, (b"&lol%d;" % (i - 1) if i > 1 else b"&lol;") * 10)
+                   for i in range(1, 10))
+        + b"]><methodCall><methodName>&lol9;</methodName></methodCall>"
+    )
+    with pytest.raises(x.MalformedError, match="DOCTYPE"):
+        x.decode_request(laughs)
+    external = (b'<?xml version="1.0"?><!DOCTYPE r [<!ENTITY e SYSTEM "file:///etc/passwd">]>'
+                b"<methodCall><methodName>&e;</methodName></methodCall>")
+    with pytest.raises(x.MalformedError):
+        x.decode_request(external)
+    # an undeclared entity is just bad XML
+    with pytest.raises(x.MalformedError):
+        x.decode_request(b"<methodCall><methodName>&e;</methodName></methodCall>")
+
+
+def test_nesting_is_bounded() -> None:
+    ok = 40
+    body = x.encode_request("m", [_nest(ok)])
+    assert x.decode_request(body)[1] == [_nest(ok)]
+    deep = (b"<methodCall><methodName>m</methodName><params><param>"
+            + b"<value><array><data>" * 10000 + b"</data></array></value>" * 10000
+            + b"</param></params></methodCall>")
+    with pytest.raises(x.MalformedError, match="deep"):
+        x.decode_request(deep)
+
+
+def _nest(n: int) -> object:
+    v: object = 1
+    for _ in range(n):
+        v = [v]
+    return v
+
+
+def test_agrees_with_stdlib_loads_on_python_output() -> None:
+    for value in SAMPLES:
+        body = xmlrpc.client.dumps((_stdlib(value), "x"), "m", allow_none=False)
+        params, method = xmlrpc.client.loads(body, use_builtin_types=True)
+        assert x.decode_request(body.encode()) == (method, list(params))
+
+
+def test_fault_str() -> None:
+    assert str(x.Fault(1, "m")) == "<Fault 1: 'm'>"
