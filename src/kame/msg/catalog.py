@@ -158,6 +158,24 @@ class MsgCatalog:
         self._msgs.setdefault(spec.response.full_name, spec.response)
         return spec
 
+    def check_dependencies(self, spec: MsgSpec) -> None:
+        """Load every type `spec` uses; a missing one is named with the file that needs it."""
+        pending = [spec]
+        seen = {spec.full_name}
+        while pending:
+            current = pending.pop()
+            for dep in current.message_dependencies():
+                if dep in seen:
+                    continue
+                seen.add(dep)
+                try:
+                    pending.append(self.msg_spec(dep))
+                except MsgNotFoundError as exc:
+                    where = current.source or current.full_name
+                    raise MsgNotFoundError(
+                        f"{where}: {current.full_name} uses the type {dep}, which cannot be found: {exc}"
+                    ) from exc
+
     def md5sum(self, full_name: str) -> str:
         return self._md5.md5sum_of(full_name)
 

@@ -10,8 +10,6 @@ from __future__ import annotations
 import struct
 from typing import Any, ClassVar
 
-import yaml
-
 from kame.msg.errors import DeserializationError, SerializationError
 from kame.msg.spec import split_array
 from kame.rostime import Duration, Time, TVal
@@ -59,7 +57,7 @@ class Message:
         return [getattr(self, name) for name in self.__slots__]
 
     def __setstate__(self, state: list[Any]) -> None:
-        for name, value in zip(self.__slots__, state):
+        for name, value in zip(self.__slots__, state, strict=False):
             setattr(self, name, value)
 
     def __repr__(self) -> str:
@@ -87,7 +85,7 @@ class Message:
 
 def _values_equal(a: Any, b: Any) -> bool:
     if isinstance(a, (list, tuple)) and isinstance(b, (list, tuple)):
-        return len(a) == len(b) and all(_values_equal(x, y) for x, y in zip(a, b))
+        return len(a) == len(b) and all(_values_equal(x, y) for x, y in zip(a, b, strict=False))
     result = a == b
     if isinstance(result, bool):
         return result
@@ -105,7 +103,7 @@ def init_fields(msg: Message, args: tuple[Any, ...], kwds: dict[str, Any]) -> No
     if args:
         if len(args) != len(slots):
             raise TypeError(f"Invalid number of arguments, args should be {list(slots)} args are{args}")
-        for name, value in zip(slots, args):
+        for name, value in zip(slots, args, strict=False):
             setattr(msg, name, value)
         return
     for key in kwds:
@@ -121,6 +119,8 @@ def init_fields(msg: Message, args: tuple[Any, ...], kwds: dict[str, Any]) -> No
 def _yaml_string(value: str) -> str:
     if not value:
         return "''"
+    import yaml  # only str() needs it; keep it out of every node's start-up
+
     return yaml.dump(value, default_style='"').rstrip("\n")
 
 
@@ -141,6 +141,8 @@ def strify_message(val: Any, indent: str = "", time_offset: Time | None = None) 
             return "[]"
         first = val[0]
         if isinstance(first, str):
+            import yaml
+
             text = yaml.dump(list(val)).rstrip("\n")
             if text.startswith("["):
                 return text
@@ -154,7 +156,7 @@ def strify_message(val: Any, indent: str = "", time_offset: Time | None = None) 
         inner = "  " + indent
         lines = [
             f"{indent}{name}: {strify_message(_printable(val, name, slot_type), inner, time_offset)}"
-            for name, slot_type in zip(val.__slots__, val._slot_types)
+            for name, slot_type in zip(val.__slots__, val._slot_types, strict=False)
         ]
         text = "\n".join(lines)
         return "\n" + text if indent else text
@@ -234,7 +236,7 @@ def _type_problem(path: str, type_name: str, value: Any) -> str | None:
 
 def find_type_problem(msg: Message, prefix: str = "") -> str | None:
     """A sentence naming the first field whose value cannot be serialized, or None."""
-    for name, slot_type in zip(msg.__slots__, msg._slot_types):
+    for name, slot_type in zip(msg.__slots__, msg._slot_types, strict=False):
         try:
             value = getattr(msg, name)
         except AttributeError:
@@ -276,7 +278,7 @@ class _Reader:
 
 
 def _walk(reader: _Reader, cls: type[Message], prefix: str) -> None:
-    for name, slot_type in zip(cls.__slots__, cls._slot_types):
+    for name, slot_type in zip(cls.__slots__, cls._slot_types, strict=False):
         path = prefix + name
         base, is_array, length = split_array(slot_type)
         count = 1

@@ -26,7 +26,7 @@ def u8_payload(value: Any) -> bytes | memoryview:
 def pack_array(value: Any, code: str, dtype: str) -> bytes:
     """The bytes of a numeric array: lists and tuples through struct, arrays through numpy."""
     if isinstance(value, (list, tuple)):
-        return struct.pack("<%d%s" % (len(value), code), *value)
+        return struct.pack(f"<{len(value)}{code}", *value)
     import numpy
 
     return numpy.asarray(value, dtype=dtype).tobytes()

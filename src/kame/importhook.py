@@ -1,0 +1,53 @@
+"""Run at interpreter start-up (kame.pth): lets ROS packages on ROS_PACKAGE_PATH be imported.
+
+Kept tiny on purpose: it runs in every Python process of the environment. Two finders are
+added: one first on sys.meta_path that looks only at `X.msg`/`X.srv` names (so a folder
+that merely looks like a namespace package cannot hide a package's messages), one last
+that looks at top-level names nobody else found. The message machinery is imported only
+when such a name comes up while ROS_PACKAGE_PATH is set. Imports that fail while that
+machinery is itself being imported (optional modules probed by the standard library) are
+declined.
+"""
+
+from __future__ import annotations
+
+import importlib.abc
+import os
+import sys
+import threading
+from collections.abc import Sequence
+from importlib.machinery import ModuleSpec
+from types import ModuleType
+
+_busy = threading.local()
+
+
+class _RosPackageFinder(importlib.abc.MetaPathFinder):
+    def __init__(self, submodules: bool) -> None:
+        self.submodules = submodules
+
+    def find_spec(
+        self, fullname: str, path: Sequence[str] | None, target: ModuleType | None = None
+    ) -> ModuleSpec | None:
+        tail = fullname.partition(".")[2]
+        wanted = tail in ("msg", "srv") if self.submodules else not tail
+        if not wanted:
+            return None
+        if not os.environ.get("ROS_PACKAGE_PATH") or getattr(_busy, "active", False):
+            return None
+        _busy.active = True
+        try:
+            from kame.msg import importer
+
+            return importer.RosPackageFinder().find_spec(fullname, path, target)
+        finally:
+            _busy.active = False
+
+
+def install() -> None:
+    if not any(isinstance(f, _RosPackageFinder) for f in sys.meta_path):
+        sys.meta_path.insert(0, _RosPackageFinder(submodules=True))
+        sys.meta_path.append(_RosPackageFinder(submodules=False))
+
+
+install()

@@ -1,0 +1,251 @@
+"""Generated message classes behave like genpy's and every shipped type round-trips."""
+
+from __future__ import annotations
+
+import importlib
+import io
+import pickle
+import struct
+from typing import Any
+
+import numpy
+import pytest
+
+from kame.msg import DeserializationError, Message, MsgCatalog, SerializationError
+from kame.msg.catalog import SHARE_DIR, find_packages
+from kame.msg.spec import split_array
+from kame.rostime import Duration, Time
+
+CATALOG = MsgCatalog(find_packages([SHARE_DIR]))
+ALL_MESSAGE_TYPES = [t for p in sorted(CATALOG.packages) for t in CATALOG.message_types(p)]
+ALL_SERVICE_TYPES = [t for p in sorted(CATALOG.packages) for t in CATALOG.service_types(p)]
+
+
+def message_class(type_name: str) -> type[Message]:
+    package, short = type_name.split("/")
+    cls: type[Message] = getattr(importlib.import_module(f"{package}.msg"), short)
+    return cls
+
+
+def serialize(msg: Message) -> bytes:
+    buff = io.BytesIO()
+    msg.serialize(buff)
+    return buff.getvalue()
+
+
+_SAMPLE_INTS = {"int8": -7, "byte": -7, "uint8": 200, "char": 200, "int16": -300, "uint16": 60000,
+                "int32": -70000, "uint32": 4000000000, "int64": -(2**40), "uint64": 2**63 + 5}
+
+
+def sample_value(type_name: str, cls: type[Message], name: str, depth: int = 0) -> Any:
+    base, is_array, length = split_array(type_name)
+    if is_array:
+        count = length if length is not None else 2
+        if base in ("uint8", "char"):
+            return bytes(range(count))
+        return [sample_value(base, cls, name, depth) for _ in range(count)]
+    if base in _SAMPLE_INTS:
+        return _SAMPLE_INTS[base]
+    if base == "bool":
+        return True
+    if base in ("float32", "float64"):
+        return 1.5
+    if base == "string":
+        return "héllo"
+    if base == "time":
+        return Time(1_700_000_000, 123)
+    if base == "duration":
+        return Duration(-2, 5)
+    return filled(cls._slot_classes[name])
+
+
+def filled(cls: type[Message]) -> Message:
+    msg = cls()
+    for name, slot_type in zip(cls.__slots__, cls._slot_types, strict=False):
+        setattr(msg, name, sample_value(slot_type, cls, name))
+    return msg
+
+
+@pytest.mark.parametrize("type_name", ALL_MESSAGE_TYPES)
+def test_every_shipped_message_round_trips(type_name: str) -> None:
+    cls = message_class(type_name)
+    assert cls._type == type_name
+    assert cls._md5sum == CATALOG.md5sum(type_name)
+    assert cls._full_text == CATALOG.full_text(type_name)
+    for msg in (cls(), filled(cls)):
+        data = serialize(msg)
+        back = cls().deserialize(data)
+        assert back == msg
+        assert serialize(back) == data
+        assert cls().deserialize_numpy(data, numpy) == back
+        assert pickle.loads(pickle.dumps(msg)) == msg
+
+
+@pytest.mark.parametrize("type_name", ALL_SERVICE_TYPES)
+def test_every_shipped_service_round_trips(type_name: str) -> None:
+    package, short = type_name.split("/")
+    module = importlib.import_module(f"{package}.srv")
+    srv = getattr(module, short)
+    assert srv._md5sum == CATALOG.srv_md5sum(type_name)
+    assert srv._request_class is getattr(module, short + "Request")
+    assert srv._response_class is getattr(module, short + "Response")
+    for cls in (srv._request_class, srv._response_class):
+        msg = filled(cls)
+        assert cls().deserialize(serialize(msg)) == msg
+
+
+def test_constructor_rules() -> None:
+    from geometry_msgs.msg import Point, Twist, Vector3
+
+    assert Point(1.0, 2.0, 3.0) == Point(x=1.0, y=2.0, z=3.0)
+    assert (Point(y=2.0).x, Point(y=2.0).y) == (0.0, 2.0)
+    twist = Twist(linear=Vector3(1, 0, 0))
+    assert twist.angular == Vector3()
+    with pytest.raises(TypeError, match="args OR keywords"):
+        Point(1.0, y=2.0)
+    with pytest.raises(TypeError, match="Invalid number of arguments"):
+        Point(1.0, 2.0)
+    with pytest.raises(AttributeError, match="nope is not an attribute of Point"):
+        Point(nope=1)
+    with pytest.raises(AttributeError):
+        Point().nope = 1  # type: ignore[attr-defined]
+
+
+def test_class_attributes_and_constants() -> None:
+    from rosgraph_msgs.msg import Log
+    from sensor_msgs.msg import Image
+
+    assert Log.__slots__ == ("header", "level", "name", "msg", "file", "function", "line", "topics")
+    assert Log._slot_types == ("std_msgs/Header", "byte", "string", "string", "string", "string", "uint32",
+                               "string[]")
+    assert (Log.DEBUG, Log.INFO, Log.WARN, Log.ERROR, Log.FATAL) == (1, 2, 4, 8, 16)
+    assert Log._has_header and Image._has_header
+    assert Image().data == b""
+    assert Image()._get_types() == Image._slot_types
+
+
+def test_defaults_follow_genpy() -> None:
+    from geometry_msgs.msg import PoseWithCovariance
+    from std_msgs.msg import Bool, Header, String
+
+    assert Bool().data is False
+    assert String().data == ""
+    assert Header().stamp == Time(0, 0)
+    covariance = PoseWithCovariance().covariance
+    assert covariance == [0.0] * 36
+
+
+def test_arrays_are_lists_in_and_tuples_out() -> None:
+    from sensor_msgs.msg import JointState
+
+    msg = JointState(name=["a"], position=[1.0])
+    back = JointState().deserialize(serialize(msg))
+    assert back.position == (1.0,)
+    assert back.name == ["a"]
+    assert back == msg  # lists and tuples compare equal, as genpy does
+
+
+def test_uint8_arrays_take_bytes_lists_and_buffers() -> None:
+    from std_msgs.msg import UInt8MultiArray
+
+    expected = serialize(UInt8MultiArray(data=b"\x01\x02\x03"))
+    for value in ([1, 2, 3], (1, 2, 3), bytearray(b"\x01\x02\x03"), memoryview(b"\x01\x02\x03"),
+                  numpy.array([1, 2, 3], dtype=numpy.uint8)):
+        assert serialize(UInt8MultiArray(data=value)) == expected
+    assert UInt8MultiArray().deserialize(expected).data == b"\x01\x02\x03"
+
+
+def test_numpy_variants() -> None:
+    from sensor_msgs.msg import LaserScan
+
+    ranges = numpy.array([1.0, 2.0, 3.0], dtype=numpy.float32)
+    msg = LaserScan(ranges=ranges)
+    data = serialize(msg)
+    buff = io.BytesIO()
+    msg.serialize_numpy(buff, numpy)
+    assert buff.getvalue() == data
+    back = LaserScan().deserialize_numpy(data, numpy)
+    assert isinstance(back.ranges, numpy.ndarray) and back.ranges.dtype == numpy.float32
+    assert back.ranges.tolist() == [1.0, 2.0, 3.0]
+    assert LaserScan().deserialize(data).ranges == (1.0, 2.0, 3.0)
+
+
+def test_large_payload_keeps_one_contiguous_copy() -> None:
+    from sensor_msgs.msg import Image
+
+    payload = bytes(range(256)) * 4096
+    data = serialize(Image(height=1, width=len(payload), encoding="mono8", step=len(payload), data=payload))
+    back = Image().deserialize(memoryview(data))
+    assert type(back.data) is bytes and back.data == payload
+
+
+@pytest.mark.parametrize(
+    ("make", "problem"),
+    [
+        (lambda m: setattr(m.linear, "x", "fast"), "field linear.x must be float type"),
+        (lambda m: setattr(m, "angular", None), "field angular must be a geometry_msgs/Vector3 message"),
+    ],
+)
+def test_serialization_errors_name_the_field(make: Any, problem: str) -> None:
+    from geometry_msgs.msg import Twist
+
+    msg = Twist()
+    make(msg)
+    with pytest.raises(SerializationError, match=f"cannot serialize geometry_msgs/Twist: {problem}"):
+        serialize(msg)
+
+
+def test_out_of_range_and_wrong_types() -> None:
+    from sensor_msgs.msg import Image
+    from std_msgs.msg import Header, Int8, String
+
+    with pytest.raises(SerializationError, match=r"field data value 128 is out of range for int8 \[-128, 127\]"):
+        serialize(Int8(128))
+    with pytest.raises(SerializationError, match="field data must be a string, got int"):
+        serialize(String(5))
+    with pytest.raises(SerializationError, match="field stamp must be of type Time"):
+        serialize(Header(stamp=1.5))
+    with pytest.raises(SerializationError, match="field height must be an integer type"):
+        serialize(Image(height=1.5))
+    with pytest.raises(SerializationError, match=r"field data\[0\]"):
+        serialize(Image(data=[300]))
+
+
+def test_a_fixed_array_of_the_wrong_length_is_refused() -> None:
+    from geometry_msgs.msg import PoseWithCovariance
+
+    with pytest.raises(SerializationError, match="field covariance must have exactly 36 elements, got 3"):
+        serialize(PoseWithCovariance(covariance=[0.0] * 3))
+
+
+def test_short_buffers_name_the_field() -> None:
+    from geometry_msgs.msg import PoseStamped
+    from sensor_msgs.msg import Image
+
+    data = serialize(PoseStamped())
+    with pytest.raises(DeserializationError, match=r"field pose\.orientation"):
+        PoseStamped().deserialize(data[:-8])
+    with pytest.raises(DeserializationError, match=r"field header\.frame_id"):
+        PoseStamped().deserialize(data[:12] + struct.pack("<I", 1000))
+    image = serialize(Image(data=b"abc"))
+    with pytest.raises(DeserializationError, match="field data: needs 4294967295 bytes"):
+        Image().deserialize(image[:-7] + struct.pack("<I", 0xFFFFFFFF))
+
+
+def test_garbage_never_escapes_as_another_exception() -> None:
+    from rosgraph_msgs.msg import Log
+
+    data = serialize(filled(Log))
+    for cut in range(len(data)):
+        with pytest.raises(DeserializationError):
+            Log().deserialize(data[:cut])
+
+
+def test_str_is_the_yaml_like_text() -> None:
+    from std_msgs.msg import Header, String
+
+    assert str(String("hi")) == 'data: "hi"'
+    assert str(String()) == "data: ''"
+    assert str(Header(seq=3, stamp=Time(5, 7), frame_id="map")) == (
+        'seq: 3\nstamp: \n  secs: 5\n  nsecs:         7\nframe_id: "map"'
+    )

@@ -1,0 +1,136 @@
+"""The .msg/.srv/.action grammar, genmsg's quirks and the errors a bad definition gets."""
+
+from __future__ import annotations
+
+import pytest
+
+from kame.msg import MsgDefinitionError, parse_action, parse_msg, parse_srv
+from kame.msg.md5 import Md5Cache
+
+
+def test_fields_constants_and_comments() -> None:
+    spec = parse_msg(
+        "# a comment\n"
+        "  int32 x   # trailing comment\n"
+        "\n"
+        "uint8 LEVEL = 3 # why\n"
+        "string NAME = a # b = c\n"
+        "string S=  a=b  \n"
+        "bool FLAG=True\n"
+        "float64 PI=3.14\n"
+        "Header header\n"
+        "Point[] points\n"
+        "geometry_msgs/Vector3[3] axes\n"
+        "float64[36] covariance\n"
+        "byte b\n"
+        "char c\n"
+        "time t\n"
+        "duration d\n",
+        "pkg/Thing",
+    )
+    assert [(f.name, f.type) for f in spec.fields] == [
+        ("x", "int32"),
+        ("header", "std_msgs/Header"),
+        ("points", "pkg/Point[]"),
+        ("axes", "geometry_msgs/Vector3[3]"),
+        ("covariance", "float64[36]"),
+        ("b", "byte"),
+        ("c", "char"),
+        ("t", "time"),
+        ("d", "duration"),
+    ]
+    constants = {c.name: (c.type, c.value, c.value_text) for c in spec.constants}
+    assert constants == {
+        "LEVEL": ("uint8", 3, "3"),
+        "NAME": ("string", "a # b = c", "a # b = c"),
+        "S": ("string", "a=b", "a=b"),
+        "FLAG": ("bool", True, "True"),
+        "PI": ("float64", 3.14, "3.14"),
+    }
+    axes = spec.fields[3]
+    assert (axes.base_type, axes.is_array, axes.array_len) == ("geometry_msgs/Vector3", True, 3)
+    assert not spec.has_header  # the header must be the first field
+
+
+def test_header_first_makes_a_stamped_message() -> None:
+    assert parse_msg("Header header\nint8 x\n", "p/T").has_header
+    assert not parse_msg("Header stamp\n", "p/T").has_header
+
+
+def test_md5_text_keeps_aliases_and_drops_complex_array_suffixes() -> None:
+    specs = {
+        "p/Inner": parse_msg("int8 a\n", "p/Inner"),
+        "p/Outer": parse_msg("byte B=1\nchar[] c\nInner[] many\nInner[2] two\nuint8[4] raw\n", "p/Outer"),
+    }
+    md5 = Md5Cache(specs.__getitem__)
+    inner = md5.md5sum(specs["p/Inner"])
+    assert md5.md5_text(specs["p/Outer"]) == f"byte B=1\nchar[] c\n{inner} many\n{inner} two\nuint8[4] raw"
+
+
+@pytest.mark.parametrize(
+    ("text", "problem"),
+    [
+        ("int32\tx\n", "p/T:1: invalid declaration"),
+        ("int32 x\nint32 x\n", "p/T:2: duplicate field name 'x'"),
+        ("int32 1x\n", "p/T:1: '1x' is not a legal field name"),
+        ("int32[][] x\n", "p/T:1: 'int32[][]' is not a legal field type"),
+        ("int32[x] x\n", "p/T:1: 'int32[x]' is not a legal field type"),
+        ("a/b/c x\n", "p/T:1: 'a/b/c' is not a legal field type"),
+        ("int32 a b\n", "p/T:1: invalid declaration"),
+        ("uint8 X=256\n", "p/T:1: cannot coerce [256] to uint8 (out of bounds)"),
+        ("int8 X=-129\n", "p/T:1: cannot coerce [-129] to int8 (out of bounds)"),
+        ("int32 X=abc\n", "p/T:1: invalid int32 constant value 'abc'"),
+        ("time T=1\n", "p/T:1: time is not a legal constant type"),
+        ("Point P=1\n", "p/T:1: Point is not a legal constant type"),
+        ("int32 X=1=2\n", "p/T:1: invalid constant declaration"),
+    ],
+)
+def test_bad_definitions_name_the_line(text: str, problem: str) -> None:
+    with pytest.raises(MsgDefinitionError) as info:
+        parse_msg(text, "p/T")
+    assert str(info.value).startswith(problem)
+
+
+def test_errors_name_the_source_file() -> None:
+    with pytest.raises(MsgDefinitionError, match=r"^/ws/p/msg/T\.msg:2: "):
+        parse_msg("int32 x\nflaot32\n", "p/T", "/ws/p/msg/T.msg")
+
+
+def test_service_sections_and_comment_stripping() -> None:
+    srv = parse_srv("int64 a # first\nstring S=x # y\n---  trailing\nint64 sum\n", "p/Add")
+    assert srv.request.full_name == "p/AddRequest"
+    assert srv.response.full_name == "p/AddResponse"
+    assert srv.request.constants[0].value == "x"  # .srv lines lose comments before parsing
+    assert srv.request.text == "int64 a\nstring S=x\n"
+    assert [f.name for f in srv.response.fields] == ["sum"]
+
+
+def test_service_needs_one_separator() -> None:
+    with pytest.raises(MsgDefinitionError, match="exactly one '---'"):
+        parse_srv("int64 a\n", "p/Add")
+    with pytest.raises(MsgDefinitionError, match="exactly one '---'"):
+        parse_srv("int64 a\n---\n---\n", "p/Add")
+
+
+def test_action_expands_into_seven_messages() -> None:
+    action = parse_action("int32 order\n---\nint32[] sequence\n---\nint32[] sequence\n", "pkg/Fib")
+    names = [m.full_name for m in action.messages]
+    assert sorted(names) == sorted(
+        f"pkg/Fib{s}" for s in ("Action", "ActionGoal", "ActionResult", "ActionFeedback", "Goal", "Result", "Feedback")
+    )
+    by_name = {m.full_name: m for m in action.messages}
+    head = "# ====== DO NOT MODIFY! AUTOGENERATED FROM AN ACTION DEFINITION ======\n"
+    assert by_name["pkg/FibGoal"].text == head + "int32 order\n"
+    assert by_name["pkg/FibFeedback"].text == head + "int32[] sequence\n\n"
+    assert by_name["pkg/FibActionGoal"].types == ("std_msgs/Header", "actionlib_msgs/GoalID", "pkg/FibGoal")
+    assert by_name["pkg/FibAction"].types == ("pkg/FibActionGoal", "pkg/FibActionResult", "pkg/FibActionFeedback")
+
+
+def test_action_needs_three_sections() -> None:
+    with pytest.raises(MsgDefinitionError, match="exactly two '---'"):
+        parse_action("int32 order\n---\n", "pkg/Fib")
+
+
+def test_relative_type_needs_a_package() -> None:
+    with pytest.raises(MsgDefinitionError, match="no package context"):
+        parse_msg("Point p\n", "Bare")
