@@ -8,7 +8,6 @@ here, dependencies first.
 
 from __future__ import annotations
 
-import threading
 from collections.abc import Callable, Mapping, Sequence
 from typing import Any
 
@@ -75,8 +74,8 @@ def make_service_class(srv: SrvSpec, md5sum: str, request: type[Any], response: 
     })
 
 
+# Two threads meeting the same new definition may both generate it; the first one stored wins.
 _dynamic_cache: dict[tuple[str, str], dict[str, type[Any]]] = {}
-_dynamic_lock = threading.Lock()
 
 
 def generate_dynamic(core_type: str, msg_cat: str) -> dict[str, type[Any]]:
@@ -86,8 +85,7 @@ def generate_dynamic(core_type: str, msg_cat: str) -> dict[str, type[Any]]:
     (genpy.dynamic.generate_dynamic). The returned classes are private to this definition.
     """
     key = (core_type, msg_cat)
-    with _dynamic_lock:
-        cached = _dynamic_cache.get(key)
+    cached = _dynamic_cache.get(key)
     if cached is not None:
         return cached
     split_type_name(core_type)
@@ -113,6 +111,4 @@ def generate_dynamic(core_type: str, msg_cat: str) -> dict[str, type[Any]]:
         return msg_cat if spec.full_name == core_type else full_text(spec, lookup)
 
     classes = compile_classes(ordered, lookup, md5.md5sum, definition, {}, "kame.msg.dynamic")
-    with _dynamic_lock:
-        _dynamic_cache[key] = classes
-    return classes
+    return _dynamic_cache.setdefault(key, classes)
