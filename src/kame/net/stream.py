@@ -1,0 +1,364 @@
+"""Byte streams over TCP for message transports: a listener, a receiver, a bounded sender.
+
+Rules:
+- Sending never blocks the caller and never hops threads while the socket can take the bytes:
+  `Sender.send` writes straight to the (non-blocking) socket. Only what the kernel will not
+  take now waits in a per-connection backlog, which one flusher thread per owner drains as
+  the socket becomes writable, many frames per system call.
+- A backlog holds at most `max_frames` frames; when full, the oldest whole frame that has not
+  started going out is dropped (a publisher's queue_size). One slow reader therefore costs
+  its own connection frames, never the sender's time or other connections.
+- Receiving is one thread per connection, blocking in recv_into and handing chunks to a
+  callback, which may parse and act on many frames per chunk.
+- Every thread has an owner that stops it: `close()` shuts the socket down, which wakes the
+  thread blocked on it. "Closed by us" and "broken by the peer" reach the callbacks apart.
+This module moves bytes; what the bytes mean is the caller's business.
+"""
+
+from __future__ import annotations
+
+import collections
+import logging
+import selectors
+import socket
+import threading
+from collections.abc import Callable, Sequence
+from typing import Any, Protocol
+
+log = logging.getLogger("kame.net.stream")
+
+Buffer = bytes | bytearray | memoryview
+_IOV_MAX = 512  # buffers per sendmsg call
+
+
+def set_nodelay(sock: socket.socket, enabled: bool) -> None:
+    if sock.family in (socket.AF_INET, socket.AF_INET6):
+        sock.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1 if enabled else 0)
+
+
+def set_keepalive(sock: socket.socket) -> None:
+    sock.setsockopt(socket.SOL_SOCKET, socket.SO_KEEPALIVE, 1)
+
+
+class Flusher:
+    """One thread that drains the backlogs of the senders whose sockets were full."""
+
+    def __init__(self, name: str = "kame-flusher") -> None:
+        self._selector = selectors.DefaultSelector()
+        self._wake_r, self._wake_w = socket.socketpair()
+        self._wake_r.setblocking(False)
+        self._selector.register(self._wake_r, selectors.EVENT_READ, None)
+        self._lock = threading.Lock()
+        self._pending: set[Sender] = set()
+        self._registered: set[Sender] = set()
+        self._closed = False
+        self._thread = threading.Thread(target=self._run, name=name, daemon=True)
+        self._thread.start()
+
+    def want_write(self, sender: Sender) -> None:
+        with self._lock:
+            if self._closed:
+                return
+            self._pending.add(sender)
+        try:
+            self._wake_w.send(b"\0")
+        except OSError:
+            pass
+
+    def close(self) -> None:
+        with self._lock:
+            self._closed = True
+        try:
+            self._wake_w.send(b"\0")
+        except OSError:
+            pass
+        if self._thread is not threading.current_thread():
+            self._thread.join(timeout=2.0)
+        self._wake_w.close()
+
+    def _run(self) -> None:
+        try:
+            while True:
+                with self._lock:
+                    if self._closed:
+                        break
+                    pending, self._pending = self._pending, set()
+                for sender in pending:
+                    if sender not in self._registered and not sender.closed:
+                        try:
+                            self._selector.register(sender.sock, selectors.EVENT_WRITE, sender)
+                            self._registered.add(sender)
+                        except (ValueError, KeyError, OSError):
+                            pass
+                for key, _ in self._selector.select(timeout=1.0):
+                    if key.data is None:
+                        try:
+                            self._wake_r.recv(4096)
+                        except OSError:
+                            pass
+                        continue
+                    sender = key.data
+                    if sender.flush():
+                        self._selector.unregister(sender.sock)
+                        self._registered.discard(sender)
+                for sender in [s for s in self._registered if s.closed]:
+                    try:
+                        self._selector.unregister(sender.sock)
+                    except (KeyError, ValueError, OSError):
+                        pass
+                    self._registered.discard(sender)
+        finally:
+            self._selector.close()
+            self._wake_r.close()
+
+
+class Sender:
+    """The sending side of one connection: direct writes, a bounded backlog, drop-oldest."""
+
+    def __init__(self, sock: socket.socket, flusher: Flusher, max_frames: int,
+                 on_broken: Callable[[BaseException | None], None]) -> None:
+        sock.setblocking(False)
+        self.sock = sock
+        self.closed = False
+        self.max_frames = max(1, max_frames)
+        self.dropped = 0
+        self.bytes_sent = 0
+        self.frames_sent = 0
+        self._flusher = flusher
+        self._on_broken = on_broken
+        self._lock = threading.Lock()
+        # Frames waiting; the first may be partly sent (then _head_sent > 0).
+        self._backlog: collections.deque[memoryview] = collections.deque()
+        self._head_sent = 0
+
+    def send(self, frame: Buffer) -> None:
+        """Queue one frame (bytes-like); it goes out now if the socket takes it."""
+        with self._lock:
+            if self.closed:
+                return
+            self.frames_sent += 1
+            if self._backlog:
+                self._append(frame)
+                return
+            try:
+                sent = self.sock.send(frame)
+            except (BlockingIOError, InterruptedError):
+                sent = 0
+            except OSError as exc:
+                self._fail(exc)
+                return
+            self.bytes_sent += sent
+            if sent == len(frame):
+                return
+            self._backlog.append(memoryview(frame)[sent:])
+            self._head_sent = 0
+        self._flusher.want_write(self)
+
+    def _append(self, frame: Buffer) -> None:
+        backlog = self._backlog
+        backlog.append(memoryview(frame))
+        while len(backlog) > self.max_frames:
+            # The head may be partly on the wire: keep it, drop the next oldest.
+            if self._head_sent:
+                head = backlog.popleft()
+                backlog.popleft()
+                backlog.appendleft(head)
+            else:
+                backlog.popleft()
+            self.dropped += 1
+
+    def flush(self) -> bool:
+        """Send what the socket takes; True when the backlog is empty (called by the flusher)."""
+        with self._lock:
+            if self.closed:
+                return True
+            backlog = self._backlog
+            while backlog:
+                batch = [backlog[i] for i in range(min(len(backlog), _IOV_MAX))]
+                try:
+                    sent = self.sock.sendmsg(batch)
+                except (BlockingIOError, InterruptedError):
+                    return False
+                except OSError as exc:
+                    self._fail(exc)
+                    return True
+                self.bytes_sent += sent
+                while sent and backlog:
+                    head = backlog[0]
+                    if sent >= len(head):
+                        sent -= len(head)
+                        backlog.popleft()
+                        self._head_sent = 0
+                    else:
+                        backlog[0] = head[sent:]
+                        self._head_sent += sent
+                        sent = 0
+                if backlog:
+                    return False
+            return True
+
+    def _fail(self, exc: BaseException) -> None:
+        self.closed = True
+        self._backlog.clear()
+        callback, self._on_broken = self._on_broken, _ignore
+        callback(exc)
+
+    def close(self) -> None:
+        with self._lock:
+            self.closed = True
+            self._backlog.clear()
+        self._on_broken = _ignore
+
+
+def _ignore(_exc: BaseException | None) -> None:
+    return None
+
+
+class Consumer(Protocol):
+    """What a Receiver feeds. After each chunk it may ask for the next bytes to be read
+    straight into a buffer of its own (a large frame), so they are copied once, not twice."""
+
+    def feed(self, data: memoryview) -> None: ...
+
+    def direct_target(self) -> memoryview | None: ...
+
+    def direct_filled(self) -> None: ...
+
+
+class Receiver:
+    """A thread that reads a socket and hands what arrives to a Consumer until the stream ends.
+
+    `feed(view)` gets a memoryview valid only during the call. `on_end(exc)` is called once:
+    with None when the peer closed the stream, with the error when it broke, and not at all
+    when we closed it ourselves.
+    """
+
+    def __init__(self, sock: socket.socket, consumer: Consumer, on_end: Callable[[BaseException | None], None],
+                 name: str, initial: bytes = b"", chunk_size: int = 256 * 1024) -> None:
+        self.sock = sock
+        self._consumer = consumer
+        self._on_end = on_end
+        self._initial = initial
+        self._chunk_size = chunk_size
+        self._closing = False
+        self._thread = threading.Thread(target=self._run, name=name, daemon=True)
+
+    def start(self) -> None:
+        self._thread.start()
+
+    def _fill(self, target: memoryview) -> bool:
+        got = 0
+        while got < len(target):
+            n = self.sock.recv_into(target[got:])
+            if n == 0:
+                return False
+            got += n
+        return True
+
+    def _run(self) -> None:
+        buffer = bytearray(self._chunk_size)
+        view = memoryview(buffer)
+        consumer = self._consumer
+        error: BaseException | None = None
+        try:
+            if self._initial:
+                consumer.feed(memoryview(self._initial))
+            while not self._closing:
+                target = consumer.direct_target()
+                if target is not None:
+                    if not self._fill(target):
+                        break
+                    consumer.direct_filled()
+                    continue
+                n = self.sock.recv_into(buffer)
+                if n == 0:
+                    break
+                consumer.feed(view[:n])
+        except OSError as exc:
+            error = exc
+        except Exception as exc:  # a protocol error or a bug in the consumer: end this stream only
+            error = exc
+        if not self._closing:
+            self._on_end(error)
+
+    def close(self) -> None:
+        self._closing = True
+        _shutdown(self.sock)
+        if self._thread.is_alive() and self._thread is not threading.current_thread():
+            self._thread.join(timeout=1.0)
+
+
+class Listener:
+    """Accepts TCP connections on a thread and hands each new socket to `on_accept`."""
+
+    def __init__(self, host: str, port: int, on_accept: Callable[[socket.socket, Any], None],
+                 name: str = "kame-listener") -> None:
+        family = socket.AF_INET6 if ":" in host else socket.AF_INET
+        self.sock = socket.socket(family, socket.SOCK_STREAM)
+        self.sock.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
+        self.sock.bind((host, port))
+        self.sock.listen(128)
+        self.port: int = self.sock.getsockname()[1]
+        self._on_accept = on_accept
+        self._closing = False
+        self._thread = threading.Thread(target=self._run, name=name, daemon=True)
+        self._thread.start()
+
+    def _run(self) -> None:
+        while not self._closing:
+            try:
+                conn, addr = self.sock.accept()
+            except OSError:
+                if self._closing:
+                    return
+                continue
+            try:
+                self._on_accept(conn, addr)
+            except Exception:
+                log.exception("error accepting a connection from %s", addr)
+                conn.close()
+
+    def close(self) -> None:
+        self._closing = True
+        _shutdown(self.sock)
+        self.sock.close()
+        self._thread.join(timeout=1.0)
+
+
+def _shutdown(sock: socket.socket) -> None:
+    try:
+        sock.shutdown(socket.SHUT_RDWR)
+    except OSError:
+        pass
+
+
+def _peer(sock: socket.socket) -> str:
+    try:
+        return str(sock.getpeername())
+    except OSError:
+        return "?"
+
+
+def connect(host: str, port: int, timeout: float) -> socket.socket:
+    sock = socket.create_connection((host, port), timeout=timeout)
+    sock.settimeout(None)
+    return sock
+
+
+def recv_exactly(sock: socket.socket, size: int) -> bytes:
+    """Blocking read of exactly `size` bytes (handshakes); raises ConnectionError at EOF."""
+    chunks: list[bytes] = []
+    remaining = size
+    while remaining:
+        chunk = sock.recv(min(remaining, 1 << 20))
+        if not chunk:
+            raise ConnectionError("connection closed by the peer")
+        chunks.append(chunk)
+        remaining -= len(chunk)
+    return b"".join(chunks)
+
+
+def sendall_buffers(sock: socket.socket, buffers: Sequence[Buffer]) -> None:
+    """Blocking write of several buffers (handshakes, service calls)."""
+    for buffer in buffers:
+        sock.sendall(buffer)

@@ -1,0 +1,203 @@
+"""Shared test helpers: free loopback ports, processes stopped by PID, Debian's real ROS 1 tools.
+
+Every process a test starts goes through `Proc`, which stops exactly that PID (SIGINT, then
+SIGKILL) and never anything found by name.
+"""
+
+from __future__ import annotations
+
+import os
+import shutil
+import signal
+import socket
+import subprocess
+import sys
+import time
+import xmlrpc.client
+from collections.abc import Iterator, Sequence
+from contextlib import contextmanager
+from pathlib import Path
+
+SYSTEM_PYTHON = "/usr/bin/python3"
+REPO = Path(__file__).resolve().parents[2]
+
+
+def free_port() -> int:
+    """A TCP port on 127.0.0.1 that was free a moment ago."""
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return int(s.getsockname()[1])
+
+
+def have_debian_ros() -> bool:
+    """True when Debian's rosmaster, rospy and the ros* command-line tools can run."""
+    if not (os.path.exists("/usr/bin/rosmaster") and os.path.exists(SYSTEM_PYTHON)):
+        return False
+    probe = subprocess.run([SYSTEM_PYTHON, "-c", "import rospy, rosmaster, rostopic"], capture_output=True)
+    return probe.returncode == 0
+
+
+def ros_env(home: Path, master_uri: str | None = None) -> dict[str, str]:
+    """The environment for a ROS process: its own ROS_HOME/ROS_LOG_DIR, loopback addresses."""
+    env = {k: v for k, v in os.environ.items() if not k.startswith("ROS_") and k != "PYTHONPATH"}
+    home.mkdir(parents=True, exist_ok=True)
+    env.update(ROS_HOME=str(home), ROS_LOG_DIR=str(home / "log"), ROS_HOSTNAME="127.0.0.1",
+               PYTHONUNBUFFERED="1")
+    if master_uri:
+        env["ROS_MASTER_URI"] = master_uri
+    return env
+
+
+class Proc:
+    """A started process, stopped by its PID."""
+
+    def __init__(self, args: Sequence[str], env: dict[str, str], cwd: Path | None = None) -> None:
+        self.args = list(args)
+        self.popen = subprocess.Popen(self.args, env=env, cwd=cwd, stdout=subprocess.PIPE,
+                                      stderr=subprocess.PIPE, text=True)
+
+    @property
+    def pid(self) -> int:
+        return self.popen.pid
+
+    def stop(self, timeout: float = 5.0) -> tuple[str, str]:
+        """SIGINT, then SIGKILL after `timeout`; returns (stdout, stderr)."""
+        if self.popen.poll() is None:
+            os.kill(self.pid, signal.SIGINT)
+            try:
+                self.popen.wait(timeout)
+            except subprocess.TimeoutExpired:
+                os.kill(self.pid, signal.SIGKILL)
+        out, err = self.popen.communicate(timeout=10)
+        return out, err
+
+
+@contextmanager
+def running(args: Sequence[str], env: dict[str, str], cwd: Path | None = None) -> Iterator[Proc]:
+    proc = Proc(args, env, cwd)
+    try:
+        yield proc
+    finally:
+        proc.stop()
+
+
+def kame_command(module: str, *args: str) -> list[str]:
+    """Run a kame CLI module with this interpreter (works without installed entry points)."""
+    return [sys.executable, "-m", module, *args]
+
+
+def wait_for_master(uri: str, timeout: float = 10.0, proc: Proc | None = None) -> None:
+    deadline = time.monotonic() + timeout
+    while True:
+        try:
+            code, _, _ = xmlrpc.client.ServerProxy(uri).getPid("/test")
+            if code == 1:
+                return
+        except OSError:
+            pass
+        if proc is not None and proc.popen.poll() is not None:
+            out, err = proc.popen.communicate()
+            raise RuntimeError(f"{proc.args} exited with {proc.popen.returncode}:\n{out}\n{err}")
+        if time.monotonic() > deadline:
+            raise TimeoutError(f"no master at {uri}")
+        time.sleep(0.05)
+
+
+def ros_tool(name: str, *args: str, env: dict[str, str], timeout: float = 30.0,
+             check: bool = True) -> subprocess.CompletedProcess[str]:
+    """Run one of Debian's ROS 1 tools (rostopic, rosparam, ...) with the system interpreter."""
+    path = shutil.which(name, path="/usr/bin") or name
+    result = subprocess.run([SYSTEM_PYTHON, path, *args], env=env, capture_output=True, text=True,
+                            timeout=timeout)
+    if check and result.returncode != 0:
+        raise AssertionError(f"{name} {' '.join(args)} failed ({result.returncode}):\n{result.stdout}\n{result.stderr}")
+    return result
+
+
+class LoopThread:
+    """An asyncio event loop in a background thread, for serving from synchronous tests."""
+
+    def __init__(self) -> None:
+        import asyncio
+        import threading
+
+        self.loop = asyncio.new_event_loop()
+        self.thread = threading.Thread(target=self.loop.run_forever, daemon=True)
+        self.thread.start()
+
+    def run(self, coro, timeout: float = 10.0):  # type: ignore[no-untyped-def]
+        import asyncio
+
+        return asyncio.run_coroutine_threadsafe(coro, self.loop).result(timeout)
+
+    def close(self) -> None:
+        self.loop.call_soon_threadsafe(self.loop.stop)
+        self.thread.join(5)
+        self.loop.close()
+
+
+class FakeNode:
+    """A node's XML-RPC server that records the master's calls (publisherUpdate, paramUpdate,
+    shutdown) and answers [1, '', 0]; `delay` makes it slow."""
+
+    def __init__(self, delay: float = 0.0) -> None:
+        import threading
+        from xmlrpc.server import SimpleXMLRPCServer
+
+        self.calls: list[tuple[str, tuple[object, ...]]] = []
+        self.event = threading.Event()
+        self.delay = delay
+        self.server = SimpleXMLRPCServer(("127.0.0.1", 0), logRequests=False, allow_none=False)
+        self.server.register_instance(self)
+        self.uri = f"http://127.0.0.1:{self.server.server_address[1]}/"
+        self.thread = threading.Thread(target=self.server.serve_forever, kwargs={"poll_interval": 0.05},
+                                       daemon=True)
+        self.thread.start()
+
+    def _dispatch(self, method: str, params: tuple[object, ...]) -> object:
+        time.sleep(self.delay)
+        self.calls.append((method, params))
+        self.event.set()
+        return [1, "", 0]
+
+    def wait_calls(self, n: int, timeout: float = 5.0) -> list[tuple[str, tuple[object, ...]]]:
+        deadline = time.monotonic() + timeout
+        while len(self.calls) < n and time.monotonic() < deadline:
+            time.sleep(0.01)
+        return list(self.calls)
+
+    def close(self) -> None:
+        self.server.shutdown()
+        self.server.server_close()
+
+
+class SilentPeer:
+    """A TCP listener that accepts connections and never answers: a node that hangs."""
+
+    def __init__(self) -> None:
+        import threading
+
+        self.sock = socket.socket()
+        self.sock.bind(("127.0.0.1", 0))
+        self.sock.listen(64)
+        self.uri = f"http://127.0.0.1:{self.sock.getsockname()[1]}/"
+        self.accepted: list[socket.socket] = []
+        self.thread = threading.Thread(target=self._accept, daemon=True)
+        self.thread.start()
+
+    def _accept(self) -> None:
+        while True:
+            try:
+                conn, _ = self.sock.accept()
+            except OSError:
+                return
+            self.accepted.append(conn)
+
+    def close(self) -> None:
+        try:
+            self.sock.shutdown(socket.SHUT_RDWR)  # wakes the blocked accept()
+        except OSError:
+            pass
+        self.sock.close()
+        for c in self.accepted:
+            c.close()
