@@ -49,16 +49,41 @@ def ros_env(home: Path, master_uri: str | None = None) -> dict[str, str]:
 
 
 class Proc:
-    """A started process, stopped by its PID."""
+    """A started process, stopped by its PID; its output is collected line by line as it comes."""
 
     def __init__(self, args: Sequence[str], env: dict[str, str], cwd: Path | None = None) -> None:
+        import threading
+
         self.args = list(args)
         self.popen = subprocess.Popen(self.args, env=env, cwd=cwd, stdout=subprocess.PIPE,
                                       stderr=subprocess.PIPE, text=True)
+        self.out: list[str] = []
+        self.err: list[str] = []
+        self._readers = [threading.Thread(target=self._read, args=(stream, sink), daemon=True)
+                         for stream, sink in ((self.popen.stdout, self.out), (self.popen.stderr, self.err))]
+        for t in self._readers:
+            t.start()
+
+    @staticmethod
+    def _read(stream: object, sink: list[str]) -> None:
+        for line in stream:  # type: ignore[attr-defined]
+            sink.append(line)
 
     @property
     def pid(self) -> int:
         return self.popen.pid
+
+    def wait_line(self, text: str, timeout: float = 15.0) -> str:
+        """The first stdout line containing `text`, waiting for it to appear."""
+        deadline = time.monotonic() + timeout
+        while time.monotonic() < deadline:
+            for line in list(self.out):
+                if text in line:
+                    return line
+            if self.popen.poll() is not None and not any(t.is_alive() for t in self._readers):
+                break
+            time.sleep(0.02)
+        raise AssertionError(f"{text!r} not printed by {self.args}:\n{''.join(self.out)}\n{''.join(self.err)}")
 
     def stop(self, timeout: float = 5.0) -> tuple[str, str]:
         """SIGINT, then SIGKILL after `timeout`; returns (stdout, stderr)."""
@@ -68,8 +93,10 @@ class Proc:
                 self.popen.wait(timeout)
             except subprocess.TimeoutExpired:
                 os.kill(self.pid, signal.SIGKILL)
-        out, err = self.popen.communicate(timeout=10)
-        return out, err
+                self.popen.wait(timeout)
+        for t in self._readers:
+            t.join(5)
+        return "".join(self.out), "".join(self.err)
 
 
 @contextmanager
@@ -96,7 +123,7 @@ def wait_for_master(uri: str, timeout: float = 10.0, proc: Proc | None = None) -
         except OSError:
             pass
         if proc is not None and proc.popen.poll() is not None:
-            out, err = proc.popen.communicate()
+            out, err = proc.stop()
             raise RuntimeError(f"{proc.args} exited with {proc.popen.returncode}:\n{out}\n{err}")
         if time.monotonic() > deadline:
             raise TimeoutError(f"no master at {uri}")

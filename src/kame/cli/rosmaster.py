@@ -1,0 +1,149 @@
+"""rosmaster: the ROS master and parameter server (`rosmaster --core -p PORT -w N __log:=FILE`).
+
+Options as in ros_comm's rosmaster. `-w` (notification worker threads there) is accepted and has
+nothing to size here: notifications run concurrently per node with a timeout each (`-t`).
+SIGINT or SIGTERM, or a `shutdown` XML-RPC call, stops it promptly.
+"""
+
+from __future__ import annotations
+
+import argparse
+import asyncio
+import logging
+import logging.handlers
+import os
+import signal
+import sys
+from collections.abc import Awaitable, Callable, Sequence
+from pathlib import Path
+
+from kame import names
+from kame.master.server import NOTIFY_TIMEOUT, MasterServer
+from kame.net.address import address_override, advertised_host, bind_host
+
+DEFAULT_PORT = 11311
+LOG_FORMAT = "[%(name)s][%(levelname)s] %(asctime)s: %(message)s"
+_LEVELS = {"debug": logging.DEBUG, "info": logging.INFO, "warn": logging.WARNING, "error": logging.ERROR,
+           "fatal": logging.CRITICAL}
+
+ACHTUNG = """
+
+
+ACHTUNG WARNING ACHTUNG WARNING ACHTUNG
+WARNING ACHTUNG WARNING ACHTUNG WARNING
+
+
+Standalone zenmaster has been deprecated, please use 'roscore' instead
+
+
+ACHTUNG WARNING ACHTUNG WARNING ACHTUNG
+WARNING ACHTUNG WARNING ACHTUNG WARNING
+
+"""
+
+
+def log_dir(env: os._Environ[str] | dict[str, str]) -> Path:
+    """ROS_LOG_DIR, else ROS_HOME/log, else ~/.ros/log (spec §8.3)."""
+    if env.get("ROS_LOG_DIR"):
+        return Path(env["ROS_LOG_DIR"])
+    return ros_home(env) / "log"
+
+
+def ros_home(env: os._Environ[str] | dict[str, str]) -> Path:
+    return Path(env["ROS_HOME"]) if env.get("ROS_HOME") else Path.home() / ".ros"
+
+
+def setup_file_logging(path: Path) -> logging.handlers.MemoryHandler:
+    """Log kame.* records to `path`, buffered: a registration must not wait for a disk write.
+
+    The buffer is written out when full, on a warning, by `flush_periodically`, and at exit.
+    """
+    path.parent.mkdir(parents=True, exist_ok=True)
+    target = logging.FileHandler(path)
+    target.setFormatter(logging.Formatter(LOG_FORMAT))
+    buffered = logging.handlers.MemoryHandler(1000, logging.WARNING, target)
+    root = logging.getLogger("kame")
+    root.setLevel(logging.DEBUG)
+    root.addHandler(buffered)
+    return buffered
+
+
+async def flush_periodically(handler: logging.Handler, every: float = 1.0) -> None:
+    while True:
+        await asyncio.sleep(every)
+        handler.flush()
+
+
+async def serve(port: int, notify_timeout: float,
+                on_started: Callable[[MasterServer, str], Awaitable[None]] | None = None) -> int:
+    """Run a master on `port` until SIGINT/SIGTERM or a shutdown call; returns the exit status."""
+    override = address_override(os.environ)
+    server = MasterServer(bind_host(override), port, advertised_host(override), notify_timeout=notify_timeout)
+    try:
+        uri = await server.start()
+    except OSError as e:
+        logging.getLogger("kame.master").error("cannot listen on port %d: %s", port, e)
+        print(f"ERROR: Unable to start XML-RPC server, port {port} is already in use", file=sys.stderr)
+        return 1
+    loop = asyncio.get_running_loop()
+    stop = asyncio.Event()
+    for sig in (signal.SIGINT, signal.SIGTERM):
+        loop.add_signal_handler(sig, stop.set)
+    try:
+        if on_started is not None:
+            await on_started(server, uri)
+        shutdown_call = asyncio.ensure_future(server.wait_shutdown())
+        stop_signal = asyncio.ensure_future(stop.wait())
+        await asyncio.wait([shutdown_call, stop_signal], return_when=asyncio.FIRST_COMPLETED)
+        shutdown_call.cancel()
+        stop_signal.cancel()
+    finally:
+        for sig in (signal.SIGINT, signal.SIGTERM):
+            loop.remove_signal_handler(sig)
+        logging.getLogger("kame.master").info("stopping master...")
+        await server.close()
+    return 0
+
+
+def parse_args(argv: Sequence[str]) -> tuple[argparse.Namespace, dict[str, str]]:
+    ros = names.parse_args(argv)
+    parser = argparse.ArgumentParser(prog="rosmaster", usage="usage: rosmaster [options]")
+    parser.add_argument("--core", action="store_true", help="run as core")
+    parser.add_argument("-p", "--port", type=int, default=DEFAULT_PORT, help="override port", metavar="PORT")
+    parser.add_argument("-w", "--numworkers", type=int, default=3, metavar="NUM_WORKERS",
+                        help="accepted for compatibility (notifications are concurrent per node)")
+    parser.add_argument("-t", "--timeout", type=float, default=NOTIFY_TIMEOUT, metavar="TIMEOUT",
+                        help="timeout of each notification to a node, in seconds")
+    parser.add_argument("--master-logger-level", choices=sorted(_LEVELS), default=None,
+                        help="set the master's logger level")
+    options = parser.parse_args(ros.argv)
+    if ros.remappings or ros.params:
+        parser.error(f"unrecognized arg: {next(iter({**ros.remappings, **ros.params}))}")
+    return options, ros.special
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    options, special = parse_args(sys.argv[1:] if argv is None else argv)
+    log_path = Path(special["log"]).absolute() if "log" in special else log_dir(os.environ) / "master.log"
+    handler = setup_file_logging(log_path)
+    if options.master_logger_level:
+        logging.getLogger("kame.master").setLevel(_LEVELS[options.master_logger_level])
+    if not options.core:
+        print(ACHTUNG, flush=True)
+    logging.getLogger("kame.master").info("initialization complete, waiting for shutdown")
+
+    async def run() -> int:
+        flusher = asyncio.ensure_future(flush_periodically(handler))
+        try:
+            return await serve(options.port, options.timeout)
+        finally:
+            flusher.cancel()
+
+    try:
+        return asyncio.run(run())
+    finally:
+        handler.close()
+
+
+if __name__ == "__main__":
+    sys.exit(main())
