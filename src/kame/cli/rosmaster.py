@@ -53,8 +53,8 @@ def ros_home(env: os._Environ[str] | dict[str, str]) -> Path:
     return Path(env["ROS_HOME"]) if env.get("ROS_HOME") else Path.home() / ".ros"
 
 
-def setup_file_logging(path: Path) -> logging.handlers.MemoryHandler:
-    """Log kame.* records to `path`, buffered: a registration must not wait for a disk write.
+def setup_file_logging(path: Path, logger: str = "kame") -> logging.handlers.MemoryHandler:
+    """Log `logger`'s records to `path`, buffered: a registration must not wait for a disk write.
 
     The buffer is written out when full, on a warning, by `flush_periodically`, and at exit.
     """
@@ -62,9 +62,9 @@ def setup_file_logging(path: Path) -> logging.handlers.MemoryHandler:
     target = logging.FileHandler(path)
     target.setFormatter(logging.Formatter(LOG_FORMAT))
     buffered = logging.handlers.MemoryHandler(1000, logging.WARNING, target)
-    root = logging.getLogger("kame")
-    root.setLevel(logging.DEBUG)
-    root.addHandler(buffered)
+    log = logging.getLogger(logger)
+    log.setLevel(logging.DEBUG)
+    log.addHandler(buffered)
     return buffered
 
 

@@ -1,0 +1,191 @@
+"""roscore: the master, the parameter server and the core parameters, with roscore's output.
+
+What the user sees follows ros1-user-behaviour §1: the banner (SUMMARY / PARAMETERS / NODES),
+ROS_MASTER_URI, `setting /run_id to ...`, the refusal when a master already answers on the port,
+and the Ctrl-C lines. Logs go to <log dir>/<run_id>/ (master.log, roslaunch-<host>-<pid>.log)
+with <log dir>/latest pointing there; ROS_HOME/roscore-<port>.pid holds our PID while we run.
+
+The master runs in this process, so `process[master]` reports our own PID. The rosout node is
+not started yet: it is a kame node and needs the client runtime (see `start_core_nodes`).
+"""
+
+from __future__ import annotations
+
+import argparse
+import asyncio
+import logging
+import os
+import socket
+import sys
+import uuid
+import xmlrpc.client
+from collections.abc import Sequence
+from pathlib import Path
+from urllib.parse import urlsplit
+
+from kame.cli.rosmaster import DEFAULT_PORT, flush_periodically, log_dir, ros_home, serve, setup_file_logging
+from kame.master.server import NOTIFY_TIMEOUT, MasterServer
+
+ROS_VERSION = "1.15.15"
+ROS_DISTRO = "noetic"
+BOLD, RED, RESET = "\033[1m", "\033[31m", "\033[0m"
+LOGGER = "kame.cli.roscore"  # not __name__, which is __main__ under python -m
+log = logging.getLogger(LOGGER)
+
+
+def _title(text: str) -> str:
+    return f"\033]2;{text}\007"
+
+
+def _bold(text: str) -> None:
+    print(f"{BOLD}{text}{RESET}", flush=True)
+
+
+def _running_master(uri: str) -> xmlrpc.client.ServerProxy | None:
+    """A proxy to the master answering at `uri`, or None if nothing answers."""
+    proxy = xmlrpc.client.ServerProxy(uri)
+    old = socket.getdefaulttimeout()
+    socket.setdefaulttimeout(2.0)
+    try:
+        proxy.getPid("/roscore")
+    except (OSError, xmlrpc.client.Error):
+        return None
+    finally:
+        socket.setdefaulttimeout(old)
+    return proxy
+
+
+def _disk_usage_check(directory: Path) -> None:
+    print("Checking log directory for disk usage. This may take a while.\nPress Ctrl-C to interrupt", flush=True)
+    total = 0
+    for root, _dirs, files in os.walk(directory):
+        for f in files:
+            try:
+                total += os.lstat(os.path.join(root, f)).st_size
+            except OSError:
+                continue
+    if total > 1024**3:
+        print(f"WARNING: disk usage in log directory [{directory}] is over 1GB.\n"
+              "It's recommended that you use the 'rosclean' command.", file=sys.stderr, flush=True)
+    else:
+        print("Done checking log file disk usage. Usage is <1GB.", flush=True)
+
+
+def _summary() -> None:
+    print(f"{_title('roscore')}", end="", flush=True)
+    print(f"ros_comm version {ROS_VERSION}\n\n")
+    print("SUMMARY\n========\n")
+    print(f"PARAMETERS\n * /rosdistro: {ROS_DISTRO}\n * /rosversion: {ROS_VERSION}\n")
+    print("NODES\n", flush=True)
+
+
+def _link_latest(logs: Path, run_dir: Path) -> None:
+    latest = logs / "latest"
+    try:
+        if latest.is_symlink() or latest.exists():
+            latest.unlink()
+        latest.symlink_to(run_dir, target_is_directory=True)
+    except OSError:
+        pass  # a read-only or odd log dir must not stop the core; ROS ignores this too
+
+
+async def start_core_nodes(server: MasterServer, run_dir: Path) -> None:
+    """The single place where roscore's core nodes start.
+
+    roscore's only core node is rosout (`rosout __name:=rosout __log:=<run_dir>/rosout-1.log`,
+    respawned when it dies). It is a kame node and will be started from here once the client
+    runtime (kame.node) exists; until then nothing is started and nothing is claimed.
+    """
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(prog="roscore", usage="roscore [options]")
+    parser.add_argument("-p", "--port", type=int, default=DEFAULT_PORT, help="master port")
+    parser.add_argument("-v", action="store_true", dest="verbose", help="verbose printing")
+    parser.add_argument("-w", "--numworkers", type=int, default=3, metavar="NUM_WORKERS",
+                        help="accepted for compatibility (notifications are concurrent per node)")
+    parser.add_argument("-t", "--timeout", type=float, default=NOTIFY_TIMEOUT, metavar="TIMEOUT",
+                        help="timeout of each notification to a node, in seconds")
+    options = parser.parse_args(sys.argv[1:] if argv is None else argv)
+    env = os.environ
+    port = options.port
+    local_uri = f"http://localhost:{port}/"
+
+    existing = _running_master(local_uri)
+    run_id = str(uuid.uuid1())
+    if existing is not None:
+        code, _, value = existing.getParam("/roscore", "/run_id")  # type: ignore[misc, str-unpack]
+        if code == 1 and isinstance(value, str):
+            run_id = value  # a second roscore logs under the running master's run_id
+    logs = log_dir(env)
+    run_dir = logs / run_id
+    own_log = run_dir / f"roslaunch-{socket.gethostname()}-{os.getpid()}.log"
+    handler = setup_file_logging(own_log, LOGGER)
+    print(f"... logging to {own_log}", flush=True)
+    _disk_usage_check(logs)
+    _summary()
+
+    if existing is not None:
+        print(f"{RED}RLException: roscore cannot run as another roscore/master is already running. \n"
+              f"Please kill other roscore/master processes before relaunching.\n"
+              f"The ROS_MASTER_URI is {local_uri}{RESET}\n"
+              f"{RED}The traceback for the exception was written to the log file{RESET}",
+              file=sys.stderr, flush=True)
+        log.error("another master is running at %s", local_uri)
+        handler.close()
+        return 1
+
+    master_port = urlsplit(env.get("ROS_MASTER_URI", "")).port
+    if master_port is not None and master_port != port:
+        print(f"WARNING: ROS_MASTER_URI port [{master_port}] does not match this roscore [{port}]",
+              file=sys.stderr, flush=True)
+    if options.verbose:
+        console = logging.StreamHandler(sys.stdout)
+        console.setFormatter(logging.Formatter("%(message)s"))
+        logging.getLogger("kame").addHandler(console)
+
+    master_log = setup_file_logging(run_dir / "master.log")
+    pid_file = ros_home(env) / f"roscore-{port}.pid"
+
+    async def on_started(server: MasterServer, uri: str) -> None:
+        print("auto-starting new master", flush=True)
+        _bold(f"process[master]: started with pid [{os.getpid()}]")
+        _bold(f"ROS_MASTER_URI={uri}")
+        print(_title(f"roscore {uri}"), end="", flush=True)
+        assert server.api is not None
+        api = server.api
+        if not api.params.has("/run_id"):
+            _bold(f"setting /run_id to {run_id}")
+            api.call("setParam", ["/roslaunch", "/run_id", run_id])
+        # as the output of `rosversion -d` / `rosversion roslaunch`, with their newline
+        api.call("setParam", ["/roslaunch", "/rosversion", ROS_VERSION + "\n"])
+        api.call("setParam", ["/roslaunch", "/rosdistro", ROS_DISTRO + "\n"])
+        _link_latest(logs, run_dir)
+        pid_file.parent.mkdir(parents=True, exist_ok=True)
+        pid_file.write_text(f"{os.getpid()}\n")
+        log.info("master at %s, run_id %s, pid file %s", uri, run_id, pid_file)
+        await start_core_nodes(server, run_dir)
+
+    async def run() -> int:
+        flushers = [asyncio.ensure_future(flush_periodically(h)) for h in (handler, master_log)]
+        try:
+            return await serve(port, options.timeout, on_started)
+        finally:
+            for f in flushers:
+                f.cancel()
+
+    try:
+        status = asyncio.run(run())
+    finally:
+        pid_file.unlink(missing_ok=True)
+        handler.close()
+        master_log.close()
+    if status == 0:
+        print("[master] killing on exit\nshutting down processing monitor...\n"
+              "... shutting down processing monitor complete", flush=True)
+        _bold("done")
+    return status
+
+
+if __name__ == "__main__":
+    sys.exit(main())
