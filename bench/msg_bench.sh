@@ -1,0 +1,6 @@
+#!/bin/sh
+# Entry point: bench/msg_bench.sh [--reps N] [--json FILE] ... (see msg_bench.py --help)
+here=$(dirname "$0")
+py=/usr/bin/python3
+[ -x "$py" ] || py=python3
+exec "$py" "$here/msg_bench.py" "$@"
