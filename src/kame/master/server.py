@@ -164,8 +164,7 @@ class MasterServer:
             log.error("%s%s failed:\n%s", method, tuple(params), result.failure)
         if method not in _READ_ONLY and log.isEnabledFor(logging.INFO):
             value = result.value
-            status = value[:2] if isinstance(value, list) else value
-            log.info("%s%s -> %s", method, tuple(params)[:3], status)
+            log.info("%s %s -> %s", method, params[:3], value[:2] if isinstance(value, list) else value)
         for note in result.notifications:
             self.notifier.send(note)
         if result.shutdown is not None:

@@ -1,0 +1,251 @@
+#!/usr/bin/env python3
+"""Master benchmark: Debian's rosmaster against kame's, same client, same run (stdlib only).
+
+For each measurement a fresh master is started on a free loopback port and stopped by its PID
+afterwards. The client is deliberately thin so that it measures the master, not itself: each
+thread holds its own keep-alive connection and sends a pre-encoded XML-RPC request, reading the
+response with Content-Length (reconnecting when the server closes, as rosmaster's HTTP/1.0 does).
+
+  python3 bench/master_bench.py [--window 2] [--kame-python .venv/bin/python]
+
+Metrics: XML-RPC calls/s for registerPublisher, lookupNode and getSystemState with 1, 10 and 50
+concurrent client threads; ms to register 100 publishers + 100 subscribers; getSystemState
+latency (median) on a graph of 1000 topics.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import signal
+import socket
+import statistics
+import subprocess
+import sys
+import tempfile
+import threading
+import time
+import xmlrpc.client
+from pathlib import Path
+
+REPO = Path(__file__).resolve().parents[1]
+NODE_API = "http://127.0.0.1:1/"  # never contacted: no subscriber is ever registered for these topics
+
+
+def free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+class Master:
+    def __init__(self, name: str, cmd: list[str]) -> None:
+        self.name = name
+        self.port = free_port()
+        self.home = tempfile.mkdtemp(prefix="master_bench.")
+        env = dict(os.environ, ROS_HOME=self.home, ROS_LOG_DIR=self.home, ROS_HOSTNAME="127.0.0.1",
+                   ROS_MASTER_URI=f"http://127.0.0.1:{self.port}/")
+        self.proc = subprocess.Popen([*cmd, "--core", "-p", str(self.port)], env=env,
+                                     stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        self.uri = f"http://127.0.0.1:{self.port}/"
+        deadline = time.monotonic() + 20
+        while True:
+            try:
+                if xmlrpc.client.ServerProxy(self.uri).getPid("/bench")[0] == 1:
+                    break
+            except OSError:
+                pass
+            if time.monotonic() > deadline or self.proc.poll() is not None:
+                self.stop()
+                raise RuntimeError(f"{name} master did not start")
+            time.sleep(0.05)
+
+    def stop(self) -> None:
+        if self.proc.poll() is None:
+            os.kill(self.proc.pid, signal.SIGINT)
+            try:
+                self.proc.wait(5)
+            except subprocess.TimeoutExpired:
+                os.kill(self.proc.pid, signal.SIGKILL)
+                self.proc.wait()
+        subprocess.run(["rm", "-rf", self.home], check=False)
+
+
+class Client:
+    """One keep-alive HTTP connection sending pre-encoded XML-RPC requests."""
+
+    def __init__(self, port: int) -> None:
+        self.port = port
+        self.sock: socket.socket | None = None
+        self.buf = b""
+
+    def _connect(self) -> socket.socket:
+        s = socket.create_connection(("127.0.0.1", self.port))
+        s.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
+        self.buf = b""
+        return s
+
+    def call(self, request: bytes) -> bytes:
+        for attempt in (0, 1):
+            if self.sock is None:
+                self.sock = self._connect()
+            try:
+                self.sock.sendall(request)
+                return self._response()
+            except OSError:
+                self.sock.close()
+                self.sock = None
+                if attempt:
+                    raise
+        raise AssertionError("unreachable")
+
+    def _response(self) -> bytes:
+        assert self.sock is not None
+        while b"\r\n\r\n" not in self.buf:
+            chunk = self.sock.recv(65536)
+            if not chunk:
+                raise ConnectionResetError("closed before the response")
+            self.buf += chunk
+        head, _, rest = self.buf.partition(b"\r\n\r\n")
+        lower = head.lower()
+        i = lower.find(b"content-length:")
+        length = int(head[i + 15: head.find(b"\r\n", i) if head.find(b"\r\n", i) > 0 else None])
+        while len(rest) < length:
+            chunk = self.sock.recv(65536)
+            if not chunk:
+                raise ConnectionResetError("closed inside the response")
+            rest += chunk
+        body, self.buf = rest[:length], rest[length:]
+        if head.startswith(b"HTTP/1.0") or b"connection: close" in lower:
+            self.sock.close()
+            self.sock = None
+        return body
+
+
+def request(method: str, *params: object) -> bytes:
+    body = xmlrpc.client.dumps(params, method).encode()
+    return (f"POST / HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Type: text/xml\r\nContent-Length: {len(body)}\r\n"
+            "\r\n").encode() + body
+
+
+def ok(body: bytes) -> bool:
+    return b"<int>1</int>" in body[:160] or b"<i4>1</i4>" in body[:160]
+
+
+def throughput(m: Master, method: str, threads: int, window: float) -> float:
+    def requests_for(i: int) -> list[bytes]:
+        me = f"/bench_rpc_{i}"
+        if method == "registerPublisher":
+            return [request(method, me, f"/bench_rpc/t{n}", "std_msgs/String", NODE_API) for n in range(100)]
+        if method == "lookupNode":
+            return [request(method, me, "/bench_node")]
+        return [request(method, me)]
+
+    setup = Client(m.port)
+    if not ok(setup.call(request("registerPublisher", "/bench_node", "/bench_topic", "std_msgs/String", NODE_API))):
+        raise RuntimeError("setup failed")
+    counts = [0] * threads
+    errors: list[str] = []
+    start = threading.Barrier(threads + 1)
+    stop = threading.Event()
+
+    def run(i: int) -> None:
+        c = Client(m.port)
+        reqs = requests_for(i)
+        start.wait()
+        n = 0
+        try:
+            while not stop.is_set():
+                if not ok(c.call(reqs[n % len(reqs)])):
+                    errors.append(f"{method} failed")
+                    return
+                n += 1
+        except OSError as e:
+            errors.append(repr(e))
+        counts[i] = n
+
+    workers = [threading.Thread(target=run, args=(i,)) for i in range(threads)]
+    for w in workers:
+        w.start()
+    start.wait()
+    t0 = time.perf_counter()
+    time.sleep(window)
+    stop.set()
+    for w in workers:
+        w.join()
+    elapsed = time.perf_counter() - t0
+    if errors:
+        raise RuntimeError(f"{m.name}: {errors[0]}")
+    return sum(counts) / elapsed
+
+
+def register_200(m: Master) -> float:
+    c = Client(m.port)
+    reqs = [request("registerPublisher", "/graph", f"/graph/pub{i}", "std_msgs/String", NODE_API) for i in range(100)]
+    reqs += [request("registerSubscriber", "/graph", f"/graph/sub{i}", "std_msgs/String", NODE_API)
+             for i in range(100)]
+    t0 = time.perf_counter()
+    for r in reqs:
+        if not ok(c.call(r)):
+            raise RuntimeError("registration failed")
+    return (time.perf_counter() - t0) * 1e3
+
+
+def system_state_latency(m: Master) -> float:
+    c = Client(m.port)
+    for i in range(1000):
+        node = f"/node{i % 50}"
+        c.call(request("registerPublisher", node, f"/big/t{i}", "std_msgs/String", NODE_API))
+        c.call(request("registerSubscriber", f"/sub{i % 50}", f"/big/t{i}", "std_msgs/String", NODE_API))
+    req = request("getSystemState", "/bench")
+    times = []
+    for _ in range(30):
+        t0 = time.perf_counter()
+        body = c.call(req)
+        times.append((time.perf_counter() - t0) * 1e3)
+        if not ok(body):
+            raise RuntimeError("getSystemState failed")
+    state = xmlrpc.client.loads(body)[0][0][2]
+    if len(state[0]) < 1000:
+        raise RuntimeError("graph incomplete")
+    return statistics.median(times)
+
+
+def main() -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--window", type=float, default=2.0, help="seconds per throughput measurement")
+    ap.add_argument("--kame-python", default=str(REPO / ".venv" / "bin" / "python"))
+    ap.add_argument("--rosmaster", default="/usr/bin/rosmaster", help="Debian's rosmaster script")
+    args = ap.parse_args()
+    masters = {"rosmaster": ["/usr/bin/python3", args.rosmaster],
+               "kame": [args.kame_python, "-m", "kame.cli.rosmaster"]}
+    rows: list[tuple[str, str, dict[str, float]]] = []
+
+    def measure(label: str, unit: str, fn) -> None:  # type: ignore[no-untyped-def]
+        values = {}
+        for name, cmd in masters.items():
+            m = Master(name, cmd)
+            try:
+                values[name] = fn(m)
+            finally:
+                m.stop()
+            print(f"  {label} [{name}]: {values[name]:,.1f} {unit}", file=sys.stderr, flush=True)
+        rows.append((label, unit, values))
+
+    for method in ("registerPublisher", "lookupNode", "getSystemState"):
+        for threads in (1, 10, 50):
+            measure(f"{method}, {threads} client{'s' if threads > 1 else ''}", "call/s",
+                    lambda m, method=method, threads=threads: throughput(m, method, threads, args.window))
+    measure("register 100 pubs + 100 subs", "ms", register_200)
+    measure("getSystemState, 1000 topics (median)", "ms", system_state_latency)
+
+    print(f"{'metric':<40} {'unit':<7} {'rosmaster':>12} {'kame':>12} {'kame/rosmaster':>15}")
+    print("-" * 90)
+    for label, unit, v in rows:
+        ratio = v["kame"] / v["rosmaster"] if v["rosmaster"] else float("nan")
+        print(f"{label:<40} {unit:<7} {v['rosmaster']:>12,.1f} {v['kame']:>12,.1f} {ratio:>14.2f}x")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
