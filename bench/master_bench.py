@@ -132,7 +132,14 @@ def ok(body: bytes) -> bool:
     return b"<int>1</int>" in body[:160] or b"<i4>1</i4>" in body[:160]
 
 
-def throughput(m: Master, method: str, threads: int, window: float) -> float:
+def cpu_seconds(pid: int) -> float:
+    """User + system CPU time the process has used (Linux /proc)."""
+    fields = Path(f"/proc/{pid}/stat").read_text().rpartition(")")[2].split()
+    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+
+
+def throughput(m: Master, method: str, threads: int, window: float) -> tuple[float, float]:
+    """(calls/s, master CPU microseconds per call)."""
     def requests_for(i: int) -> list[bytes]:
         me = f"/bench_rpc_{i}"
         if method == "registerPublisher":
@@ -168,15 +175,15 @@ def throughput(m: Master, method: str, threads: int, window: float) -> float:
     for w in workers:
         w.start()
     start.wait()
-    t0 = time.perf_counter()
+    t0, cpu0 = time.perf_counter(), cpu_seconds(m.proc.pid)
     time.sleep(window)
     stop.set()
     for w in workers:
         w.join()
-    elapsed = time.perf_counter() - t0
+    elapsed, cpu = time.perf_counter() - t0, cpu_seconds(m.proc.pid) - cpu0
     if errors:
         raise RuntimeError(f"{m.name}: {errors[0]}")
-    return sum(counts) / elapsed
+    return sum(counts) / elapsed, cpu / max(sum(counts), 1) * 1e6
 
 
 def register_200(m: Master) -> float:
@@ -222,15 +229,20 @@ def main() -> int:
     rows: list[tuple[str, str, dict[str, float]]] = []
 
     def measure(label: str, unit: str, fn) -> None:  # type: ignore[no-untyped-def]
-        values = {}
+        values: dict[str, float] = {}
+        cpu: dict[str, float] = {}
         for name, cmd in masters.items():
             m = Master(name, cmd)
             try:
-                values[name] = fn(m)
+                result = fn(m)
             finally:
                 m.stop()
+            values[name], cpu[name] = result if isinstance(result, tuple) else (result, 0.0)
             print(f"  {label} [{name}]: {values[name]:,.1f} {unit}", file=sys.stderr, flush=True)
         rows.append((label, unit, values))
+        if all(cpu.values()):
+            # on a shared machine the client and neighbours take CPU too: this is the master's own cost
+            rows.append(("  master CPU per call", "us", cpu))
 
     for method in ("registerPublisher", "lookupNode", "getSystemState"):
         for threads in (1, 10, 50):
