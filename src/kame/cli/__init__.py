@@ -1,0 +1,1 @@
+"""kame.cli: the ros* command-line tools, one module per command."""
