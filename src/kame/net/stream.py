@@ -8,8 +8,8 @@ Rules:
 - A backlog holds at most `max_frames` frames; when full, the oldest whole frame that has not
   started going out is dropped (a publisher's queue_size). One slow reader therefore costs
   its own connection frames, never the sender's time or other connections.
-- Receiving is one thread per connection, blocking in recv_into and handing chunks to a
-  callback, which may parse and act on many frames per chunk.
+- Receiving is one thread per connection, blocking in recv_into a buffer its consumer hands
+  out; the consumer may parse and act on many frames per read.
 - Every thread has an owner that stops it: `close()` shuts the socket down, which wakes the
   thread blocked on it. "Closed by us" and "broken by the peer" reach the callbacks apart.
 This module moves bytes; what the bytes mean is the caller's business.
@@ -41,7 +41,9 @@ def set_keepalive(sock: socket.socket) -> None:
 
 
 class Flusher:
-    """One thread that drains the backlogs of the senders whose sockets were full."""
+    """One thread watching the owner's senders: it drains the backlogs of those whose sockets
+    were full, and notices peers that hung up (a reader of ours never sends after the
+    handshake, so a readable socket means end of stream or garbage to discard)."""
 
     def __init__(self, name: str = "kame-flusher") -> None:
         self._selector = selectors.DefaultSelector()
@@ -49,17 +51,26 @@ class Flusher:
         self._wake_r.setblocking(False)
         self._selector.register(self._wake_r, selectors.EVENT_READ, None)
         self._lock = threading.Lock()
-        self._pending: set[Sender] = set()
-        self._registered: set[Sender] = set()
+        self._changes: dict[Sender, int] = {}  # sender -> wanted events (0: forget it)
+        self._events: dict[Sender, int] = {}
         self._closed = False
         self._thread = threading.Thread(target=self._run, name=name, daemon=True)
         self._thread.start()
 
+    def watch(self, sender: Sender) -> None:
+        self._change(sender, selectors.EVENT_READ)
+
     def want_write(self, sender: Sender) -> None:
+        self._change(sender, selectors.EVENT_READ | selectors.EVENT_WRITE)
+
+    def forget(self, sender: Sender) -> None:
+        self._change(sender, 0)
+
+    def _change(self, sender: Sender, events: int) -> None:
         with self._lock:
             if self._closed:
                 return
-            self._pending.add(sender)
+            self._changes[sender] = events
         try:
             self._wake_w.send(b"\0")
         except OSError:
@@ -76,37 +87,45 @@ class Flusher:
             self._thread.join(timeout=2.0)
         self._wake_w.close()
 
+    def _apply(self) -> None:
+        with self._lock:
+            changes, self._changes = self._changes, {}
+        for sender, events in changes.items():
+            current = self._events.get(sender, 0)
+            if sender.closed:
+                events = 0
+            try:
+                if events == current:
+                    continue
+                if not events:
+                    self._selector.unregister(sender.sock)
+                    del self._events[sender]
+                elif not current:
+                    self._selector.register(sender.sock, events, sender)
+                    self._events[sender] = events
+                else:
+                    self._selector.modify(sender.sock, events, sender)
+                    self._events[sender] = events
+            except (KeyError, ValueError, OSError):
+                self._events.pop(sender, None)
+
     def _run(self) -> None:
         try:
-            while True:
-                with self._lock:
-                    if self._closed:
-                        break
-                    pending, self._pending = self._pending, set()
-                for sender in pending:
-                    if sender not in self._registered and not sender.closed:
-                        try:
-                            self._selector.register(sender.sock, selectors.EVENT_WRITE, sender)
-                            self._registered.add(sender)
-                        except (ValueError, KeyError, OSError):
-                            pass
-                for key, _ in self._selector.select(timeout=1.0):
-                    if key.data is None:
+            while not self._closed:
+                self._apply()
+                for key, mask in self._selector.select(timeout=1.0):
+                    sender = key.data
+                    if sender is None:
                         try:
                             self._wake_r.recv(4096)
                         except OSError:
                             pass
                         continue
-                    sender = key.data
-                    if sender.flush():
-                        self._selector.unregister(sender.sock)
-                        self._registered.discard(sender)
-                for sender in [s for s in self._registered if s.closed]:
-                    try:
-                        self._selector.unregister(sender.sock)
-                    except (KeyError, ValueError, OSError):
-                        pass
-                    self._registered.discard(sender)
+                    if mask & selectors.EVENT_READ and sender.peer_hung_up():
+                        self.forget(sender)
+                        continue
+                    if mask & selectors.EVENT_WRITE and sender.flush():
+                        self.watch(sender)
         finally:
             self._selector.close()
             self._wake_r.close()
@@ -130,6 +149,8 @@ class Sender:
         # Frames waiting; the first may be partly sent (then _head_sent > 0).
         self._backlog: collections.deque[memoryview] = collections.deque()
         self._head_sent = 0
+        self._failure: tuple[BaseException | None] | None = None
+        flusher.watch(self)
 
     def send(self, frame: Buffer) -> None:
         """Queue one frame (bytes-like); it goes out now if the socket takes it."""
@@ -146,13 +167,73 @@ class Sender:
                 sent = 0
             except OSError as exc:
                 self._fail(exc)
-                return
-            self.bytes_sent += sent
-            if sent == len(frame):
-                return
-            self._backlog.append(memoryview(frame)[sent:])
-            self._head_sent = 0
+                sent = -1
+            if sent >= 0:
+                self.bytes_sent += sent
+                if sent == len(frame):
+                    return
+                self._backlog.append(memoryview(frame)[sent:])
+                self._head_sent = 0
+        if sent < 0:
+            self._report_failure()
+            return
         self._flusher.want_write(self)
+
+    def send_parts(self, parts: Sequence[Buffer]) -> None:
+        """Queue one frame given as several buffers (a large message: no joining copy)."""
+        with self._lock:
+            if self.closed:
+                return
+            self.frames_sent += 1
+            if self._backlog:
+                self._append(b"".join(parts))
+                return
+            try:
+                sent = self.sock.sendmsg(parts)
+            except (BlockingIOError, InterruptedError):
+                sent = 0
+            except OSError as exc:
+                self._fail(exc)
+                sent = -1
+            if sent < 0:
+                failed = True
+            else:
+                failed = False
+                self.bytes_sent += sent
+            rest: list[memoryview] = []
+            for part in [] if failed else parts:
+                view = memoryview(part)
+                if sent >= len(view):
+                    sent -= len(view)
+                    continue
+                rest.append(view[sent:])
+                sent = 0
+            if rest:
+                # The remainder goes out as one backlog frame so drop-oldest never splits a frame.
+                self._backlog.append(memoryview(b"".join(rest)) if len(rest) > 1 else rest[0])
+                self._head_sent = 0
+        if failed:
+            self._report_failure()
+        elif rest:
+            self._flusher.want_write(self)
+
+    def peer_hung_up(self) -> bool:
+        """Called when the socket is readable: True (and the link is ended) at end of stream."""
+        try:
+            data = self.sock.recv(65536)
+        except (BlockingIOError, InterruptedError):
+            return False
+        except OSError as exc:
+            with self._lock:
+                self._fail(exc)
+            self._report_failure()
+            return True
+        if data:
+            return False
+        with self._lock:
+            self._fail(None)
+        self._report_failure()
+        return True
 
     def _append(self, frame: Buffer) -> None:
         backlog = self._backlog
@@ -169,6 +250,12 @@ class Sender:
 
     def flush(self) -> bool:
         """Send what the socket takes; True when the backlog is empty (called by the flusher)."""
+        try:
+            return self._flush()
+        finally:
+            self._report_failure()
+
+    def _flush(self) -> bool:
         with self._lock:
             if self.closed:
                 return True
@@ -197,17 +284,27 @@ class Sender:
                     return False
             return True
 
-    def _fail(self, exc: BaseException) -> None:
+    def _fail(self, exc: BaseException | None) -> None:
+        """Mark the link broken (under the lock); the owner hears of it from _report_failure."""
+        if self.closed:
+            return
         self.closed = True
         self._backlog.clear()
-        callback, self._on_broken = self._on_broken, _ignore
-        callback(exc)
+        self._failure = (exc,)
+
+    def _report_failure(self) -> None:
+        """Tell the owner the link broke; called with the lock released (the owner closes us)."""
+        failure, self._failure = self._failure, None
+        if failure is not None:
+            callback, self._on_broken = self._on_broken, _ignore
+            callback(failure[0])
 
     def close(self) -> None:
         with self._lock:
             self.closed = True
             self._backlog.clear()
         self._on_broken = _ignore
+        self._flusher.forget(self)
 
 
 def _ignore(_exc: BaseException | None) -> None:
@@ -215,30 +312,27 @@ def _ignore(_exc: BaseException | None) -> None:
 
 
 class Consumer(Protocol):
-    """What a Receiver feeds. After each chunk it may ask for the next bytes to be read
-    straight into a buffer of its own (a large frame), so they are copied once, not twice."""
+    """What a Receiver feeds, in asyncio.BufferedProtocol's shape: it hands out the buffer the
+    next read goes into (for a large message, that message's own storage: one copy in all)
+    and is told how many bytes arrived."""
 
-    def feed(self, data: memoryview) -> None: ...
+    def get_buffer(self, sizehint: int) -> memoryview: ...
 
-    def direct_target(self) -> memoryview | None: ...
-
-    def direct_filled(self) -> None: ...
+    def buffer_updated(self, nbytes: int) -> None: ...
 
 
 class Receiver:
-    """A thread that reads a socket and hands what arrives to a Consumer until the stream ends.
+    """A thread that reads a socket into a Consumer until the stream ends.
 
-    `feed(view)` gets a memoryview valid only during the call. `on_end(exc)` is called once:
-    with None when the peer closed the stream, with the error when it broke, and not at all
-    when we closed it ourselves.
+    `on_end(exc)` is called once: with None when the peer closed the stream, with the error
+    when it broke (or the consumer raised), and not at all when we closed it ourselves.
     """
 
     def __init__(self, sock: socket.socket, consumer: Consumer, on_end: Callable[[BaseException | None], None],
-                 name: str, initial: bytes = b"", chunk_size: int = 256 * 1024) -> None:
+                 name: str, chunk_size: int = 256 * 1024) -> None:
         self.sock = sock
         self._consumer = consumer
         self._on_end = on_end
-        self._initial = initial
         self._chunk_size = chunk_size
         self._closing = False
         self._thread = threading.Thread(target=self._run, name=name, daemon=True)
@@ -246,34 +340,17 @@ class Receiver:
     def start(self) -> None:
         self._thread.start()
 
-    def _fill(self, target: memoryview) -> bool:
-        got = 0
-        while got < len(target):
-            n = self.sock.recv_into(target[got:])
-            if n == 0:
-                return False
-            got += n
-        return True
-
     def _run(self) -> None:
-        buffer = bytearray(self._chunk_size)
-        view = memoryview(buffer)
         consumer = self._consumer
+        recv_into = self.sock.recv_into
+        chunk_size = self._chunk_size
         error: BaseException | None = None
         try:
-            if self._initial:
-                consumer.feed(memoryview(self._initial))
             while not self._closing:
-                target = consumer.direct_target()
-                if target is not None:
-                    if not self._fill(target):
-                        break
-                    consumer.direct_filled()
-                    continue
-                n = self.sock.recv_into(buffer)
+                n = recv_into(consumer.get_buffer(chunk_size))
                 if n == 0:
                     break
-                consumer.feed(view[:n])
+                consumer.buffer_updated(n)
         except OSError as exc:
             error = exc
         except Exception as exc:  # a protocol error or a bug in the consumer: end this stream only

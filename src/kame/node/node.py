@@ -1,0 +1,349 @@
+"""A ROS node: its name, its master, its XML-RPC ("slave") API and TCPROS server, and all it owns.
+
+A Node is an explicit object: it owns its publications, subscriptions, services, threads
+and sockets, and `shutdown()` unregisters from the master and ends every one of them.
+Nothing here is process-wide; the rospy facade keeps the one node of a rospy program.
+
+The slave API answers from the node's own tables (requestTopic, publisherUpdate,
+paramUpdate, getBusInfo, getBusStats, getPid, shutdown, ...). Work a call starts that
+could wait on the network (connecting to new publishers) runs on threads of its own.
+"""
+
+from __future__ import annotations
+
+import itertools
+import logging
+import os
+import socket
+import threading
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any
+
+from kame import names
+from kame.net.rpc_server import RpcServer
+from kame.net.stream import Flusher, Listener
+from kame.node.master_proxy import MasterError, MasterProxy
+from kame.node.services import ServiceClient, ServiceHandler, ServiceServer
+from kame.node.tcpros import HandshakeError, read_header, write_header
+from kame.node.topics import Callback, Publication, Subscription
+from kame.protocol import tcpros
+from kame.protocol.xmlrpc import Fault, MalformedError, decode_request, encode_fault, encode_response
+
+log = logging.getLogger("kame.node")
+
+HANDSHAKE_TIMEOUT = 10.0
+
+
+@dataclass(frozen=True)
+class NodeConfig:
+    name: str  # the full resolved node name, e.g. /ns/talker
+    master_uri: str
+    host: str  # the address advertised in our URIs
+    bind_host: str = ""  # where our servers listen; '' means all interfaces
+    remappings: tuple[tuple[str, str], ...] = ()
+    xmlrpc_port: int = 0
+    tcpros_port: int = 0
+
+
+class Node:
+    def __init__(self, config: NodeConfig) -> None:
+        self.config = config
+        self.name = config.name
+        self.remappings = dict(config.remappings)
+        self.master = MasterProxy(config.master_uri, config.name)
+        self.is_shutdown = False
+        self.shutdown_reason = ""
+        self._ids = itertools.count(1)
+        self._lock = threading.RLock()
+        self.publications: dict[str, Publication] = {}
+        self.subscriptions: dict[str, Subscription] = {}
+        self.services: dict[str, ServiceServer] = {}
+        self.param_cache: dict[str, Any] = {}
+        self.on_param_update: list[Callable[[str, Any], None]] = []
+        self.on_shutdown_request: Callable[[str], None] = self.shutdown
+        self._shutdown_hooks: list[Callable[[str], None]] = []
+        bind = config.bind_host or ("" if config.host not in ("localhost",) and not config.host.startswith("127.")
+                                    else config.host)
+        self.flusher = Flusher(name="kame-flusher")
+        self.listener = Listener(bind, config.tcpros_port, self._accept, name="kame-tcpros")
+        self.rpc = RpcServer(bind, config.xmlrpc_port, self._rpc, name="kame-xmlrpc")
+        self.uri = f"http://{_uri_host(config.host)}:{self.rpc.port}/"
+        self.tcpros_port = self.listener.port
+        self.rpc.start()
+
+    # ------------------------------------------------------------------ utilities
+
+    def next_connection_id(self) -> int:
+        return next(self._ids)
+
+    def spawn(self, target: Callable[[], None], name: str) -> threading.Thread:
+        thread = threading.Thread(target=target, name=name, daemon=True)
+        thread.start()
+        return thread
+
+    def resolve(self, name: str) -> str:
+        return names.resolve(name, self.name, self.remappings)
+
+    def add_shutdown_hook(self, hook: Callable[[str], None]) -> None:
+        self._shutdown_hooks.append(hook)
+
+    # ------------------------------------------------------------------ topics
+
+    def advertise(self, topic: str, type: str, md5sum: str, definition: str, latch: bool = False,
+                  queue_size: int = 0) -> Publication:
+        """Publish `topic` (already resolved); registers with the master at once."""
+        with self._lock:
+            pub = self.publications.get(topic)
+            if pub is None:
+                pub = Publication(self, topic, type, md5sum, definition, latch, queue_size)
+                self.publications[topic] = pub
+            else:
+                pub.latch = pub.latch or latch
+                pub.queue_size = max(pub.queue_size, queue_size)
+        self.master.call("registerPublisher", topic, type, self.uri)
+        return pub
+
+    def unadvertise(self, topic: str) -> None:
+        with self._lock:
+            pub = self.publications.pop(topic, None)
+        if pub is None:
+            return
+        pub.close()
+        self._best_effort("unregisterPublisher", topic, self.uri)
+
+    def subscribe(self, topic: str, type: str, md5sum: str, definition: str, deliver: Callback,
+                  queue_size: int | None = None, tcp_nodelay: bool = False) -> Subscription:
+        with self._lock:
+            if topic in self.subscriptions:
+                raise ValueError(f"already subscribed to {topic}")
+            sub = Subscription(self, topic, type, md5sum, definition, queue_size, tcp_nodelay, deliver)
+            self.subscriptions[topic] = sub
+        publishers = self.master.call("registerSubscriber", topic, type, self.uri)
+        sub.set_publishers([str(uri) for uri in publishers])
+        return sub
+
+    def unsubscribe(self, topic: str) -> None:
+        with self._lock:
+            sub = self.subscriptions.pop(topic, None)
+        if sub is None:
+            return
+        sub.close()
+        self._best_effort("unregisterSubscriber", topic, self.uri)
+
+    # ------------------------------------------------------------------ services
+
+    def advertise_service(self, name: str, type: str, md5sum: str, handler: ServiceHandler) -> ServiceServer:
+        with self._lock:
+            if name in self.services:
+                raise ValueError(f"service [{name}] already registered")
+            server = ServiceServer(self, name, type, md5sum, handler)
+            self.services[name] = server
+        self.master.call("registerService", name, self.service_uri, self.uri)
+        return server
+
+    def unadvertise_service(self, name: str) -> None:
+        with self._lock:
+            server = self.services.pop(name, None)
+        if server is None:
+            return
+        server.close()
+        self._best_effort("unregisterService", name, self.service_uri)
+
+    @property
+    def service_uri(self) -> str:
+        return f"rosrpc://{_uri_host(self.config.host)}:{self.tcpros_port}"
+
+    def service_client(self, name: str, type: str, md5sum: str, persistent: bool = False,
+                       headers: dict[str, str] | None = None) -> ServiceClient:
+        return ServiceClient(self, name, type, md5sum, persistent, headers)
+
+    # ------------------------------------------------------------------ TCPROS server
+
+    def _accept(self, sock: socket.socket, addr: Any) -> None:
+        self.spawn(lambda: self._handshake(sock), "kame-handshake")
+
+    def _handshake(self, sock: socket.socket) -> None:
+        try:
+            sock.settimeout(HANDSHAKE_TIMEOUT)
+            header = read_header(sock)
+            sock.settimeout(None)
+        except (OSError, HandshakeError) as exc:
+            log.warning("bad TCPROS connection attempt: %s", exc)
+            sock.close()
+            return
+        kind = tcpros.classify_connection(header)
+        try:
+            if kind == "topic":
+                with self._lock:
+                    specs = {topic: pub.spec for topic, pub in self.publications.items()}
+                accepted = tcpros.accept_subscriber(header, callerid=self.name, publications=specs)
+                if isinstance(accepted, tcpros.Rejected):
+                    self._refuse(sock, accepted.error, header)
+                    return
+                pub = self.publications.get(accepted.topic)
+                if pub is None:
+                    self._refuse(sock, f"[{self.name}] is not a publisher of [{accepted.topic}]", header)
+                    return
+                pub.attach(sock, accepted)
+            elif kind == "service":
+                with self._lock:
+                    service_specs = {name: server.spec for name, server in self.services.items()}
+                service_ok = tcpros.accept_service_client(header, callerid=self.name, services=service_specs)
+                if isinstance(service_ok, tcpros.Rejected):
+                    self._refuse(sock, service_ok.error, header)
+                    return
+                self.services[service_ok.service].attach(sock, service_ok)
+            else:
+                self._refuse(sock, kind.error, header)
+        except (OSError, KeyError) as exc:
+            log.debug("connection ended during the handshake: %s", exc)
+            sock.close()
+
+    def _refuse(self, sock: socket.socket, text: str, header: dict[str, str]) -> None:
+        log.error("refusing connection from %s: %s", header.get("callerid", "?"), text)
+        try:
+            write_header(sock, tcpros.error_header_fields(text))
+        except OSError:
+            pass
+        sock.close()
+
+    # ------------------------------------------------------------------ slave XML-RPC API
+
+    def _rpc(self, body: bytes) -> bytes:
+        try:
+            method, params = decode_request(body)
+        except (MalformedError, Fault) as exc:
+            return encode_fault(1, f"<class 'Exception'>:malformed request: {exc}")
+        handler = _SLAVE_METHODS.get(method)
+        if handler is None:
+            return encode_fault(1, f"<class 'Exception'>:method \"{method}\" is not supported")
+        if not params:
+            return encode_response([-1, "missing required caller_id parameter", 0])
+        if not isinstance(params[0], str):
+            return encode_response([-1, "caller_id must be a string", 0])
+        try:
+            return encode_response(handler(self, *params))
+        except TypeError:
+            return encode_response([-1, "Error: bad call arity", 0])
+        except Exception as exc:
+            log.exception("slave API %s failed", method)
+            return encode_response([0, f"internal failure: {exc}", 0])
+
+    def _get_bus_info(self, caller_id: str) -> list[Any]:
+        info: list[Any] = []
+        for topic, pub in list(self.publications.items()):
+            for link in pub.links:
+                info.append([link.connection_id, link.callerid, "o", "TCPROS", topic, True, link.peer])
+        for topic, sub in list(self.subscriptions.items()):
+            for uri, plink in list(sub.links.items()):
+                info.append([plink.connection_id, uri, "i", "TCPROS", topic, plink.connected, plink.callerid])
+        return [1, "bus info", info]
+
+    def _get_bus_stats(self, caller_id: str) -> list[Any]:
+        pubs = [[t, p.bytes_sent, [[lk.connection_id, lk.sender.bytes_sent, lk.sender.frames_sent, True]
+                                   for lk in p.links]] for t, p in list(self.publications.items())]
+        subs = [[t, [[lk.connection_id, lk.bytes_received, -1, lk.connected] for lk in s.links.values()]]
+                for t, s in list(self.subscriptions.items())]
+        return [1, "", [pubs, subs, [0, 0, 0]]]
+
+    def _request_topic(self, caller_id: str, topic: str, protocols: list[Any]) -> list[Any]:
+        if topic not in self.publications:
+            return [-1, f"Not a publisher of [{topic}]", []]
+        for protocol in protocols:
+            if isinstance(protocol, list) and protocol and protocol[0] == "TCPROS":
+                return [1, f"ready on {self.config.host}:{self.tcpros_port}",
+                        ["TCPROS", self.config.host, self.tcpros_port]]
+        return [0, "no supported protocol implementations", []]
+
+    def _publisher_update(self, caller_id: str, topic: str, publishers: list[Any]) -> list[Any]:
+        sub = self.subscriptions.get(topic)
+        if sub is not None:
+            sub.set_publishers([str(uri) for uri in publishers])
+        return [1, "", 0]
+
+    def _param_update(self, caller_id: str, key: str, value: Any) -> list[Any]:
+        key = names.canonicalize(key) or "/"
+        matched = False
+        with self._lock:
+            for cached in list(self.param_cache):
+                if cached == key or cached.startswith(key.rstrip("/") + "/"):
+                    matched = True
+                    if cached == key:
+                        self.param_cache[cached] = value
+                    else:
+                        self.param_cache[cached] = _subvalue(value, cached[len(key.rstrip("/")) + 1:])
+        for callback in self.on_param_update:
+            callback(key, value)
+        if not matched:
+            return [-1, "not subscribed", 0]
+        return [1, "", 0]
+
+    def _shutdown_call(self, caller_id: str, msg: str = "") -> list[Any]:
+        reason = f"external shutdown request from [{caller_id}]: {msg}"
+        log.warning("shutdown request: %s", reason)
+        self.spawn(lambda: self.on_shutdown_request(reason), "kame-shutdown")
+        return [1, "shutdown", 0]
+
+    # ------------------------------------------------------------------ shutdown
+
+    def _best_effort(self, method: str, *args: Any) -> None:
+        try:
+            self.master.call(method, *args, timeout=1.0)
+        except (OSError, MasterError) as exc:
+            log.debug("%s failed during shutdown: %s", method, exc)
+
+    def shutdown(self, reason: str = "") -> None:
+        """Unregister from the master and end every connection, server and thread we own."""
+        with self._lock:
+            if self.is_shutdown:
+                return
+            self.is_shutdown = True
+            self.shutdown_reason = reason
+        for hook in list(self._shutdown_hooks):
+            try:
+                hook(reason)
+            except Exception:
+                log.exception("shutdown hook failed")
+        for topic in list(self.publications):
+            self.unadvertise(topic)
+        for topic in list(self.subscriptions):
+            self.unsubscribe(topic)
+        for name in list(self.services):
+            self.unadvertise_service(name)
+        for key in list(self.param_cache):
+            self._best_effort("unsubscribeParam", self.uri, key)
+        self.listener.close()
+        self.rpc.close()
+        self.flusher.close()
+        self.master.close()
+
+
+def _subvalue(value: Any, path: str) -> Any:
+    for part in [p for p in path.split("/") if p]:
+        if not isinstance(value, dict) or part not in value:
+            return {}
+        value = value[part]
+    return value
+
+
+def _uri_host(host: str) -> str:
+    return f"[{host}]" if ":" in host else host
+
+
+_SLAVE_METHODS: dict[str, Callable[..., list[Any]]] = {
+    "getBusStats": Node._get_bus_stats,
+    "getBusInfo": Node._get_bus_info,
+    "getMasterUri": lambda node, caller_id: [1, node.config.master_uri, node.config.master_uri],
+    "getUri": lambda node, caller_id: [1, "", node.uri],
+    "getName": lambda node, caller_id: [1, "", node.name],
+    "getPid": lambda node, caller_id: [1, "", os.getpid()],
+    "getSubscriptions": lambda node, caller_id: [1, "subscriptions",
+                                                 [[t, s.type] for t, s in list(node.subscriptions.items())]],
+    "getPublications": lambda node, caller_id: [1, "publications",
+                                                [[t, p.type] for t, p in list(node.publications.items())]],
+    "requestTopic": Node._request_topic,
+    "publisherUpdate": Node._publisher_update,
+    "paramUpdate": Node._param_update,
+    "shutdown": Node._shutdown_call,
+}

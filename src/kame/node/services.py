@@ -1,0 +1,194 @@
+"""Services over TCPROS: servers answering on each client connection's own thread, and clients.
+
+The server side takes request bytes and gives back (ok, response bytes or error text); what
+the bytes mean is the caller's (the rospy facade deserializes and runs the handler). A
+client always waits for the server's header before sending its request: rospy servers lose
+a request that arrives together with the client header.
+"""
+
+from __future__ import annotations
+
+import logging
+import socket
+import struct
+import threading
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
+
+from kame.net.stream import connect, recv_exactly, set_nodelay
+from kame.node.tcpros import HandshakeError, read_header, write_header
+from kame.protocol import tcpros
+
+if TYPE_CHECKING:
+    from kame.node.node import Node
+
+log = logging.getLogger("kame.services")
+
+_LENGTH = struct.Struct("<I")
+MAX_REQUEST = 1 << 30
+
+# handler(request bytes) -> (ok, response bytes) or (False, error text)
+ServiceHandler = Callable[[bytes], tuple[bool, bytes | str]]
+
+
+class ServiceError(Exception):
+    """A call failed: the server answered with an error, or the connection broke."""
+
+
+@dataclass(eq=False)
+class ServiceServer:
+    node: Node
+    name: str
+    type: str
+    md5sum: str
+    handler: ServiceHandler
+    closed: bool = False
+    _connections: set[socket.socket] = field(default_factory=set)
+    _lock: threading.Lock = field(default_factory=threading.Lock)
+
+    @property
+    def spec(self) -> tcpros.ServiceSpec:
+        return tcpros.ServiceSpec(self.type, self.md5sum)
+
+    def attach(self, sock: socket.socket, accepted: tcpros.ServiceClientAccepted) -> None:
+        write_header(sock, accepted.reply)
+        if accepted.probe:
+            sock.close()
+            return
+        with self._lock:
+            if self.closed:
+                sock.close()
+                return
+            self._connections.add(sock)
+        set_nodelay(sock, True)
+        self._serve(sock, accepted)
+
+    def _serve(self, sock: socket.socket, accepted: tcpros.ServiceClientAccepted) -> None:
+        """Answer requests on this (the accepting) thread; one unless the client is persistent."""
+        try:
+            while not self.closed:
+                try:
+                    head = sock.recv(4, socket.MSG_WAITALL)
+                except OSError:
+                    return
+                if len(head) < 4:
+                    return
+                (size,) = _LENGTH.unpack(head)
+                if size > MAX_REQUEST:
+                    log.error("%s: request of %d bytes from %s refused", self.name, size, accepted.callerid)
+                    return
+                request = recv_exactly(sock, size) if size else b""
+                ok, payload = self.handler(request)
+                sock.sendall(tcpros.encode_service_response(ok, payload))
+                if not accepted.persistent:
+                    return
+        except OSError:
+            return
+        finally:
+            with self._lock:
+                self._connections.discard(sock)
+            sock.close()
+
+    def close(self) -> None:
+        with self._lock:
+            self.closed = True
+            connections = list(self._connections)
+        for sock in connections:
+            try:
+                sock.shutdown(socket.SHUT_RDWR)
+            except OSError:
+                pass
+
+
+def parse_rosrpc(uri: str) -> tuple[str, int]:
+    if not uri.startswith("rosrpc://"):
+        raise ServiceError(f"invalid service URI [{uri}]")
+    host, _, port = uri[len("rosrpc://"):].rstrip("/").rpartition(":")
+    try:
+        return host.strip("[]"), int(port)
+    except ValueError:
+        raise ServiceError(f"invalid service URI [{uri}]") from None
+
+
+def _read_response(sock: socket.socket) -> tuple[bool, bytes]:
+    head = recv_exactly(sock, 5)
+    ok = head[0] != 0
+    (size,) = _LENGTH.unpack_from(head, 1)
+    if size > MAX_REQUEST:
+        raise ServiceError(f"response of {size} bytes is too large")
+    return ok, recv_exactly(sock, size) if size else b""
+
+
+class ServiceClient:
+    """Calls one service; with `persistent`, the connection is kept across calls."""
+
+    def __init__(self, node: Node, name: str, type: str, md5sum: str, persistent: bool,
+                 headers: dict[str, str] | None = None) -> None:
+        self.node = node
+        self.name = name
+        self.type = type
+        self.md5sum = md5sum
+        self.persistent = persistent
+        self.headers = headers or {}
+        self._sock: socket.socket | None = None
+        self._lock = threading.Lock()
+
+    def _open(self, timeout: float | None) -> socket.socket:
+        host, port = parse_rosrpc(self.node.master.call("lookupService", self.name))
+        sock = connect(host, port, timeout=timeout or 10.0)
+        try:
+            sock.settimeout(timeout)
+            write_header(sock, tcpros.service_client_header_fields(
+                callerid=self.node.name, service=self.name, md5sum=self.md5sum,
+                persistent=self.persistent, extra=self.headers))
+            reply = tcpros.check_service_reply(read_header(sock))
+            if isinstance(reply, tcpros.Rejected):
+                raise ServiceError(f"service [{self.name}] refused the connection: {reply.error}")
+            set_nodelay(sock, True)
+        except BaseException:
+            sock.close()
+            raise
+        return sock
+
+    def call(self, request: bytes, timeout: float | None = None) -> bytes:
+        """Send one serialized request; returns the serialized response or raises ServiceError."""
+        with self._lock:
+            sock = self._sock
+            try:
+                if sock is None:
+                    sock = self._open(timeout)
+                sock.sendall(_LENGTH.pack(len(request)) + request)
+                ok, payload = _read_response(sock)
+            except (OSError, HandshakeError) as exc:
+                self._close_socket(sock)
+                raise ServiceError(f"transport error completing service call: {exc}") from exc
+            if self.persistent:
+                self._sock = sock
+            else:
+                self._close_socket(sock)
+        if not ok:
+            raise ServiceError(f"service [{self.name}] responded with an error: "
+                               f"{payload.decode('utf-8', 'replace')}")
+        return payload
+
+    def _close_socket(self, sock: socket.socket | None) -> None:
+        if sock is not None:
+            sock.close()
+        self._sock = None
+
+    def close(self) -> None:
+        with self._lock:
+            self._close_socket(self._sock)
+
+
+def probe_service(node: Node, name: str, timeout: float) -> dict[str, str]:
+    """Ask a service for its header (what `rosservice` and wait_for_service do)."""
+    host, port = parse_rosrpc(node.master.call("lookupService", name))
+    sock = connect(host, port, timeout=timeout)
+    try:
+        sock.settimeout(timeout)
+        write_header(sock, tcpros.service_probe_header_fields(callerid=node.name, service=name))
+        return read_header(sock)
+    finally:
+        sock.close()

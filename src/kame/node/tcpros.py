@@ -1,0 +1,56 @@
+"""TCPROS handshakes on blocking sockets (headers in and out), shared by topics and services."""
+
+from __future__ import annotations
+
+import socket
+import struct
+from collections.abc import Mapping
+
+from kame.net.stream import recv_exactly
+from kame.protocol.tcpros import HeaderReader, TcprosError, decode_header_fields, encode_header
+
+MAX_HEADER = 1024 * 1024
+_LENGTH = struct.Struct("<I")
+
+
+class HandshakeError(Exception):
+    """The peer's header was missing, malformed or refused the connection."""
+
+
+def read_header(sock: socket.socket) -> dict[str, str]:
+    (size,) = _LENGTH.unpack(recv_exactly(sock, 4))
+    if size > MAX_HEADER:
+        raise HandshakeError(f"connection header of {size} bytes is too large")
+    try:
+        return decode_header_fields(recv_exactly(sock, size))
+    except TcprosError as exc:
+        raise HandshakeError(f"malformed connection header: {exc}") from exc
+
+
+def read_header_and_rest(sock: socket.socket) -> tuple[dict[str, str], bytes]:
+    """Read a header with the bytes that followed it in the same reads (a latched message)."""
+    reader = HeaderReader(MAX_HEADER)
+    while True:
+        data = sock.recv(65536)
+        if not data:
+            raise HandshakeError("connection closed during the handshake")
+        try:
+            fields = reader.feed(data)
+        except TcprosError as exc:
+            raise HandshakeError(f"malformed connection header: {exc}") from exc
+        if fields is not None:
+            return fields, bytes(reader.trailing)
+
+
+def write_header(sock: socket.socket, fields: Mapping[str, str]) -> None:
+    sock.sendall(encode_header(fields))
+
+
+def refuse(sock: socket.socket, text: str) -> None:
+    """Answer a handshake with `error=<text>` and close, as rospy and roscpp do."""
+    try:
+        write_header(sock, {"error": text})
+    except OSError:
+        pass
+    finally:
+        sock.close()

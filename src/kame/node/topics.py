@@ -1,0 +1,369 @@
+"""Topics over TCPROS: a node's publications and subscriptions and their connections.
+
+Publishing serializes a message once, frames it, and hands the same bytes to every
+subscriber connection's Sender (kame.net.stream): no thread hop while sockets take the
+bytes, a queue_size-bounded backlog per connection that drops its oldest frames, so a slow
+subscriber never slows the publisher or the other subscribers.
+
+Subscribing connects to each publisher the master names (requestTopic, then a TCPROS
+handshake), reads frames on one thread per publisher and runs the callbacks there, in
+order, one subscription's callbacks never concurrently. When a publisher goes away but is
+still registered, the link is retried with a growing delay.
+"""
+
+from __future__ import annotations
+
+import io
+import logging
+import socket
+import struct
+import threading
+import time
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
+
+from kame.net.stream import Receiver, Sender, connect, set_keepalive, set_nodelay
+from kame.net.xmlrpc_proxy import XmlRpcProxy
+from kame.node.master_proxy import unwrap
+from kame.node.tcpros import HandshakeError, read_header_and_rest, write_header
+from kame.protocol import tcpros
+
+if TYPE_CHECKING:
+    from kame.node.node import Node
+
+log = logging.getLogger("kame.topics")
+
+_LENGTH = struct.Struct("<I")
+SMALL_FRAME = 64 * 1024
+MAX_FRAME = 1 << 30
+
+
+class _Chunks(list[Any]):
+    """A write-only buffer for generated serializers: keeps the pieces, copies nothing."""
+
+    write = list.append
+
+
+def serialize_frame(msg: Any) -> list[Any]:
+    """A message as TCPROS frame buffers: [length prefix + small data] or [prefix, *pieces]."""
+    chunks = _Chunks()
+    msg.serialize(chunks)
+    size = 0
+    for chunk in chunks:
+        size += len(chunk)
+    if size <= SMALL_FRAME:
+        chunks.insert(0, _LENGTH.pack(size))
+        return [b"".join(chunks)]
+    return [_LENGTH.pack(size), *chunks]
+
+
+def serialize_payload(msg: Any) -> bytes:
+    buff = io.BytesIO()
+    msg.serialize(buff)
+    return buff.getvalue()
+
+
+@dataclass(eq=False)
+class SubscriberLink:
+    """One subscriber connected to one of our publications."""
+
+    connection_id: int
+    callerid: str
+    sender: Sender
+    peer: str
+
+
+@dataclass(eq=False)
+class Publication:
+    node: Node
+    topic: str
+    type: str
+    md5sum: str
+    definition: str
+    latch: bool
+    queue_size: int
+    links: list[SubscriberLink] = field(default_factory=list)
+    latched: list[Any] | None = None
+    seq: int = 0
+    on_connect: list[Callable[[SubscriberLink], None]] = field(default_factory=list)
+    on_disconnect: list[Callable[[SubscriberLink], None]] = field(default_factory=list)
+    closed: bool = False
+    _lock: threading.Lock = field(default_factory=threading.Lock)
+
+    def publish_frame(self, frame: list[Any]) -> None:
+        """Send one framed message (from serialize_frame) to every subscriber."""
+        if self.latch:
+            self.latched = frame
+        for link in self.links:
+            if len(frame) == 1:
+                link.sender.send(frame[0])
+            else:
+                link.sender.send_parts(frame)
+
+    @property
+    def spec(self) -> tcpros.TopicSpec:
+        return tcpros.TopicSpec(self.type, self.md5sum, self.definition, self.latch)
+
+    def attach(self, sock: socket.socket, accepted: tcpros.SubscriberAccepted) -> None:
+        """Finish the handshake of a subscriber our TCPROS server accepted for this topic."""
+        write_header(sock, accepted.reply)
+        set_nodelay(sock, accepted.tcp_nodelay)
+        set_keepalive(sock)
+        peer = _peer(sock)
+        link_box: list[SubscriberLink] = []
+
+        def broken(exc: BaseException | None) -> None:
+            if link_box:
+                self._drop(link_box[0])
+
+        sender = Sender(sock, self.node.flusher, self.queue_size or 1_000_000, broken)
+        link = SubscriberLink(self.node.next_connection_id(), accepted.callerid, sender, peer)
+        link_box.append(link)
+        with self._lock:
+            if self.closed:
+                sender.close()
+                sock.close()
+                return
+            self.links = [*self.links, link]
+            latched = self.latched
+        if latched is not None:
+            if len(latched) == 1:
+                sender.send(latched[0])
+            else:
+                sender.send_parts(latched)
+        for callback in self.on_connect:
+            callback(link)
+
+    def _drop(self, link: SubscriberLink) -> None:
+        with self._lock:
+            if link not in self.links:
+                return
+            self.links = [other for other in self.links if other is not link]
+        link.sender.close()
+        try:
+            link.sender.sock.close()
+        except OSError:
+            pass
+        for callback in self.on_disconnect:
+            callback(link)
+
+    def close(self) -> None:
+        with self._lock:
+            self.closed = True
+            links, self.links = self.links, []
+        for link in links:
+            link.sender.close()
+            try:
+                link.sender.sock.shutdown(socket.SHUT_RDWR)
+                link.sender.sock.close()
+            except OSError:
+                pass
+
+    @property
+    def bytes_sent(self) -> int:
+        return sum(link.sender.bytes_sent for link in self.links)
+
+
+Callback = Callable[[list[memoryview], dict[str, str]], None]
+
+
+@dataclass(eq=False)
+class PublisherLink:
+    """Our connection to one publisher of a subscribed topic."""
+
+    subscription: Subscription
+    publisher_uri: str
+    connection_id: int
+    callerid: str = ""
+    header: dict[str, str] = field(default_factory=dict)
+    receiver: Receiver | None = None
+    sock: socket.socket | None = None
+    bytes_received: int = 0
+    closed: bool = False
+    connected: bool = False
+
+    def run(self) -> None:
+        """Connect, retrying while the publisher stays registered (runs on its own thread)."""
+        delay = 0.1
+        while not self.closed and not self.subscription.node.is_shutdown:
+            try:
+                self._connect()
+                return
+            except (OSError, HandshakeError, ValueError) as exc:
+                if self.closed:
+                    return
+                log.debug("connecting to %s for %s failed: %s", self.publisher_uri, self.subscription.topic, exc)
+            except _Refused as exc:
+                log.error("%s refused our subscription to %s: %s", self.publisher_uri, self.subscription.topic, exc)
+                return
+            time.sleep(delay)
+            delay = min(delay * 2, 2.0)
+
+    def _connect(self) -> None:
+        sub = self.subscription
+        node = sub.node
+        proxy = XmlRpcProxy(self.publisher_uri, timeout=5.0)
+        try:
+            answer = unwrap(proxy.call("requestTopic", node.name, sub.topic, [["TCPROS"]]), "requestTopic")
+        except Exception as exc:
+            raise OSError(f"requestTopic: {exc}") from exc
+        finally:
+            proxy.close()
+        if not isinstance(answer, list) or len(answer) < 3 or answer[0] != "TCPROS":
+            raise _Refused(f"unsupported protocol parameters {answer!r}")
+        host, port = str(answer[1]), int(answer[2])
+        sock = connect(host, port, timeout=5.0)
+        try:
+            write_header(sock, tcpros.subscriber_header_fields(
+                callerid=node.name, topic=sub.topic, type=sub.type, md5sum=sub.md5sum,
+                message_definition=sub.definition, tcp_nodelay=sub.tcp_nodelay))
+            sock.settimeout(5.0)
+            header, trailing = read_header_and_rest(sock)
+            sock.settimeout(None)
+        except BaseException:
+            sock.close()
+            raise
+        reply = tcpros.check_publisher_reply(header)
+        if isinstance(reply, tcpros.Rejected):
+            sock.close()
+            raise _Refused(reply.error)
+        if reply.md5sum != sub.md5sum and "*" not in (reply.md5sum, sub.md5sum):
+            sock.close()
+            raise _Refused(f"md5sum mismatch: we expect [{sub.type}/{sub.md5sum}], "
+                           f"the publisher sends [{reply.type}/{reply.md5sum}]")
+        set_nodelay(sock, sub.tcp_nodelay)
+        set_keepalive(sock)
+        self.header = header
+        self.callerid = header.get("callerid", "")
+        if self.closed:
+            sock.close()
+            return
+        consumer = _Frames(self._deliver, trailing)
+        self.sock = sock
+        self.receiver = Receiver(sock, consumer, self._ended, name=f"kame-sub{sub.topic}")
+        self.connected = True
+        self.receiver.start()
+
+    def _deliver(self, frames: list[memoryview]) -> None:
+        for frame in frames:
+            self.bytes_received += len(frame) + 4
+        self.subscription.deliver(frames, self.header)
+
+    def _ended(self, exc: BaseException | None) -> None:
+        self.connected = False
+        if isinstance(exc, tcpros.TcprosError):
+            log.error("dropping the connection to %s on %s: %s", self.callerid, self.subscription.topic, exc)
+        elif exc is not None:
+            log.warning("connection to %s on %s broke: %s", self.callerid or self.publisher_uri,
+                        self.subscription.topic, exc)
+        if self.closed or self.subscription.node.is_shutdown:
+            return
+        # The publisher went away; while the master still lists it, try again.
+        self.subscription.reconnect(self)
+
+    def close(self) -> None:
+        self.closed = True
+        if self.receiver is not None:
+            self.receiver.close()
+        if self.sock is not None:
+            try:
+                self.sock.close()
+            except OSError:
+                pass
+
+
+class _Refused(Exception):
+    pass
+
+
+class _Frames:
+    """A Receiver consumer: TCPROS frames out of the stream, handed on in batches."""
+
+    def __init__(self, deliver: Callable[[list[memoryview]], None], trailing: bytes) -> None:
+        self._reader = tcpros.FrameReader(MAX_FRAME)
+        self._deliver = deliver
+        self._trailing = trailing
+
+    def get_buffer(self, sizehint: int) -> memoryview:
+        if self._trailing:  # bytes that came with the publisher's header (a latched message)
+            frames = self._reader.feed(self._trailing)
+            self._trailing = b""
+            if frames:
+                self._deliver(frames)
+        return self._reader.get_buffer(sizehint)
+
+    def buffer_updated(self, nbytes: int) -> None:
+        frames = self._reader.buffer_updated(nbytes)
+        if frames:
+            self._deliver(frames)
+
+
+@dataclass(eq=False)
+class Subscription:
+    node: Node
+    topic: str
+    type: str
+    md5sum: str
+    definition: str
+    queue_size: int | None
+    tcp_nodelay: bool
+    deliver_frames: Callback
+    links: dict[str, PublisherLink] = field(default_factory=dict)
+    closed: bool = False
+    _lock: threading.Lock = field(default_factory=threading.Lock)
+    callback_lock: threading.Lock = field(default_factory=threading.Lock)
+
+    def deliver(self, frames: list[memoryview], header: dict[str, str]) -> None:
+        if self.queue_size and len(frames) > self.queue_size:
+            frames = frames[-self.queue_size:]  # a slow callback keeps the newest, as queue_size promises
+        with self.callback_lock:
+            if not self.closed:
+                self.deliver_frames(frames, header)
+
+    def set_publishers(self, uris: list[str]) -> None:
+        """The master's complete list of publishers: connect to new ones, drop the gone."""
+        wanted = set(uris)
+        with self._lock:
+            if self.closed:
+                return
+            gone = [link for uri, link in self.links.items() if uri not in wanted]
+            for link in gone:
+                del self.links[link.publisher_uri]
+            new = []
+            for uri in uris:
+                if uri not in self.links:
+                    link = PublisherLink(self, uri, self.node.next_connection_id())
+                    self.links[uri] = link
+                    new.append(link)
+        for link in gone:
+            link.close()
+        for link in new:
+            self.node.spawn(link.run, f"kame-connect{self.topic}")
+
+    def reconnect(self, old: PublisherLink) -> None:
+        with self._lock:
+            if self.closed or self.links.get(old.publisher_uri) is not old:
+                return
+            link = PublisherLink(self, old.publisher_uri, self.node.next_connection_id())
+            self.links[old.publisher_uri] = link
+        self.node.spawn(link.run, f"kame-reconnect{self.topic}")
+
+    def close(self) -> None:
+        with self._lock:
+            self.closed = True
+            links, self.links = list(self.links.values()), {}
+        for link in links:
+            link.close()
+
+    @property
+    def connection_count(self) -> int:
+        return sum(1 for link in self.links.values() if link.connected)
+
+
+def _peer(sock: socket.socket) -> str:
+    try:
+        host, port = sock.getpeername()[:2]
+        return f"{host}:{port}"
+    except OSError:
+        return "?"

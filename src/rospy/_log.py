@@ -1,0 +1,173 @@
+"""rospy logging: the console lines ROS users know, a log file per node, and /rosout.
+
+Console: `[INFO] [1795311282.956206]: text` (ROSCONSOLE_FORMAT overrides the template),
+DEBUG and INFO to stdout, WARN and above to stderr, coloured on a tty only. Every record
+at or above the node's level is also published on /rosout (rosgraph_msgs/Log) straight to
+the connected subscribers: no master round trip per call. The file gets Python logging's
+lines in rospy's format under ROS_LOG_DIR (or ROS_HOME/log, or ~/.ros/log).
+"""
+
+from __future__ import annotations
+
+import inspect
+import logging
+import os
+import sys
+import threading
+import time
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
+
+from rospy import core
+
+DEBUG, INFO, WARN, ERROR, FATAL = 1, 2, 4, 8, 16
+LEVEL_NAMES = {DEBUG: "DEBUG", INFO: "INFO", WARN: "WARN", ERROR: "ERROR", FATAL: "FATAL"}
+PY_LEVELS = {DEBUG: logging.DEBUG, INFO: logging.INFO, WARN: logging.WARNING, ERROR: logging.ERROR,
+             FATAL: logging.CRITICAL}
+_COLOURS = {DEBUG: "\033[32m", WARN: "\033[33m", ERROR: "\033[31m", FATAL: "\033[31m"}
+DEFAULT_FORMAT = "[${severity}] [${time}]: ${message}"
+
+_level = INFO
+_rosout_publish: Callable[[int, str, str, str, int], None] | None = None
+_file_logger = logging.getLogger("rosout")
+_lock = threading.Lock()
+_once: set[Any] = set()
+_throttle_last: dict[Any, float] = {}
+_identical_last: dict[Any, tuple[str, float]] = {}
+
+
+def set_level(level: int) -> None:
+    global _level
+    _level = level
+
+
+def get_level() -> int:
+    return _level
+
+
+def set_rosout_publisher(publish: Callable[[int, str, str, str, int], None] | None) -> None:
+    global _rosout_publish
+    _rosout_publish = publish
+
+
+def log_dir() -> Path:
+    if os.environ.get("ROS_LOG_DIR"):
+        return Path(os.environ["ROS_LOG_DIR"])
+    home = os.environ.get("ROS_HOME") or os.path.join(os.path.expanduser("~"), ".ros")
+    return Path(home) / "log"
+
+
+def configure_file_logging(node_name: str, log_file: str | None) -> None:
+    """rospy's per-node log file: `__log:=` when roslaunch gives one, else `<log dir>/<name>.log`."""
+    path = Path(log_file) if log_file else log_dir() / (node_name.lstrip("/").replace("/", "_") + ".log")
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        handler = logging.FileHandler(path)
+    except OSError:
+        return
+    handler.setFormatter(logging.Formatter("[%(name)s][%(levelname)s] %(asctime)s: %(message)s"))
+    root = logging.getLogger()
+    root.addHandler(handler)
+    root.setLevel(logging.DEBUG if _level == DEBUG else logging.INFO)
+
+
+def _time_text() -> str:
+    from rospy import rostime
+
+    wall = f"{time.time():.6f}"
+    if rostime.is_sim_time() and rostime.is_rostime_initialized():
+        return f"{wall}, {rostime.get_time():.6f}"
+    return wall
+
+
+def _console(level: int, text: str, file: str, line: int, function: str) -> None:
+    template = os.environ.get("ROSCONSOLE_FORMAT", DEFAULT_FORMAT)
+    fields = {
+        "severity": LEVEL_NAMES[level], "time": _time_text(), "message": text, "node": core.get_caller_id(),
+        "logger": "rosout", "file": file, "line": str(line), "function": function,
+        "thread": threading.current_thread().name, "walltime": f"{time.time():.6f}",
+    }
+    out = template
+    for key, value in fields.items():
+        out = out.replace("${" + key + "}", value)
+    stream = sys.stdout if level <= INFO else sys.stderr
+    if level in _COLOURS and stream.isatty():
+        out = _COLOURS[level] + out + "\033[0m"
+    try:
+        stream.write(out + "\n")
+        stream.flush()
+    except (OSError, ValueError):
+        pass
+
+
+def _caller(depth: int) -> tuple[str, int, str, Any]:
+    frame = inspect.currentframe()
+    for _ in range(depth):
+        if frame is None:
+            break
+        frame = frame.f_back
+    if frame is None:
+        return "?", 0, "?", None
+    code = frame.f_code
+    function = code.co_name
+    owner = frame.f_locals.get("self")
+    if owner is not None:
+        function = f"{type(owner).__name__}.{function}"
+    return os.path.basename(code.co_filename), frame.f_lineno, function, (code.co_filename, frame.f_lineno)
+
+
+def emit(level: int, msg: Any, args: tuple[Any, ...], depth: int = 3, caller: tuple[str, int, str, Any] | None = None,
+         logger_name: str = "rosout") -> None:
+    if level < _level:
+        return
+    text = str(msg) % args if args else str(msg)
+    file, line, function, _ = caller or _caller(depth)
+    _console(level, text, file, line, function)
+    _file_logger.log(PY_LEVELS[level], text)
+    publish = _rosout_publish
+    if publish is not None:
+        try:
+            publish(level, text, file, function, line)
+        except Exception:
+            pass
+
+
+def emit_once(level: int, msg: Any, args: tuple[Any, ...]) -> None:
+    caller = _caller(3)
+    with _lock:
+        if caller[3] in _once:
+            return
+        _once.add(caller[3])
+    emit(level, msg, args, caller=caller)
+
+
+def emit_throttle(period: float, level: int, msg: Any, args: tuple[Any, ...]) -> None:
+    caller = _caller(3)
+    now = _now()
+    with _lock:
+        last = _throttle_last.get(caller[3])
+        if last is not None and now - last < period:
+            return
+        _throttle_last[caller[3]] = now
+    emit(level, msg, args, caller=caller)
+
+
+def emit_throttle_identical(period: float, level: int, msg: Any, args: tuple[Any, ...]) -> None:
+    caller = _caller(3)
+    text = str(msg) % args if args else str(msg)
+    now = _now()
+    with _lock:
+        last = _identical_last.get(caller[3])
+        if last is not None and last[0] == text and now - last[1] < period:
+            return
+        _identical_last[caller[3]] = (text, now)
+    emit(level, text, (), caller=caller)
+
+
+def _now() -> float:
+    from rospy import rostime
+
+    if rostime.is_rostime_initialized():
+        return rostime.get_time()
+    return time.time()
