@@ -252,9 +252,14 @@ class PublisherLink:
 
     def _ended(self, exc: BaseException | None) -> None:
         self.connected = False
-        if isinstance(exc, tcpros.TcprosError):
-            log.error("dropping the connection to %s on %s: %s", self.callerid, self.subscription.topic, exc)
-        elif exc is not None:
+        if exc is not None and not isinstance(exc, OSError):
+            # The publisher sent something that is not TCPROS or not its type: one error, and
+            # no retry (it would send the same again). Bad message bytes were already reported
+            # by whoever failed to read them.
+            if isinstance(exc, tcpros.TcprosError):
+                log.error("dropping the connection to %s on %s: %s", self.callerid, self.subscription.topic, exc)
+            return
+        if exc is not None:
             log.warning("connection to %s on %s broke: %s", self.callerid or self.publisher_uri,
                         self.subscription.topic, exc)
         if self.closed or self.subscription.node.is_shutdown:

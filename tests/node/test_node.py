@@ -1,0 +1,216 @@
+"""kame's Node end to end on loopback: topics, latching, queue limits, services, bad peers, shutdown."""
+
+from __future__ import annotations
+
+import io
+import socket
+import struct
+import threading
+import time
+import xmlrpc.client
+from collections.abc import Iterator
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+from kame.node.master_proxy import MasterError
+from kame.node.node import Node, NodeConfig
+from kame.node.services import ServiceError
+from kame.node.topics import serialize_frame
+from kame.protocol import tcpros
+from std_msgs.msg import String
+
+from ..support import Proc, free_port, kame_command, ros_env, wait_for_master
+
+STRING = ("std_msgs/String", String._md5sum, String._full_text)
+
+
+@pytest.fixture(scope="module")
+def master_uri(tmp_path_factory: pytest.TempPathFactory) -> Iterator[str]:
+    home = tmp_path_factory.mktemp("master")
+    port = free_port()
+    uri = f"http://127.0.0.1:{port}/"
+    proc = Proc(kame_command("kame.cli.rosmaster", "--core", "-p", str(port)), ros_env(Path(home), uri))
+    try:
+        wait_for_master(uri, proc=proc)
+        yield uri
+    finally:
+        proc.stop()
+
+
+@pytest.fixture
+def make_node(master_uri: str) -> Iterator[Any]:
+    nodes: list[Node] = []
+
+    def make(name: str) -> Node:
+        node = Node(NodeConfig(name, master_uri, "127.0.0.1"))
+        nodes.append(node)
+        return node
+
+    yield make
+    for node in nodes:
+        node.shutdown("test over")
+
+
+def collect(node: Node, topic: str, queue_size: int | None = None) -> tuple[list[str], threading.Event]:
+    got: list[str] = []
+    event = threading.Event()
+
+    def deliver(frames: list[memoryview], header: dict[str, str]) -> None:
+        for frame in frames:
+            got.append(String().deserialize(frame).data)
+        event.set()
+
+    node.subscribe(topic, *STRING, deliver, queue_size)
+    return got, event
+
+
+def wait_until(condition: Any, timeout: float = 5.0) -> bool:
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        if condition():
+            return True
+        time.sleep(0.01)
+    return False
+
+
+def test_publish_subscribe_in_order(make_node: Any) -> None:
+    talker, listener = make_node("/talker"), make_node("/listener")
+    pub = talker.advertise("/chatter", *STRING)
+    got, _ = collect(listener, "/chatter")
+    assert wait_until(lambda: len(pub.links) == 1)
+    for i in range(1000):
+        pub.publish_frame(serialize_frame(String(f"hello {i}")))
+    assert wait_until(lambda: len(got) == 1000)
+    assert got == [f"hello {i}" for i in range(1000)]
+
+
+def test_late_subscriber_gets_the_latched_message(make_node: Any) -> None:
+    talker = make_node("/latcher")
+    pub = talker.advertise("/latched", *STRING, latch=True)
+    pub.publish_frame(serialize_frame(String("first")))
+    pub.publish_frame(serialize_frame(String("kept")))
+    got, event = collect(make_node("/late"), "/latched")
+    assert event.wait(5)
+    assert got == ["kept"]
+
+
+def test_large_messages_arrive_whole(make_node: Any) -> None:
+    from sensor_msgs.msg import Image
+
+    talker, listener = make_node("/camera"), make_node("/viewer")
+    pub = talker.advertise("/image", "sensor_msgs/Image", Image._md5sum, Image._full_text, queue_size=2)
+    images: list[Image] = []
+    listener.subscribe("/image", "sensor_msgs/Image", Image._md5sum, Image._full_text,
+                       lambda frames, h: images.extend(Image().deserialize(f) for f in frames))
+    assert wait_until(lambda: len(pub.links) == 1)
+    payload = bytes(range(256)) * (1920 * 1080 * 3 // 256)
+    pub.publish_frame(serialize_frame(Image(height=1080, width=1920, encoding="rgb8", step=5760, data=payload)))
+    assert wait_until(lambda: len(images) == 1, 10)
+    assert images[0].data == payload and images[0].encoding == "rgb8"
+
+
+def test_md5_mismatch_is_refused_with_the_real_text(make_node: Any) -> None:
+    talker = make_node("/typed")
+    talker.advertise("/typed_topic", *STRING)
+    sock = socket.create_connection(("127.0.0.1", talker.tcpros_port), timeout=5)
+    sock.sendall(tcpros.encode_header(tcpros.subscriber_header_fields(
+        callerid="/wrong", topic="/typed_topic", type="std_msgs/Int32", md5sum="da5909fbe378aeaf85e547e830cc1bb7")))
+    reply = sock.recv(65536)
+    sock.close()
+    assert tcpros.decode_header(reply) == {"error": "topic types do not match: [std_msgs/Int32] vs. [std_msgs/String]"}
+
+
+def test_a_garbage_publisher_is_dropped_and_the_node_carries_on(make_node: Any, master_uri: str) -> None:
+    # A fake publisher: answers requestTopic through a real node's XML-RPC, but its TCPROS
+    # stream sends a valid header and then a 4 GB length prefix.
+    listener = make_node("/victim")
+    server = socket.socket()
+    server.bind(("127.0.0.1", 0))
+    server.listen(1)
+    liar = make_node("/liar")
+    liar.advertise("/victim_topic", *STRING)
+    liar.tcpros_port = server.getsockname()[1]  # requestTopic now points at the fake server
+
+    def serve() -> None:
+        conn, _ = server.accept()
+        conn.recv(65536)
+        conn.sendall(tcpros.encode_header(tcpros.publisher_reply_fields(
+            callerid="/liar", topic="/victim_topic", spec=tcpros.TopicSpec(*STRING))))
+        conn.sendall(struct.pack("<I", 0xFFFFFFFF) + b"xx")
+        time.sleep(0.5)
+        conn.close()
+
+    threading.Thread(target=serve, daemon=True).start()
+    got, _ = collect(listener, "/victim_topic")
+    time.sleep(1.0)
+    server.close()
+    assert got == []
+    # The node still works.
+    pub = make_node("/honest").advertise("/after", *STRING)
+    after, event = collect(listener, "/after")
+    assert wait_until(lambda: len(pub.links) == 1)
+    pub.publish_frame(serialize_frame(String("fine")))
+    assert event.wait(5) and after == ["fine"]
+
+
+def test_service_calls_persistent_and_not(make_node: Any) -> None:
+    from std_srvs.srv import SetBool, SetBoolRequest, SetBoolResponse
+
+    server_node, client_node = make_node("/srv_server"), make_node("/srv_client")
+
+    def handle(data: bytes) -> tuple[bool, bytes | str]:
+        request = SetBoolRequest().deserialize(data)
+        if not request.data:
+            return False, "refused"
+        buff = io.BytesIO()
+        SetBoolResponse(success=True, message="ok").serialize(buff)
+        return True, buff.getvalue()
+
+    server_node.advertise_service("/set", SetBool._type, SetBool._md5sum, handle)
+
+    def request(value: bool) -> bytes:
+        buff = io.BytesIO()
+        SetBoolRequest(data=value).serialize(buff)
+        return buff.getvalue()
+
+    for persistent in (False, True):
+        client = client_node.service_client("/set", SetBool._type, SetBool._md5sum, persistent)
+        for _ in range(3):
+            assert SetBoolResponse().deserialize(client.call(request(True))).message == "ok"
+        with pytest.raises(ServiceError, match="responded with an error: refused"):
+            client.call(request(False))
+        client.close()
+    missing = client_node.service_client("/nope", SetBool._type, SetBool._md5sum)
+    with pytest.raises(MasterError):
+        missing.call(request(True))
+
+
+def test_shutdown_unregisters_everything(make_node: Any, master_uri: str) -> None:
+    node = make_node("/short_lived")
+    node.advertise("/a_topic", *STRING)
+    node.subscribe("/b_topic", *STRING, lambda frames, header: None)
+    node.advertise_service("/c_service", "std_srvs/Empty", "d41d8cd98f00b204e9800998ecf8427e",
+                           lambda data: (True, b""))
+    master = xmlrpc.client.ServerProxy(master_uri)
+    assert master.lookupNode("/test", "/short_lived")[0] == 1
+    node.shutdown("done")
+    assert master.lookupNode("/test", "/short_lived")[0] == -1
+
+
+def test_slave_api_answers_what_tools_ask(make_node: Any) -> None:
+    node = make_node("/introspected")
+    node.advertise("/out", *STRING)
+    node.subscribe("/in", *STRING, lambda frames, header: None)
+    proxy = xmlrpc.client.ServerProxy(node.uri)
+    assert proxy.getPublications("/x") == [1, "publications", [["/out", "std_msgs/String"]]]
+    assert proxy.getSubscriptions("/x") == [1, "subscriptions", [["/in", "std_msgs/String"]]]
+    assert proxy.getPid("/x")[2] > 0
+    assert proxy.requestTopic("/x", "/nope", [["TCPROS"]]) == [-1, "Not a publisher of [/nope]", []]
+    assert proxy.requestTopic("/x", "/out", [["UDPROS"]]) == [0, "no supported protocol implementations", []]
+    code, _, params = proxy.requestTopic("/x", "/out", [["TCPROS"]])
+    assert code == 1 and params == ["TCPROS", "127.0.0.1", node.tcpros_port]
+    assert proxy.getBusInfo("/x")[0] == 1
+    with pytest.raises(xmlrpc.client.Fault, match='method "bogus" is not supported'):
+        proxy.bogus("/x")
