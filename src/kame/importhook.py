@@ -11,18 +11,22 @@ declined.
 
 from __future__ import annotations
 
-import importlib.abc
+import _thread
 import os
 import sys
-import threading
-from collections.abc import Sequence
-from importlib.machinery import ModuleSpec
-from types import ModuleType
 
-_busy = threading.local()
+TYPE_CHECKING = False  # not typing's: importing typing here would cost every interpreter start
+if TYPE_CHECKING:
+    from collections.abc import Sequence
+    from importlib.machinery import ModuleSpec
+    from types import ModuleType
+
+_busy = _thread._local()
 
 
-class _RosPackageFinder(importlib.abc.MetaPathFinder):
+class _RosPackageFinder:
+    """A meta path finder (no importlib.abc base: importing that costs every start-up)."""
+
     def __init__(self, submodules: bool) -> None:
         self.submodules = submodules
 

@@ -9,14 +9,12 @@ lines in rospy's format under ROS_LOG_DIR (or ROS_HOME/log, or ~/.ros/log).
 
 from __future__ import annotations
 
-import inspect
 import logging
 import os
 import sys
 import threading
 import time
 from collections.abc import Callable
-from pathlib import Path
 from typing import Any
 
 from rospy import core
@@ -51,18 +49,18 @@ def set_rosout_publisher(publish: Callable[[int, str, str, str, int], None] | No
     _rosout_publish = publish
 
 
-def log_dir() -> Path:
+def log_dir() -> str:
     if os.environ.get("ROS_LOG_DIR"):
-        return Path(os.environ["ROS_LOG_DIR"])
+        return os.environ["ROS_LOG_DIR"]
     home = os.environ.get("ROS_HOME") or os.path.join(os.path.expanduser("~"), ".ros")
-    return Path(home) / "log"
+    return os.path.join(home, "log")
 
 
 def configure_file_logging(node_name: str, log_file: str | None) -> None:
     """rospy's per-node log file: `__log:=` when roslaunch gives one, else `<log dir>/<name>.log`."""
-    path = Path(log_file) if log_file else log_dir() / (node_name.lstrip("/").replace("/", "_") + ".log")
+    path = log_file or os.path.join(log_dir(), node_name.lstrip("/").replace("/", "_") + ".log")
     try:
-        path.parent.mkdir(parents=True, exist_ok=True)
+        os.makedirs(os.path.dirname(path) or ".", exist_ok=True)
         handler = logging.FileHandler(path)
     except OSError:
         return
@@ -102,11 +100,10 @@ def _console(level: int, text: str, file: str, line: int, function: str) -> None
 
 
 def _caller(depth: int) -> tuple[str, int, str, Any]:
-    frame = inspect.currentframe()
-    for _ in range(depth):
-        if frame is None:
-            break
-        frame = frame.f_back
+    try:
+        frame: Any = sys._getframe(depth)
+    except ValueError:
+        frame = None
     if frame is None:
         return "?", 0, "?", None
     code = frame.f_code

@@ -10,8 +10,6 @@ import threading
 import time
 from typing import Any
 
-import yaml
-
 from kame import names
 from kame.node.master_proxy import MasterError
 from kame.node.node import Node, NodeConfig
@@ -123,8 +121,11 @@ def init_node(name: str, argv: list[str] | None = None, anonymous: bool = False,
         _init_args = args
     _log.configure_file_logging(caller_id, special.get("log"))
     _wait_for_master(node, master_uri)
-    for key, text in ros_args.params.items():
-        set_param(key, yaml.safe_load(text) if text else "")
+    if ros_args.params:
+        import yaml
+
+        for key, text in ros_args.params.items():
+            set_param(key, yaml.safe_load(text) if text else "")
     core.run_deferred()
     if not disable_rosout:
         _start_rosout(node)

@@ -146,73 +146,46 @@ class Sender:
         self._flusher = flusher
         self._on_broken = on_broken
         self._lock = threading.Lock()
-        # Frames waiting; the first may be partly sent (then _head_sent > 0).
-        self._backlog: collections.deque[memoryview] = collections.deque()
-        self._head_sent = 0
+        # Frames waiting, each as the buffers still to send; the first may be partly sent.
+        self._backlog: collections.deque[list[memoryview]] = collections.deque()
+        self._head_started = False
         self._failure: tuple[BaseException | None] | None = None
         flusher.watch(self)
 
     def send(self, frame: Buffer) -> None:
         """Queue one frame (bytes-like); it goes out now if the socket takes it."""
-        with self._lock:
-            if self.closed:
-                return
-            self.frames_sent += 1
-            if self._backlog:
-                self._append(frame)
-                return
-            try:
-                sent = self.sock.send(frame)
-            except (BlockingIOError, InterruptedError):
-                sent = 0
-            except OSError as exc:
-                self._fail(exc)
-                sent = -1
-            if sent >= 0:
-                self.bytes_sent += sent
-                if sent == len(frame):
-                    return
-                self._backlog.append(memoryview(frame)[sent:])
-                self._head_sent = 0
-        if sent < 0:
-            self._report_failure()
-            return
-        self._flusher.want_write(self)
+        self.send_parts((frame,))
 
     def send_parts(self, parts: Sequence[Buffer]) -> None:
-        """Queue one frame given as several buffers (a large message: no joining copy)."""
+        """Queue one frame given as one or more buffers (a large message: no joining copy)."""
         with self._lock:
             if self.closed:
                 return
             self.frames_sent += 1
             if self._backlog:
-                self._append(b"".join(parts))
+                self._append([memoryview(p) for p in parts])
                 return
             try:
-                sent = self.sock.sendmsg(parts)
+                sent = self.sock.send(parts[0]) if len(parts) == 1 else self.sock.sendmsg(parts)
             except (BlockingIOError, InterruptedError):
                 sent = 0
             except OSError as exc:
                 self._fail(exc)
                 sent = -1
-            if sent < 0:
-                failed = True
-            else:
-                failed = False
-                self.bytes_sent += sent
             rest: list[memoryview] = []
-            for part in [] if failed else parts:
-                view = memoryview(part)
-                if sent >= len(view):
-                    sent -= len(view)
-                    continue
-                rest.append(view[sent:])
-                sent = 0
-            if rest:
-                # The remainder goes out as one backlog frame so drop-oldest never splits a frame.
-                self._backlog.append(memoryview(b"".join(rest)) if len(rest) > 1 else rest[0])
-                self._head_sent = 0
-        if failed:
+            if sent >= 0:
+                self.bytes_sent += sent
+                for part in parts:
+                    view = memoryview(part)
+                    if sent >= len(view):
+                        sent -= len(view)
+                        continue
+                    rest.append(view[sent:] if sent else view)
+                    sent = 0
+                if rest:
+                    self._backlog.append(rest)
+                    self._head_started = len(rest) < len(parts) or len(rest[0]) < len(parts[0])
+        if sent < 0:
             self._report_failure()
         elif rest:
             self._flusher.want_write(self)
@@ -235,12 +208,12 @@ class Sender:
         self._report_failure()
         return True
 
-    def _append(self, frame: Buffer) -> None:
+    def _append(self, frame: list[memoryview]) -> None:
         backlog = self._backlog
-        backlog.append(memoryview(frame))
+        backlog.append(frame)
         while len(backlog) > self.max_frames:
             # The head may be partly on the wire: keep it, drop the next oldest.
-            if self._head_sent:
+            if self._head_started:
                 head = backlog.popleft()
                 backlog.popleft()
                 backlog.appendleft(head)
@@ -261,9 +234,13 @@ class Sender:
                 return True
             backlog = self._backlog
             while backlog:
-                batch = [backlog[i] for i in range(min(len(backlog), _IOV_MAX))]
+                batch: list[memoryview] = []
+                for frame in backlog:
+                    batch.extend(frame)
+                    if len(batch) >= _IOV_MAX:
+                        break
                 try:
-                    sent = self.sock.sendmsg(batch)
+                    sent = self.sock.sendmsg(batch[:_IOV_MAX])
                 except (BlockingIOError, InterruptedError):
                     return False
                 except OSError as exc:
@@ -272,14 +249,16 @@ class Sender:
                 self.bytes_sent += sent
                 while sent and backlog:
                     head = backlog[0]
-                    if sent >= len(head):
-                        sent -= len(head)
-                        backlog.popleft()
-                        self._head_sent = 0
+                    while head and sent >= len(head[0]):
+                        sent -= len(head.pop(0))
+                    if head:
+                        if sent:
+                            head[0] = head[0][sent:]
+                            sent = 0
+                        self._head_started = True
                     else:
-                        backlog[0] = head[sent:]
-                        self._head_sent += sent
-                        sent = 0
+                        backlog.popleft()
+                        self._head_started = False
                 if backlog:
                     return False
             return True

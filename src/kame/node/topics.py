@@ -239,7 +239,7 @@ class PublisherLink:
         if self.closed:
             sock.close()
             return
-        consumer = _Frames(self._deliver, trailing)
+        consumer = _Frames(self._deliver, trailing, sub.queue_size)
         self.sock = sock
         self.receiver = Receiver(sock, consumer, self._ended, name=f"kame-sub{sub.topic}")
         self.connected = True
@@ -283,12 +283,20 @@ class _Refused(Exception):
 
 
 class _Frames:
-    """A Receiver consumer: TCPROS frames out of the stream, handed on in batches."""
+    """A Receiver consumer: TCPROS frames out of the stream, handed on in batches.
 
-    def __init__(self, deliver: Callable[[list[memoryview]], None], trailing: bytes) -> None:
-        self._reader = tcpros.FrameReader(MAX_FRAME)
+    With a queue_size, each read asks the kernel for about queue_size frames' worth of bytes
+    (from the running mean frame size): a burst then waits in the socket buffer for the next
+    read instead of overflowing one batch and being discarded, while a subscriber that really
+    falls behind still keeps only the newest queue_size of every read, as rospy does.
+    """
+
+    def __init__(self, deliver: Callable[[list[memoryview]], None], trailing: bytes, queue_size: int | None) -> None:
+        self._reader = tcpros.FrameReader(MAX_FRAME, reuse=True)  # deliver copies what it keeps
         self._deliver = deliver
         self._trailing = trailing
+        self._queue_size = queue_size
+        self._mean_frame = 64.0
 
     def get_buffer(self, sizehint: int) -> memoryview:
         if self._trailing:  # bytes that came with the publisher's header (a latched message)
@@ -296,11 +304,14 @@ class _Frames:
             self._trailing = b""
             if frames:
                 self._deliver(frames)
+        if self._queue_size:
+            sizehint = max(4096, min(sizehint, int(self._queue_size * (self._mean_frame + 4))))
         return self._reader.get_buffer(sizehint)
 
     def buffer_updated(self, nbytes: int) -> None:
         frames = self._reader.buffer_updated(nbytes)
         if frames:
+            self._mean_frame = 0.9 * self._mean_frame + 0.1 * len(frames[-1])
             self._deliver(frames)
 
 

@@ -255,13 +255,19 @@ class FrameReader:
     - `get_buffer()` / `buffer_updated(n)` (asyncio.BufferedProtocol's shape): when a large frame
       is in progress the buffer handed out is that frame's own storage, so `recv_into` fills it
       with no copy at all; otherwise it is a fresh scratch buffer parsed like `feed`.
+    - `reuse=True` is for a consumer that is done with every frame before it asks for the next
+      buffer (a subscriber that deserializes, which copies): the scratch buffer and the frame
+      buffers are then reused instead of allocated, zeroed and paged in afresh for every read.
     A length above `max_frame` raises TcprosError before anything is allocated for it.
     """
 
-    __slots__ = ("_body", "_direct", "_eager", "_filled", "_head", "_need", "_scratch", "max_frame")
+    __slots__ = ("_body", "_direct", "_eager", "_filled", "_head", "_need", "_reuse", "_scratch", "_spare",
+                 "max_frame")
 
-    def __init__(self, max_frame: int = DEFAULT_MAX_FRAME) -> None:
+    def __init__(self, max_frame: int = DEFAULT_MAX_FRAME, reuse: bool = False) -> None:
         self.max_frame = max_frame
+        self._reuse = reuse
+        self._spare: bytearray | None = None  # with reuse: the last frame buffer, for the next one
         self._head = bytearray()  # the first 0-3 bytes of a split length prefix
         self._body: bytearray | None = None  # the frame being gathered across chunks
         self._eager = False  # _body was allocated at full size (else it grows)
@@ -287,9 +293,11 @@ class FrameReader:
         body = self._body
         if body is not None and self._eager and self._need - self._filled >= _DIRECT_MIN:
             self._direct = True
-            return memoryview(body)[self._filled :]
+            return memoryview(body)[self._filled : self._need]
         self._direct = False
-        self._scratch = bytearray(max(sizehint, 4096))
+        size = max(sizehint, 4096)
+        if not (self._reuse and self._scratch is not None and len(self._scratch) == size):
+            self._scratch = bytearray(size)
         return memoryview(self._scratch)
 
     def buffer_updated(self, nbytes: int) -> list[memoryview]:
@@ -303,9 +311,11 @@ class FrameReader:
         buf = self._scratch
         if buf is None:
             raise TcprosError("buffer_updated without get_buffer", remote=False)
-        self._scratch = None
         if nbytes > len(buf):
             raise TcprosError("buffer_updated reports more bytes than the buffer held", remote=False)
+        if self._reuse:
+            return self._feed(memoryview(buf).toreadonly()[:nbytes])
+        self._scratch = None
         if nbytes * _PIN_RATIO < len(buf):
             return self._feed(bytes(memoryview(buf)[:nbytes]))
         return self._feed(memoryview(buf).toreadonly()[:nbytes])
@@ -369,7 +379,12 @@ class FrameReader:
         self._need = length
         self._filled = 0
         self._eager = length <= _EAGER_LIMIT
-        self._body = bytearray(length) if self._eager else bytearray()
+        if not self._eager:
+            self._body = bytearray()
+        elif self._reuse and self._spare is not None and len(self._spare) >= length:
+            self._body = self._spare
+        else:
+            self._body = bytearray(length)
 
     def _fill(self, chunk: memoryview) -> int:
         body = self._body
@@ -386,7 +401,9 @@ class FrameReader:
         body = self._body
         assert body is not None
         self._body = None
-        return memoryview(body).toreadonly()
+        if self._reuse and self._eager:
+            self._spare = body
+        return memoryview(body).toreadonly()[: self._need]
 
 
 @dataclass(frozen=True)
