@@ -30,7 +30,7 @@ LAYERS: dict[str, int] = {
     "kame.importhook": 4,
 }
 PURE_FORBIDDEN = {"socket", "select", "selectors", "asyncio", "threading", "subprocess", "signal", "time",
-                  "datetime", "multiprocessing", "concurrent"}
+                  "multiprocessing", "concurrent"}  # datetime is allowed: YAML dates are values
 NET_FORBIDDEN = ("kame.msg", "kame.master", "kame.node")
 
 
