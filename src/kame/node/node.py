@@ -23,6 +23,7 @@ from typing import Any
 from kame import names
 from kame.net.rpc_server import RpcServer
 from kame.net.stream import Flusher, Listener
+from kame.net.workers import WorkerPool
 from kame.node.master_proxy import MasterError, MasterProxy
 from kame.node.services import ServiceClient, ServiceHandler, ServiceServer
 from kame.node.tcpros import HandshakeError, read_header, write_header
@@ -66,6 +67,7 @@ class Node:
         bind = config.bind_host or ("" if config.host not in ("localhost",) and not config.host.startswith("127.")
                                     else config.host)
         self.flusher = Flusher(name="kame-flusher")
+        self.workers = WorkerPool("kame-handshake")
         self.listener = Listener(bind, config.tcpros_port, self._accept, name="kame-tcpros")
         self.rpc = RpcServer(bind, config.xmlrpc_port, self._rpc, name="kame-xmlrpc")
         self.uri = f"http://{_uri_host(config.host)}:{self.rpc.port}/"
@@ -161,7 +163,7 @@ class Node:
     # ------------------------------------------------------------------ TCPROS server
 
     def _accept(self, sock: socket.socket, addr: Any) -> None:
-        self.spawn(lambda: self._handshake(sock), "kame-handshake")
+        self.workers.submit(lambda: self._handshake(sock))
 
     def _handshake(self, sock: socket.socket) -> None:
         try:
@@ -314,6 +316,7 @@ class Node:
         for key in list(self.param_cache):
             self._best_effort("unsubscribeParam", self.uri, key)
         self.listener.close()
+        self.workers.close()
         self.rpc.close()
         self.flusher.close()
         self.master.close()

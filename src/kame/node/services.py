@@ -16,7 +16,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
-from kame.net.stream import connect, recv_exactly, set_nodelay
+from kame.net.stream import connect, set_nodelay
 from kame.node.tcpros import HandshakeError, read_header, write_header
 from kame.protocol import tcpros
 
@@ -66,19 +66,17 @@ class ServiceServer:
 
     def _serve(self, sock: socket.socket, accepted: tcpros.ServiceClientAccepted) -> None:
         """Answer requests on this (the accepting) thread; one unless the client is persistent."""
+        reader = _Reader(sock)
         try:
             while not self.closed:
                 try:
-                    head = sock.recv(4, socket.MSG_WAITALL)
-                except OSError:
+                    (size,) = _LENGTH.unpack(reader.read(4))
+                except (OSError, ConnectionError):
                     return
-                if len(head) < 4:
-                    return
-                (size,) = _LENGTH.unpack(head)
                 if size > MAX_REQUEST:
                     log.error("%s: request of %d bytes from %s refused", self.name, size, accepted.callerid)
                     return
-                request = recv_exactly(sock, size) if size else b""
+                request = reader.read(size) if size else b""
                 ok, payload = self.handler(request)
                 sock.sendall(tcpros.encode_service_response(ok, payload))
                 if not accepted.persistent:
@@ -101,6 +99,25 @@ class ServiceServer:
                 pass
 
 
+class _Reader:
+    """Exact-size reads from a socket through one buffer: a small request or response is
+    usually one recv, not one per field."""
+
+    def __init__(self, sock: socket.socket) -> None:
+        self.sock = sock
+        self.buf = bytearray()
+
+    def read(self, size: int) -> bytes:
+        while len(self.buf) < size:
+            chunk = self.sock.recv(max(65536, size - len(self.buf)))
+            if not chunk:
+                raise ConnectionError("connection closed by the peer")
+            self.buf += chunk
+        data = bytes(self.buf[:size])
+        del self.buf[:size]
+        return data
+
+
 def parse_rosrpc(uri: str) -> tuple[str, int]:
     if not uri.startswith("rosrpc://"):
         raise ServiceError(f"invalid service URI [{uri}]")
@@ -111,13 +128,13 @@ def parse_rosrpc(uri: str) -> tuple[str, int]:
         raise ServiceError(f"invalid service URI [{uri}]") from None
 
 
-def _read_response(sock: socket.socket) -> tuple[bool, bytes]:
-    head = recv_exactly(sock, 5)
+def _read_response(reader: _Reader) -> tuple[bool, bytes]:
+    head = reader.read(5)
     ok = head[0] != 0
     (size,) = _LENGTH.unpack_from(head, 1)
     if size > MAX_REQUEST:
         raise ServiceError(f"response of {size} bytes is too large")
-    return ok, recv_exactly(sock, size) if size else b""
+    return ok, reader.read(size) if size else b""
 
 
 class ServiceClient:
@@ -132,11 +149,27 @@ class ServiceClient:
         self.persistent = persistent
         self.headers = headers or {}
         self._sock: socket.socket | None = None
+        self._address: tuple[str, int] | None = None
+        self._reader: _Reader | None = None
         self._lock = threading.Lock()
 
     def _open(self, timeout: float | None) -> socket.socket:
-        host, port = parse_rosrpc(self.node.master.call("lookupService", self.name))
-        sock = connect(host, port, timeout=timeout or 10.0)
+        """Connect and handshake. The provider's address is remembered between calls (rospy asks
+        the master every time); if it fails, the master is asked again, once."""
+        for attempt in (0, 1):
+            cached = self._address is not None
+            if self._address is None:
+                self._address = parse_rosrpc(self.node.master.call("lookupService", self.name))
+            try:
+                return self._handshake(self._address, timeout)
+            except (OSError, HandshakeError, ServiceError):
+                self._address = None
+                if not cached or attempt:
+                    raise
+        raise AssertionError("unreachable")
+
+    def _handshake(self, address: tuple[str, int], timeout: float | None) -> socket.socket:
+        sock = connect(*address, timeout=timeout or 10.0)
         try:
             sock.settimeout(timeout)
             write_header(sock, tcpros.service_client_header_fields(
@@ -159,7 +192,9 @@ class ServiceClient:
                 if sock is None:
                     sock = self._open(timeout)
                 sock.sendall(_LENGTH.pack(len(request)) + request)
-                ok, payload = _read_response(sock)
+                if self._reader is None or self._reader.sock is not sock:
+                    self._reader = _Reader(sock)
+                ok, payload = _read_response(self._reader)
             except (OSError, HandshakeError) as exc:
                 self._close_socket(sock)
                 raise ServiceError(f"transport error completing service call: {exc}") from exc
