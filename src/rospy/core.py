@@ -5,6 +5,7 @@ Only this facade holds process-wide state; kame's Node is an explicit object und
 
 from __future__ import annotations
 
+import atexit
 import logging
 import os
 import threading
@@ -19,6 +20,7 @@ _caller_id = "/unnamed"
 _namespace = names.make_global_ns(os.environ.get("ROS_NAMESPACE", "/")) if os.environ.get("ROS_NAMESPACE") else "/"
 _remappings: dict[str, str] = {}
 _shutdown = threading.Event()
+_node_down = threading.Event()  # set once signal_shutdown has unregistered and closed the node
 _shutdown_reason = ""
 _shutdown_hooks: list[Callable[..., Any]] = []
 _preshutdown_hooks: list[Callable[..., Any]] = []
@@ -166,3 +168,14 @@ def signal_shutdown(reason: str) -> None:
         _call_hook(hook, reason)
     if _node is not None:
         _node.shutdown(reason)
+    _node_down.set()
+
+
+def _at_exit() -> None:
+    """rospy's atexit hook: unregister before the interpreter goes, and let a shutdown that
+    another thread started (e.g. `rosnode kill`) finish unregistering instead of dying with it."""
+    signal_shutdown("atexit")
+    _node_down.wait(5.0)
+
+
+atexit.register(_at_exit)
