@@ -5,6 +5,7 @@ from kame.msg.message import Message as _Message
 from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
+from kame.msg.message import refill as _refill
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -48,19 +49,24 @@ class GoalStatus(_Message):
             if self.text is None:
                 self.text = ''
         else:
-            self.goal_id = _T_actionlib_msgs__GoalID()
+            self.goal_id = _v1 = _new(_T_actionlib_msgs__GoalID)
+            _v1.stamp = _t2 = _new(_Time)
+            _t2.secs = _t2.nsecs = 0
+            _v1.id = ''
             self.status = 0
             self.text = ''
 
     def serialize(self, buff):
         try:
             _w = buff.write
-            _b1 = self.goal_id.id
-            if _b1.__class__ is not bytes: _b1 = _b1.encode()
-            _w(_S0.pack(self.goal_id.stamp.secs, self.goal_id.stamp.nsecs, len(_b1)) + _b1)
-            _b2 = self.text
-            if _b2.__class__ is not bytes: _b2 = _b2.encode()
-            _w(_S1.pack(self.status, len(_b2)) + _b2)
+            _m1 = self.goal_id
+            _m2 = _m1.stamp
+            _b3 = _m1.id
+            if _b3.__class__ is not bytes: _b3 = _b3.encode()
+            _w(_S0.pack(_m2.secs, _m2.nsecs, len(_b3)) + _b3)
+            _b4 = self.text
+            if _b4.__class__ is not bytes: _b4 = _b4.encode()
+            _w(_S1.pack(self.status, len(_b4)) + _b4)
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -69,27 +75,41 @@ class GoalStatus(_Message):
 
     def deserialize(self, data):
         try:
+            _v1 = self.goal_id
+            _t2 = _v1.stamp
             _buf = data
-            _len = len(data)
-            _end = 0
-            _v1 = _new(_T_actionlib_msgs__GoalID)
-            self.goal_id = _v1
-            _t2 = _new(_Time)
-            _v1.stamp = _t2
-            _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 12
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v1.id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 12 + _n
+            _v1.id = str(_buf[12:_end], 'utf-8', 'replace')
             self.status, _n = _S1.unpack_from(_buf, _end)
-            _end += 5
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            self.text = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            _s = _end + 5
+            _end = _s + _n
+            self.text = str(_buf[_s:_end], 'utf-8', 'replace')
+            if _end > len(_buf): raise _Truncated
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
+        return _refill(self, GoalStatus, data)
+
+    @classmethod
+    def _from_buffer(cls, data):
+        self = _new(cls)
+        try:
+            _buf = data
+            self.goal_id = _v1 = _new(_T_actionlib_msgs__GoalID)
+            _v1.stamp = _t2 = _new(_Time)
+            _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 12 + _n
+            _v1.id = str(_buf[12:_end], 'utf-8', 'replace')
+            self.status, _n = _S1.unpack_from(_buf, _end)
+            _s = _end + 5
+            _end = _s + _n
+            self.text = str(_buf[_s:_end], 'utf-8', 'replace')
+            if _end > len(_buf): raise _Truncated
+        except Exception as exc:
+            raise _deserialize_failed(cls, data, exc) from exc
         return self
 
     def deserialize_numpy(self, data, numpy):

@@ -5,6 +5,7 @@ from kame.msg.message import Message as _Message
 from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
+from kame.msg.message import refill as _refill
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -40,24 +41,32 @@ class GoalStatusArray(_Message):
             if self.status_list is None:
                 self.status_list = []
         else:
-            self.header = _T_std_msgs__Header()
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.seq = 0
+            _v1.stamp = _t2 = _new(_Time)
+            _t2.secs = _t2.nsecs = 0
+            _v1.frame_id = ''
             self.status_list = []
 
     def serialize(self, buff):
         try:
             _w = buff.write
-            _b1 = self.header.frame_id
-            if _b1.__class__ is not bytes: _b1 = _b1.encode()
-            _w(_S0.pack(self.header.seq, self.header.stamp.secs, self.header.stamp.nsecs, len(_b1)) + _b1)
-            _x2 = self.status_list
-            _w(_S1.pack(len(_x2)))
-            for _e3 in _x2:
-                _b4 = _e3.goal_id.id
-                if _b4.__class__ is not bytes: _b4 = _b4.encode()
-                _w(_S2.pack(_e3.goal_id.stamp.secs, _e3.goal_id.stamp.nsecs, len(_b4)) + _b4)
-                _b5 = _e3.text
-                if _b5.__class__ is not bytes: _b5 = _b5.encode()
-                _w(_S3.pack(_e3.status, len(_b5)) + _b5)
+            _m1 = self.header
+            _m2 = _m1.stamp
+            _b3 = _m1.frame_id
+            if _b3.__class__ is not bytes: _b3 = _b3.encode()
+            _w(_S0.pack(_m1.seq, _m2.secs, _m2.nsecs, len(_b3)) + _b3)
+            _x4 = self.status_list
+            _w(_S1.pack(len(_x4)))
+            for _e5 in _x4:
+                _m6 = _e5.goal_id
+                _m7 = _m6.stamp
+                _b8 = _m6.id
+                if _b8.__class__ is not bytes: _b8 = _b8.encode()
+                _w(_S2.pack(_m7.secs, _m7.nsecs, len(_b8)) + _b8)
+                _b9 = _e5.text
+                if _b9.__class__ is not bytes: _b9 = _b9.encode()
+                _w(_S3.pack(_e5.status, len(_b9)) + _b9)
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -66,45 +75,67 @@ class GoalStatusArray(_Message):
 
     def deserialize(self, data):
         try:
+            _v1 = self.header
+            _t2 = _v1.stamp
             _buf = data
-            _len = len(data)
-            _end = 0
-            _v1 = _new(_T_std_msgs__Header)
-            self.header = _v1
-            _t2 = _new(_Time)
-            _v1.stamp = _t2
-            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v1.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
             _n, = _S1.unpack_from(_buf, _end)
             _end += 4
             _l3 = []
             for _ in range(_n):
-                _v5 = _new(_T_actionlib_msgs__GoalStatus)
-                _i4 = _v5
-                _v6 = _new(_T_actionlib_msgs__GoalID)
-                _v5.goal_id = _v6
-                _t7 = _new(_Time)
-                _v6.stamp = _t7
+                _i4 = _v5 = _new(_T_actionlib_msgs__GoalStatus)
+                _v5.goal_id = _v6 = _new(_T_actionlib_msgs__GoalID)
+                _v6.stamp = _t7 = _new(_Time)
                 _t7.secs, _t7.nsecs, _n = _S2.unpack_from(_buf, _end)
-                _end += 12
-                _stop = _end + _n
-                if _stop > _len: raise _Truncated
-                _v6.id = str(_buf[_end:_stop], 'utf-8', 'replace')
-                _end = _stop
+                _s = _end + 12
+                _end = _s + _n
+                _v6.id = str(_buf[_s:_end], 'utf-8', 'replace')
                 _v5.status, _n = _S3.unpack_from(_buf, _end)
-                _end += 5
-                _stop = _end + _n
-                if _stop > _len: raise _Truncated
-                _v5.text = str(_buf[_end:_stop], 'utf-8', 'replace')
-                _end = _stop
+                _s = _end + 5
+                _end = _s + _n
+                _v5.text = str(_buf[_s:_end], 'utf-8', 'replace')
                 _l3.append(_i4)
             self.status_list = _l3
+            if _end > len(_buf): raise _Truncated
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
+        return _refill(self, GoalStatusArray, data)
+
+    @classmethod
+    def _from_buffer(cls, data):
+        self = _new(cls)
+        try:
+            _buf = data
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.stamp = _t2 = _new(_Time)
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            _n, = _S1.unpack_from(_buf, _end)
+            _end += 4
+            _l3 = []
+            for _ in range(_n):
+                _i4 = _v5 = _new(_T_actionlib_msgs__GoalStatus)
+                _v5.goal_id = _v6 = _new(_T_actionlib_msgs__GoalID)
+                _v6.stamp = _t7 = _new(_Time)
+                _t7.secs, _t7.nsecs, _n = _S2.unpack_from(_buf, _end)
+                _s = _end + 12
+                _end = _s + _n
+                _v6.id = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v5.status, _n = _S3.unpack_from(_buf, _end)
+                _s = _end + 5
+                _end = _s + _n
+                _v5.text = str(_buf[_s:_end], 'utf-8', 'replace')
+                _l3.append(_i4)
+            self.status_list = _l3
+            if _end > len(_buf): raise _Truncated
+        except Exception as exc:
+            raise _deserialize_failed(cls, data, exc) from exc
         return self
 
     def deserialize_numpy(self, data, numpy):

@@ -5,6 +5,7 @@ from kame.msg.message import Message as _Message
 from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
+from kame.msg.message import refill as _refill
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -39,36 +40,42 @@ class DiagnosticArray(_Message):
             if self.status is None:
                 self.status = []
         else:
-            self.header = _T_std_msgs__Header()
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.seq = 0
+            _v1.stamp = _t2 = _new(_Time)
+            _t2.secs = _t2.nsecs = 0
+            _v1.frame_id = ''
             self.status = []
 
     def serialize(self, buff):
         try:
             _w = buff.write
-            _b1 = self.header.frame_id
-            if _b1.__class__ is not bytes: _b1 = _b1.encode()
-            _w(_S0.pack(self.header.seq, self.header.stamp.secs, self.header.stamp.nsecs, len(_b1)) + _b1)
-            _x2 = self.status
-            _w(_S1.pack(len(_x2)))
-            for _e3 in _x2:
-                _b4 = _e3.name
-                if _b4.__class__ is not bytes: _b4 = _b4.encode()
-                _w(_S2.pack(_e3.level, len(_b4)) + _b4)
-                _b5 = _e3.message
-                if _b5.__class__ is not bytes: _b5 = _b5.encode()
-                _w(_S1.pack(len(_b5)) + _b5)
-                _b6 = _e3.hardware_id
+            _m1 = self.header
+            _m2 = _m1.stamp
+            _b3 = _m1.frame_id
+            if _b3.__class__ is not bytes: _b3 = _b3.encode()
+            _w(_S0.pack(_m1.seq, _m2.secs, _m2.nsecs, len(_b3)) + _b3)
+            _x4 = self.status
+            _w(_S1.pack(len(_x4)))
+            for _e5 in _x4:
+                _b6 = _e5.name
                 if _b6.__class__ is not bytes: _b6 = _b6.encode()
-                _w(_S1.pack(len(_b6)) + _b6)
-                _x7 = _e3.values
-                _w(_S1.pack(len(_x7)))
-                for _e8 in _x7:
-                    _b9 = _e8.key
-                    if _b9.__class__ is not bytes: _b9 = _b9.encode()
-                    _w(_S1.pack(len(_b9)) + _b9)
-                    _b10 = _e8.value
-                    if _b10.__class__ is not bytes: _b10 = _b10.encode()
-                    _w(_S1.pack(len(_b10)) + _b10)
+                _w(_S2.pack(_e5.level, len(_b6)) + _b6)
+                _b7 = _e5.message
+                if _b7.__class__ is not bytes: _b7 = _b7.encode()
+                _w(_S1.pack(len(_b7)) + _b7)
+                _b8 = _e5.hardware_id
+                if _b8.__class__ is not bytes: _b8 = _b8.encode()
+                _w(_S1.pack(len(_b8)) + _b8)
+                _x9 = _e5.values
+                _w(_S1.pack(len(_x9)))
+                for _e10 in _x9:
+                    _b11 = _e10.key
+                    if _b11.__class__ is not bytes: _b11 = _b11.encode()
+                    _w(_S1.pack(len(_b11)) + _b11)
+                    _b12 = _e10.value
+                    if _b12.__class__ is not bytes: _b12 = _b12.encode()
+                    _w(_S1.pack(len(_b12)) + _b12)
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -77,67 +84,101 @@ class DiagnosticArray(_Message):
 
     def deserialize(self, data):
         try:
+            _v1 = self.header
+            _t2 = _v1.stamp
             _buf = data
-            _len = len(data)
-            _end = 0
-            _v1 = _new(_T_std_msgs__Header)
-            self.header = _v1
-            _t2 = _new(_Time)
-            _v1.stamp = _t2
-            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v1.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
             _n, = _S1.unpack_from(_buf, _end)
             _end += 4
             _l3 = []
             for _ in range(_n):
-                _v5 = _new(_T_diagnostic_msgs__DiagnosticStatus)
-                _i4 = _v5
+                _i4 = _v5 = _new(_T_diagnostic_msgs__DiagnosticStatus)
                 _v5.level, _n = _S2.unpack_from(_buf, _end)
-                _end += 5
-                _stop = _end + _n
-                if _stop > _len: raise _Truncated
-                _v5.name = str(_buf[_end:_stop], 'utf-8', 'replace')
-                _end = _stop
+                _s = _end + 5
+                _end = _s + _n
+                _v5.name = str(_buf[_s:_end], 'utf-8', 'replace')
                 _n, = _S1.unpack_from(_buf, _end)
-                _end += 4
-                _stop = _end + _n
-                if _stop > _len: raise _Truncated
-                _v5.message = str(_buf[_end:_stop], 'utf-8', 'replace')
-                _end = _stop
+                _s = _end + 4
+                _end = _s + _n
+                _v5.message = str(_buf[_s:_end], 'utf-8', 'replace')
                 _n, = _S1.unpack_from(_buf, _end)
-                _end += 4
-                _stop = _end + _n
-                if _stop > _len: raise _Truncated
-                _v5.hardware_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-                _end = _stop
+                _s = _end + 4
+                _end = _s + _n
+                _v5.hardware_id = str(_buf[_s:_end], 'utf-8', 'replace')
                 _n, = _S1.unpack_from(_buf, _end)
                 _end += 4
                 _l6 = []
                 for _ in range(_n):
-                    _v8 = _new(_T_diagnostic_msgs__KeyValue)
-                    _i7 = _v8
+                    _i7 = _v8 = _new(_T_diagnostic_msgs__KeyValue)
                     _n, = _S1.unpack_from(_buf, _end)
-                    _end += 4
-                    _stop = _end + _n
-                    if _stop > _len: raise _Truncated
-                    _v8.key = str(_buf[_end:_stop], 'utf-8', 'replace')
-                    _end = _stop
+                    _s = _end + 4
+                    _end = _s + _n
+                    _v8.key = str(_buf[_s:_end], 'utf-8', 'replace')
                     _n, = _S1.unpack_from(_buf, _end)
-                    _end += 4
-                    _stop = _end + _n
-                    if _stop > _len: raise _Truncated
-                    _v8.value = str(_buf[_end:_stop], 'utf-8', 'replace')
-                    _end = _stop
+                    _s = _end + 4
+                    _end = _s + _n
+                    _v8.value = str(_buf[_s:_end], 'utf-8', 'replace')
                     _l6.append(_i7)
                 _v5.values = _l6
                 _l3.append(_i4)
             self.status = _l3
+            if _end > len(_buf): raise _Truncated
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
+        return _refill(self, DiagnosticArray, data)
+
+    @classmethod
+    def _from_buffer(cls, data):
+        self = _new(cls)
+        try:
+            _buf = data
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.stamp = _t2 = _new(_Time)
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            _n, = _S1.unpack_from(_buf, _end)
+            _end += 4
+            _l3 = []
+            for _ in range(_n):
+                _i4 = _v5 = _new(_T_diagnostic_msgs__DiagnosticStatus)
+                _v5.level, _n = _S2.unpack_from(_buf, _end)
+                _s = _end + 5
+                _end = _s + _n
+                _v5.name = str(_buf[_s:_end], 'utf-8', 'replace')
+                _n, = _S1.unpack_from(_buf, _end)
+                _s = _end + 4
+                _end = _s + _n
+                _v5.message = str(_buf[_s:_end], 'utf-8', 'replace')
+                _n, = _S1.unpack_from(_buf, _end)
+                _s = _end + 4
+                _end = _s + _n
+                _v5.hardware_id = str(_buf[_s:_end], 'utf-8', 'replace')
+                _n, = _S1.unpack_from(_buf, _end)
+                _end += 4
+                _l6 = []
+                for _ in range(_n):
+                    _i7 = _v8 = _new(_T_diagnostic_msgs__KeyValue)
+                    _n, = _S1.unpack_from(_buf, _end)
+                    _s = _end + 4
+                    _end = _s + _n
+                    _v8.key = str(_buf[_s:_end], 'utf-8', 'replace')
+                    _n, = _S1.unpack_from(_buf, _end)
+                    _s = _end + 4
+                    _end = _s + _n
+                    _v8.value = str(_buf[_s:_end], 'utf-8', 'replace')
+                    _l6.append(_i7)
+                _v5.values = _l6
+                _l3.append(_i4)
+            self.status = _l3
+            if _end > len(_buf): raise _Truncated
+        except Exception as exc:
+            raise _deserialize_failed(cls, data, exc) from exc
         return self
 
     def deserialize_numpy(self, data, numpy):

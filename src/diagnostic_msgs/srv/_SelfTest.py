@@ -5,6 +5,7 @@ from kame.msg.message import Message as _Message
 from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
+from kame.msg.message import refill as _refill
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -46,10 +47,19 @@ class SelfTestRequest(_Message):
     def deserialize(self, data):
         try:
             _buf = data
-            _len = len(data)
-            _end = 0
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
+        return self
+
+    @classmethod
+    def _from_buffer(cls, data):
+        self = _new(cls)
+        try:
+            _buf = data
+            pass
+        except Exception as exc:
+            raise _deserialize_failed(cls, data, exc) from exc
         return self
 
     def deserialize_numpy(self, data, numpy):
@@ -116,62 +126,93 @@ class SelfTestResponse(_Message):
     def deserialize(self, data):
         try:
             _buf = data
-            _len = len(data)
-            _end = 0
-            _n, = _S0.unpack_from(_buf, _end)
-            _end += 4
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            self.id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            _n, = _S0.unpack_from(_buf, 0)
+            _end = 4 + _n
+            self.id = str(_buf[4:_end], 'utf-8', 'replace')
             self.passed, _n = _S1.unpack_from(_buf, _end)
             _end += 5
             _l1 = []
             for _ in range(_n):
-                _v3 = _new(_T_diagnostic_msgs__DiagnosticStatus)
-                _i2 = _v3
+                _i2 = _v3 = _new(_T_diagnostic_msgs__DiagnosticStatus)
                 _v3.level, _n = _S1.unpack_from(_buf, _end)
-                _end += 5
-                _stop = _end + _n
-                if _stop > _len: raise _Truncated
-                _v3.name = str(_buf[_end:_stop], 'utf-8', 'replace')
-                _end = _stop
+                _s = _end + 5
+                _end = _s + _n
+                _v3.name = str(_buf[_s:_end], 'utf-8', 'replace')
                 _n, = _S0.unpack_from(_buf, _end)
-                _end += 4
-                _stop = _end + _n
-                if _stop > _len: raise _Truncated
-                _v3.message = str(_buf[_end:_stop], 'utf-8', 'replace')
-                _end = _stop
+                _s = _end + 4
+                _end = _s + _n
+                _v3.message = str(_buf[_s:_end], 'utf-8', 'replace')
                 _n, = _S0.unpack_from(_buf, _end)
-                _end += 4
-                _stop = _end + _n
-                if _stop > _len: raise _Truncated
-                _v3.hardware_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-                _end = _stop
+                _s = _end + 4
+                _end = _s + _n
+                _v3.hardware_id = str(_buf[_s:_end], 'utf-8', 'replace')
                 _n, = _S0.unpack_from(_buf, _end)
                 _end += 4
                 _l4 = []
                 for _ in range(_n):
-                    _v6 = _new(_T_diagnostic_msgs__KeyValue)
-                    _i5 = _v6
+                    _i5 = _v6 = _new(_T_diagnostic_msgs__KeyValue)
                     _n, = _S0.unpack_from(_buf, _end)
-                    _end += 4
-                    _stop = _end + _n
-                    if _stop > _len: raise _Truncated
-                    _v6.key = str(_buf[_end:_stop], 'utf-8', 'replace')
-                    _end = _stop
+                    _s = _end + 4
+                    _end = _s + _n
+                    _v6.key = str(_buf[_s:_end], 'utf-8', 'replace')
                     _n, = _S0.unpack_from(_buf, _end)
-                    _end += 4
-                    _stop = _end + _n
-                    if _stop > _len: raise _Truncated
-                    _v6.value = str(_buf[_end:_stop], 'utf-8', 'replace')
-                    _end = _stop
+                    _s = _end + 4
+                    _end = _s + _n
+                    _v6.value = str(_buf[_s:_end], 'utf-8', 'replace')
                     _l4.append(_i5)
                 _v3.values = _l4
                 _l1.append(_i2)
             self.status = _l1
+            if _end > len(_buf): raise _Truncated
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
+        return self
+
+    @classmethod
+    def _from_buffer(cls, data):
+        self = _new(cls)
+        try:
+            _buf = data
+            _n, = _S0.unpack_from(_buf, 0)
+            _end = 4 + _n
+            self.id = str(_buf[4:_end], 'utf-8', 'replace')
+            self.passed, _n = _S1.unpack_from(_buf, _end)
+            _end += 5
+            _l1 = []
+            for _ in range(_n):
+                _i2 = _v3 = _new(_T_diagnostic_msgs__DiagnosticStatus)
+                _v3.level, _n = _S1.unpack_from(_buf, _end)
+                _s = _end + 5
+                _end = _s + _n
+                _v3.name = str(_buf[_s:_end], 'utf-8', 'replace')
+                _n, = _S0.unpack_from(_buf, _end)
+                _s = _end + 4
+                _end = _s + _n
+                _v3.message = str(_buf[_s:_end], 'utf-8', 'replace')
+                _n, = _S0.unpack_from(_buf, _end)
+                _s = _end + 4
+                _end = _s + _n
+                _v3.hardware_id = str(_buf[_s:_end], 'utf-8', 'replace')
+                _n, = _S0.unpack_from(_buf, _end)
+                _end += 4
+                _l4 = []
+                for _ in range(_n):
+                    _i5 = _v6 = _new(_T_diagnostic_msgs__KeyValue)
+                    _n, = _S0.unpack_from(_buf, _end)
+                    _s = _end + 4
+                    _end = _s + _n
+                    _v6.key = str(_buf[_s:_end], 'utf-8', 'replace')
+                    _n, = _S0.unpack_from(_buf, _end)
+                    _s = _end + 4
+                    _end = _s + _n
+                    _v6.value = str(_buf[_s:_end], 'utf-8', 'replace')
+                    _l4.append(_i5)
+                _v3.values = _l4
+                _l1.append(_i2)
+            self.status = _l1
+            if _end > len(_buf): raise _Truncated
+        except Exception as exc:
+            raise _deserialize_failed(cls, data, exc) from exc
         return self
 
     def deserialize_numpy(self, data, numpy):

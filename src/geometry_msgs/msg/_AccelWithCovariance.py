@@ -5,6 +5,7 @@ from kame.msg.message import Message as _Message
 from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
+from kame.msg.message import refill as _refill
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -38,14 +39,24 @@ class AccelWithCovariance(_Message):
             if self.covariance is None:
                 self.covariance = [0.0] * 36
         else:
-            self.accel = _T_geometry_msgs__Accel()
+            self.accel = _v1 = _new(_T_geometry_msgs__Accel)
+            _v1.linear = _v2 = _new(_T_geometry_msgs__Vector3)
+            _v2.x = 0.0
+            _v2.y = 0.0
+            _v2.z = 0.0
+            _v1.angular = _v3 = _new(_T_geometry_msgs__Vector3)
+            _v3.x = 0.0
+            _v3.y = 0.0
+            _v3.z = 0.0
             self.covariance = [0.0] * 36
 
     def serialize(self, buff):
         try:
-            _w = buff.write
-            _x1 = self.covariance
-            _w(_S0.pack(self.accel.linear.x, self.accel.linear.y, self.accel.linear.z, self.accel.angular.x, self.accel.angular.y, self.accel.angular.z, *_x1))
+            _m1 = self.accel
+            _m2 = _m1.linear
+            _m3 = _m1.angular
+            _x4 = self.covariance
+            buff.write(_S0.pack(_m2.x, _m2.y, _m2.z, _m3.x, _m3.y, _m3.z, *_x4))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -54,43 +65,42 @@ class AccelWithCovariance(_Message):
 
     def deserialize(self, data):
         try:
+            _v1 = self.accel
+            _v2 = _v1.linear
+            _v3 = _v1.angular
             _buf = data
-            _len = len(data)
-            _end = 0
-            _v1 = _new(_T_geometry_msgs__Accel)
-            self.accel = _v1
-            _v2 = _new(_T_geometry_msgs__Vector3)
-            _v1.linear = _v2
-            _v3 = _new(_T_geometry_msgs__Vector3)
-            _v1.angular = _v3
-            _v2.x, _v2.y, _v2.z, _v3.x, _v3.y, _v3.z = _S1.unpack_from(_buf, _end)
-            _end += 48
-            _stop = _end + 36 * 8
-            if _stop > _len: raise _Truncated
-            self.covariance = _S2.unpack_from(_buf, _end)
-            _end = _stop
+            _v2.x, _v2.y, _v2.z, _v3.x, _v3.y, _v3.z = _S1.unpack_from(_buf, 0)
+            self.covariance = _S2.unpack_from(_buf, 48)
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
+        return _refill(self, AccelWithCovariance, data)
+
+    @classmethod
+    def _from_buffer(cls, data):
+        self = _new(cls)
+        try:
+            _buf = data
+            self.accel = _v1 = _new(_T_geometry_msgs__Accel)
+            _v1.linear = _v2 = _new(_T_geometry_msgs__Vector3)
+            _v1.angular = _v3 = _new(_T_geometry_msgs__Vector3)
+            _v2.x, _v2.y, _v2.z, _v3.x, _v3.y, _v3.z = _S1.unpack_from(_buf, 0)
+            self.covariance = _S2.unpack_from(_buf, 48)
+        except Exception as exc:
+            raise _deserialize_failed(cls, data, exc) from exc
         return self
 
     def deserialize_numpy(self, data, numpy):
         try:
             _np = numpy
             _buf = data
-            _len = len(data)
-            _end = 0
-            _v1 = _new(_T_geometry_msgs__Accel)
-            self.accel = _v1
-            _v2 = _new(_T_geometry_msgs__Vector3)
-            _v1.linear = _v2
-            _v3 = _new(_T_geometry_msgs__Vector3)
-            _v1.angular = _v3
-            _v2.x, _v2.y, _v2.z, _v3.x, _v3.y, _v3.z = _S1.unpack_from(_buf, _end)
-            _end += 48
-            _stop = _end + 36 * 8
-            if _stop > _len: raise _Truncated
-            self.covariance = _np.frombuffer(_buf, '<f8', 36, _end)
-            _end = _stop
+            self.accel = _v1 = _new(_T_geometry_msgs__Accel)
+            _v1.linear = _v2 = _new(_T_geometry_msgs__Vector3)
+            _v1.angular = _v3 = _new(_T_geometry_msgs__Vector3)
+            _v2.x, _v2.y, _v2.z, _v3.x, _v3.y, _v3.z = _S1.unpack_from(_buf, 0)
+            self.covariance = _np.frombuffer(_buf, '<f8', 36, 48)
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
         return self

@@ -5,6 +5,7 @@ from kame.msg.message import Message as _Message
 from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
+from kame.msg.message import refill as _refill
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -41,17 +42,37 @@ class AccelWithCovarianceStamped(_Message):
             if self.accel is None:
                 self.accel = _T_geometry_msgs__AccelWithCovariance()
         else:
-            self.header = _T_std_msgs__Header()
-            self.accel = _T_geometry_msgs__AccelWithCovariance()
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.seq = 0
+            _v1.stamp = _t2 = _new(_Time)
+            _t2.secs = _t2.nsecs = 0
+            _v1.frame_id = ''
+            self.accel = _v3 = _new(_T_geometry_msgs__AccelWithCovariance)
+            _v3.accel = _v4 = _new(_T_geometry_msgs__Accel)
+            _v4.linear = _v5 = _new(_T_geometry_msgs__Vector3)
+            _v5.x = 0.0
+            _v5.y = 0.0
+            _v5.z = 0.0
+            _v4.angular = _v6 = _new(_T_geometry_msgs__Vector3)
+            _v6.x = 0.0
+            _v6.y = 0.0
+            _v6.z = 0.0
+            _v3.covariance = [0.0] * 36
 
     def serialize(self, buff):
         try:
             _w = buff.write
-            _b1 = self.header.frame_id
-            if _b1.__class__ is not bytes: _b1 = _b1.encode()
-            _w(_S0.pack(self.header.seq, self.header.stamp.secs, self.header.stamp.nsecs, len(_b1)) + _b1)
-            _x2 = self.accel.covariance
-            _w(_S1.pack(self.accel.accel.linear.x, self.accel.accel.linear.y, self.accel.accel.linear.z, self.accel.accel.angular.x, self.accel.accel.angular.y, self.accel.accel.angular.z, *_x2))
+            _m1 = self.header
+            _m2 = _m1.stamp
+            _b3 = _m1.frame_id
+            if _b3.__class__ is not bytes: _b3 = _b3.encode()
+            _w(_S0.pack(_m1.seq, _m2.secs, _m2.nsecs, len(_b3)) + _b3)
+            _m4 = self.accel
+            _m5 = _m4.accel
+            _m6 = _m5.linear
+            _m7 = _m5.angular
+            _x8 = _m4.covariance
+            _w(_S1.pack(_m6.x, _m6.y, _m6.z, _m7.x, _m7.y, _m7.z, *_x8))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -60,67 +81,63 @@ class AccelWithCovarianceStamped(_Message):
 
     def deserialize(self, data):
         try:
+            _v1 = self.header
+            _t2 = _v1.stamp
+            _v3 = self.accel
+            _v4 = _v3.accel
+            _v5 = _v4.linear
+            _v6 = _v4.angular
             _buf = data
-            _len = len(data)
-            _end = 0
-            _v1 = _new(_T_std_msgs__Header)
-            self.header = _v1
-            _t2 = _new(_Time)
-            _v1.stamp = _t2
-            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v1.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v3 = _new(_T_geometry_msgs__AccelWithCovariance)
-            self.accel = _v3
-            _v4 = _new(_T_geometry_msgs__Accel)
-            _v3.accel = _v4
-            _v5 = _new(_T_geometry_msgs__Vector3)
-            _v4.linear = _v5
-            _v6 = _new(_T_geometry_msgs__Vector3)
-            _v4.angular = _v6
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
             _v5.x, _v5.y, _v5.z, _v6.x, _v6.y, _v6.z = _S2.unpack_from(_buf, _end)
-            _end += 48
-            _stop = _end + 36 * 8
-            if _stop > _len: raise _Truncated
-            _v3.covariance = _S3.unpack_from(_buf, _end)
-            _end = _stop
+            _v3.covariance = _S3.unpack_from(_buf, _end + 48)
+            if _end > len(_buf): raise _Truncated
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
+        return _refill(self, AccelWithCovarianceStamped, data)
+
+    @classmethod
+    def _from_buffer(cls, data):
+        self = _new(cls)
+        try:
+            _buf = data
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.stamp = _t2 = _new(_Time)
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            self.accel = _v3 = _new(_T_geometry_msgs__AccelWithCovariance)
+            _v3.accel = _v4 = _new(_T_geometry_msgs__Accel)
+            _v4.linear = _v5 = _new(_T_geometry_msgs__Vector3)
+            _v4.angular = _v6 = _new(_T_geometry_msgs__Vector3)
+            _v5.x, _v5.y, _v5.z, _v6.x, _v6.y, _v6.z = _S2.unpack_from(_buf, _end)
+            _v3.covariance = _S3.unpack_from(_buf, _end + 48)
+            if _end > len(_buf): raise _Truncated
+        except Exception as exc:
+            raise _deserialize_failed(cls, data, exc) from exc
         return self
 
     def deserialize_numpy(self, data, numpy):
         try:
             _np = numpy
             _buf = data
-            _len = len(data)
-            _end = 0
-            _v1 = _new(_T_std_msgs__Header)
-            self.header = _v1
-            _t2 = _new(_Time)
-            _v1.stamp = _t2
-            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v1.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v3 = _new(_T_geometry_msgs__AccelWithCovariance)
-            self.accel = _v3
-            _v4 = _new(_T_geometry_msgs__Accel)
-            _v3.accel = _v4
-            _v5 = _new(_T_geometry_msgs__Vector3)
-            _v4.linear = _v5
-            _v6 = _new(_T_geometry_msgs__Vector3)
-            _v4.angular = _v6
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.stamp = _t2 = _new(_Time)
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            self.accel = _v3 = _new(_T_geometry_msgs__AccelWithCovariance)
+            _v3.accel = _v4 = _new(_T_geometry_msgs__Accel)
+            _v4.linear = _v5 = _new(_T_geometry_msgs__Vector3)
+            _v4.angular = _v6 = _new(_T_geometry_msgs__Vector3)
             _v5.x, _v5.y, _v5.z, _v6.x, _v6.y, _v6.z = _S2.unpack_from(_buf, _end)
-            _end += 48
-            _stop = _end + 36 * 8
-            if _stop > _len: raise _Truncated
-            _v3.covariance = _np.frombuffer(_buf, '<f8', 36, _end)
-            _end = _stop
+            _v3.covariance = _np.frombuffer(_buf, '<f8', 36, _end + 48)
+            if _end > len(_buf): raise _Truncated
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
         return self

@@ -5,6 +5,7 @@ from kame.msg.message import Message as _Message
 from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
+from kame.msg.message import refill as _refill
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -48,7 +49,10 @@ class Inertia(_Message):
                 self.izz = 0.0
         else:
             self.m = 0.0
-            self.com = _T_geometry_msgs__Vector3()
+            self.com = _v1 = _new(_T_geometry_msgs__Vector3)
+            _v1.x = 0.0
+            _v1.y = 0.0
+            _v1.z = 0.0
             self.ixx = 0.0
             self.ixy = 0.0
             self.ixz = 0.0
@@ -58,8 +62,8 @@ class Inertia(_Message):
 
     def serialize(self, buff):
         try:
-            _w = buff.write
-            _w(_S0.pack(self.m, self.com.x, self.com.y, self.com.z, self.ixx, self.ixy, self.ixz, self.iyy, self.iyz, self.izz))
+            _m1 = self.com
+            buff.write(_S0.pack(self.m, _m1.x, _m1.y, _m1.z, self.ixx, self.ixy, self.ixz, self.iyy, self.iyz, self.izz))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -68,15 +72,25 @@ class Inertia(_Message):
 
     def deserialize(self, data):
         try:
+            _v1 = self.com
             _buf = data
-            _len = len(data)
-            _end = 0
-            _v1 = _new(_T_geometry_msgs__Vector3)
-            self.com = _v1
-            self.m, _v1.x, _v1.y, _v1.z, self.ixx, self.ixy, self.ixz, self.iyy, self.iyz, self.izz = _S0.unpack_from(_buf, _end)
-            _end += 80
+            self.m, _v1.x, _v1.y, _v1.z, self.ixx, self.ixy, self.ixz, self.iyy, self.iyz, self.izz = _S0.unpack_from(_buf, 0)
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
+        return _refill(self, Inertia, data)
+
+    @classmethod
+    def _from_buffer(cls, data):
+        self = _new(cls)
+        try:
+            _buf = data
+            self.com = _v1 = _new(_T_geometry_msgs__Vector3)
+            self.m, _v1.x, _v1.y, _v1.z, self.ixx, self.ixy, self.ixz, self.iyy, self.iyz, self.izz = _S0.unpack_from(_buf, 0)
+        except Exception as exc:
+            raise _deserialize_failed(cls, data, exc) from exc
         return self
 
     def deserialize_numpy(self, data, numpy):

@@ -5,6 +5,7 @@ from kame.msg.message import Message as _Message
 from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
+from kame.msg.message import refill as _refill
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -40,19 +41,27 @@ class PoseArray(_Message):
             if self.poses is None:
                 self.poses = []
         else:
-            self.header = _T_std_msgs__Header()
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.seq = 0
+            _v1.stamp = _t2 = _new(_Time)
+            _t2.secs = _t2.nsecs = 0
+            _v1.frame_id = ''
             self.poses = []
 
     def serialize(self, buff):
         try:
             _w = buff.write
-            _b1 = self.header.frame_id
-            if _b1.__class__ is not bytes: _b1 = _b1.encode()
-            _w(_S0.pack(self.header.seq, self.header.stamp.secs, self.header.stamp.nsecs, len(_b1)) + _b1)
-            _x2 = self.poses
-            _w(_S1.pack(len(_x2)))
-            for _e3 in _x2:
-                _w(_S2.pack(_e3.position.x, _e3.position.y, _e3.position.z, _e3.orientation.x, _e3.orientation.y, _e3.orientation.z, _e3.orientation.w))
+            _m1 = self.header
+            _m2 = _m1.stamp
+            _b3 = _m1.frame_id
+            if _b3.__class__ is not bytes: _b3 = _b3.encode()
+            _w(_S0.pack(_m1.seq, _m2.secs, _m2.nsecs, len(_b3)) + _b3)
+            _x4 = self.poses
+            _w(_S1.pack(len(_x4)))
+            for _e5 in _x4:
+                _m6 = _e5.position
+                _m7 = _e5.orientation
+                _w(_S2.pack(_m6.x, _m6.y, _m6.z, _m7.x, _m7.y, _m7.z, _m7.w))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -61,35 +70,55 @@ class PoseArray(_Message):
 
     def deserialize(self, data):
         try:
+            _v1 = self.header
+            _t2 = _v1.stamp
             _buf = data
-            _len = len(data)
-            _end = 0
-            _v1 = _new(_T_std_msgs__Header)
-            self.header = _v1
-            _t2 = _new(_Time)
-            _v1.stamp = _t2
-            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v1.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
             _n, = _S1.unpack_from(_buf, _end)
             _end += 4
             _l3 = []
             for _ in range(_n):
-                _v5 = _new(_T_geometry_msgs__Pose)
-                _i4 = _v5
-                _v6 = _new(_T_geometry_msgs__Point)
-                _v5.position = _v6
-                _v7 = _new(_T_geometry_msgs__Quaternion)
-                _v5.orientation = _v7
+                _i4 = _v5 = _new(_T_geometry_msgs__Pose)
+                _v5.position = _v6 = _new(_T_geometry_msgs__Point)
+                _v5.orientation = _v7 = _new(_T_geometry_msgs__Quaternion)
                 _v6.x, _v6.y, _v6.z, _v7.x, _v7.y, _v7.z, _v7.w = _S2.unpack_from(_buf, _end)
                 _end += 56
                 _l3.append(_i4)
             self.poses = _l3
+            if _end > len(_buf): raise _Truncated
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
+        return _refill(self, PoseArray, data)
+
+    @classmethod
+    def _from_buffer(cls, data):
+        self = _new(cls)
+        try:
+            _buf = data
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.stamp = _t2 = _new(_Time)
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            _n, = _S1.unpack_from(_buf, _end)
+            _end += 4
+            _l3 = []
+            for _ in range(_n):
+                _i4 = _v5 = _new(_T_geometry_msgs__Pose)
+                _v5.position = _v6 = _new(_T_geometry_msgs__Point)
+                _v5.orientation = _v7 = _new(_T_geometry_msgs__Quaternion)
+                _v6.x, _v6.y, _v6.z, _v7.x, _v7.y, _v7.z, _v7.w = _S2.unpack_from(_buf, _end)
+                _end += 56
+                _l3.append(_i4)
+            self.poses = _l3
+            if _end > len(_buf): raise _Truncated
+        except Exception as exc:
+            raise _deserialize_failed(cls, data, exc) from exc
         return self
 
     def deserialize_numpy(self, data, numpy):

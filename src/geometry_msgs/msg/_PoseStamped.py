@@ -5,6 +5,7 @@ from kame.msg.message import Message as _Message
 from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
+from kame.msg.message import refill as _refill
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -39,16 +40,34 @@ class PoseStamped(_Message):
             if self.pose is None:
                 self.pose = _T_geometry_msgs__Pose()
         else:
-            self.header = _T_std_msgs__Header()
-            self.pose = _T_geometry_msgs__Pose()
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.seq = 0
+            _v1.stamp = _t2 = _new(_Time)
+            _t2.secs = _t2.nsecs = 0
+            _v1.frame_id = ''
+            self.pose = _v3 = _new(_T_geometry_msgs__Pose)
+            _v3.position = _v4 = _new(_T_geometry_msgs__Point)
+            _v4.x = 0.0
+            _v4.y = 0.0
+            _v4.z = 0.0
+            _v3.orientation = _v5 = _new(_T_geometry_msgs__Quaternion)
+            _v5.x = 0.0
+            _v5.y = 0.0
+            _v5.z = 0.0
+            _v5.w = 0.0
 
     def serialize(self, buff):
         try:
             _w = buff.write
-            _b1 = self.header.frame_id
-            if _b1.__class__ is not bytes: _b1 = _b1.encode()
-            _w(_S0.pack(self.header.seq, self.header.stamp.secs, self.header.stamp.nsecs, len(_b1)) + _b1)
-            _w(_S1.pack(self.pose.position.x, self.pose.position.y, self.pose.position.z, self.pose.orientation.x, self.pose.orientation.y, self.pose.orientation.z, self.pose.orientation.w))
+            _m1 = self.header
+            _m2 = _m1.stamp
+            _b3 = _m1.frame_id
+            if _b3.__class__ is not bytes: _b3 = _b3.encode()
+            _w(_S0.pack(_m1.seq, _m2.secs, _m2.nsecs, len(_b3)) + _b3)
+            _m4 = self.pose
+            _m5 = _m4.position
+            _m6 = _m4.orientation
+            _w(_S1.pack(_m5.x, _m5.y, _m5.z, _m6.x, _m6.y, _m6.z, _m6.w))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -57,29 +76,41 @@ class PoseStamped(_Message):
 
     def deserialize(self, data):
         try:
+            _v1 = self.header
+            _t2 = _v1.stamp
+            _v3 = self.pose
+            _v4 = _v3.position
+            _v5 = _v3.orientation
             _buf = data
-            _len = len(data)
-            _end = 0
-            _v1 = _new(_T_std_msgs__Header)
-            self.header = _v1
-            _t2 = _new(_Time)
-            _v1.stamp = _t2
-            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v1.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v3 = _new(_T_geometry_msgs__Pose)
-            self.pose = _v3
-            _v4 = _new(_T_geometry_msgs__Point)
-            _v3.position = _v4
-            _v5 = _new(_T_geometry_msgs__Quaternion)
-            _v3.orientation = _v5
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
             _v4.x, _v4.y, _v4.z, _v5.x, _v5.y, _v5.z, _v5.w = _S1.unpack_from(_buf, _end)
-            _end += 56
+            if _end > len(_buf): raise _Truncated
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
+        return _refill(self, PoseStamped, data)
+
+    @classmethod
+    def _from_buffer(cls, data):
+        self = _new(cls)
+        try:
+            _buf = data
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.stamp = _t2 = _new(_Time)
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            self.pose = _v3 = _new(_T_geometry_msgs__Pose)
+            _v3.position = _v4 = _new(_T_geometry_msgs__Point)
+            _v3.orientation = _v5 = _new(_T_geometry_msgs__Quaternion)
+            _v4.x, _v4.y, _v4.z, _v5.x, _v5.y, _v5.z, _v5.w = _S1.unpack_from(_buf, _end)
+            if _end > len(_buf): raise _Truncated
+        except Exception as exc:
+            raise _deserialize_failed(cls, data, exc) from exc
         return self
 
     def deserialize_numpy(self, data, numpy):

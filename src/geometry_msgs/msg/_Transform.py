@@ -5,6 +5,7 @@ from kame.msg.message import Message as _Message
 from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
+from kame.msg.message import refill as _refill
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -36,13 +37,21 @@ class Transform(_Message):
             if self.rotation is None:
                 self.rotation = _T_geometry_msgs__Quaternion()
         else:
-            self.translation = _T_geometry_msgs__Vector3()
-            self.rotation = _T_geometry_msgs__Quaternion()
+            self.translation = _v1 = _new(_T_geometry_msgs__Vector3)
+            _v1.x = 0.0
+            _v1.y = 0.0
+            _v1.z = 0.0
+            self.rotation = _v2 = _new(_T_geometry_msgs__Quaternion)
+            _v2.x = 0.0
+            _v2.y = 0.0
+            _v2.z = 0.0
+            _v2.w = 0.0
 
     def serialize(self, buff):
         try:
-            _w = buff.write
-            _w(_S0.pack(self.translation.x, self.translation.y, self.translation.z, self.rotation.x, self.rotation.y, self.rotation.z, self.rotation.w))
+            _m1 = self.translation
+            _m2 = self.rotation
+            buff.write(_S0.pack(_m1.x, _m1.y, _m1.z, _m2.x, _m2.y, _m2.z, _m2.w))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -51,17 +60,27 @@ class Transform(_Message):
 
     def deserialize(self, data):
         try:
+            _v1 = self.translation
+            _v2 = self.rotation
             _buf = data
-            _len = len(data)
-            _end = 0
-            _v1 = _new(_T_geometry_msgs__Vector3)
-            self.translation = _v1
-            _v2 = _new(_T_geometry_msgs__Quaternion)
-            self.rotation = _v2
-            _v1.x, _v1.y, _v1.z, _v2.x, _v2.y, _v2.z, _v2.w = _S0.unpack_from(_buf, _end)
-            _end += 56
+            _v1.x, _v1.y, _v1.z, _v2.x, _v2.y, _v2.z, _v2.w = _S0.unpack_from(_buf, 0)
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
+        return _refill(self, Transform, data)
+
+    @classmethod
+    def _from_buffer(cls, data):
+        self = _new(cls)
+        try:
+            _buf = data
+            self.translation = _v1 = _new(_T_geometry_msgs__Vector3)
+            self.rotation = _v2 = _new(_T_geometry_msgs__Quaternion)
+            _v1.x, _v1.y, _v1.z, _v2.x, _v2.y, _v2.z, _v2.w = _S0.unpack_from(_buf, 0)
+        except Exception as exc:
+            raise _deserialize_failed(cls, data, exc) from exc
         return self
 
     def deserialize_numpy(self, data, numpy):

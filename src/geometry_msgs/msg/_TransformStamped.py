@@ -5,6 +5,7 @@ from kame.msg.message import Message as _Message
 from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
+from kame.msg.message import refill as _refill
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -42,20 +43,38 @@ class TransformStamped(_Message):
             if self.transform is None:
                 self.transform = _T_geometry_msgs__Transform()
         else:
-            self.header = _T_std_msgs__Header()
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.seq = 0
+            _v1.stamp = _t2 = _new(_Time)
+            _t2.secs = _t2.nsecs = 0
+            _v1.frame_id = ''
             self.child_frame_id = ''
-            self.transform = _T_geometry_msgs__Transform()
+            self.transform = _v3 = _new(_T_geometry_msgs__Transform)
+            _v3.translation = _v4 = _new(_T_geometry_msgs__Vector3)
+            _v4.x = 0.0
+            _v4.y = 0.0
+            _v4.z = 0.0
+            _v3.rotation = _v5 = _new(_T_geometry_msgs__Quaternion)
+            _v5.x = 0.0
+            _v5.y = 0.0
+            _v5.z = 0.0
+            _v5.w = 0.0
 
     def serialize(self, buff):
         try:
             _w = buff.write
-            _b1 = self.header.frame_id
-            if _b1.__class__ is not bytes: _b1 = _b1.encode()
-            _w(_S0.pack(self.header.seq, self.header.stamp.secs, self.header.stamp.nsecs, len(_b1)) + _b1)
-            _b2 = self.child_frame_id
-            if _b2.__class__ is not bytes: _b2 = _b2.encode()
-            _w(_S1.pack(len(_b2)) + _b2)
-            _w(_S2.pack(self.transform.translation.x, self.transform.translation.y, self.transform.translation.z, self.transform.rotation.x, self.transform.rotation.y, self.transform.rotation.z, self.transform.rotation.w))
+            _m1 = self.header
+            _m2 = _m1.stamp
+            _b3 = _m1.frame_id
+            if _b3.__class__ is not bytes: _b3 = _b3.encode()
+            _w(_S0.pack(_m1.seq, _m2.secs, _m2.nsecs, len(_b3)) + _b3)
+            _b4 = self.child_frame_id
+            if _b4.__class__ is not bytes: _b4 = _b4.encode()
+            _w(_S1.pack(len(_b4)) + _b4)
+            _m5 = self.transform
+            _m6 = _m5.translation
+            _m7 = _m5.rotation
+            _w(_S2.pack(_m6.x, _m6.y, _m6.z, _m7.x, _m7.y, _m7.z, _m7.w))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -64,35 +83,49 @@ class TransformStamped(_Message):
 
     def deserialize(self, data):
         try:
+            _v1 = self.header
+            _t2 = _v1.stamp
+            _v3 = self.transform
+            _v4 = _v3.translation
+            _v5 = _v3.rotation
             _buf = data
-            _len = len(data)
-            _end = 0
-            _v1 = _new(_T_std_msgs__Header)
-            self.header = _v1
-            _t2 = _new(_Time)
-            _v1.stamp = _t2
-            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v1.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
             _n, = _S1.unpack_from(_buf, _end)
-            _end += 4
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            self.child_frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v3 = _new(_T_geometry_msgs__Transform)
-            self.transform = _v3
-            _v4 = _new(_T_geometry_msgs__Vector3)
-            _v3.translation = _v4
-            _v5 = _new(_T_geometry_msgs__Quaternion)
-            _v3.rotation = _v5
+            _s = _end + 4
+            _end = _s + _n
+            self.child_frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
             _v4.x, _v4.y, _v4.z, _v5.x, _v5.y, _v5.z, _v5.w = _S2.unpack_from(_buf, _end)
-            _end += 56
+            if _end > len(_buf): raise _Truncated
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
+        return _refill(self, TransformStamped, data)
+
+    @classmethod
+    def _from_buffer(cls, data):
+        self = _new(cls)
+        try:
+            _buf = data
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.stamp = _t2 = _new(_Time)
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            _n, = _S1.unpack_from(_buf, _end)
+            _s = _end + 4
+            _end = _s + _n
+            self.child_frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
+            self.transform = _v3 = _new(_T_geometry_msgs__Transform)
+            _v3.translation = _v4 = _new(_T_geometry_msgs__Vector3)
+            _v3.rotation = _v5 = _new(_T_geometry_msgs__Quaternion)
+            _v4.x, _v4.y, _v4.z, _v5.x, _v5.y, _v5.z, _v5.w = _S2.unpack_from(_buf, _end)
+            if _end > len(_buf): raise _Truncated
+        except Exception as exc:
+            raise _deserialize_failed(cls, data, exc) from exc
         return self
 
     def deserialize_numpy(self, data, numpy):

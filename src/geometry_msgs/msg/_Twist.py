@@ -5,6 +5,7 @@ from kame.msg.message import Message as _Message
 from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
+from kame.msg.message import refill as _refill
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -35,13 +36,20 @@ class Twist(_Message):
             if self.angular is None:
                 self.angular = _T_geometry_msgs__Vector3()
         else:
-            self.linear = _T_geometry_msgs__Vector3()
-            self.angular = _T_geometry_msgs__Vector3()
+            self.linear = _v1 = _new(_T_geometry_msgs__Vector3)
+            _v1.x = 0.0
+            _v1.y = 0.0
+            _v1.z = 0.0
+            self.angular = _v2 = _new(_T_geometry_msgs__Vector3)
+            _v2.x = 0.0
+            _v2.y = 0.0
+            _v2.z = 0.0
 
     def serialize(self, buff):
         try:
-            _w = buff.write
-            _w(_S0.pack(self.linear.x, self.linear.y, self.linear.z, self.angular.x, self.angular.y, self.angular.z))
+            _m1 = self.linear
+            _m2 = self.angular
+            buff.write(_S0.pack(_m1.x, _m1.y, _m1.z, _m2.x, _m2.y, _m2.z))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -50,17 +58,27 @@ class Twist(_Message):
 
     def deserialize(self, data):
         try:
+            _v1 = self.linear
+            _v2 = self.angular
             _buf = data
-            _len = len(data)
-            _end = 0
-            _v1 = _new(_T_geometry_msgs__Vector3)
-            self.linear = _v1
-            _v2 = _new(_T_geometry_msgs__Vector3)
-            self.angular = _v2
-            _v1.x, _v1.y, _v1.z, _v2.x, _v2.y, _v2.z = _S0.unpack_from(_buf, _end)
-            _end += 48
+            _v1.x, _v1.y, _v1.z, _v2.x, _v2.y, _v2.z = _S0.unpack_from(_buf, 0)
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
+        return _refill(self, Twist, data)
+
+    @classmethod
+    def _from_buffer(cls, data):
+        self = _new(cls)
+        try:
+            _buf = data
+            self.linear = _v1 = _new(_T_geometry_msgs__Vector3)
+            self.angular = _v2 = _new(_T_geometry_msgs__Vector3)
+            _v1.x, _v1.y, _v1.z, _v2.x, _v2.y, _v2.z = _S0.unpack_from(_buf, 0)
+        except Exception as exc:
+            raise _deserialize_failed(cls, data, exc) from exc
         return self
 
     def deserialize_numpy(self, data, numpy):

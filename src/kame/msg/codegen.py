@@ -109,15 +109,22 @@ class _Serializer:
         for f in spec.fields:
             self.one(f.type, f.base_type, f.is_array, f.array_len, f"{obj}.{f.name}")
 
+    def _local(self, expr: str) -> str:
+        """expr, or a local holding it when it is an attribute chain (read once, used often)."""
+        if "." not in expr:
+            return expr
+        m = self.code.var("m")
+        self.code.emit(f"{m} = {expr}")
+        return m
+
     def one(self, type_name: str, base: str, is_array: bool, length: int | None, expr: str) -> None:
         code = self.code
         if not is_array:
             if base in _CODES:
                 self.group.add(_CODES[base][0], expr)
-            elif base == "time":
-                self.group.add("II", f"{expr}.secs", f"{expr}.nsecs")
-            elif base == "duration":
-                self.group.add("ii", f"{expr}.secs", f"{expr}.nsecs")
+            elif base in ("time", "duration"):
+                t = self._local(expr)
+                self.group.add("II" if base == "time" else "ii", f"{t}.secs", f"{t}.nsecs")
             elif base == "string":
                 b = code.var("b")
                 code.emit(f"{b} = {expr}")
@@ -125,7 +132,8 @@ class _Serializer:
                 self.group.add("I", f"len({b})")
                 self.flush(tail=b)
             else:
-                self.fields(self.lookup(base), expr)
+                nested = self.lookup(base)
+                self.fields(nested, self._local(expr) if len(nested.fields) > 1 else expr)
             return
         x = code.var("x")
         code.emit(f"{x} = {expr}")
@@ -159,35 +167,77 @@ class _Serializer:
 
 
 class _Deserializer:
-    def __init__(self, lookup: Lookup, code: _Code, structs: _Structs, use_numpy: bool) -> None:
+    """Straight-line unpacking code.
+
+    Offsets known when the code is generated stay constants (`_end` exists only after the
+    first variable-size field); variable-size slices are not bounds-checked one by one:
+    slices clamp, every later unpack_from checks its own offset, and one check at the end
+    catches a length that pointed past the data.
+
+    With reuse=True, nested messages (and time/duration values) outside arrays are not
+    allocated: the code unpacks into the objects the message already holds, gathered
+    into locals by `gather` (name, expression, class) before the body runs.
+    """
+
+    def __init__(self, lookup: Lookup, code: _Code, structs: _Structs, use_numpy: bool, reuse: bool = False) -> None:
         self.lookup = lookup
         self.code = code
         self.structs = structs
         self.use_numpy = use_numpy
+        self.reuse = reuse
+        self.gather: list[tuple[str, str, str]] = []
         self.group = _Group()
-        self.size = 0
+        self.dynamic = False  # whether `_end` holds the base offset (else the base is 0)
+        self.k = 0  # constant bytes past the base
+        self.sliced = False  # whether a clamped slice may have moved `_end` past the data
+
+    def pos(self) -> str:
+        if not self.dynamic:
+            return str(self.k)
+        return f"_end + {self.k}" if self.k else "_end"
+
+    def materialize(self) -> None:
+        """Make `_end` hold the current offset (before loops and at the end)."""
+        if not self.dynamic:
+            self.code.emit(f"_end = {self.k}")
+        elif self.k:
+            self.code.emit(f"_end += {self.k}")
+        self.dynamic, self.k = True, 0
 
     def flush(self) -> None:
         if not self.group:
             return
         fmt, targets = self.group.take()
-        size = struct.calcsize(fmt)
         ref = self.structs.ref(fmt)
-        if len(targets) == 1:
-            self.code.emit(f"{targets[0]}, = {ref}.unpack_from(_buf, _end)")
+        lhs = f"{targets[0]}," if len(targets) == 1 else ", ".join(targets)
+        self.code.emit(f"{lhs} = {ref}.unpack_from(_buf, {self.pos()})")
+        self.k += struct.calcsize(fmt)
+
+    def slice_to(self, nbytes: str) -> tuple[str, str]:
+        """Emit the offset arithmetic of a variable-size read of nbytes; (start, stop) expressions."""
+        self.sliced = True
+        if not self.dynamic:
+            start = str(self.k)
+            self.code.emit(f"_end = {start} + {nbytes}")
         else:
-            self.code.emit(f"{', '.join(targets)} = {ref}.unpack_from(_buf, _end)")
-        self.code.emit(f"_end += {size}")
+            start = "_s"
+            self.code.emit(f"_s = {self.pos()}")
+            self.code.emit(f"_end = _s + {nbytes}")
+        self.dynamic, self.k = True, 0
+        return start, "_end"
 
     def fields(self, spec: MsgSpec, obj: str) -> None:
         for f in spec.fields:
             self.one(f.base_type, f.is_array, f.array_len, f"{obj}.{f.name}")
 
-    def _take(self, nbytes: str) -> str:
-        """Emit the bounds check for a variable-size read; returns the end variable."""
-        self.code.emit(f"_stop = _end + {nbytes}")
-        self.code.emit("if _stop > _len: raise _Truncated")
-        return "_stop"
+    def _object(self, cls: str, prefix: str, target: str) -> str:
+        """A local holding the object at target: gathered (reuse) or a new one stored there."""
+        v = self.code.var(prefix)
+        if self.reuse:
+            self.gather.append((v, target, cls))
+        else:
+            self.code.emit(f"{target} = {v} = _new({cls})")
+        return v
 
     def one(self, base: str, is_array: bool, length: int | None, target: str) -> None:
         code = self.code
@@ -195,21 +245,19 @@ class _Deserializer:
             if base in _CODES:
                 self.group.add(_CODES[base][1], target)
             elif base in ("time", "duration"):
-                t = code.var("t")
-                code.emit(f"{t} = _new({'_Time' if base == 'time' else '_Duration'})")
-                code.emit(f"{target} = {t}")
+                t = self._object("_Time" if base == "time" else "_Duration", "t", target)
                 self.group.add("II" if base == "time" else "ii", f"{t}.secs", f"{t}.nsecs")
             elif base == "string":
                 self.group.add("I", "_n")
                 self.flush()
-                stop = self._take("_n")
-                code.emit(f"{target} = str(_buf[_end:{stop}], 'utf-8', 'replace')")
-                code.emit(f"_end = {stop}")
+                start, stop = self.slice_to("_n")
+                code.emit(f"{target} = str(_buf[{start}:{stop}], 'utf-8', 'replace')")
             else:
-                v = code.var("v")
-                code.emit(f"{v} = _new({type_ref(base)})")
-                code.emit(f"{target} = {v}")
+                v = self._object(type_ref(base), "v", target)
                 self.fields(self.lookup(base), v)
+            return
+        if base in _BYTE_TYPES and length is not None:
+            self.group.add(f"{length}s", target)
             return
         count = str(length)
         if length is None:
@@ -217,32 +265,48 @@ class _Deserializer:
             count = "_n"
         self.flush()
         if base in _BYTE_TYPES:
-            stop = self._take(count)
-            code.emit(f"{target} = bytes(_buf[_end:{stop}])")
-            code.emit(f"_end = {stop}")
+            start, stop = self.slice_to(count)
+            code.emit(f"{target} = bytes(_buf[{start}:{stop}])")
             return
         if base in _CODES:
             item_size = struct.calcsize("<" + _CODES[base][1])
-            stop = self._take(f"{count} * {item_size}" if item_size > 1 else count)
             if self.use_numpy:
-                code.emit(f"{target} = _np.frombuffer(_buf, {_DTYPES[base]!r}, {count}, _end)")
+                code.emit(f"{target} = _np.frombuffer(_buf, {_DTYPES[base]!r}, {count}, {self.pos()})")
             elif length is None:
-                code.emit(f"{target} = _unpack_from('<%d{_CODES[base][1]}' % _n, _buf, _end)")
+                code.emit(f"{target} = _unpack_from('<%d{_CODES[base][1]}' % _n, _buf, {self.pos()})")
             else:
                 ref = self.structs.ref(f"<{length}{_CODES[base][1]}")
-                code.emit(f"{target} = {ref}.unpack_from(_buf, _end)")
-            code.emit(f"_end = {stop}")
+                code.emit(f"{target} = {ref}.unpack_from(_buf, {self.pos()})")
+            if length is None:
+                nbytes = f"_n * {item_size}" if item_size > 1 else "_n"
+                if self.dynamic:
+                    code.emit(f"_end += {self.k} + {nbytes}" if self.k else f"_end += {nbytes}")
+                else:
+                    code.emit(f"_end = {self.k} + {nbytes}")
+                self.dynamic, self.k = True, 0
+            else:
+                self.k += length * item_size
             return
+        # arrays of messages, strings, times: a loop; elements are always new objects
+        self.materialize()
         items = code.var("l")
         code.emit(f"{items} = []")
         code.emit(f"for _ in range({count}):")
         code.depth += 1
+        reuse, self.reuse = self.reuse, False
         element = code.var("i")
         self.one(base, False, None, element)
         self.flush()
+        self.materialize()
+        self.reuse = reuse
         code.emit(f"{items}.append({element})")
         code.depth -= 1
         code.emit(f"{target} = {items}")
+
+    def finish(self) -> None:
+        self.flush()
+        if self.sliced:
+            self.code.emit("if _end > len(_buf): raise _Truncated")
 
 
 def _has_numeric_arrays(spec: MsgSpec, lookup: Lookup) -> bool:
@@ -270,6 +334,22 @@ def _default(f_base: str, is_array: bool, length: int | None) -> str:
     return f"{type_ref(f_base)}()"
 
 
+def _flat_defaults(spec: MsgSpec, lookup: Lookup, code: _Code, obj: str) -> None:
+    """Emit the default of every field of obj, nested messages and times built in place."""
+    for f in spec.fields:
+        target = f"{obj}.{f.name}"
+        if f.is_array or not (f.is_message or f.base_type in ("time", "duration")):
+            code.emit(f"{target} = {_default(f.base_type, f.is_array, f.array_len)}")
+        elif f.is_message:
+            v = code.var("v")
+            code.emit(f"{target} = {v} = _new({type_ref(f.base_type)})")
+            _flat_defaults(lookup(f.base_type), lookup, code, v)
+        else:
+            t = code.var("t")
+            code.emit(f"{target} = {t} = _new({'_Time' if f.base_type == 'time' else '_Duration'})")
+            code.emit(f"{t}.secs = {t}.nsecs = 0")
+
+
 def _check_field_names(spec: MsgSpec) -> None:
     for f in spec.fields:
         if keyword.iskeyword(f.name):
@@ -294,20 +374,18 @@ def generate_class(
     nested = {f.name: type_ref(f.base_type) for f in spec.fields if f.is_message}
     out.append("    _slot_classes = {" + ", ".join(f"{k!r}: {v}" for k, v in nested.items()) + "}")
     out.append("")
-    # constructor
+    # constructor: no arguments (the common case) builds the defaults flat, without nested calls
     out.append("    def __init__(self, *args, **kwds):")
+    out.append("        if args or kwds:")
+    out.append("            _init_fields(self, args, kwds)")
+    for f in spec.fields:
+        out.append(f"            if self.{f.name} is None:")
+        out.append(f"                self.{f.name} = {_default(f.base_type, f.is_array, f.array_len)}")
     if spec.fields:
-        out.append("        if args or kwds:")
-        out.append("            _init_fields(self, args, kwds)")
-        for f in spec.fields:
-            out.append(f"            if self.{f.name} is None:")
-            out.append(f"                self.{f.name} = {_default(f.base_type, f.is_array, f.array_len)}")
+        code = _Code(depth=3)
+        _flat_defaults(spec, lookup, code, "self")
         out.append("        else:")
-        for f in spec.fields:
-            out.append(f"            self.{f.name} = {_default(f.base_type, f.is_array, f.array_len)}")
-    else:
-        out.append("        if args or kwds:")
-        out.append("            _init_fields(self, args, kwds)")
+        out.extend(code.lines)
     out.append("")
     # serialize
     code = _Code()
@@ -316,8 +394,12 @@ def generate_class(
     ser.flush()
     out.append("    def serialize(self, buff):")
     out.append("        try:")
-    out.append("            _w = buff.write")
-    out.extend("    " + line for line in code.lines)
+    writes = sum(line.count("_w(") for line in code.lines)
+    if writes == 1 and not any(line.lstrip().startswith("for ") for line in code.lines):
+        out.extend("    " + line.replace("_w(", "buff.write(") for line in code.lines)  # no need for a local
+    else:
+        out.append("            _w = buff.write")
+        out.extend("    " + line for line in code.lines)
     if not code.lines:
         out.append("            pass")
     out.append("        except Exception as exc:")
@@ -326,7 +408,8 @@ def generate_class(
     out.append("    def serialize_numpy(self, buff, numpy):")
     out.append("        self.serialize(buff)")
     out.append("")
-    out.extend(_deserializer("deserialize", spec, lookup, structs, use_numpy=False))
+    out.extend(_deserializer("deserialize", spec, lookup, structs, use_numpy=False, reuse=True, class_name=name))
+    out.extend(_deserializer("_from_buffer", spec, lookup, structs, use_numpy=False))
     if _has_numeric_arrays(spec, lookup):
         out.extend(_deserializer("deserialize_numpy", spec, lookup, structs, use_numpy=True))
     else:
@@ -336,23 +419,43 @@ def generate_class(
     return "\n".join(out) + "\n"
 
 
-def _deserializer(method: str, spec: MsgSpec, lookup: Lookup, structs: _Structs, use_numpy: bool) -> list[str]:
+def _deserializer(
+    method: str, spec: MsgSpec, lookup: Lookup, structs: _Structs, use_numpy: bool, reuse: bool = False,
+    class_name: str = "",
+) -> list[str]:
+    """One deserializing method.
+
+    deserialize (reuse=True) unpacks into the nested messages the instance already holds, as
+    genpy does, so Cls().deserialize(data) allocates them once; when one is missing (an
+    instance from object.__new__, None) or does not take a field, the AttributeError sends
+    it to kame.msg.message.refill, which deserializes into new objects instead.
+    _from_buffer is a classmethod that unpacks into a new instance and new nested objects:
+    the receive path's one-call `Cls._from_buffer(frame)`.
+    """
     code = _Code()
-    des = _Deserializer(lookup, code, structs, use_numpy)
+    des = _Deserializer(lookup, code, structs, use_numpy, reuse)
     des.fields(spec, "self")
-    des.flush()
-    signature = "self, data, numpy" if use_numpy else "self, data"
-    out = [f"    def {method}({signature}):", "        try:"]
+    des.finish()
+    out: list[str] = []
+    if method == "_from_buffer":
+        out += ["    @classmethod", "    def _from_buffer(cls, data):", "        self = _new(cls)"]
+    else:
+        out.append(f"    def {method}(self, data, numpy):" if use_numpy else f"    def {method}(self, data):")
+    out.append("        try:")
+    out += [f"            {v} = {expr}" for v, expr, _ in des.gather]
     if use_numpy:
         out.append("            _np = numpy")
-    out += ["            _buf = data", "            _len = len(data)", "            _end = 0"]
+    out.append("            _buf = data")
     out.extend("    " + line for line in code.lines)
-    out += [
-        "        except Exception as exc:",
-        "            raise _deserialize_failed(type(self), data, exc) from exc",
-        "        return self",
-        "",
-    ]
+    if not code.lines and not des.gather:
+        out.append("            pass")
+    if des.gather:
+        # a nested object missing (unset slot, None) or refusing a field: new ones, from scratch
+        out += ["            return self", "        except AttributeError:", "            pass"]
+    failed = "cls" if method == "_from_buffer" else "type(self)"
+    out += ["        except Exception as exc:", f"            raise _deserialize_failed({failed}, data, exc) from exc"]
+    out.append(f"        return _refill(self, {class_name}, data)" if des.gather else "        return self")
+    out.append("")
     return out
 
 
@@ -375,6 +478,7 @@ from kame.msg.message import Message as _Message
 from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
+from kame.msg.message import refill as _refill
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8

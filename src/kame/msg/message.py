@@ -308,6 +308,15 @@ def deserialize_failed(cls: type[Message], data: Any, exc: BaseException) -> Des
     return DeserializationError(f"cannot deserialize {cls._type}: {type(exc).__name__}: {exc}")
 
 
+def refill(msg: Any, cls: Any, data: Any) -> Any:
+    """deserialize()'s way out when msg's nested objects cannot be reused (missing, None, of
+    another kind): deserialize into new objects and put them in msg's fields."""
+    fresh = cls._from_buffer(data)
+    for name in cls.__slots__:
+        setattr(msg, name, getattr(fresh, name))
+    return msg
+
+
 def buffer_too_short(cls: type[Message], needed: int, available: int) -> DeserializationError:
     return DeserializationError(
         f"cannot deserialize {cls._type}: buffer too short, need {needed} bytes, have {available}"

@@ -5,6 +5,7 @@ from kame.msg.message import Message as _Message
 from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
+from kame.msg.message import refill as _refill
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -53,44 +54,141 @@ class MoveBaseAction(_Message):
             if self.action_feedback is None:
                 self.action_feedback = _T_move_base_msgs__MoveBaseActionFeedback()
         else:
-            self.action_goal = _T_move_base_msgs__MoveBaseActionGoal()
-            self.action_result = _T_move_base_msgs__MoveBaseActionResult()
-            self.action_feedback = _T_move_base_msgs__MoveBaseActionFeedback()
+            self.action_goal = _v1 = _new(_T_move_base_msgs__MoveBaseActionGoal)
+            _v1.header = _v2 = _new(_T_std_msgs__Header)
+            _v2.seq = 0
+            _v2.stamp = _t3 = _new(_Time)
+            _t3.secs = _t3.nsecs = 0
+            _v2.frame_id = ''
+            _v1.goal_id = _v4 = _new(_T_actionlib_msgs__GoalID)
+            _v4.stamp = _t5 = _new(_Time)
+            _t5.secs = _t5.nsecs = 0
+            _v4.id = ''
+            _v1.goal = _v6 = _new(_T_move_base_msgs__MoveBaseGoal)
+            _v6.target_pose = _v7 = _new(_T_geometry_msgs__PoseStamped)
+            _v7.header = _v8 = _new(_T_std_msgs__Header)
+            _v8.seq = 0
+            _v8.stamp = _t9 = _new(_Time)
+            _t9.secs = _t9.nsecs = 0
+            _v8.frame_id = ''
+            _v7.pose = _v10 = _new(_T_geometry_msgs__Pose)
+            _v10.position = _v11 = _new(_T_geometry_msgs__Point)
+            _v11.x = 0.0
+            _v11.y = 0.0
+            _v11.z = 0.0
+            _v10.orientation = _v12 = _new(_T_geometry_msgs__Quaternion)
+            _v12.x = 0.0
+            _v12.y = 0.0
+            _v12.z = 0.0
+            _v12.w = 0.0
+            self.action_result = _v13 = _new(_T_move_base_msgs__MoveBaseActionResult)
+            _v13.header = _v14 = _new(_T_std_msgs__Header)
+            _v14.seq = 0
+            _v14.stamp = _t15 = _new(_Time)
+            _t15.secs = _t15.nsecs = 0
+            _v14.frame_id = ''
+            _v13.status = _v16 = _new(_T_actionlib_msgs__GoalStatus)
+            _v16.goal_id = _v17 = _new(_T_actionlib_msgs__GoalID)
+            _v17.stamp = _t18 = _new(_Time)
+            _t18.secs = _t18.nsecs = 0
+            _v17.id = ''
+            _v16.status = 0
+            _v16.text = ''
+            _v13.result = _v19 = _new(_T_move_base_msgs__MoveBaseResult)
+            self.action_feedback = _v20 = _new(_T_move_base_msgs__MoveBaseActionFeedback)
+            _v20.header = _v21 = _new(_T_std_msgs__Header)
+            _v21.seq = 0
+            _v21.stamp = _t22 = _new(_Time)
+            _t22.secs = _t22.nsecs = 0
+            _v21.frame_id = ''
+            _v20.status = _v23 = _new(_T_actionlib_msgs__GoalStatus)
+            _v23.goal_id = _v24 = _new(_T_actionlib_msgs__GoalID)
+            _v24.stamp = _t25 = _new(_Time)
+            _t25.secs = _t25.nsecs = 0
+            _v24.id = ''
+            _v23.status = 0
+            _v23.text = ''
+            _v20.feedback = _v26 = _new(_T_move_base_msgs__MoveBaseFeedback)
+            _v26.base_position = _v27 = _new(_T_geometry_msgs__PoseStamped)
+            _v27.header = _v28 = _new(_T_std_msgs__Header)
+            _v28.seq = 0
+            _v28.stamp = _t29 = _new(_Time)
+            _t29.secs = _t29.nsecs = 0
+            _v28.frame_id = ''
+            _v27.pose = _v30 = _new(_T_geometry_msgs__Pose)
+            _v30.position = _v31 = _new(_T_geometry_msgs__Point)
+            _v31.x = 0.0
+            _v31.y = 0.0
+            _v31.z = 0.0
+            _v30.orientation = _v32 = _new(_T_geometry_msgs__Quaternion)
+            _v32.x = 0.0
+            _v32.y = 0.0
+            _v32.z = 0.0
+            _v32.w = 0.0
 
     def serialize(self, buff):
         try:
             _w = buff.write
-            _b1 = self.action_goal.header.frame_id
-            if _b1.__class__ is not bytes: _b1 = _b1.encode()
-            _w(_S0.pack(self.action_goal.header.seq, self.action_goal.header.stamp.secs, self.action_goal.header.stamp.nsecs, len(_b1)) + _b1)
-            _b2 = self.action_goal.goal_id.id
-            if _b2.__class__ is not bytes: _b2 = _b2.encode()
-            _w(_S1.pack(self.action_goal.goal_id.stamp.secs, self.action_goal.goal_id.stamp.nsecs, len(_b2)) + _b2)
-            _b3 = self.action_goal.goal.target_pose.header.frame_id
-            if _b3.__class__ is not bytes: _b3 = _b3.encode()
-            _w(_S0.pack(self.action_goal.goal.target_pose.header.seq, self.action_goal.goal.target_pose.header.stamp.secs, self.action_goal.goal.target_pose.header.stamp.nsecs, len(_b3)) + _b3)
-            _b4 = self.action_result.header.frame_id
+            _m1 = self.action_goal
+            _m2 = _m1.header
+            _m3 = _m2.stamp
+            _b4 = _m2.frame_id
             if _b4.__class__ is not bytes: _b4 = _b4.encode()
-            _w(_S2.pack(self.action_goal.goal.target_pose.pose.position.x, self.action_goal.goal.target_pose.pose.position.y, self.action_goal.goal.target_pose.pose.position.z, self.action_goal.goal.target_pose.pose.orientation.x, self.action_goal.goal.target_pose.pose.orientation.y, self.action_goal.goal.target_pose.pose.orientation.z, self.action_goal.goal.target_pose.pose.orientation.w, self.action_result.header.seq, self.action_result.header.stamp.secs, self.action_result.header.stamp.nsecs, len(_b4)) + _b4)
-            _b5 = self.action_result.status.goal_id.id
-            if _b5.__class__ is not bytes: _b5 = _b5.encode()
-            _w(_S1.pack(self.action_result.status.goal_id.stamp.secs, self.action_result.status.goal_id.stamp.nsecs, len(_b5)) + _b5)
-            _b6 = self.action_result.status.text
-            if _b6.__class__ is not bytes: _b6 = _b6.encode()
-            _w(_S3.pack(self.action_result.status.status, len(_b6)) + _b6)
-            _b7 = self.action_feedback.header.frame_id
+            _w(_S0.pack(_m2.seq, _m3.secs, _m3.nsecs, len(_b4)) + _b4)
+            _m5 = _m1.goal_id
+            _m6 = _m5.stamp
+            _b7 = _m5.id
             if _b7.__class__ is not bytes: _b7 = _b7.encode()
-            _w(_S0.pack(self.action_feedback.header.seq, self.action_feedback.header.stamp.secs, self.action_feedback.header.stamp.nsecs, len(_b7)) + _b7)
-            _b8 = self.action_feedback.status.goal_id.id
-            if _b8.__class__ is not bytes: _b8 = _b8.encode()
-            _w(_S1.pack(self.action_feedback.status.goal_id.stamp.secs, self.action_feedback.status.goal_id.stamp.nsecs, len(_b8)) + _b8)
-            _b9 = self.action_feedback.status.text
-            if _b9.__class__ is not bytes: _b9 = _b9.encode()
-            _w(_S3.pack(self.action_feedback.status.status, len(_b9)) + _b9)
-            _b10 = self.action_feedback.feedback.base_position.header.frame_id
-            if _b10.__class__ is not bytes: _b10 = _b10.encode()
-            _w(_S0.pack(self.action_feedback.feedback.base_position.header.seq, self.action_feedback.feedback.base_position.header.stamp.secs, self.action_feedback.feedback.base_position.header.stamp.nsecs, len(_b10)) + _b10)
-            _w(_S4.pack(self.action_feedback.feedback.base_position.pose.position.x, self.action_feedback.feedback.base_position.pose.position.y, self.action_feedback.feedback.base_position.pose.position.z, self.action_feedback.feedback.base_position.pose.orientation.x, self.action_feedback.feedback.base_position.pose.orientation.y, self.action_feedback.feedback.base_position.pose.orientation.z, self.action_feedback.feedback.base_position.pose.orientation.w))
+            _w(_S1.pack(_m6.secs, _m6.nsecs, len(_b7)) + _b7)
+            _m8 = _m1.goal.target_pose
+            _m9 = _m8.header
+            _m10 = _m9.stamp
+            _b11 = _m9.frame_id
+            if _b11.__class__ is not bytes: _b11 = _b11.encode()
+            _w(_S0.pack(_m9.seq, _m10.secs, _m10.nsecs, len(_b11)) + _b11)
+            _m12 = _m8.pose
+            _m13 = _m12.position
+            _m14 = _m12.orientation
+            _m15 = self.action_result
+            _m16 = _m15.header
+            _m17 = _m16.stamp
+            _b18 = _m16.frame_id
+            if _b18.__class__ is not bytes: _b18 = _b18.encode()
+            _w(_S2.pack(_m13.x, _m13.y, _m13.z, _m14.x, _m14.y, _m14.z, _m14.w, _m16.seq, _m17.secs, _m17.nsecs, len(_b18)) + _b18)
+            _m19 = _m15.status
+            _m20 = _m19.goal_id
+            _m21 = _m20.stamp
+            _b22 = _m20.id
+            if _b22.__class__ is not bytes: _b22 = _b22.encode()
+            _w(_S1.pack(_m21.secs, _m21.nsecs, len(_b22)) + _b22)
+            _b23 = _m19.text
+            if _b23.__class__ is not bytes: _b23 = _b23.encode()
+            _w(_S3.pack(_m19.status, len(_b23)) + _b23)
+            _m24 = self.action_feedback
+            _m25 = _m24.header
+            _m26 = _m25.stamp
+            _b27 = _m25.frame_id
+            if _b27.__class__ is not bytes: _b27 = _b27.encode()
+            _w(_S0.pack(_m25.seq, _m26.secs, _m26.nsecs, len(_b27)) + _b27)
+            _m28 = _m24.status
+            _m29 = _m28.goal_id
+            _m30 = _m29.stamp
+            _b31 = _m29.id
+            if _b31.__class__ is not bytes: _b31 = _b31.encode()
+            _w(_S1.pack(_m30.secs, _m30.nsecs, len(_b31)) + _b31)
+            _b32 = _m28.text
+            if _b32.__class__ is not bytes: _b32 = _b32.encode()
+            _w(_S3.pack(_m28.status, len(_b32)) + _b32)
+            _m33 = _m24.feedback.base_position
+            _m34 = _m33.header
+            _m35 = _m34.stamp
+            _b36 = _m34.frame_id
+            if _b36.__class__ is not bytes: _b36 = _b36.encode()
+            _w(_S0.pack(_m34.seq, _m35.secs, _m35.nsecs, len(_b36)) + _b36)
+            _m37 = _m33.pose
+            _m38 = _m37.position
+            _m39 = _m37.orientation
+            _w(_S4.pack(_m38.x, _m38.y, _m38.z, _m39.x, _m39.y, _m39.z, _m39.w))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -99,137 +197,167 @@ class MoveBaseAction(_Message):
 
     def deserialize(self, data):
         try:
+            _v1 = self.action_goal
+            _v2 = _v1.header
+            _t3 = _v2.stamp
+            _v4 = _v1.goal_id
+            _t5 = _v4.stamp
+            _v6 = _v1.goal
+            _v7 = _v6.target_pose
+            _v8 = _v7.header
+            _t9 = _v8.stamp
+            _v10 = _v7.pose
+            _v11 = _v10.position
+            _v12 = _v10.orientation
+            _v13 = self.action_result
+            _v14 = _v13.header
+            _t15 = _v14.stamp
+            _v16 = _v13.status
+            _v17 = _v16.goal_id
+            _t18 = _v17.stamp
+            _v19 = _v13.result
+            _v20 = self.action_feedback
+            _v21 = _v20.header
+            _t22 = _v21.stamp
+            _v23 = _v20.status
+            _v24 = _v23.goal_id
+            _t25 = _v24.stamp
+            _v26 = _v20.feedback
+            _v27 = _v26.base_position
+            _v28 = _v27.header
+            _t29 = _v28.stamp
+            _v30 = _v27.pose
+            _v31 = _v30.position
+            _v32 = _v30.orientation
             _buf = data
-            _len = len(data)
-            _end = 0
-            _v1 = _new(_T_move_base_msgs__MoveBaseActionGoal)
-            self.action_goal = _v1
-            _v2 = _new(_T_std_msgs__Header)
-            _v1.header = _v2
-            _t3 = _new(_Time)
-            _v2.stamp = _t3
-            _v2.seq, _t3.secs, _t3.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v2.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v4 = _new(_T_actionlib_msgs__GoalID)
-            _v1.goal_id = _v4
-            _t5 = _new(_Time)
-            _v4.stamp = _t5
+            _v2.seq, _t3.secs, _t3.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v2.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
             _t5.secs, _t5.nsecs, _n = _S1.unpack_from(_buf, _end)
-            _end += 12
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v4.id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v6 = _new(_T_move_base_msgs__MoveBaseGoal)
-            _v1.goal = _v6
-            _v7 = _new(_T_geometry_msgs__PoseStamped)
-            _v6.target_pose = _v7
-            _v8 = _new(_T_std_msgs__Header)
-            _v7.header = _v8
-            _t9 = _new(_Time)
-            _v8.stamp = _t9
+            _s = _end + 12
+            _end = _s + _n
+            _v4.id = str(_buf[_s:_end], 'utf-8', 'replace')
             _v8.seq, _t9.secs, _t9.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v8.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v10 = _new(_T_geometry_msgs__Pose)
-            _v7.pose = _v10
-            _v11 = _new(_T_geometry_msgs__Point)
-            _v10.position = _v11
-            _v12 = _new(_T_geometry_msgs__Quaternion)
-            _v10.orientation = _v12
-            _v13 = _new(_T_move_base_msgs__MoveBaseActionResult)
-            self.action_result = _v13
-            _v14 = _new(_T_std_msgs__Header)
-            _v13.header = _v14
-            _t15 = _new(_Time)
-            _v14.stamp = _t15
+            _s = _end + 16
+            _end = _s + _n
+            _v8.frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
             _v11.x, _v11.y, _v11.z, _v12.x, _v12.y, _v12.z, _v12.w, _v14.seq, _t15.secs, _t15.nsecs, _n = _S2.unpack_from(_buf, _end)
-            _end += 72
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v14.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v16 = _new(_T_actionlib_msgs__GoalStatus)
-            _v13.status = _v16
-            _v17 = _new(_T_actionlib_msgs__GoalID)
-            _v16.goal_id = _v17
-            _t18 = _new(_Time)
-            _v17.stamp = _t18
+            _s = _end + 72
+            _end = _s + _n
+            _v14.frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
             _t18.secs, _t18.nsecs, _n = _S1.unpack_from(_buf, _end)
-            _end += 12
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v17.id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            _s = _end + 12
+            _end = _s + _n
+            _v17.id = str(_buf[_s:_end], 'utf-8', 'replace')
             _v16.status, _n = _S3.unpack_from(_buf, _end)
-            _end += 5
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v16.text = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v19 = _new(_T_move_base_msgs__MoveBaseResult)
-            _v13.result = _v19
-            _v20 = _new(_T_move_base_msgs__MoveBaseActionFeedback)
-            self.action_feedback = _v20
-            _v21 = _new(_T_std_msgs__Header)
-            _v20.header = _v21
-            _t22 = _new(_Time)
-            _v21.stamp = _t22
+            _s = _end + 5
+            _end = _s + _n
+            _v16.text = str(_buf[_s:_end], 'utf-8', 'replace')
             _v21.seq, _t22.secs, _t22.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v21.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v23 = _new(_T_actionlib_msgs__GoalStatus)
-            _v20.status = _v23
-            _v24 = _new(_T_actionlib_msgs__GoalID)
-            _v23.goal_id = _v24
-            _t25 = _new(_Time)
-            _v24.stamp = _t25
+            _s = _end + 16
+            _end = _s + _n
+            _v21.frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
             _t25.secs, _t25.nsecs, _n = _S1.unpack_from(_buf, _end)
-            _end += 12
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v24.id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            _s = _end + 12
+            _end = _s + _n
+            _v24.id = str(_buf[_s:_end], 'utf-8', 'replace')
             _v23.status, _n = _S3.unpack_from(_buf, _end)
-            _end += 5
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v23.text = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v26 = _new(_T_move_base_msgs__MoveBaseFeedback)
-            _v20.feedback = _v26
-            _v27 = _new(_T_geometry_msgs__PoseStamped)
-            _v26.base_position = _v27
-            _v28 = _new(_T_std_msgs__Header)
-            _v27.header = _v28
-            _t29 = _new(_Time)
-            _v28.stamp = _t29
+            _s = _end + 5
+            _end = _s + _n
+            _v23.text = str(_buf[_s:_end], 'utf-8', 'replace')
             _v28.seq, _t29.secs, _t29.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v28.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v30 = _new(_T_geometry_msgs__Pose)
-            _v27.pose = _v30
-            _v31 = _new(_T_geometry_msgs__Point)
-            _v30.position = _v31
-            _v32 = _new(_T_geometry_msgs__Quaternion)
-            _v30.orientation = _v32
+            _s = _end + 16
+            _end = _s + _n
+            _v28.frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
             _v31.x, _v31.y, _v31.z, _v32.x, _v32.y, _v32.z, _v32.w = _S4.unpack_from(_buf, _end)
-            _end += 56
+            if _end > len(_buf): raise _Truncated
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
+        return _refill(self, MoveBaseAction, data)
+
+    @classmethod
+    def _from_buffer(cls, data):
+        self = _new(cls)
+        try:
+            _buf = data
+            self.action_goal = _v1 = _new(_T_move_base_msgs__MoveBaseActionGoal)
+            _v1.header = _v2 = _new(_T_std_msgs__Header)
+            _v2.stamp = _t3 = _new(_Time)
+            _v2.seq, _t3.secs, _t3.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v2.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            _v1.goal_id = _v4 = _new(_T_actionlib_msgs__GoalID)
+            _v4.stamp = _t5 = _new(_Time)
+            _t5.secs, _t5.nsecs, _n = _S1.unpack_from(_buf, _end)
+            _s = _end + 12
+            _end = _s + _n
+            _v4.id = str(_buf[_s:_end], 'utf-8', 'replace')
+            _v1.goal = _v6 = _new(_T_move_base_msgs__MoveBaseGoal)
+            _v6.target_pose = _v7 = _new(_T_geometry_msgs__PoseStamped)
+            _v7.header = _v8 = _new(_T_std_msgs__Header)
+            _v8.stamp = _t9 = _new(_Time)
+            _v8.seq, _t9.secs, _t9.nsecs, _n = _S0.unpack_from(_buf, _end)
+            _s = _end + 16
+            _end = _s + _n
+            _v8.frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
+            _v7.pose = _v10 = _new(_T_geometry_msgs__Pose)
+            _v10.position = _v11 = _new(_T_geometry_msgs__Point)
+            _v10.orientation = _v12 = _new(_T_geometry_msgs__Quaternion)
+            self.action_result = _v13 = _new(_T_move_base_msgs__MoveBaseActionResult)
+            _v13.header = _v14 = _new(_T_std_msgs__Header)
+            _v14.stamp = _t15 = _new(_Time)
+            _v11.x, _v11.y, _v11.z, _v12.x, _v12.y, _v12.z, _v12.w, _v14.seq, _t15.secs, _t15.nsecs, _n = _S2.unpack_from(_buf, _end)
+            _s = _end + 72
+            _end = _s + _n
+            _v14.frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
+            _v13.status = _v16 = _new(_T_actionlib_msgs__GoalStatus)
+            _v16.goal_id = _v17 = _new(_T_actionlib_msgs__GoalID)
+            _v17.stamp = _t18 = _new(_Time)
+            _t18.secs, _t18.nsecs, _n = _S1.unpack_from(_buf, _end)
+            _s = _end + 12
+            _end = _s + _n
+            _v17.id = str(_buf[_s:_end], 'utf-8', 'replace')
+            _v16.status, _n = _S3.unpack_from(_buf, _end)
+            _s = _end + 5
+            _end = _s + _n
+            _v16.text = str(_buf[_s:_end], 'utf-8', 'replace')
+            _v13.result = _v19 = _new(_T_move_base_msgs__MoveBaseResult)
+            self.action_feedback = _v20 = _new(_T_move_base_msgs__MoveBaseActionFeedback)
+            _v20.header = _v21 = _new(_T_std_msgs__Header)
+            _v21.stamp = _t22 = _new(_Time)
+            _v21.seq, _t22.secs, _t22.nsecs, _n = _S0.unpack_from(_buf, _end)
+            _s = _end + 16
+            _end = _s + _n
+            _v21.frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
+            _v20.status = _v23 = _new(_T_actionlib_msgs__GoalStatus)
+            _v23.goal_id = _v24 = _new(_T_actionlib_msgs__GoalID)
+            _v24.stamp = _t25 = _new(_Time)
+            _t25.secs, _t25.nsecs, _n = _S1.unpack_from(_buf, _end)
+            _s = _end + 12
+            _end = _s + _n
+            _v24.id = str(_buf[_s:_end], 'utf-8', 'replace')
+            _v23.status, _n = _S3.unpack_from(_buf, _end)
+            _s = _end + 5
+            _end = _s + _n
+            _v23.text = str(_buf[_s:_end], 'utf-8', 'replace')
+            _v20.feedback = _v26 = _new(_T_move_base_msgs__MoveBaseFeedback)
+            _v26.base_position = _v27 = _new(_T_geometry_msgs__PoseStamped)
+            _v27.header = _v28 = _new(_T_std_msgs__Header)
+            _v28.stamp = _t29 = _new(_Time)
+            _v28.seq, _t29.secs, _t29.nsecs, _n = _S0.unpack_from(_buf, _end)
+            _s = _end + 16
+            _end = _s + _n
+            _v28.frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
+            _v27.pose = _v30 = _new(_T_geometry_msgs__Pose)
+            _v30.position = _v31 = _new(_T_geometry_msgs__Point)
+            _v30.orientation = _v32 = _new(_T_geometry_msgs__Quaternion)
+            _v31.x, _v31.y, _v31.z, _v32.x, _v32.y, _v32.z, _v32.w = _S4.unpack_from(_buf, _end)
+            if _end > len(_buf): raise _Truncated
+        except Exception as exc:
+            raise _deserialize_failed(cls, data, exc) from exc
         return self
 
     def deserialize_numpy(self, data, numpy):

@@ -5,6 +5,7 @@ from kame.msg.message import Message as _Message
 from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
+from kame.msg.message import refill as _refill
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -45,23 +46,56 @@ class MoveBaseActionGoal(_Message):
             if self.goal is None:
                 self.goal = _T_move_base_msgs__MoveBaseGoal()
         else:
-            self.header = _T_std_msgs__Header()
-            self.goal_id = _T_actionlib_msgs__GoalID()
-            self.goal = _T_move_base_msgs__MoveBaseGoal()
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.seq = 0
+            _v1.stamp = _t2 = _new(_Time)
+            _t2.secs = _t2.nsecs = 0
+            _v1.frame_id = ''
+            self.goal_id = _v3 = _new(_T_actionlib_msgs__GoalID)
+            _v3.stamp = _t4 = _new(_Time)
+            _t4.secs = _t4.nsecs = 0
+            _v3.id = ''
+            self.goal = _v5 = _new(_T_move_base_msgs__MoveBaseGoal)
+            _v5.target_pose = _v6 = _new(_T_geometry_msgs__PoseStamped)
+            _v6.header = _v7 = _new(_T_std_msgs__Header)
+            _v7.seq = 0
+            _v7.stamp = _t8 = _new(_Time)
+            _t8.secs = _t8.nsecs = 0
+            _v7.frame_id = ''
+            _v6.pose = _v9 = _new(_T_geometry_msgs__Pose)
+            _v9.position = _v10 = _new(_T_geometry_msgs__Point)
+            _v10.x = 0.0
+            _v10.y = 0.0
+            _v10.z = 0.0
+            _v9.orientation = _v11 = _new(_T_geometry_msgs__Quaternion)
+            _v11.x = 0.0
+            _v11.y = 0.0
+            _v11.z = 0.0
+            _v11.w = 0.0
 
     def serialize(self, buff):
         try:
             _w = buff.write
-            _b1 = self.header.frame_id
-            if _b1.__class__ is not bytes: _b1 = _b1.encode()
-            _w(_S0.pack(self.header.seq, self.header.stamp.secs, self.header.stamp.nsecs, len(_b1)) + _b1)
-            _b2 = self.goal_id.id
-            if _b2.__class__ is not bytes: _b2 = _b2.encode()
-            _w(_S1.pack(self.goal_id.stamp.secs, self.goal_id.stamp.nsecs, len(_b2)) + _b2)
-            _b3 = self.goal.target_pose.header.frame_id
+            _m1 = self.header
+            _m2 = _m1.stamp
+            _b3 = _m1.frame_id
             if _b3.__class__ is not bytes: _b3 = _b3.encode()
-            _w(_S0.pack(self.goal.target_pose.header.seq, self.goal.target_pose.header.stamp.secs, self.goal.target_pose.header.stamp.nsecs, len(_b3)) + _b3)
-            _w(_S2.pack(self.goal.target_pose.pose.position.x, self.goal.target_pose.pose.position.y, self.goal.target_pose.pose.position.z, self.goal.target_pose.pose.orientation.x, self.goal.target_pose.pose.orientation.y, self.goal.target_pose.pose.orientation.z, self.goal.target_pose.pose.orientation.w))
+            _w(_S0.pack(_m1.seq, _m2.secs, _m2.nsecs, len(_b3)) + _b3)
+            _m4 = self.goal_id
+            _m5 = _m4.stamp
+            _b6 = _m4.id
+            if _b6.__class__ is not bytes: _b6 = _b6.encode()
+            _w(_S1.pack(_m5.secs, _m5.nsecs, len(_b6)) + _b6)
+            _m7 = self.goal.target_pose
+            _m8 = _m7.header
+            _m9 = _m8.stamp
+            _b10 = _m8.frame_id
+            if _b10.__class__ is not bytes: _b10 = _b10.encode()
+            _w(_S0.pack(_m8.seq, _m9.secs, _m9.nsecs, len(_b10)) + _b10)
+            _m11 = _m7.pose
+            _m12 = _m11.position
+            _m13 = _m11.orientation
+            _w(_S2.pack(_m12.x, _m12.y, _m12.z, _m13.x, _m13.y, _m13.z, _m13.w))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -70,53 +104,69 @@ class MoveBaseActionGoal(_Message):
 
     def deserialize(self, data):
         try:
+            _v1 = self.header
+            _t2 = _v1.stamp
+            _v3 = self.goal_id
+            _t4 = _v3.stamp
+            _v5 = self.goal
+            _v6 = _v5.target_pose
+            _v7 = _v6.header
+            _t8 = _v7.stamp
+            _v9 = _v6.pose
+            _v10 = _v9.position
+            _v11 = _v9.orientation
             _buf = data
-            _len = len(data)
-            _end = 0
-            _v1 = _new(_T_std_msgs__Header)
-            self.header = _v1
-            _t2 = _new(_Time)
-            _v1.stamp = _t2
-            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v1.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v3 = _new(_T_actionlib_msgs__GoalID)
-            self.goal_id = _v3
-            _t4 = _new(_Time)
-            _v3.stamp = _t4
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
             _t4.secs, _t4.nsecs, _n = _S1.unpack_from(_buf, _end)
-            _end += 12
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v3.id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v5 = _new(_T_move_base_msgs__MoveBaseGoal)
-            self.goal = _v5
-            _v6 = _new(_T_geometry_msgs__PoseStamped)
-            _v5.target_pose = _v6
-            _v7 = _new(_T_std_msgs__Header)
-            _v6.header = _v7
-            _t8 = _new(_Time)
-            _v7.stamp = _t8
+            _s = _end + 12
+            _end = _s + _n
+            _v3.id = str(_buf[_s:_end], 'utf-8', 'replace')
             _v7.seq, _t8.secs, _t8.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v7.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v9 = _new(_T_geometry_msgs__Pose)
-            _v6.pose = _v9
-            _v10 = _new(_T_geometry_msgs__Point)
-            _v9.position = _v10
-            _v11 = _new(_T_geometry_msgs__Quaternion)
-            _v9.orientation = _v11
+            _s = _end + 16
+            _end = _s + _n
+            _v7.frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
             _v10.x, _v10.y, _v10.z, _v11.x, _v11.y, _v11.z, _v11.w = _S2.unpack_from(_buf, _end)
-            _end += 56
+            if _end > len(_buf): raise _Truncated
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
+        return _refill(self, MoveBaseActionGoal, data)
+
+    @classmethod
+    def _from_buffer(cls, data):
+        self = _new(cls)
+        try:
+            _buf = data
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.stamp = _t2 = _new(_Time)
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            self.goal_id = _v3 = _new(_T_actionlib_msgs__GoalID)
+            _v3.stamp = _t4 = _new(_Time)
+            _t4.secs, _t4.nsecs, _n = _S1.unpack_from(_buf, _end)
+            _s = _end + 12
+            _end = _s + _n
+            _v3.id = str(_buf[_s:_end], 'utf-8', 'replace')
+            self.goal = _v5 = _new(_T_move_base_msgs__MoveBaseGoal)
+            _v5.target_pose = _v6 = _new(_T_geometry_msgs__PoseStamped)
+            _v6.header = _v7 = _new(_T_std_msgs__Header)
+            _v7.stamp = _t8 = _new(_Time)
+            _v7.seq, _t8.secs, _t8.nsecs, _n = _S0.unpack_from(_buf, _end)
+            _s = _end + 16
+            _end = _s + _n
+            _v7.frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
+            _v6.pose = _v9 = _new(_T_geometry_msgs__Pose)
+            _v9.position = _v10 = _new(_T_geometry_msgs__Point)
+            _v9.orientation = _v11 = _new(_T_geometry_msgs__Quaternion)
+            _v10.x, _v10.y, _v10.z, _v11.x, _v11.y, _v11.z, _v11.w = _S2.unpack_from(_buf, _end)
+            if _end > len(_buf): raise _Truncated
+        except Exception as exc:
+            raise _deserialize_failed(cls, data, exc) from exc
         return self
 
     def deserialize_numpy(self, data, numpy):

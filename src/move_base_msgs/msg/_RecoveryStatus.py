@@ -5,6 +5,7 @@ from kame.msg.message import Message as _Message
 from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
+from kame.msg.message import refill as _refill
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -44,7 +45,22 @@ class RecoveryStatus(_Message):
             if self.recovery_behavior_name is None:
                 self.recovery_behavior_name = ''
         else:
-            self.pose_stamped = _T_geometry_msgs__PoseStamped()
+            self.pose_stamped = _v1 = _new(_T_geometry_msgs__PoseStamped)
+            _v1.header = _v2 = _new(_T_std_msgs__Header)
+            _v2.seq = 0
+            _v2.stamp = _t3 = _new(_Time)
+            _t3.secs = _t3.nsecs = 0
+            _v2.frame_id = ''
+            _v1.pose = _v4 = _new(_T_geometry_msgs__Pose)
+            _v4.position = _v5 = _new(_T_geometry_msgs__Point)
+            _v5.x = 0.0
+            _v5.y = 0.0
+            _v5.z = 0.0
+            _v4.orientation = _v6 = _new(_T_geometry_msgs__Quaternion)
+            _v6.x = 0.0
+            _v6.y = 0.0
+            _v6.z = 0.0
+            _v6.w = 0.0
             self.current_recovery_number = 0
             self.total_number_of_recoveries = 0
             self.recovery_behavior_name = ''
@@ -52,12 +68,18 @@ class RecoveryStatus(_Message):
     def serialize(self, buff):
         try:
             _w = buff.write
-            _b1 = self.pose_stamped.header.frame_id
-            if _b1.__class__ is not bytes: _b1 = _b1.encode()
-            _w(_S0.pack(self.pose_stamped.header.seq, self.pose_stamped.header.stamp.secs, self.pose_stamped.header.stamp.nsecs, len(_b1)) + _b1)
-            _b2 = self.recovery_behavior_name
-            if _b2.__class__ is not bytes: _b2 = _b2.encode()
-            _w(_S1.pack(self.pose_stamped.pose.position.x, self.pose_stamped.pose.position.y, self.pose_stamped.pose.position.z, self.pose_stamped.pose.orientation.x, self.pose_stamped.pose.orientation.y, self.pose_stamped.pose.orientation.z, self.pose_stamped.pose.orientation.w, self.current_recovery_number, self.total_number_of_recoveries, len(_b2)) + _b2)
+            _m1 = self.pose_stamped
+            _m2 = _m1.header
+            _m3 = _m2.stamp
+            _b4 = _m2.frame_id
+            if _b4.__class__ is not bytes: _b4 = _b4.encode()
+            _w(_S0.pack(_m2.seq, _m3.secs, _m3.nsecs, len(_b4)) + _b4)
+            _m5 = _m1.pose
+            _m6 = _m5.position
+            _m7 = _m5.orientation
+            _b8 = self.recovery_behavior_name
+            if _b8.__class__ is not bytes: _b8 = _b8.encode()
+            _w(_S1.pack(_m6.x, _m6.y, _m6.z, _m7.x, _m7.y, _m7.z, _m7.w, self.current_recovery_number, self.total_number_of_recoveries, len(_b8)) + _b8)
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -66,35 +88,49 @@ class RecoveryStatus(_Message):
 
     def deserialize(self, data):
         try:
+            _v1 = self.pose_stamped
+            _v2 = _v1.header
+            _t3 = _v2.stamp
+            _v4 = _v1.pose
+            _v5 = _v4.position
+            _v6 = _v4.orientation
             _buf = data
-            _len = len(data)
-            _end = 0
-            _v1 = _new(_T_geometry_msgs__PoseStamped)
-            self.pose_stamped = _v1
-            _v2 = _new(_T_std_msgs__Header)
-            _v1.header = _v2
-            _t3 = _new(_Time)
-            _v2.stamp = _t3
-            _v2.seq, _t3.secs, _t3.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v2.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v4 = _new(_T_geometry_msgs__Pose)
-            _v1.pose = _v4
-            _v5 = _new(_T_geometry_msgs__Point)
-            _v4.position = _v5
-            _v6 = _new(_T_geometry_msgs__Quaternion)
-            _v4.orientation = _v6
+            _v2.seq, _t3.secs, _t3.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v2.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
             _v5.x, _v5.y, _v5.z, _v6.x, _v6.y, _v6.z, _v6.w, self.current_recovery_number, self.total_number_of_recoveries, _n = _S1.unpack_from(_buf, _end)
-            _end += 64
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            self.recovery_behavior_name = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            _s = _end + 64
+            _end = _s + _n
+            self.recovery_behavior_name = str(_buf[_s:_end], 'utf-8', 'replace')
+            if _end > len(_buf): raise _Truncated
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
+        return _refill(self, RecoveryStatus, data)
+
+    @classmethod
+    def _from_buffer(cls, data):
+        self = _new(cls)
+        try:
+            _buf = data
+            self.pose_stamped = _v1 = _new(_T_geometry_msgs__PoseStamped)
+            _v1.header = _v2 = _new(_T_std_msgs__Header)
+            _v2.stamp = _t3 = _new(_Time)
+            _v2.seq, _t3.secs, _t3.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v2.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            _v1.pose = _v4 = _new(_T_geometry_msgs__Pose)
+            _v4.position = _v5 = _new(_T_geometry_msgs__Point)
+            _v4.orientation = _v6 = _new(_T_geometry_msgs__Quaternion)
+            _v5.x, _v5.y, _v5.z, _v6.x, _v6.y, _v6.z, _v6.w, self.current_recovery_number, self.total_number_of_recoveries, _n = _S1.unpack_from(_buf, _end)
+            _s = _end + 64
+            _end = _s + _n
+            self.recovery_behavior_name = str(_buf[_s:_end], 'utf-8', 'replace')
+            if _end > len(_buf): raise _Truncated
+        except Exception as exc:
+            raise _deserialize_failed(cls, data, exc) from exc
         return self
 
     def deserialize_numpy(self, data, numpy):

@@ -5,6 +5,7 @@ from kame.msg.message import Message as _Message
 from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
+from kame.msg.message import refill as _refill
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -53,43 +54,127 @@ class GetMapAction(_Message):
             if self.action_feedback is None:
                 self.action_feedback = _T_nav_msgs__GetMapActionFeedback()
         else:
-            self.action_goal = _T_nav_msgs__GetMapActionGoal()
-            self.action_result = _T_nav_msgs__GetMapActionResult()
-            self.action_feedback = _T_nav_msgs__GetMapActionFeedback()
+            self.action_goal = _v1 = _new(_T_nav_msgs__GetMapActionGoal)
+            _v1.header = _v2 = _new(_T_std_msgs__Header)
+            _v2.seq = 0
+            _v2.stamp = _t3 = _new(_Time)
+            _t3.secs = _t3.nsecs = 0
+            _v2.frame_id = ''
+            _v1.goal_id = _v4 = _new(_T_actionlib_msgs__GoalID)
+            _v4.stamp = _t5 = _new(_Time)
+            _t5.secs = _t5.nsecs = 0
+            _v4.id = ''
+            _v1.goal = _v6 = _new(_T_nav_msgs__GetMapGoal)
+            self.action_result = _v7 = _new(_T_nav_msgs__GetMapActionResult)
+            _v7.header = _v8 = _new(_T_std_msgs__Header)
+            _v8.seq = 0
+            _v8.stamp = _t9 = _new(_Time)
+            _t9.secs = _t9.nsecs = 0
+            _v8.frame_id = ''
+            _v7.status = _v10 = _new(_T_actionlib_msgs__GoalStatus)
+            _v10.goal_id = _v11 = _new(_T_actionlib_msgs__GoalID)
+            _v11.stamp = _t12 = _new(_Time)
+            _t12.secs = _t12.nsecs = 0
+            _v11.id = ''
+            _v10.status = 0
+            _v10.text = ''
+            _v7.result = _v13 = _new(_T_nav_msgs__GetMapResult)
+            _v13.map = _v14 = _new(_T_nav_msgs__OccupancyGrid)
+            _v14.header = _v15 = _new(_T_std_msgs__Header)
+            _v15.seq = 0
+            _v15.stamp = _t16 = _new(_Time)
+            _t16.secs = _t16.nsecs = 0
+            _v15.frame_id = ''
+            _v14.info = _v17 = _new(_T_nav_msgs__MapMetaData)
+            _v17.map_load_time = _t18 = _new(_Time)
+            _t18.secs = _t18.nsecs = 0
+            _v17.resolution = 0.0
+            _v17.width = 0
+            _v17.height = 0
+            _v17.origin = _v19 = _new(_T_geometry_msgs__Pose)
+            _v19.position = _v20 = _new(_T_geometry_msgs__Point)
+            _v20.x = 0.0
+            _v20.y = 0.0
+            _v20.z = 0.0
+            _v19.orientation = _v21 = _new(_T_geometry_msgs__Quaternion)
+            _v21.x = 0.0
+            _v21.y = 0.0
+            _v21.z = 0.0
+            _v21.w = 0.0
+            _v14.data = []
+            self.action_feedback = _v22 = _new(_T_nav_msgs__GetMapActionFeedback)
+            _v22.header = _v23 = _new(_T_std_msgs__Header)
+            _v23.seq = 0
+            _v23.stamp = _t24 = _new(_Time)
+            _t24.secs = _t24.nsecs = 0
+            _v23.frame_id = ''
+            _v22.status = _v25 = _new(_T_actionlib_msgs__GoalStatus)
+            _v25.goal_id = _v26 = _new(_T_actionlib_msgs__GoalID)
+            _v26.stamp = _t27 = _new(_Time)
+            _t27.secs = _t27.nsecs = 0
+            _v26.id = ''
+            _v25.status = 0
+            _v25.text = ''
+            _v22.feedback = _v28 = _new(_T_nav_msgs__GetMapFeedback)
 
     def serialize(self, buff):
         try:
             _w = buff.write
-            _b1 = self.action_goal.header.frame_id
-            if _b1.__class__ is not bytes: _b1 = _b1.encode()
-            _w(_S0.pack(self.action_goal.header.seq, self.action_goal.header.stamp.secs, self.action_goal.header.stamp.nsecs, len(_b1)) + _b1)
-            _b2 = self.action_goal.goal_id.id
-            if _b2.__class__ is not bytes: _b2 = _b2.encode()
-            _w(_S1.pack(self.action_goal.goal_id.stamp.secs, self.action_goal.goal_id.stamp.nsecs, len(_b2)) + _b2)
-            _b3 = self.action_result.header.frame_id
-            if _b3.__class__ is not bytes: _b3 = _b3.encode()
-            _w(_S0.pack(self.action_result.header.seq, self.action_result.header.stamp.secs, self.action_result.header.stamp.nsecs, len(_b3)) + _b3)
-            _b4 = self.action_result.status.goal_id.id
+            _m1 = self.action_goal
+            _m2 = _m1.header
+            _m3 = _m2.stamp
+            _b4 = _m2.frame_id
             if _b4.__class__ is not bytes: _b4 = _b4.encode()
-            _w(_S1.pack(self.action_result.status.goal_id.stamp.secs, self.action_result.status.goal_id.stamp.nsecs, len(_b4)) + _b4)
-            _b5 = self.action_result.status.text
-            if _b5.__class__ is not bytes: _b5 = _b5.encode()
-            _w(_S2.pack(self.action_result.status.status, len(_b5)) + _b5)
-            _b6 = self.action_result.result.map.header.frame_id
-            if _b6.__class__ is not bytes: _b6 = _b6.encode()
-            _w(_S0.pack(self.action_result.result.map.header.seq, self.action_result.result.map.header.stamp.secs, self.action_result.result.map.header.stamp.nsecs, len(_b6)) + _b6)
-            _x7 = self.action_result.result.map.data
-            _w(_S3.pack(self.action_result.result.map.info.map_load_time.secs, self.action_result.result.map.info.map_load_time.nsecs, self.action_result.result.map.info.resolution, self.action_result.result.map.info.width, self.action_result.result.map.info.height, self.action_result.result.map.info.origin.position.x, self.action_result.result.map.info.origin.position.y, self.action_result.result.map.info.origin.position.z, self.action_result.result.map.info.origin.orientation.x, self.action_result.result.map.info.origin.orientation.y, self.action_result.result.map.info.origin.orientation.z, self.action_result.result.map.info.origin.orientation.w, len(_x7)))
-            _w(_pack_array(_x7, 'b', '<i1'))
-            _b8 = self.action_feedback.header.frame_id
-            if _b8.__class__ is not bytes: _b8 = _b8.encode()
-            _w(_S0.pack(self.action_feedback.header.seq, self.action_feedback.header.stamp.secs, self.action_feedback.header.stamp.nsecs, len(_b8)) + _b8)
-            _b9 = self.action_feedback.status.goal_id.id
-            if _b9.__class__ is not bytes: _b9 = _b9.encode()
-            _w(_S1.pack(self.action_feedback.status.goal_id.stamp.secs, self.action_feedback.status.goal_id.stamp.nsecs, len(_b9)) + _b9)
-            _b10 = self.action_feedback.status.text
-            if _b10.__class__ is not bytes: _b10 = _b10.encode()
-            _w(_S2.pack(self.action_feedback.status.status, len(_b10)) + _b10)
+            _w(_S0.pack(_m2.seq, _m3.secs, _m3.nsecs, len(_b4)) + _b4)
+            _m5 = _m1.goal_id
+            _m6 = _m5.stamp
+            _b7 = _m5.id
+            if _b7.__class__ is not bytes: _b7 = _b7.encode()
+            _w(_S1.pack(_m6.secs, _m6.nsecs, len(_b7)) + _b7)
+            _m8 = self.action_result
+            _m9 = _m8.header
+            _m10 = _m9.stamp
+            _b11 = _m9.frame_id
+            if _b11.__class__ is not bytes: _b11 = _b11.encode()
+            _w(_S0.pack(_m9.seq, _m10.secs, _m10.nsecs, len(_b11)) + _b11)
+            _m12 = _m8.status
+            _m13 = _m12.goal_id
+            _m14 = _m13.stamp
+            _b15 = _m13.id
+            if _b15.__class__ is not bytes: _b15 = _b15.encode()
+            _w(_S1.pack(_m14.secs, _m14.nsecs, len(_b15)) + _b15)
+            _b16 = _m12.text
+            if _b16.__class__ is not bytes: _b16 = _b16.encode()
+            _w(_S2.pack(_m12.status, len(_b16)) + _b16)
+            _m17 = _m8.result.map
+            _m18 = _m17.header
+            _m19 = _m18.stamp
+            _b20 = _m18.frame_id
+            if _b20.__class__ is not bytes: _b20 = _b20.encode()
+            _w(_S0.pack(_m18.seq, _m19.secs, _m19.nsecs, len(_b20)) + _b20)
+            _m21 = _m17.info
+            _m22 = _m21.map_load_time
+            _m23 = _m21.origin
+            _m24 = _m23.position
+            _m25 = _m23.orientation
+            _x26 = _m17.data
+            _w(_S3.pack(_m22.secs, _m22.nsecs, _m21.resolution, _m21.width, _m21.height, _m24.x, _m24.y, _m24.z, _m25.x, _m25.y, _m25.z, _m25.w, len(_x26)))
+            _w(_pack_array(_x26, 'b', '<i1'))
+            _m27 = self.action_feedback
+            _m28 = _m27.header
+            _m29 = _m28.stamp
+            _b30 = _m28.frame_id
+            if _b30.__class__ is not bytes: _b30 = _b30.encode()
+            _w(_S0.pack(_m28.seq, _m29.secs, _m29.nsecs, len(_b30)) + _b30)
+            _m31 = _m27.status
+            _m32 = _m31.goal_id
+            _m33 = _m32.stamp
+            _b34 = _m32.id
+            if _b34.__class__ is not bytes: _b34 = _b34.encode()
+            _w(_S1.pack(_m33.secs, _m33.nsecs, len(_b34)) + _b34)
+            _b35 = _m31.text
+            if _b35.__class__ is not bytes: _b35 = _b35.encode()
+            _w(_S2.pack(_m31.status, len(_b35)) + _b35)
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -98,251 +183,228 @@ class GetMapAction(_Message):
 
     def deserialize(self, data):
         try:
+            _v1 = self.action_goal
+            _v2 = _v1.header
+            _t3 = _v2.stamp
+            _v4 = _v1.goal_id
+            _t5 = _v4.stamp
+            _v6 = _v1.goal
+            _v7 = self.action_result
+            _v8 = _v7.header
+            _t9 = _v8.stamp
+            _v10 = _v7.status
+            _v11 = _v10.goal_id
+            _t12 = _v11.stamp
+            _v13 = _v7.result
+            _v14 = _v13.map
+            _v15 = _v14.header
+            _t16 = _v15.stamp
+            _v17 = _v14.info
+            _t18 = _v17.map_load_time
+            _v19 = _v17.origin
+            _v20 = _v19.position
+            _v21 = _v19.orientation
+            _v22 = self.action_feedback
+            _v23 = _v22.header
+            _t24 = _v23.stamp
+            _v25 = _v22.status
+            _v26 = _v25.goal_id
+            _t27 = _v26.stamp
+            _v28 = _v22.feedback
             _buf = data
-            _len = len(data)
-            _end = 0
-            _v1 = _new(_T_nav_msgs__GetMapActionGoal)
-            self.action_goal = _v1
-            _v2 = _new(_T_std_msgs__Header)
-            _v1.header = _v2
-            _t3 = _new(_Time)
-            _v2.stamp = _t3
-            _v2.seq, _t3.secs, _t3.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v2.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v4 = _new(_T_actionlib_msgs__GoalID)
-            _v1.goal_id = _v4
-            _t5 = _new(_Time)
-            _v4.stamp = _t5
+            _v2.seq, _t3.secs, _t3.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v2.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
             _t5.secs, _t5.nsecs, _n = _S1.unpack_from(_buf, _end)
-            _end += 12
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v4.id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v6 = _new(_T_nav_msgs__GetMapGoal)
-            _v1.goal = _v6
-            _v7 = _new(_T_nav_msgs__GetMapActionResult)
-            self.action_result = _v7
-            _v8 = _new(_T_std_msgs__Header)
-            _v7.header = _v8
-            _t9 = _new(_Time)
-            _v8.stamp = _t9
+            _s = _end + 12
+            _end = _s + _n
+            _v4.id = str(_buf[_s:_end], 'utf-8', 'replace')
             _v8.seq, _t9.secs, _t9.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v8.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v10 = _new(_T_actionlib_msgs__GoalStatus)
-            _v7.status = _v10
-            _v11 = _new(_T_actionlib_msgs__GoalID)
-            _v10.goal_id = _v11
-            _t12 = _new(_Time)
-            _v11.stamp = _t12
+            _s = _end + 16
+            _end = _s + _n
+            _v8.frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
             _t12.secs, _t12.nsecs, _n = _S1.unpack_from(_buf, _end)
-            _end += 12
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v11.id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            _s = _end + 12
+            _end = _s + _n
+            _v11.id = str(_buf[_s:_end], 'utf-8', 'replace')
             _v10.status, _n = _S2.unpack_from(_buf, _end)
-            _end += 5
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v10.text = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v13 = _new(_T_nav_msgs__GetMapResult)
-            _v7.result = _v13
-            _v14 = _new(_T_nav_msgs__OccupancyGrid)
-            _v13.map = _v14
-            _v15 = _new(_T_std_msgs__Header)
-            _v14.header = _v15
-            _t16 = _new(_Time)
-            _v15.stamp = _t16
+            _s = _end + 5
+            _end = _s + _n
+            _v10.text = str(_buf[_s:_end], 'utf-8', 'replace')
             _v15.seq, _t16.secs, _t16.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v15.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v17 = _new(_T_nav_msgs__MapMetaData)
-            _v14.info = _v17
-            _t18 = _new(_Time)
-            _v17.map_load_time = _t18
-            _v19 = _new(_T_geometry_msgs__Pose)
-            _v17.origin = _v19
-            _v20 = _new(_T_geometry_msgs__Point)
-            _v19.position = _v20
-            _v21 = _new(_T_geometry_msgs__Quaternion)
-            _v19.orientation = _v21
+            _s = _end + 16
+            _end = _s + _n
+            _v15.frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
             _t18.secs, _t18.nsecs, _v17.resolution, _v17.width, _v17.height, _v20.x, _v20.y, _v20.z, _v21.x, _v21.y, _v21.z, _v21.w, _n = _S3.unpack_from(_buf, _end)
-            _end += 80
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v14.data = _unpack_from('<%db' % _n, _buf, _end)
-            _end = _stop
-            _v22 = _new(_T_nav_msgs__GetMapActionFeedback)
-            self.action_feedback = _v22
-            _v23 = _new(_T_std_msgs__Header)
-            _v22.header = _v23
-            _t24 = _new(_Time)
-            _v23.stamp = _t24
+            _v14.data = _unpack_from('<%db' % _n, _buf, _end + 80)
+            _end += 80 + _n
             _v23.seq, _t24.secs, _t24.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v23.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v25 = _new(_T_actionlib_msgs__GoalStatus)
-            _v22.status = _v25
-            _v26 = _new(_T_actionlib_msgs__GoalID)
-            _v25.goal_id = _v26
-            _t27 = _new(_Time)
-            _v26.stamp = _t27
+            _s = _end + 16
+            _end = _s + _n
+            _v23.frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
             _t27.secs, _t27.nsecs, _n = _S1.unpack_from(_buf, _end)
-            _end += 12
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v26.id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            _s = _end + 12
+            _end = _s + _n
+            _v26.id = str(_buf[_s:_end], 'utf-8', 'replace')
             _v25.status, _n = _S2.unpack_from(_buf, _end)
-            _end += 5
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v25.text = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v28 = _new(_T_nav_msgs__GetMapFeedback)
-            _v22.feedback = _v28
+            _s = _end + 5
+            _end = _s + _n
+            _v25.text = str(_buf[_s:_end], 'utf-8', 'replace')
+            if _end > len(_buf): raise _Truncated
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
+        return _refill(self, GetMapAction, data)
+
+    @classmethod
+    def _from_buffer(cls, data):
+        self = _new(cls)
+        try:
+            _buf = data
+            self.action_goal = _v1 = _new(_T_nav_msgs__GetMapActionGoal)
+            _v1.header = _v2 = _new(_T_std_msgs__Header)
+            _v2.stamp = _t3 = _new(_Time)
+            _v2.seq, _t3.secs, _t3.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v2.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            _v1.goal_id = _v4 = _new(_T_actionlib_msgs__GoalID)
+            _v4.stamp = _t5 = _new(_Time)
+            _t5.secs, _t5.nsecs, _n = _S1.unpack_from(_buf, _end)
+            _s = _end + 12
+            _end = _s + _n
+            _v4.id = str(_buf[_s:_end], 'utf-8', 'replace')
+            _v1.goal = _v6 = _new(_T_nav_msgs__GetMapGoal)
+            self.action_result = _v7 = _new(_T_nav_msgs__GetMapActionResult)
+            _v7.header = _v8 = _new(_T_std_msgs__Header)
+            _v8.stamp = _t9 = _new(_Time)
+            _v8.seq, _t9.secs, _t9.nsecs, _n = _S0.unpack_from(_buf, _end)
+            _s = _end + 16
+            _end = _s + _n
+            _v8.frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
+            _v7.status = _v10 = _new(_T_actionlib_msgs__GoalStatus)
+            _v10.goal_id = _v11 = _new(_T_actionlib_msgs__GoalID)
+            _v11.stamp = _t12 = _new(_Time)
+            _t12.secs, _t12.nsecs, _n = _S1.unpack_from(_buf, _end)
+            _s = _end + 12
+            _end = _s + _n
+            _v11.id = str(_buf[_s:_end], 'utf-8', 'replace')
+            _v10.status, _n = _S2.unpack_from(_buf, _end)
+            _s = _end + 5
+            _end = _s + _n
+            _v10.text = str(_buf[_s:_end], 'utf-8', 'replace')
+            _v7.result = _v13 = _new(_T_nav_msgs__GetMapResult)
+            _v13.map = _v14 = _new(_T_nav_msgs__OccupancyGrid)
+            _v14.header = _v15 = _new(_T_std_msgs__Header)
+            _v15.stamp = _t16 = _new(_Time)
+            _v15.seq, _t16.secs, _t16.nsecs, _n = _S0.unpack_from(_buf, _end)
+            _s = _end + 16
+            _end = _s + _n
+            _v15.frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
+            _v14.info = _v17 = _new(_T_nav_msgs__MapMetaData)
+            _v17.map_load_time = _t18 = _new(_Time)
+            _v17.origin = _v19 = _new(_T_geometry_msgs__Pose)
+            _v19.position = _v20 = _new(_T_geometry_msgs__Point)
+            _v19.orientation = _v21 = _new(_T_geometry_msgs__Quaternion)
+            _t18.secs, _t18.nsecs, _v17.resolution, _v17.width, _v17.height, _v20.x, _v20.y, _v20.z, _v21.x, _v21.y, _v21.z, _v21.w, _n = _S3.unpack_from(_buf, _end)
+            _v14.data = _unpack_from('<%db' % _n, _buf, _end + 80)
+            _end += 80 + _n
+            self.action_feedback = _v22 = _new(_T_nav_msgs__GetMapActionFeedback)
+            _v22.header = _v23 = _new(_T_std_msgs__Header)
+            _v23.stamp = _t24 = _new(_Time)
+            _v23.seq, _t24.secs, _t24.nsecs, _n = _S0.unpack_from(_buf, _end)
+            _s = _end + 16
+            _end = _s + _n
+            _v23.frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
+            _v22.status = _v25 = _new(_T_actionlib_msgs__GoalStatus)
+            _v25.goal_id = _v26 = _new(_T_actionlib_msgs__GoalID)
+            _v26.stamp = _t27 = _new(_Time)
+            _t27.secs, _t27.nsecs, _n = _S1.unpack_from(_buf, _end)
+            _s = _end + 12
+            _end = _s + _n
+            _v26.id = str(_buf[_s:_end], 'utf-8', 'replace')
+            _v25.status, _n = _S2.unpack_from(_buf, _end)
+            _s = _end + 5
+            _end = _s + _n
+            _v25.text = str(_buf[_s:_end], 'utf-8', 'replace')
+            _v22.feedback = _v28 = _new(_T_nav_msgs__GetMapFeedback)
+            if _end > len(_buf): raise _Truncated
+        except Exception as exc:
+            raise _deserialize_failed(cls, data, exc) from exc
         return self
 
     def deserialize_numpy(self, data, numpy):
         try:
             _np = numpy
             _buf = data
-            _len = len(data)
-            _end = 0
-            _v1 = _new(_T_nav_msgs__GetMapActionGoal)
-            self.action_goal = _v1
-            _v2 = _new(_T_std_msgs__Header)
-            _v1.header = _v2
-            _t3 = _new(_Time)
-            _v2.stamp = _t3
-            _v2.seq, _t3.secs, _t3.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v2.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v4 = _new(_T_actionlib_msgs__GoalID)
-            _v1.goal_id = _v4
-            _t5 = _new(_Time)
-            _v4.stamp = _t5
+            self.action_goal = _v1 = _new(_T_nav_msgs__GetMapActionGoal)
+            _v1.header = _v2 = _new(_T_std_msgs__Header)
+            _v2.stamp = _t3 = _new(_Time)
+            _v2.seq, _t3.secs, _t3.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v2.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            _v1.goal_id = _v4 = _new(_T_actionlib_msgs__GoalID)
+            _v4.stamp = _t5 = _new(_Time)
             _t5.secs, _t5.nsecs, _n = _S1.unpack_from(_buf, _end)
-            _end += 12
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v4.id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v6 = _new(_T_nav_msgs__GetMapGoal)
-            _v1.goal = _v6
-            _v7 = _new(_T_nav_msgs__GetMapActionResult)
-            self.action_result = _v7
-            _v8 = _new(_T_std_msgs__Header)
-            _v7.header = _v8
-            _t9 = _new(_Time)
-            _v8.stamp = _t9
+            _s = _end + 12
+            _end = _s + _n
+            _v4.id = str(_buf[_s:_end], 'utf-8', 'replace')
+            _v1.goal = _v6 = _new(_T_nav_msgs__GetMapGoal)
+            self.action_result = _v7 = _new(_T_nav_msgs__GetMapActionResult)
+            _v7.header = _v8 = _new(_T_std_msgs__Header)
+            _v8.stamp = _t9 = _new(_Time)
             _v8.seq, _t9.secs, _t9.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v8.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v10 = _new(_T_actionlib_msgs__GoalStatus)
-            _v7.status = _v10
-            _v11 = _new(_T_actionlib_msgs__GoalID)
-            _v10.goal_id = _v11
-            _t12 = _new(_Time)
-            _v11.stamp = _t12
+            _s = _end + 16
+            _end = _s + _n
+            _v8.frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
+            _v7.status = _v10 = _new(_T_actionlib_msgs__GoalStatus)
+            _v10.goal_id = _v11 = _new(_T_actionlib_msgs__GoalID)
+            _v11.stamp = _t12 = _new(_Time)
             _t12.secs, _t12.nsecs, _n = _S1.unpack_from(_buf, _end)
-            _end += 12
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v11.id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            _s = _end + 12
+            _end = _s + _n
+            _v11.id = str(_buf[_s:_end], 'utf-8', 'replace')
             _v10.status, _n = _S2.unpack_from(_buf, _end)
-            _end += 5
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v10.text = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v13 = _new(_T_nav_msgs__GetMapResult)
-            _v7.result = _v13
-            _v14 = _new(_T_nav_msgs__OccupancyGrid)
-            _v13.map = _v14
-            _v15 = _new(_T_std_msgs__Header)
-            _v14.header = _v15
-            _t16 = _new(_Time)
-            _v15.stamp = _t16
+            _s = _end + 5
+            _end = _s + _n
+            _v10.text = str(_buf[_s:_end], 'utf-8', 'replace')
+            _v7.result = _v13 = _new(_T_nav_msgs__GetMapResult)
+            _v13.map = _v14 = _new(_T_nav_msgs__OccupancyGrid)
+            _v14.header = _v15 = _new(_T_std_msgs__Header)
+            _v15.stamp = _t16 = _new(_Time)
             _v15.seq, _t16.secs, _t16.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v15.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v17 = _new(_T_nav_msgs__MapMetaData)
-            _v14.info = _v17
-            _t18 = _new(_Time)
-            _v17.map_load_time = _t18
-            _v19 = _new(_T_geometry_msgs__Pose)
-            _v17.origin = _v19
-            _v20 = _new(_T_geometry_msgs__Point)
-            _v19.position = _v20
-            _v21 = _new(_T_geometry_msgs__Quaternion)
-            _v19.orientation = _v21
+            _s = _end + 16
+            _end = _s + _n
+            _v15.frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
+            _v14.info = _v17 = _new(_T_nav_msgs__MapMetaData)
+            _v17.map_load_time = _t18 = _new(_Time)
+            _v17.origin = _v19 = _new(_T_geometry_msgs__Pose)
+            _v19.position = _v20 = _new(_T_geometry_msgs__Point)
+            _v19.orientation = _v21 = _new(_T_geometry_msgs__Quaternion)
             _t18.secs, _t18.nsecs, _v17.resolution, _v17.width, _v17.height, _v20.x, _v20.y, _v20.z, _v21.x, _v21.y, _v21.z, _v21.w, _n = _S3.unpack_from(_buf, _end)
-            _end += 80
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v14.data = _np.frombuffer(_buf, '<i1', _n, _end)
-            _end = _stop
-            _v22 = _new(_T_nav_msgs__GetMapActionFeedback)
-            self.action_feedback = _v22
-            _v23 = _new(_T_std_msgs__Header)
-            _v22.header = _v23
-            _t24 = _new(_Time)
-            _v23.stamp = _t24
+            _v14.data = _np.frombuffer(_buf, '<i1', _n, _end + 80)
+            _end += 80 + _n
+            self.action_feedback = _v22 = _new(_T_nav_msgs__GetMapActionFeedback)
+            _v22.header = _v23 = _new(_T_std_msgs__Header)
+            _v23.stamp = _t24 = _new(_Time)
             _v23.seq, _t24.secs, _t24.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v23.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v25 = _new(_T_actionlib_msgs__GoalStatus)
-            _v22.status = _v25
-            _v26 = _new(_T_actionlib_msgs__GoalID)
-            _v25.goal_id = _v26
-            _t27 = _new(_Time)
-            _v26.stamp = _t27
+            _s = _end + 16
+            _end = _s + _n
+            _v23.frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
+            _v22.status = _v25 = _new(_T_actionlib_msgs__GoalStatus)
+            _v25.goal_id = _v26 = _new(_T_actionlib_msgs__GoalID)
+            _v26.stamp = _t27 = _new(_Time)
             _t27.secs, _t27.nsecs, _n = _S1.unpack_from(_buf, _end)
-            _end += 12
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v26.id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            _s = _end + 12
+            _end = _s + _n
+            _v26.id = str(_buf[_s:_end], 'utf-8', 'replace')
             _v25.status, _n = _S2.unpack_from(_buf, _end)
-            _end += 5
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v25.text = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v28 = _new(_T_nav_msgs__GetMapFeedback)
-            _v22.feedback = _v28
+            _s = _end + 5
+            _end = _s + _n
+            _v25.text = str(_buf[_s:_end], 'utf-8', 'replace')
+            _v22.feedback = _v28 = _new(_T_nav_msgs__GetMapFeedback)
+            if _end > len(_buf): raise _Truncated
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
         return self

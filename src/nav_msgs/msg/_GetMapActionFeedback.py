@@ -5,6 +5,7 @@ from kame.msg.message import Message as _Message
 from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
+from kame.msg.message import refill as _refill
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -42,22 +43,37 @@ class GetMapActionFeedback(_Message):
             if self.feedback is None:
                 self.feedback = _T_nav_msgs__GetMapFeedback()
         else:
-            self.header = _T_std_msgs__Header()
-            self.status = _T_actionlib_msgs__GoalStatus()
-            self.feedback = _T_nav_msgs__GetMapFeedback()
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.seq = 0
+            _v1.stamp = _t2 = _new(_Time)
+            _t2.secs = _t2.nsecs = 0
+            _v1.frame_id = ''
+            self.status = _v3 = _new(_T_actionlib_msgs__GoalStatus)
+            _v3.goal_id = _v4 = _new(_T_actionlib_msgs__GoalID)
+            _v4.stamp = _t5 = _new(_Time)
+            _t5.secs = _t5.nsecs = 0
+            _v4.id = ''
+            _v3.status = 0
+            _v3.text = ''
+            self.feedback = _v6 = _new(_T_nav_msgs__GetMapFeedback)
 
     def serialize(self, buff):
         try:
             _w = buff.write
-            _b1 = self.header.frame_id
-            if _b1.__class__ is not bytes: _b1 = _b1.encode()
-            _w(_S0.pack(self.header.seq, self.header.stamp.secs, self.header.stamp.nsecs, len(_b1)) + _b1)
-            _b2 = self.status.goal_id.id
-            if _b2.__class__ is not bytes: _b2 = _b2.encode()
-            _w(_S1.pack(self.status.goal_id.stamp.secs, self.status.goal_id.stamp.nsecs, len(_b2)) + _b2)
-            _b3 = self.status.text
+            _m1 = self.header
+            _m2 = _m1.stamp
+            _b3 = _m1.frame_id
             if _b3.__class__ is not bytes: _b3 = _b3.encode()
-            _w(_S2.pack(self.status.status, len(_b3)) + _b3)
+            _w(_S0.pack(_m1.seq, _m2.secs, _m2.nsecs, len(_b3)) + _b3)
+            _m4 = self.status
+            _m5 = _m4.goal_id
+            _m6 = _m5.stamp
+            _b7 = _m5.id
+            if _b7.__class__ is not bytes: _b7 = _b7.encode()
+            _w(_S1.pack(_m6.secs, _m6.nsecs, len(_b7)) + _b7)
+            _b8 = _m4.text
+            if _b8.__class__ is not bytes: _b8 = _b8.encode()
+            _w(_S2.pack(_m4.status, len(_b8)) + _b8)
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -66,41 +82,57 @@ class GetMapActionFeedback(_Message):
 
     def deserialize(self, data):
         try:
+            _v1 = self.header
+            _t2 = _v1.stamp
+            _v3 = self.status
+            _v4 = _v3.goal_id
+            _t5 = _v4.stamp
+            _v6 = self.feedback
             _buf = data
-            _len = len(data)
-            _end = 0
-            _v1 = _new(_T_std_msgs__Header)
-            self.header = _v1
-            _t2 = _new(_Time)
-            _v1.stamp = _t2
-            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v1.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v3 = _new(_T_actionlib_msgs__GoalStatus)
-            self.status = _v3
-            _v4 = _new(_T_actionlib_msgs__GoalID)
-            _v3.goal_id = _v4
-            _t5 = _new(_Time)
-            _v4.stamp = _t5
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
             _t5.secs, _t5.nsecs, _n = _S1.unpack_from(_buf, _end)
-            _end += 12
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v4.id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            _s = _end + 12
+            _end = _s + _n
+            _v4.id = str(_buf[_s:_end], 'utf-8', 'replace')
             _v3.status, _n = _S2.unpack_from(_buf, _end)
-            _end += 5
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v3.text = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v6 = _new(_T_nav_msgs__GetMapFeedback)
-            self.feedback = _v6
+            _s = _end + 5
+            _end = _s + _n
+            _v3.text = str(_buf[_s:_end], 'utf-8', 'replace')
+            if _end > len(_buf): raise _Truncated
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
+        return _refill(self, GetMapActionFeedback, data)
+
+    @classmethod
+    def _from_buffer(cls, data):
+        self = _new(cls)
+        try:
+            _buf = data
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.stamp = _t2 = _new(_Time)
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            self.status = _v3 = _new(_T_actionlib_msgs__GoalStatus)
+            _v3.goal_id = _v4 = _new(_T_actionlib_msgs__GoalID)
+            _v4.stamp = _t5 = _new(_Time)
+            _t5.secs, _t5.nsecs, _n = _S1.unpack_from(_buf, _end)
+            _s = _end + 12
+            _end = _s + _n
+            _v4.id = str(_buf[_s:_end], 'utf-8', 'replace')
+            _v3.status, _n = _S2.unpack_from(_buf, _end)
+            _s = _end + 5
+            _end = _s + _n
+            _v3.text = str(_buf[_s:_end], 'utf-8', 'replace')
+            self.feedback = _v6 = _new(_T_nav_msgs__GetMapFeedback)
+            if _end > len(_buf): raise _Truncated
+        except Exception as exc:
+            raise _deserialize_failed(cls, data, exc) from exc
         return self
 
     def deserialize_numpy(self, data, numpy):

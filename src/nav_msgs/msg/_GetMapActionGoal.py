@@ -5,6 +5,7 @@ from kame.msg.message import Message as _Message
 from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
+from kame.msg.message import refill as _refill
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -40,19 +41,30 @@ class GetMapActionGoal(_Message):
             if self.goal is None:
                 self.goal = _T_nav_msgs__GetMapGoal()
         else:
-            self.header = _T_std_msgs__Header()
-            self.goal_id = _T_actionlib_msgs__GoalID()
-            self.goal = _T_nav_msgs__GetMapGoal()
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.seq = 0
+            _v1.stamp = _t2 = _new(_Time)
+            _t2.secs = _t2.nsecs = 0
+            _v1.frame_id = ''
+            self.goal_id = _v3 = _new(_T_actionlib_msgs__GoalID)
+            _v3.stamp = _t4 = _new(_Time)
+            _t4.secs = _t4.nsecs = 0
+            _v3.id = ''
+            self.goal = _v5 = _new(_T_nav_msgs__GetMapGoal)
 
     def serialize(self, buff):
         try:
             _w = buff.write
-            _b1 = self.header.frame_id
-            if _b1.__class__ is not bytes: _b1 = _b1.encode()
-            _w(_S0.pack(self.header.seq, self.header.stamp.secs, self.header.stamp.nsecs, len(_b1)) + _b1)
-            _b2 = self.goal_id.id
-            if _b2.__class__ is not bytes: _b2 = _b2.encode()
-            _w(_S1.pack(self.goal_id.stamp.secs, self.goal_id.stamp.nsecs, len(_b2)) + _b2)
+            _m1 = self.header
+            _m2 = _m1.stamp
+            _b3 = _m1.frame_id
+            if _b3.__class__ is not bytes: _b3 = _b3.encode()
+            _w(_S0.pack(_m1.seq, _m2.secs, _m2.nsecs, len(_b3)) + _b3)
+            _m4 = self.goal_id
+            _m5 = _m4.stamp
+            _b6 = _m4.id
+            if _b6.__class__ is not bytes: _b6 = _b6.encode()
+            _w(_S1.pack(_m5.secs, _m5.nsecs, len(_b6)) + _b6)
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -61,33 +73,47 @@ class GetMapActionGoal(_Message):
 
     def deserialize(self, data):
         try:
+            _v1 = self.header
+            _t2 = _v1.stamp
+            _v3 = self.goal_id
+            _t4 = _v3.stamp
+            _v5 = self.goal
             _buf = data
-            _len = len(data)
-            _end = 0
-            _v1 = _new(_T_std_msgs__Header)
-            self.header = _v1
-            _t2 = _new(_Time)
-            _v1.stamp = _t2
-            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v1.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v3 = _new(_T_actionlib_msgs__GoalID)
-            self.goal_id = _v3
-            _t4 = _new(_Time)
-            _v3.stamp = _t4
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
             _t4.secs, _t4.nsecs, _n = _S1.unpack_from(_buf, _end)
-            _end += 12
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v3.id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v5 = _new(_T_nav_msgs__GetMapGoal)
-            self.goal = _v5
+            _s = _end + 12
+            _end = _s + _n
+            _v3.id = str(_buf[_s:_end], 'utf-8', 'replace')
+            if _end > len(_buf): raise _Truncated
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
+        return _refill(self, GetMapActionGoal, data)
+
+    @classmethod
+    def _from_buffer(cls, data):
+        self = _new(cls)
+        try:
+            _buf = data
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.stamp = _t2 = _new(_Time)
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            self.goal_id = _v3 = _new(_T_actionlib_msgs__GoalID)
+            _v3.stamp = _t4 = _new(_Time)
+            _t4.secs, _t4.nsecs, _n = _S1.unpack_from(_buf, _end)
+            _s = _end + 12
+            _end = _s + _n
+            _v3.id = str(_buf[_s:_end], 'utf-8', 'replace')
+            self.goal = _v5 = _new(_T_nav_msgs__GetMapGoal)
+            if _end > len(_buf): raise _Truncated
+        except Exception as exc:
+            raise _deserialize_failed(cls, data, exc) from exc
         return self
 
     def deserialize_numpy(self, data, numpy):

@@ -5,6 +5,7 @@ from kame.msg.message import Message as _Message
 from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
+from kame.msg.message import refill as _refill
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -48,28 +49,74 @@ class GetMapActionResult(_Message):
             if self.result is None:
                 self.result = _T_nav_msgs__GetMapResult()
         else:
-            self.header = _T_std_msgs__Header()
-            self.status = _T_actionlib_msgs__GoalStatus()
-            self.result = _T_nav_msgs__GetMapResult()
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.seq = 0
+            _v1.stamp = _t2 = _new(_Time)
+            _t2.secs = _t2.nsecs = 0
+            _v1.frame_id = ''
+            self.status = _v3 = _new(_T_actionlib_msgs__GoalStatus)
+            _v3.goal_id = _v4 = _new(_T_actionlib_msgs__GoalID)
+            _v4.stamp = _t5 = _new(_Time)
+            _t5.secs = _t5.nsecs = 0
+            _v4.id = ''
+            _v3.status = 0
+            _v3.text = ''
+            self.result = _v6 = _new(_T_nav_msgs__GetMapResult)
+            _v6.map = _v7 = _new(_T_nav_msgs__OccupancyGrid)
+            _v7.header = _v8 = _new(_T_std_msgs__Header)
+            _v8.seq = 0
+            _v8.stamp = _t9 = _new(_Time)
+            _t9.secs = _t9.nsecs = 0
+            _v8.frame_id = ''
+            _v7.info = _v10 = _new(_T_nav_msgs__MapMetaData)
+            _v10.map_load_time = _t11 = _new(_Time)
+            _t11.secs = _t11.nsecs = 0
+            _v10.resolution = 0.0
+            _v10.width = 0
+            _v10.height = 0
+            _v10.origin = _v12 = _new(_T_geometry_msgs__Pose)
+            _v12.position = _v13 = _new(_T_geometry_msgs__Point)
+            _v13.x = 0.0
+            _v13.y = 0.0
+            _v13.z = 0.0
+            _v12.orientation = _v14 = _new(_T_geometry_msgs__Quaternion)
+            _v14.x = 0.0
+            _v14.y = 0.0
+            _v14.z = 0.0
+            _v14.w = 0.0
+            _v7.data = []
 
     def serialize(self, buff):
         try:
             _w = buff.write
-            _b1 = self.header.frame_id
-            if _b1.__class__ is not bytes: _b1 = _b1.encode()
-            _w(_S0.pack(self.header.seq, self.header.stamp.secs, self.header.stamp.nsecs, len(_b1)) + _b1)
-            _b2 = self.status.goal_id.id
-            if _b2.__class__ is not bytes: _b2 = _b2.encode()
-            _w(_S1.pack(self.status.goal_id.stamp.secs, self.status.goal_id.stamp.nsecs, len(_b2)) + _b2)
-            _b3 = self.status.text
+            _m1 = self.header
+            _m2 = _m1.stamp
+            _b3 = _m1.frame_id
             if _b3.__class__ is not bytes: _b3 = _b3.encode()
-            _w(_S2.pack(self.status.status, len(_b3)) + _b3)
-            _b4 = self.result.map.header.frame_id
-            if _b4.__class__ is not bytes: _b4 = _b4.encode()
-            _w(_S0.pack(self.result.map.header.seq, self.result.map.header.stamp.secs, self.result.map.header.stamp.nsecs, len(_b4)) + _b4)
-            _x5 = self.result.map.data
-            _w(_S3.pack(self.result.map.info.map_load_time.secs, self.result.map.info.map_load_time.nsecs, self.result.map.info.resolution, self.result.map.info.width, self.result.map.info.height, self.result.map.info.origin.position.x, self.result.map.info.origin.position.y, self.result.map.info.origin.position.z, self.result.map.info.origin.orientation.x, self.result.map.info.origin.orientation.y, self.result.map.info.origin.orientation.z, self.result.map.info.origin.orientation.w, len(_x5)))
-            _w(_pack_array(_x5, 'b', '<i1'))
+            _w(_S0.pack(_m1.seq, _m2.secs, _m2.nsecs, len(_b3)) + _b3)
+            _m4 = self.status
+            _m5 = _m4.goal_id
+            _m6 = _m5.stamp
+            _b7 = _m5.id
+            if _b7.__class__ is not bytes: _b7 = _b7.encode()
+            _w(_S1.pack(_m6.secs, _m6.nsecs, len(_b7)) + _b7)
+            _b8 = _m4.text
+            if _b8.__class__ is not bytes: _b8 = _b8.encode()
+            _w(_S2.pack(_m4.status, len(_b8)) + _b8)
+            _m9 = self.result.map
+            _m10 = _m9.header
+            _m11 = _m10.stamp
+            _b12 = _m10.frame_id
+            if _b12.__class__ is not bytes: _b12 = _b12.encode()
+            _w(_S0.pack(_m10.seq, _m11.secs, _m11.nsecs, len(_b12)) + _b12)
+            _m13 = _m9.info
+            _m14 = _m13.map_load_time
+            _m15 = _m13.origin
+            _m16 = _m15.position
+            _m17 = _m15.orientation
+            _x18 = _m9.data
+            _w(_S3.pack(_m14.secs, _m14.nsecs, _m13.resolution, _m13.width, _m13.height, _m16.x, _m16.y, _m16.z, _m17.x, _m17.y, _m17.z, _m17.w, len(_x18)))
+            _w(_pack_array(_x18, 'b', '<i1'))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -78,135 +125,126 @@ class GetMapActionResult(_Message):
 
     def deserialize(self, data):
         try:
+            _v1 = self.header
+            _t2 = _v1.stamp
+            _v3 = self.status
+            _v4 = _v3.goal_id
+            _t5 = _v4.stamp
+            _v6 = self.result
+            _v7 = _v6.map
+            _v8 = _v7.header
+            _t9 = _v8.stamp
+            _v10 = _v7.info
+            _t11 = _v10.map_load_time
+            _v12 = _v10.origin
+            _v13 = _v12.position
+            _v14 = _v12.orientation
             _buf = data
-            _len = len(data)
-            _end = 0
-            _v1 = _new(_T_std_msgs__Header)
-            self.header = _v1
-            _t2 = _new(_Time)
-            _v1.stamp = _t2
-            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v1.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v3 = _new(_T_actionlib_msgs__GoalStatus)
-            self.status = _v3
-            _v4 = _new(_T_actionlib_msgs__GoalID)
-            _v3.goal_id = _v4
-            _t5 = _new(_Time)
-            _v4.stamp = _t5
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
             _t5.secs, _t5.nsecs, _n = _S1.unpack_from(_buf, _end)
-            _end += 12
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v4.id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            _s = _end + 12
+            _end = _s + _n
+            _v4.id = str(_buf[_s:_end], 'utf-8', 'replace')
             _v3.status, _n = _S2.unpack_from(_buf, _end)
-            _end += 5
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v3.text = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v6 = _new(_T_nav_msgs__GetMapResult)
-            self.result = _v6
-            _v7 = _new(_T_nav_msgs__OccupancyGrid)
-            _v6.map = _v7
-            _v8 = _new(_T_std_msgs__Header)
-            _v7.header = _v8
-            _t9 = _new(_Time)
-            _v8.stamp = _t9
+            _s = _end + 5
+            _end = _s + _n
+            _v3.text = str(_buf[_s:_end], 'utf-8', 'replace')
             _v8.seq, _t9.secs, _t9.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v8.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v10 = _new(_T_nav_msgs__MapMetaData)
-            _v7.info = _v10
-            _t11 = _new(_Time)
-            _v10.map_load_time = _t11
-            _v12 = _new(_T_geometry_msgs__Pose)
-            _v10.origin = _v12
-            _v13 = _new(_T_geometry_msgs__Point)
-            _v12.position = _v13
-            _v14 = _new(_T_geometry_msgs__Quaternion)
-            _v12.orientation = _v14
+            _s = _end + 16
+            _end = _s + _n
+            _v8.frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
             _t11.secs, _t11.nsecs, _v10.resolution, _v10.width, _v10.height, _v13.x, _v13.y, _v13.z, _v14.x, _v14.y, _v14.z, _v14.w, _n = _S3.unpack_from(_buf, _end)
-            _end += 80
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v7.data = _unpack_from('<%db' % _n, _buf, _end)
-            _end = _stop
+            _v7.data = _unpack_from('<%db' % _n, _buf, _end + 80)
+            _end += 80 + _n
+            if _end > len(_buf): raise _Truncated
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
+        return _refill(self, GetMapActionResult, data)
+
+    @classmethod
+    def _from_buffer(cls, data):
+        self = _new(cls)
+        try:
+            _buf = data
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.stamp = _t2 = _new(_Time)
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            self.status = _v3 = _new(_T_actionlib_msgs__GoalStatus)
+            _v3.goal_id = _v4 = _new(_T_actionlib_msgs__GoalID)
+            _v4.stamp = _t5 = _new(_Time)
+            _t5.secs, _t5.nsecs, _n = _S1.unpack_from(_buf, _end)
+            _s = _end + 12
+            _end = _s + _n
+            _v4.id = str(_buf[_s:_end], 'utf-8', 'replace')
+            _v3.status, _n = _S2.unpack_from(_buf, _end)
+            _s = _end + 5
+            _end = _s + _n
+            _v3.text = str(_buf[_s:_end], 'utf-8', 'replace')
+            self.result = _v6 = _new(_T_nav_msgs__GetMapResult)
+            _v6.map = _v7 = _new(_T_nav_msgs__OccupancyGrid)
+            _v7.header = _v8 = _new(_T_std_msgs__Header)
+            _v8.stamp = _t9 = _new(_Time)
+            _v8.seq, _t9.secs, _t9.nsecs, _n = _S0.unpack_from(_buf, _end)
+            _s = _end + 16
+            _end = _s + _n
+            _v8.frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
+            _v7.info = _v10 = _new(_T_nav_msgs__MapMetaData)
+            _v10.map_load_time = _t11 = _new(_Time)
+            _v10.origin = _v12 = _new(_T_geometry_msgs__Pose)
+            _v12.position = _v13 = _new(_T_geometry_msgs__Point)
+            _v12.orientation = _v14 = _new(_T_geometry_msgs__Quaternion)
+            _t11.secs, _t11.nsecs, _v10.resolution, _v10.width, _v10.height, _v13.x, _v13.y, _v13.z, _v14.x, _v14.y, _v14.z, _v14.w, _n = _S3.unpack_from(_buf, _end)
+            _v7.data = _unpack_from('<%db' % _n, _buf, _end + 80)
+            _end += 80 + _n
+            if _end > len(_buf): raise _Truncated
+        except Exception as exc:
+            raise _deserialize_failed(cls, data, exc) from exc
         return self
 
     def deserialize_numpy(self, data, numpy):
         try:
             _np = numpy
             _buf = data
-            _len = len(data)
-            _end = 0
-            _v1 = _new(_T_std_msgs__Header)
-            self.header = _v1
-            _t2 = _new(_Time)
-            _v1.stamp = _t2
-            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v1.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v3 = _new(_T_actionlib_msgs__GoalStatus)
-            self.status = _v3
-            _v4 = _new(_T_actionlib_msgs__GoalID)
-            _v3.goal_id = _v4
-            _t5 = _new(_Time)
-            _v4.stamp = _t5
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.stamp = _t2 = _new(_Time)
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            self.status = _v3 = _new(_T_actionlib_msgs__GoalStatus)
+            _v3.goal_id = _v4 = _new(_T_actionlib_msgs__GoalID)
+            _v4.stamp = _t5 = _new(_Time)
             _t5.secs, _t5.nsecs, _n = _S1.unpack_from(_buf, _end)
-            _end += 12
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v4.id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            _s = _end + 12
+            _end = _s + _n
+            _v4.id = str(_buf[_s:_end], 'utf-8', 'replace')
             _v3.status, _n = _S2.unpack_from(_buf, _end)
-            _end += 5
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v3.text = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v6 = _new(_T_nav_msgs__GetMapResult)
-            self.result = _v6
-            _v7 = _new(_T_nav_msgs__OccupancyGrid)
-            _v6.map = _v7
-            _v8 = _new(_T_std_msgs__Header)
-            _v7.header = _v8
-            _t9 = _new(_Time)
-            _v8.stamp = _t9
+            _s = _end + 5
+            _end = _s + _n
+            _v3.text = str(_buf[_s:_end], 'utf-8', 'replace')
+            self.result = _v6 = _new(_T_nav_msgs__GetMapResult)
+            _v6.map = _v7 = _new(_T_nav_msgs__OccupancyGrid)
+            _v7.header = _v8 = _new(_T_std_msgs__Header)
+            _v8.stamp = _t9 = _new(_Time)
             _v8.seq, _t9.secs, _t9.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v8.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v10 = _new(_T_nav_msgs__MapMetaData)
-            _v7.info = _v10
-            _t11 = _new(_Time)
-            _v10.map_load_time = _t11
-            _v12 = _new(_T_geometry_msgs__Pose)
-            _v10.origin = _v12
-            _v13 = _new(_T_geometry_msgs__Point)
-            _v12.position = _v13
-            _v14 = _new(_T_geometry_msgs__Quaternion)
-            _v12.orientation = _v14
+            _s = _end + 16
+            _end = _s + _n
+            _v8.frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
+            _v7.info = _v10 = _new(_T_nav_msgs__MapMetaData)
+            _v10.map_load_time = _t11 = _new(_Time)
+            _v10.origin = _v12 = _new(_T_geometry_msgs__Pose)
+            _v12.position = _v13 = _new(_T_geometry_msgs__Point)
+            _v12.orientation = _v14 = _new(_T_geometry_msgs__Quaternion)
             _t11.secs, _t11.nsecs, _v10.resolution, _v10.width, _v10.height, _v13.x, _v13.y, _v13.z, _v14.x, _v14.y, _v14.z, _v14.w, _n = _S3.unpack_from(_buf, _end)
-            _end += 80
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v7.data = _np.frombuffer(_buf, '<i1', _n, _end)
-            _end = _stop
+            _v7.data = _np.frombuffer(_buf, '<i1', _n, _end + 80)
+            _end += 80 + _n
+            if _end > len(_buf): raise _Truncated
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
         return self

@@ -5,6 +5,7 @@ from kame.msg.message import Message as _Message
 from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
+from kame.msg.message import refill as _refill
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -43,16 +44,29 @@ class MapMetaData(_Message):
             if self.origin is None:
                 self.origin = _T_geometry_msgs__Pose()
         else:
-            self.map_load_time = _Time()
+            self.map_load_time = _t1 = _new(_Time)
+            _t1.secs = _t1.nsecs = 0
             self.resolution = 0.0
             self.width = 0
             self.height = 0
-            self.origin = _T_geometry_msgs__Pose()
+            self.origin = _v2 = _new(_T_geometry_msgs__Pose)
+            _v2.position = _v3 = _new(_T_geometry_msgs__Point)
+            _v3.x = 0.0
+            _v3.y = 0.0
+            _v3.z = 0.0
+            _v2.orientation = _v4 = _new(_T_geometry_msgs__Quaternion)
+            _v4.x = 0.0
+            _v4.y = 0.0
+            _v4.z = 0.0
+            _v4.w = 0.0
 
     def serialize(self, buff):
         try:
-            _w = buff.write
-            _w(_S0.pack(self.map_load_time.secs, self.map_load_time.nsecs, self.resolution, self.width, self.height, self.origin.position.x, self.origin.position.y, self.origin.position.z, self.origin.orientation.x, self.origin.orientation.y, self.origin.orientation.z, self.origin.orientation.w))
+            _m1 = self.map_load_time
+            _m2 = self.origin
+            _m3 = _m2.position
+            _m4 = _m2.orientation
+            buff.write(_S0.pack(_m1.secs, _m1.nsecs, self.resolution, self.width, self.height, _m3.x, _m3.y, _m3.z, _m4.x, _m4.y, _m4.z, _m4.w))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -61,21 +75,31 @@ class MapMetaData(_Message):
 
     def deserialize(self, data):
         try:
+            _t1 = self.map_load_time
+            _v2 = self.origin
+            _v3 = _v2.position
+            _v4 = _v2.orientation
             _buf = data
-            _len = len(data)
-            _end = 0
-            _t1 = _new(_Time)
-            self.map_load_time = _t1
-            _v2 = _new(_T_geometry_msgs__Pose)
-            self.origin = _v2
-            _v3 = _new(_T_geometry_msgs__Point)
-            _v2.position = _v3
-            _v4 = _new(_T_geometry_msgs__Quaternion)
-            _v2.orientation = _v4
-            _t1.secs, _t1.nsecs, self.resolution, self.width, self.height, _v3.x, _v3.y, _v3.z, _v4.x, _v4.y, _v4.z, _v4.w = _S0.unpack_from(_buf, _end)
-            _end += 76
+            _t1.secs, _t1.nsecs, self.resolution, self.width, self.height, _v3.x, _v3.y, _v3.z, _v4.x, _v4.y, _v4.z, _v4.w = _S0.unpack_from(_buf, 0)
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
+        return _refill(self, MapMetaData, data)
+
+    @classmethod
+    def _from_buffer(cls, data):
+        self = _new(cls)
+        try:
+            _buf = data
+            self.map_load_time = _t1 = _new(_Time)
+            self.origin = _v2 = _new(_T_geometry_msgs__Pose)
+            _v2.position = _v3 = _new(_T_geometry_msgs__Point)
+            _v2.orientation = _v4 = _new(_T_geometry_msgs__Quaternion)
+            _t1.secs, _t1.nsecs, self.resolution, self.width, self.height, _v3.x, _v3.y, _v3.z, _v4.x, _v4.y, _v4.z, _v4.w = _S0.unpack_from(_buf, 0)
+        except Exception as exc:
+            raise _deserialize_failed(cls, data, exc) from exc
         return self
 
     def deserialize_numpy(self, data, numpy):

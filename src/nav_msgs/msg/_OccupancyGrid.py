@@ -5,6 +5,7 @@ from kame.msg.message import Message as _Message
 from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
+from kame.msg.message import refill as _refill
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -42,19 +43,45 @@ class OccupancyGrid(_Message):
             if self.data is None:
                 self.data = []
         else:
-            self.header = _T_std_msgs__Header()
-            self.info = _T_nav_msgs__MapMetaData()
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.seq = 0
+            _v1.stamp = _t2 = _new(_Time)
+            _t2.secs = _t2.nsecs = 0
+            _v1.frame_id = ''
+            self.info = _v3 = _new(_T_nav_msgs__MapMetaData)
+            _v3.map_load_time = _t4 = _new(_Time)
+            _t4.secs = _t4.nsecs = 0
+            _v3.resolution = 0.0
+            _v3.width = 0
+            _v3.height = 0
+            _v3.origin = _v5 = _new(_T_geometry_msgs__Pose)
+            _v5.position = _v6 = _new(_T_geometry_msgs__Point)
+            _v6.x = 0.0
+            _v6.y = 0.0
+            _v6.z = 0.0
+            _v5.orientation = _v7 = _new(_T_geometry_msgs__Quaternion)
+            _v7.x = 0.0
+            _v7.y = 0.0
+            _v7.z = 0.0
+            _v7.w = 0.0
             self.data = []
 
     def serialize(self, buff):
         try:
             _w = buff.write
-            _b1 = self.header.frame_id
-            if _b1.__class__ is not bytes: _b1 = _b1.encode()
-            _w(_S0.pack(self.header.seq, self.header.stamp.secs, self.header.stamp.nsecs, len(_b1)) + _b1)
-            _x2 = self.data
-            _w(_S1.pack(self.info.map_load_time.secs, self.info.map_load_time.nsecs, self.info.resolution, self.info.width, self.info.height, self.info.origin.position.x, self.info.origin.position.y, self.info.origin.position.z, self.info.origin.orientation.x, self.info.origin.orientation.y, self.info.origin.orientation.z, self.info.origin.orientation.w, len(_x2)))
-            _w(_pack_array(_x2, 'b', '<i1'))
+            _m1 = self.header
+            _m2 = _m1.stamp
+            _b3 = _m1.frame_id
+            if _b3.__class__ is not bytes: _b3 = _b3.encode()
+            _w(_S0.pack(_m1.seq, _m2.secs, _m2.nsecs, len(_b3)) + _b3)
+            _m4 = self.info
+            _m5 = _m4.map_load_time
+            _m6 = _m4.origin
+            _m7 = _m6.position
+            _m8 = _m6.orientation
+            _x9 = self.data
+            _w(_S1.pack(_m5.secs, _m5.nsecs, _m4.resolution, _m4.width, _m4.height, _m7.x, _m7.y, _m7.z, _m8.x, _m8.y, _m8.z, _m8.w, len(_x9)))
+            _w(_pack_array(_x9, 'b', '<i1'))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -63,71 +90,69 @@ class OccupancyGrid(_Message):
 
     def deserialize(self, data):
         try:
+            _v1 = self.header
+            _t2 = _v1.stamp
+            _v3 = self.info
+            _t4 = _v3.map_load_time
+            _v5 = _v3.origin
+            _v6 = _v5.position
+            _v7 = _v5.orientation
             _buf = data
-            _len = len(data)
-            _end = 0
-            _v1 = _new(_T_std_msgs__Header)
-            self.header = _v1
-            _t2 = _new(_Time)
-            _v1.stamp = _t2
-            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v1.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v3 = _new(_T_nav_msgs__MapMetaData)
-            self.info = _v3
-            _t4 = _new(_Time)
-            _v3.map_load_time = _t4
-            _v5 = _new(_T_geometry_msgs__Pose)
-            _v3.origin = _v5
-            _v6 = _new(_T_geometry_msgs__Point)
-            _v5.position = _v6
-            _v7 = _new(_T_geometry_msgs__Quaternion)
-            _v5.orientation = _v7
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
             _t4.secs, _t4.nsecs, _v3.resolution, _v3.width, _v3.height, _v6.x, _v6.y, _v6.z, _v7.x, _v7.y, _v7.z, _v7.w, _n = _S1.unpack_from(_buf, _end)
-            _end += 80
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            self.data = _unpack_from('<%db' % _n, _buf, _end)
-            _end = _stop
+            self.data = _unpack_from('<%db' % _n, _buf, _end + 80)
+            _end += 80 + _n
+            if _end > len(_buf): raise _Truncated
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
+        return _refill(self, OccupancyGrid, data)
+
+    @classmethod
+    def _from_buffer(cls, data):
+        self = _new(cls)
+        try:
+            _buf = data
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.stamp = _t2 = _new(_Time)
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            self.info = _v3 = _new(_T_nav_msgs__MapMetaData)
+            _v3.map_load_time = _t4 = _new(_Time)
+            _v3.origin = _v5 = _new(_T_geometry_msgs__Pose)
+            _v5.position = _v6 = _new(_T_geometry_msgs__Point)
+            _v5.orientation = _v7 = _new(_T_geometry_msgs__Quaternion)
+            _t4.secs, _t4.nsecs, _v3.resolution, _v3.width, _v3.height, _v6.x, _v6.y, _v6.z, _v7.x, _v7.y, _v7.z, _v7.w, _n = _S1.unpack_from(_buf, _end)
+            self.data = _unpack_from('<%db' % _n, _buf, _end + 80)
+            _end += 80 + _n
+            if _end > len(_buf): raise _Truncated
+        except Exception as exc:
+            raise _deserialize_failed(cls, data, exc) from exc
         return self
 
     def deserialize_numpy(self, data, numpy):
         try:
             _np = numpy
             _buf = data
-            _len = len(data)
-            _end = 0
-            _v1 = _new(_T_std_msgs__Header)
-            self.header = _v1
-            _t2 = _new(_Time)
-            _v1.stamp = _t2
-            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v1.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v3 = _new(_T_nav_msgs__MapMetaData)
-            self.info = _v3
-            _t4 = _new(_Time)
-            _v3.map_load_time = _t4
-            _v5 = _new(_T_geometry_msgs__Pose)
-            _v3.origin = _v5
-            _v6 = _new(_T_geometry_msgs__Point)
-            _v5.position = _v6
-            _v7 = _new(_T_geometry_msgs__Quaternion)
-            _v5.orientation = _v7
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.stamp = _t2 = _new(_Time)
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            self.info = _v3 = _new(_T_nav_msgs__MapMetaData)
+            _v3.map_load_time = _t4 = _new(_Time)
+            _v3.origin = _v5 = _new(_T_geometry_msgs__Pose)
+            _v5.position = _v6 = _new(_T_geometry_msgs__Point)
+            _v5.orientation = _v7 = _new(_T_geometry_msgs__Quaternion)
             _t4.secs, _t4.nsecs, _v3.resolution, _v3.width, _v3.height, _v6.x, _v6.y, _v6.z, _v7.x, _v7.y, _v7.z, _v7.w, _n = _S1.unpack_from(_buf, _end)
-            _end += 80
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            self.data = _np.frombuffer(_buf, '<i1', _n, _end)
-            _end = _stop
+            self.data = _np.frombuffer(_buf, '<i1', _n, _end + 80)
+            _end += 80 + _n
+            if _end > len(_buf): raise _Truncated
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
         return self

@@ -5,6 +5,7 @@ from kame.msg.message import Message as _Message
 from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
+from kame.msg.message import refill as _refill
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -51,23 +52,58 @@ class Odometry(_Message):
             if self.twist is None:
                 self.twist = _T_geometry_msgs__TwistWithCovariance()
         else:
-            self.header = _T_std_msgs__Header()
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.seq = 0
+            _v1.stamp = _t2 = _new(_Time)
+            _t2.secs = _t2.nsecs = 0
+            _v1.frame_id = ''
             self.child_frame_id = ''
-            self.pose = _T_geometry_msgs__PoseWithCovariance()
-            self.twist = _T_geometry_msgs__TwistWithCovariance()
+            self.pose = _v3 = _new(_T_geometry_msgs__PoseWithCovariance)
+            _v3.pose = _v4 = _new(_T_geometry_msgs__Pose)
+            _v4.position = _v5 = _new(_T_geometry_msgs__Point)
+            _v5.x = 0.0
+            _v5.y = 0.0
+            _v5.z = 0.0
+            _v4.orientation = _v6 = _new(_T_geometry_msgs__Quaternion)
+            _v6.x = 0.0
+            _v6.y = 0.0
+            _v6.z = 0.0
+            _v6.w = 0.0
+            _v3.covariance = [0.0] * 36
+            self.twist = _v7 = _new(_T_geometry_msgs__TwistWithCovariance)
+            _v7.twist = _v8 = _new(_T_geometry_msgs__Twist)
+            _v8.linear = _v9 = _new(_T_geometry_msgs__Vector3)
+            _v9.x = 0.0
+            _v9.y = 0.0
+            _v9.z = 0.0
+            _v8.angular = _v10 = _new(_T_geometry_msgs__Vector3)
+            _v10.x = 0.0
+            _v10.y = 0.0
+            _v10.z = 0.0
+            _v7.covariance = [0.0] * 36
 
     def serialize(self, buff):
         try:
             _w = buff.write
-            _b1 = self.header.frame_id
-            if _b1.__class__ is not bytes: _b1 = _b1.encode()
-            _w(_S0.pack(self.header.seq, self.header.stamp.secs, self.header.stamp.nsecs, len(_b1)) + _b1)
-            _b2 = self.child_frame_id
-            if _b2.__class__ is not bytes: _b2 = _b2.encode()
-            _w(_S1.pack(len(_b2)) + _b2)
-            _x3 = self.pose.covariance
-            _x4 = self.twist.covariance
-            _w(_S2.pack(self.pose.pose.position.x, self.pose.pose.position.y, self.pose.pose.position.z, self.pose.pose.orientation.x, self.pose.pose.orientation.y, self.pose.pose.orientation.z, self.pose.pose.orientation.w, *_x3, self.twist.twist.linear.x, self.twist.twist.linear.y, self.twist.twist.linear.z, self.twist.twist.angular.x, self.twist.twist.angular.y, self.twist.twist.angular.z, *_x4))
+            _m1 = self.header
+            _m2 = _m1.stamp
+            _b3 = _m1.frame_id
+            if _b3.__class__ is not bytes: _b3 = _b3.encode()
+            _w(_S0.pack(_m1.seq, _m2.secs, _m2.nsecs, len(_b3)) + _b3)
+            _b4 = self.child_frame_id
+            if _b4.__class__ is not bytes: _b4 = _b4.encode()
+            _w(_S1.pack(len(_b4)) + _b4)
+            _m5 = self.pose
+            _m6 = _m5.pose
+            _m7 = _m6.position
+            _m8 = _m6.orientation
+            _x9 = _m5.covariance
+            _m10 = self.twist
+            _m11 = _m10.twist
+            _m12 = _m11.linear
+            _m13 = _m11.angular
+            _x14 = _m10.covariance
+            _w(_S2.pack(_m7.x, _m7.y, _m7.z, _m8.x, _m8.y, _m8.z, _m8.w, *_x9, _m12.x, _m12.y, _m12.z, _m13.x, _m13.y, _m13.z, *_x14))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -76,107 +112,93 @@ class Odometry(_Message):
 
     def deserialize(self, data):
         try:
+            _v1 = self.header
+            _t2 = _v1.stamp
+            _v3 = self.pose
+            _v4 = _v3.pose
+            _v5 = _v4.position
+            _v6 = _v4.orientation
+            _v7 = self.twist
+            _v8 = _v7.twist
+            _v9 = _v8.linear
+            _v10 = _v8.angular
             _buf = data
-            _len = len(data)
-            _end = 0
-            _v1 = _new(_T_std_msgs__Header)
-            self.header = _v1
-            _t2 = _new(_Time)
-            _v1.stamp = _t2
-            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v1.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
             _n, = _S1.unpack_from(_buf, _end)
-            _end += 4
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            self.child_frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v3 = _new(_T_geometry_msgs__PoseWithCovariance)
-            self.pose = _v3
-            _v4 = _new(_T_geometry_msgs__Pose)
-            _v3.pose = _v4
-            _v5 = _new(_T_geometry_msgs__Point)
-            _v4.position = _v5
-            _v6 = _new(_T_geometry_msgs__Quaternion)
-            _v4.orientation = _v6
+            _s = _end + 4
+            _end = _s + _n
+            self.child_frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
             _v5.x, _v5.y, _v5.z, _v6.x, _v6.y, _v6.z, _v6.w = _S3.unpack_from(_buf, _end)
-            _end += 56
-            _stop = _end + 36 * 8
-            if _stop > _len: raise _Truncated
-            _v3.covariance = _S4.unpack_from(_buf, _end)
-            _end = _stop
-            _v7 = _new(_T_geometry_msgs__TwistWithCovariance)
-            self.twist = _v7
-            _v8 = _new(_T_geometry_msgs__Twist)
-            _v7.twist = _v8
-            _v9 = _new(_T_geometry_msgs__Vector3)
-            _v8.linear = _v9
-            _v10 = _new(_T_geometry_msgs__Vector3)
-            _v8.angular = _v10
-            _v9.x, _v9.y, _v9.z, _v10.x, _v10.y, _v10.z = _S5.unpack_from(_buf, _end)
-            _end += 48
-            _stop = _end + 36 * 8
-            if _stop > _len: raise _Truncated
-            _v7.covariance = _S4.unpack_from(_buf, _end)
-            _end = _stop
+            _v3.covariance = _S4.unpack_from(_buf, _end + 56)
+            _v9.x, _v9.y, _v9.z, _v10.x, _v10.y, _v10.z = _S5.unpack_from(_buf, _end + 344)
+            _v7.covariance = _S4.unpack_from(_buf, _end + 392)
+            if _end > len(_buf): raise _Truncated
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
+        return _refill(self, Odometry, data)
+
+    @classmethod
+    def _from_buffer(cls, data):
+        self = _new(cls)
+        try:
+            _buf = data
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.stamp = _t2 = _new(_Time)
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            _n, = _S1.unpack_from(_buf, _end)
+            _s = _end + 4
+            _end = _s + _n
+            self.child_frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
+            self.pose = _v3 = _new(_T_geometry_msgs__PoseWithCovariance)
+            _v3.pose = _v4 = _new(_T_geometry_msgs__Pose)
+            _v4.position = _v5 = _new(_T_geometry_msgs__Point)
+            _v4.orientation = _v6 = _new(_T_geometry_msgs__Quaternion)
+            _v5.x, _v5.y, _v5.z, _v6.x, _v6.y, _v6.z, _v6.w = _S3.unpack_from(_buf, _end)
+            _v3.covariance = _S4.unpack_from(_buf, _end + 56)
+            self.twist = _v7 = _new(_T_geometry_msgs__TwistWithCovariance)
+            _v7.twist = _v8 = _new(_T_geometry_msgs__Twist)
+            _v8.linear = _v9 = _new(_T_geometry_msgs__Vector3)
+            _v8.angular = _v10 = _new(_T_geometry_msgs__Vector3)
+            _v9.x, _v9.y, _v9.z, _v10.x, _v10.y, _v10.z = _S5.unpack_from(_buf, _end + 344)
+            _v7.covariance = _S4.unpack_from(_buf, _end + 392)
+            if _end > len(_buf): raise _Truncated
+        except Exception as exc:
+            raise _deserialize_failed(cls, data, exc) from exc
         return self
 
     def deserialize_numpy(self, data, numpy):
         try:
             _np = numpy
             _buf = data
-            _len = len(data)
-            _end = 0
-            _v1 = _new(_T_std_msgs__Header)
-            self.header = _v1
-            _t2 = _new(_Time)
-            _v1.stamp = _t2
-            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v1.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.stamp = _t2 = _new(_Time)
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
             _n, = _S1.unpack_from(_buf, _end)
-            _end += 4
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            self.child_frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v3 = _new(_T_geometry_msgs__PoseWithCovariance)
-            self.pose = _v3
-            _v4 = _new(_T_geometry_msgs__Pose)
-            _v3.pose = _v4
-            _v5 = _new(_T_geometry_msgs__Point)
-            _v4.position = _v5
-            _v6 = _new(_T_geometry_msgs__Quaternion)
-            _v4.orientation = _v6
+            _s = _end + 4
+            _end = _s + _n
+            self.child_frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
+            self.pose = _v3 = _new(_T_geometry_msgs__PoseWithCovariance)
+            _v3.pose = _v4 = _new(_T_geometry_msgs__Pose)
+            _v4.position = _v5 = _new(_T_geometry_msgs__Point)
+            _v4.orientation = _v6 = _new(_T_geometry_msgs__Quaternion)
             _v5.x, _v5.y, _v5.z, _v6.x, _v6.y, _v6.z, _v6.w = _S3.unpack_from(_buf, _end)
-            _end += 56
-            _stop = _end + 36 * 8
-            if _stop > _len: raise _Truncated
-            _v3.covariance = _np.frombuffer(_buf, '<f8', 36, _end)
-            _end = _stop
-            _v7 = _new(_T_geometry_msgs__TwistWithCovariance)
-            self.twist = _v7
-            _v8 = _new(_T_geometry_msgs__Twist)
-            _v7.twist = _v8
-            _v9 = _new(_T_geometry_msgs__Vector3)
-            _v8.linear = _v9
-            _v10 = _new(_T_geometry_msgs__Vector3)
-            _v8.angular = _v10
-            _v9.x, _v9.y, _v9.z, _v10.x, _v10.y, _v10.z = _S5.unpack_from(_buf, _end)
-            _end += 48
-            _stop = _end + 36 * 8
-            if _stop > _len: raise _Truncated
-            _v7.covariance = _np.frombuffer(_buf, '<f8', 36, _end)
-            _end = _stop
+            _v3.covariance = _np.frombuffer(_buf, '<f8', 36, _end + 56)
+            self.twist = _v7 = _new(_T_geometry_msgs__TwistWithCovariance)
+            _v7.twist = _v8 = _new(_T_geometry_msgs__Twist)
+            _v8.linear = _v9 = _new(_T_geometry_msgs__Vector3)
+            _v8.angular = _v10 = _new(_T_geometry_msgs__Vector3)
+            _v9.x, _v9.y, _v9.z, _v10.x, _v10.y, _v10.z = _S5.unpack_from(_buf, _end + 344)
+            _v7.covariance = _np.frombuffer(_buf, '<f8', 36, _end + 392)
+            if _end > len(_buf): raise _Truncated
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
         return self

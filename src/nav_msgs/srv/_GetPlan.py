@@ -5,6 +5,7 @@ from kame.msg.message import Message as _Message
 from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
+from kame.msg.message import refill as _refill
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -46,20 +47,62 @@ class GetPlanRequest(_Message):
             if self.tolerance is None:
                 self.tolerance = 0.0
         else:
-            self.start = _T_geometry_msgs__PoseStamped()
-            self.goal = _T_geometry_msgs__PoseStamped()
+            self.start = _v1 = _new(_T_geometry_msgs__PoseStamped)
+            _v1.header = _v2 = _new(_T_std_msgs__Header)
+            _v2.seq = 0
+            _v2.stamp = _t3 = _new(_Time)
+            _t3.secs = _t3.nsecs = 0
+            _v2.frame_id = ''
+            _v1.pose = _v4 = _new(_T_geometry_msgs__Pose)
+            _v4.position = _v5 = _new(_T_geometry_msgs__Point)
+            _v5.x = 0.0
+            _v5.y = 0.0
+            _v5.z = 0.0
+            _v4.orientation = _v6 = _new(_T_geometry_msgs__Quaternion)
+            _v6.x = 0.0
+            _v6.y = 0.0
+            _v6.z = 0.0
+            _v6.w = 0.0
+            self.goal = _v7 = _new(_T_geometry_msgs__PoseStamped)
+            _v7.header = _v8 = _new(_T_std_msgs__Header)
+            _v8.seq = 0
+            _v8.stamp = _t9 = _new(_Time)
+            _t9.secs = _t9.nsecs = 0
+            _v8.frame_id = ''
+            _v7.pose = _v10 = _new(_T_geometry_msgs__Pose)
+            _v10.position = _v11 = _new(_T_geometry_msgs__Point)
+            _v11.x = 0.0
+            _v11.y = 0.0
+            _v11.z = 0.0
+            _v10.orientation = _v12 = _new(_T_geometry_msgs__Quaternion)
+            _v12.x = 0.0
+            _v12.y = 0.0
+            _v12.z = 0.0
+            _v12.w = 0.0
             self.tolerance = 0.0
 
     def serialize(self, buff):
         try:
             _w = buff.write
-            _b1 = self.start.header.frame_id
-            if _b1.__class__ is not bytes: _b1 = _b1.encode()
-            _w(_S0.pack(self.start.header.seq, self.start.header.stamp.secs, self.start.header.stamp.nsecs, len(_b1)) + _b1)
-            _b2 = self.goal.header.frame_id
-            if _b2.__class__ is not bytes: _b2 = _b2.encode()
-            _w(_S1.pack(self.start.pose.position.x, self.start.pose.position.y, self.start.pose.position.z, self.start.pose.orientation.x, self.start.pose.orientation.y, self.start.pose.orientation.z, self.start.pose.orientation.w, self.goal.header.seq, self.goal.header.stamp.secs, self.goal.header.stamp.nsecs, len(_b2)) + _b2)
-            _w(_S2.pack(self.goal.pose.position.x, self.goal.pose.position.y, self.goal.pose.position.z, self.goal.pose.orientation.x, self.goal.pose.orientation.y, self.goal.pose.orientation.z, self.goal.pose.orientation.w, self.tolerance))
+            _m1 = self.start
+            _m2 = _m1.header
+            _m3 = _m2.stamp
+            _b4 = _m2.frame_id
+            if _b4.__class__ is not bytes: _b4 = _b4.encode()
+            _w(_S0.pack(_m2.seq, _m3.secs, _m3.nsecs, len(_b4)) + _b4)
+            _m5 = _m1.pose
+            _m6 = _m5.position
+            _m7 = _m5.orientation
+            _m8 = self.goal
+            _m9 = _m8.header
+            _m10 = _m9.stamp
+            _b11 = _m9.frame_id
+            if _b11.__class__ is not bytes: _b11 = _b11.encode()
+            _w(_S1.pack(_m6.x, _m6.y, _m6.z, _m7.x, _m7.y, _m7.z, _m7.w, _m9.seq, _m10.secs, _m10.nsecs, len(_b11)) + _b11)
+            _m12 = _m8.pose
+            _m13 = _m12.position
+            _m14 = _m12.orientation
+            _w(_S2.pack(_m13.x, _m13.y, _m13.z, _m14.x, _m14.y, _m14.z, _m14.w, self.tolerance))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -68,49 +111,63 @@ class GetPlanRequest(_Message):
 
     def deserialize(self, data):
         try:
+            _v1 = self.start
+            _v2 = _v1.header
+            _t3 = _v2.stamp
+            _v4 = _v1.pose
+            _v5 = _v4.position
+            _v6 = _v4.orientation
+            _v7 = self.goal
+            _v8 = _v7.header
+            _t9 = _v8.stamp
+            _v10 = _v7.pose
+            _v11 = _v10.position
+            _v12 = _v10.orientation
             _buf = data
-            _len = len(data)
-            _end = 0
-            _v1 = _new(_T_geometry_msgs__PoseStamped)
-            self.start = _v1
-            _v2 = _new(_T_std_msgs__Header)
-            _v1.header = _v2
-            _t3 = _new(_Time)
-            _v2.stamp = _t3
-            _v2.seq, _t3.secs, _t3.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v2.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v4 = _new(_T_geometry_msgs__Pose)
-            _v1.pose = _v4
-            _v5 = _new(_T_geometry_msgs__Point)
-            _v4.position = _v5
-            _v6 = _new(_T_geometry_msgs__Quaternion)
-            _v4.orientation = _v6
-            _v7 = _new(_T_geometry_msgs__PoseStamped)
-            self.goal = _v7
-            _v8 = _new(_T_std_msgs__Header)
-            _v7.header = _v8
-            _t9 = _new(_Time)
-            _v8.stamp = _t9
+            _v2.seq, _t3.secs, _t3.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v2.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
             _v5.x, _v5.y, _v5.z, _v6.x, _v6.y, _v6.z, _v6.w, _v8.seq, _t9.secs, _t9.nsecs, _n = _S1.unpack_from(_buf, _end)
-            _end += 72
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v8.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v10 = _new(_T_geometry_msgs__Pose)
-            _v7.pose = _v10
-            _v11 = _new(_T_geometry_msgs__Point)
-            _v10.position = _v11
-            _v12 = _new(_T_geometry_msgs__Quaternion)
-            _v10.orientation = _v12
+            _s = _end + 72
+            _end = _s + _n
+            _v8.frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
             _v11.x, _v11.y, _v11.z, _v12.x, _v12.y, _v12.z, _v12.w, self.tolerance = _S2.unpack_from(_buf, _end)
-            _end += 60
+            if _end > len(_buf): raise _Truncated
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
+        return _refill(self, GetPlanRequest, data)
+
+    @classmethod
+    def _from_buffer(cls, data):
+        self = _new(cls)
+        try:
+            _buf = data
+            self.start = _v1 = _new(_T_geometry_msgs__PoseStamped)
+            _v1.header = _v2 = _new(_T_std_msgs__Header)
+            _v2.stamp = _t3 = _new(_Time)
+            _v2.seq, _t3.secs, _t3.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v2.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            _v1.pose = _v4 = _new(_T_geometry_msgs__Pose)
+            _v4.position = _v5 = _new(_T_geometry_msgs__Point)
+            _v4.orientation = _v6 = _new(_T_geometry_msgs__Quaternion)
+            self.goal = _v7 = _new(_T_geometry_msgs__PoseStamped)
+            _v7.header = _v8 = _new(_T_std_msgs__Header)
+            _v8.stamp = _t9 = _new(_Time)
+            _v5.x, _v5.y, _v5.z, _v6.x, _v6.y, _v6.z, _v6.w, _v8.seq, _t9.secs, _t9.nsecs, _n = _S1.unpack_from(_buf, _end)
+            _s = _end + 72
+            _end = _s + _n
+            _v8.frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
+            _v7.pose = _v10 = _new(_T_geometry_msgs__Pose)
+            _v10.position = _v11 = _new(_T_geometry_msgs__Point)
+            _v10.orientation = _v12 = _new(_T_geometry_msgs__Quaternion)
+            _v11.x, _v11.y, _v11.z, _v12.x, _v12.y, _v12.z, _v12.w, self.tolerance = _S2.unpack_from(_buf, _end)
+            if _end > len(_buf): raise _Truncated
+        except Exception as exc:
+            raise _deserialize_failed(cls, data, exc) from exc
         return self
 
     def deserialize_numpy(self, data, numpy):
@@ -133,21 +190,35 @@ class GetPlanResponse(_Message):
             if self.plan is None:
                 self.plan = _T_nav_msgs__Path()
         else:
-            self.plan = _T_nav_msgs__Path()
+            self.plan = _v1 = _new(_T_nav_msgs__Path)
+            _v1.header = _v2 = _new(_T_std_msgs__Header)
+            _v2.seq = 0
+            _v2.stamp = _t3 = _new(_Time)
+            _t3.secs = _t3.nsecs = 0
+            _v2.frame_id = ''
+            _v1.poses = []
 
     def serialize(self, buff):
         try:
             _w = buff.write
-            _b1 = self.plan.header.frame_id
-            if _b1.__class__ is not bytes: _b1 = _b1.encode()
-            _w(_S0.pack(self.plan.header.seq, self.plan.header.stamp.secs, self.plan.header.stamp.nsecs, len(_b1)) + _b1)
-            _x2 = self.plan.poses
-            _w(_S3.pack(len(_x2)))
-            for _e3 in _x2:
-                _b4 = _e3.header.frame_id
-                if _b4.__class__ is not bytes: _b4 = _b4.encode()
-                _w(_S0.pack(_e3.header.seq, _e3.header.stamp.secs, _e3.header.stamp.nsecs, len(_b4)) + _b4)
-                _w(_S4.pack(_e3.pose.position.x, _e3.pose.position.y, _e3.pose.position.z, _e3.pose.orientation.x, _e3.pose.orientation.y, _e3.pose.orientation.z, _e3.pose.orientation.w))
+            _m1 = self.plan
+            _m2 = _m1.header
+            _m3 = _m2.stamp
+            _b4 = _m2.frame_id
+            if _b4.__class__ is not bytes: _b4 = _b4.encode()
+            _w(_S0.pack(_m2.seq, _m3.secs, _m3.nsecs, len(_b4)) + _b4)
+            _x5 = _m1.poses
+            _w(_S3.pack(len(_x5)))
+            for _e6 in _x5:
+                _m7 = _e6.header
+                _m8 = _m7.stamp
+                _b9 = _m7.frame_id
+                if _b9.__class__ is not bytes: _b9 = _b9.encode()
+                _w(_S0.pack(_m7.seq, _m8.secs, _m8.nsecs, len(_b9)) + _b9)
+                _m10 = _e6.pose
+                _m11 = _m10.position
+                _m12 = _m10.orientation
+                _w(_S4.pack(_m11.x, _m11.y, _m11.z, _m12.x, _m12.y, _m12.z, _m12.w))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -156,49 +227,71 @@ class GetPlanResponse(_Message):
 
     def deserialize(self, data):
         try:
+            _v1 = self.plan
+            _v2 = _v1.header
+            _t3 = _v2.stamp
             _buf = data
-            _len = len(data)
-            _end = 0
-            _v1 = _new(_T_nav_msgs__Path)
-            self.plan = _v1
-            _v2 = _new(_T_std_msgs__Header)
-            _v1.header = _v2
-            _t3 = _new(_Time)
-            _v2.stamp = _t3
-            _v2.seq, _t3.secs, _t3.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v2.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            _v2.seq, _t3.secs, _t3.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v2.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
             _n, = _S3.unpack_from(_buf, _end)
             _end += 4
             _l4 = []
             for _ in range(_n):
-                _v6 = _new(_T_geometry_msgs__PoseStamped)
-                _i5 = _v6
-                _v7 = _new(_T_std_msgs__Header)
-                _v6.header = _v7
-                _t8 = _new(_Time)
-                _v7.stamp = _t8
+                _i5 = _v6 = _new(_T_geometry_msgs__PoseStamped)
+                _v6.header = _v7 = _new(_T_std_msgs__Header)
+                _v7.stamp = _t8 = _new(_Time)
                 _v7.seq, _t8.secs, _t8.nsecs, _n = _S0.unpack_from(_buf, _end)
-                _end += 16
-                _stop = _end + _n
-                if _stop > _len: raise _Truncated
-                _v7.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-                _end = _stop
-                _v9 = _new(_T_geometry_msgs__Pose)
-                _v6.pose = _v9
-                _v10 = _new(_T_geometry_msgs__Point)
-                _v9.position = _v10
-                _v11 = _new(_T_geometry_msgs__Quaternion)
-                _v9.orientation = _v11
+                _s = _end + 16
+                _end = _s + _n
+                _v7.frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v6.pose = _v9 = _new(_T_geometry_msgs__Pose)
+                _v9.position = _v10 = _new(_T_geometry_msgs__Point)
+                _v9.orientation = _v11 = _new(_T_geometry_msgs__Quaternion)
                 _v10.x, _v10.y, _v10.z, _v11.x, _v11.y, _v11.z, _v11.w = _S4.unpack_from(_buf, _end)
                 _end += 56
                 _l4.append(_i5)
             _v1.poses = _l4
+            if _end > len(_buf): raise _Truncated
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
+        return _refill(self, GetPlanResponse, data)
+
+    @classmethod
+    def _from_buffer(cls, data):
+        self = _new(cls)
+        try:
+            _buf = data
+            self.plan = _v1 = _new(_T_nav_msgs__Path)
+            _v1.header = _v2 = _new(_T_std_msgs__Header)
+            _v2.stamp = _t3 = _new(_Time)
+            _v2.seq, _t3.secs, _t3.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v2.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            _n, = _S3.unpack_from(_buf, _end)
+            _end += 4
+            _l4 = []
+            for _ in range(_n):
+                _i5 = _v6 = _new(_T_geometry_msgs__PoseStamped)
+                _v6.header = _v7 = _new(_T_std_msgs__Header)
+                _v7.stamp = _t8 = _new(_Time)
+                _v7.seq, _t8.secs, _t8.nsecs, _n = _S0.unpack_from(_buf, _end)
+                _s = _end + 16
+                _end = _s + _n
+                _v7.frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v6.pose = _v9 = _new(_T_geometry_msgs__Pose)
+                _v9.position = _v10 = _new(_T_geometry_msgs__Point)
+                _v9.orientation = _v11 = _new(_T_geometry_msgs__Quaternion)
+                _v10.x, _v10.y, _v10.z, _v11.x, _v11.y, _v11.z, _v11.w = _S4.unpack_from(_buf, _end)
+                _end += 56
+                _l4.append(_i5)
+            _v1.poses = _l4
+            if _end > len(_buf): raise _Truncated
+        except Exception as exc:
+            raise _deserialize_failed(cls, data, exc) from exc
         return self
 
     def deserialize_numpy(self, data, numpy):

@@ -5,6 +5,7 @@ from kame.msg.message import Message as _Message
 from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
+from kame.msg.message import refill as _refill
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -45,10 +46,9 @@ class LoadMapRequest(_Message):
 
     def serialize(self, buff):
         try:
-            _w = buff.write
             _b1 = self.map_url
             if _b1.__class__ is not bytes: _b1 = _b1.encode()
-            _w(_S0.pack(len(_b1)) + _b1)
+            buff.write(_S0.pack(len(_b1)) + _b1)
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -58,16 +58,25 @@ class LoadMapRequest(_Message):
     def deserialize(self, data):
         try:
             _buf = data
-            _len = len(data)
-            _end = 0
-            _n, = _S0.unpack_from(_buf, _end)
-            _end += 4
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            self.map_url = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            _n, = _S0.unpack_from(_buf, 0)
+            _end = 4 + _n
+            self.map_url = str(_buf[4:_end], 'utf-8', 'replace')
+            if _end > len(_buf): raise _Truncated
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
+        return self
+
+    @classmethod
+    def _from_buffer(cls, data):
+        self = _new(cls)
+        try:
+            _buf = data
+            _n, = _S0.unpack_from(_buf, 0)
+            _end = 4 + _n
+            self.map_url = str(_buf[4:_end], 'utf-8', 'replace')
+            if _end > len(_buf): raise _Truncated
+        except Exception as exc:
+            raise _deserialize_failed(cls, data, exc) from exc
         return self
 
     def deserialize_numpy(self, data, numpy):
@@ -97,18 +106,48 @@ class LoadMapResponse(_Message):
             if self.result is None:
                 self.result = 0
         else:
-            self.map = _T_nav_msgs__OccupancyGrid()
+            self.map = _v1 = _new(_T_nav_msgs__OccupancyGrid)
+            _v1.header = _v2 = _new(_T_std_msgs__Header)
+            _v2.seq = 0
+            _v2.stamp = _t3 = _new(_Time)
+            _t3.secs = _t3.nsecs = 0
+            _v2.frame_id = ''
+            _v1.info = _v4 = _new(_T_nav_msgs__MapMetaData)
+            _v4.map_load_time = _t5 = _new(_Time)
+            _t5.secs = _t5.nsecs = 0
+            _v4.resolution = 0.0
+            _v4.width = 0
+            _v4.height = 0
+            _v4.origin = _v6 = _new(_T_geometry_msgs__Pose)
+            _v6.position = _v7 = _new(_T_geometry_msgs__Point)
+            _v7.x = 0.0
+            _v7.y = 0.0
+            _v7.z = 0.0
+            _v6.orientation = _v8 = _new(_T_geometry_msgs__Quaternion)
+            _v8.x = 0.0
+            _v8.y = 0.0
+            _v8.z = 0.0
+            _v8.w = 0.0
+            _v1.data = []
             self.result = 0
 
     def serialize(self, buff):
         try:
             _w = buff.write
-            _b1 = self.map.header.frame_id
-            if _b1.__class__ is not bytes: _b1 = _b1.encode()
-            _w(_S1.pack(self.map.header.seq, self.map.header.stamp.secs, self.map.header.stamp.nsecs, len(_b1)) + _b1)
-            _x2 = self.map.data
-            _w(_S2.pack(self.map.info.map_load_time.secs, self.map.info.map_load_time.nsecs, self.map.info.resolution, self.map.info.width, self.map.info.height, self.map.info.origin.position.x, self.map.info.origin.position.y, self.map.info.origin.position.z, self.map.info.origin.orientation.x, self.map.info.origin.orientation.y, self.map.info.origin.orientation.z, self.map.info.origin.orientation.w, len(_x2)))
-            _w(_pack_array(_x2, 'b', '<i1'))
+            _m1 = self.map
+            _m2 = _m1.header
+            _m3 = _m2.stamp
+            _b4 = _m2.frame_id
+            if _b4.__class__ is not bytes: _b4 = _b4.encode()
+            _w(_S1.pack(_m2.seq, _m3.secs, _m3.nsecs, len(_b4)) + _b4)
+            _m5 = _m1.info
+            _m6 = _m5.map_load_time
+            _m7 = _m5.origin
+            _m8 = _m7.position
+            _m9 = _m7.orientation
+            _x10 = _m1.data
+            _w(_S2.pack(_m6.secs, _m6.nsecs, _m5.resolution, _m5.width, _m5.height, _m8.x, _m8.y, _m8.z, _m9.x, _m9.y, _m9.z, _m9.w, len(_x10)))
+            _w(_pack_array(_x10, 'b', '<i1'))
             _w(_S3.pack(self.result))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
@@ -118,79 +157,75 @@ class LoadMapResponse(_Message):
 
     def deserialize(self, data):
         try:
+            _v1 = self.map
+            _v2 = _v1.header
+            _t3 = _v2.stamp
+            _v4 = _v1.info
+            _t5 = _v4.map_load_time
+            _v6 = _v4.origin
+            _v7 = _v6.position
+            _v8 = _v6.orientation
             _buf = data
-            _len = len(data)
-            _end = 0
-            _v1 = _new(_T_nav_msgs__OccupancyGrid)
-            self.map = _v1
-            _v2 = _new(_T_std_msgs__Header)
-            _v1.header = _v2
-            _t3 = _new(_Time)
-            _v2.stamp = _t3
-            _v2.seq, _t3.secs, _t3.nsecs, _n = _S1.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v2.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v4 = _new(_T_nav_msgs__MapMetaData)
-            _v1.info = _v4
-            _t5 = _new(_Time)
-            _v4.map_load_time = _t5
-            _v6 = _new(_T_geometry_msgs__Pose)
-            _v4.origin = _v6
-            _v7 = _new(_T_geometry_msgs__Point)
-            _v6.position = _v7
-            _v8 = _new(_T_geometry_msgs__Quaternion)
-            _v6.orientation = _v8
+            _v2.seq, _t3.secs, _t3.nsecs, _n = _S1.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v2.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
             _t5.secs, _t5.nsecs, _v4.resolution, _v4.width, _v4.height, _v7.x, _v7.y, _v7.z, _v8.x, _v8.y, _v8.z, _v8.w, _n = _S2.unpack_from(_buf, _end)
-            _end += 80
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v1.data = _unpack_from('<%db' % _n, _buf, _end)
-            _end = _stop
+            _v1.data = _unpack_from('<%db' % _n, _buf, _end + 80)
+            _end += 80 + _n
             self.result, = _S3.unpack_from(_buf, _end)
-            _end += 1
+            if _end > len(_buf): raise _Truncated
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
+        return _refill(self, LoadMapResponse, data)
+
+    @classmethod
+    def _from_buffer(cls, data):
+        self = _new(cls)
+        try:
+            _buf = data
+            self.map = _v1 = _new(_T_nav_msgs__OccupancyGrid)
+            _v1.header = _v2 = _new(_T_std_msgs__Header)
+            _v2.stamp = _t3 = _new(_Time)
+            _v2.seq, _t3.secs, _t3.nsecs, _n = _S1.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v2.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            _v1.info = _v4 = _new(_T_nav_msgs__MapMetaData)
+            _v4.map_load_time = _t5 = _new(_Time)
+            _v4.origin = _v6 = _new(_T_geometry_msgs__Pose)
+            _v6.position = _v7 = _new(_T_geometry_msgs__Point)
+            _v6.orientation = _v8 = _new(_T_geometry_msgs__Quaternion)
+            _t5.secs, _t5.nsecs, _v4.resolution, _v4.width, _v4.height, _v7.x, _v7.y, _v7.z, _v8.x, _v8.y, _v8.z, _v8.w, _n = _S2.unpack_from(_buf, _end)
+            _v1.data = _unpack_from('<%db' % _n, _buf, _end + 80)
+            _end += 80 + _n
+            self.result, = _S3.unpack_from(_buf, _end)
+            if _end > len(_buf): raise _Truncated
+        except Exception as exc:
+            raise _deserialize_failed(cls, data, exc) from exc
         return self
 
     def deserialize_numpy(self, data, numpy):
         try:
             _np = numpy
             _buf = data
-            _len = len(data)
-            _end = 0
-            _v1 = _new(_T_nav_msgs__OccupancyGrid)
-            self.map = _v1
-            _v2 = _new(_T_std_msgs__Header)
-            _v1.header = _v2
-            _t3 = _new(_Time)
-            _v2.stamp = _t3
-            _v2.seq, _t3.secs, _t3.nsecs, _n = _S1.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v2.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v4 = _new(_T_nav_msgs__MapMetaData)
-            _v1.info = _v4
-            _t5 = _new(_Time)
-            _v4.map_load_time = _t5
-            _v6 = _new(_T_geometry_msgs__Pose)
-            _v4.origin = _v6
-            _v7 = _new(_T_geometry_msgs__Point)
-            _v6.position = _v7
-            _v8 = _new(_T_geometry_msgs__Quaternion)
-            _v6.orientation = _v8
+            self.map = _v1 = _new(_T_nav_msgs__OccupancyGrid)
+            _v1.header = _v2 = _new(_T_std_msgs__Header)
+            _v2.stamp = _t3 = _new(_Time)
+            _v2.seq, _t3.secs, _t3.nsecs, _n = _S1.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v2.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            _v1.info = _v4 = _new(_T_nav_msgs__MapMetaData)
+            _v4.map_load_time = _t5 = _new(_Time)
+            _v4.origin = _v6 = _new(_T_geometry_msgs__Pose)
+            _v6.position = _v7 = _new(_T_geometry_msgs__Point)
+            _v6.orientation = _v8 = _new(_T_geometry_msgs__Quaternion)
             _t5.secs, _t5.nsecs, _v4.resolution, _v4.width, _v4.height, _v7.x, _v7.y, _v7.z, _v8.x, _v8.y, _v8.z, _v8.w, _n = _S2.unpack_from(_buf, _end)
-            _end += 80
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v1.data = _np.frombuffer(_buf, '<i1', _n, _end)
-            _end = _stop
+            _v1.data = _np.frombuffer(_buf, '<i1', _n, _end + 80)
+            _end += 80 + _n
             self.result, = _S3.unpack_from(_buf, _end)
-            _end += 1
+            if _end > len(_buf): raise _Truncated
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
         return self

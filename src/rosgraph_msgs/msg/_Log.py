@@ -5,6 +5,7 @@ from kame.msg.message import Message as _Message
 from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
+from kame.msg.message import refill as _refill
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -55,7 +56,11 @@ class Log(_Message):
             if self.topics is None:
                 self.topics = []
         else:
-            self.header = _T_std_msgs__Header()
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.seq = 0
+            _v1.stamp = _t2 = _new(_Time)
+            _t2.secs = _t2.nsecs = 0
+            _v1.frame_id = ''
             self.level = 0
             self.name = ''
             self.msg = ''
@@ -67,27 +72,29 @@ class Log(_Message):
     def serialize(self, buff):
         try:
             _w = buff.write
-            _b1 = self.header.frame_id
-            if _b1.__class__ is not bytes: _b1 = _b1.encode()
-            _w(_S0.pack(self.header.seq, self.header.stamp.secs, self.header.stamp.nsecs, len(_b1)) + _b1)
-            _b2 = self.name
-            if _b2.__class__ is not bytes: _b2 = _b2.encode()
-            _w(_S1.pack(self.level, len(_b2)) + _b2)
-            _b3 = self.msg
+            _m1 = self.header
+            _m2 = _m1.stamp
+            _b3 = _m1.frame_id
             if _b3.__class__ is not bytes: _b3 = _b3.encode()
-            _w(_S2.pack(len(_b3)) + _b3)
-            _b4 = self.file
+            _w(_S0.pack(_m1.seq, _m2.secs, _m2.nsecs, len(_b3)) + _b3)
+            _b4 = self.name
             if _b4.__class__ is not bytes: _b4 = _b4.encode()
-            _w(_S2.pack(len(_b4)) + _b4)
-            _b5 = self.function
+            _w(_S1.pack(self.level, len(_b4)) + _b4)
+            _b5 = self.msg
             if _b5.__class__ is not bytes: _b5 = _b5.encode()
             _w(_S2.pack(len(_b5)) + _b5)
-            _x6 = self.topics
-            _w(_S3.pack(self.line, len(_x6)))
-            for _e7 in _x6:
-                _b8 = _e7
-                if _b8.__class__ is not bytes: _b8 = _b8.encode()
-                _w(_S2.pack(len(_b8)) + _b8)
+            _b6 = self.file
+            if _b6.__class__ is not bytes: _b6 = _b6.encode()
+            _w(_S2.pack(len(_b6)) + _b6)
+            _b7 = self.function
+            if _b7.__class__ is not bytes: _b7 = _b7.encode()
+            _w(_S2.pack(len(_b7)) + _b7)
+            _x8 = self.topics
+            _w(_S3.pack(self.line, len(_x8)))
+            for _e9 in _x8:
+                _b10 = _e9
+                if _b10.__class__ is not bytes: _b10 = _b10.encode()
+                _w(_S2.pack(len(_b10)) + _b10)
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -96,57 +103,85 @@ class Log(_Message):
 
     def deserialize(self, data):
         try:
+            _v1 = self.header
+            _t2 = _v1.stamp
             _buf = data
-            _len = len(data)
-            _end = 0
-            _v1 = _new(_T_std_msgs__Header)
-            self.header = _v1
-            _t2 = _new(_Time)
-            _v1.stamp = _t2
-            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v1.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
             self.level, _n = _S1.unpack_from(_buf, _end)
-            _end += 5
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            self.name = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            _s = _end + 5
+            _end = _s + _n
+            self.name = str(_buf[_s:_end], 'utf-8', 'replace')
             _n, = _S2.unpack_from(_buf, _end)
-            _end += 4
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            self.msg = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            _s = _end + 4
+            _end = _s + _n
+            self.msg = str(_buf[_s:_end], 'utf-8', 'replace')
             _n, = _S2.unpack_from(_buf, _end)
-            _end += 4
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            self.file = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            _s = _end + 4
+            _end = _s + _n
+            self.file = str(_buf[_s:_end], 'utf-8', 'replace')
             _n, = _S2.unpack_from(_buf, _end)
-            _end += 4
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            self.function = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            _s = _end + 4
+            _end = _s + _n
+            self.function = str(_buf[_s:_end], 'utf-8', 'replace')
             self.line, _n = _S3.unpack_from(_buf, _end)
             _end += 8
             _l3 = []
             for _ in range(_n):
                 _n, = _S2.unpack_from(_buf, _end)
-                _end += 4
-                _stop = _end + _n
-                if _stop > _len: raise _Truncated
-                _i4 = str(_buf[_end:_stop], 'utf-8', 'replace')
-                _end = _stop
+                _s = _end + 4
+                _end = _s + _n
+                _i4 = str(_buf[_s:_end], 'utf-8', 'replace')
                 _l3.append(_i4)
             self.topics = _l3
+            if _end > len(_buf): raise _Truncated
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
+        return _refill(self, Log, data)
+
+    @classmethod
+    def _from_buffer(cls, data):
+        self = _new(cls)
+        try:
+            _buf = data
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.stamp = _t2 = _new(_Time)
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            self.level, _n = _S1.unpack_from(_buf, _end)
+            _s = _end + 5
+            _end = _s + _n
+            self.name = str(_buf[_s:_end], 'utf-8', 'replace')
+            _n, = _S2.unpack_from(_buf, _end)
+            _s = _end + 4
+            _end = _s + _n
+            self.msg = str(_buf[_s:_end], 'utf-8', 'replace')
+            _n, = _S2.unpack_from(_buf, _end)
+            _s = _end + 4
+            _end = _s + _n
+            self.file = str(_buf[_s:_end], 'utf-8', 'replace')
+            _n, = _S2.unpack_from(_buf, _end)
+            _s = _end + 4
+            _end = _s + _n
+            self.function = str(_buf[_s:_end], 'utf-8', 'replace')
+            self.line, _n = _S3.unpack_from(_buf, _end)
+            _end += 8
+            _l3 = []
+            for _ in range(_n):
+                _n, = _S2.unpack_from(_buf, _end)
+                _s = _end + 4
+                _end = _s + _n
+                _i4 = str(_buf[_s:_end], 'utf-8', 'replace')
+                _l3.append(_i4)
+            self.topics = _l3
+            if _end > len(_buf): raise _Truncated
+        except Exception as exc:
+            raise _deserialize_failed(cls, data, exc) from exc
         return self
 
     def deserialize_numpy(self, data, numpy):

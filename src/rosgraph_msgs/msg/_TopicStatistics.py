@@ -5,6 +5,7 @@ from kame.msg.message import Message as _Message
 from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
+from kame.msg.message import refill as _refill
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -62,17 +63,25 @@ class TopicStatistics(_Message):
             self.topic = ''
             self.node_pub = ''
             self.node_sub = ''
-            self.window_start = _Time()
-            self.window_stop = _Time()
+            self.window_start = _t1 = _new(_Time)
+            _t1.secs = _t1.nsecs = 0
+            self.window_stop = _t2 = _new(_Time)
+            _t2.secs = _t2.nsecs = 0
             self.delivered_msgs = 0
             self.dropped_msgs = 0
             self.traffic = 0
-            self.period_mean = _Duration()
-            self.period_stddev = _Duration()
-            self.period_max = _Duration()
-            self.stamp_age_mean = _Duration()
-            self.stamp_age_stddev = _Duration()
-            self.stamp_age_max = _Duration()
+            self.period_mean = _t3 = _new(_Duration)
+            _t3.secs = _t3.nsecs = 0
+            self.period_stddev = _t4 = _new(_Duration)
+            _t4.secs = _t4.nsecs = 0
+            self.period_max = _t5 = _new(_Duration)
+            _t5.secs = _t5.nsecs = 0
+            self.stamp_age_mean = _t6 = _new(_Duration)
+            _t6.secs = _t6.nsecs = 0
+            self.stamp_age_stddev = _t7 = _new(_Duration)
+            _t7.secs = _t7.nsecs = 0
+            self.stamp_age_max = _t8 = _new(_Duration)
+            _t8.secs = _t8.nsecs = 0
 
     def serialize(self, buff):
         try:
@@ -86,7 +95,15 @@ class TopicStatistics(_Message):
             _b3 = self.node_sub
             if _b3.__class__ is not bytes: _b3 = _b3.encode()
             _w(_S0.pack(len(_b3)) + _b3)
-            _w(_S1.pack(self.window_start.secs, self.window_start.nsecs, self.window_stop.secs, self.window_stop.nsecs, self.delivered_msgs, self.dropped_msgs, self.traffic, self.period_mean.secs, self.period_mean.nsecs, self.period_stddev.secs, self.period_stddev.nsecs, self.period_max.secs, self.period_max.nsecs, self.stamp_age_mean.secs, self.stamp_age_mean.nsecs, self.stamp_age_stddev.secs, self.stamp_age_stddev.nsecs, self.stamp_age_max.secs, self.stamp_age_max.nsecs))
+            _m4 = self.window_start
+            _m5 = self.window_stop
+            _m6 = self.period_mean
+            _m7 = self.period_stddev
+            _m8 = self.period_max
+            _m9 = self.stamp_age_mean
+            _m10 = self.stamp_age_stddev
+            _m11 = self.stamp_age_max
+            _w(_S1.pack(_m4.secs, _m4.nsecs, _m5.secs, _m5.nsecs, self.delivered_msgs, self.dropped_msgs, self.traffic, _m6.secs, _m6.nsecs, _m7.secs, _m7.nsecs, _m8.secs, _m8.nsecs, _m9.secs, _m9.nsecs, _m10.secs, _m10.nsecs, _m11.secs, _m11.nsecs))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -95,47 +112,63 @@ class TopicStatistics(_Message):
 
     def deserialize(self, data):
         try:
+            _t1 = self.window_start
+            _t2 = self.window_stop
+            _t3 = self.period_mean
+            _t4 = self.period_stddev
+            _t5 = self.period_max
+            _t6 = self.stamp_age_mean
+            _t7 = self.stamp_age_stddev
+            _t8 = self.stamp_age_max
             _buf = data
-            _len = len(data)
-            _end = 0
+            _n, = _S0.unpack_from(_buf, 0)
+            _end = 4 + _n
+            self.topic = str(_buf[4:_end], 'utf-8', 'replace')
             _n, = _S0.unpack_from(_buf, _end)
-            _end += 4
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            self.topic = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            _s = _end + 4
+            _end = _s + _n
+            self.node_pub = str(_buf[_s:_end], 'utf-8', 'replace')
             _n, = _S0.unpack_from(_buf, _end)
-            _end += 4
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            self.node_pub = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _n, = _S0.unpack_from(_buf, _end)
-            _end += 4
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            self.node_sub = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _t1 = _new(_Time)
-            self.window_start = _t1
-            _t2 = _new(_Time)
-            self.window_stop = _t2
-            _t3 = _new(_Duration)
-            self.period_mean = _t3
-            _t4 = _new(_Duration)
-            self.period_stddev = _t4
-            _t5 = _new(_Duration)
-            self.period_max = _t5
-            _t6 = _new(_Duration)
-            self.stamp_age_mean = _t6
-            _t7 = _new(_Duration)
-            self.stamp_age_stddev = _t7
-            _t8 = _new(_Duration)
-            self.stamp_age_max = _t8
+            _s = _end + 4
+            _end = _s + _n
+            self.node_sub = str(_buf[_s:_end], 'utf-8', 'replace')
             _t1.secs, _t1.nsecs, _t2.secs, _t2.nsecs, self.delivered_msgs, self.dropped_msgs, self.traffic, _t3.secs, _t3.nsecs, _t4.secs, _t4.nsecs, _t5.secs, _t5.nsecs, _t6.secs, _t6.nsecs, _t7.secs, _t7.nsecs, _t8.secs, _t8.nsecs = _S1.unpack_from(_buf, _end)
-            _end += 76
+            if _end > len(_buf): raise _Truncated
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
+        return _refill(self, TopicStatistics, data)
+
+    @classmethod
+    def _from_buffer(cls, data):
+        self = _new(cls)
+        try:
+            _buf = data
+            _n, = _S0.unpack_from(_buf, 0)
+            _end = 4 + _n
+            self.topic = str(_buf[4:_end], 'utf-8', 'replace')
+            _n, = _S0.unpack_from(_buf, _end)
+            _s = _end + 4
+            _end = _s + _n
+            self.node_pub = str(_buf[_s:_end], 'utf-8', 'replace')
+            _n, = _S0.unpack_from(_buf, _end)
+            _s = _end + 4
+            _end = _s + _n
+            self.node_sub = str(_buf[_s:_end], 'utf-8', 'replace')
+            self.window_start = _t1 = _new(_Time)
+            self.window_stop = _t2 = _new(_Time)
+            self.period_mean = _t3 = _new(_Duration)
+            self.period_stddev = _t4 = _new(_Duration)
+            self.period_max = _t5 = _new(_Duration)
+            self.stamp_age_mean = _t6 = _new(_Duration)
+            self.stamp_age_stddev = _t7 = _new(_Duration)
+            self.stamp_age_max = _t8 = _new(_Duration)
+            _t1.secs, _t1.nsecs, _t2.secs, _t2.nsecs, self.delivered_msgs, self.dropped_msgs, self.traffic, _t3.secs, _t3.nsecs, _t4.secs, _t4.nsecs, _t5.secs, _t5.nsecs, _t6.secs, _t6.nsecs, _t7.secs, _t7.nsecs, _t8.secs, _t8.nsecs = _S1.unpack_from(_buf, _end)
+            if _end > len(_buf): raise _Truncated
+        except Exception as exc:
+            raise _deserialize_failed(cls, data, exc) from exc
         return self
 
     def deserialize_numpy(self, data, numpy):

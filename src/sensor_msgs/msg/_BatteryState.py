@@ -5,6 +5,7 @@ from kame.msg.message import Message as _Message
 from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
+from kame.msg.message import refill as _refill
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -87,7 +88,11 @@ class BatteryState(_Message):
             if self.serial_number is None:
                 self.serial_number = ''
         else:
-            self.header = _T_std_msgs__Header()
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.seq = 0
+            _v1.stamp = _t2 = _new(_Time)
+            _t2.secs = _t2.nsecs = 0
+            _v1.frame_id = ''
             self.voltage = 0.0
             self.temperature = 0.0
             self.current = 0.0
@@ -107,21 +112,23 @@ class BatteryState(_Message):
     def serialize(self, buff):
         try:
             _w = buff.write
-            _b1 = self.header.frame_id
-            if _b1.__class__ is not bytes: _b1 = _b1.encode()
-            _w(_S0.pack(self.header.seq, self.header.stamp.secs, self.header.stamp.nsecs, len(_b1)) + _b1)
-            _x2 = self.cell_voltage
-            _w(_S1.pack(self.voltage, self.temperature, self.current, self.charge, self.capacity, self.design_capacity, self.percentage, self.power_supply_status, self.power_supply_health, self.power_supply_technology, self.present, len(_x2)))
-            _w(_pack_array(_x2, 'f', '<f4'))
-            _x3 = self.cell_temperature
-            _w(_S2.pack(len(_x3)))
-            _w(_pack_array(_x3, 'f', '<f4'))
-            _b4 = self.location
-            if _b4.__class__ is not bytes: _b4 = _b4.encode()
-            _w(_S2.pack(len(_b4)) + _b4)
-            _b5 = self.serial_number
-            if _b5.__class__ is not bytes: _b5 = _b5.encode()
-            _w(_S2.pack(len(_b5)) + _b5)
+            _m1 = self.header
+            _m2 = _m1.stamp
+            _b3 = _m1.frame_id
+            if _b3.__class__ is not bytes: _b3 = _b3.encode()
+            _w(_S0.pack(_m1.seq, _m2.secs, _m2.nsecs, len(_b3)) + _b3)
+            _x4 = self.cell_voltage
+            _w(_S1.pack(self.voltage, self.temperature, self.current, self.charge, self.capacity, self.design_capacity, self.percentage, self.power_supply_status, self.power_supply_health, self.power_supply_technology, self.present, len(_x4)))
+            _w(_pack_array(_x4, 'f', '<f4'))
+            _x5 = self.cell_temperature
+            _w(_S2.pack(len(_x5)))
+            _w(_pack_array(_x5, 'f', '<f4'))
+            _b6 = self.location
+            if _b6.__class__ is not bytes: _b6 = _b6.encode()
+            _w(_S2.pack(len(_b6)) + _b6)
+            _b7 = self.serial_number
+            if _b7.__class__ is not bytes: _b7 = _b7.encode()
+            _w(_S2.pack(len(_b7)) + _b7)
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -130,87 +137,87 @@ class BatteryState(_Message):
 
     def deserialize(self, data):
         try:
+            _v1 = self.header
+            _t2 = _v1.stamp
             _buf = data
-            _len = len(data)
-            _end = 0
-            _v1 = _new(_T_std_msgs__Header)
-            self.header = _v1
-            _t2 = _new(_Time)
-            _v1.stamp = _t2
-            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v1.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
             self.voltage, self.temperature, self.current, self.charge, self.capacity, self.design_capacity, self.percentage, self.power_supply_status, self.power_supply_health, self.power_supply_technology, self.present, _n = _S3.unpack_from(_buf, _end)
-            _end += 36
-            _stop = _end + _n * 4
-            if _stop > _len: raise _Truncated
-            self.cell_voltage = _unpack_from('<%df' % _n, _buf, _end)
-            _end = _stop
+            self.cell_voltage = _unpack_from('<%df' % _n, _buf, _end + 36)
+            _end += 36 + _n * 4
             _n, = _S2.unpack_from(_buf, _end)
-            _end += 4
-            _stop = _end + _n * 4
-            if _stop > _len: raise _Truncated
-            self.cell_temperature = _unpack_from('<%df' % _n, _buf, _end)
-            _end = _stop
+            self.cell_temperature = _unpack_from('<%df' % _n, _buf, _end + 4)
+            _end += 4 + _n * 4
             _n, = _S2.unpack_from(_buf, _end)
-            _end += 4
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            self.location = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            _s = _end + 4
+            _end = _s + _n
+            self.location = str(_buf[_s:_end], 'utf-8', 'replace')
             _n, = _S2.unpack_from(_buf, _end)
-            _end += 4
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            self.serial_number = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            _s = _end + 4
+            _end = _s + _n
+            self.serial_number = str(_buf[_s:_end], 'utf-8', 'replace')
+            if _end > len(_buf): raise _Truncated
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
+        return _refill(self, BatteryState, data)
+
+    @classmethod
+    def _from_buffer(cls, data):
+        self = _new(cls)
+        try:
+            _buf = data
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.stamp = _t2 = _new(_Time)
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            self.voltage, self.temperature, self.current, self.charge, self.capacity, self.design_capacity, self.percentage, self.power_supply_status, self.power_supply_health, self.power_supply_technology, self.present, _n = _S3.unpack_from(_buf, _end)
+            self.cell_voltage = _unpack_from('<%df' % _n, _buf, _end + 36)
+            _end += 36 + _n * 4
+            _n, = _S2.unpack_from(_buf, _end)
+            self.cell_temperature = _unpack_from('<%df' % _n, _buf, _end + 4)
+            _end += 4 + _n * 4
+            _n, = _S2.unpack_from(_buf, _end)
+            _s = _end + 4
+            _end = _s + _n
+            self.location = str(_buf[_s:_end], 'utf-8', 'replace')
+            _n, = _S2.unpack_from(_buf, _end)
+            _s = _end + 4
+            _end = _s + _n
+            self.serial_number = str(_buf[_s:_end], 'utf-8', 'replace')
+            if _end > len(_buf): raise _Truncated
+        except Exception as exc:
+            raise _deserialize_failed(cls, data, exc) from exc
         return self
 
     def deserialize_numpy(self, data, numpy):
         try:
             _np = numpy
             _buf = data
-            _len = len(data)
-            _end = 0
-            _v1 = _new(_T_std_msgs__Header)
-            self.header = _v1
-            _t2 = _new(_Time)
-            _v1.stamp = _t2
-            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v1.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.stamp = _t2 = _new(_Time)
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
             self.voltage, self.temperature, self.current, self.charge, self.capacity, self.design_capacity, self.percentage, self.power_supply_status, self.power_supply_health, self.power_supply_technology, self.present, _n = _S3.unpack_from(_buf, _end)
-            _end += 36
-            _stop = _end + _n * 4
-            if _stop > _len: raise _Truncated
-            self.cell_voltage = _np.frombuffer(_buf, '<f4', _n, _end)
-            _end = _stop
+            self.cell_voltage = _np.frombuffer(_buf, '<f4', _n, _end + 36)
+            _end += 36 + _n * 4
             _n, = _S2.unpack_from(_buf, _end)
-            _end += 4
-            _stop = _end + _n * 4
-            if _stop > _len: raise _Truncated
-            self.cell_temperature = _np.frombuffer(_buf, '<f4', _n, _end)
-            _end = _stop
+            self.cell_temperature = _np.frombuffer(_buf, '<f4', _n, _end + 4)
+            _end += 4 + _n * 4
             _n, = _S2.unpack_from(_buf, _end)
-            _end += 4
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            self.location = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            _s = _end + 4
+            _end = _s + _n
+            self.location = str(_buf[_s:_end], 'utf-8', 'replace')
             _n, = _S2.unpack_from(_buf, _end)
-            _end += 4
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            self.serial_number = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            _s = _end + 4
+            _end = _s + _n
+            self.serial_number = str(_buf[_s:_end], 'utf-8', 'replace')
+            if _end > len(_buf): raise _Truncated
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
         return self

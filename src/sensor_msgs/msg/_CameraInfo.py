@@ -5,6 +5,7 @@ from kame.msg.message import Message as _Message
 from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
+from kame.msg.message import refill as _refill
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -60,7 +61,11 @@ class CameraInfo(_Message):
             if self.roi is None:
                 self.roi = _T_sensor_msgs__RegionOfInterest()
         else:
-            self.header = _T_std_msgs__Header()
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.seq = 0
+            _v1.stamp = _t2 = _new(_Time)
+            _t2.secs = _t2.nsecs = 0
+            _v1.frame_id = ''
             self.height = 0
             self.width = 0
             self.distortion_model = ''
@@ -70,24 +75,32 @@ class CameraInfo(_Message):
             self.P = [0.0] * 12
             self.binning_x = 0
             self.binning_y = 0
-            self.roi = _T_sensor_msgs__RegionOfInterest()
+            self.roi = _v3 = _new(_T_sensor_msgs__RegionOfInterest)
+            _v3.x_offset = 0
+            _v3.y_offset = 0
+            _v3.height = 0
+            _v3.width = 0
+            _v3.do_rectify = False
 
     def serialize(self, buff):
         try:
             _w = buff.write
-            _b1 = self.header.frame_id
-            if _b1.__class__ is not bytes: _b1 = _b1.encode()
-            _w(_S0.pack(self.header.seq, self.header.stamp.secs, self.header.stamp.nsecs, len(_b1)) + _b1)
-            _b2 = self.distortion_model
-            if _b2.__class__ is not bytes: _b2 = _b2.encode()
-            _w(_S1.pack(self.height, self.width, len(_b2)) + _b2)
-            _x3 = self.D
-            _w(_S2.pack(len(_x3)))
-            _w(_pack_array(_x3, 'd', '<f8'))
-            _x4 = self.K
-            _x5 = self.R
-            _x6 = self.P
-            _w(_S3.pack(*_x4, *_x5, *_x6, self.binning_x, self.binning_y, self.roi.x_offset, self.roi.y_offset, self.roi.height, self.roi.width, self.roi.do_rectify))
+            _m1 = self.header
+            _m2 = _m1.stamp
+            _b3 = _m1.frame_id
+            if _b3.__class__ is not bytes: _b3 = _b3.encode()
+            _w(_S0.pack(_m1.seq, _m2.secs, _m2.nsecs, len(_b3)) + _b3)
+            _b4 = self.distortion_model
+            if _b4.__class__ is not bytes: _b4 = _b4.encode()
+            _w(_S1.pack(self.height, self.width, len(_b4)) + _b4)
+            _x5 = self.D
+            _w(_S2.pack(len(_x5)))
+            _w(_pack_array(_x5, 'd', '<f8'))
+            _x6 = self.K
+            _x7 = self.R
+            _x8 = self.P
+            _m9 = self.roi
+            _w(_S3.pack(*_x6, *_x7, *_x8, self.binning_x, self.binning_y, _m9.x_offset, _m9.y_offset, _m9.height, _m9.width, _m9.do_rectify))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -96,95 +109,81 @@ class CameraInfo(_Message):
 
     def deserialize(self, data):
         try:
+            _v1 = self.header
+            _t2 = _v1.stamp
+            _v3 = self.roi
             _buf = data
-            _len = len(data)
-            _end = 0
-            _v1 = _new(_T_std_msgs__Header)
-            self.header = _v1
-            _t2 = _new(_Time)
-            _v1.stamp = _t2
-            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v1.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
             self.height, self.width, _n = _S1.unpack_from(_buf, _end)
-            _end += 12
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            self.distortion_model = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            _s = _end + 12
+            _end = _s + _n
+            self.distortion_model = str(_buf[_s:_end], 'utf-8', 'replace')
             _n, = _S2.unpack_from(_buf, _end)
-            _end += 4
-            _stop = _end + _n * 8
-            if _stop > _len: raise _Truncated
-            self.D = _unpack_from('<%dd' % _n, _buf, _end)
-            _end = _stop
-            _stop = _end + 9 * 8
-            if _stop > _len: raise _Truncated
+            self.D = _unpack_from('<%dd' % _n, _buf, _end + 4)
+            _end += 4 + _n * 8
             self.K = _S4.unpack_from(_buf, _end)
-            _end = _stop
-            _stop = _end + 9 * 8
-            if _stop > _len: raise _Truncated
-            self.R = _S4.unpack_from(_buf, _end)
-            _end = _stop
-            _stop = _end + 12 * 8
-            if _stop > _len: raise _Truncated
-            self.P = _S5.unpack_from(_buf, _end)
-            _end = _stop
-            _v3 = _new(_T_sensor_msgs__RegionOfInterest)
-            self.roi = _v3
-            self.binning_x, self.binning_y, _v3.x_offset, _v3.y_offset, _v3.height, _v3.width, _v3.do_rectify = _S6.unpack_from(_buf, _end)
-            _end += 25
+            self.R = _S4.unpack_from(_buf, _end + 72)
+            self.P = _S5.unpack_from(_buf, _end + 144)
+            self.binning_x, self.binning_y, _v3.x_offset, _v3.y_offset, _v3.height, _v3.width, _v3.do_rectify = _S6.unpack_from(_buf, _end + 240)
+            if _end > len(_buf): raise _Truncated
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
+        return _refill(self, CameraInfo, data)
+
+    @classmethod
+    def _from_buffer(cls, data):
+        self = _new(cls)
+        try:
+            _buf = data
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.stamp = _t2 = _new(_Time)
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            self.height, self.width, _n = _S1.unpack_from(_buf, _end)
+            _s = _end + 12
+            _end = _s + _n
+            self.distortion_model = str(_buf[_s:_end], 'utf-8', 'replace')
+            _n, = _S2.unpack_from(_buf, _end)
+            self.D = _unpack_from('<%dd' % _n, _buf, _end + 4)
+            _end += 4 + _n * 8
+            self.K = _S4.unpack_from(_buf, _end)
+            self.R = _S4.unpack_from(_buf, _end + 72)
+            self.P = _S5.unpack_from(_buf, _end + 144)
+            self.roi = _v3 = _new(_T_sensor_msgs__RegionOfInterest)
+            self.binning_x, self.binning_y, _v3.x_offset, _v3.y_offset, _v3.height, _v3.width, _v3.do_rectify = _S6.unpack_from(_buf, _end + 240)
+            if _end > len(_buf): raise _Truncated
+        except Exception as exc:
+            raise _deserialize_failed(cls, data, exc) from exc
         return self
 
     def deserialize_numpy(self, data, numpy):
         try:
             _np = numpy
             _buf = data
-            _len = len(data)
-            _end = 0
-            _v1 = _new(_T_std_msgs__Header)
-            self.header = _v1
-            _t2 = _new(_Time)
-            _v1.stamp = _t2
-            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v1.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.stamp = _t2 = _new(_Time)
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
             self.height, self.width, _n = _S1.unpack_from(_buf, _end)
-            _end += 12
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            self.distortion_model = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            _s = _end + 12
+            _end = _s + _n
+            self.distortion_model = str(_buf[_s:_end], 'utf-8', 'replace')
             _n, = _S2.unpack_from(_buf, _end)
-            _end += 4
-            _stop = _end + _n * 8
-            if _stop > _len: raise _Truncated
-            self.D = _np.frombuffer(_buf, '<f8', _n, _end)
-            _end = _stop
-            _stop = _end + 9 * 8
-            if _stop > _len: raise _Truncated
+            self.D = _np.frombuffer(_buf, '<f8', _n, _end + 4)
+            _end += 4 + _n * 8
             self.K = _np.frombuffer(_buf, '<f8', 9, _end)
-            _end = _stop
-            _stop = _end + 9 * 8
-            if _stop > _len: raise _Truncated
-            self.R = _np.frombuffer(_buf, '<f8', 9, _end)
-            _end = _stop
-            _stop = _end + 12 * 8
-            if _stop > _len: raise _Truncated
-            self.P = _np.frombuffer(_buf, '<f8', 12, _end)
-            _end = _stop
-            _v3 = _new(_T_sensor_msgs__RegionOfInterest)
-            self.roi = _v3
-            self.binning_x, self.binning_y, _v3.x_offset, _v3.y_offset, _v3.height, _v3.width, _v3.do_rectify = _S6.unpack_from(_buf, _end)
-            _end += 25
+            self.R = _np.frombuffer(_buf, '<f8', 9, _end + 72)
+            self.P = _np.frombuffer(_buf, '<f8', 12, _end + 144)
+            self.roi = _v3 = _new(_T_sensor_msgs__RegionOfInterest)
+            self.binning_x, self.binning_y, _v3.x_offset, _v3.y_offset, _v3.height, _v3.width, _v3.do_rectify = _S6.unpack_from(_buf, _end + 240)
+            if _end > len(_buf): raise _Truncated
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
         return self

@@ -5,6 +5,7 @@ from kame.msg.message import Message as _Message
 from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
+from kame.msg.message import refill as _refill
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -51,24 +52,43 @@ class Imu(_Message):
             if self.linear_acceleration_covariance is None:
                 self.linear_acceleration_covariance = [0.0] * 9
         else:
-            self.header = _T_std_msgs__Header()
-            self.orientation = _T_geometry_msgs__Quaternion()
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.seq = 0
+            _v1.stamp = _t2 = _new(_Time)
+            _t2.secs = _t2.nsecs = 0
+            _v1.frame_id = ''
+            self.orientation = _v3 = _new(_T_geometry_msgs__Quaternion)
+            _v3.x = 0.0
+            _v3.y = 0.0
+            _v3.z = 0.0
+            _v3.w = 0.0
             self.orientation_covariance = [0.0] * 9
-            self.angular_velocity = _T_geometry_msgs__Vector3()
+            self.angular_velocity = _v4 = _new(_T_geometry_msgs__Vector3)
+            _v4.x = 0.0
+            _v4.y = 0.0
+            _v4.z = 0.0
             self.angular_velocity_covariance = [0.0] * 9
-            self.linear_acceleration = _T_geometry_msgs__Vector3()
+            self.linear_acceleration = _v5 = _new(_T_geometry_msgs__Vector3)
+            _v5.x = 0.0
+            _v5.y = 0.0
+            _v5.z = 0.0
             self.linear_acceleration_covariance = [0.0] * 9
 
     def serialize(self, buff):
         try:
             _w = buff.write
-            _b1 = self.header.frame_id
-            if _b1.__class__ is not bytes: _b1 = _b1.encode()
-            _w(_S0.pack(self.header.seq, self.header.stamp.secs, self.header.stamp.nsecs, len(_b1)) + _b1)
-            _x2 = self.orientation_covariance
-            _x3 = self.angular_velocity_covariance
-            _x4 = self.linear_acceleration_covariance
-            _w(_S1.pack(self.orientation.x, self.orientation.y, self.orientation.z, self.orientation.w, *_x2, self.angular_velocity.x, self.angular_velocity.y, self.angular_velocity.z, *_x3, self.linear_acceleration.x, self.linear_acceleration.y, self.linear_acceleration.z, *_x4))
+            _m1 = self.header
+            _m2 = _m1.stamp
+            _b3 = _m1.frame_id
+            if _b3.__class__ is not bytes: _b3 = _b3.encode()
+            _w(_S0.pack(_m1.seq, _m2.secs, _m2.nsecs, len(_b3)) + _b3)
+            _m4 = self.orientation
+            _x5 = self.orientation_covariance
+            _m6 = self.angular_velocity
+            _x7 = self.angular_velocity_covariance
+            _m8 = self.linear_acceleration
+            _x9 = self.linear_acceleration_covariance
+            _w(_S1.pack(_m4.x, _m4.y, _m4.z, _m4.w, *_x5, _m6.x, _m6.y, _m6.z, *_x7, _m8.x, _m8.y, _m8.z, *_x9))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -77,87 +97,72 @@ class Imu(_Message):
 
     def deserialize(self, data):
         try:
+            _v1 = self.header
+            _t2 = _v1.stamp
+            _v3 = self.orientation
+            _v4 = self.angular_velocity
+            _v5 = self.linear_acceleration
             _buf = data
-            _len = len(data)
-            _end = 0
-            _v1 = _new(_T_std_msgs__Header)
-            self.header = _v1
-            _t2 = _new(_Time)
-            _v1.stamp = _t2
-            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v1.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v3 = _new(_T_geometry_msgs__Quaternion)
-            self.orientation = _v3
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
             _v3.x, _v3.y, _v3.z, _v3.w = _S2.unpack_from(_buf, _end)
-            _end += 32
-            _stop = _end + 9 * 8
-            if _stop > _len: raise _Truncated
-            self.orientation_covariance = _S3.unpack_from(_buf, _end)
-            _end = _stop
-            _v4 = _new(_T_geometry_msgs__Vector3)
-            self.angular_velocity = _v4
-            _v4.x, _v4.y, _v4.z = _S4.unpack_from(_buf, _end)
-            _end += 24
-            _stop = _end + 9 * 8
-            if _stop > _len: raise _Truncated
-            self.angular_velocity_covariance = _S3.unpack_from(_buf, _end)
-            _end = _stop
-            _v5 = _new(_T_geometry_msgs__Vector3)
-            self.linear_acceleration = _v5
-            _v5.x, _v5.y, _v5.z = _S4.unpack_from(_buf, _end)
-            _end += 24
-            _stop = _end + 9 * 8
-            if _stop > _len: raise _Truncated
-            self.linear_acceleration_covariance = _S3.unpack_from(_buf, _end)
-            _end = _stop
+            self.orientation_covariance = _S3.unpack_from(_buf, _end + 32)
+            _v4.x, _v4.y, _v4.z = _S4.unpack_from(_buf, _end + 104)
+            self.angular_velocity_covariance = _S3.unpack_from(_buf, _end + 128)
+            _v5.x, _v5.y, _v5.z = _S4.unpack_from(_buf, _end + 200)
+            self.linear_acceleration_covariance = _S3.unpack_from(_buf, _end + 224)
+            if _end > len(_buf): raise _Truncated
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
+        return _refill(self, Imu, data)
+
+    @classmethod
+    def _from_buffer(cls, data):
+        self = _new(cls)
+        try:
+            _buf = data
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.stamp = _t2 = _new(_Time)
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            self.orientation = _v3 = _new(_T_geometry_msgs__Quaternion)
+            _v3.x, _v3.y, _v3.z, _v3.w = _S2.unpack_from(_buf, _end)
+            self.orientation_covariance = _S3.unpack_from(_buf, _end + 32)
+            self.angular_velocity = _v4 = _new(_T_geometry_msgs__Vector3)
+            _v4.x, _v4.y, _v4.z = _S4.unpack_from(_buf, _end + 104)
+            self.angular_velocity_covariance = _S3.unpack_from(_buf, _end + 128)
+            self.linear_acceleration = _v5 = _new(_T_geometry_msgs__Vector3)
+            _v5.x, _v5.y, _v5.z = _S4.unpack_from(_buf, _end + 200)
+            self.linear_acceleration_covariance = _S3.unpack_from(_buf, _end + 224)
+            if _end > len(_buf): raise _Truncated
+        except Exception as exc:
+            raise _deserialize_failed(cls, data, exc) from exc
         return self
 
     def deserialize_numpy(self, data, numpy):
         try:
             _np = numpy
             _buf = data
-            _len = len(data)
-            _end = 0
-            _v1 = _new(_T_std_msgs__Header)
-            self.header = _v1
-            _t2 = _new(_Time)
-            _v1.stamp = _t2
-            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v1.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v3 = _new(_T_geometry_msgs__Quaternion)
-            self.orientation = _v3
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.stamp = _t2 = _new(_Time)
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            self.orientation = _v3 = _new(_T_geometry_msgs__Quaternion)
             _v3.x, _v3.y, _v3.z, _v3.w = _S2.unpack_from(_buf, _end)
-            _end += 32
-            _stop = _end + 9 * 8
-            if _stop > _len: raise _Truncated
-            self.orientation_covariance = _np.frombuffer(_buf, '<f8', 9, _end)
-            _end = _stop
-            _v4 = _new(_T_geometry_msgs__Vector3)
-            self.angular_velocity = _v4
-            _v4.x, _v4.y, _v4.z = _S4.unpack_from(_buf, _end)
-            _end += 24
-            _stop = _end + 9 * 8
-            if _stop > _len: raise _Truncated
-            self.angular_velocity_covariance = _np.frombuffer(_buf, '<f8', 9, _end)
-            _end = _stop
-            _v5 = _new(_T_geometry_msgs__Vector3)
-            self.linear_acceleration = _v5
-            _v5.x, _v5.y, _v5.z = _S4.unpack_from(_buf, _end)
-            _end += 24
-            _stop = _end + 9 * 8
-            if _stop > _len: raise _Truncated
-            self.linear_acceleration_covariance = _np.frombuffer(_buf, '<f8', 9, _end)
-            _end = _stop
+            self.orientation_covariance = _np.frombuffer(_buf, '<f8', 9, _end + 32)
+            self.angular_velocity = _v4 = _new(_T_geometry_msgs__Vector3)
+            _v4.x, _v4.y, _v4.z = _S4.unpack_from(_buf, _end + 104)
+            self.angular_velocity_covariance = _np.frombuffer(_buf, '<f8', 9, _end + 128)
+            self.linear_acceleration = _v5 = _new(_T_geometry_msgs__Vector3)
+            _v5.x, _v5.y, _v5.z = _S4.unpack_from(_buf, _end + 200)
+            self.linear_acceleration_covariance = _np.frombuffer(_buf, '<f8', 9, _end + 224)
+            if _end > len(_buf): raise _Truncated
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
         return self

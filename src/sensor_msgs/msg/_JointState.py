@@ -5,6 +5,7 @@ from kame.msg.message import Message as _Message
 from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
+from kame.msg.message import refill as _refill
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -42,7 +43,11 @@ class JointState(_Message):
             if self.effort is None:
                 self.effort = []
         else:
-            self.header = _T_std_msgs__Header()
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.seq = 0
+            _v1.stamp = _t2 = _new(_Time)
+            _t2.secs = _t2.nsecs = 0
+            _v1.frame_id = ''
             self.name = []
             self.position = []
             self.velocity = []
@@ -51,24 +56,26 @@ class JointState(_Message):
     def serialize(self, buff):
         try:
             _w = buff.write
-            _b1 = self.header.frame_id
-            if _b1.__class__ is not bytes: _b1 = _b1.encode()
-            _w(_S0.pack(self.header.seq, self.header.stamp.secs, self.header.stamp.nsecs, len(_b1)) + _b1)
-            _x2 = self.name
-            _w(_S1.pack(len(_x2)))
-            for _e3 in _x2:
-                _b4 = _e3
-                if _b4.__class__ is not bytes: _b4 = _b4.encode()
-                _w(_S1.pack(len(_b4)) + _b4)
-            _x5 = self.position
-            _w(_S1.pack(len(_x5)))
-            _w(_pack_array(_x5, 'd', '<f8'))
-            _x6 = self.velocity
-            _w(_S1.pack(len(_x6)))
-            _w(_pack_array(_x6, 'd', '<f8'))
-            _x7 = self.effort
+            _m1 = self.header
+            _m2 = _m1.stamp
+            _b3 = _m1.frame_id
+            if _b3.__class__ is not bytes: _b3 = _b3.encode()
+            _w(_S0.pack(_m1.seq, _m2.secs, _m2.nsecs, len(_b3)) + _b3)
+            _x4 = self.name
+            _w(_S1.pack(len(_x4)))
+            for _e5 in _x4:
+                _b6 = _e5
+                if _b6.__class__ is not bytes: _b6 = _b6.encode()
+                _w(_S1.pack(len(_b6)) + _b6)
+            _x7 = self.position
             _w(_S1.pack(len(_x7)))
             _w(_pack_array(_x7, 'd', '<f8'))
+            _x8 = self.velocity
+            _w(_S1.pack(len(_x8)))
+            _w(_pack_array(_x8, 'd', '<f8'))
+            _x9 = self.effort
+            _w(_S1.pack(len(_x9)))
+            _w(_pack_array(_x9, 'd', '<f8'))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -77,99 +84,102 @@ class JointState(_Message):
 
     def deserialize(self, data):
         try:
+            _v1 = self.header
+            _t2 = _v1.stamp
             _buf = data
-            _len = len(data)
-            _end = 0
-            _v1 = _new(_T_std_msgs__Header)
-            self.header = _v1
-            _t2 = _new(_Time)
-            _v1.stamp = _t2
-            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v1.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
             _n, = _S1.unpack_from(_buf, _end)
             _end += 4
             _l3 = []
             for _ in range(_n):
                 _n, = _S1.unpack_from(_buf, _end)
-                _end += 4
-                _stop = _end + _n
-                if _stop > _len: raise _Truncated
-                _i4 = str(_buf[_end:_stop], 'utf-8', 'replace')
-                _end = _stop
+                _s = _end + 4
+                _end = _s + _n
+                _i4 = str(_buf[_s:_end], 'utf-8', 'replace')
                 _l3.append(_i4)
             self.name = _l3
             _n, = _S1.unpack_from(_buf, _end)
-            _end += 4
-            _stop = _end + _n * 8
-            if _stop > _len: raise _Truncated
-            self.position = _unpack_from('<%dd' % _n, _buf, _end)
-            _end = _stop
+            self.position = _unpack_from('<%dd' % _n, _buf, _end + 4)
+            _end += 4 + _n * 8
             _n, = _S1.unpack_from(_buf, _end)
-            _end += 4
-            _stop = _end + _n * 8
-            if _stop > _len: raise _Truncated
-            self.velocity = _unpack_from('<%dd' % _n, _buf, _end)
-            _end = _stop
+            self.velocity = _unpack_from('<%dd' % _n, _buf, _end + 4)
+            _end += 4 + _n * 8
             _n, = _S1.unpack_from(_buf, _end)
-            _end += 4
-            _stop = _end + _n * 8
-            if _stop > _len: raise _Truncated
-            self.effort = _unpack_from('<%dd' % _n, _buf, _end)
-            _end = _stop
+            self.effort = _unpack_from('<%dd' % _n, _buf, _end + 4)
+            _end += 4 + _n * 8
+            if _end > len(_buf): raise _Truncated
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
+        return _refill(self, JointState, data)
+
+    @classmethod
+    def _from_buffer(cls, data):
+        self = _new(cls)
+        try:
+            _buf = data
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.stamp = _t2 = _new(_Time)
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            _n, = _S1.unpack_from(_buf, _end)
+            _end += 4
+            _l3 = []
+            for _ in range(_n):
+                _n, = _S1.unpack_from(_buf, _end)
+                _s = _end + 4
+                _end = _s + _n
+                _i4 = str(_buf[_s:_end], 'utf-8', 'replace')
+                _l3.append(_i4)
+            self.name = _l3
+            _n, = _S1.unpack_from(_buf, _end)
+            self.position = _unpack_from('<%dd' % _n, _buf, _end + 4)
+            _end += 4 + _n * 8
+            _n, = _S1.unpack_from(_buf, _end)
+            self.velocity = _unpack_from('<%dd' % _n, _buf, _end + 4)
+            _end += 4 + _n * 8
+            _n, = _S1.unpack_from(_buf, _end)
+            self.effort = _unpack_from('<%dd' % _n, _buf, _end + 4)
+            _end += 4 + _n * 8
+            if _end > len(_buf): raise _Truncated
+        except Exception as exc:
+            raise _deserialize_failed(cls, data, exc) from exc
         return self
 
     def deserialize_numpy(self, data, numpy):
         try:
             _np = numpy
             _buf = data
-            _len = len(data)
-            _end = 0
-            _v1 = _new(_T_std_msgs__Header)
-            self.header = _v1
-            _t2 = _new(_Time)
-            _v1.stamp = _t2
-            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v1.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.stamp = _t2 = _new(_Time)
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
             _n, = _S1.unpack_from(_buf, _end)
             _end += 4
             _l3 = []
             for _ in range(_n):
                 _n, = _S1.unpack_from(_buf, _end)
-                _end += 4
-                _stop = _end + _n
-                if _stop > _len: raise _Truncated
-                _i4 = str(_buf[_end:_stop], 'utf-8', 'replace')
-                _end = _stop
+                _s = _end + 4
+                _end = _s + _n
+                _i4 = str(_buf[_s:_end], 'utf-8', 'replace')
                 _l3.append(_i4)
             self.name = _l3
             _n, = _S1.unpack_from(_buf, _end)
-            _end += 4
-            _stop = _end + _n * 8
-            if _stop > _len: raise _Truncated
-            self.position = _np.frombuffer(_buf, '<f8', _n, _end)
-            _end = _stop
+            self.position = _np.frombuffer(_buf, '<f8', _n, _end + 4)
+            _end += 4 + _n * 8
             _n, = _S1.unpack_from(_buf, _end)
-            _end += 4
-            _stop = _end + _n * 8
-            if _stop > _len: raise _Truncated
-            self.velocity = _np.frombuffer(_buf, '<f8', _n, _end)
-            _end = _stop
+            self.velocity = _np.frombuffer(_buf, '<f8', _n, _end + 4)
+            _end += 4 + _n * 8
             _n, = _S1.unpack_from(_buf, _end)
-            _end += 4
-            _stop = _end + _n * 8
-            if _stop > _len: raise _Truncated
-            self.effort = _np.frombuffer(_buf, '<f8', _n, _end)
-            _end = _stop
+            self.effort = _np.frombuffer(_buf, '<f8', _n, _end + 4)
+            _end += 4 + _n * 8
+            if _end > len(_buf): raise _Truncated
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
         return self

@@ -5,6 +5,7 @@ from kame.msg.message import Message as _Message
 from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
+from kame.msg.message import refill as _refill
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -38,22 +39,28 @@ class Joy(_Message):
             if self.buttons is None:
                 self.buttons = []
         else:
-            self.header = _T_std_msgs__Header()
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.seq = 0
+            _v1.stamp = _t2 = _new(_Time)
+            _t2.secs = _t2.nsecs = 0
+            _v1.frame_id = ''
             self.axes = []
             self.buttons = []
 
     def serialize(self, buff):
         try:
             _w = buff.write
-            _b1 = self.header.frame_id
-            if _b1.__class__ is not bytes: _b1 = _b1.encode()
-            _w(_S0.pack(self.header.seq, self.header.stamp.secs, self.header.stamp.nsecs, len(_b1)) + _b1)
-            _x2 = self.axes
-            _w(_S1.pack(len(_x2)))
-            _w(_pack_array(_x2, 'f', '<f4'))
-            _x3 = self.buttons
-            _w(_S1.pack(len(_x3)))
-            _w(_pack_array(_x3, 'i', '<i4'))
+            _m1 = self.header
+            _m2 = _m1.stamp
+            _b3 = _m1.frame_id
+            if _b3.__class__ is not bytes: _b3 = _b3.encode()
+            _w(_S0.pack(_m1.seq, _m2.secs, _m2.nsecs, len(_b3)) + _b3)
+            _x4 = self.axes
+            _w(_S1.pack(len(_x4)))
+            _w(_pack_array(_x4, 'f', '<f4'))
+            _x5 = self.buttons
+            _w(_S1.pack(len(_x5)))
+            _w(_pack_array(_x5, 'i', '<i4'))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -62,63 +69,63 @@ class Joy(_Message):
 
     def deserialize(self, data):
         try:
+            _v1 = self.header
+            _t2 = _v1.stamp
             _buf = data
-            _len = len(data)
-            _end = 0
-            _v1 = _new(_T_std_msgs__Header)
-            self.header = _v1
-            _t2 = _new(_Time)
-            _v1.stamp = _t2
-            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v1.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
             _n, = _S1.unpack_from(_buf, _end)
-            _end += 4
-            _stop = _end + _n * 4
-            if _stop > _len: raise _Truncated
-            self.axes = _unpack_from('<%df' % _n, _buf, _end)
-            _end = _stop
+            self.axes = _unpack_from('<%df' % _n, _buf, _end + 4)
+            _end += 4 + _n * 4
             _n, = _S1.unpack_from(_buf, _end)
-            _end += 4
-            _stop = _end + _n * 4
-            if _stop > _len: raise _Truncated
-            self.buttons = _unpack_from('<%di' % _n, _buf, _end)
-            _end = _stop
+            self.buttons = _unpack_from('<%di' % _n, _buf, _end + 4)
+            _end += 4 + _n * 4
+            if _end > len(_buf): raise _Truncated
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
+        return _refill(self, Joy, data)
+
+    @classmethod
+    def _from_buffer(cls, data):
+        self = _new(cls)
+        try:
+            _buf = data
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.stamp = _t2 = _new(_Time)
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            _n, = _S1.unpack_from(_buf, _end)
+            self.axes = _unpack_from('<%df' % _n, _buf, _end + 4)
+            _end += 4 + _n * 4
+            _n, = _S1.unpack_from(_buf, _end)
+            self.buttons = _unpack_from('<%di' % _n, _buf, _end + 4)
+            _end += 4 + _n * 4
+            if _end > len(_buf): raise _Truncated
+        except Exception as exc:
+            raise _deserialize_failed(cls, data, exc) from exc
         return self
 
     def deserialize_numpy(self, data, numpy):
         try:
             _np = numpy
             _buf = data
-            _len = len(data)
-            _end = 0
-            _v1 = _new(_T_std_msgs__Header)
-            self.header = _v1
-            _t2 = _new(_Time)
-            _v1.stamp = _t2
-            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v1.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.stamp = _t2 = _new(_Time)
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
             _n, = _S1.unpack_from(_buf, _end)
-            _end += 4
-            _stop = _end + _n * 4
-            if _stop > _len: raise _Truncated
-            self.axes = _np.frombuffer(_buf, '<f4', _n, _end)
-            _end = _stop
+            self.axes = _np.frombuffer(_buf, '<f4', _n, _end + 4)
+            _end += 4 + _n * 4
             _n, = _S1.unpack_from(_buf, _end)
-            _end += 4
-            _stop = _end + _n * 4
-            if _stop > _len: raise _Truncated
-            self.buttons = _np.frombuffer(_buf, '<i4', _n, _end)
-            _end = _stop
+            self.buttons = _np.frombuffer(_buf, '<i4', _n, _end + 4)
+            _end += 4 + _n * 4
+            if _end > len(_buf): raise _Truncated
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
         return self

@@ -5,6 +5,7 @@ from kame.msg.message import Message as _Message
 from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
+from kame.msg.message import refill as _refill
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -52,20 +53,35 @@ class JoyFeedbackArray(_Message):
     def deserialize(self, data):
         try:
             _buf = data
-            _len = len(data)
-            _end = 0
-            _n, = _S0.unpack_from(_buf, _end)
-            _end += 4
+            _n, = _S0.unpack_from(_buf, 0)
+            _end = 4
             _l1 = []
             for _ in range(_n):
-                _v3 = _new(_T_sensor_msgs__JoyFeedback)
-                _i2 = _v3
+                _i2 = _v3 = _new(_T_sensor_msgs__JoyFeedback)
                 _v3.type, _v3.id, _v3.intensity = _S1.unpack_from(_buf, _end)
                 _end += 6
                 _l1.append(_i2)
             self.array = _l1
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
+        return self
+
+    @classmethod
+    def _from_buffer(cls, data):
+        self = _new(cls)
+        try:
+            _buf = data
+            _n, = _S0.unpack_from(_buf, 0)
+            _end = 4
+            _l1 = []
+            for _ in range(_n):
+                _i2 = _v3 = _new(_T_sensor_msgs__JoyFeedback)
+                _v3.type, _v3.id, _v3.intensity = _S1.unpack_from(_buf, _end)
+                _end += 6
+                _l1.append(_i2)
+            self.array = _l1
+        except Exception as exc:
+            raise _deserialize_failed(cls, data, exc) from exc
         return self
 
     def deserialize_numpy(self, data, numpy):

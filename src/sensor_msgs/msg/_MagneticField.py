@@ -5,6 +5,7 @@ from kame.msg.message import Message as _Message
 from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
+from kame.msg.message import refill as _refill
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -41,18 +42,28 @@ class MagneticField(_Message):
             if self.magnetic_field_covariance is None:
                 self.magnetic_field_covariance = [0.0] * 9
         else:
-            self.header = _T_std_msgs__Header()
-            self.magnetic_field = _T_geometry_msgs__Vector3()
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.seq = 0
+            _v1.stamp = _t2 = _new(_Time)
+            _t2.secs = _t2.nsecs = 0
+            _v1.frame_id = ''
+            self.magnetic_field = _v3 = _new(_T_geometry_msgs__Vector3)
+            _v3.x = 0.0
+            _v3.y = 0.0
+            _v3.z = 0.0
             self.magnetic_field_covariance = [0.0] * 9
 
     def serialize(self, buff):
         try:
             _w = buff.write
-            _b1 = self.header.frame_id
-            if _b1.__class__ is not bytes: _b1 = _b1.encode()
-            _w(_S0.pack(self.header.seq, self.header.stamp.secs, self.header.stamp.nsecs, len(_b1)) + _b1)
-            _x2 = self.magnetic_field_covariance
-            _w(_S1.pack(self.magnetic_field.x, self.magnetic_field.y, self.magnetic_field.z, *_x2))
+            _m1 = self.header
+            _m2 = _m1.stamp
+            _b3 = _m1.frame_id
+            if _b3.__class__ is not bytes: _b3 = _b3.encode()
+            _w(_S0.pack(_m1.seq, _m2.secs, _m2.nsecs, len(_b3)) + _b3)
+            _m4 = self.magnetic_field
+            _x5 = self.magnetic_field_covariance
+            _w(_S1.pack(_m4.x, _m4.y, _m4.z, *_x5))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -61,55 +72,54 @@ class MagneticField(_Message):
 
     def deserialize(self, data):
         try:
+            _v1 = self.header
+            _t2 = _v1.stamp
+            _v3 = self.magnetic_field
             _buf = data
-            _len = len(data)
-            _end = 0
-            _v1 = _new(_T_std_msgs__Header)
-            self.header = _v1
-            _t2 = _new(_Time)
-            _v1.stamp = _t2
-            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v1.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v3 = _new(_T_geometry_msgs__Vector3)
-            self.magnetic_field = _v3
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
             _v3.x, _v3.y, _v3.z = _S2.unpack_from(_buf, _end)
-            _end += 24
-            _stop = _end + 9 * 8
-            if _stop > _len: raise _Truncated
-            self.magnetic_field_covariance = _S3.unpack_from(_buf, _end)
-            _end = _stop
+            self.magnetic_field_covariance = _S3.unpack_from(_buf, _end + 24)
+            if _end > len(_buf): raise _Truncated
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
+        return _refill(self, MagneticField, data)
+
+    @classmethod
+    def _from_buffer(cls, data):
+        self = _new(cls)
+        try:
+            _buf = data
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.stamp = _t2 = _new(_Time)
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            self.magnetic_field = _v3 = _new(_T_geometry_msgs__Vector3)
+            _v3.x, _v3.y, _v3.z = _S2.unpack_from(_buf, _end)
+            self.magnetic_field_covariance = _S3.unpack_from(_buf, _end + 24)
+            if _end > len(_buf): raise _Truncated
+        except Exception as exc:
+            raise _deserialize_failed(cls, data, exc) from exc
         return self
 
     def deserialize_numpy(self, data, numpy):
         try:
             _np = numpy
             _buf = data
-            _len = len(data)
-            _end = 0
-            _v1 = _new(_T_std_msgs__Header)
-            self.header = _v1
-            _t2 = _new(_Time)
-            _v1.stamp = _t2
-            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v1.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v3 = _new(_T_geometry_msgs__Vector3)
-            self.magnetic_field = _v3
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.stamp = _t2 = _new(_Time)
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            self.magnetic_field = _v3 = _new(_T_geometry_msgs__Vector3)
             _v3.x, _v3.y, _v3.z = _S2.unpack_from(_buf, _end)
-            _end += 24
-            _stop = _end + 9 * 8
-            if _stop > _len: raise _Truncated
-            self.magnetic_field_covariance = _np.frombuffer(_buf, '<f8', 9, _end)
-            _end = _stop
+            self.magnetic_field_covariance = _np.frombuffer(_buf, '<f8', 9, _end + 24)
+            if _end > len(_buf): raise _Truncated
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
         return self

@@ -5,6 +5,7 @@ from kame.msg.message import Message as _Message
 from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
+from kame.msg.message import refill as _refill
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -49,7 +50,11 @@ class MultiDOFJointState(_Message):
             if self.wrench is None:
                 self.wrench = []
         else:
-            self.header = _T_std_msgs__Header()
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.seq = 0
+            _v1.stamp = _t2 = _new(_Time)
+            _t2.secs = _t2.nsecs = 0
+            _v1.frame_id = ''
             self.joint_names = []
             self.transforms = []
             self.twist = []
@@ -58,27 +63,35 @@ class MultiDOFJointState(_Message):
     def serialize(self, buff):
         try:
             _w = buff.write
-            _b1 = self.header.frame_id
-            if _b1.__class__ is not bytes: _b1 = _b1.encode()
-            _w(_S0.pack(self.header.seq, self.header.stamp.secs, self.header.stamp.nsecs, len(_b1)) + _b1)
-            _x2 = self.joint_names
-            _w(_S1.pack(len(_x2)))
-            for _e3 in _x2:
-                _b4 = _e3
-                if _b4.__class__ is not bytes: _b4 = _b4.encode()
-                _w(_S1.pack(len(_b4)) + _b4)
-            _x5 = self.transforms
-            _w(_S1.pack(len(_x5)))
-            for _e6 in _x5:
-                _w(_S2.pack(_e6.translation.x, _e6.translation.y, _e6.translation.z, _e6.rotation.x, _e6.rotation.y, _e6.rotation.z, _e6.rotation.w))
-            _x7 = self.twist
+            _m1 = self.header
+            _m2 = _m1.stamp
+            _b3 = _m1.frame_id
+            if _b3.__class__ is not bytes: _b3 = _b3.encode()
+            _w(_S0.pack(_m1.seq, _m2.secs, _m2.nsecs, len(_b3)) + _b3)
+            _x4 = self.joint_names
+            _w(_S1.pack(len(_x4)))
+            for _e5 in _x4:
+                _b6 = _e5
+                if _b6.__class__ is not bytes: _b6 = _b6.encode()
+                _w(_S1.pack(len(_b6)) + _b6)
+            _x7 = self.transforms
             _w(_S1.pack(len(_x7)))
             for _e8 in _x7:
-                _w(_S3.pack(_e8.linear.x, _e8.linear.y, _e8.linear.z, _e8.angular.x, _e8.angular.y, _e8.angular.z))
-            _x9 = self.wrench
-            _w(_S1.pack(len(_x9)))
-            for _e10 in _x9:
-                _w(_S3.pack(_e10.force.x, _e10.force.y, _e10.force.z, _e10.torque.x, _e10.torque.y, _e10.torque.z))
+                _m9 = _e8.translation
+                _m10 = _e8.rotation
+                _w(_S2.pack(_m9.x, _m9.y, _m9.z, _m10.x, _m10.y, _m10.z, _m10.w))
+            _x11 = self.twist
+            _w(_S1.pack(len(_x11)))
+            for _e12 in _x11:
+                _m13 = _e12.linear
+                _m14 = _e12.angular
+                _w(_S3.pack(_m13.x, _m13.y, _m13.z, _m14.x, _m14.y, _m14.z))
+            _x15 = self.wrench
+            _w(_S1.pack(len(_x15)))
+            for _e16 in _x15:
+                _m17 = _e16.force
+                _m18 = _e16.torque
+                _w(_S3.pack(_m17.x, _m17.y, _m17.z, _m18.x, _m18.y, _m18.z))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -87,41 +100,29 @@ class MultiDOFJointState(_Message):
 
     def deserialize(self, data):
         try:
+            _v1 = self.header
+            _t2 = _v1.stamp
             _buf = data
-            _len = len(data)
-            _end = 0
-            _v1 = _new(_T_std_msgs__Header)
-            self.header = _v1
-            _t2 = _new(_Time)
-            _v1.stamp = _t2
-            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v1.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
             _n, = _S1.unpack_from(_buf, _end)
             _end += 4
             _l3 = []
             for _ in range(_n):
                 _n, = _S1.unpack_from(_buf, _end)
-                _end += 4
-                _stop = _end + _n
-                if _stop > _len: raise _Truncated
-                _i4 = str(_buf[_end:_stop], 'utf-8', 'replace')
-                _end = _stop
+                _s = _end + 4
+                _end = _s + _n
+                _i4 = str(_buf[_s:_end], 'utf-8', 'replace')
                 _l3.append(_i4)
             self.joint_names = _l3
             _n, = _S1.unpack_from(_buf, _end)
             _end += 4
             _l5 = []
             for _ in range(_n):
-                _v7 = _new(_T_geometry_msgs__Transform)
-                _i6 = _v7
-                _v8 = _new(_T_geometry_msgs__Vector3)
-                _v7.translation = _v8
-                _v9 = _new(_T_geometry_msgs__Quaternion)
-                _v7.rotation = _v9
+                _i6 = _v7 = _new(_T_geometry_msgs__Transform)
+                _v7.translation = _v8 = _new(_T_geometry_msgs__Vector3)
+                _v7.rotation = _v9 = _new(_T_geometry_msgs__Quaternion)
                 _v8.x, _v8.y, _v8.z, _v9.x, _v9.y, _v9.z, _v9.w = _S2.unpack_from(_buf, _end)
                 _end += 56
                 _l5.append(_i6)
@@ -130,12 +131,9 @@ class MultiDOFJointState(_Message):
             _end += 4
             _l10 = []
             for _ in range(_n):
-                _v12 = _new(_T_geometry_msgs__Twist)
-                _i11 = _v12
-                _v13 = _new(_T_geometry_msgs__Vector3)
-                _v12.linear = _v13
-                _v14 = _new(_T_geometry_msgs__Vector3)
-                _v12.angular = _v14
+                _i11 = _v12 = _new(_T_geometry_msgs__Twist)
+                _v12.linear = _v13 = _new(_T_geometry_msgs__Vector3)
+                _v12.angular = _v14 = _new(_T_geometry_msgs__Vector3)
                 _v13.x, _v13.y, _v13.z, _v14.x, _v14.y, _v14.z = _S3.unpack_from(_buf, _end)
                 _end += 48
                 _l10.append(_i11)
@@ -144,18 +142,77 @@ class MultiDOFJointState(_Message):
             _end += 4
             _l15 = []
             for _ in range(_n):
-                _v17 = _new(_T_geometry_msgs__Wrench)
-                _i16 = _v17
-                _v18 = _new(_T_geometry_msgs__Vector3)
-                _v17.force = _v18
-                _v19 = _new(_T_geometry_msgs__Vector3)
-                _v17.torque = _v19
+                _i16 = _v17 = _new(_T_geometry_msgs__Wrench)
+                _v17.force = _v18 = _new(_T_geometry_msgs__Vector3)
+                _v17.torque = _v19 = _new(_T_geometry_msgs__Vector3)
                 _v18.x, _v18.y, _v18.z, _v19.x, _v19.y, _v19.z = _S3.unpack_from(_buf, _end)
                 _end += 48
                 _l15.append(_i16)
             self.wrench = _l15
+            if _end > len(_buf): raise _Truncated
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
+        return _refill(self, MultiDOFJointState, data)
+
+    @classmethod
+    def _from_buffer(cls, data):
+        self = _new(cls)
+        try:
+            _buf = data
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.stamp = _t2 = _new(_Time)
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            _n, = _S1.unpack_from(_buf, _end)
+            _end += 4
+            _l3 = []
+            for _ in range(_n):
+                _n, = _S1.unpack_from(_buf, _end)
+                _s = _end + 4
+                _end = _s + _n
+                _i4 = str(_buf[_s:_end], 'utf-8', 'replace')
+                _l3.append(_i4)
+            self.joint_names = _l3
+            _n, = _S1.unpack_from(_buf, _end)
+            _end += 4
+            _l5 = []
+            for _ in range(_n):
+                _i6 = _v7 = _new(_T_geometry_msgs__Transform)
+                _v7.translation = _v8 = _new(_T_geometry_msgs__Vector3)
+                _v7.rotation = _v9 = _new(_T_geometry_msgs__Quaternion)
+                _v8.x, _v8.y, _v8.z, _v9.x, _v9.y, _v9.z, _v9.w = _S2.unpack_from(_buf, _end)
+                _end += 56
+                _l5.append(_i6)
+            self.transforms = _l5
+            _n, = _S1.unpack_from(_buf, _end)
+            _end += 4
+            _l10 = []
+            for _ in range(_n):
+                _i11 = _v12 = _new(_T_geometry_msgs__Twist)
+                _v12.linear = _v13 = _new(_T_geometry_msgs__Vector3)
+                _v12.angular = _v14 = _new(_T_geometry_msgs__Vector3)
+                _v13.x, _v13.y, _v13.z, _v14.x, _v14.y, _v14.z = _S3.unpack_from(_buf, _end)
+                _end += 48
+                _l10.append(_i11)
+            self.twist = _l10
+            _n, = _S1.unpack_from(_buf, _end)
+            _end += 4
+            _l15 = []
+            for _ in range(_n):
+                _i16 = _v17 = _new(_T_geometry_msgs__Wrench)
+                _v17.force = _v18 = _new(_T_geometry_msgs__Vector3)
+                _v17.torque = _v19 = _new(_T_geometry_msgs__Vector3)
+                _v18.x, _v18.y, _v18.z, _v19.x, _v19.y, _v19.z = _S3.unpack_from(_buf, _end)
+                _end += 48
+                _l15.append(_i16)
+            self.wrench = _l15
+            if _end > len(_buf): raise _Truncated
+        except Exception as exc:
+            raise _deserialize_failed(cls, data, exc) from exc
         return self
 
     def deserialize_numpy(self, data, numpy):

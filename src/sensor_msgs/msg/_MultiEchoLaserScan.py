@@ -5,6 +5,7 @@ from kame.msg.message import Message as _Message
 from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
+from kame.msg.message import refill as _refill
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -54,7 +55,11 @@ class MultiEchoLaserScan(_Message):
             if self.intensities is None:
                 self.intensities = []
         else:
-            self.header = _T_std_msgs__Header()
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.seq = 0
+            _v1.stamp = _t2 = _new(_Time)
+            _t2.secs = _t2.nsecs = 0
+            _v1.frame_id = ''
             self.angle_min = 0.0
             self.angle_max = 0.0
             self.angle_increment = 0.0
@@ -68,21 +73,23 @@ class MultiEchoLaserScan(_Message):
     def serialize(self, buff):
         try:
             _w = buff.write
-            _b1 = self.header.frame_id
-            if _b1.__class__ is not bytes: _b1 = _b1.encode()
-            _w(_S0.pack(self.header.seq, self.header.stamp.secs, self.header.stamp.nsecs, len(_b1)) + _b1)
-            _x2 = self.ranges
-            _w(_S1.pack(self.angle_min, self.angle_max, self.angle_increment, self.time_increment, self.scan_time, self.range_min, self.range_max, len(_x2)))
-            for _e3 in _x2:
-                _x4 = _e3.echoes
-                _w(_S2.pack(len(_x4)))
-                _w(_pack_array(_x4, 'f', '<f4'))
-            _x5 = self.intensities
-            _w(_S2.pack(len(_x5)))
-            for _e6 in _x5:
-                _x7 = _e6.echoes
-                _w(_S2.pack(len(_x7)))
-                _w(_pack_array(_x7, 'f', '<f4'))
+            _m1 = self.header
+            _m2 = _m1.stamp
+            _b3 = _m1.frame_id
+            if _b3.__class__ is not bytes: _b3 = _b3.encode()
+            _w(_S0.pack(_m1.seq, _m2.secs, _m2.nsecs, len(_b3)) + _b3)
+            _x4 = self.ranges
+            _w(_S1.pack(self.angle_min, self.angle_max, self.angle_increment, self.time_increment, self.scan_time, self.range_min, self.range_max, len(_x4)))
+            for _e5 in _x4:
+                _x6 = _e5.echoes
+                _w(_S2.pack(len(_x6)))
+                _w(_pack_array(_x6, 'f', '<f4'))
+            _x7 = self.intensities
+            _w(_S2.pack(len(_x7)))
+            for _e8 in _x7:
+                _x9 = _e8.echoes
+                _w(_S2.pack(len(_x9)))
+                _w(_pack_array(_x9, 'f', '<f4'))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -91,95 +98,105 @@ class MultiEchoLaserScan(_Message):
 
     def deserialize(self, data):
         try:
+            _v1 = self.header
+            _t2 = _v1.stamp
             _buf = data
-            _len = len(data)
-            _end = 0
-            _v1 = _new(_T_std_msgs__Header)
-            self.header = _v1
-            _t2 = _new(_Time)
-            _v1.stamp = _t2
-            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v1.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
             self.angle_min, self.angle_max, self.angle_increment, self.time_increment, self.scan_time, self.range_min, self.range_max, _n = _S1.unpack_from(_buf, _end)
             _end += 32
             _l3 = []
             for _ in range(_n):
-                _v5 = _new(_T_sensor_msgs__LaserEcho)
-                _i4 = _v5
+                _i4 = _v5 = _new(_T_sensor_msgs__LaserEcho)
                 _n, = _S2.unpack_from(_buf, _end)
-                _end += 4
-                _stop = _end + _n * 4
-                if _stop > _len: raise _Truncated
-                _v5.echoes = _unpack_from('<%df' % _n, _buf, _end)
-                _end = _stop
+                _v5.echoes = _unpack_from('<%df' % _n, _buf, _end + 4)
+                _end += 4 + _n * 4
                 _l3.append(_i4)
             self.ranges = _l3
             _n, = _S2.unpack_from(_buf, _end)
             _end += 4
             _l6 = []
             for _ in range(_n):
-                _v8 = _new(_T_sensor_msgs__LaserEcho)
-                _i7 = _v8
+                _i7 = _v8 = _new(_T_sensor_msgs__LaserEcho)
                 _n, = _S2.unpack_from(_buf, _end)
-                _end += 4
-                _stop = _end + _n * 4
-                if _stop > _len: raise _Truncated
-                _v8.echoes = _unpack_from('<%df' % _n, _buf, _end)
-                _end = _stop
+                _v8.echoes = _unpack_from('<%df' % _n, _buf, _end + 4)
+                _end += 4 + _n * 4
                 _l6.append(_i7)
             self.intensities = _l6
+            if _end > len(_buf): raise _Truncated
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
+        return _refill(self, MultiEchoLaserScan, data)
+
+    @classmethod
+    def _from_buffer(cls, data):
+        self = _new(cls)
+        try:
+            _buf = data
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.stamp = _t2 = _new(_Time)
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            self.angle_min, self.angle_max, self.angle_increment, self.time_increment, self.scan_time, self.range_min, self.range_max, _n = _S1.unpack_from(_buf, _end)
+            _end += 32
+            _l3 = []
+            for _ in range(_n):
+                _i4 = _v5 = _new(_T_sensor_msgs__LaserEcho)
+                _n, = _S2.unpack_from(_buf, _end)
+                _v5.echoes = _unpack_from('<%df' % _n, _buf, _end + 4)
+                _end += 4 + _n * 4
+                _l3.append(_i4)
+            self.ranges = _l3
+            _n, = _S2.unpack_from(_buf, _end)
+            _end += 4
+            _l6 = []
+            for _ in range(_n):
+                _i7 = _v8 = _new(_T_sensor_msgs__LaserEcho)
+                _n, = _S2.unpack_from(_buf, _end)
+                _v8.echoes = _unpack_from('<%df' % _n, _buf, _end + 4)
+                _end += 4 + _n * 4
+                _l6.append(_i7)
+            self.intensities = _l6
+            if _end > len(_buf): raise _Truncated
+        except Exception as exc:
+            raise _deserialize_failed(cls, data, exc) from exc
         return self
 
     def deserialize_numpy(self, data, numpy):
         try:
             _np = numpy
             _buf = data
-            _len = len(data)
-            _end = 0
-            _v1 = _new(_T_std_msgs__Header)
-            self.header = _v1
-            _t2 = _new(_Time)
-            _v1.stamp = _t2
-            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v1.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.stamp = _t2 = _new(_Time)
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
             self.angle_min, self.angle_max, self.angle_increment, self.time_increment, self.scan_time, self.range_min, self.range_max, _n = _S1.unpack_from(_buf, _end)
             _end += 32
             _l3 = []
             for _ in range(_n):
-                _v5 = _new(_T_sensor_msgs__LaserEcho)
-                _i4 = _v5
+                _i4 = _v5 = _new(_T_sensor_msgs__LaserEcho)
                 _n, = _S2.unpack_from(_buf, _end)
-                _end += 4
-                _stop = _end + _n * 4
-                if _stop > _len: raise _Truncated
-                _v5.echoes = _np.frombuffer(_buf, '<f4', _n, _end)
-                _end = _stop
+                _v5.echoes = _np.frombuffer(_buf, '<f4', _n, _end + 4)
+                _end += 4 + _n * 4
                 _l3.append(_i4)
             self.ranges = _l3
             _n, = _S2.unpack_from(_buf, _end)
             _end += 4
             _l6 = []
             for _ in range(_n):
-                _v8 = _new(_T_sensor_msgs__LaserEcho)
-                _i7 = _v8
+                _i7 = _v8 = _new(_T_sensor_msgs__LaserEcho)
                 _n, = _S2.unpack_from(_buf, _end)
-                _end += 4
-                _stop = _end + _n * 4
-                if _stop > _len: raise _Truncated
-                _v8.echoes = _np.frombuffer(_buf, '<f4', _n, _end)
-                _end = _stop
+                _v8.echoes = _np.frombuffer(_buf, '<f4', _n, _end + 4)
+                _end += 4 + _n * 4
                 _l6.append(_i7)
             self.intensities = _l6
+            if _end > len(_buf): raise _Truncated
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
         return self

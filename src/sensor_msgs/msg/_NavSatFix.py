@@ -5,6 +5,7 @@ from kame.msg.message import Message as _Message
 from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
+from kame.msg.message import refill as _refill
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -54,8 +55,14 @@ class NavSatFix(_Message):
             if self.position_covariance_type is None:
                 self.position_covariance_type = 0
         else:
-            self.header = _T_std_msgs__Header()
-            self.status = _T_sensor_msgs__NavSatStatus()
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.seq = 0
+            _v1.stamp = _t2 = _new(_Time)
+            _t2.secs = _t2.nsecs = 0
+            _v1.frame_id = ''
+            self.status = _v3 = _new(_T_sensor_msgs__NavSatStatus)
+            _v3.status = 0
+            _v3.service = 0
             self.latitude = 0.0
             self.longitude = 0.0
             self.altitude = 0.0
@@ -65,11 +72,14 @@ class NavSatFix(_Message):
     def serialize(self, buff):
         try:
             _w = buff.write
-            _b1 = self.header.frame_id
-            if _b1.__class__ is not bytes: _b1 = _b1.encode()
-            _w(_S0.pack(self.header.seq, self.header.stamp.secs, self.header.stamp.nsecs, len(_b1)) + _b1)
-            _x2 = self.position_covariance
-            _w(_S1.pack(self.status.status, self.status.service, self.latitude, self.longitude, self.altitude, *_x2, self.position_covariance_type))
+            _m1 = self.header
+            _m2 = _m1.stamp
+            _b3 = _m1.frame_id
+            if _b3.__class__ is not bytes: _b3 = _b3.encode()
+            _w(_S0.pack(_m1.seq, _m2.secs, _m2.nsecs, len(_b3)) + _b3)
+            _m4 = self.status
+            _x5 = self.position_covariance
+            _w(_S1.pack(_m4.status, _m4.service, self.latitude, self.longitude, self.altitude, *_x5, self.position_covariance_type))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -78,59 +88,57 @@ class NavSatFix(_Message):
 
     def deserialize(self, data):
         try:
+            _v1 = self.header
+            _t2 = _v1.stamp
+            _v3 = self.status
             _buf = data
-            _len = len(data)
-            _end = 0
-            _v1 = _new(_T_std_msgs__Header)
-            self.header = _v1
-            _t2 = _new(_Time)
-            _v1.stamp = _t2
-            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v1.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v3 = _new(_T_sensor_msgs__NavSatStatus)
-            self.status = _v3
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
             _v3.status, _v3.service, self.latitude, self.longitude, self.altitude = _S2.unpack_from(_buf, _end)
-            _end += 27
-            _stop = _end + 9 * 8
-            if _stop > _len: raise _Truncated
-            self.position_covariance = _S3.unpack_from(_buf, _end)
-            _end = _stop
-            self.position_covariance_type, = _S4.unpack_from(_buf, _end)
-            _end += 1
+            self.position_covariance = _S3.unpack_from(_buf, _end + 27)
+            self.position_covariance_type, = _S4.unpack_from(_buf, _end + 99)
+            if _end > len(_buf): raise _Truncated
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
+        return _refill(self, NavSatFix, data)
+
+    @classmethod
+    def _from_buffer(cls, data):
+        self = _new(cls)
+        try:
+            _buf = data
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.stamp = _t2 = _new(_Time)
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            self.status = _v3 = _new(_T_sensor_msgs__NavSatStatus)
+            _v3.status, _v3.service, self.latitude, self.longitude, self.altitude = _S2.unpack_from(_buf, _end)
+            self.position_covariance = _S3.unpack_from(_buf, _end + 27)
+            self.position_covariance_type, = _S4.unpack_from(_buf, _end + 99)
+            if _end > len(_buf): raise _Truncated
+        except Exception as exc:
+            raise _deserialize_failed(cls, data, exc) from exc
         return self
 
     def deserialize_numpy(self, data, numpy):
         try:
             _np = numpy
             _buf = data
-            _len = len(data)
-            _end = 0
-            _v1 = _new(_T_std_msgs__Header)
-            self.header = _v1
-            _t2 = _new(_Time)
-            _v1.stamp = _t2
-            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v1.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v3 = _new(_T_sensor_msgs__NavSatStatus)
-            self.status = _v3
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.stamp = _t2 = _new(_Time)
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            self.status = _v3 = _new(_T_sensor_msgs__NavSatStatus)
             _v3.status, _v3.service, self.latitude, self.longitude, self.altitude = _S2.unpack_from(_buf, _end)
-            _end += 27
-            _stop = _end + 9 * 8
-            if _stop > _len: raise _Truncated
-            self.position_covariance = _np.frombuffer(_buf, '<f8', 9, _end)
-            _end = _stop
-            self.position_covariance_type, = _S4.unpack_from(_buf, _end)
-            _end += 1
+            self.position_covariance = _np.frombuffer(_buf, '<f8', 9, _end + 27)
+            self.position_covariance_type, = _S4.unpack_from(_buf, _end + 99)
+            if _end > len(_buf): raise _Truncated
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
         return self

@@ -5,6 +5,7 @@ from kame.msg.message import Message as _Message
 from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
+from kame.msg.message import refill as _refill
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -57,7 +58,11 @@ class PointCloud2(_Message):
             if self.is_dense is None:
                 self.is_dense = False
         else:
-            self.header = _T_std_msgs__Header()
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.seq = 0
+            _v1.stamp = _t2 = _new(_Time)
+            _t2.secs = _t2.nsecs = 0
+            _v1.frame_id = ''
             self.height = 0
             self.width = 0
             self.fields = []
@@ -70,20 +75,22 @@ class PointCloud2(_Message):
     def serialize(self, buff):
         try:
             _w = buff.write
-            _b1 = self.header.frame_id
-            if _b1.__class__ is not bytes: _b1 = _b1.encode()
-            _w(_S0.pack(self.header.seq, self.header.stamp.secs, self.header.stamp.nsecs, len(_b1)) + _b1)
-            _x2 = self.fields
-            _w(_S1.pack(self.height, self.width, len(_x2)))
-            for _e3 in _x2:
-                _b4 = _e3.name
-                if _b4.__class__ is not bytes: _b4 = _b4.encode()
-                _w(_S2.pack(len(_b4)) + _b4)
-                _w(_S3.pack(_e3.offset, _e3.datatype, _e3.count))
-            _x5 = self.data
-            if _x5.__class__ is not bytes: _x5 = _u8(_x5)
-            _w(_S4.pack(self.is_bigendian, self.point_step, self.row_step, len(_x5)))
-            _w(_x5)
+            _m1 = self.header
+            _m2 = _m1.stamp
+            _b3 = _m1.frame_id
+            if _b3.__class__ is not bytes: _b3 = _b3.encode()
+            _w(_S0.pack(_m1.seq, _m2.secs, _m2.nsecs, len(_b3)) + _b3)
+            _x4 = self.fields
+            _w(_S1.pack(self.height, self.width, len(_x4)))
+            for _e5 in _x4:
+                _b6 = _e5.name
+                if _b6.__class__ is not bytes: _b6 = _b6.encode()
+                _w(_S2.pack(len(_b6)) + _b6)
+                _w(_S3.pack(_e5.offset, _e5.datatype, _e5.count))
+            _x7 = self.data
+            if _x7.__class__ is not bytes: _x7 = _u8(_x7)
+            _w(_S4.pack(self.is_bigendian, self.point_step, self.row_step, len(_x7)))
+            _w(_x7)
             _w(_S5.pack(self.is_dense))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
@@ -93,45 +100,69 @@ class PointCloud2(_Message):
 
     def deserialize(self, data):
         try:
+            _v1 = self.header
+            _t2 = _v1.stamp
             _buf = data
-            _len = len(data)
-            _end = 0
-            _v1 = _new(_T_std_msgs__Header)
-            self.header = _v1
-            _t2 = _new(_Time)
-            _v1.stamp = _t2
-            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v1.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
             self.height, self.width, _n = _S1.unpack_from(_buf, _end)
             _end += 12
             _l3 = []
             for _ in range(_n):
-                _v5 = _new(_T_sensor_msgs__PointField)
-                _i4 = _v5
+                _i4 = _v5 = _new(_T_sensor_msgs__PointField)
                 _n, = _S2.unpack_from(_buf, _end)
-                _end += 4
-                _stop = _end + _n
-                if _stop > _len: raise _Truncated
-                _v5.name = str(_buf[_end:_stop], 'utf-8', 'replace')
-                _end = _stop
+                _s = _end + 4
+                _end = _s + _n
+                _v5.name = str(_buf[_s:_end], 'utf-8', 'replace')
                 _v5.offset, _v5.datatype, _v5.count = _S3.unpack_from(_buf, _end)
                 _end += 9
                 _l3.append(_i4)
             self.fields = _l3
             self.is_bigendian, self.point_step, self.row_step, _n = _S6.unpack_from(_buf, _end)
-            _end += 13
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            self.data = bytes(_buf[_end:_stop])
-            _end = _stop
+            _s = _end + 13
+            _end = _s + _n
+            self.data = bytes(_buf[_s:_end])
             self.is_dense, = _S7.unpack_from(_buf, _end)
-            _end += 1
+            if _end > len(_buf): raise _Truncated
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
+        return _refill(self, PointCloud2, data)
+
+    @classmethod
+    def _from_buffer(cls, data):
+        self = _new(cls)
+        try:
+            _buf = data
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.stamp = _t2 = _new(_Time)
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            self.height, self.width, _n = _S1.unpack_from(_buf, _end)
+            _end += 12
+            _l3 = []
+            for _ in range(_n):
+                _i4 = _v5 = _new(_T_sensor_msgs__PointField)
+                _n, = _S2.unpack_from(_buf, _end)
+                _s = _end + 4
+                _end = _s + _n
+                _v5.name = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v5.offset, _v5.datatype, _v5.count = _S3.unpack_from(_buf, _end)
+                _end += 9
+                _l3.append(_i4)
+            self.fields = _l3
+            self.is_bigendian, self.point_step, self.row_step, _n = _S6.unpack_from(_buf, _end)
+            _s = _end + 13
+            _end = _s + _n
+            self.data = bytes(_buf[_s:_end])
+            self.is_dense, = _S7.unpack_from(_buf, _end)
+            if _end > len(_buf): raise _Truncated
+        except Exception as exc:
+            raise _deserialize_failed(cls, data, exc) from exc
         return self
 
     def deserialize_numpy(self, data, numpy):

@@ -5,6 +5,7 @@ from kame.msg.message import Message as _Message
 from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
+from kame.msg.message import refill as _refill
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -43,24 +44,48 @@ class SetCameraInfoRequest(_Message):
             if self.camera_info is None:
                 self.camera_info = _T_sensor_msgs__CameraInfo()
         else:
-            self.camera_info = _T_sensor_msgs__CameraInfo()
+            self.camera_info = _v1 = _new(_T_sensor_msgs__CameraInfo)
+            _v1.header = _v2 = _new(_T_std_msgs__Header)
+            _v2.seq = 0
+            _v2.stamp = _t3 = _new(_Time)
+            _t3.secs = _t3.nsecs = 0
+            _v2.frame_id = ''
+            _v1.height = 0
+            _v1.width = 0
+            _v1.distortion_model = ''
+            _v1.D = []
+            _v1.K = [0.0] * 9
+            _v1.R = [0.0] * 9
+            _v1.P = [0.0] * 12
+            _v1.binning_x = 0
+            _v1.binning_y = 0
+            _v1.roi = _v4 = _new(_T_sensor_msgs__RegionOfInterest)
+            _v4.x_offset = 0
+            _v4.y_offset = 0
+            _v4.height = 0
+            _v4.width = 0
+            _v4.do_rectify = False
 
     def serialize(self, buff):
         try:
             _w = buff.write
-            _b1 = self.camera_info.header.frame_id
-            if _b1.__class__ is not bytes: _b1 = _b1.encode()
-            _w(_S0.pack(self.camera_info.header.seq, self.camera_info.header.stamp.secs, self.camera_info.header.stamp.nsecs, len(_b1)) + _b1)
-            _b2 = self.camera_info.distortion_model
-            if _b2.__class__ is not bytes: _b2 = _b2.encode()
-            _w(_S1.pack(self.camera_info.height, self.camera_info.width, len(_b2)) + _b2)
-            _x3 = self.camera_info.D
-            _w(_S2.pack(len(_x3)))
-            _w(_pack_array(_x3, 'd', '<f8'))
-            _x4 = self.camera_info.K
-            _x5 = self.camera_info.R
-            _x6 = self.camera_info.P
-            _w(_S3.pack(*_x4, *_x5, *_x6, self.camera_info.binning_x, self.camera_info.binning_y, self.camera_info.roi.x_offset, self.camera_info.roi.y_offset, self.camera_info.roi.height, self.camera_info.roi.width, self.camera_info.roi.do_rectify))
+            _m1 = self.camera_info
+            _m2 = _m1.header
+            _m3 = _m2.stamp
+            _b4 = _m2.frame_id
+            if _b4.__class__ is not bytes: _b4 = _b4.encode()
+            _w(_S0.pack(_m2.seq, _m3.secs, _m3.nsecs, len(_b4)) + _b4)
+            _b5 = _m1.distortion_model
+            if _b5.__class__ is not bytes: _b5 = _b5.encode()
+            _w(_S1.pack(_m1.height, _m1.width, len(_b5)) + _b5)
+            _x6 = _m1.D
+            _w(_S2.pack(len(_x6)))
+            _w(_pack_array(_x6, 'd', '<f8'))
+            _x7 = _m1.K
+            _x8 = _m1.R
+            _x9 = _m1.P
+            _m10 = _m1.roi
+            _w(_S3.pack(*_x7, *_x8, *_x9, _m1.binning_x, _m1.binning_y, _m10.x_offset, _m10.y_offset, _m10.height, _m10.width, _m10.do_rectify))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -69,99 +94,84 @@ class SetCameraInfoRequest(_Message):
 
     def deserialize(self, data):
         try:
+            _v1 = self.camera_info
+            _v2 = _v1.header
+            _t3 = _v2.stamp
+            _v4 = _v1.roi
             _buf = data
-            _len = len(data)
-            _end = 0
-            _v1 = _new(_T_sensor_msgs__CameraInfo)
-            self.camera_info = _v1
-            _v2 = _new(_T_std_msgs__Header)
-            _v1.header = _v2
-            _t3 = _new(_Time)
-            _v2.stamp = _t3
-            _v2.seq, _t3.secs, _t3.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v2.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            _v2.seq, _t3.secs, _t3.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v2.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
             _v1.height, _v1.width, _n = _S1.unpack_from(_buf, _end)
-            _end += 12
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v1.distortion_model = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            _s = _end + 12
+            _end = _s + _n
+            _v1.distortion_model = str(_buf[_s:_end], 'utf-8', 'replace')
             _n, = _S2.unpack_from(_buf, _end)
-            _end += 4
-            _stop = _end + _n * 8
-            if _stop > _len: raise _Truncated
-            _v1.D = _unpack_from('<%dd' % _n, _buf, _end)
-            _end = _stop
-            _stop = _end + 9 * 8
-            if _stop > _len: raise _Truncated
+            _v1.D = _unpack_from('<%dd' % _n, _buf, _end + 4)
+            _end += 4 + _n * 8
             _v1.K = _S4.unpack_from(_buf, _end)
-            _end = _stop
-            _stop = _end + 9 * 8
-            if _stop > _len: raise _Truncated
-            _v1.R = _S4.unpack_from(_buf, _end)
-            _end = _stop
-            _stop = _end + 12 * 8
-            if _stop > _len: raise _Truncated
-            _v1.P = _S5.unpack_from(_buf, _end)
-            _end = _stop
-            _v4 = _new(_T_sensor_msgs__RegionOfInterest)
-            _v1.roi = _v4
-            _v1.binning_x, _v1.binning_y, _v4.x_offset, _v4.y_offset, _v4.height, _v4.width, _v4.do_rectify = _S6.unpack_from(_buf, _end)
-            _end += 25
+            _v1.R = _S4.unpack_from(_buf, _end + 72)
+            _v1.P = _S5.unpack_from(_buf, _end + 144)
+            _v1.binning_x, _v1.binning_y, _v4.x_offset, _v4.y_offset, _v4.height, _v4.width, _v4.do_rectify = _S6.unpack_from(_buf, _end + 240)
+            if _end > len(_buf): raise _Truncated
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
+        return _refill(self, SetCameraInfoRequest, data)
+
+    @classmethod
+    def _from_buffer(cls, data):
+        self = _new(cls)
+        try:
+            _buf = data
+            self.camera_info = _v1 = _new(_T_sensor_msgs__CameraInfo)
+            _v1.header = _v2 = _new(_T_std_msgs__Header)
+            _v2.stamp = _t3 = _new(_Time)
+            _v2.seq, _t3.secs, _t3.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v2.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            _v1.height, _v1.width, _n = _S1.unpack_from(_buf, _end)
+            _s = _end + 12
+            _end = _s + _n
+            _v1.distortion_model = str(_buf[_s:_end], 'utf-8', 'replace')
+            _n, = _S2.unpack_from(_buf, _end)
+            _v1.D = _unpack_from('<%dd' % _n, _buf, _end + 4)
+            _end += 4 + _n * 8
+            _v1.K = _S4.unpack_from(_buf, _end)
+            _v1.R = _S4.unpack_from(_buf, _end + 72)
+            _v1.P = _S5.unpack_from(_buf, _end + 144)
+            _v1.roi = _v4 = _new(_T_sensor_msgs__RegionOfInterest)
+            _v1.binning_x, _v1.binning_y, _v4.x_offset, _v4.y_offset, _v4.height, _v4.width, _v4.do_rectify = _S6.unpack_from(_buf, _end + 240)
+            if _end > len(_buf): raise _Truncated
+        except Exception as exc:
+            raise _deserialize_failed(cls, data, exc) from exc
         return self
 
     def deserialize_numpy(self, data, numpy):
         try:
             _np = numpy
             _buf = data
-            _len = len(data)
-            _end = 0
-            _v1 = _new(_T_sensor_msgs__CameraInfo)
-            self.camera_info = _v1
-            _v2 = _new(_T_std_msgs__Header)
-            _v1.header = _v2
-            _t3 = _new(_Time)
-            _v2.stamp = _t3
-            _v2.seq, _t3.secs, _t3.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v2.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            self.camera_info = _v1 = _new(_T_sensor_msgs__CameraInfo)
+            _v1.header = _v2 = _new(_T_std_msgs__Header)
+            _v2.stamp = _t3 = _new(_Time)
+            _v2.seq, _t3.secs, _t3.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v2.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
             _v1.height, _v1.width, _n = _S1.unpack_from(_buf, _end)
-            _end += 12
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v1.distortion_model = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            _s = _end + 12
+            _end = _s + _n
+            _v1.distortion_model = str(_buf[_s:_end], 'utf-8', 'replace')
             _n, = _S2.unpack_from(_buf, _end)
-            _end += 4
-            _stop = _end + _n * 8
-            if _stop > _len: raise _Truncated
-            _v1.D = _np.frombuffer(_buf, '<f8', _n, _end)
-            _end = _stop
-            _stop = _end + 9 * 8
-            if _stop > _len: raise _Truncated
+            _v1.D = _np.frombuffer(_buf, '<f8', _n, _end + 4)
+            _end += 4 + _n * 8
             _v1.K = _np.frombuffer(_buf, '<f8', 9, _end)
-            _end = _stop
-            _stop = _end + 9 * 8
-            if _stop > _len: raise _Truncated
-            _v1.R = _np.frombuffer(_buf, '<f8', 9, _end)
-            _end = _stop
-            _stop = _end + 12 * 8
-            if _stop > _len: raise _Truncated
-            _v1.P = _np.frombuffer(_buf, '<f8', 12, _end)
-            _end = _stop
-            _v4 = _new(_T_sensor_msgs__RegionOfInterest)
-            _v1.roi = _v4
-            _v1.binning_x, _v1.binning_y, _v4.x_offset, _v4.y_offset, _v4.height, _v4.width, _v4.do_rectify = _S6.unpack_from(_buf, _end)
-            _end += 25
+            _v1.R = _np.frombuffer(_buf, '<f8', 9, _end + 72)
+            _v1.P = _np.frombuffer(_buf, '<f8', 12, _end + 144)
+            _v1.roi = _v4 = _new(_T_sensor_msgs__RegionOfInterest)
+            _v1.binning_x, _v1.binning_y, _v4.x_offset, _v4.y_offset, _v4.height, _v4.width, _v4.do_rectify = _S6.unpack_from(_buf, _end + 240)
+            if _end > len(_buf): raise _Truncated
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
         return self
@@ -190,10 +200,9 @@ class SetCameraInfoResponse(_Message):
 
     def serialize(self, buff):
         try:
-            _w = buff.write
             _b1 = self.status_message
             if _b1.__class__ is not bytes: _b1 = _b1.encode()
-            _w(_S7.pack(self.success, len(_b1)) + _b1)
+            buff.write(_S7.pack(self.success, len(_b1)) + _b1)
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -203,16 +212,25 @@ class SetCameraInfoResponse(_Message):
     def deserialize(self, data):
         try:
             _buf = data
-            _len = len(data)
-            _end = 0
-            self.success, _n = _S8.unpack_from(_buf, _end)
-            _end += 5
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            self.status_message = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            self.success, _n = _S8.unpack_from(_buf, 0)
+            _end = 5 + _n
+            self.status_message = str(_buf[5:_end], 'utf-8', 'replace')
+            if _end > len(_buf): raise _Truncated
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
+        return self
+
+    @classmethod
+    def _from_buffer(cls, data):
+        self = _new(cls)
+        try:
+            _buf = data
+            self.success, _n = _S8.unpack_from(_buf, 0)
+            _end = 5 + _n
+            self.status_message = str(_buf[5:_end], 'utf-8', 'replace')
+            if _end > len(_buf): raise _Truncated
+        except Exception as exc:
+            raise _deserialize_failed(cls, data, exc) from exc
         return self
 
     def deserialize_numpy(self, data, numpy):

@@ -5,6 +5,7 @@ from kame.msg.message import Message as _Message
 from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
+from kame.msg.message import refill as _refill
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -62,26 +63,20 @@ class Mesh(_Message):
     def deserialize(self, data):
         try:
             _buf = data
-            _len = len(data)
-            _end = 0
-            _n, = _S0.unpack_from(_buf, _end)
-            _end += 4
+            _n, = _S0.unpack_from(_buf, 0)
+            _end = 4
             _l1 = []
             for _ in range(_n):
-                _v3 = _new(_T_shape_msgs__MeshTriangle)
-                _i2 = _v3
-                _stop = _end + 3 * 4
-                if _stop > _len: raise _Truncated
+                _i2 = _v3 = _new(_T_shape_msgs__MeshTriangle)
                 _v3.vertex_indices = _S1.unpack_from(_buf, _end)
-                _end = _stop
+                _end += 12
                 _l1.append(_i2)
             self.triangles = _l1
             _n, = _S0.unpack_from(_buf, _end)
             _end += 4
             _l4 = []
             for _ in range(_n):
-                _v6 = _new(_T_geometry_msgs__Point)
-                _i5 = _v6
+                _i5 = _v6 = _new(_T_geometry_msgs__Point)
                 _v6.x, _v6.y, _v6.z = _S2.unpack_from(_buf, _end)
                 _end += 24
                 _l4.append(_i5)
@@ -90,30 +85,51 @@ class Mesh(_Message):
             raise _deserialize_failed(type(self), data, exc) from exc
         return self
 
-    def deserialize_numpy(self, data, numpy):
+    @classmethod
+    def _from_buffer(cls, data):
+        self = _new(cls)
         try:
-            _np = numpy
             _buf = data
-            _len = len(data)
-            _end = 0
-            _n, = _S0.unpack_from(_buf, _end)
-            _end += 4
+            _n, = _S0.unpack_from(_buf, 0)
+            _end = 4
             _l1 = []
             for _ in range(_n):
-                _v3 = _new(_T_shape_msgs__MeshTriangle)
-                _i2 = _v3
-                _stop = _end + 3 * 4
-                if _stop > _len: raise _Truncated
-                _v3.vertex_indices = _np.frombuffer(_buf, '<u4', 3, _end)
-                _end = _stop
+                _i2 = _v3 = _new(_T_shape_msgs__MeshTriangle)
+                _v3.vertex_indices = _S1.unpack_from(_buf, _end)
+                _end += 12
                 _l1.append(_i2)
             self.triangles = _l1
             _n, = _S0.unpack_from(_buf, _end)
             _end += 4
             _l4 = []
             for _ in range(_n):
-                _v6 = _new(_T_geometry_msgs__Point)
-                _i5 = _v6
+                _i5 = _v6 = _new(_T_geometry_msgs__Point)
+                _v6.x, _v6.y, _v6.z = _S2.unpack_from(_buf, _end)
+                _end += 24
+                _l4.append(_i5)
+            self.vertices = _l4
+        except Exception as exc:
+            raise _deserialize_failed(cls, data, exc) from exc
+        return self
+
+    def deserialize_numpy(self, data, numpy):
+        try:
+            _np = numpy
+            _buf = data
+            _n, = _S0.unpack_from(_buf, 0)
+            _end = 4
+            _l1 = []
+            for _ in range(_n):
+                _i2 = _v3 = _new(_T_shape_msgs__MeshTriangle)
+                _v3.vertex_indices = _np.frombuffer(_buf, '<u4', 3, _end)
+                _end += 12
+                _l1.append(_i2)
+            self.triangles = _l1
+            _n, = _S0.unpack_from(_buf, _end)
+            _end += 4
+            _l4 = []
+            for _ in range(_n):
+                _i5 = _v6 = _new(_T_geometry_msgs__Point)
                 _v6.x, _v6.y, _v6.z = _S2.unpack_from(_buf, _end)
                 _end += 24
                 _l4.append(_i5)

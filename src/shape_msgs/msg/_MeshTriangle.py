@@ -5,6 +5,7 @@ from kame.msg.message import Message as _Message
 from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
+from kame.msg.message import refill as _refill
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -36,9 +37,8 @@ class MeshTriangle(_Message):
 
     def serialize(self, buff):
         try:
-            _w = buff.write
             _x1 = self.vertex_indices
-            _w(_S0.pack(*_x1))
+            buff.write(_S0.pack(*_x1))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -48,26 +48,26 @@ class MeshTriangle(_Message):
     def deserialize(self, data):
         try:
             _buf = data
-            _len = len(data)
-            _end = 0
-            _stop = _end + 3 * 4
-            if _stop > _len: raise _Truncated
-            self.vertex_indices = _S0.unpack_from(_buf, _end)
-            _end = _stop
+            self.vertex_indices = _S0.unpack_from(_buf, 0)
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
+        return self
+
+    @classmethod
+    def _from_buffer(cls, data):
+        self = _new(cls)
+        try:
+            _buf = data
+            self.vertex_indices = _S0.unpack_from(_buf, 0)
+        except Exception as exc:
+            raise _deserialize_failed(cls, data, exc) from exc
         return self
 
     def deserialize_numpy(self, data, numpy):
         try:
             _np = numpy
             _buf = data
-            _len = len(data)
-            _end = 0
-            _stop = _end + 3 * 4
-            if _stop > _len: raise _Truncated
-            self.vertex_indices = _np.frombuffer(_buf, '<u4', 3, _end)
-            _end = _stop
+            self.vertex_indices = _np.frombuffer(_buf, '<u4', 3, 0)
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
         return self

@@ -5,6 +5,7 @@ from kame.msg.message import Message as _Message
 from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
+from kame.msg.message import refill as _refill
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -64,30 +65,32 @@ class SolidPrimitive(_Message):
     def deserialize(self, data):
         try:
             _buf = data
-            _len = len(data)
-            _end = 0
-            self.type, _n = _S0.unpack_from(_buf, _end)
-            _end += 5
-            _stop = _end + _n * 8
-            if _stop > _len: raise _Truncated
-            self.dimensions = _unpack_from('<%dd' % _n, _buf, _end)
-            _end = _stop
+            self.type, _n = _S0.unpack_from(_buf, 0)
+            self.dimensions = _unpack_from('<%dd' % _n, _buf, 5)
+            _end = 5 + _n * 8
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
+        return self
+
+    @classmethod
+    def _from_buffer(cls, data):
+        self = _new(cls)
+        try:
+            _buf = data
+            self.type, _n = _S0.unpack_from(_buf, 0)
+            self.dimensions = _unpack_from('<%dd' % _n, _buf, 5)
+            _end = 5 + _n * 8
+        except Exception as exc:
+            raise _deserialize_failed(cls, data, exc) from exc
         return self
 
     def deserialize_numpy(self, data, numpy):
         try:
             _np = numpy
             _buf = data
-            _len = len(data)
-            _end = 0
-            self.type, _n = _S0.unpack_from(_buf, _end)
-            _end += 5
-            _stop = _end + _n * 8
-            if _stop > _len: raise _Truncated
-            self.dimensions = _np.frombuffer(_buf, '<f8', _n, _end)
-            _end = _stop
+            self.type, _n = _S0.unpack_from(_buf, 0)
+            self.dimensions = _np.frombuffer(_buf, '<f8', _n, 5)
+            _end = 5 + _n * 8
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
         return self

@@ -5,6 +5,7 @@ from kame.msg.message import Message as _Message
 from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
+from kame.msg.message import refill as _refill
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -32,12 +33,13 @@ class Duration(_Message):
             if self.data is None:
                 self.data = _Duration()
         else:
-            self.data = _Duration()
+            self.data = _t1 = _new(_Duration)
+            _t1.secs = _t1.nsecs = 0
 
     def serialize(self, buff):
         try:
-            _w = buff.write
-            _w(_S0.pack(self.data.secs, self.data.nsecs))
+            _m1 = self.data
+            buff.write(_S0.pack(_m1.secs, _m1.nsecs))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -46,15 +48,25 @@ class Duration(_Message):
 
     def deserialize(self, data):
         try:
+            _t1 = self.data
             _buf = data
-            _len = len(data)
-            _end = 0
-            _t1 = _new(_Duration)
-            self.data = _t1
-            _t1.secs, _t1.nsecs = _S0.unpack_from(_buf, _end)
-            _end += 8
+            _t1.secs, _t1.nsecs = _S0.unpack_from(_buf, 0)
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
+        return _refill(self, Duration, data)
+
+    @classmethod
+    def _from_buffer(cls, data):
+        self = _new(cls)
+        try:
+            _buf = data
+            self.data = _t1 = _new(_Duration)
+            _t1.secs, _t1.nsecs = _S0.unpack_from(_buf, 0)
+        except Exception as exc:
+            raise _deserialize_failed(cls, data, exc) from exc
         return self
 
     def deserialize_numpy(self, data, numpy):

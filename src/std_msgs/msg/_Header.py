@@ -5,6 +5,7 @@ from kame.msg.message import Message as _Message
 from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
+from kame.msg.message import refill as _refill
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -37,15 +38,16 @@ class Header(_Message):
                 self.frame_id = ''
         else:
             self.seq = 0
-            self.stamp = _Time()
+            self.stamp = _t1 = _new(_Time)
+            _t1.secs = _t1.nsecs = 0
             self.frame_id = ''
 
     def serialize(self, buff):
         try:
-            _w = buff.write
-            _b1 = self.frame_id
-            if _b1.__class__ is not bytes: _b1 = _b1.encode()
-            _w(_S0.pack(self.seq, self.stamp.secs, self.stamp.nsecs, len(_b1)) + _b1)
+            _m1 = self.stamp
+            _b2 = self.frame_id
+            if _b2.__class__ is not bytes: _b2 = _b2.encode()
+            buff.write(_S0.pack(self.seq, _m1.secs, _m1.nsecs, len(_b2)) + _b2)
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -54,19 +56,31 @@ class Header(_Message):
 
     def deserialize(self, data):
         try:
+            _t1 = self.stamp
             _buf = data
-            _len = len(data)
-            _end = 0
-            _t1 = _new(_Time)
-            self.stamp = _t1
-            self.seq, _t1.secs, _t1.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            self.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            self.seq, _t1.secs, _t1.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            self.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            if _end > len(_buf): raise _Truncated
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
+        return _refill(self, Header, data)
+
+    @classmethod
+    def _from_buffer(cls, data):
+        self = _new(cls)
+        try:
+            _buf = data
+            self.stamp = _t1 = _new(_Time)
+            self.seq, _t1.secs, _t1.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            self.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            if _end > len(_buf): raise _Truncated
+        except Exception as exc:
+            raise _deserialize_failed(cls, data, exc) from exc
         return self
 
     def deserialize_numpy(self, data, numpy):

@@ -5,6 +5,7 @@ from kame.msg.message import Message as _Message
 from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
+from kame.msg.message import refill as _refill
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -37,22 +38,25 @@ class Int16MultiArray(_Message):
             if self.data is None:
                 self.data = []
         else:
-            self.layout = _T_std_msgs__MultiArrayLayout()
+            self.layout = _v1 = _new(_T_std_msgs__MultiArrayLayout)
+            _v1.dim = []
+            _v1.data_offset = 0
             self.data = []
 
     def serialize(self, buff):
         try:
             _w = buff.write
-            _x1 = self.layout.dim
-            _w(_S0.pack(len(_x1)))
-            for _e2 in _x1:
-                _b3 = _e2.label
-                if _b3.__class__ is not bytes: _b3 = _b3.encode()
-                _w(_S0.pack(len(_b3)) + _b3)
-                _w(_S1.pack(_e2.size, _e2.stride))
-            _x4 = self.data
-            _w(_S1.pack(self.layout.data_offset, len(_x4)))
-            _w(_pack_array(_x4, 'h', '<i2'))
+            _m1 = self.layout
+            _x2 = _m1.dim
+            _w(_S0.pack(len(_x2)))
+            for _e3 in _x2:
+                _b4 = _e3.label
+                if _b4.__class__ is not bytes: _b4 = _b4.encode()
+                _w(_S0.pack(len(_b4)) + _b4)
+                _w(_S1.pack(_e3.size, _e3.stride))
+            _x5 = self.data
+            _w(_S1.pack(_m1.data_offset, len(_x5)))
+            _w(_pack_array(_x5, 'h', '<i2'))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -61,67 +65,81 @@ class Int16MultiArray(_Message):
 
     def deserialize(self, data):
         try:
+            _v1 = self.layout
             _buf = data
-            _len = len(data)
-            _end = 0
-            _v1 = _new(_T_std_msgs__MultiArrayLayout)
-            self.layout = _v1
-            _n, = _S0.unpack_from(_buf, _end)
-            _end += 4
+            _n, = _S0.unpack_from(_buf, 0)
+            _end = 4
             _l2 = []
             for _ in range(_n):
-                _v4 = _new(_T_std_msgs__MultiArrayDimension)
-                _i3 = _v4
+                _i3 = _v4 = _new(_T_std_msgs__MultiArrayDimension)
                 _n, = _S0.unpack_from(_buf, _end)
-                _end += 4
-                _stop = _end + _n
-                if _stop > _len: raise _Truncated
-                _v4.label = str(_buf[_end:_stop], 'utf-8', 'replace')
-                _end = _stop
+                _s = _end + 4
+                _end = _s + _n
+                _v4.label = str(_buf[_s:_end], 'utf-8', 'replace')
                 _v4.size, _v4.stride = _S1.unpack_from(_buf, _end)
                 _end += 8
                 _l2.append(_i3)
             _v1.dim = _l2
             _v1.data_offset, _n = _S1.unpack_from(_buf, _end)
-            _end += 8
-            _stop = _end + _n * 2
-            if _stop > _len: raise _Truncated
-            self.data = _unpack_from('<%dh' % _n, _buf, _end)
-            _end = _stop
+            self.data = _unpack_from('<%dh' % _n, _buf, _end + 8)
+            _end += 8 + _n * 2
+            if _end > len(_buf): raise _Truncated
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
+        return _refill(self, Int16MultiArray, data)
+
+    @classmethod
+    def _from_buffer(cls, data):
+        self = _new(cls)
+        try:
+            _buf = data
+            self.layout = _v1 = _new(_T_std_msgs__MultiArrayLayout)
+            _n, = _S0.unpack_from(_buf, 0)
+            _end = 4
+            _l2 = []
+            for _ in range(_n):
+                _i3 = _v4 = _new(_T_std_msgs__MultiArrayDimension)
+                _n, = _S0.unpack_from(_buf, _end)
+                _s = _end + 4
+                _end = _s + _n
+                _v4.label = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v4.size, _v4.stride = _S1.unpack_from(_buf, _end)
+                _end += 8
+                _l2.append(_i3)
+            _v1.dim = _l2
+            _v1.data_offset, _n = _S1.unpack_from(_buf, _end)
+            self.data = _unpack_from('<%dh' % _n, _buf, _end + 8)
+            _end += 8 + _n * 2
+            if _end > len(_buf): raise _Truncated
+        except Exception as exc:
+            raise _deserialize_failed(cls, data, exc) from exc
         return self
 
     def deserialize_numpy(self, data, numpy):
         try:
             _np = numpy
             _buf = data
-            _len = len(data)
-            _end = 0
-            _v1 = _new(_T_std_msgs__MultiArrayLayout)
-            self.layout = _v1
-            _n, = _S0.unpack_from(_buf, _end)
-            _end += 4
+            self.layout = _v1 = _new(_T_std_msgs__MultiArrayLayout)
+            _n, = _S0.unpack_from(_buf, 0)
+            _end = 4
             _l2 = []
             for _ in range(_n):
-                _v4 = _new(_T_std_msgs__MultiArrayDimension)
-                _i3 = _v4
+                _i3 = _v4 = _new(_T_std_msgs__MultiArrayDimension)
                 _n, = _S0.unpack_from(_buf, _end)
-                _end += 4
-                _stop = _end + _n
-                if _stop > _len: raise _Truncated
-                _v4.label = str(_buf[_end:_stop], 'utf-8', 'replace')
-                _end = _stop
+                _s = _end + 4
+                _end = _s + _n
+                _v4.label = str(_buf[_s:_end], 'utf-8', 'replace')
                 _v4.size, _v4.stride = _S1.unpack_from(_buf, _end)
                 _end += 8
                 _l2.append(_i3)
             _v1.dim = _l2
             _v1.data_offset, _n = _S1.unpack_from(_buf, _end)
-            _end += 8
-            _stop = _end + _n * 2
-            if _stop > _len: raise _Truncated
-            self.data = _np.frombuffer(_buf, '<i2', _n, _end)
-            _end = _stop
+            self.data = _np.frombuffer(_buf, '<i2', _n, _end + 8)
+            _end += 8 + _n * 2
+            if _end > len(_buf): raise _Truncated
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
         return self

@@ -5,6 +5,7 @@ from kame.msg.message import Message as _Message
 from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
+from kame.msg.message import refill as _refill
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -59,28 +60,47 @@ class MultiArrayLayout(_Message):
     def deserialize(self, data):
         try:
             _buf = data
-            _len = len(data)
-            _end = 0
-            _n, = _S0.unpack_from(_buf, _end)
-            _end += 4
+            _n, = _S0.unpack_from(_buf, 0)
+            _end = 4
             _l1 = []
             for _ in range(_n):
-                _v3 = _new(_T_std_msgs__MultiArrayDimension)
-                _i2 = _v3
+                _i2 = _v3 = _new(_T_std_msgs__MultiArrayDimension)
                 _n, = _S0.unpack_from(_buf, _end)
-                _end += 4
-                _stop = _end + _n
-                if _stop > _len: raise _Truncated
-                _v3.label = str(_buf[_end:_stop], 'utf-8', 'replace')
-                _end = _stop
+                _s = _end + 4
+                _end = _s + _n
+                _v3.label = str(_buf[_s:_end], 'utf-8', 'replace')
                 _v3.size, _v3.stride = _S1.unpack_from(_buf, _end)
                 _end += 8
                 _l1.append(_i2)
             self.dim = _l1
             self.data_offset, = _S0.unpack_from(_buf, _end)
-            _end += 4
+            if _end > len(_buf): raise _Truncated
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
+        return self
+
+    @classmethod
+    def _from_buffer(cls, data):
+        self = _new(cls)
+        try:
+            _buf = data
+            _n, = _S0.unpack_from(_buf, 0)
+            _end = 4
+            _l1 = []
+            for _ in range(_n):
+                _i2 = _v3 = _new(_T_std_msgs__MultiArrayDimension)
+                _n, = _S0.unpack_from(_buf, _end)
+                _s = _end + 4
+                _end = _s + _n
+                _v3.label = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v3.size, _v3.stride = _S1.unpack_from(_buf, _end)
+                _end += 8
+                _l1.append(_i2)
+            self.dim = _l1
+            self.data_offset, = _S0.unpack_from(_buf, _end)
+            if _end > len(_buf): raise _Truncated
+        except Exception as exc:
+            raise _deserialize_failed(cls, data, exc) from exc
         return self
 
     def deserialize_numpy(self, data, numpy):

@@ -5,6 +5,7 @@ from kame.msg.message import Message as _Message
 from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
+from kame.msg.message import refill as _refill
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -36,8 +37,7 @@ class UInt16(_Message):
 
     def serialize(self, buff):
         try:
-            _w = buff.write
-            _w(_S0.pack(self.data))
+            buff.write(_S0.pack(self.data))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -47,12 +47,19 @@ class UInt16(_Message):
     def deserialize(self, data):
         try:
             _buf = data
-            _len = len(data)
-            _end = 0
-            self.data, = _S0.unpack_from(_buf, _end)
-            _end += 2
+            self.data, = _S0.unpack_from(_buf, 0)
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
+        return self
+
+    @classmethod
+    def _from_buffer(cls, data):
+        self = _new(cls)
+        try:
+            _buf = data
+            self.data, = _S0.unpack_from(_buf, 0)
+        except Exception as exc:
+            raise _deserialize_failed(cls, data, exc) from exc
         return self
 
     def deserialize_numpy(self, data, numpy):

@@ -5,6 +5,7 @@ from kame.msg.message import Message as _Message
 from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
+from kame.msg.message import refill as _refill
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -53,11 +54,31 @@ class DisparityImage(_Message):
             if self.delta_d is None:
                 self.delta_d = 0.0
         else:
-            self.header = _T_std_msgs__Header()
-            self.image = _T_sensor_msgs__Image()
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.seq = 0
+            _v1.stamp = _t2 = _new(_Time)
+            _t2.secs = _t2.nsecs = 0
+            _v1.frame_id = ''
+            self.image = _v3 = _new(_T_sensor_msgs__Image)
+            _v3.header = _v4 = _new(_T_std_msgs__Header)
+            _v4.seq = 0
+            _v4.stamp = _t5 = _new(_Time)
+            _t5.secs = _t5.nsecs = 0
+            _v4.frame_id = ''
+            _v3.height = 0
+            _v3.width = 0
+            _v3.encoding = ''
+            _v3.is_bigendian = 0
+            _v3.step = 0
+            _v3.data = b''
             self.f = 0.0
             self.T = 0.0
-            self.valid_window = _T_sensor_msgs__RegionOfInterest()
+            self.valid_window = _v6 = _new(_T_sensor_msgs__RegionOfInterest)
+            _v6.x_offset = 0
+            _v6.y_offset = 0
+            _v6.height = 0
+            _v6.width = 0
+            _v6.do_rectify = False
             self.min_disparity = 0.0
             self.max_disparity = 0.0
             self.delta_d = 0.0
@@ -65,20 +86,26 @@ class DisparityImage(_Message):
     def serialize(self, buff):
         try:
             _w = buff.write
-            _b1 = self.header.frame_id
-            if _b1.__class__ is not bytes: _b1 = _b1.encode()
-            _w(_S0.pack(self.header.seq, self.header.stamp.secs, self.header.stamp.nsecs, len(_b1)) + _b1)
-            _b2 = self.image.header.frame_id
-            if _b2.__class__ is not bytes: _b2 = _b2.encode()
-            _w(_S0.pack(self.image.header.seq, self.image.header.stamp.secs, self.image.header.stamp.nsecs, len(_b2)) + _b2)
-            _b3 = self.image.encoding
+            _m1 = self.header
+            _m2 = _m1.stamp
+            _b3 = _m1.frame_id
             if _b3.__class__ is not bytes: _b3 = _b3.encode()
-            _w(_S1.pack(self.image.height, self.image.width, len(_b3)) + _b3)
-            _x4 = self.image.data
-            if _x4.__class__ is not bytes: _x4 = _u8(_x4)
-            _w(_S2.pack(self.image.is_bigendian, self.image.step, len(_x4)))
-            _w(_x4)
-            _w(_S3.pack(self.f, self.T, self.valid_window.x_offset, self.valid_window.y_offset, self.valid_window.height, self.valid_window.width, self.valid_window.do_rectify, self.min_disparity, self.max_disparity, self.delta_d))
+            _w(_S0.pack(_m1.seq, _m2.secs, _m2.nsecs, len(_b3)) + _b3)
+            _m4 = self.image
+            _m5 = _m4.header
+            _m6 = _m5.stamp
+            _b7 = _m5.frame_id
+            if _b7.__class__ is not bytes: _b7 = _b7.encode()
+            _w(_S0.pack(_m5.seq, _m6.secs, _m6.nsecs, len(_b7)) + _b7)
+            _b8 = _m4.encoding
+            if _b8.__class__ is not bytes: _b8 = _b8.encode()
+            _w(_S1.pack(_m4.height, _m4.width, len(_b8)) + _b8)
+            _x9 = _m4.data
+            if _x9.__class__ is not bytes: _x9 = _u8(_x9)
+            _w(_S2.pack(_m4.is_bigendian, _m4.step, len(_x9)))
+            _w(_x9)
+            _m10 = self.valid_window
+            _w(_S3.pack(self.f, self.T, _m10.x_offset, _m10.y_offset, _m10.height, _m10.width, _m10.do_rectify, self.min_disparity, self.max_disparity, self.delta_d))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -87,49 +114,67 @@ class DisparityImage(_Message):
 
     def deserialize(self, data):
         try:
+            _v1 = self.header
+            _t2 = _v1.stamp
+            _v3 = self.image
+            _v4 = _v3.header
+            _t5 = _v4.stamp
+            _v6 = self.valid_window
             _buf = data
-            _len = len(data)
-            _end = 0
-            _v1 = _new(_T_std_msgs__Header)
-            self.header = _v1
-            _t2 = _new(_Time)
-            _v1.stamp = _t2
-            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v1.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v3 = _new(_T_sensor_msgs__Image)
-            self.image = _v3
-            _v4 = _new(_T_std_msgs__Header)
-            _v3.header = _v4
-            _t5 = _new(_Time)
-            _v4.stamp = _t5
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
             _v4.seq, _t5.secs, _t5.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v4.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            _s = _end + 16
+            _end = _s + _n
+            _v4.frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
             _v3.height, _v3.width, _n = _S1.unpack_from(_buf, _end)
-            _end += 12
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v3.encoding = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            _s = _end + 12
+            _end = _s + _n
+            _v3.encoding = str(_buf[_s:_end], 'utf-8', 'replace')
             _v3.is_bigendian, _v3.step, _n = _S2.unpack_from(_buf, _end)
-            _end += 9
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v3.data = bytes(_buf[_end:_stop])
-            _end = _stop
-            _v6 = _new(_T_sensor_msgs__RegionOfInterest)
-            self.valid_window = _v6
+            _s = _end + 9
+            _end = _s + _n
+            _v3.data = bytes(_buf[_s:_end])
             self.f, self.T, _v6.x_offset, _v6.y_offset, _v6.height, _v6.width, _v6.do_rectify, self.min_disparity, self.max_disparity, self.delta_d = _S4.unpack_from(_buf, _end)
-            _end += 37
+            if _end > len(_buf): raise _Truncated
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
+        return _refill(self, DisparityImage, data)
+
+    @classmethod
+    def _from_buffer(cls, data):
+        self = _new(cls)
+        try:
+            _buf = data
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.stamp = _t2 = _new(_Time)
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            self.image = _v3 = _new(_T_sensor_msgs__Image)
+            _v3.header = _v4 = _new(_T_std_msgs__Header)
+            _v4.stamp = _t5 = _new(_Time)
+            _v4.seq, _t5.secs, _t5.nsecs, _n = _S0.unpack_from(_buf, _end)
+            _s = _end + 16
+            _end = _s + _n
+            _v4.frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
+            _v3.height, _v3.width, _n = _S1.unpack_from(_buf, _end)
+            _s = _end + 12
+            _end = _s + _n
+            _v3.encoding = str(_buf[_s:_end], 'utf-8', 'replace')
+            _v3.is_bigendian, _v3.step, _n = _S2.unpack_from(_buf, _end)
+            _s = _end + 9
+            _end = _s + _n
+            _v3.data = bytes(_buf[_s:_end])
+            self.valid_window = _v6 = _new(_T_sensor_msgs__RegionOfInterest)
+            self.f, self.T, _v6.x_offset, _v6.y_offset, _v6.height, _v6.width, _v6.do_rectify, self.min_disparity, self.max_disparity, self.delta_d = _S4.unpack_from(_buf, _end)
+            if _end > len(_buf): raise _Truncated
+        except Exception as exc:
+            raise _deserialize_failed(cls, data, exc) from exc
         return self
 
     def deserialize_numpy(self, data, numpy):

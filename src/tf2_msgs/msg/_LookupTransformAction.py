@@ -5,6 +5,7 @@ from kame.msg.message import Message as _Message
 from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
+from kame.msg.message import refill as _refill
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -57,55 +58,150 @@ class LookupTransformAction(_Message):
             if self.action_feedback is None:
                 self.action_feedback = _T_tf2_msgs__LookupTransformActionFeedback()
         else:
-            self.action_goal = _T_tf2_msgs__LookupTransformActionGoal()
-            self.action_result = _T_tf2_msgs__LookupTransformActionResult()
-            self.action_feedback = _T_tf2_msgs__LookupTransformActionFeedback()
+            self.action_goal = _v1 = _new(_T_tf2_msgs__LookupTransformActionGoal)
+            _v1.header = _v2 = _new(_T_std_msgs__Header)
+            _v2.seq = 0
+            _v2.stamp = _t3 = _new(_Time)
+            _t3.secs = _t3.nsecs = 0
+            _v2.frame_id = ''
+            _v1.goal_id = _v4 = _new(_T_actionlib_msgs__GoalID)
+            _v4.stamp = _t5 = _new(_Time)
+            _t5.secs = _t5.nsecs = 0
+            _v4.id = ''
+            _v1.goal = _v6 = _new(_T_tf2_msgs__LookupTransformGoal)
+            _v6.target_frame = ''
+            _v6.source_frame = ''
+            _v6.source_time = _t7 = _new(_Time)
+            _t7.secs = _t7.nsecs = 0
+            _v6.timeout = _t8 = _new(_Duration)
+            _t8.secs = _t8.nsecs = 0
+            _v6.target_time = _t9 = _new(_Time)
+            _t9.secs = _t9.nsecs = 0
+            _v6.fixed_frame = ''
+            _v6.advanced = False
+            self.action_result = _v10 = _new(_T_tf2_msgs__LookupTransformActionResult)
+            _v10.header = _v11 = _new(_T_std_msgs__Header)
+            _v11.seq = 0
+            _v11.stamp = _t12 = _new(_Time)
+            _t12.secs = _t12.nsecs = 0
+            _v11.frame_id = ''
+            _v10.status = _v13 = _new(_T_actionlib_msgs__GoalStatus)
+            _v13.goal_id = _v14 = _new(_T_actionlib_msgs__GoalID)
+            _v14.stamp = _t15 = _new(_Time)
+            _t15.secs = _t15.nsecs = 0
+            _v14.id = ''
+            _v13.status = 0
+            _v13.text = ''
+            _v10.result = _v16 = _new(_T_tf2_msgs__LookupTransformResult)
+            _v16.transform = _v17 = _new(_T_geometry_msgs__TransformStamped)
+            _v17.header = _v18 = _new(_T_std_msgs__Header)
+            _v18.seq = 0
+            _v18.stamp = _t19 = _new(_Time)
+            _t19.secs = _t19.nsecs = 0
+            _v18.frame_id = ''
+            _v17.child_frame_id = ''
+            _v17.transform = _v20 = _new(_T_geometry_msgs__Transform)
+            _v20.translation = _v21 = _new(_T_geometry_msgs__Vector3)
+            _v21.x = 0.0
+            _v21.y = 0.0
+            _v21.z = 0.0
+            _v20.rotation = _v22 = _new(_T_geometry_msgs__Quaternion)
+            _v22.x = 0.0
+            _v22.y = 0.0
+            _v22.z = 0.0
+            _v22.w = 0.0
+            _v16.error = _v23 = _new(_T_tf2_msgs__TF2Error)
+            _v23.error = 0
+            _v23.error_string = ''
+            self.action_feedback = _v24 = _new(_T_tf2_msgs__LookupTransformActionFeedback)
+            _v24.header = _v25 = _new(_T_std_msgs__Header)
+            _v25.seq = 0
+            _v25.stamp = _t26 = _new(_Time)
+            _t26.secs = _t26.nsecs = 0
+            _v25.frame_id = ''
+            _v24.status = _v27 = _new(_T_actionlib_msgs__GoalStatus)
+            _v27.goal_id = _v28 = _new(_T_actionlib_msgs__GoalID)
+            _v28.stamp = _t29 = _new(_Time)
+            _t29.secs = _t29.nsecs = 0
+            _v28.id = ''
+            _v27.status = 0
+            _v27.text = ''
+            _v24.feedback = _v30 = _new(_T_tf2_msgs__LookupTransformFeedback)
 
     def serialize(self, buff):
         try:
             _w = buff.write
-            _b1 = self.action_goal.header.frame_id
-            if _b1.__class__ is not bytes: _b1 = _b1.encode()
-            _w(_S0.pack(self.action_goal.header.seq, self.action_goal.header.stamp.secs, self.action_goal.header.stamp.nsecs, len(_b1)) + _b1)
-            _b2 = self.action_goal.goal_id.id
-            if _b2.__class__ is not bytes: _b2 = _b2.encode()
-            _w(_S1.pack(self.action_goal.goal_id.stamp.secs, self.action_goal.goal_id.stamp.nsecs, len(_b2)) + _b2)
-            _b3 = self.action_goal.goal.target_frame
-            if _b3.__class__ is not bytes: _b3 = _b3.encode()
-            _w(_S2.pack(len(_b3)) + _b3)
-            _b4 = self.action_goal.goal.source_frame
+            _m1 = self.action_goal
+            _m2 = _m1.header
+            _m3 = _m2.stamp
+            _b4 = _m2.frame_id
             if _b4.__class__ is not bytes: _b4 = _b4.encode()
-            _w(_S2.pack(len(_b4)) + _b4)
-            _b5 = self.action_goal.goal.fixed_frame
-            if _b5.__class__ is not bytes: _b5 = _b5.encode()
-            _w(_S3.pack(self.action_goal.goal.source_time.secs, self.action_goal.goal.source_time.nsecs, self.action_goal.goal.timeout.secs, self.action_goal.goal.timeout.nsecs, self.action_goal.goal.target_time.secs, self.action_goal.goal.target_time.nsecs, len(_b5)) + _b5)
-            _b6 = self.action_result.header.frame_id
-            if _b6.__class__ is not bytes: _b6 = _b6.encode()
-            _w(_S4.pack(self.action_goal.goal.advanced, self.action_result.header.seq, self.action_result.header.stamp.secs, self.action_result.header.stamp.nsecs, len(_b6)) + _b6)
-            _b7 = self.action_result.status.goal_id.id
+            _w(_S0.pack(_m2.seq, _m3.secs, _m3.nsecs, len(_b4)) + _b4)
+            _m5 = _m1.goal_id
+            _m6 = _m5.stamp
+            _b7 = _m5.id
             if _b7.__class__ is not bytes: _b7 = _b7.encode()
-            _w(_S1.pack(self.action_result.status.goal_id.stamp.secs, self.action_result.status.goal_id.stamp.nsecs, len(_b7)) + _b7)
-            _b8 = self.action_result.status.text
-            if _b8.__class__ is not bytes: _b8 = _b8.encode()
-            _w(_S5.pack(self.action_result.status.status, len(_b8)) + _b8)
-            _b9 = self.action_result.result.transform.header.frame_id
+            _w(_S1.pack(_m6.secs, _m6.nsecs, len(_b7)) + _b7)
+            _m8 = _m1.goal
+            _b9 = _m8.target_frame
             if _b9.__class__ is not bytes: _b9 = _b9.encode()
-            _w(_S0.pack(self.action_result.result.transform.header.seq, self.action_result.result.transform.header.stamp.secs, self.action_result.result.transform.header.stamp.nsecs, len(_b9)) + _b9)
-            _b10 = self.action_result.result.transform.child_frame_id
+            _w(_S2.pack(len(_b9)) + _b9)
+            _b10 = _m8.source_frame
             if _b10.__class__ is not bytes: _b10 = _b10.encode()
             _w(_S2.pack(len(_b10)) + _b10)
-            _b11 = self.action_result.result.error.error_string
-            if _b11.__class__ is not bytes: _b11 = _b11.encode()
-            _w(_S6.pack(self.action_result.result.transform.transform.translation.x, self.action_result.result.transform.transform.translation.y, self.action_result.result.transform.transform.translation.z, self.action_result.result.transform.transform.rotation.x, self.action_result.result.transform.transform.rotation.y, self.action_result.result.transform.transform.rotation.z, self.action_result.result.transform.transform.rotation.w, self.action_result.result.error.error, len(_b11)) + _b11)
-            _b12 = self.action_feedback.header.frame_id
-            if _b12.__class__ is not bytes: _b12 = _b12.encode()
-            _w(_S0.pack(self.action_feedback.header.seq, self.action_feedback.header.stamp.secs, self.action_feedback.header.stamp.nsecs, len(_b12)) + _b12)
-            _b13 = self.action_feedback.status.goal_id.id
-            if _b13.__class__ is not bytes: _b13 = _b13.encode()
-            _w(_S1.pack(self.action_feedback.status.goal_id.stamp.secs, self.action_feedback.status.goal_id.stamp.nsecs, len(_b13)) + _b13)
-            _b14 = self.action_feedback.status.text
+            _m11 = _m8.source_time
+            _m12 = _m8.timeout
+            _m13 = _m8.target_time
+            _b14 = _m8.fixed_frame
             if _b14.__class__ is not bytes: _b14 = _b14.encode()
-            _w(_S5.pack(self.action_feedback.status.status, len(_b14)) + _b14)
+            _w(_S3.pack(_m11.secs, _m11.nsecs, _m12.secs, _m12.nsecs, _m13.secs, _m13.nsecs, len(_b14)) + _b14)
+            _m15 = self.action_result
+            _m16 = _m15.header
+            _m17 = _m16.stamp
+            _b18 = _m16.frame_id
+            if _b18.__class__ is not bytes: _b18 = _b18.encode()
+            _w(_S4.pack(_m8.advanced, _m16.seq, _m17.secs, _m17.nsecs, len(_b18)) + _b18)
+            _m19 = _m15.status
+            _m20 = _m19.goal_id
+            _m21 = _m20.stamp
+            _b22 = _m20.id
+            if _b22.__class__ is not bytes: _b22 = _b22.encode()
+            _w(_S1.pack(_m21.secs, _m21.nsecs, len(_b22)) + _b22)
+            _b23 = _m19.text
+            if _b23.__class__ is not bytes: _b23 = _b23.encode()
+            _w(_S5.pack(_m19.status, len(_b23)) + _b23)
+            _m24 = _m15.result
+            _m25 = _m24.transform
+            _m26 = _m25.header
+            _m27 = _m26.stamp
+            _b28 = _m26.frame_id
+            if _b28.__class__ is not bytes: _b28 = _b28.encode()
+            _w(_S0.pack(_m26.seq, _m27.secs, _m27.nsecs, len(_b28)) + _b28)
+            _b29 = _m25.child_frame_id
+            if _b29.__class__ is not bytes: _b29 = _b29.encode()
+            _w(_S2.pack(len(_b29)) + _b29)
+            _m30 = _m25.transform
+            _m31 = _m30.translation
+            _m32 = _m30.rotation
+            _m33 = _m24.error
+            _b34 = _m33.error_string
+            if _b34.__class__ is not bytes: _b34 = _b34.encode()
+            _w(_S6.pack(_m31.x, _m31.y, _m31.z, _m32.x, _m32.y, _m32.z, _m32.w, _m33.error, len(_b34)) + _b34)
+            _m35 = self.action_feedback
+            _m36 = _m35.header
+            _m37 = _m36.stamp
+            _b38 = _m36.frame_id
+            if _b38.__class__ is not bytes: _b38 = _b38.encode()
+            _w(_S0.pack(_m36.seq, _m37.secs, _m37.nsecs, len(_b38)) + _b38)
+            _m39 = _m35.status
+            _m40 = _m39.goal_id
+            _m41 = _m40.stamp
+            _b42 = _m40.id
+            if _b42.__class__ is not bytes: _b42 = _b42.encode()
+            _w(_S1.pack(_m41.secs, _m41.nsecs, len(_b42)) + _b42)
+            _b43 = _m39.text
+            if _b43.__class__ is not bytes: _b43 = _b43.encode()
+            _w(_S5.pack(_m39.status, len(_b43)) + _b43)
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -114,155 +210,193 @@ class LookupTransformAction(_Message):
 
     def deserialize(self, data):
         try:
+            _v1 = self.action_goal
+            _v2 = _v1.header
+            _t3 = _v2.stamp
+            _v4 = _v1.goal_id
+            _t5 = _v4.stamp
+            _v6 = _v1.goal
+            _t7 = _v6.source_time
+            _t8 = _v6.timeout
+            _t9 = _v6.target_time
+            _v10 = self.action_result
+            _v11 = _v10.header
+            _t12 = _v11.stamp
+            _v13 = _v10.status
+            _v14 = _v13.goal_id
+            _t15 = _v14.stamp
+            _v16 = _v10.result
+            _v17 = _v16.transform
+            _v18 = _v17.header
+            _t19 = _v18.stamp
+            _v20 = _v17.transform
+            _v21 = _v20.translation
+            _v22 = _v20.rotation
+            _v23 = _v16.error
+            _v24 = self.action_feedback
+            _v25 = _v24.header
+            _t26 = _v25.stamp
+            _v27 = _v24.status
+            _v28 = _v27.goal_id
+            _t29 = _v28.stamp
+            _v30 = _v24.feedback
             _buf = data
-            _len = len(data)
-            _end = 0
-            _v1 = _new(_T_tf2_msgs__LookupTransformActionGoal)
-            self.action_goal = _v1
-            _v2 = _new(_T_std_msgs__Header)
-            _v1.header = _v2
-            _t3 = _new(_Time)
-            _v2.stamp = _t3
-            _v2.seq, _t3.secs, _t3.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v2.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v4 = _new(_T_actionlib_msgs__GoalID)
-            _v1.goal_id = _v4
-            _t5 = _new(_Time)
-            _v4.stamp = _t5
+            _v2.seq, _t3.secs, _t3.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v2.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
             _t5.secs, _t5.nsecs, _n = _S1.unpack_from(_buf, _end)
-            _end += 12
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v4.id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v6 = _new(_T_tf2_msgs__LookupTransformGoal)
-            _v1.goal = _v6
+            _s = _end + 12
+            _end = _s + _n
+            _v4.id = str(_buf[_s:_end], 'utf-8', 'replace')
             _n, = _S2.unpack_from(_buf, _end)
-            _end += 4
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v6.target_frame = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            _s = _end + 4
+            _end = _s + _n
+            _v6.target_frame = str(_buf[_s:_end], 'utf-8', 'replace')
             _n, = _S2.unpack_from(_buf, _end)
-            _end += 4
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v6.source_frame = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _t7 = _new(_Time)
-            _v6.source_time = _t7
-            _t8 = _new(_Duration)
-            _v6.timeout = _t8
-            _t9 = _new(_Time)
-            _v6.target_time = _t9
+            _s = _end + 4
+            _end = _s + _n
+            _v6.source_frame = str(_buf[_s:_end], 'utf-8', 'replace')
             _t7.secs, _t7.nsecs, _t8.secs, _t8.nsecs, _t9.secs, _t9.nsecs, _n = _S3.unpack_from(_buf, _end)
-            _end += 28
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v6.fixed_frame = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v10 = _new(_T_tf2_msgs__LookupTransformActionResult)
-            self.action_result = _v10
-            _v11 = _new(_T_std_msgs__Header)
-            _v10.header = _v11
-            _t12 = _new(_Time)
-            _v11.stamp = _t12
+            _s = _end + 28
+            _end = _s + _n
+            _v6.fixed_frame = str(_buf[_s:_end], 'utf-8', 'replace')
             _v6.advanced, _v11.seq, _t12.secs, _t12.nsecs, _n = _S7.unpack_from(_buf, _end)
-            _end += 17
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v11.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v13 = _new(_T_actionlib_msgs__GoalStatus)
-            _v10.status = _v13
-            _v14 = _new(_T_actionlib_msgs__GoalID)
-            _v13.goal_id = _v14
-            _t15 = _new(_Time)
-            _v14.stamp = _t15
+            _s = _end + 17
+            _end = _s + _n
+            _v11.frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
             _t15.secs, _t15.nsecs, _n = _S1.unpack_from(_buf, _end)
-            _end += 12
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v14.id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            _s = _end + 12
+            _end = _s + _n
+            _v14.id = str(_buf[_s:_end], 'utf-8', 'replace')
             _v13.status, _n = _S5.unpack_from(_buf, _end)
-            _end += 5
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v13.text = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v16 = _new(_T_tf2_msgs__LookupTransformResult)
-            _v10.result = _v16
-            _v17 = _new(_T_geometry_msgs__TransformStamped)
-            _v16.transform = _v17
-            _v18 = _new(_T_std_msgs__Header)
-            _v17.header = _v18
-            _t19 = _new(_Time)
-            _v18.stamp = _t19
+            _s = _end + 5
+            _end = _s + _n
+            _v13.text = str(_buf[_s:_end], 'utf-8', 'replace')
             _v18.seq, _t19.secs, _t19.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v18.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            _s = _end + 16
+            _end = _s + _n
+            _v18.frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
             _n, = _S2.unpack_from(_buf, _end)
-            _end += 4
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v17.child_frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v20 = _new(_T_geometry_msgs__Transform)
-            _v17.transform = _v20
-            _v21 = _new(_T_geometry_msgs__Vector3)
-            _v20.translation = _v21
-            _v22 = _new(_T_geometry_msgs__Quaternion)
-            _v20.rotation = _v22
-            _v23 = _new(_T_tf2_msgs__TF2Error)
-            _v16.error = _v23
+            _s = _end + 4
+            _end = _s + _n
+            _v17.child_frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
             _v21.x, _v21.y, _v21.z, _v22.x, _v22.y, _v22.z, _v22.w, _v23.error, _n = _S6.unpack_from(_buf, _end)
-            _end += 61
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v23.error_string = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v24 = _new(_T_tf2_msgs__LookupTransformActionFeedback)
-            self.action_feedback = _v24
-            _v25 = _new(_T_std_msgs__Header)
-            _v24.header = _v25
-            _t26 = _new(_Time)
-            _v25.stamp = _t26
+            _s = _end + 61
+            _end = _s + _n
+            _v23.error_string = str(_buf[_s:_end], 'utf-8', 'replace')
             _v25.seq, _t26.secs, _t26.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v25.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v27 = _new(_T_actionlib_msgs__GoalStatus)
-            _v24.status = _v27
-            _v28 = _new(_T_actionlib_msgs__GoalID)
-            _v27.goal_id = _v28
-            _t29 = _new(_Time)
-            _v28.stamp = _t29
+            _s = _end + 16
+            _end = _s + _n
+            _v25.frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
             _t29.secs, _t29.nsecs, _n = _S1.unpack_from(_buf, _end)
-            _end += 12
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v28.id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            _s = _end + 12
+            _end = _s + _n
+            _v28.id = str(_buf[_s:_end], 'utf-8', 'replace')
             _v27.status, _n = _S5.unpack_from(_buf, _end)
-            _end += 5
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v27.text = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v30 = _new(_T_tf2_msgs__LookupTransformFeedback)
-            _v24.feedback = _v30
+            _s = _end + 5
+            _end = _s + _n
+            _v27.text = str(_buf[_s:_end], 'utf-8', 'replace')
+            if _end > len(_buf): raise _Truncated
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
+        return _refill(self, LookupTransformAction, data)
+
+    @classmethod
+    def _from_buffer(cls, data):
+        self = _new(cls)
+        try:
+            _buf = data
+            self.action_goal = _v1 = _new(_T_tf2_msgs__LookupTransformActionGoal)
+            _v1.header = _v2 = _new(_T_std_msgs__Header)
+            _v2.stamp = _t3 = _new(_Time)
+            _v2.seq, _t3.secs, _t3.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v2.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            _v1.goal_id = _v4 = _new(_T_actionlib_msgs__GoalID)
+            _v4.stamp = _t5 = _new(_Time)
+            _t5.secs, _t5.nsecs, _n = _S1.unpack_from(_buf, _end)
+            _s = _end + 12
+            _end = _s + _n
+            _v4.id = str(_buf[_s:_end], 'utf-8', 'replace')
+            _v1.goal = _v6 = _new(_T_tf2_msgs__LookupTransformGoal)
+            _n, = _S2.unpack_from(_buf, _end)
+            _s = _end + 4
+            _end = _s + _n
+            _v6.target_frame = str(_buf[_s:_end], 'utf-8', 'replace')
+            _n, = _S2.unpack_from(_buf, _end)
+            _s = _end + 4
+            _end = _s + _n
+            _v6.source_frame = str(_buf[_s:_end], 'utf-8', 'replace')
+            _v6.source_time = _t7 = _new(_Time)
+            _v6.timeout = _t8 = _new(_Duration)
+            _v6.target_time = _t9 = _new(_Time)
+            _t7.secs, _t7.nsecs, _t8.secs, _t8.nsecs, _t9.secs, _t9.nsecs, _n = _S3.unpack_from(_buf, _end)
+            _s = _end + 28
+            _end = _s + _n
+            _v6.fixed_frame = str(_buf[_s:_end], 'utf-8', 'replace')
+            self.action_result = _v10 = _new(_T_tf2_msgs__LookupTransformActionResult)
+            _v10.header = _v11 = _new(_T_std_msgs__Header)
+            _v11.stamp = _t12 = _new(_Time)
+            _v6.advanced, _v11.seq, _t12.secs, _t12.nsecs, _n = _S7.unpack_from(_buf, _end)
+            _s = _end + 17
+            _end = _s + _n
+            _v11.frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
+            _v10.status = _v13 = _new(_T_actionlib_msgs__GoalStatus)
+            _v13.goal_id = _v14 = _new(_T_actionlib_msgs__GoalID)
+            _v14.stamp = _t15 = _new(_Time)
+            _t15.secs, _t15.nsecs, _n = _S1.unpack_from(_buf, _end)
+            _s = _end + 12
+            _end = _s + _n
+            _v14.id = str(_buf[_s:_end], 'utf-8', 'replace')
+            _v13.status, _n = _S5.unpack_from(_buf, _end)
+            _s = _end + 5
+            _end = _s + _n
+            _v13.text = str(_buf[_s:_end], 'utf-8', 'replace')
+            _v10.result = _v16 = _new(_T_tf2_msgs__LookupTransformResult)
+            _v16.transform = _v17 = _new(_T_geometry_msgs__TransformStamped)
+            _v17.header = _v18 = _new(_T_std_msgs__Header)
+            _v18.stamp = _t19 = _new(_Time)
+            _v18.seq, _t19.secs, _t19.nsecs, _n = _S0.unpack_from(_buf, _end)
+            _s = _end + 16
+            _end = _s + _n
+            _v18.frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
+            _n, = _S2.unpack_from(_buf, _end)
+            _s = _end + 4
+            _end = _s + _n
+            _v17.child_frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
+            _v17.transform = _v20 = _new(_T_geometry_msgs__Transform)
+            _v20.translation = _v21 = _new(_T_geometry_msgs__Vector3)
+            _v20.rotation = _v22 = _new(_T_geometry_msgs__Quaternion)
+            _v16.error = _v23 = _new(_T_tf2_msgs__TF2Error)
+            _v21.x, _v21.y, _v21.z, _v22.x, _v22.y, _v22.z, _v22.w, _v23.error, _n = _S6.unpack_from(_buf, _end)
+            _s = _end + 61
+            _end = _s + _n
+            _v23.error_string = str(_buf[_s:_end], 'utf-8', 'replace')
+            self.action_feedback = _v24 = _new(_T_tf2_msgs__LookupTransformActionFeedback)
+            _v24.header = _v25 = _new(_T_std_msgs__Header)
+            _v25.stamp = _t26 = _new(_Time)
+            _v25.seq, _t26.secs, _t26.nsecs, _n = _S0.unpack_from(_buf, _end)
+            _s = _end + 16
+            _end = _s + _n
+            _v25.frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
+            _v24.status = _v27 = _new(_T_actionlib_msgs__GoalStatus)
+            _v27.goal_id = _v28 = _new(_T_actionlib_msgs__GoalID)
+            _v28.stamp = _t29 = _new(_Time)
+            _t29.secs, _t29.nsecs, _n = _S1.unpack_from(_buf, _end)
+            _s = _end + 12
+            _end = _s + _n
+            _v28.id = str(_buf[_s:_end], 'utf-8', 'replace')
+            _v27.status, _n = _S5.unpack_from(_buf, _end)
+            _s = _end + 5
+            _end = _s + _n
+            _v27.text = str(_buf[_s:_end], 'utf-8', 'replace')
+            _v24.feedback = _v30 = _new(_T_tf2_msgs__LookupTransformFeedback)
+            if _end > len(_buf): raise _Truncated
+        except Exception as exc:
+            raise _deserialize_failed(cls, data, exc) from exc
         return self
 
     def deserialize_numpy(self, data, numpy):

@@ -5,6 +5,7 @@ from kame.msg.message import Message as _Message
 from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
+from kame.msg.message import refill as _refill
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -44,29 +45,54 @@ class LookupTransformActionGoal(_Message):
             if self.goal is None:
                 self.goal = _T_tf2_msgs__LookupTransformGoal()
         else:
-            self.header = _T_std_msgs__Header()
-            self.goal_id = _T_actionlib_msgs__GoalID()
-            self.goal = _T_tf2_msgs__LookupTransformGoal()
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.seq = 0
+            _v1.stamp = _t2 = _new(_Time)
+            _t2.secs = _t2.nsecs = 0
+            _v1.frame_id = ''
+            self.goal_id = _v3 = _new(_T_actionlib_msgs__GoalID)
+            _v3.stamp = _t4 = _new(_Time)
+            _t4.secs = _t4.nsecs = 0
+            _v3.id = ''
+            self.goal = _v5 = _new(_T_tf2_msgs__LookupTransformGoal)
+            _v5.target_frame = ''
+            _v5.source_frame = ''
+            _v5.source_time = _t6 = _new(_Time)
+            _t6.secs = _t6.nsecs = 0
+            _v5.timeout = _t7 = _new(_Duration)
+            _t7.secs = _t7.nsecs = 0
+            _v5.target_time = _t8 = _new(_Time)
+            _t8.secs = _t8.nsecs = 0
+            _v5.fixed_frame = ''
+            _v5.advanced = False
 
     def serialize(self, buff):
         try:
             _w = buff.write
-            _b1 = self.header.frame_id
-            if _b1.__class__ is not bytes: _b1 = _b1.encode()
-            _w(_S0.pack(self.header.seq, self.header.stamp.secs, self.header.stamp.nsecs, len(_b1)) + _b1)
-            _b2 = self.goal_id.id
-            if _b2.__class__ is not bytes: _b2 = _b2.encode()
-            _w(_S1.pack(self.goal_id.stamp.secs, self.goal_id.stamp.nsecs, len(_b2)) + _b2)
-            _b3 = self.goal.target_frame
+            _m1 = self.header
+            _m2 = _m1.stamp
+            _b3 = _m1.frame_id
             if _b3.__class__ is not bytes: _b3 = _b3.encode()
-            _w(_S2.pack(len(_b3)) + _b3)
-            _b4 = self.goal.source_frame
-            if _b4.__class__ is not bytes: _b4 = _b4.encode()
-            _w(_S2.pack(len(_b4)) + _b4)
-            _b5 = self.goal.fixed_frame
-            if _b5.__class__ is not bytes: _b5 = _b5.encode()
-            _w(_S3.pack(self.goal.source_time.secs, self.goal.source_time.nsecs, self.goal.timeout.secs, self.goal.timeout.nsecs, self.goal.target_time.secs, self.goal.target_time.nsecs, len(_b5)) + _b5)
-            _w(_S4.pack(self.goal.advanced))
+            _w(_S0.pack(_m1.seq, _m2.secs, _m2.nsecs, len(_b3)) + _b3)
+            _m4 = self.goal_id
+            _m5 = _m4.stamp
+            _b6 = _m4.id
+            if _b6.__class__ is not bytes: _b6 = _b6.encode()
+            _w(_S1.pack(_m5.secs, _m5.nsecs, len(_b6)) + _b6)
+            _m7 = self.goal
+            _b8 = _m7.target_frame
+            if _b8.__class__ is not bytes: _b8 = _b8.encode()
+            _w(_S2.pack(len(_b8)) + _b8)
+            _b9 = _m7.source_frame
+            if _b9.__class__ is not bytes: _b9 = _b9.encode()
+            _w(_S2.pack(len(_b9)) + _b9)
+            _m10 = _m7.source_time
+            _m11 = _m7.timeout
+            _m12 = _m7.target_time
+            _b13 = _m7.fixed_frame
+            if _b13.__class__ is not bytes: _b13 = _b13.encode()
+            _w(_S3.pack(_m10.secs, _m10.nsecs, _m11.secs, _m11.nsecs, _m12.secs, _m12.nsecs, len(_b13)) + _b13)
+            _w(_S4.pack(_m7.advanced))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -75,59 +101,79 @@ class LookupTransformActionGoal(_Message):
 
     def deserialize(self, data):
         try:
+            _v1 = self.header
+            _t2 = _v1.stamp
+            _v3 = self.goal_id
+            _t4 = _v3.stamp
+            _v5 = self.goal
+            _t6 = _v5.source_time
+            _t7 = _v5.timeout
+            _t8 = _v5.target_time
             _buf = data
-            _len = len(data)
-            _end = 0
-            _v1 = _new(_T_std_msgs__Header)
-            self.header = _v1
-            _t2 = _new(_Time)
-            _v1.stamp = _t2
-            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v1.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v3 = _new(_T_actionlib_msgs__GoalID)
-            self.goal_id = _v3
-            _t4 = _new(_Time)
-            _v3.stamp = _t4
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
             _t4.secs, _t4.nsecs, _n = _S1.unpack_from(_buf, _end)
-            _end += 12
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v3.id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v5 = _new(_T_tf2_msgs__LookupTransformGoal)
-            self.goal = _v5
+            _s = _end + 12
+            _end = _s + _n
+            _v3.id = str(_buf[_s:_end], 'utf-8', 'replace')
             _n, = _S2.unpack_from(_buf, _end)
-            _end += 4
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v5.target_frame = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            _s = _end + 4
+            _end = _s + _n
+            _v5.target_frame = str(_buf[_s:_end], 'utf-8', 'replace')
             _n, = _S2.unpack_from(_buf, _end)
-            _end += 4
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v5.source_frame = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _t6 = _new(_Time)
-            _v5.source_time = _t6
-            _t7 = _new(_Duration)
-            _v5.timeout = _t7
-            _t8 = _new(_Time)
-            _v5.target_time = _t8
+            _s = _end + 4
+            _end = _s + _n
+            _v5.source_frame = str(_buf[_s:_end], 'utf-8', 'replace')
             _t6.secs, _t6.nsecs, _t7.secs, _t7.nsecs, _t8.secs, _t8.nsecs, _n = _S3.unpack_from(_buf, _end)
-            _end += 28
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v5.fixed_frame = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            _s = _end + 28
+            _end = _s + _n
+            _v5.fixed_frame = str(_buf[_s:_end], 'utf-8', 'replace')
             _v5.advanced, = _S5.unpack_from(_buf, _end)
-            _end += 1
+            if _end > len(_buf): raise _Truncated
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
+        return _refill(self, LookupTransformActionGoal, data)
+
+    @classmethod
+    def _from_buffer(cls, data):
+        self = _new(cls)
+        try:
+            _buf = data
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.stamp = _t2 = _new(_Time)
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            self.goal_id = _v3 = _new(_T_actionlib_msgs__GoalID)
+            _v3.stamp = _t4 = _new(_Time)
+            _t4.secs, _t4.nsecs, _n = _S1.unpack_from(_buf, _end)
+            _s = _end + 12
+            _end = _s + _n
+            _v3.id = str(_buf[_s:_end], 'utf-8', 'replace')
+            self.goal = _v5 = _new(_T_tf2_msgs__LookupTransformGoal)
+            _n, = _S2.unpack_from(_buf, _end)
+            _s = _end + 4
+            _end = _s + _n
+            _v5.target_frame = str(_buf[_s:_end], 'utf-8', 'replace')
+            _n, = _S2.unpack_from(_buf, _end)
+            _s = _end + 4
+            _end = _s + _n
+            _v5.source_frame = str(_buf[_s:_end], 'utf-8', 'replace')
+            _v5.source_time = _t6 = _new(_Time)
+            _v5.timeout = _t7 = _new(_Duration)
+            _v5.target_time = _t8 = _new(_Time)
+            _t6.secs, _t6.nsecs, _t7.secs, _t7.nsecs, _t8.secs, _t8.nsecs, _n = _S3.unpack_from(_buf, _end)
+            _s = _end + 28
+            _end = _s + _n
+            _v5.fixed_frame = str(_buf[_s:_end], 'utf-8', 'replace')
+            _v5.advanced, = _S5.unpack_from(_buf, _end)
+            if _end > len(_buf): raise _Truncated
+        except Exception as exc:
+            raise _deserialize_failed(cls, data, exc) from exc
         return self
 
     def deserialize_numpy(self, data, numpy):

@@ -5,6 +5,7 @@ from kame.msg.message import Message as _Message
 from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
+from kame.msg.message import refill as _refill
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -49,31 +50,74 @@ class LookupTransformActionResult(_Message):
             if self.result is None:
                 self.result = _T_tf2_msgs__LookupTransformResult()
         else:
-            self.header = _T_std_msgs__Header()
-            self.status = _T_actionlib_msgs__GoalStatus()
-            self.result = _T_tf2_msgs__LookupTransformResult()
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.seq = 0
+            _v1.stamp = _t2 = _new(_Time)
+            _t2.secs = _t2.nsecs = 0
+            _v1.frame_id = ''
+            self.status = _v3 = _new(_T_actionlib_msgs__GoalStatus)
+            _v3.goal_id = _v4 = _new(_T_actionlib_msgs__GoalID)
+            _v4.stamp = _t5 = _new(_Time)
+            _t5.secs = _t5.nsecs = 0
+            _v4.id = ''
+            _v3.status = 0
+            _v3.text = ''
+            self.result = _v6 = _new(_T_tf2_msgs__LookupTransformResult)
+            _v6.transform = _v7 = _new(_T_geometry_msgs__TransformStamped)
+            _v7.header = _v8 = _new(_T_std_msgs__Header)
+            _v8.seq = 0
+            _v8.stamp = _t9 = _new(_Time)
+            _t9.secs = _t9.nsecs = 0
+            _v8.frame_id = ''
+            _v7.child_frame_id = ''
+            _v7.transform = _v10 = _new(_T_geometry_msgs__Transform)
+            _v10.translation = _v11 = _new(_T_geometry_msgs__Vector3)
+            _v11.x = 0.0
+            _v11.y = 0.0
+            _v11.z = 0.0
+            _v10.rotation = _v12 = _new(_T_geometry_msgs__Quaternion)
+            _v12.x = 0.0
+            _v12.y = 0.0
+            _v12.z = 0.0
+            _v12.w = 0.0
+            _v6.error = _v13 = _new(_T_tf2_msgs__TF2Error)
+            _v13.error = 0
+            _v13.error_string = ''
 
     def serialize(self, buff):
         try:
             _w = buff.write
-            _b1 = self.header.frame_id
-            if _b1.__class__ is not bytes: _b1 = _b1.encode()
-            _w(_S0.pack(self.header.seq, self.header.stamp.secs, self.header.stamp.nsecs, len(_b1)) + _b1)
-            _b2 = self.status.goal_id.id
-            if _b2.__class__ is not bytes: _b2 = _b2.encode()
-            _w(_S1.pack(self.status.goal_id.stamp.secs, self.status.goal_id.stamp.nsecs, len(_b2)) + _b2)
-            _b3 = self.status.text
+            _m1 = self.header
+            _m2 = _m1.stamp
+            _b3 = _m1.frame_id
             if _b3.__class__ is not bytes: _b3 = _b3.encode()
-            _w(_S2.pack(self.status.status, len(_b3)) + _b3)
-            _b4 = self.result.transform.header.frame_id
-            if _b4.__class__ is not bytes: _b4 = _b4.encode()
-            _w(_S0.pack(self.result.transform.header.seq, self.result.transform.header.stamp.secs, self.result.transform.header.stamp.nsecs, len(_b4)) + _b4)
-            _b5 = self.result.transform.child_frame_id
-            if _b5.__class__ is not bytes: _b5 = _b5.encode()
-            _w(_S3.pack(len(_b5)) + _b5)
-            _b6 = self.result.error.error_string
-            if _b6.__class__ is not bytes: _b6 = _b6.encode()
-            _w(_S4.pack(self.result.transform.transform.translation.x, self.result.transform.transform.translation.y, self.result.transform.transform.translation.z, self.result.transform.transform.rotation.x, self.result.transform.transform.rotation.y, self.result.transform.transform.rotation.z, self.result.transform.transform.rotation.w, self.result.error.error, len(_b6)) + _b6)
+            _w(_S0.pack(_m1.seq, _m2.secs, _m2.nsecs, len(_b3)) + _b3)
+            _m4 = self.status
+            _m5 = _m4.goal_id
+            _m6 = _m5.stamp
+            _b7 = _m5.id
+            if _b7.__class__ is not bytes: _b7 = _b7.encode()
+            _w(_S1.pack(_m6.secs, _m6.nsecs, len(_b7)) + _b7)
+            _b8 = _m4.text
+            if _b8.__class__ is not bytes: _b8 = _b8.encode()
+            _w(_S2.pack(_m4.status, len(_b8)) + _b8)
+            _m9 = self.result
+            _m10 = _m9.transform
+            _m11 = _m10.header
+            _m12 = _m11.stamp
+            _b13 = _m11.frame_id
+            if _b13.__class__ is not bytes: _b13 = _b13.encode()
+            _w(_S0.pack(_m11.seq, _m12.secs, _m12.nsecs, len(_b13)) + _b13)
+            _b14 = _m10.child_frame_id
+            if _b14.__class__ is not bytes: _b14 = _b14.encode()
+            _w(_S3.pack(len(_b14)) + _b14)
+            _m15 = _m10.transform
+            _m16 = _m15.translation
+            _m17 = _m15.rotation
+            _m18 = _m9.error
+            _b19 = _m18.error_string
+            if _b19.__class__ is not bytes: _b19 = _b19.encode()
+            _w(_S4.pack(_m16.x, _m16.y, _m16.z, _m17.x, _m17.y, _m17.z, _m17.w, _m18.error, len(_b19)) + _b19)
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -82,73 +126,95 @@ class LookupTransformActionResult(_Message):
 
     def deserialize(self, data):
         try:
+            _v1 = self.header
+            _t2 = _v1.stamp
+            _v3 = self.status
+            _v4 = _v3.goal_id
+            _t5 = _v4.stamp
+            _v6 = self.result
+            _v7 = _v6.transform
+            _v8 = _v7.header
+            _t9 = _v8.stamp
+            _v10 = _v7.transform
+            _v11 = _v10.translation
+            _v12 = _v10.rotation
+            _v13 = _v6.error
             _buf = data
-            _len = len(data)
-            _end = 0
-            _v1 = _new(_T_std_msgs__Header)
-            self.header = _v1
-            _t2 = _new(_Time)
-            _v1.stamp = _t2
-            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v1.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v3 = _new(_T_actionlib_msgs__GoalStatus)
-            self.status = _v3
-            _v4 = _new(_T_actionlib_msgs__GoalID)
-            _v3.goal_id = _v4
-            _t5 = _new(_Time)
-            _v4.stamp = _t5
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
             _t5.secs, _t5.nsecs, _n = _S1.unpack_from(_buf, _end)
-            _end += 12
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v4.id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            _s = _end + 12
+            _end = _s + _n
+            _v4.id = str(_buf[_s:_end], 'utf-8', 'replace')
             _v3.status, _n = _S2.unpack_from(_buf, _end)
-            _end += 5
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v3.text = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v6 = _new(_T_tf2_msgs__LookupTransformResult)
-            self.result = _v6
-            _v7 = _new(_T_geometry_msgs__TransformStamped)
-            _v6.transform = _v7
-            _v8 = _new(_T_std_msgs__Header)
-            _v7.header = _v8
-            _t9 = _new(_Time)
-            _v8.stamp = _t9
+            _s = _end + 5
+            _end = _s + _n
+            _v3.text = str(_buf[_s:_end], 'utf-8', 'replace')
             _v8.seq, _t9.secs, _t9.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v8.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            _s = _end + 16
+            _end = _s + _n
+            _v8.frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
             _n, = _S3.unpack_from(_buf, _end)
-            _end += 4
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v7.child_frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v10 = _new(_T_geometry_msgs__Transform)
-            _v7.transform = _v10
-            _v11 = _new(_T_geometry_msgs__Vector3)
-            _v10.translation = _v11
-            _v12 = _new(_T_geometry_msgs__Quaternion)
-            _v10.rotation = _v12
-            _v13 = _new(_T_tf2_msgs__TF2Error)
-            _v6.error = _v13
+            _s = _end + 4
+            _end = _s + _n
+            _v7.child_frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
             _v11.x, _v11.y, _v11.z, _v12.x, _v12.y, _v12.z, _v12.w, _v13.error, _n = _S4.unpack_from(_buf, _end)
-            _end += 61
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v13.error_string = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            _s = _end + 61
+            _end = _s + _n
+            _v13.error_string = str(_buf[_s:_end], 'utf-8', 'replace')
+            if _end > len(_buf): raise _Truncated
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
+        return _refill(self, LookupTransformActionResult, data)
+
+    @classmethod
+    def _from_buffer(cls, data):
+        self = _new(cls)
+        try:
+            _buf = data
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.stamp = _t2 = _new(_Time)
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            self.status = _v3 = _new(_T_actionlib_msgs__GoalStatus)
+            _v3.goal_id = _v4 = _new(_T_actionlib_msgs__GoalID)
+            _v4.stamp = _t5 = _new(_Time)
+            _t5.secs, _t5.nsecs, _n = _S1.unpack_from(_buf, _end)
+            _s = _end + 12
+            _end = _s + _n
+            _v4.id = str(_buf[_s:_end], 'utf-8', 'replace')
+            _v3.status, _n = _S2.unpack_from(_buf, _end)
+            _s = _end + 5
+            _end = _s + _n
+            _v3.text = str(_buf[_s:_end], 'utf-8', 'replace')
+            self.result = _v6 = _new(_T_tf2_msgs__LookupTransformResult)
+            _v6.transform = _v7 = _new(_T_geometry_msgs__TransformStamped)
+            _v7.header = _v8 = _new(_T_std_msgs__Header)
+            _v8.stamp = _t9 = _new(_Time)
+            _v8.seq, _t9.secs, _t9.nsecs, _n = _S0.unpack_from(_buf, _end)
+            _s = _end + 16
+            _end = _s + _n
+            _v8.frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
+            _n, = _S3.unpack_from(_buf, _end)
+            _s = _end + 4
+            _end = _s + _n
+            _v7.child_frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
+            _v7.transform = _v10 = _new(_T_geometry_msgs__Transform)
+            _v10.translation = _v11 = _new(_T_geometry_msgs__Vector3)
+            _v10.rotation = _v12 = _new(_T_geometry_msgs__Quaternion)
+            _v6.error = _v13 = _new(_T_tf2_msgs__TF2Error)
+            _v11.x, _v11.y, _v11.z, _v12.x, _v12.y, _v12.z, _v12.w, _v13.error, _n = _S4.unpack_from(_buf, _end)
+            _s = _end + 61
+            _end = _s + _n
+            _v13.error_string = str(_buf[_s:_end], 'utf-8', 'replace')
+            if _end > len(_buf): raise _Truncated
+        except Exception as exc:
+            raise _deserialize_failed(cls, data, exc) from exc
         return self
 
     def deserialize_numpy(self, data, numpy):

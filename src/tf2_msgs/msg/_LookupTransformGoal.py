@@ -5,6 +5,7 @@ from kame.msg.message import Message as _Message
 from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
+from kame.msg.message import refill as _refill
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -49,9 +50,12 @@ class LookupTransformGoal(_Message):
         else:
             self.target_frame = ''
             self.source_frame = ''
-            self.source_time = _Time()
-            self.timeout = _Duration()
-            self.target_time = _Time()
+            self.source_time = _t1 = _new(_Time)
+            _t1.secs = _t1.nsecs = 0
+            self.timeout = _t2 = _new(_Duration)
+            _t2.secs = _t2.nsecs = 0
+            self.target_time = _t3 = _new(_Time)
+            _t3.secs = _t3.nsecs = 0
             self.fixed_frame = ''
             self.advanced = False
 
@@ -64,9 +68,12 @@ class LookupTransformGoal(_Message):
             _b2 = self.source_frame
             if _b2.__class__ is not bytes: _b2 = _b2.encode()
             _w(_S0.pack(len(_b2)) + _b2)
-            _b3 = self.fixed_frame
-            if _b3.__class__ is not bytes: _b3 = _b3.encode()
-            _w(_S1.pack(self.source_time.secs, self.source_time.nsecs, self.timeout.secs, self.timeout.nsecs, self.target_time.secs, self.target_time.nsecs, len(_b3)) + _b3)
+            _m3 = self.source_time
+            _m4 = self.timeout
+            _m5 = self.target_time
+            _b6 = self.fixed_frame
+            if _b6.__class__ is not bytes: _b6 = _b6.encode()
+            _w(_S1.pack(_m3.secs, _m3.nsecs, _m4.secs, _m4.nsecs, _m5.secs, _m5.nsecs, len(_b6)) + _b6)
             _w(_S2.pack(self.advanced))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
@@ -76,37 +83,53 @@ class LookupTransformGoal(_Message):
 
     def deserialize(self, data):
         try:
+            _t1 = self.source_time
+            _t2 = self.timeout
+            _t3 = self.target_time
             _buf = data
-            _len = len(data)
-            _end = 0
+            _n, = _S0.unpack_from(_buf, 0)
+            _end = 4 + _n
+            self.target_frame = str(_buf[4:_end], 'utf-8', 'replace')
             _n, = _S0.unpack_from(_buf, _end)
-            _end += 4
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            self.target_frame = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _n, = _S0.unpack_from(_buf, _end)
-            _end += 4
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            self.source_frame = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _t1 = _new(_Time)
-            self.source_time = _t1
-            _t2 = _new(_Duration)
-            self.timeout = _t2
-            _t3 = _new(_Time)
-            self.target_time = _t3
+            _s = _end + 4
+            _end = _s + _n
+            self.source_frame = str(_buf[_s:_end], 'utf-8', 'replace')
             _t1.secs, _t1.nsecs, _t2.secs, _t2.nsecs, _t3.secs, _t3.nsecs, _n = _S1.unpack_from(_buf, _end)
-            _end += 28
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            self.fixed_frame = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            _s = _end + 28
+            _end = _s + _n
+            self.fixed_frame = str(_buf[_s:_end], 'utf-8', 'replace')
             self.advanced, = _S3.unpack_from(_buf, _end)
-            _end += 1
+            if _end > len(_buf): raise _Truncated
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
+        return _refill(self, LookupTransformGoal, data)
+
+    @classmethod
+    def _from_buffer(cls, data):
+        self = _new(cls)
+        try:
+            _buf = data
+            _n, = _S0.unpack_from(_buf, 0)
+            _end = 4 + _n
+            self.target_frame = str(_buf[4:_end], 'utf-8', 'replace')
+            _n, = _S0.unpack_from(_buf, _end)
+            _s = _end + 4
+            _end = _s + _n
+            self.source_frame = str(_buf[_s:_end], 'utf-8', 'replace')
+            self.source_time = _t1 = _new(_Time)
+            self.timeout = _t2 = _new(_Duration)
+            self.target_time = _t3 = _new(_Time)
+            _t1.secs, _t1.nsecs, _t2.secs, _t2.nsecs, _t3.secs, _t3.nsecs, _n = _S1.unpack_from(_buf, _end)
+            _s = _end + 28
+            _end = _s + _n
+            self.fixed_frame = str(_buf[_s:_end], 'utf-8', 'replace')
+            self.advanced, = _S3.unpack_from(_buf, _end)
+            if _end > len(_buf): raise _Truncated
+        except Exception as exc:
+            raise _deserialize_failed(cls, data, exc) from exc
         return self
 
     def deserialize_numpy(self, data, numpy):

@@ -5,6 +5,7 @@ from kame.msg.message import Message as _Message
 from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
+from kame.msg.message import refill as _refill
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -42,21 +43,46 @@ class LookupTransformResult(_Message):
             if self.error is None:
                 self.error = _T_tf2_msgs__TF2Error()
         else:
-            self.transform = _T_geometry_msgs__TransformStamped()
-            self.error = _T_tf2_msgs__TF2Error()
+            self.transform = _v1 = _new(_T_geometry_msgs__TransformStamped)
+            _v1.header = _v2 = _new(_T_std_msgs__Header)
+            _v2.seq = 0
+            _v2.stamp = _t3 = _new(_Time)
+            _t3.secs = _t3.nsecs = 0
+            _v2.frame_id = ''
+            _v1.child_frame_id = ''
+            _v1.transform = _v4 = _new(_T_geometry_msgs__Transform)
+            _v4.translation = _v5 = _new(_T_geometry_msgs__Vector3)
+            _v5.x = 0.0
+            _v5.y = 0.0
+            _v5.z = 0.0
+            _v4.rotation = _v6 = _new(_T_geometry_msgs__Quaternion)
+            _v6.x = 0.0
+            _v6.y = 0.0
+            _v6.z = 0.0
+            _v6.w = 0.0
+            self.error = _v7 = _new(_T_tf2_msgs__TF2Error)
+            _v7.error = 0
+            _v7.error_string = ''
 
     def serialize(self, buff):
         try:
             _w = buff.write
-            _b1 = self.transform.header.frame_id
-            if _b1.__class__ is not bytes: _b1 = _b1.encode()
-            _w(_S0.pack(self.transform.header.seq, self.transform.header.stamp.secs, self.transform.header.stamp.nsecs, len(_b1)) + _b1)
-            _b2 = self.transform.child_frame_id
-            if _b2.__class__ is not bytes: _b2 = _b2.encode()
-            _w(_S1.pack(len(_b2)) + _b2)
-            _b3 = self.error.error_string
-            if _b3.__class__ is not bytes: _b3 = _b3.encode()
-            _w(_S2.pack(self.transform.transform.translation.x, self.transform.transform.translation.y, self.transform.transform.translation.z, self.transform.transform.rotation.x, self.transform.transform.rotation.y, self.transform.transform.rotation.z, self.transform.transform.rotation.w, self.error.error, len(_b3)) + _b3)
+            _m1 = self.transform
+            _m2 = _m1.header
+            _m3 = _m2.stamp
+            _b4 = _m2.frame_id
+            if _b4.__class__ is not bytes: _b4 = _b4.encode()
+            _w(_S0.pack(_m2.seq, _m3.secs, _m3.nsecs, len(_b4)) + _b4)
+            _b5 = _m1.child_frame_id
+            if _b5.__class__ is not bytes: _b5 = _b5.encode()
+            _w(_S1.pack(len(_b5)) + _b5)
+            _m6 = _m1.transform
+            _m7 = _m6.translation
+            _m8 = _m6.rotation
+            _m9 = self.error
+            _b10 = _m9.error_string
+            if _b10.__class__ is not bytes: _b10 = _b10.encode()
+            _w(_S2.pack(_m7.x, _m7.y, _m7.z, _m8.x, _m8.y, _m8.z, _m8.w, _m9.error, len(_b10)) + _b10)
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -65,43 +91,59 @@ class LookupTransformResult(_Message):
 
     def deserialize(self, data):
         try:
+            _v1 = self.transform
+            _v2 = _v1.header
+            _t3 = _v2.stamp
+            _v4 = _v1.transform
+            _v5 = _v4.translation
+            _v6 = _v4.rotation
+            _v7 = self.error
             _buf = data
-            _len = len(data)
-            _end = 0
-            _v1 = _new(_T_geometry_msgs__TransformStamped)
-            self.transform = _v1
-            _v2 = _new(_T_std_msgs__Header)
-            _v1.header = _v2
-            _t3 = _new(_Time)
-            _v2.stamp = _t3
-            _v2.seq, _t3.secs, _t3.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v2.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            _v2.seq, _t3.secs, _t3.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v2.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
             _n, = _S1.unpack_from(_buf, _end)
-            _end += 4
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v1.child_frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v4 = _new(_T_geometry_msgs__Transform)
-            _v1.transform = _v4
-            _v5 = _new(_T_geometry_msgs__Vector3)
-            _v4.translation = _v5
-            _v6 = _new(_T_geometry_msgs__Quaternion)
-            _v4.rotation = _v6
-            _v7 = _new(_T_tf2_msgs__TF2Error)
-            self.error = _v7
+            _s = _end + 4
+            _end = _s + _n
+            _v1.child_frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
             _v5.x, _v5.y, _v5.z, _v6.x, _v6.y, _v6.z, _v6.w, _v7.error, _n = _S2.unpack_from(_buf, _end)
-            _end += 61
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v7.error_string = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            _s = _end + 61
+            _end = _s + _n
+            _v7.error_string = str(_buf[_s:_end], 'utf-8', 'replace')
+            if _end > len(_buf): raise _Truncated
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
+        return _refill(self, LookupTransformResult, data)
+
+    @classmethod
+    def _from_buffer(cls, data):
+        self = _new(cls)
+        try:
+            _buf = data
+            self.transform = _v1 = _new(_T_geometry_msgs__TransformStamped)
+            _v1.header = _v2 = _new(_T_std_msgs__Header)
+            _v2.stamp = _t3 = _new(_Time)
+            _v2.seq, _t3.secs, _t3.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v2.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            _n, = _S1.unpack_from(_buf, _end)
+            _s = _end + 4
+            _end = _s + _n
+            _v1.child_frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
+            _v1.transform = _v4 = _new(_T_geometry_msgs__Transform)
+            _v4.translation = _v5 = _new(_T_geometry_msgs__Vector3)
+            _v4.rotation = _v6 = _new(_T_geometry_msgs__Quaternion)
+            self.error = _v7 = _new(_T_tf2_msgs__TF2Error)
+            _v5.x, _v5.y, _v5.z, _v6.x, _v6.y, _v6.z, _v6.w, _v7.error, _n = _S2.unpack_from(_buf, _end)
+            _s = _end + 61
+            _end = _s + _n
+            _v7.error_string = str(_buf[_s:_end], 'utf-8', 'replace')
+            if _end > len(_buf): raise _Truncated
+        except Exception as exc:
+            raise _deserialize_failed(cls, data, exc) from exc
         return self
 
     def deserialize_numpy(self, data, numpy):

@@ -5,6 +5,7 @@ from kame.msg.message import Message as _Message
 from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
+from kame.msg.message import refill as _refill
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -47,13 +48,18 @@ class TFMessage(_Message):
             _x1 = self.transforms
             _w(_S0.pack(len(_x1)))
             for _e2 in _x1:
-                _b3 = _e2.header.frame_id
-                if _b3.__class__ is not bytes: _b3 = _b3.encode()
-                _w(_S1.pack(_e2.header.seq, _e2.header.stamp.secs, _e2.header.stamp.nsecs, len(_b3)) + _b3)
-                _b4 = _e2.child_frame_id
-                if _b4.__class__ is not bytes: _b4 = _b4.encode()
-                _w(_S0.pack(len(_b4)) + _b4)
-                _w(_S2.pack(_e2.transform.translation.x, _e2.transform.translation.y, _e2.transform.translation.z, _e2.transform.rotation.x, _e2.transform.rotation.y, _e2.transform.rotation.z, _e2.transform.rotation.w))
+                _m3 = _e2.header
+                _m4 = _m3.stamp
+                _b5 = _m3.frame_id
+                if _b5.__class__ is not bytes: _b5 = _b5.encode()
+                _w(_S1.pack(_m3.seq, _m4.secs, _m4.nsecs, len(_b5)) + _b5)
+                _b6 = _e2.child_frame_id
+                if _b6.__class__ is not bytes: _b6 = _b6.encode()
+                _w(_S0.pack(len(_b6)) + _b6)
+                _m7 = _e2.transform
+                _m8 = _m7.translation
+                _m9 = _m7.rotation
+                _w(_S2.pack(_m8.x, _m8.y, _m8.z, _m9.x, _m9.y, _m9.z, _m9.w))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -63,42 +69,63 @@ class TFMessage(_Message):
     def deserialize(self, data):
         try:
             _buf = data
-            _len = len(data)
-            _end = 0
-            _n, = _S0.unpack_from(_buf, _end)
-            _end += 4
+            _n, = _S0.unpack_from(_buf, 0)
+            _end = 4
             _l1 = []
             for _ in range(_n):
-                _v3 = _new(_T_geometry_msgs__TransformStamped)
-                _i2 = _v3
-                _v4 = _new(_T_std_msgs__Header)
-                _v3.header = _v4
-                _t5 = _new(_Time)
-                _v4.stamp = _t5
+                _i2 = _v3 = _new(_T_geometry_msgs__TransformStamped)
+                _v3.header = _v4 = _new(_T_std_msgs__Header)
+                _v4.stamp = _t5 = _new(_Time)
                 _v4.seq, _t5.secs, _t5.nsecs, _n = _S1.unpack_from(_buf, _end)
-                _end += 16
-                _stop = _end + _n
-                if _stop > _len: raise _Truncated
-                _v4.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-                _end = _stop
+                _s = _end + 16
+                _end = _s + _n
+                _v4.frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
                 _n, = _S0.unpack_from(_buf, _end)
-                _end += 4
-                _stop = _end + _n
-                if _stop > _len: raise _Truncated
-                _v3.child_frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-                _end = _stop
-                _v6 = _new(_T_geometry_msgs__Transform)
-                _v3.transform = _v6
-                _v7 = _new(_T_geometry_msgs__Vector3)
-                _v6.translation = _v7
-                _v8 = _new(_T_geometry_msgs__Quaternion)
-                _v6.rotation = _v8
+                _s = _end + 4
+                _end = _s + _n
+                _v3.child_frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v3.transform = _v6 = _new(_T_geometry_msgs__Transform)
+                _v6.translation = _v7 = _new(_T_geometry_msgs__Vector3)
+                _v6.rotation = _v8 = _new(_T_geometry_msgs__Quaternion)
                 _v7.x, _v7.y, _v7.z, _v8.x, _v8.y, _v8.z, _v8.w = _S2.unpack_from(_buf, _end)
                 _end += 56
                 _l1.append(_i2)
             self.transforms = _l1
+            if _end > len(_buf): raise _Truncated
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
+        return self
+
+    @classmethod
+    def _from_buffer(cls, data):
+        self = _new(cls)
+        try:
+            _buf = data
+            _n, = _S0.unpack_from(_buf, 0)
+            _end = 4
+            _l1 = []
+            for _ in range(_n):
+                _i2 = _v3 = _new(_T_geometry_msgs__TransformStamped)
+                _v3.header = _v4 = _new(_T_std_msgs__Header)
+                _v4.stamp = _t5 = _new(_Time)
+                _v4.seq, _t5.secs, _t5.nsecs, _n = _S1.unpack_from(_buf, _end)
+                _s = _end + 16
+                _end = _s + _n
+                _v4.frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
+                _n, = _S0.unpack_from(_buf, _end)
+                _s = _end + 4
+                _end = _s + _n
+                _v3.child_frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v3.transform = _v6 = _new(_T_geometry_msgs__Transform)
+                _v6.translation = _v7 = _new(_T_geometry_msgs__Vector3)
+                _v6.rotation = _v8 = _new(_T_geometry_msgs__Quaternion)
+                _v7.x, _v7.y, _v7.z, _v8.x, _v8.y, _v8.z, _v8.w = _S2.unpack_from(_buf, _end)
+                _end += 56
+                _l1.append(_i2)
+            self.transforms = _l1
+            if _end > len(_buf): raise _Truncated
+        except Exception as exc:
+            raise _deserialize_failed(cls, data, exc) from exc
         return self
 
     def deserialize_numpy(self, data, numpy):

@@ -5,6 +5,7 @@ from kame.msg.message import Message as _Message
 from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
+from kame.msg.message import refill as _refill
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -40,38 +41,45 @@ class JointTrajectory(_Message):
             if self.points is None:
                 self.points = []
         else:
-            self.header = _T_std_msgs__Header()
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.seq = 0
+            _v1.stamp = _t2 = _new(_Time)
+            _t2.secs = _t2.nsecs = 0
+            _v1.frame_id = ''
             self.joint_names = []
             self.points = []
 
     def serialize(self, buff):
         try:
             _w = buff.write
-            _b1 = self.header.frame_id
-            if _b1.__class__ is not bytes: _b1 = _b1.encode()
-            _w(_S0.pack(self.header.seq, self.header.stamp.secs, self.header.stamp.nsecs, len(_b1)) + _b1)
-            _x2 = self.joint_names
-            _w(_S1.pack(len(_x2)))
-            for _e3 in _x2:
-                _b4 = _e3
-                if _b4.__class__ is not bytes: _b4 = _b4.encode()
-                _w(_S1.pack(len(_b4)) + _b4)
-            _x5 = self.points
-            _w(_S1.pack(len(_x5)))
-            for _e6 in _x5:
-                _x7 = _e6.positions
-                _w(_S1.pack(len(_x7)))
-                _w(_pack_array(_x7, 'd', '<f8'))
-                _x8 = _e6.velocities
-                _w(_S1.pack(len(_x8)))
-                _w(_pack_array(_x8, 'd', '<f8'))
-                _x9 = _e6.accelerations
+            _m1 = self.header
+            _m2 = _m1.stamp
+            _b3 = _m1.frame_id
+            if _b3.__class__ is not bytes: _b3 = _b3.encode()
+            _w(_S0.pack(_m1.seq, _m2.secs, _m2.nsecs, len(_b3)) + _b3)
+            _x4 = self.joint_names
+            _w(_S1.pack(len(_x4)))
+            for _e5 in _x4:
+                _b6 = _e5
+                if _b6.__class__ is not bytes: _b6 = _b6.encode()
+                _w(_S1.pack(len(_b6)) + _b6)
+            _x7 = self.points
+            _w(_S1.pack(len(_x7)))
+            for _e8 in _x7:
+                _x9 = _e8.positions
                 _w(_S1.pack(len(_x9)))
                 _w(_pack_array(_x9, 'd', '<f8'))
-                _x10 = _e6.effort
+                _x10 = _e8.velocities
                 _w(_S1.pack(len(_x10)))
                 _w(_pack_array(_x10, 'd', '<f8'))
-                _w(_S2.pack(_e6.time_from_start.secs, _e6.time_from_start.nsecs))
+                _x11 = _e8.accelerations
+                _w(_S1.pack(len(_x11)))
+                _w(_pack_array(_x11, 'd', '<f8'))
+                _x12 = _e8.effort
+                _w(_S1.pack(len(_x12)))
+                _w(_pack_array(_x12, 'd', '<f8'))
+                _m13 = _e8.time_from_start
+                _w(_S2.pack(_m13.secs, _m13.nsecs))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -80,135 +88,141 @@ class JointTrajectory(_Message):
 
     def deserialize(self, data):
         try:
+            _v1 = self.header
+            _t2 = _v1.stamp
             _buf = data
-            _len = len(data)
-            _end = 0
-            _v1 = _new(_T_std_msgs__Header)
-            self.header = _v1
-            _t2 = _new(_Time)
-            _v1.stamp = _t2
-            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v1.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
             _n, = _S1.unpack_from(_buf, _end)
             _end += 4
             _l3 = []
             for _ in range(_n):
                 _n, = _S1.unpack_from(_buf, _end)
-                _end += 4
-                _stop = _end + _n
-                if _stop > _len: raise _Truncated
-                _i4 = str(_buf[_end:_stop], 'utf-8', 'replace')
-                _end = _stop
+                _s = _end + 4
+                _end = _s + _n
+                _i4 = str(_buf[_s:_end], 'utf-8', 'replace')
                 _l3.append(_i4)
             self.joint_names = _l3
             _n, = _S1.unpack_from(_buf, _end)
             _end += 4
             _l5 = []
             for _ in range(_n):
-                _v7 = _new(_T_trajectory_msgs__JointTrajectoryPoint)
-                _i6 = _v7
+                _i6 = _v7 = _new(_T_trajectory_msgs__JointTrajectoryPoint)
                 _n, = _S1.unpack_from(_buf, _end)
-                _end += 4
-                _stop = _end + _n * 8
-                if _stop > _len: raise _Truncated
-                _v7.positions = _unpack_from('<%dd' % _n, _buf, _end)
-                _end = _stop
+                _v7.positions = _unpack_from('<%dd' % _n, _buf, _end + 4)
+                _end += 4 + _n * 8
                 _n, = _S1.unpack_from(_buf, _end)
-                _end += 4
-                _stop = _end + _n * 8
-                if _stop > _len: raise _Truncated
-                _v7.velocities = _unpack_from('<%dd' % _n, _buf, _end)
-                _end = _stop
+                _v7.velocities = _unpack_from('<%dd' % _n, _buf, _end + 4)
+                _end += 4 + _n * 8
                 _n, = _S1.unpack_from(_buf, _end)
-                _end += 4
-                _stop = _end + _n * 8
-                if _stop > _len: raise _Truncated
-                _v7.accelerations = _unpack_from('<%dd' % _n, _buf, _end)
-                _end = _stop
+                _v7.accelerations = _unpack_from('<%dd' % _n, _buf, _end + 4)
+                _end += 4 + _n * 8
                 _n, = _S1.unpack_from(_buf, _end)
-                _end += 4
-                _stop = _end + _n * 8
-                if _stop > _len: raise _Truncated
-                _v7.effort = _unpack_from('<%dd' % _n, _buf, _end)
-                _end = _stop
-                _t8 = _new(_Duration)
-                _v7.time_from_start = _t8
+                _v7.effort = _unpack_from('<%dd' % _n, _buf, _end + 4)
+                _end += 4 + _n * 8
+                _v7.time_from_start = _t8 = _new(_Duration)
                 _t8.secs, _t8.nsecs = _S2.unpack_from(_buf, _end)
                 _end += 8
                 _l5.append(_i6)
             self.points = _l5
+            if _end > len(_buf): raise _Truncated
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
+        return _refill(self, JointTrajectory, data)
+
+    @classmethod
+    def _from_buffer(cls, data):
+        self = _new(cls)
+        try:
+            _buf = data
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.stamp = _t2 = _new(_Time)
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            _n, = _S1.unpack_from(_buf, _end)
+            _end += 4
+            _l3 = []
+            for _ in range(_n):
+                _n, = _S1.unpack_from(_buf, _end)
+                _s = _end + 4
+                _end = _s + _n
+                _i4 = str(_buf[_s:_end], 'utf-8', 'replace')
+                _l3.append(_i4)
+            self.joint_names = _l3
+            _n, = _S1.unpack_from(_buf, _end)
+            _end += 4
+            _l5 = []
+            for _ in range(_n):
+                _i6 = _v7 = _new(_T_trajectory_msgs__JointTrajectoryPoint)
+                _n, = _S1.unpack_from(_buf, _end)
+                _v7.positions = _unpack_from('<%dd' % _n, _buf, _end + 4)
+                _end += 4 + _n * 8
+                _n, = _S1.unpack_from(_buf, _end)
+                _v7.velocities = _unpack_from('<%dd' % _n, _buf, _end + 4)
+                _end += 4 + _n * 8
+                _n, = _S1.unpack_from(_buf, _end)
+                _v7.accelerations = _unpack_from('<%dd' % _n, _buf, _end + 4)
+                _end += 4 + _n * 8
+                _n, = _S1.unpack_from(_buf, _end)
+                _v7.effort = _unpack_from('<%dd' % _n, _buf, _end + 4)
+                _end += 4 + _n * 8
+                _v7.time_from_start = _t8 = _new(_Duration)
+                _t8.secs, _t8.nsecs = _S2.unpack_from(_buf, _end)
+                _end += 8
+                _l5.append(_i6)
+            self.points = _l5
+            if _end > len(_buf): raise _Truncated
+        except Exception as exc:
+            raise _deserialize_failed(cls, data, exc) from exc
         return self
 
     def deserialize_numpy(self, data, numpy):
         try:
             _np = numpy
             _buf = data
-            _len = len(data)
-            _end = 0
-            _v1 = _new(_T_std_msgs__Header)
-            self.header = _v1
-            _t2 = _new(_Time)
-            _v1.stamp = _t2
-            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v1.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.stamp = _t2 = _new(_Time)
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
             _n, = _S1.unpack_from(_buf, _end)
             _end += 4
             _l3 = []
             for _ in range(_n):
                 _n, = _S1.unpack_from(_buf, _end)
-                _end += 4
-                _stop = _end + _n
-                if _stop > _len: raise _Truncated
-                _i4 = str(_buf[_end:_stop], 'utf-8', 'replace')
-                _end = _stop
+                _s = _end + 4
+                _end = _s + _n
+                _i4 = str(_buf[_s:_end], 'utf-8', 'replace')
                 _l3.append(_i4)
             self.joint_names = _l3
             _n, = _S1.unpack_from(_buf, _end)
             _end += 4
             _l5 = []
             for _ in range(_n):
-                _v7 = _new(_T_trajectory_msgs__JointTrajectoryPoint)
-                _i6 = _v7
+                _i6 = _v7 = _new(_T_trajectory_msgs__JointTrajectoryPoint)
                 _n, = _S1.unpack_from(_buf, _end)
-                _end += 4
-                _stop = _end + _n * 8
-                if _stop > _len: raise _Truncated
-                _v7.positions = _np.frombuffer(_buf, '<f8', _n, _end)
-                _end = _stop
+                _v7.positions = _np.frombuffer(_buf, '<f8', _n, _end + 4)
+                _end += 4 + _n * 8
                 _n, = _S1.unpack_from(_buf, _end)
-                _end += 4
-                _stop = _end + _n * 8
-                if _stop > _len: raise _Truncated
-                _v7.velocities = _np.frombuffer(_buf, '<f8', _n, _end)
-                _end = _stop
+                _v7.velocities = _np.frombuffer(_buf, '<f8', _n, _end + 4)
+                _end += 4 + _n * 8
                 _n, = _S1.unpack_from(_buf, _end)
-                _end += 4
-                _stop = _end + _n * 8
-                if _stop > _len: raise _Truncated
-                _v7.accelerations = _np.frombuffer(_buf, '<f8', _n, _end)
-                _end = _stop
+                _v7.accelerations = _np.frombuffer(_buf, '<f8', _n, _end + 4)
+                _end += 4 + _n * 8
                 _n, = _S1.unpack_from(_buf, _end)
-                _end += 4
-                _stop = _end + _n * 8
-                if _stop > _len: raise _Truncated
-                _v7.effort = _np.frombuffer(_buf, '<f8', _n, _end)
-                _end = _stop
-                _t8 = _new(_Duration)
-                _v7.time_from_start = _t8
+                _v7.effort = _np.frombuffer(_buf, '<f8', _n, _end + 4)
+                _end += 4 + _n * 8
+                _v7.time_from_start = _t8 = _new(_Duration)
                 _t8.secs, _t8.nsecs = _S2.unpack_from(_buf, _end)
                 _end += 8
                 _l5.append(_i6)
             self.points = _l5
+            if _end > len(_buf): raise _Truncated
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
         return self

@@ -5,6 +5,7 @@ from kame.msg.message import Message as _Message
 from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
+from kame.msg.message import refill as _refill
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -45,7 +46,8 @@ class JointTrajectoryPoint(_Message):
             self.velocities = []
             self.accelerations = []
             self.effort = []
-            self.time_from_start = _Duration()
+            self.time_from_start = _t1 = _new(_Duration)
+            _t1.secs = _t1.nsecs = 0
 
     def serialize(self, buff):
         try:
@@ -62,7 +64,8 @@ class JointTrajectoryPoint(_Message):
             _x4 = self.effort
             _w(_S0.pack(len(_x4)))
             _w(_pack_array(_x4, 'd', '<f8'))
-            _w(_S1.pack(self.time_from_start.secs, self.time_from_start.nsecs))
+            _m5 = self.time_from_start
+            _w(_S1.pack(_m5.secs, _m5.nsecs))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -71,75 +74,69 @@ class JointTrajectoryPoint(_Message):
 
     def deserialize(self, data):
         try:
+            _t1 = self.time_from_start
             _buf = data
-            _len = len(data)
-            _end = 0
+            _n, = _S0.unpack_from(_buf, 0)
+            self.positions = _unpack_from('<%dd' % _n, _buf, 4)
+            _end = 4 + _n * 8
             _n, = _S0.unpack_from(_buf, _end)
-            _end += 4
-            _stop = _end + _n * 8
-            if _stop > _len: raise _Truncated
-            self.positions = _unpack_from('<%dd' % _n, _buf, _end)
-            _end = _stop
+            self.velocities = _unpack_from('<%dd' % _n, _buf, _end + 4)
+            _end += 4 + _n * 8
             _n, = _S0.unpack_from(_buf, _end)
-            _end += 4
-            _stop = _end + _n * 8
-            if _stop > _len: raise _Truncated
-            self.velocities = _unpack_from('<%dd' % _n, _buf, _end)
-            _end = _stop
+            self.accelerations = _unpack_from('<%dd' % _n, _buf, _end + 4)
+            _end += 4 + _n * 8
             _n, = _S0.unpack_from(_buf, _end)
-            _end += 4
-            _stop = _end + _n * 8
-            if _stop > _len: raise _Truncated
-            self.accelerations = _unpack_from('<%dd' % _n, _buf, _end)
-            _end = _stop
-            _n, = _S0.unpack_from(_buf, _end)
-            _end += 4
-            _stop = _end + _n * 8
-            if _stop > _len: raise _Truncated
-            self.effort = _unpack_from('<%dd' % _n, _buf, _end)
-            _end = _stop
-            _t1 = _new(_Duration)
-            self.time_from_start = _t1
+            self.effort = _unpack_from('<%dd' % _n, _buf, _end + 4)
+            _end += 4 + _n * 8
             _t1.secs, _t1.nsecs = _S1.unpack_from(_buf, _end)
-            _end += 8
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
+        return _refill(self, JointTrajectoryPoint, data)
+
+    @classmethod
+    def _from_buffer(cls, data):
+        self = _new(cls)
+        try:
+            _buf = data
+            _n, = _S0.unpack_from(_buf, 0)
+            self.positions = _unpack_from('<%dd' % _n, _buf, 4)
+            _end = 4 + _n * 8
+            _n, = _S0.unpack_from(_buf, _end)
+            self.velocities = _unpack_from('<%dd' % _n, _buf, _end + 4)
+            _end += 4 + _n * 8
+            _n, = _S0.unpack_from(_buf, _end)
+            self.accelerations = _unpack_from('<%dd' % _n, _buf, _end + 4)
+            _end += 4 + _n * 8
+            _n, = _S0.unpack_from(_buf, _end)
+            self.effort = _unpack_from('<%dd' % _n, _buf, _end + 4)
+            _end += 4 + _n * 8
+            self.time_from_start = _t1 = _new(_Duration)
+            _t1.secs, _t1.nsecs = _S1.unpack_from(_buf, _end)
+        except Exception as exc:
+            raise _deserialize_failed(cls, data, exc) from exc
         return self
 
     def deserialize_numpy(self, data, numpy):
         try:
             _np = numpy
             _buf = data
-            _len = len(data)
-            _end = 0
+            _n, = _S0.unpack_from(_buf, 0)
+            self.positions = _np.frombuffer(_buf, '<f8', _n, 4)
+            _end = 4 + _n * 8
             _n, = _S0.unpack_from(_buf, _end)
-            _end += 4
-            _stop = _end + _n * 8
-            if _stop > _len: raise _Truncated
-            self.positions = _np.frombuffer(_buf, '<f8', _n, _end)
-            _end = _stop
+            self.velocities = _np.frombuffer(_buf, '<f8', _n, _end + 4)
+            _end += 4 + _n * 8
             _n, = _S0.unpack_from(_buf, _end)
-            _end += 4
-            _stop = _end + _n * 8
-            if _stop > _len: raise _Truncated
-            self.velocities = _np.frombuffer(_buf, '<f8', _n, _end)
-            _end = _stop
+            self.accelerations = _np.frombuffer(_buf, '<f8', _n, _end + 4)
+            _end += 4 + _n * 8
             _n, = _S0.unpack_from(_buf, _end)
-            _end += 4
-            _stop = _end + _n * 8
-            if _stop > _len: raise _Truncated
-            self.accelerations = _np.frombuffer(_buf, '<f8', _n, _end)
-            _end = _stop
-            _n, = _S0.unpack_from(_buf, _end)
-            _end += 4
-            _stop = _end + _n * 8
-            if _stop > _len: raise _Truncated
-            self.effort = _np.frombuffer(_buf, '<f8', _n, _end)
-            _end = _stop
-            _t1 = _new(_Duration)
-            self.time_from_start = _t1
+            self.effort = _np.frombuffer(_buf, '<f8', _n, _end + 4)
+            _end += 4 + _n * 8
+            self.time_from_start = _t1 = _new(_Duration)
             _t1.secs, _t1.nsecs = _S1.unpack_from(_buf, _end)
-            _end += 8
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
         return self

@@ -5,6 +5,7 @@ from kame.msg.message import Message as _Message
 from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
+from kame.msg.message import refill as _refill
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -46,38 +47,51 @@ class MultiDOFJointTrajectory(_Message):
             if self.points is None:
                 self.points = []
         else:
-            self.header = _T_std_msgs__Header()
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.seq = 0
+            _v1.stamp = _t2 = _new(_Time)
+            _t2.secs = _t2.nsecs = 0
+            _v1.frame_id = ''
             self.joint_names = []
             self.points = []
 
     def serialize(self, buff):
         try:
             _w = buff.write
-            _b1 = self.header.frame_id
-            if _b1.__class__ is not bytes: _b1 = _b1.encode()
-            _w(_S0.pack(self.header.seq, self.header.stamp.secs, self.header.stamp.nsecs, len(_b1)) + _b1)
-            _x2 = self.joint_names
-            _w(_S1.pack(len(_x2)))
-            for _e3 in _x2:
-                _b4 = _e3
-                if _b4.__class__ is not bytes: _b4 = _b4.encode()
-                _w(_S1.pack(len(_b4)) + _b4)
-            _x5 = self.points
-            _w(_S1.pack(len(_x5)))
-            for _e6 in _x5:
-                _x7 = _e6.transforms
-                _w(_S1.pack(len(_x7)))
-                for _e8 in _x7:
-                    _w(_S2.pack(_e8.translation.x, _e8.translation.y, _e8.translation.z, _e8.rotation.x, _e8.rotation.y, _e8.rotation.z, _e8.rotation.w))
-                _x9 = _e6.velocities
+            _m1 = self.header
+            _m2 = _m1.stamp
+            _b3 = _m1.frame_id
+            if _b3.__class__ is not bytes: _b3 = _b3.encode()
+            _w(_S0.pack(_m1.seq, _m2.secs, _m2.nsecs, len(_b3)) + _b3)
+            _x4 = self.joint_names
+            _w(_S1.pack(len(_x4)))
+            for _e5 in _x4:
+                _b6 = _e5
+                if _b6.__class__ is not bytes: _b6 = _b6.encode()
+                _w(_S1.pack(len(_b6)) + _b6)
+            _x7 = self.points
+            _w(_S1.pack(len(_x7)))
+            for _e8 in _x7:
+                _x9 = _e8.transforms
                 _w(_S1.pack(len(_x9)))
                 for _e10 in _x9:
-                    _w(_S3.pack(_e10.linear.x, _e10.linear.y, _e10.linear.z, _e10.angular.x, _e10.angular.y, _e10.angular.z))
-                _x11 = _e6.accelerations
-                _w(_S1.pack(len(_x11)))
-                for _e12 in _x11:
-                    _w(_S3.pack(_e12.linear.x, _e12.linear.y, _e12.linear.z, _e12.angular.x, _e12.angular.y, _e12.angular.z))
-                _w(_S4.pack(_e6.time_from_start.secs, _e6.time_from_start.nsecs))
+                    _m11 = _e10.translation
+                    _m12 = _e10.rotation
+                    _w(_S2.pack(_m11.x, _m11.y, _m11.z, _m12.x, _m12.y, _m12.z, _m12.w))
+                _x13 = _e8.velocities
+                _w(_S1.pack(len(_x13)))
+                for _e14 in _x13:
+                    _m15 = _e14.linear
+                    _m16 = _e14.angular
+                    _w(_S3.pack(_m15.x, _m15.y, _m15.z, _m16.x, _m16.y, _m16.z))
+                _x17 = _e8.accelerations
+                _w(_S1.pack(len(_x17)))
+                for _e18 in _x17:
+                    _m19 = _e18.linear
+                    _m20 = _e18.angular
+                    _w(_S3.pack(_m19.x, _m19.y, _m19.z, _m20.x, _m20.y, _m20.z))
+                _m21 = _e8.time_from_start
+                _w(_S4.pack(_m21.secs, _m21.nsecs))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -86,47 +100,34 @@ class MultiDOFJointTrajectory(_Message):
 
     def deserialize(self, data):
         try:
+            _v1 = self.header
+            _t2 = _v1.stamp
             _buf = data
-            _len = len(data)
-            _end = 0
-            _v1 = _new(_T_std_msgs__Header)
-            self.header = _v1
-            _t2 = _new(_Time)
-            _v1.stamp = _t2
-            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v1.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
             _n, = _S1.unpack_from(_buf, _end)
             _end += 4
             _l3 = []
             for _ in range(_n):
                 _n, = _S1.unpack_from(_buf, _end)
-                _end += 4
-                _stop = _end + _n
-                if _stop > _len: raise _Truncated
-                _i4 = str(_buf[_end:_stop], 'utf-8', 'replace')
-                _end = _stop
+                _s = _end + 4
+                _end = _s + _n
+                _i4 = str(_buf[_s:_end], 'utf-8', 'replace')
                 _l3.append(_i4)
             self.joint_names = _l3
             _n, = _S1.unpack_from(_buf, _end)
             _end += 4
             _l5 = []
             for _ in range(_n):
-                _v7 = _new(_T_trajectory_msgs__MultiDOFJointTrajectoryPoint)
-                _i6 = _v7
+                _i6 = _v7 = _new(_T_trajectory_msgs__MultiDOFJointTrajectoryPoint)
                 _n, = _S1.unpack_from(_buf, _end)
                 _end += 4
                 _l8 = []
                 for _ in range(_n):
-                    _v10 = _new(_T_geometry_msgs__Transform)
-                    _i9 = _v10
-                    _v11 = _new(_T_geometry_msgs__Vector3)
-                    _v10.translation = _v11
-                    _v12 = _new(_T_geometry_msgs__Quaternion)
-                    _v10.rotation = _v12
+                    _i9 = _v10 = _new(_T_geometry_msgs__Transform)
+                    _v10.translation = _v11 = _new(_T_geometry_msgs__Vector3)
+                    _v10.rotation = _v12 = _new(_T_geometry_msgs__Quaternion)
                     _v11.x, _v11.y, _v11.z, _v12.x, _v12.y, _v12.z, _v12.w = _S2.unpack_from(_buf, _end)
                     _end += 56
                     _l8.append(_i9)
@@ -135,12 +136,9 @@ class MultiDOFJointTrajectory(_Message):
                 _end += 4
                 _l13 = []
                 for _ in range(_n):
-                    _v15 = _new(_T_geometry_msgs__Twist)
-                    _i14 = _v15
-                    _v16 = _new(_T_geometry_msgs__Vector3)
-                    _v15.linear = _v16
-                    _v17 = _new(_T_geometry_msgs__Vector3)
-                    _v15.angular = _v17
+                    _i14 = _v15 = _new(_T_geometry_msgs__Twist)
+                    _v15.linear = _v16 = _new(_T_geometry_msgs__Vector3)
+                    _v15.angular = _v17 = _new(_T_geometry_msgs__Vector3)
                     _v16.x, _v16.y, _v16.z, _v17.x, _v17.y, _v17.z = _S3.unpack_from(_buf, _end)
                     _end += 48
                     _l13.append(_i14)
@@ -149,24 +147,92 @@ class MultiDOFJointTrajectory(_Message):
                 _end += 4
                 _l18 = []
                 for _ in range(_n):
-                    _v20 = _new(_T_geometry_msgs__Twist)
-                    _i19 = _v20
-                    _v21 = _new(_T_geometry_msgs__Vector3)
-                    _v20.linear = _v21
-                    _v22 = _new(_T_geometry_msgs__Vector3)
-                    _v20.angular = _v22
+                    _i19 = _v20 = _new(_T_geometry_msgs__Twist)
+                    _v20.linear = _v21 = _new(_T_geometry_msgs__Vector3)
+                    _v20.angular = _v22 = _new(_T_geometry_msgs__Vector3)
                     _v21.x, _v21.y, _v21.z, _v22.x, _v22.y, _v22.z = _S3.unpack_from(_buf, _end)
                     _end += 48
                     _l18.append(_i19)
                 _v7.accelerations = _l18
-                _t23 = _new(_Duration)
-                _v7.time_from_start = _t23
+                _v7.time_from_start = _t23 = _new(_Duration)
                 _t23.secs, _t23.nsecs = _S4.unpack_from(_buf, _end)
                 _end += 8
                 _l5.append(_i6)
             self.points = _l5
+            if _end > len(_buf): raise _Truncated
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
+        return _refill(self, MultiDOFJointTrajectory, data)
+
+    @classmethod
+    def _from_buffer(cls, data):
+        self = _new(cls)
+        try:
+            _buf = data
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.stamp = _t2 = _new(_Time)
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            _n, = _S1.unpack_from(_buf, _end)
+            _end += 4
+            _l3 = []
+            for _ in range(_n):
+                _n, = _S1.unpack_from(_buf, _end)
+                _s = _end + 4
+                _end = _s + _n
+                _i4 = str(_buf[_s:_end], 'utf-8', 'replace')
+                _l3.append(_i4)
+            self.joint_names = _l3
+            _n, = _S1.unpack_from(_buf, _end)
+            _end += 4
+            _l5 = []
+            for _ in range(_n):
+                _i6 = _v7 = _new(_T_trajectory_msgs__MultiDOFJointTrajectoryPoint)
+                _n, = _S1.unpack_from(_buf, _end)
+                _end += 4
+                _l8 = []
+                for _ in range(_n):
+                    _i9 = _v10 = _new(_T_geometry_msgs__Transform)
+                    _v10.translation = _v11 = _new(_T_geometry_msgs__Vector3)
+                    _v10.rotation = _v12 = _new(_T_geometry_msgs__Quaternion)
+                    _v11.x, _v11.y, _v11.z, _v12.x, _v12.y, _v12.z, _v12.w = _S2.unpack_from(_buf, _end)
+                    _end += 56
+                    _l8.append(_i9)
+                _v7.transforms = _l8
+                _n, = _S1.unpack_from(_buf, _end)
+                _end += 4
+                _l13 = []
+                for _ in range(_n):
+                    _i14 = _v15 = _new(_T_geometry_msgs__Twist)
+                    _v15.linear = _v16 = _new(_T_geometry_msgs__Vector3)
+                    _v15.angular = _v17 = _new(_T_geometry_msgs__Vector3)
+                    _v16.x, _v16.y, _v16.z, _v17.x, _v17.y, _v17.z = _S3.unpack_from(_buf, _end)
+                    _end += 48
+                    _l13.append(_i14)
+                _v7.velocities = _l13
+                _n, = _S1.unpack_from(_buf, _end)
+                _end += 4
+                _l18 = []
+                for _ in range(_n):
+                    _i19 = _v20 = _new(_T_geometry_msgs__Twist)
+                    _v20.linear = _v21 = _new(_T_geometry_msgs__Vector3)
+                    _v20.angular = _v22 = _new(_T_geometry_msgs__Vector3)
+                    _v21.x, _v21.y, _v21.z, _v22.x, _v22.y, _v22.z = _S3.unpack_from(_buf, _end)
+                    _end += 48
+                    _l18.append(_i19)
+                _v7.accelerations = _l18
+                _v7.time_from_start = _t23 = _new(_Duration)
+                _t23.secs, _t23.nsecs = _S4.unpack_from(_buf, _end)
+                _end += 8
+                _l5.append(_i6)
+            self.points = _l5
+            if _end > len(_buf): raise _Truncated
+        except Exception as exc:
+            raise _deserialize_failed(cls, data, exc) from exc
         return self
 
     def deserialize_numpy(self, data, numpy):

@@ -5,6 +5,7 @@ from kame.msg.message import Message as _Message
 from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
+from kame.msg.message import refill as _refill
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -48,7 +49,8 @@ class MultiDOFJointTrajectoryPoint(_Message):
             self.transforms = []
             self.velocities = []
             self.accelerations = []
-            self.time_from_start = _Duration()
+            self.time_from_start = _t1 = _new(_Duration)
+            _t1.secs = _t1.nsecs = 0
 
     def serialize(self, buff):
         try:
@@ -56,16 +58,23 @@ class MultiDOFJointTrajectoryPoint(_Message):
             _x1 = self.transforms
             _w(_S0.pack(len(_x1)))
             for _e2 in _x1:
-                _w(_S1.pack(_e2.translation.x, _e2.translation.y, _e2.translation.z, _e2.rotation.x, _e2.rotation.y, _e2.rotation.z, _e2.rotation.w))
-            _x3 = self.velocities
-            _w(_S0.pack(len(_x3)))
-            for _e4 in _x3:
-                _w(_S2.pack(_e4.linear.x, _e4.linear.y, _e4.linear.z, _e4.angular.x, _e4.angular.y, _e4.angular.z))
-            _x5 = self.accelerations
+                _m3 = _e2.translation
+                _m4 = _e2.rotation
+                _w(_S1.pack(_m3.x, _m3.y, _m3.z, _m4.x, _m4.y, _m4.z, _m4.w))
+            _x5 = self.velocities
             _w(_S0.pack(len(_x5)))
             for _e6 in _x5:
-                _w(_S2.pack(_e6.linear.x, _e6.linear.y, _e6.linear.z, _e6.angular.x, _e6.angular.y, _e6.angular.z))
-            _w(_S3.pack(self.time_from_start.secs, self.time_from_start.nsecs))
+                _m7 = _e6.linear
+                _m8 = _e6.angular
+                _w(_S2.pack(_m7.x, _m7.y, _m7.z, _m8.x, _m8.y, _m8.z))
+            _x9 = self.accelerations
+            _w(_S0.pack(len(_x9)))
+            for _e10 in _x9:
+                _m11 = _e10.linear
+                _m12 = _e10.angular
+                _w(_S2.pack(_m11.x, _m11.y, _m11.z, _m12.x, _m12.y, _m12.z))
+            _m13 = self.time_from_start
+            _w(_S3.pack(_m13.secs, _m13.nsecs))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -74,19 +83,15 @@ class MultiDOFJointTrajectoryPoint(_Message):
 
     def deserialize(self, data):
         try:
+            _t16 = self.time_from_start
             _buf = data
-            _len = len(data)
-            _end = 0
-            _n, = _S0.unpack_from(_buf, _end)
-            _end += 4
+            _n, = _S0.unpack_from(_buf, 0)
+            _end = 4
             _l1 = []
             for _ in range(_n):
-                _v3 = _new(_T_geometry_msgs__Transform)
-                _i2 = _v3
-                _v4 = _new(_T_geometry_msgs__Vector3)
-                _v3.translation = _v4
-                _v5 = _new(_T_geometry_msgs__Quaternion)
-                _v3.rotation = _v5
+                _i2 = _v3 = _new(_T_geometry_msgs__Transform)
+                _v3.translation = _v4 = _new(_T_geometry_msgs__Vector3)
+                _v3.rotation = _v5 = _new(_T_geometry_msgs__Quaternion)
                 _v4.x, _v4.y, _v4.z, _v5.x, _v5.y, _v5.z, _v5.w = _S1.unpack_from(_buf, _end)
                 _end += 56
                 _l1.append(_i2)
@@ -95,12 +100,9 @@ class MultiDOFJointTrajectoryPoint(_Message):
             _end += 4
             _l6 = []
             for _ in range(_n):
-                _v8 = _new(_T_geometry_msgs__Twist)
-                _i7 = _v8
-                _v9 = _new(_T_geometry_msgs__Vector3)
-                _v8.linear = _v9
-                _v10 = _new(_T_geometry_msgs__Vector3)
-                _v8.angular = _v10
+                _i7 = _v8 = _new(_T_geometry_msgs__Twist)
+                _v8.linear = _v9 = _new(_T_geometry_msgs__Vector3)
+                _v8.angular = _v10 = _new(_T_geometry_msgs__Vector3)
                 _v9.x, _v9.y, _v9.z, _v10.x, _v10.y, _v10.z = _S2.unpack_from(_buf, _end)
                 _end += 48
                 _l6.append(_i7)
@@ -109,22 +111,63 @@ class MultiDOFJointTrajectoryPoint(_Message):
             _end += 4
             _l11 = []
             for _ in range(_n):
-                _v13 = _new(_T_geometry_msgs__Twist)
-                _i12 = _v13
-                _v14 = _new(_T_geometry_msgs__Vector3)
-                _v13.linear = _v14
-                _v15 = _new(_T_geometry_msgs__Vector3)
-                _v13.angular = _v15
+                _i12 = _v13 = _new(_T_geometry_msgs__Twist)
+                _v13.linear = _v14 = _new(_T_geometry_msgs__Vector3)
+                _v13.angular = _v15 = _new(_T_geometry_msgs__Vector3)
                 _v14.x, _v14.y, _v14.z, _v15.x, _v15.y, _v15.z = _S2.unpack_from(_buf, _end)
                 _end += 48
                 _l11.append(_i12)
             self.accelerations = _l11
-            _t16 = _new(_Duration)
-            self.time_from_start = _t16
             _t16.secs, _t16.nsecs = _S3.unpack_from(_buf, _end)
-            _end += 8
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
+        return _refill(self, MultiDOFJointTrajectoryPoint, data)
+
+    @classmethod
+    def _from_buffer(cls, data):
+        self = _new(cls)
+        try:
+            _buf = data
+            _n, = _S0.unpack_from(_buf, 0)
+            _end = 4
+            _l1 = []
+            for _ in range(_n):
+                _i2 = _v3 = _new(_T_geometry_msgs__Transform)
+                _v3.translation = _v4 = _new(_T_geometry_msgs__Vector3)
+                _v3.rotation = _v5 = _new(_T_geometry_msgs__Quaternion)
+                _v4.x, _v4.y, _v4.z, _v5.x, _v5.y, _v5.z, _v5.w = _S1.unpack_from(_buf, _end)
+                _end += 56
+                _l1.append(_i2)
+            self.transforms = _l1
+            _n, = _S0.unpack_from(_buf, _end)
+            _end += 4
+            _l6 = []
+            for _ in range(_n):
+                _i7 = _v8 = _new(_T_geometry_msgs__Twist)
+                _v8.linear = _v9 = _new(_T_geometry_msgs__Vector3)
+                _v8.angular = _v10 = _new(_T_geometry_msgs__Vector3)
+                _v9.x, _v9.y, _v9.z, _v10.x, _v10.y, _v10.z = _S2.unpack_from(_buf, _end)
+                _end += 48
+                _l6.append(_i7)
+            self.velocities = _l6
+            _n, = _S0.unpack_from(_buf, _end)
+            _end += 4
+            _l11 = []
+            for _ in range(_n):
+                _i12 = _v13 = _new(_T_geometry_msgs__Twist)
+                _v13.linear = _v14 = _new(_T_geometry_msgs__Vector3)
+                _v13.angular = _v15 = _new(_T_geometry_msgs__Vector3)
+                _v14.x, _v14.y, _v14.z, _v15.x, _v15.y, _v15.z = _S2.unpack_from(_buf, _end)
+                _end += 48
+                _l11.append(_i12)
+            self.accelerations = _l11
+            self.time_from_start = _t16 = _new(_Duration)
+            _t16.secs, _t16.nsecs = _S3.unpack_from(_buf, _end)
+        except Exception as exc:
+            raise _deserialize_failed(cls, data, exc) from exc
         return self
 
     def deserialize_numpy(self, data, numpy):

@@ -5,6 +5,7 @@ from kame.msg.message import Message as _Message
 from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
+from kame.msg.message import refill as _refill
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -49,38 +50,94 @@ class RotateAbsoluteAction(_Message):
             if self.action_feedback is None:
                 self.action_feedback = _T_turtlesim__RotateAbsoluteActionFeedback()
         else:
-            self.action_goal = _T_turtlesim__RotateAbsoluteActionGoal()
-            self.action_result = _T_turtlesim__RotateAbsoluteActionResult()
-            self.action_feedback = _T_turtlesim__RotateAbsoluteActionFeedback()
+            self.action_goal = _v1 = _new(_T_turtlesim__RotateAbsoluteActionGoal)
+            _v1.header = _v2 = _new(_T_std_msgs__Header)
+            _v2.seq = 0
+            _v2.stamp = _t3 = _new(_Time)
+            _t3.secs = _t3.nsecs = 0
+            _v2.frame_id = ''
+            _v1.goal_id = _v4 = _new(_T_actionlib_msgs__GoalID)
+            _v4.stamp = _t5 = _new(_Time)
+            _t5.secs = _t5.nsecs = 0
+            _v4.id = ''
+            _v1.goal = _v6 = _new(_T_turtlesim__RotateAbsoluteGoal)
+            _v6.theta = 0.0
+            self.action_result = _v7 = _new(_T_turtlesim__RotateAbsoluteActionResult)
+            _v7.header = _v8 = _new(_T_std_msgs__Header)
+            _v8.seq = 0
+            _v8.stamp = _t9 = _new(_Time)
+            _t9.secs = _t9.nsecs = 0
+            _v8.frame_id = ''
+            _v7.status = _v10 = _new(_T_actionlib_msgs__GoalStatus)
+            _v10.goal_id = _v11 = _new(_T_actionlib_msgs__GoalID)
+            _v11.stamp = _t12 = _new(_Time)
+            _t12.secs = _t12.nsecs = 0
+            _v11.id = ''
+            _v10.status = 0
+            _v10.text = ''
+            _v7.result = _v13 = _new(_T_turtlesim__RotateAbsoluteResult)
+            _v13.delta = 0.0
+            self.action_feedback = _v14 = _new(_T_turtlesim__RotateAbsoluteActionFeedback)
+            _v14.header = _v15 = _new(_T_std_msgs__Header)
+            _v15.seq = 0
+            _v15.stamp = _t16 = _new(_Time)
+            _t16.secs = _t16.nsecs = 0
+            _v15.frame_id = ''
+            _v14.status = _v17 = _new(_T_actionlib_msgs__GoalStatus)
+            _v17.goal_id = _v18 = _new(_T_actionlib_msgs__GoalID)
+            _v18.stamp = _t19 = _new(_Time)
+            _t19.secs = _t19.nsecs = 0
+            _v18.id = ''
+            _v17.status = 0
+            _v17.text = ''
+            _v14.feedback = _v20 = _new(_T_turtlesim__RotateAbsoluteFeedback)
+            _v20.remaining = 0.0
 
     def serialize(self, buff):
         try:
             _w = buff.write
-            _b1 = self.action_goal.header.frame_id
-            if _b1.__class__ is not bytes: _b1 = _b1.encode()
-            _w(_S0.pack(self.action_goal.header.seq, self.action_goal.header.stamp.secs, self.action_goal.header.stamp.nsecs, len(_b1)) + _b1)
-            _b2 = self.action_goal.goal_id.id
-            if _b2.__class__ is not bytes: _b2 = _b2.encode()
-            _w(_S1.pack(self.action_goal.goal_id.stamp.secs, self.action_goal.goal_id.stamp.nsecs, len(_b2)) + _b2)
-            _b3 = self.action_result.header.frame_id
-            if _b3.__class__ is not bytes: _b3 = _b3.encode()
-            _w(_S2.pack(self.action_goal.goal.theta, self.action_result.header.seq, self.action_result.header.stamp.secs, self.action_result.header.stamp.nsecs, len(_b3)) + _b3)
-            _b4 = self.action_result.status.goal_id.id
+            _m1 = self.action_goal
+            _m2 = _m1.header
+            _m3 = _m2.stamp
+            _b4 = _m2.frame_id
             if _b4.__class__ is not bytes: _b4 = _b4.encode()
-            _w(_S1.pack(self.action_result.status.goal_id.stamp.secs, self.action_result.status.goal_id.stamp.nsecs, len(_b4)) + _b4)
-            _b5 = self.action_result.status.text
-            if _b5.__class__ is not bytes: _b5 = _b5.encode()
-            _w(_S3.pack(self.action_result.status.status, len(_b5)) + _b5)
-            _b6 = self.action_feedback.header.frame_id
-            if _b6.__class__ is not bytes: _b6 = _b6.encode()
-            _w(_S2.pack(self.action_result.result.delta, self.action_feedback.header.seq, self.action_feedback.header.stamp.secs, self.action_feedback.header.stamp.nsecs, len(_b6)) + _b6)
-            _b7 = self.action_feedback.status.goal_id.id
+            _w(_S0.pack(_m2.seq, _m3.secs, _m3.nsecs, len(_b4)) + _b4)
+            _m5 = _m1.goal_id
+            _m6 = _m5.stamp
+            _b7 = _m5.id
             if _b7.__class__ is not bytes: _b7 = _b7.encode()
-            _w(_S1.pack(self.action_feedback.status.goal_id.stamp.secs, self.action_feedback.status.goal_id.stamp.nsecs, len(_b7)) + _b7)
-            _b8 = self.action_feedback.status.text
-            if _b8.__class__ is not bytes: _b8 = _b8.encode()
-            _w(_S3.pack(self.action_feedback.status.status, len(_b8)) + _b8)
-            _w(_S4.pack(self.action_feedback.feedback.remaining))
+            _w(_S1.pack(_m6.secs, _m6.nsecs, len(_b7)) + _b7)
+            _m8 = self.action_result
+            _m9 = _m8.header
+            _m10 = _m9.stamp
+            _b11 = _m9.frame_id
+            if _b11.__class__ is not bytes: _b11 = _b11.encode()
+            _w(_S2.pack(_m1.goal.theta, _m9.seq, _m10.secs, _m10.nsecs, len(_b11)) + _b11)
+            _m12 = _m8.status
+            _m13 = _m12.goal_id
+            _m14 = _m13.stamp
+            _b15 = _m13.id
+            if _b15.__class__ is not bytes: _b15 = _b15.encode()
+            _w(_S1.pack(_m14.secs, _m14.nsecs, len(_b15)) + _b15)
+            _b16 = _m12.text
+            if _b16.__class__ is not bytes: _b16 = _b16.encode()
+            _w(_S3.pack(_m12.status, len(_b16)) + _b16)
+            _m17 = self.action_feedback
+            _m18 = _m17.header
+            _m19 = _m18.stamp
+            _b20 = _m18.frame_id
+            if _b20.__class__ is not bytes: _b20 = _b20.encode()
+            _w(_S2.pack(_m8.result.delta, _m18.seq, _m19.secs, _m19.nsecs, len(_b20)) + _b20)
+            _m21 = _m17.status
+            _m22 = _m21.goal_id
+            _m23 = _m22.stamp
+            _b24 = _m22.id
+            if _b24.__class__ is not bytes: _b24 = _b24.encode()
+            _w(_S1.pack(_m23.secs, _m23.nsecs, len(_b24)) + _b24)
+            _b25 = _m21.text
+            if _b25.__class__ is not bytes: _b25 = _b25.encode()
+            _w(_S3.pack(_m21.status, len(_b25)) + _b25)
+            _w(_S4.pack(_m17.feedback.remaining))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -89,101 +146,127 @@ class RotateAbsoluteAction(_Message):
 
     def deserialize(self, data):
         try:
+            _v1 = self.action_goal
+            _v2 = _v1.header
+            _t3 = _v2.stamp
+            _v4 = _v1.goal_id
+            _t5 = _v4.stamp
+            _v6 = _v1.goal
+            _v7 = self.action_result
+            _v8 = _v7.header
+            _t9 = _v8.stamp
+            _v10 = _v7.status
+            _v11 = _v10.goal_id
+            _t12 = _v11.stamp
+            _v13 = _v7.result
+            _v14 = self.action_feedback
+            _v15 = _v14.header
+            _t16 = _v15.stamp
+            _v17 = _v14.status
+            _v18 = _v17.goal_id
+            _t19 = _v18.stamp
+            _v20 = _v14.feedback
             _buf = data
-            _len = len(data)
-            _end = 0
-            _v1 = _new(_T_turtlesim__RotateAbsoluteActionGoal)
-            self.action_goal = _v1
-            _v2 = _new(_T_std_msgs__Header)
-            _v1.header = _v2
-            _t3 = _new(_Time)
-            _v2.stamp = _t3
-            _v2.seq, _t3.secs, _t3.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v2.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v4 = _new(_T_actionlib_msgs__GoalID)
-            _v1.goal_id = _v4
-            _t5 = _new(_Time)
-            _v4.stamp = _t5
+            _v2.seq, _t3.secs, _t3.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v2.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
             _t5.secs, _t5.nsecs, _n = _S1.unpack_from(_buf, _end)
-            _end += 12
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v4.id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v6 = _new(_T_turtlesim__RotateAbsoluteGoal)
-            _v1.goal = _v6
-            _v7 = _new(_T_turtlesim__RotateAbsoluteActionResult)
-            self.action_result = _v7
-            _v8 = _new(_T_std_msgs__Header)
-            _v7.header = _v8
-            _t9 = _new(_Time)
-            _v8.stamp = _t9
+            _s = _end + 12
+            _end = _s + _n
+            _v4.id = str(_buf[_s:_end], 'utf-8', 'replace')
             _v6.theta, _v8.seq, _t9.secs, _t9.nsecs, _n = _S2.unpack_from(_buf, _end)
-            _end += 20
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v8.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v10 = _new(_T_actionlib_msgs__GoalStatus)
-            _v7.status = _v10
-            _v11 = _new(_T_actionlib_msgs__GoalID)
-            _v10.goal_id = _v11
-            _t12 = _new(_Time)
-            _v11.stamp = _t12
+            _s = _end + 20
+            _end = _s + _n
+            _v8.frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
             _t12.secs, _t12.nsecs, _n = _S1.unpack_from(_buf, _end)
-            _end += 12
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v11.id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            _s = _end + 12
+            _end = _s + _n
+            _v11.id = str(_buf[_s:_end], 'utf-8', 'replace')
             _v10.status, _n = _S3.unpack_from(_buf, _end)
-            _end += 5
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v10.text = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v13 = _new(_T_turtlesim__RotateAbsoluteResult)
-            _v7.result = _v13
-            _v14 = _new(_T_turtlesim__RotateAbsoluteActionFeedback)
-            self.action_feedback = _v14
-            _v15 = _new(_T_std_msgs__Header)
-            _v14.header = _v15
-            _t16 = _new(_Time)
-            _v15.stamp = _t16
+            _s = _end + 5
+            _end = _s + _n
+            _v10.text = str(_buf[_s:_end], 'utf-8', 'replace')
             _v13.delta, _v15.seq, _t16.secs, _t16.nsecs, _n = _S2.unpack_from(_buf, _end)
-            _end += 20
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v15.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v17 = _new(_T_actionlib_msgs__GoalStatus)
-            _v14.status = _v17
-            _v18 = _new(_T_actionlib_msgs__GoalID)
-            _v17.goal_id = _v18
-            _t19 = _new(_Time)
-            _v18.stamp = _t19
+            _s = _end + 20
+            _end = _s + _n
+            _v15.frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
             _t19.secs, _t19.nsecs, _n = _S1.unpack_from(_buf, _end)
-            _end += 12
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v18.id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            _s = _end + 12
+            _end = _s + _n
+            _v18.id = str(_buf[_s:_end], 'utf-8', 'replace')
             _v17.status, _n = _S3.unpack_from(_buf, _end)
-            _end += 5
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v17.text = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v20 = _new(_T_turtlesim__RotateAbsoluteFeedback)
-            _v14.feedback = _v20
+            _s = _end + 5
+            _end = _s + _n
+            _v17.text = str(_buf[_s:_end], 'utf-8', 'replace')
             _v20.remaining, = _S4.unpack_from(_buf, _end)
-            _end += 4
+            if _end > len(_buf): raise _Truncated
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
+        return _refill(self, RotateAbsoluteAction, data)
+
+    @classmethod
+    def _from_buffer(cls, data):
+        self = _new(cls)
+        try:
+            _buf = data
+            self.action_goal = _v1 = _new(_T_turtlesim__RotateAbsoluteActionGoal)
+            _v1.header = _v2 = _new(_T_std_msgs__Header)
+            _v2.stamp = _t3 = _new(_Time)
+            _v2.seq, _t3.secs, _t3.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v2.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            _v1.goal_id = _v4 = _new(_T_actionlib_msgs__GoalID)
+            _v4.stamp = _t5 = _new(_Time)
+            _t5.secs, _t5.nsecs, _n = _S1.unpack_from(_buf, _end)
+            _s = _end + 12
+            _end = _s + _n
+            _v4.id = str(_buf[_s:_end], 'utf-8', 'replace')
+            _v1.goal = _v6 = _new(_T_turtlesim__RotateAbsoluteGoal)
+            self.action_result = _v7 = _new(_T_turtlesim__RotateAbsoluteActionResult)
+            _v7.header = _v8 = _new(_T_std_msgs__Header)
+            _v8.stamp = _t9 = _new(_Time)
+            _v6.theta, _v8.seq, _t9.secs, _t9.nsecs, _n = _S2.unpack_from(_buf, _end)
+            _s = _end + 20
+            _end = _s + _n
+            _v8.frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
+            _v7.status = _v10 = _new(_T_actionlib_msgs__GoalStatus)
+            _v10.goal_id = _v11 = _new(_T_actionlib_msgs__GoalID)
+            _v11.stamp = _t12 = _new(_Time)
+            _t12.secs, _t12.nsecs, _n = _S1.unpack_from(_buf, _end)
+            _s = _end + 12
+            _end = _s + _n
+            _v11.id = str(_buf[_s:_end], 'utf-8', 'replace')
+            _v10.status, _n = _S3.unpack_from(_buf, _end)
+            _s = _end + 5
+            _end = _s + _n
+            _v10.text = str(_buf[_s:_end], 'utf-8', 'replace')
+            _v7.result = _v13 = _new(_T_turtlesim__RotateAbsoluteResult)
+            self.action_feedback = _v14 = _new(_T_turtlesim__RotateAbsoluteActionFeedback)
+            _v14.header = _v15 = _new(_T_std_msgs__Header)
+            _v15.stamp = _t16 = _new(_Time)
+            _v13.delta, _v15.seq, _t16.secs, _t16.nsecs, _n = _S2.unpack_from(_buf, _end)
+            _s = _end + 20
+            _end = _s + _n
+            _v15.frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
+            _v14.status = _v17 = _new(_T_actionlib_msgs__GoalStatus)
+            _v17.goal_id = _v18 = _new(_T_actionlib_msgs__GoalID)
+            _v18.stamp = _t19 = _new(_Time)
+            _t19.secs, _t19.nsecs, _n = _S1.unpack_from(_buf, _end)
+            _s = _end + 12
+            _end = _s + _n
+            _v18.id = str(_buf[_s:_end], 'utf-8', 'replace')
+            _v17.status, _n = _S3.unpack_from(_buf, _end)
+            _s = _end + 5
+            _end = _s + _n
+            _v17.text = str(_buf[_s:_end], 'utf-8', 'replace')
+            _v14.feedback = _v20 = _new(_T_turtlesim__RotateAbsoluteFeedback)
+            _v20.remaining, = _S4.unpack_from(_buf, _end)
+            if _end > len(_buf): raise _Truncated
+        except Exception as exc:
+            raise _deserialize_failed(cls, data, exc) from exc
         return self
 
     def deserialize_numpy(self, data, numpy):

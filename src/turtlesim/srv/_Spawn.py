@@ -5,6 +5,7 @@ from kame.msg.message import Message as _Message
 from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
+from kame.msg.message import refill as _refill
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -46,10 +47,9 @@ class SpawnRequest(_Message):
 
     def serialize(self, buff):
         try:
-            _w = buff.write
             _b1 = self.name
             if _b1.__class__ is not bytes: _b1 = _b1.encode()
-            _w(_S0.pack(self.x, self.y, self.theta, len(_b1)) + _b1)
+            buff.write(_S0.pack(self.x, self.y, self.theta, len(_b1)) + _b1)
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -59,16 +59,25 @@ class SpawnRequest(_Message):
     def deserialize(self, data):
         try:
             _buf = data
-            _len = len(data)
-            _end = 0
-            self.x, self.y, self.theta, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            self.name = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            self.x, self.y, self.theta, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            self.name = str(_buf[16:_end], 'utf-8', 'replace')
+            if _end > len(_buf): raise _Truncated
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
+        return self
+
+    @classmethod
+    def _from_buffer(cls, data):
+        self = _new(cls)
+        try:
+            _buf = data
+            self.x, self.y, self.theta, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            self.name = str(_buf[16:_end], 'utf-8', 'replace')
+            if _end > len(_buf): raise _Truncated
+        except Exception as exc:
+            raise _deserialize_failed(cls, data, exc) from exc
         return self
 
     def deserialize_numpy(self, data, numpy):
@@ -95,10 +104,9 @@ class SpawnResponse(_Message):
 
     def serialize(self, buff):
         try:
-            _w = buff.write
             _b1 = self.name
             if _b1.__class__ is not bytes: _b1 = _b1.encode()
-            _w(_S1.pack(len(_b1)) + _b1)
+            buff.write(_S1.pack(len(_b1)) + _b1)
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -108,16 +116,25 @@ class SpawnResponse(_Message):
     def deserialize(self, data):
         try:
             _buf = data
-            _len = len(data)
-            _end = 0
-            _n, = _S1.unpack_from(_buf, _end)
-            _end += 4
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            self.name = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            _n, = _S1.unpack_from(_buf, 0)
+            _end = 4 + _n
+            self.name = str(_buf[4:_end], 'utf-8', 'replace')
+            if _end > len(_buf): raise _Truncated
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
+        return self
+
+    @classmethod
+    def _from_buffer(cls, data):
+        self = _new(cls)
+        try:
+            _buf = data
+            _n, = _S1.unpack_from(_buf, 0)
+            _end = 4 + _n
+            self.name = str(_buf[4:_end], 'utf-8', 'replace')
+            if _end > len(_buf): raise _Truncated
+        except Exception as exc:
+            raise _deserialize_failed(cls, data, exc) from exc
         return self
 
     def deserialize_numpy(self, data, numpy):

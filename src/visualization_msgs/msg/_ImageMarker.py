@@ -5,6 +5,7 @@ from kame.msg.message import Message as _Message
 from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
+from kame.msg.message import refill as _refill
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -70,37 +71,59 @@ class ImageMarker(_Message):
             if self.outline_colors is None:
                 self.outline_colors = []
         else:
-            self.header = _T_std_msgs__Header()
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.seq = 0
+            _v1.stamp = _t2 = _new(_Time)
+            _t2.secs = _t2.nsecs = 0
+            _v1.frame_id = ''
             self.ns = ''
             self.id = 0
             self.type = 0
             self.action = 0
-            self.position = _T_geometry_msgs__Point()
+            self.position = _v3 = _new(_T_geometry_msgs__Point)
+            _v3.x = 0.0
+            _v3.y = 0.0
+            _v3.z = 0.0
             self.scale = 0.0
-            self.outline_color = _T_std_msgs__ColorRGBA()
+            self.outline_color = _v4 = _new(_T_std_msgs__ColorRGBA)
+            _v4.r = 0.0
+            _v4.g = 0.0
+            _v4.b = 0.0
+            _v4.a = 0.0
             self.filled = 0
-            self.fill_color = _T_std_msgs__ColorRGBA()
-            self.lifetime = _Duration()
+            self.fill_color = _v5 = _new(_T_std_msgs__ColorRGBA)
+            _v5.r = 0.0
+            _v5.g = 0.0
+            _v5.b = 0.0
+            _v5.a = 0.0
+            self.lifetime = _t6 = _new(_Duration)
+            _t6.secs = _t6.nsecs = 0
             self.points = []
             self.outline_colors = []
 
     def serialize(self, buff):
         try:
             _w = buff.write
-            _b1 = self.header.frame_id
-            if _b1.__class__ is not bytes: _b1 = _b1.encode()
-            _w(_S0.pack(self.header.seq, self.header.stamp.secs, self.header.stamp.nsecs, len(_b1)) + _b1)
-            _b2 = self.ns
-            if _b2.__class__ is not bytes: _b2 = _b2.encode()
-            _w(_S1.pack(len(_b2)) + _b2)
-            _x3 = self.points
-            _w(_S2.pack(self.id, self.type, self.action, self.position.x, self.position.y, self.position.z, self.scale, self.outline_color.r, self.outline_color.g, self.outline_color.b, self.outline_color.a, self.filled, self.fill_color.r, self.fill_color.g, self.fill_color.b, self.fill_color.a, self.lifetime.secs, self.lifetime.nsecs, len(_x3)))
-            for _e4 in _x3:
-                _w(_S3.pack(_e4.x, _e4.y, _e4.z))
-            _x5 = self.outline_colors
-            _w(_S1.pack(len(_x5)))
-            for _e6 in _x5:
-                _w(_S4.pack(_e6.r, _e6.g, _e6.b, _e6.a))
+            _m1 = self.header
+            _m2 = _m1.stamp
+            _b3 = _m1.frame_id
+            if _b3.__class__ is not bytes: _b3 = _b3.encode()
+            _w(_S0.pack(_m1.seq, _m2.secs, _m2.nsecs, len(_b3)) + _b3)
+            _b4 = self.ns
+            if _b4.__class__ is not bytes: _b4 = _b4.encode()
+            _w(_S1.pack(len(_b4)) + _b4)
+            _m5 = self.position
+            _m6 = self.outline_color
+            _m7 = self.fill_color
+            _m8 = self.lifetime
+            _x9 = self.points
+            _w(_S2.pack(self.id, self.type, self.action, _m5.x, _m5.y, _m5.z, self.scale, _m6.r, _m6.g, _m6.b, _m6.a, self.filled, _m7.r, _m7.g, _m7.b, _m7.a, _m8.secs, _m8.nsecs, len(_x9)))
+            for _e10 in _x9:
+                _w(_S3.pack(_e10.x, _e10.y, _e10.z))
+            _x11 = self.outline_colors
+            _w(_S1.pack(len(_x11)))
+            for _e12 in _x11:
+                _w(_S4.pack(_e12.r, _e12.g, _e12.b, _e12.a))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -109,39 +132,25 @@ class ImageMarker(_Message):
 
     def deserialize(self, data):
         try:
+            _v1 = self.header
+            _t2 = _v1.stamp
+            _v3 = self.position
+            _v4 = self.outline_color
+            _v5 = self.fill_color
+            _t6 = self.lifetime
             _buf = data
-            _len = len(data)
-            _end = 0
-            _v1 = _new(_T_std_msgs__Header)
-            self.header = _v1
-            _t2 = _new(_Time)
-            _v1.stamp = _t2
-            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v1.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
             _n, = _S1.unpack_from(_buf, _end)
-            _end += 4
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            self.ns = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v3 = _new(_T_geometry_msgs__Point)
-            self.position = _v3
-            _v4 = _new(_T_std_msgs__ColorRGBA)
-            self.outline_color = _v4
-            _v5 = _new(_T_std_msgs__ColorRGBA)
-            self.fill_color = _v5
-            _t6 = _new(_Duration)
-            self.lifetime = _t6
+            _s = _end + 4
+            _end = _s + _n
+            self.ns = str(_buf[_s:_end], 'utf-8', 'replace')
             self.id, self.type, self.action, _v3.x, _v3.y, _v3.z, self.scale, _v4.r, _v4.g, _v4.b, _v4.a, self.filled, _v5.r, _v5.g, _v5.b, _v5.a, _t6.secs, _t6.nsecs, _n = _S2.unpack_from(_buf, _end)
             _end += 85
             _l7 = []
             for _ in range(_n):
-                _v9 = _new(_T_geometry_msgs__Point)
-                _i8 = _v9
+                _i8 = _v9 = _new(_T_geometry_msgs__Point)
                 _v9.x, _v9.y, _v9.z = _S3.unpack_from(_buf, _end)
                 _end += 24
                 _l7.append(_i8)
@@ -150,14 +159,58 @@ class ImageMarker(_Message):
             _end += 4
             _l10 = []
             for _ in range(_n):
-                _v12 = _new(_T_std_msgs__ColorRGBA)
-                _i11 = _v12
+                _i11 = _v12 = _new(_T_std_msgs__ColorRGBA)
                 _v12.r, _v12.g, _v12.b, _v12.a = _S4.unpack_from(_buf, _end)
                 _end += 16
                 _l10.append(_i11)
             self.outline_colors = _l10
+            if _end > len(_buf): raise _Truncated
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
+        return _refill(self, ImageMarker, data)
+
+    @classmethod
+    def _from_buffer(cls, data):
+        self = _new(cls)
+        try:
+            _buf = data
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.stamp = _t2 = _new(_Time)
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            _n, = _S1.unpack_from(_buf, _end)
+            _s = _end + 4
+            _end = _s + _n
+            self.ns = str(_buf[_s:_end], 'utf-8', 'replace')
+            self.position = _v3 = _new(_T_geometry_msgs__Point)
+            self.outline_color = _v4 = _new(_T_std_msgs__ColorRGBA)
+            self.fill_color = _v5 = _new(_T_std_msgs__ColorRGBA)
+            self.lifetime = _t6 = _new(_Duration)
+            self.id, self.type, self.action, _v3.x, _v3.y, _v3.z, self.scale, _v4.r, _v4.g, _v4.b, _v4.a, self.filled, _v5.r, _v5.g, _v5.b, _v5.a, _t6.secs, _t6.nsecs, _n = _S2.unpack_from(_buf, _end)
+            _end += 85
+            _l7 = []
+            for _ in range(_n):
+                _i8 = _v9 = _new(_T_geometry_msgs__Point)
+                _v9.x, _v9.y, _v9.z = _S3.unpack_from(_buf, _end)
+                _end += 24
+                _l7.append(_i8)
+            self.points = _l7
+            _n, = _S1.unpack_from(_buf, _end)
+            _end += 4
+            _l10 = []
+            for _ in range(_n):
+                _i11 = _v12 = _new(_T_std_msgs__ColorRGBA)
+                _v12.r, _v12.g, _v12.b, _v12.a = _S4.unpack_from(_buf, _end)
+                _end += 16
+                _l10.append(_i11)
+            self.outline_colors = _l10
+            if _end > len(_buf): raise _Truncated
+        except Exception as exc:
+            raise _deserialize_failed(cls, data, exc) from exc
         return self
 
     def deserialize_numpy(self, data, numpy):

@@ -5,6 +5,7 @@ from kame.msg.message import Message as _Message
 from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
+from kame.msg.message import refill as _refill
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -67,8 +68,21 @@ class InteractiveMarker(_Message):
             if self.controls is None:
                 self.controls = []
         else:
-            self.header = _T_std_msgs__Header()
-            self.pose = _T_geometry_msgs__Pose()
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.seq = 0
+            _v1.stamp = _t2 = _new(_Time)
+            _t2.secs = _t2.nsecs = 0
+            _v1.frame_id = ''
+            self.pose = _v3 = _new(_T_geometry_msgs__Pose)
+            _v3.position = _v4 = _new(_T_geometry_msgs__Point)
+            _v4.x = 0.0
+            _v4.y = 0.0
+            _v4.z = 0.0
+            _v3.orientation = _v5 = _new(_T_geometry_msgs__Quaternion)
+            _v5.x = 0.0
+            _v5.y = 0.0
+            _v5.z = 0.0
+            _v5.w = 0.0
             self.name = ''
             self.description = ''
             self.scale = 0.0
@@ -78,58 +92,72 @@ class InteractiveMarker(_Message):
     def serialize(self, buff):
         try:
             _w = buff.write
-            _b1 = self.header.frame_id
-            if _b1.__class__ is not bytes: _b1 = _b1.encode()
-            _w(_S0.pack(self.header.seq, self.header.stamp.secs, self.header.stamp.nsecs, len(_b1)) + _b1)
-            _b2 = self.name
-            if _b2.__class__ is not bytes: _b2 = _b2.encode()
-            _w(_S1.pack(self.pose.position.x, self.pose.position.y, self.pose.position.z, self.pose.orientation.x, self.pose.orientation.y, self.pose.orientation.z, self.pose.orientation.w, len(_b2)) + _b2)
-            _b3 = self.description
+            _m1 = self.header
+            _m2 = _m1.stamp
+            _b3 = _m1.frame_id
             if _b3.__class__ is not bytes: _b3 = _b3.encode()
-            _w(_S2.pack(len(_b3)) + _b3)
-            _x4 = self.menu_entries
-            _w(_S3.pack(self.scale, len(_x4)))
-            for _e5 in _x4:
-                _b6 = _e5.title
-                if _b6.__class__ is not bytes: _b6 = _b6.encode()
-                _w(_S4.pack(_e5.id, _e5.parent_id, len(_b6)) + _b6)
-                _b7 = _e5.command
-                if _b7.__class__ is not bytes: _b7 = _b7.encode()
-                _w(_S2.pack(len(_b7)) + _b7)
-                _w(_S5.pack(_e5.command_type))
-            _x8 = self.controls
-            _w(_S2.pack(len(_x8)))
-            for _e9 in _x8:
-                _b10 = _e9.name
-                if _b10.__class__ is not bytes: _b10 = _b10.encode()
-                _w(_S2.pack(len(_b10)) + _b10)
-                _x11 = _e9.markers
-                _w(_S6.pack(_e9.orientation.x, _e9.orientation.y, _e9.orientation.z, _e9.orientation.w, _e9.orientation_mode, _e9.interaction_mode, _e9.always_visible, len(_x11)))
-                for _e12 in _x11:
-                    _b13 = _e12.header.frame_id
-                    if _b13.__class__ is not bytes: _b13 = _b13.encode()
-                    _w(_S0.pack(_e12.header.seq, _e12.header.stamp.secs, _e12.header.stamp.nsecs, len(_b13)) + _b13)
-                    _b14 = _e12.ns
-                    if _b14.__class__ is not bytes: _b14 = _b14.encode()
-                    _w(_S2.pack(len(_b14)) + _b14)
-                    _x15 = _e12.points
-                    _w(_S7.pack(_e12.id, _e12.type, _e12.action, _e12.pose.position.x, _e12.pose.position.y, _e12.pose.position.z, _e12.pose.orientation.x, _e12.pose.orientation.y, _e12.pose.orientation.z, _e12.pose.orientation.w, _e12.scale.x, _e12.scale.y, _e12.scale.z, _e12.color.r, _e12.color.g, _e12.color.b, _e12.color.a, _e12.lifetime.secs, _e12.lifetime.nsecs, _e12.frame_locked, len(_x15)))
-                    for _e16 in _x15:
-                        _w(_S8.pack(_e16.x, _e16.y, _e16.z))
-                    _x17 = _e12.colors
-                    _w(_S2.pack(len(_x17)))
-                    for _e18 in _x17:
-                        _w(_S9.pack(_e18.r, _e18.g, _e18.b, _e18.a))
-                    _b19 = _e12.text
-                    if _b19.__class__ is not bytes: _b19 = _b19.encode()
-                    _w(_S2.pack(len(_b19)) + _b19)
-                    _b20 = _e12.mesh_resource
-                    if _b20.__class__ is not bytes: _b20 = _b20.encode()
-                    _w(_S2.pack(len(_b20)) + _b20)
-                    _w(_S5.pack(_e12.mesh_use_embedded_materials))
-                _b21 = _e9.description
-                if _b21.__class__ is not bytes: _b21 = _b21.encode()
-                _w(_S10.pack(_e9.independent_marker_orientation, len(_b21)) + _b21)
+            _w(_S0.pack(_m1.seq, _m2.secs, _m2.nsecs, len(_b3)) + _b3)
+            _m4 = self.pose
+            _m5 = _m4.position
+            _m6 = _m4.orientation
+            _b7 = self.name
+            if _b7.__class__ is not bytes: _b7 = _b7.encode()
+            _w(_S1.pack(_m5.x, _m5.y, _m5.z, _m6.x, _m6.y, _m6.z, _m6.w, len(_b7)) + _b7)
+            _b8 = self.description
+            if _b8.__class__ is not bytes: _b8 = _b8.encode()
+            _w(_S2.pack(len(_b8)) + _b8)
+            _x9 = self.menu_entries
+            _w(_S3.pack(self.scale, len(_x9)))
+            for _e10 in _x9:
+                _b11 = _e10.title
+                if _b11.__class__ is not bytes: _b11 = _b11.encode()
+                _w(_S4.pack(_e10.id, _e10.parent_id, len(_b11)) + _b11)
+                _b12 = _e10.command
+                if _b12.__class__ is not bytes: _b12 = _b12.encode()
+                _w(_S2.pack(len(_b12)) + _b12)
+                _w(_S5.pack(_e10.command_type))
+            _x13 = self.controls
+            _w(_S2.pack(len(_x13)))
+            for _e14 in _x13:
+                _b15 = _e14.name
+                if _b15.__class__ is not bytes: _b15 = _b15.encode()
+                _w(_S2.pack(len(_b15)) + _b15)
+                _m16 = _e14.orientation
+                _x17 = _e14.markers
+                _w(_S6.pack(_m16.x, _m16.y, _m16.z, _m16.w, _e14.orientation_mode, _e14.interaction_mode, _e14.always_visible, len(_x17)))
+                for _e18 in _x17:
+                    _m19 = _e18.header
+                    _m20 = _m19.stamp
+                    _b21 = _m19.frame_id
+                    if _b21.__class__ is not bytes: _b21 = _b21.encode()
+                    _w(_S0.pack(_m19.seq, _m20.secs, _m20.nsecs, len(_b21)) + _b21)
+                    _b22 = _e18.ns
+                    if _b22.__class__ is not bytes: _b22 = _b22.encode()
+                    _w(_S2.pack(len(_b22)) + _b22)
+                    _m23 = _e18.pose
+                    _m24 = _m23.position
+                    _m25 = _m23.orientation
+                    _m26 = _e18.scale
+                    _m27 = _e18.color
+                    _m28 = _e18.lifetime
+                    _x29 = _e18.points
+                    _w(_S7.pack(_e18.id, _e18.type, _e18.action, _m24.x, _m24.y, _m24.z, _m25.x, _m25.y, _m25.z, _m25.w, _m26.x, _m26.y, _m26.z, _m27.r, _m27.g, _m27.b, _m27.a, _m28.secs, _m28.nsecs, _e18.frame_locked, len(_x29)))
+                    for _e30 in _x29:
+                        _w(_S8.pack(_e30.x, _e30.y, _e30.z))
+                    _x31 = _e18.colors
+                    _w(_S2.pack(len(_x31)))
+                    for _e32 in _x31:
+                        _w(_S9.pack(_e32.r, _e32.g, _e32.b, _e32.a))
+                    _b33 = _e18.text
+                    if _b33.__class__ is not bytes: _b33 = _b33.encode()
+                    _w(_S2.pack(len(_b33)) + _b33)
+                    _b34 = _e18.mesh_resource
+                    if _b34.__class__ is not bytes: _b34 = _b34.encode()
+                    _w(_S2.pack(len(_b34)) + _b34)
+                    _w(_S5.pack(_e18.mesh_use_embedded_materials))
+                _b35 = _e14.description
+                if _b35.__class__ is not bytes: _b35 = _b35.encode()
+                _w(_S10.pack(_e14.independent_marker_orientation, len(_b35)) + _b35)
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -138,55 +166,36 @@ class InteractiveMarker(_Message):
 
     def deserialize(self, data):
         try:
+            _v1 = self.header
+            _t2 = _v1.stamp
+            _v3 = self.pose
+            _v4 = _v3.position
+            _v5 = _v3.orientation
             _buf = data
-            _len = len(data)
-            _end = 0
-            _v1 = _new(_T_std_msgs__Header)
-            self.header = _v1
-            _t2 = _new(_Time)
-            _v1.stamp = _t2
-            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v1.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v3 = _new(_T_geometry_msgs__Pose)
-            self.pose = _v3
-            _v4 = _new(_T_geometry_msgs__Point)
-            _v3.position = _v4
-            _v5 = _new(_T_geometry_msgs__Quaternion)
-            _v3.orientation = _v5
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
             _v4.x, _v4.y, _v4.z, _v5.x, _v5.y, _v5.z, _v5.w, _n = _S1.unpack_from(_buf, _end)
-            _end += 60
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            self.name = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            _s = _end + 60
+            _end = _s + _n
+            self.name = str(_buf[_s:_end], 'utf-8', 'replace')
             _n, = _S2.unpack_from(_buf, _end)
-            _end += 4
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            self.description = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            _s = _end + 4
+            _end = _s + _n
+            self.description = str(_buf[_s:_end], 'utf-8', 'replace')
             self.scale, _n = _S3.unpack_from(_buf, _end)
             _end += 8
             _l6 = []
             for _ in range(_n):
-                _v8 = _new(_T_visualization_msgs__MenuEntry)
-                _i7 = _v8
+                _i7 = _v8 = _new(_T_visualization_msgs__MenuEntry)
                 _v8.id, _v8.parent_id, _n = _S4.unpack_from(_buf, _end)
-                _end += 12
-                _stop = _end + _n
-                if _stop > _len: raise _Truncated
-                _v8.title = str(_buf[_end:_stop], 'utf-8', 'replace')
-                _end = _stop
+                _s = _end + 12
+                _end = _s + _n
+                _v8.title = str(_buf[_s:_end], 'utf-8', 'replace')
                 _n, = _S2.unpack_from(_buf, _end)
-                _end += 4
-                _stop = _end + _n
-                if _stop > _len: raise _Truncated
-                _v8.command = str(_buf[_end:_stop], 'utf-8', 'replace')
-                _end = _stop
+                _s = _end + 4
+                _end = _s + _n
+                _v8.command = str(_buf[_s:_end], 'utf-8', 'replace')
                 _v8.command_type, = _S5.unpack_from(_buf, _end)
                 _end += 1
                 _l6.append(_i7)
@@ -195,56 +204,38 @@ class InteractiveMarker(_Message):
             _end += 4
             _l9 = []
             for _ in range(_n):
-                _v11 = _new(_T_visualization_msgs__InteractiveMarkerControl)
-                _i10 = _v11
+                _i10 = _v11 = _new(_T_visualization_msgs__InteractiveMarkerControl)
                 _n, = _S2.unpack_from(_buf, _end)
-                _end += 4
-                _stop = _end + _n
-                if _stop > _len: raise _Truncated
-                _v11.name = str(_buf[_end:_stop], 'utf-8', 'replace')
-                _end = _stop
-                _v12 = _new(_T_geometry_msgs__Quaternion)
-                _v11.orientation = _v12
+                _s = _end + 4
+                _end = _s + _n
+                _v11.name = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v11.orientation = _v12 = _new(_T_geometry_msgs__Quaternion)
                 _v12.x, _v12.y, _v12.z, _v12.w, _v11.orientation_mode, _v11.interaction_mode, _v11.always_visible, _n = _S11.unpack_from(_buf, _end)
                 _end += 39
                 _l13 = []
                 for _ in range(_n):
-                    _v15 = _new(_T_visualization_msgs__Marker)
-                    _i14 = _v15
-                    _v16 = _new(_T_std_msgs__Header)
-                    _v15.header = _v16
-                    _t17 = _new(_Time)
-                    _v16.stamp = _t17
+                    _i14 = _v15 = _new(_T_visualization_msgs__Marker)
+                    _v15.header = _v16 = _new(_T_std_msgs__Header)
+                    _v16.stamp = _t17 = _new(_Time)
                     _v16.seq, _t17.secs, _t17.nsecs, _n = _S0.unpack_from(_buf, _end)
-                    _end += 16
-                    _stop = _end + _n
-                    if _stop > _len: raise _Truncated
-                    _v16.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-                    _end = _stop
+                    _s = _end + 16
+                    _end = _s + _n
+                    _v16.frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
                     _n, = _S2.unpack_from(_buf, _end)
-                    _end += 4
-                    _stop = _end + _n
-                    if _stop > _len: raise _Truncated
-                    _v15.ns = str(_buf[_end:_stop], 'utf-8', 'replace')
-                    _end = _stop
-                    _v18 = _new(_T_geometry_msgs__Pose)
-                    _v15.pose = _v18
-                    _v19 = _new(_T_geometry_msgs__Point)
-                    _v18.position = _v19
-                    _v20 = _new(_T_geometry_msgs__Quaternion)
-                    _v18.orientation = _v20
-                    _v21 = _new(_T_geometry_msgs__Vector3)
-                    _v15.scale = _v21
-                    _v22 = _new(_T_std_msgs__ColorRGBA)
-                    _v15.color = _v22
-                    _t23 = _new(_Duration)
-                    _v15.lifetime = _t23
+                    _s = _end + 4
+                    _end = _s + _n
+                    _v15.ns = str(_buf[_s:_end], 'utf-8', 'replace')
+                    _v15.pose = _v18 = _new(_T_geometry_msgs__Pose)
+                    _v18.position = _v19 = _new(_T_geometry_msgs__Point)
+                    _v18.orientation = _v20 = _new(_T_geometry_msgs__Quaternion)
+                    _v15.scale = _v21 = _new(_T_geometry_msgs__Vector3)
+                    _v15.color = _v22 = _new(_T_std_msgs__ColorRGBA)
+                    _v15.lifetime = _t23 = _new(_Duration)
                     _v15.id, _v15.type, _v15.action, _v19.x, _v19.y, _v19.z, _v20.x, _v20.y, _v20.z, _v20.w, _v21.x, _v21.y, _v21.z, _v22.r, _v22.g, _v22.b, _v22.a, _t23.secs, _t23.nsecs, _v15.frame_locked, _n = _S12.unpack_from(_buf, _end)
                     _end += 121
                     _l24 = []
                     for _ in range(_n):
-                        _v26 = _new(_T_geometry_msgs__Point)
-                        _i25 = _v26
+                        _i25 = _v26 = _new(_T_geometry_msgs__Point)
                         _v26.x, _v26.y, _v26.z = _S8.unpack_from(_buf, _end)
                         _end += 24
                         _l24.append(_i25)
@@ -253,38 +244,145 @@ class InteractiveMarker(_Message):
                     _end += 4
                     _l27 = []
                     for _ in range(_n):
-                        _v29 = _new(_T_std_msgs__ColorRGBA)
-                        _i28 = _v29
+                        _i28 = _v29 = _new(_T_std_msgs__ColorRGBA)
                         _v29.r, _v29.g, _v29.b, _v29.a = _S9.unpack_from(_buf, _end)
                         _end += 16
                         _l27.append(_i28)
                     _v15.colors = _l27
                     _n, = _S2.unpack_from(_buf, _end)
-                    _end += 4
-                    _stop = _end + _n
-                    if _stop > _len: raise _Truncated
-                    _v15.text = str(_buf[_end:_stop], 'utf-8', 'replace')
-                    _end = _stop
+                    _s = _end + 4
+                    _end = _s + _n
+                    _v15.text = str(_buf[_s:_end], 'utf-8', 'replace')
                     _n, = _S2.unpack_from(_buf, _end)
-                    _end += 4
-                    _stop = _end + _n
-                    if _stop > _len: raise _Truncated
-                    _v15.mesh_resource = str(_buf[_end:_stop], 'utf-8', 'replace')
-                    _end = _stop
+                    _s = _end + 4
+                    _end = _s + _n
+                    _v15.mesh_resource = str(_buf[_s:_end], 'utf-8', 'replace')
                     _v15.mesh_use_embedded_materials, = _S13.unpack_from(_buf, _end)
                     _end += 1
                     _l13.append(_i14)
                 _v11.markers = _l13
                 _v11.independent_marker_orientation, _n = _S14.unpack_from(_buf, _end)
-                _end += 5
-                _stop = _end + _n
-                if _stop > _len: raise _Truncated
-                _v11.description = str(_buf[_end:_stop], 'utf-8', 'replace')
-                _end = _stop
+                _s = _end + 5
+                _end = _s + _n
+                _v11.description = str(_buf[_s:_end], 'utf-8', 'replace')
                 _l9.append(_i10)
             self.controls = _l9
+            if _end > len(_buf): raise _Truncated
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
+        return _refill(self, InteractiveMarker, data)
+
+    @classmethod
+    def _from_buffer(cls, data):
+        self = _new(cls)
+        try:
+            _buf = data
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.stamp = _t2 = _new(_Time)
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            self.pose = _v3 = _new(_T_geometry_msgs__Pose)
+            _v3.position = _v4 = _new(_T_geometry_msgs__Point)
+            _v3.orientation = _v5 = _new(_T_geometry_msgs__Quaternion)
+            _v4.x, _v4.y, _v4.z, _v5.x, _v5.y, _v5.z, _v5.w, _n = _S1.unpack_from(_buf, _end)
+            _s = _end + 60
+            _end = _s + _n
+            self.name = str(_buf[_s:_end], 'utf-8', 'replace')
+            _n, = _S2.unpack_from(_buf, _end)
+            _s = _end + 4
+            _end = _s + _n
+            self.description = str(_buf[_s:_end], 'utf-8', 'replace')
+            self.scale, _n = _S3.unpack_from(_buf, _end)
+            _end += 8
+            _l6 = []
+            for _ in range(_n):
+                _i7 = _v8 = _new(_T_visualization_msgs__MenuEntry)
+                _v8.id, _v8.parent_id, _n = _S4.unpack_from(_buf, _end)
+                _s = _end + 12
+                _end = _s + _n
+                _v8.title = str(_buf[_s:_end], 'utf-8', 'replace')
+                _n, = _S2.unpack_from(_buf, _end)
+                _s = _end + 4
+                _end = _s + _n
+                _v8.command = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v8.command_type, = _S5.unpack_from(_buf, _end)
+                _end += 1
+                _l6.append(_i7)
+            self.menu_entries = _l6
+            _n, = _S2.unpack_from(_buf, _end)
+            _end += 4
+            _l9 = []
+            for _ in range(_n):
+                _i10 = _v11 = _new(_T_visualization_msgs__InteractiveMarkerControl)
+                _n, = _S2.unpack_from(_buf, _end)
+                _s = _end + 4
+                _end = _s + _n
+                _v11.name = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v11.orientation = _v12 = _new(_T_geometry_msgs__Quaternion)
+                _v12.x, _v12.y, _v12.z, _v12.w, _v11.orientation_mode, _v11.interaction_mode, _v11.always_visible, _n = _S11.unpack_from(_buf, _end)
+                _end += 39
+                _l13 = []
+                for _ in range(_n):
+                    _i14 = _v15 = _new(_T_visualization_msgs__Marker)
+                    _v15.header = _v16 = _new(_T_std_msgs__Header)
+                    _v16.stamp = _t17 = _new(_Time)
+                    _v16.seq, _t17.secs, _t17.nsecs, _n = _S0.unpack_from(_buf, _end)
+                    _s = _end + 16
+                    _end = _s + _n
+                    _v16.frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
+                    _n, = _S2.unpack_from(_buf, _end)
+                    _s = _end + 4
+                    _end = _s + _n
+                    _v15.ns = str(_buf[_s:_end], 'utf-8', 'replace')
+                    _v15.pose = _v18 = _new(_T_geometry_msgs__Pose)
+                    _v18.position = _v19 = _new(_T_geometry_msgs__Point)
+                    _v18.orientation = _v20 = _new(_T_geometry_msgs__Quaternion)
+                    _v15.scale = _v21 = _new(_T_geometry_msgs__Vector3)
+                    _v15.color = _v22 = _new(_T_std_msgs__ColorRGBA)
+                    _v15.lifetime = _t23 = _new(_Duration)
+                    _v15.id, _v15.type, _v15.action, _v19.x, _v19.y, _v19.z, _v20.x, _v20.y, _v20.z, _v20.w, _v21.x, _v21.y, _v21.z, _v22.r, _v22.g, _v22.b, _v22.a, _t23.secs, _t23.nsecs, _v15.frame_locked, _n = _S12.unpack_from(_buf, _end)
+                    _end += 121
+                    _l24 = []
+                    for _ in range(_n):
+                        _i25 = _v26 = _new(_T_geometry_msgs__Point)
+                        _v26.x, _v26.y, _v26.z = _S8.unpack_from(_buf, _end)
+                        _end += 24
+                        _l24.append(_i25)
+                    _v15.points = _l24
+                    _n, = _S2.unpack_from(_buf, _end)
+                    _end += 4
+                    _l27 = []
+                    for _ in range(_n):
+                        _i28 = _v29 = _new(_T_std_msgs__ColorRGBA)
+                        _v29.r, _v29.g, _v29.b, _v29.a = _S9.unpack_from(_buf, _end)
+                        _end += 16
+                        _l27.append(_i28)
+                    _v15.colors = _l27
+                    _n, = _S2.unpack_from(_buf, _end)
+                    _s = _end + 4
+                    _end = _s + _n
+                    _v15.text = str(_buf[_s:_end], 'utf-8', 'replace')
+                    _n, = _S2.unpack_from(_buf, _end)
+                    _s = _end + 4
+                    _end = _s + _n
+                    _v15.mesh_resource = str(_buf[_s:_end], 'utf-8', 'replace')
+                    _v15.mesh_use_embedded_materials, = _S13.unpack_from(_buf, _end)
+                    _end += 1
+                    _l13.append(_i14)
+                _v11.markers = _l13
+                _v11.independent_marker_orientation, _n = _S14.unpack_from(_buf, _end)
+                _s = _end + 5
+                _end = _s + _n
+                _v11.description = str(_buf[_s:_end], 'utf-8', 'replace')
+                _l9.append(_i10)
+            self.controls = _l9
+            if _end > len(_buf): raise _Truncated
+        except Exception as exc:
+            raise _deserialize_failed(cls, data, exc) from exc
         return self
 
     def deserialize_numpy(self, data, numpy):

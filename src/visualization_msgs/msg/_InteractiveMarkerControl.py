@@ -5,6 +5,7 @@ from kame.msg.message import Message as _Message
 from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
+from kame.msg.message import refill as _refill
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -78,7 +79,11 @@ class InteractiveMarkerControl(_Message):
                 self.description = ''
         else:
             self.name = ''
-            self.orientation = _T_geometry_msgs__Quaternion()
+            self.orientation = _v1 = _new(_T_geometry_msgs__Quaternion)
+            _v1.x = 0.0
+            _v1.y = 0.0
+            _v1.z = 0.0
+            _v1.w = 0.0
             self.orientation_mode = 0
             self.interaction_mode = 0
             self.always_visible = False
@@ -92,33 +97,42 @@ class InteractiveMarkerControl(_Message):
             _b1 = self.name
             if _b1.__class__ is not bytes: _b1 = _b1.encode()
             _w(_S0.pack(len(_b1)) + _b1)
-            _x2 = self.markers
-            _w(_S1.pack(self.orientation.x, self.orientation.y, self.orientation.z, self.orientation.w, self.orientation_mode, self.interaction_mode, self.always_visible, len(_x2)))
-            for _e3 in _x2:
-                _b4 = _e3.header.frame_id
-                if _b4.__class__ is not bytes: _b4 = _b4.encode()
-                _w(_S2.pack(_e3.header.seq, _e3.header.stamp.secs, _e3.header.stamp.nsecs, len(_b4)) + _b4)
-                _b5 = _e3.ns
-                if _b5.__class__ is not bytes: _b5 = _b5.encode()
-                _w(_S0.pack(len(_b5)) + _b5)
-                _x6 = _e3.points
-                _w(_S3.pack(_e3.id, _e3.type, _e3.action, _e3.pose.position.x, _e3.pose.position.y, _e3.pose.position.z, _e3.pose.orientation.x, _e3.pose.orientation.y, _e3.pose.orientation.z, _e3.pose.orientation.w, _e3.scale.x, _e3.scale.y, _e3.scale.z, _e3.color.r, _e3.color.g, _e3.color.b, _e3.color.a, _e3.lifetime.secs, _e3.lifetime.nsecs, _e3.frame_locked, len(_x6)))
-                for _e7 in _x6:
-                    _w(_S4.pack(_e7.x, _e7.y, _e7.z))
-                _x8 = _e3.colors
-                _w(_S0.pack(len(_x8)))
-                for _e9 in _x8:
-                    _w(_S5.pack(_e9.r, _e9.g, _e9.b, _e9.a))
-                _b10 = _e3.text
-                if _b10.__class__ is not bytes: _b10 = _b10.encode()
-                _w(_S0.pack(len(_b10)) + _b10)
-                _b11 = _e3.mesh_resource
-                if _b11.__class__ is not bytes: _b11 = _b11.encode()
-                _w(_S0.pack(len(_b11)) + _b11)
-                _w(_S6.pack(_e3.mesh_use_embedded_materials))
-            _b12 = self.description
-            if _b12.__class__ is not bytes: _b12 = _b12.encode()
-            _w(_S7.pack(self.independent_marker_orientation, len(_b12)) + _b12)
+            _m2 = self.orientation
+            _x3 = self.markers
+            _w(_S1.pack(_m2.x, _m2.y, _m2.z, _m2.w, self.orientation_mode, self.interaction_mode, self.always_visible, len(_x3)))
+            for _e4 in _x3:
+                _m5 = _e4.header
+                _m6 = _m5.stamp
+                _b7 = _m5.frame_id
+                if _b7.__class__ is not bytes: _b7 = _b7.encode()
+                _w(_S2.pack(_m5.seq, _m6.secs, _m6.nsecs, len(_b7)) + _b7)
+                _b8 = _e4.ns
+                if _b8.__class__ is not bytes: _b8 = _b8.encode()
+                _w(_S0.pack(len(_b8)) + _b8)
+                _m9 = _e4.pose
+                _m10 = _m9.position
+                _m11 = _m9.orientation
+                _m12 = _e4.scale
+                _m13 = _e4.color
+                _m14 = _e4.lifetime
+                _x15 = _e4.points
+                _w(_S3.pack(_e4.id, _e4.type, _e4.action, _m10.x, _m10.y, _m10.z, _m11.x, _m11.y, _m11.z, _m11.w, _m12.x, _m12.y, _m12.z, _m13.r, _m13.g, _m13.b, _m13.a, _m14.secs, _m14.nsecs, _e4.frame_locked, len(_x15)))
+                for _e16 in _x15:
+                    _w(_S4.pack(_e16.x, _e16.y, _e16.z))
+                _x17 = _e4.colors
+                _w(_S0.pack(len(_x17)))
+                for _e18 in _x17:
+                    _w(_S5.pack(_e18.r, _e18.g, _e18.b, _e18.a))
+                _b19 = _e4.text
+                if _b19.__class__ is not bytes: _b19 = _b19.encode()
+                _w(_S0.pack(len(_b19)) + _b19)
+                _b20 = _e4.mesh_resource
+                if _b20.__class__ is not bytes: _b20 = _b20.encode()
+                _w(_S0.pack(len(_b20)) + _b20)
+                _w(_S6.pack(_e4.mesh_use_embedded_materials))
+            _b21 = self.description
+            if _b21.__class__ is not bytes: _b21 = _b21.encode()
+            _w(_S7.pack(self.independent_marker_orientation, len(_b21)) + _b21)
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -127,57 +141,37 @@ class InteractiveMarkerControl(_Message):
 
     def deserialize(self, data):
         try:
+            _v1 = self.orientation
             _buf = data
-            _len = len(data)
-            _end = 0
-            _n, = _S0.unpack_from(_buf, _end)
-            _end += 4
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            self.name = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v1 = _new(_T_geometry_msgs__Quaternion)
-            self.orientation = _v1
+            _n, = _S0.unpack_from(_buf, 0)
+            _end = 4 + _n
+            self.name = str(_buf[4:_end], 'utf-8', 'replace')
             _v1.x, _v1.y, _v1.z, _v1.w, self.orientation_mode, self.interaction_mode, self.always_visible, _n = _S8.unpack_from(_buf, _end)
             _end += 39
             _l2 = []
             for _ in range(_n):
-                _v4 = _new(_T_visualization_msgs__Marker)
-                _i3 = _v4
-                _v5 = _new(_T_std_msgs__Header)
-                _v4.header = _v5
-                _t6 = _new(_Time)
-                _v5.stamp = _t6
+                _i3 = _v4 = _new(_T_visualization_msgs__Marker)
+                _v4.header = _v5 = _new(_T_std_msgs__Header)
+                _v5.stamp = _t6 = _new(_Time)
                 _v5.seq, _t6.secs, _t6.nsecs, _n = _S2.unpack_from(_buf, _end)
-                _end += 16
-                _stop = _end + _n
-                if _stop > _len: raise _Truncated
-                _v5.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-                _end = _stop
+                _s = _end + 16
+                _end = _s + _n
+                _v5.frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
                 _n, = _S0.unpack_from(_buf, _end)
-                _end += 4
-                _stop = _end + _n
-                if _stop > _len: raise _Truncated
-                _v4.ns = str(_buf[_end:_stop], 'utf-8', 'replace')
-                _end = _stop
-                _v7 = _new(_T_geometry_msgs__Pose)
-                _v4.pose = _v7
-                _v8 = _new(_T_geometry_msgs__Point)
-                _v7.position = _v8
-                _v9 = _new(_T_geometry_msgs__Quaternion)
-                _v7.orientation = _v9
-                _v10 = _new(_T_geometry_msgs__Vector3)
-                _v4.scale = _v10
-                _v11 = _new(_T_std_msgs__ColorRGBA)
-                _v4.color = _v11
-                _t12 = _new(_Duration)
-                _v4.lifetime = _t12
+                _s = _end + 4
+                _end = _s + _n
+                _v4.ns = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v4.pose = _v7 = _new(_T_geometry_msgs__Pose)
+                _v7.position = _v8 = _new(_T_geometry_msgs__Point)
+                _v7.orientation = _v9 = _new(_T_geometry_msgs__Quaternion)
+                _v4.scale = _v10 = _new(_T_geometry_msgs__Vector3)
+                _v4.color = _v11 = _new(_T_std_msgs__ColorRGBA)
+                _v4.lifetime = _t12 = _new(_Duration)
                 _v4.id, _v4.type, _v4.action, _v8.x, _v8.y, _v8.z, _v9.x, _v9.y, _v9.z, _v9.w, _v10.x, _v10.y, _v10.z, _v11.r, _v11.g, _v11.b, _v11.a, _t12.secs, _t12.nsecs, _v4.frame_locked, _n = _S9.unpack_from(_buf, _end)
                 _end += 121
                 _l13 = []
                 for _ in range(_n):
-                    _v15 = _new(_T_geometry_msgs__Point)
-                    _i14 = _v15
+                    _i14 = _v15 = _new(_T_geometry_msgs__Point)
                     _v15.x, _v15.y, _v15.z = _S4.unpack_from(_buf, _end)
                     _end += 24
                     _l13.append(_i14)
@@ -186,36 +180,102 @@ class InteractiveMarkerControl(_Message):
                 _end += 4
                 _l16 = []
                 for _ in range(_n):
-                    _v18 = _new(_T_std_msgs__ColorRGBA)
-                    _i17 = _v18
+                    _i17 = _v18 = _new(_T_std_msgs__ColorRGBA)
                     _v18.r, _v18.g, _v18.b, _v18.a = _S5.unpack_from(_buf, _end)
                     _end += 16
                     _l16.append(_i17)
                 _v4.colors = _l16
                 _n, = _S0.unpack_from(_buf, _end)
-                _end += 4
-                _stop = _end + _n
-                if _stop > _len: raise _Truncated
-                _v4.text = str(_buf[_end:_stop], 'utf-8', 'replace')
-                _end = _stop
+                _s = _end + 4
+                _end = _s + _n
+                _v4.text = str(_buf[_s:_end], 'utf-8', 'replace')
                 _n, = _S0.unpack_from(_buf, _end)
-                _end += 4
-                _stop = _end + _n
-                if _stop > _len: raise _Truncated
-                _v4.mesh_resource = str(_buf[_end:_stop], 'utf-8', 'replace')
-                _end = _stop
+                _s = _end + 4
+                _end = _s + _n
+                _v4.mesh_resource = str(_buf[_s:_end], 'utf-8', 'replace')
                 _v4.mesh_use_embedded_materials, = _S10.unpack_from(_buf, _end)
                 _end += 1
                 _l2.append(_i3)
             self.markers = _l2
             self.independent_marker_orientation, _n = _S11.unpack_from(_buf, _end)
-            _end += 5
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            self.description = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            _s = _end + 5
+            _end = _s + _n
+            self.description = str(_buf[_s:_end], 'utf-8', 'replace')
+            if _end > len(_buf): raise _Truncated
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
+        return _refill(self, InteractiveMarkerControl, data)
+
+    @classmethod
+    def _from_buffer(cls, data):
+        self = _new(cls)
+        try:
+            _buf = data
+            _n, = _S0.unpack_from(_buf, 0)
+            _end = 4 + _n
+            self.name = str(_buf[4:_end], 'utf-8', 'replace')
+            self.orientation = _v1 = _new(_T_geometry_msgs__Quaternion)
+            _v1.x, _v1.y, _v1.z, _v1.w, self.orientation_mode, self.interaction_mode, self.always_visible, _n = _S8.unpack_from(_buf, _end)
+            _end += 39
+            _l2 = []
+            for _ in range(_n):
+                _i3 = _v4 = _new(_T_visualization_msgs__Marker)
+                _v4.header = _v5 = _new(_T_std_msgs__Header)
+                _v5.stamp = _t6 = _new(_Time)
+                _v5.seq, _t6.secs, _t6.nsecs, _n = _S2.unpack_from(_buf, _end)
+                _s = _end + 16
+                _end = _s + _n
+                _v5.frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
+                _n, = _S0.unpack_from(_buf, _end)
+                _s = _end + 4
+                _end = _s + _n
+                _v4.ns = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v4.pose = _v7 = _new(_T_geometry_msgs__Pose)
+                _v7.position = _v8 = _new(_T_geometry_msgs__Point)
+                _v7.orientation = _v9 = _new(_T_geometry_msgs__Quaternion)
+                _v4.scale = _v10 = _new(_T_geometry_msgs__Vector3)
+                _v4.color = _v11 = _new(_T_std_msgs__ColorRGBA)
+                _v4.lifetime = _t12 = _new(_Duration)
+                _v4.id, _v4.type, _v4.action, _v8.x, _v8.y, _v8.z, _v9.x, _v9.y, _v9.z, _v9.w, _v10.x, _v10.y, _v10.z, _v11.r, _v11.g, _v11.b, _v11.a, _t12.secs, _t12.nsecs, _v4.frame_locked, _n = _S9.unpack_from(_buf, _end)
+                _end += 121
+                _l13 = []
+                for _ in range(_n):
+                    _i14 = _v15 = _new(_T_geometry_msgs__Point)
+                    _v15.x, _v15.y, _v15.z = _S4.unpack_from(_buf, _end)
+                    _end += 24
+                    _l13.append(_i14)
+                _v4.points = _l13
+                _n, = _S0.unpack_from(_buf, _end)
+                _end += 4
+                _l16 = []
+                for _ in range(_n):
+                    _i17 = _v18 = _new(_T_std_msgs__ColorRGBA)
+                    _v18.r, _v18.g, _v18.b, _v18.a = _S5.unpack_from(_buf, _end)
+                    _end += 16
+                    _l16.append(_i17)
+                _v4.colors = _l16
+                _n, = _S0.unpack_from(_buf, _end)
+                _s = _end + 4
+                _end = _s + _n
+                _v4.text = str(_buf[_s:_end], 'utf-8', 'replace')
+                _n, = _S0.unpack_from(_buf, _end)
+                _s = _end + 4
+                _end = _s + _n
+                _v4.mesh_resource = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v4.mesh_use_embedded_materials, = _S10.unpack_from(_buf, _end)
+                _end += 1
+                _l2.append(_i3)
+            self.markers = _l2
+            self.independent_marker_orientation, _n = _S11.unpack_from(_buf, _end)
+            _s = _end + 5
+            _end = _s + _n
+            self.description = str(_buf[_s:_end], 'utf-8', 'replace')
+            if _end > len(_buf): raise _Truncated
+        except Exception as exc:
+            raise _deserialize_failed(cls, data, exc) from exc
         return self
 
     def deserialize_numpy(self, data, numpy):

@@ -5,6 +5,7 @@ from kame.msg.message import Message as _Message
 from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
+from kame.msg.message import refill as _refill
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -61,32 +62,54 @@ class InteractiveMarkerFeedback(_Message):
             if self.mouse_point_valid is None:
                 self.mouse_point_valid = False
         else:
-            self.header = _T_std_msgs__Header()
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.seq = 0
+            _v1.stamp = _t2 = _new(_Time)
+            _t2.secs = _t2.nsecs = 0
+            _v1.frame_id = ''
             self.client_id = ''
             self.marker_name = ''
             self.control_name = ''
             self.event_type = 0
-            self.pose = _T_geometry_msgs__Pose()
+            self.pose = _v3 = _new(_T_geometry_msgs__Pose)
+            _v3.position = _v4 = _new(_T_geometry_msgs__Point)
+            _v4.x = 0.0
+            _v4.y = 0.0
+            _v4.z = 0.0
+            _v3.orientation = _v5 = _new(_T_geometry_msgs__Quaternion)
+            _v5.x = 0.0
+            _v5.y = 0.0
+            _v5.z = 0.0
+            _v5.w = 0.0
             self.menu_entry_id = 0
-            self.mouse_point = _T_geometry_msgs__Point()
+            self.mouse_point = _v6 = _new(_T_geometry_msgs__Point)
+            _v6.x = 0.0
+            _v6.y = 0.0
+            _v6.z = 0.0
             self.mouse_point_valid = False
 
     def serialize(self, buff):
         try:
             _w = buff.write
-            _b1 = self.header.frame_id
-            if _b1.__class__ is not bytes: _b1 = _b1.encode()
-            _w(_S0.pack(self.header.seq, self.header.stamp.secs, self.header.stamp.nsecs, len(_b1)) + _b1)
-            _b2 = self.client_id
-            if _b2.__class__ is not bytes: _b2 = _b2.encode()
-            _w(_S1.pack(len(_b2)) + _b2)
-            _b3 = self.marker_name
+            _m1 = self.header
+            _m2 = _m1.stamp
+            _b3 = _m1.frame_id
             if _b3.__class__ is not bytes: _b3 = _b3.encode()
-            _w(_S1.pack(len(_b3)) + _b3)
-            _b4 = self.control_name
+            _w(_S0.pack(_m1.seq, _m2.secs, _m2.nsecs, len(_b3)) + _b3)
+            _b4 = self.client_id
             if _b4.__class__ is not bytes: _b4 = _b4.encode()
             _w(_S1.pack(len(_b4)) + _b4)
-            _w(_S2.pack(self.event_type, self.pose.position.x, self.pose.position.y, self.pose.position.z, self.pose.orientation.x, self.pose.orientation.y, self.pose.orientation.z, self.pose.orientation.w, self.menu_entry_id, self.mouse_point.x, self.mouse_point.y, self.mouse_point.z, self.mouse_point_valid))
+            _b5 = self.marker_name
+            if _b5.__class__ is not bytes: _b5 = _b5.encode()
+            _w(_S1.pack(len(_b5)) + _b5)
+            _b6 = self.control_name
+            if _b6.__class__ is not bytes: _b6 = _b6.encode()
+            _w(_S1.pack(len(_b6)) + _b6)
+            _m7 = self.pose
+            _m8 = _m7.position
+            _m9 = _m7.orientation
+            _m10 = self.mouse_point
+            _w(_S2.pack(self.event_type, _m8.x, _m8.y, _m8.z, _m9.x, _m9.y, _m9.z, _m9.w, self.menu_entry_id, _m10.x, _m10.y, _m10.z, self.mouse_point_valid))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -95,49 +118,67 @@ class InteractiveMarkerFeedback(_Message):
 
     def deserialize(self, data):
         try:
+            _v1 = self.header
+            _t2 = _v1.stamp
+            _v3 = self.pose
+            _v4 = _v3.position
+            _v5 = _v3.orientation
+            _v6 = self.mouse_point
             _buf = data
-            _len = len(data)
-            _end = 0
-            _v1 = _new(_T_std_msgs__Header)
-            self.header = _v1
-            _t2 = _new(_Time)
-            _v1.stamp = _t2
-            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v1.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
             _n, = _S1.unpack_from(_buf, _end)
-            _end += 4
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            self.client_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            _s = _end + 4
+            _end = _s + _n
+            self.client_id = str(_buf[_s:_end], 'utf-8', 'replace')
             _n, = _S1.unpack_from(_buf, _end)
-            _end += 4
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            self.marker_name = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            _s = _end + 4
+            _end = _s + _n
+            self.marker_name = str(_buf[_s:_end], 'utf-8', 'replace')
             _n, = _S1.unpack_from(_buf, _end)
-            _end += 4
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            self.control_name = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v3 = _new(_T_geometry_msgs__Pose)
-            self.pose = _v3
-            _v4 = _new(_T_geometry_msgs__Point)
-            _v3.position = _v4
-            _v5 = _new(_T_geometry_msgs__Quaternion)
-            _v3.orientation = _v5
-            _v6 = _new(_T_geometry_msgs__Point)
-            self.mouse_point = _v6
+            _s = _end + 4
+            _end = _s + _n
+            self.control_name = str(_buf[_s:_end], 'utf-8', 'replace')
             self.event_type, _v4.x, _v4.y, _v4.z, _v5.x, _v5.y, _v5.z, _v5.w, self.menu_entry_id, _v6.x, _v6.y, _v6.z, self.mouse_point_valid = _S3.unpack_from(_buf, _end)
-            _end += 86
+            if _end > len(_buf): raise _Truncated
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
+        return _refill(self, InteractiveMarkerFeedback, data)
+
+    @classmethod
+    def _from_buffer(cls, data):
+        self = _new(cls)
+        try:
+            _buf = data
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.stamp = _t2 = _new(_Time)
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            _n, = _S1.unpack_from(_buf, _end)
+            _s = _end + 4
+            _end = _s + _n
+            self.client_id = str(_buf[_s:_end], 'utf-8', 'replace')
+            _n, = _S1.unpack_from(_buf, _end)
+            _s = _end + 4
+            _end = _s + _n
+            self.marker_name = str(_buf[_s:_end], 'utf-8', 'replace')
+            _n, = _S1.unpack_from(_buf, _end)
+            _s = _end + 4
+            _end = _s + _n
+            self.control_name = str(_buf[_s:_end], 'utf-8', 'replace')
+            self.pose = _v3 = _new(_T_geometry_msgs__Pose)
+            _v3.position = _v4 = _new(_T_geometry_msgs__Point)
+            _v3.orientation = _v5 = _new(_T_geometry_msgs__Quaternion)
+            self.mouse_point = _v6 = _new(_T_geometry_msgs__Point)
+            self.event_type, _v4.x, _v4.y, _v4.z, _v5.x, _v5.y, _v5.z, _v5.w, self.menu_entry_id, _v6.x, _v6.y, _v6.z, self.mouse_point_valid = _S3.unpack_from(_buf, _end)
+            if _end > len(_buf): raise _Truncated
+        except Exception as exc:
+            raise _deserialize_failed(cls, data, exc) from exc
         return self
 
     def deserialize_numpy(self, data, numpy):

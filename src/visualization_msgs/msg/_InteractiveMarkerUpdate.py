@@ -5,6 +5,7 @@ from kame.msg.message import Message as _Message
 from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
+from kame.msg.message import refill as _refill
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -86,73 +87,92 @@ class InteractiveMarkerUpdate(_Message):
             _x2 = self.markers
             _w(_S1.pack(self.seq_num, self.type, len(_x2)))
             for _e3 in _x2:
-                _b4 = _e3.header.frame_id
-                if _b4.__class__ is not bytes: _b4 = _b4.encode()
-                _w(_S2.pack(_e3.header.seq, _e3.header.stamp.secs, _e3.header.stamp.nsecs, len(_b4)) + _b4)
-                _b5 = _e3.name
-                if _b5.__class__ is not bytes: _b5 = _b5.encode()
-                _w(_S3.pack(_e3.pose.position.x, _e3.pose.position.y, _e3.pose.position.z, _e3.pose.orientation.x, _e3.pose.orientation.y, _e3.pose.orientation.z, _e3.pose.orientation.w, len(_b5)) + _b5)
-                _b6 = _e3.description
+                _m4 = _e3.header
+                _m5 = _m4.stamp
+                _b6 = _m4.frame_id
                 if _b6.__class__ is not bytes: _b6 = _b6.encode()
-                _w(_S0.pack(len(_b6)) + _b6)
-                _x7 = _e3.menu_entries
-                _w(_S4.pack(_e3.scale, len(_x7)))
-                for _e8 in _x7:
-                    _b9 = _e8.title
-                    if _b9.__class__ is not bytes: _b9 = _b9.encode()
-                    _w(_S5.pack(_e8.id, _e8.parent_id, len(_b9)) + _b9)
-                    _b10 = _e8.command
-                    if _b10.__class__ is not bytes: _b10 = _b10.encode()
-                    _w(_S0.pack(len(_b10)) + _b10)
-                    _w(_S6.pack(_e8.command_type))
-                _x11 = _e3.controls
-                _w(_S0.pack(len(_x11)))
-                for _e12 in _x11:
-                    _b13 = _e12.name
-                    if _b13.__class__ is not bytes: _b13 = _b13.encode()
-                    _w(_S0.pack(len(_b13)) + _b13)
-                    _x14 = _e12.markers
-                    _w(_S7.pack(_e12.orientation.x, _e12.orientation.y, _e12.orientation.z, _e12.orientation.w, _e12.orientation_mode, _e12.interaction_mode, _e12.always_visible, len(_x14)))
-                    for _e15 in _x14:
-                        _b16 = _e15.header.frame_id
-                        if _b16.__class__ is not bytes: _b16 = _b16.encode()
-                        _w(_S2.pack(_e15.header.seq, _e15.header.stamp.secs, _e15.header.stamp.nsecs, len(_b16)) + _b16)
-                        _b17 = _e15.ns
-                        if _b17.__class__ is not bytes: _b17 = _b17.encode()
-                        _w(_S0.pack(len(_b17)) + _b17)
-                        _x18 = _e15.points
-                        _w(_S8.pack(_e15.id, _e15.type, _e15.action, _e15.pose.position.x, _e15.pose.position.y, _e15.pose.position.z, _e15.pose.orientation.x, _e15.pose.orientation.y, _e15.pose.orientation.z, _e15.pose.orientation.w, _e15.scale.x, _e15.scale.y, _e15.scale.z, _e15.color.r, _e15.color.g, _e15.color.b, _e15.color.a, _e15.lifetime.secs, _e15.lifetime.nsecs, _e15.frame_locked, len(_x18)))
-                        for _e19 in _x18:
-                            _w(_S9.pack(_e19.x, _e19.y, _e19.z))
-                        _x20 = _e15.colors
-                        _w(_S0.pack(len(_x20)))
-                        for _e21 in _x20:
-                            _w(_S10.pack(_e21.r, _e21.g, _e21.b, _e21.a))
-                        _b22 = _e15.text
-                        if _b22.__class__ is not bytes: _b22 = _b22.encode()
-                        _w(_S0.pack(len(_b22)) + _b22)
-                        _b23 = _e15.mesh_resource
-                        if _b23.__class__ is not bytes: _b23 = _b23.encode()
-                        _w(_S0.pack(len(_b23)) + _b23)
-                        _w(_S6.pack(_e15.mesh_use_embedded_materials))
-                    _b24 = _e12.description
-                    if _b24.__class__ is not bytes: _b24 = _b24.encode()
-                    _w(_S11.pack(_e12.independent_marker_orientation, len(_b24)) + _b24)
-            _x25 = self.poses
-            _w(_S0.pack(len(_x25)))
-            for _e26 in _x25:
-                _b27 = _e26.header.frame_id
-                if _b27.__class__ is not bytes: _b27 = _b27.encode()
-                _w(_S2.pack(_e26.header.seq, _e26.header.stamp.secs, _e26.header.stamp.nsecs, len(_b27)) + _b27)
-                _b28 = _e26.name
-                if _b28.__class__ is not bytes: _b28 = _b28.encode()
-                _w(_S3.pack(_e26.pose.position.x, _e26.pose.position.y, _e26.pose.position.z, _e26.pose.orientation.x, _e26.pose.orientation.y, _e26.pose.orientation.z, _e26.pose.orientation.w, len(_b28)) + _b28)
-            _x29 = self.erases
-            _w(_S0.pack(len(_x29)))
-            for _e30 in _x29:
-                _b31 = _e30
-                if _b31.__class__ is not bytes: _b31 = _b31.encode()
-                _w(_S0.pack(len(_b31)) + _b31)
+                _w(_S2.pack(_m4.seq, _m5.secs, _m5.nsecs, len(_b6)) + _b6)
+                _m7 = _e3.pose
+                _m8 = _m7.position
+                _m9 = _m7.orientation
+                _b10 = _e3.name
+                if _b10.__class__ is not bytes: _b10 = _b10.encode()
+                _w(_S3.pack(_m8.x, _m8.y, _m8.z, _m9.x, _m9.y, _m9.z, _m9.w, len(_b10)) + _b10)
+                _b11 = _e3.description
+                if _b11.__class__ is not bytes: _b11 = _b11.encode()
+                _w(_S0.pack(len(_b11)) + _b11)
+                _x12 = _e3.menu_entries
+                _w(_S4.pack(_e3.scale, len(_x12)))
+                for _e13 in _x12:
+                    _b14 = _e13.title
+                    if _b14.__class__ is not bytes: _b14 = _b14.encode()
+                    _w(_S5.pack(_e13.id, _e13.parent_id, len(_b14)) + _b14)
+                    _b15 = _e13.command
+                    if _b15.__class__ is not bytes: _b15 = _b15.encode()
+                    _w(_S0.pack(len(_b15)) + _b15)
+                    _w(_S6.pack(_e13.command_type))
+                _x16 = _e3.controls
+                _w(_S0.pack(len(_x16)))
+                for _e17 in _x16:
+                    _b18 = _e17.name
+                    if _b18.__class__ is not bytes: _b18 = _b18.encode()
+                    _w(_S0.pack(len(_b18)) + _b18)
+                    _m19 = _e17.orientation
+                    _x20 = _e17.markers
+                    _w(_S7.pack(_m19.x, _m19.y, _m19.z, _m19.w, _e17.orientation_mode, _e17.interaction_mode, _e17.always_visible, len(_x20)))
+                    for _e21 in _x20:
+                        _m22 = _e21.header
+                        _m23 = _m22.stamp
+                        _b24 = _m22.frame_id
+                        if _b24.__class__ is not bytes: _b24 = _b24.encode()
+                        _w(_S2.pack(_m22.seq, _m23.secs, _m23.nsecs, len(_b24)) + _b24)
+                        _b25 = _e21.ns
+                        if _b25.__class__ is not bytes: _b25 = _b25.encode()
+                        _w(_S0.pack(len(_b25)) + _b25)
+                        _m26 = _e21.pose
+                        _m27 = _m26.position
+                        _m28 = _m26.orientation
+                        _m29 = _e21.scale
+                        _m30 = _e21.color
+                        _m31 = _e21.lifetime
+                        _x32 = _e21.points
+                        _w(_S8.pack(_e21.id, _e21.type, _e21.action, _m27.x, _m27.y, _m27.z, _m28.x, _m28.y, _m28.z, _m28.w, _m29.x, _m29.y, _m29.z, _m30.r, _m30.g, _m30.b, _m30.a, _m31.secs, _m31.nsecs, _e21.frame_locked, len(_x32)))
+                        for _e33 in _x32:
+                            _w(_S9.pack(_e33.x, _e33.y, _e33.z))
+                        _x34 = _e21.colors
+                        _w(_S0.pack(len(_x34)))
+                        for _e35 in _x34:
+                            _w(_S10.pack(_e35.r, _e35.g, _e35.b, _e35.a))
+                        _b36 = _e21.text
+                        if _b36.__class__ is not bytes: _b36 = _b36.encode()
+                        _w(_S0.pack(len(_b36)) + _b36)
+                        _b37 = _e21.mesh_resource
+                        if _b37.__class__ is not bytes: _b37 = _b37.encode()
+                        _w(_S0.pack(len(_b37)) + _b37)
+                        _w(_S6.pack(_e21.mesh_use_embedded_materials))
+                    _b38 = _e17.description
+                    if _b38.__class__ is not bytes: _b38 = _b38.encode()
+                    _w(_S11.pack(_e17.independent_marker_orientation, len(_b38)) + _b38)
+            _x39 = self.poses
+            _w(_S0.pack(len(_x39)))
+            for _e40 in _x39:
+                _m41 = _e40.header
+                _m42 = _m41.stamp
+                _b43 = _m41.frame_id
+                if _b43.__class__ is not bytes: _b43 = _b43.encode()
+                _w(_S2.pack(_m41.seq, _m42.secs, _m42.nsecs, len(_b43)) + _b43)
+                _m44 = _e40.pose
+                _m45 = _m44.position
+                _m46 = _m44.orientation
+                _b47 = _e40.name
+                if _b47.__class__ is not bytes: _b47 = _b47.encode()
+                _w(_S3.pack(_m45.x, _m45.y, _m45.z, _m46.x, _m46.y, _m46.z, _m46.w, len(_b47)) + _b47)
+            _x48 = self.erases
+            _w(_S0.pack(len(_x48)))
+            for _e49 in _x48:
+                _b50 = _e49
+                if _b50.__class__ is not bytes: _b50 = _b50.encode()
+                _w(_S0.pack(len(_b50)) + _b50)
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -162,66 +182,44 @@ class InteractiveMarkerUpdate(_Message):
     def deserialize(self, data):
         try:
             _buf = data
-            _len = len(data)
-            _end = 0
-            _n, = _S0.unpack_from(_buf, _end)
-            _end += 4
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            self.server_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            _n, = _S0.unpack_from(_buf, 0)
+            _end = 4 + _n
+            self.server_id = str(_buf[4:_end], 'utf-8', 'replace')
             self.seq_num, self.type, _n = _S1.unpack_from(_buf, _end)
             _end += 13
             _l1 = []
             for _ in range(_n):
-                _v3 = _new(_T_visualization_msgs__InteractiveMarker)
-                _i2 = _v3
-                _v4 = _new(_T_std_msgs__Header)
-                _v3.header = _v4
-                _t5 = _new(_Time)
-                _v4.stamp = _t5
+                _i2 = _v3 = _new(_T_visualization_msgs__InteractiveMarker)
+                _v3.header = _v4 = _new(_T_std_msgs__Header)
+                _v4.stamp = _t5 = _new(_Time)
                 _v4.seq, _t5.secs, _t5.nsecs, _n = _S2.unpack_from(_buf, _end)
-                _end += 16
-                _stop = _end + _n
-                if _stop > _len: raise _Truncated
-                _v4.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-                _end = _stop
-                _v6 = _new(_T_geometry_msgs__Pose)
-                _v3.pose = _v6
-                _v7 = _new(_T_geometry_msgs__Point)
-                _v6.position = _v7
-                _v8 = _new(_T_geometry_msgs__Quaternion)
-                _v6.orientation = _v8
+                _s = _end + 16
+                _end = _s + _n
+                _v4.frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v3.pose = _v6 = _new(_T_geometry_msgs__Pose)
+                _v6.position = _v7 = _new(_T_geometry_msgs__Point)
+                _v6.orientation = _v8 = _new(_T_geometry_msgs__Quaternion)
                 _v7.x, _v7.y, _v7.z, _v8.x, _v8.y, _v8.z, _v8.w, _n = _S3.unpack_from(_buf, _end)
-                _end += 60
-                _stop = _end + _n
-                if _stop > _len: raise _Truncated
-                _v3.name = str(_buf[_end:_stop], 'utf-8', 'replace')
-                _end = _stop
+                _s = _end + 60
+                _end = _s + _n
+                _v3.name = str(_buf[_s:_end], 'utf-8', 'replace')
                 _n, = _S0.unpack_from(_buf, _end)
-                _end += 4
-                _stop = _end + _n
-                if _stop > _len: raise _Truncated
-                _v3.description = str(_buf[_end:_stop], 'utf-8', 'replace')
-                _end = _stop
+                _s = _end + 4
+                _end = _s + _n
+                _v3.description = str(_buf[_s:_end], 'utf-8', 'replace')
                 _v3.scale, _n = _S4.unpack_from(_buf, _end)
                 _end += 8
                 _l9 = []
                 for _ in range(_n):
-                    _v11 = _new(_T_visualization_msgs__MenuEntry)
-                    _i10 = _v11
+                    _i10 = _v11 = _new(_T_visualization_msgs__MenuEntry)
                     _v11.id, _v11.parent_id, _n = _S5.unpack_from(_buf, _end)
-                    _end += 12
-                    _stop = _end + _n
-                    if _stop > _len: raise _Truncated
-                    _v11.title = str(_buf[_end:_stop], 'utf-8', 'replace')
-                    _end = _stop
+                    _s = _end + 12
+                    _end = _s + _n
+                    _v11.title = str(_buf[_s:_end], 'utf-8', 'replace')
                     _n, = _S0.unpack_from(_buf, _end)
-                    _end += 4
-                    _stop = _end + _n
-                    if _stop > _len: raise _Truncated
-                    _v11.command = str(_buf[_end:_stop], 'utf-8', 'replace')
-                    _end = _stop
+                    _s = _end + 4
+                    _end = _s + _n
+                    _v11.command = str(_buf[_s:_end], 'utf-8', 'replace')
                     _v11.command_type, = _S6.unpack_from(_buf, _end)
                     _end += 1
                     _l9.append(_i10)
@@ -230,56 +228,38 @@ class InteractiveMarkerUpdate(_Message):
                 _end += 4
                 _l12 = []
                 for _ in range(_n):
-                    _v14 = _new(_T_visualization_msgs__InteractiveMarkerControl)
-                    _i13 = _v14
+                    _i13 = _v14 = _new(_T_visualization_msgs__InteractiveMarkerControl)
                     _n, = _S0.unpack_from(_buf, _end)
-                    _end += 4
-                    _stop = _end + _n
-                    if _stop > _len: raise _Truncated
-                    _v14.name = str(_buf[_end:_stop], 'utf-8', 'replace')
-                    _end = _stop
-                    _v15 = _new(_T_geometry_msgs__Quaternion)
-                    _v14.orientation = _v15
+                    _s = _end + 4
+                    _end = _s + _n
+                    _v14.name = str(_buf[_s:_end], 'utf-8', 'replace')
+                    _v14.orientation = _v15 = _new(_T_geometry_msgs__Quaternion)
                     _v15.x, _v15.y, _v15.z, _v15.w, _v14.orientation_mode, _v14.interaction_mode, _v14.always_visible, _n = _S12.unpack_from(_buf, _end)
                     _end += 39
                     _l16 = []
                     for _ in range(_n):
-                        _v18 = _new(_T_visualization_msgs__Marker)
-                        _i17 = _v18
-                        _v19 = _new(_T_std_msgs__Header)
-                        _v18.header = _v19
-                        _t20 = _new(_Time)
-                        _v19.stamp = _t20
+                        _i17 = _v18 = _new(_T_visualization_msgs__Marker)
+                        _v18.header = _v19 = _new(_T_std_msgs__Header)
+                        _v19.stamp = _t20 = _new(_Time)
                         _v19.seq, _t20.secs, _t20.nsecs, _n = _S2.unpack_from(_buf, _end)
-                        _end += 16
-                        _stop = _end + _n
-                        if _stop > _len: raise _Truncated
-                        _v19.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-                        _end = _stop
+                        _s = _end + 16
+                        _end = _s + _n
+                        _v19.frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
                         _n, = _S0.unpack_from(_buf, _end)
-                        _end += 4
-                        _stop = _end + _n
-                        if _stop > _len: raise _Truncated
-                        _v18.ns = str(_buf[_end:_stop], 'utf-8', 'replace')
-                        _end = _stop
-                        _v21 = _new(_T_geometry_msgs__Pose)
-                        _v18.pose = _v21
-                        _v22 = _new(_T_geometry_msgs__Point)
-                        _v21.position = _v22
-                        _v23 = _new(_T_geometry_msgs__Quaternion)
-                        _v21.orientation = _v23
-                        _v24 = _new(_T_geometry_msgs__Vector3)
-                        _v18.scale = _v24
-                        _v25 = _new(_T_std_msgs__ColorRGBA)
-                        _v18.color = _v25
-                        _t26 = _new(_Duration)
-                        _v18.lifetime = _t26
+                        _s = _end + 4
+                        _end = _s + _n
+                        _v18.ns = str(_buf[_s:_end], 'utf-8', 'replace')
+                        _v18.pose = _v21 = _new(_T_geometry_msgs__Pose)
+                        _v21.position = _v22 = _new(_T_geometry_msgs__Point)
+                        _v21.orientation = _v23 = _new(_T_geometry_msgs__Quaternion)
+                        _v18.scale = _v24 = _new(_T_geometry_msgs__Vector3)
+                        _v18.color = _v25 = _new(_T_std_msgs__ColorRGBA)
+                        _v18.lifetime = _t26 = _new(_Duration)
                         _v18.id, _v18.type, _v18.action, _v22.x, _v22.y, _v22.z, _v23.x, _v23.y, _v23.z, _v23.w, _v24.x, _v24.y, _v24.z, _v25.r, _v25.g, _v25.b, _v25.a, _t26.secs, _t26.nsecs, _v18.frame_locked, _n = _S13.unpack_from(_buf, _end)
                         _end += 121
                         _l27 = []
                         for _ in range(_n):
-                            _v29 = _new(_T_geometry_msgs__Point)
-                            _i28 = _v29
+                            _i28 = _v29 = _new(_T_geometry_msgs__Point)
                             _v29.x, _v29.y, _v29.z = _S9.unpack_from(_buf, _end)
                             _end += 24
                             _l27.append(_i28)
@@ -288,34 +268,27 @@ class InteractiveMarkerUpdate(_Message):
                         _end += 4
                         _l30 = []
                         for _ in range(_n):
-                            _v32 = _new(_T_std_msgs__ColorRGBA)
-                            _i31 = _v32
+                            _i31 = _v32 = _new(_T_std_msgs__ColorRGBA)
                             _v32.r, _v32.g, _v32.b, _v32.a = _S10.unpack_from(_buf, _end)
                             _end += 16
                             _l30.append(_i31)
                         _v18.colors = _l30
                         _n, = _S0.unpack_from(_buf, _end)
-                        _end += 4
-                        _stop = _end + _n
-                        if _stop > _len: raise _Truncated
-                        _v18.text = str(_buf[_end:_stop], 'utf-8', 'replace')
-                        _end = _stop
+                        _s = _end + 4
+                        _end = _s + _n
+                        _v18.text = str(_buf[_s:_end], 'utf-8', 'replace')
                         _n, = _S0.unpack_from(_buf, _end)
-                        _end += 4
-                        _stop = _end + _n
-                        if _stop > _len: raise _Truncated
-                        _v18.mesh_resource = str(_buf[_end:_stop], 'utf-8', 'replace')
-                        _end = _stop
+                        _s = _end + 4
+                        _end = _s + _n
+                        _v18.mesh_resource = str(_buf[_s:_end], 'utf-8', 'replace')
                         _v18.mesh_use_embedded_materials, = _S14.unpack_from(_buf, _end)
                         _end += 1
                         _l16.append(_i17)
                     _v14.markers = _l16
                     _v14.independent_marker_orientation, _n = _S15.unpack_from(_buf, _end)
-                    _end += 5
-                    _stop = _end + _n
-                    if _stop > _len: raise _Truncated
-                    _v14.description = str(_buf[_end:_stop], 'utf-8', 'replace')
-                    _end = _stop
+                    _s = _end + 5
+                    _end = _s + _n
+                    _v14.description = str(_buf[_s:_end], 'utf-8', 'replace')
                     _l12.append(_i13)
                 _v3.controls = _l12
                 _l1.append(_i2)
@@ -324,30 +297,20 @@ class InteractiveMarkerUpdate(_Message):
             _end += 4
             _l33 = []
             for _ in range(_n):
-                _v35 = _new(_T_visualization_msgs__InteractiveMarkerPose)
-                _i34 = _v35
-                _v36 = _new(_T_std_msgs__Header)
-                _v35.header = _v36
-                _t37 = _new(_Time)
-                _v36.stamp = _t37
+                _i34 = _v35 = _new(_T_visualization_msgs__InteractiveMarkerPose)
+                _v35.header = _v36 = _new(_T_std_msgs__Header)
+                _v36.stamp = _t37 = _new(_Time)
                 _v36.seq, _t37.secs, _t37.nsecs, _n = _S2.unpack_from(_buf, _end)
-                _end += 16
-                _stop = _end + _n
-                if _stop > _len: raise _Truncated
-                _v36.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-                _end = _stop
-                _v38 = _new(_T_geometry_msgs__Pose)
-                _v35.pose = _v38
-                _v39 = _new(_T_geometry_msgs__Point)
-                _v38.position = _v39
-                _v40 = _new(_T_geometry_msgs__Quaternion)
-                _v38.orientation = _v40
+                _s = _end + 16
+                _end = _s + _n
+                _v36.frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v35.pose = _v38 = _new(_T_geometry_msgs__Pose)
+                _v38.position = _v39 = _new(_T_geometry_msgs__Point)
+                _v38.orientation = _v40 = _new(_T_geometry_msgs__Quaternion)
                 _v39.x, _v39.y, _v39.z, _v40.x, _v40.y, _v40.z, _v40.w, _n = _S3.unpack_from(_buf, _end)
-                _end += 60
-                _stop = _end + _n
-                if _stop > _len: raise _Truncated
-                _v35.name = str(_buf[_end:_stop], 'utf-8', 'replace')
-                _end = _stop
+                _s = _end + 60
+                _end = _s + _n
+                _v35.name = str(_buf[_s:_end], 'utf-8', 'replace')
                 _l33.append(_i34)
             self.poses = _l33
             _n, = _S0.unpack_from(_buf, _end)
@@ -355,15 +318,165 @@ class InteractiveMarkerUpdate(_Message):
             _l41 = []
             for _ in range(_n):
                 _n, = _S0.unpack_from(_buf, _end)
-                _end += 4
-                _stop = _end + _n
-                if _stop > _len: raise _Truncated
-                _i42 = str(_buf[_end:_stop], 'utf-8', 'replace')
-                _end = _stop
+                _s = _end + 4
+                _end = _s + _n
+                _i42 = str(_buf[_s:_end], 'utf-8', 'replace')
                 _l41.append(_i42)
             self.erases = _l41
+            if _end > len(_buf): raise _Truncated
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
+        return self
+
+    @classmethod
+    def _from_buffer(cls, data):
+        self = _new(cls)
+        try:
+            _buf = data
+            _n, = _S0.unpack_from(_buf, 0)
+            _end = 4 + _n
+            self.server_id = str(_buf[4:_end], 'utf-8', 'replace')
+            self.seq_num, self.type, _n = _S1.unpack_from(_buf, _end)
+            _end += 13
+            _l1 = []
+            for _ in range(_n):
+                _i2 = _v3 = _new(_T_visualization_msgs__InteractiveMarker)
+                _v3.header = _v4 = _new(_T_std_msgs__Header)
+                _v4.stamp = _t5 = _new(_Time)
+                _v4.seq, _t5.secs, _t5.nsecs, _n = _S2.unpack_from(_buf, _end)
+                _s = _end + 16
+                _end = _s + _n
+                _v4.frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v3.pose = _v6 = _new(_T_geometry_msgs__Pose)
+                _v6.position = _v7 = _new(_T_geometry_msgs__Point)
+                _v6.orientation = _v8 = _new(_T_geometry_msgs__Quaternion)
+                _v7.x, _v7.y, _v7.z, _v8.x, _v8.y, _v8.z, _v8.w, _n = _S3.unpack_from(_buf, _end)
+                _s = _end + 60
+                _end = _s + _n
+                _v3.name = str(_buf[_s:_end], 'utf-8', 'replace')
+                _n, = _S0.unpack_from(_buf, _end)
+                _s = _end + 4
+                _end = _s + _n
+                _v3.description = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v3.scale, _n = _S4.unpack_from(_buf, _end)
+                _end += 8
+                _l9 = []
+                for _ in range(_n):
+                    _i10 = _v11 = _new(_T_visualization_msgs__MenuEntry)
+                    _v11.id, _v11.parent_id, _n = _S5.unpack_from(_buf, _end)
+                    _s = _end + 12
+                    _end = _s + _n
+                    _v11.title = str(_buf[_s:_end], 'utf-8', 'replace')
+                    _n, = _S0.unpack_from(_buf, _end)
+                    _s = _end + 4
+                    _end = _s + _n
+                    _v11.command = str(_buf[_s:_end], 'utf-8', 'replace')
+                    _v11.command_type, = _S6.unpack_from(_buf, _end)
+                    _end += 1
+                    _l9.append(_i10)
+                _v3.menu_entries = _l9
+                _n, = _S0.unpack_from(_buf, _end)
+                _end += 4
+                _l12 = []
+                for _ in range(_n):
+                    _i13 = _v14 = _new(_T_visualization_msgs__InteractiveMarkerControl)
+                    _n, = _S0.unpack_from(_buf, _end)
+                    _s = _end + 4
+                    _end = _s + _n
+                    _v14.name = str(_buf[_s:_end], 'utf-8', 'replace')
+                    _v14.orientation = _v15 = _new(_T_geometry_msgs__Quaternion)
+                    _v15.x, _v15.y, _v15.z, _v15.w, _v14.orientation_mode, _v14.interaction_mode, _v14.always_visible, _n = _S12.unpack_from(_buf, _end)
+                    _end += 39
+                    _l16 = []
+                    for _ in range(_n):
+                        _i17 = _v18 = _new(_T_visualization_msgs__Marker)
+                        _v18.header = _v19 = _new(_T_std_msgs__Header)
+                        _v19.stamp = _t20 = _new(_Time)
+                        _v19.seq, _t20.secs, _t20.nsecs, _n = _S2.unpack_from(_buf, _end)
+                        _s = _end + 16
+                        _end = _s + _n
+                        _v19.frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
+                        _n, = _S0.unpack_from(_buf, _end)
+                        _s = _end + 4
+                        _end = _s + _n
+                        _v18.ns = str(_buf[_s:_end], 'utf-8', 'replace')
+                        _v18.pose = _v21 = _new(_T_geometry_msgs__Pose)
+                        _v21.position = _v22 = _new(_T_geometry_msgs__Point)
+                        _v21.orientation = _v23 = _new(_T_geometry_msgs__Quaternion)
+                        _v18.scale = _v24 = _new(_T_geometry_msgs__Vector3)
+                        _v18.color = _v25 = _new(_T_std_msgs__ColorRGBA)
+                        _v18.lifetime = _t26 = _new(_Duration)
+                        _v18.id, _v18.type, _v18.action, _v22.x, _v22.y, _v22.z, _v23.x, _v23.y, _v23.z, _v23.w, _v24.x, _v24.y, _v24.z, _v25.r, _v25.g, _v25.b, _v25.a, _t26.secs, _t26.nsecs, _v18.frame_locked, _n = _S13.unpack_from(_buf, _end)
+                        _end += 121
+                        _l27 = []
+                        for _ in range(_n):
+                            _i28 = _v29 = _new(_T_geometry_msgs__Point)
+                            _v29.x, _v29.y, _v29.z = _S9.unpack_from(_buf, _end)
+                            _end += 24
+                            _l27.append(_i28)
+                        _v18.points = _l27
+                        _n, = _S0.unpack_from(_buf, _end)
+                        _end += 4
+                        _l30 = []
+                        for _ in range(_n):
+                            _i31 = _v32 = _new(_T_std_msgs__ColorRGBA)
+                            _v32.r, _v32.g, _v32.b, _v32.a = _S10.unpack_from(_buf, _end)
+                            _end += 16
+                            _l30.append(_i31)
+                        _v18.colors = _l30
+                        _n, = _S0.unpack_from(_buf, _end)
+                        _s = _end + 4
+                        _end = _s + _n
+                        _v18.text = str(_buf[_s:_end], 'utf-8', 'replace')
+                        _n, = _S0.unpack_from(_buf, _end)
+                        _s = _end + 4
+                        _end = _s + _n
+                        _v18.mesh_resource = str(_buf[_s:_end], 'utf-8', 'replace')
+                        _v18.mesh_use_embedded_materials, = _S14.unpack_from(_buf, _end)
+                        _end += 1
+                        _l16.append(_i17)
+                    _v14.markers = _l16
+                    _v14.independent_marker_orientation, _n = _S15.unpack_from(_buf, _end)
+                    _s = _end + 5
+                    _end = _s + _n
+                    _v14.description = str(_buf[_s:_end], 'utf-8', 'replace')
+                    _l12.append(_i13)
+                _v3.controls = _l12
+                _l1.append(_i2)
+            self.markers = _l1
+            _n, = _S0.unpack_from(_buf, _end)
+            _end += 4
+            _l33 = []
+            for _ in range(_n):
+                _i34 = _v35 = _new(_T_visualization_msgs__InteractiveMarkerPose)
+                _v35.header = _v36 = _new(_T_std_msgs__Header)
+                _v36.stamp = _t37 = _new(_Time)
+                _v36.seq, _t37.secs, _t37.nsecs, _n = _S2.unpack_from(_buf, _end)
+                _s = _end + 16
+                _end = _s + _n
+                _v36.frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v35.pose = _v38 = _new(_T_geometry_msgs__Pose)
+                _v38.position = _v39 = _new(_T_geometry_msgs__Point)
+                _v38.orientation = _v40 = _new(_T_geometry_msgs__Quaternion)
+                _v39.x, _v39.y, _v39.z, _v40.x, _v40.y, _v40.z, _v40.w, _n = _S3.unpack_from(_buf, _end)
+                _s = _end + 60
+                _end = _s + _n
+                _v35.name = str(_buf[_s:_end], 'utf-8', 'replace')
+                _l33.append(_i34)
+            self.poses = _l33
+            _n, = _S0.unpack_from(_buf, _end)
+            _end += 4
+            _l41 = []
+            for _ in range(_n):
+                _n, = _S0.unpack_from(_buf, _end)
+                _s = _end + 4
+                _end = _s + _n
+                _i42 = str(_buf[_s:_end], 'utf-8', 'replace')
+                _l41.append(_i42)
+            self.erases = _l41
+            if _end > len(_buf): raise _Truncated
+        except Exception as exc:
+            raise _deserialize_failed(cls, data, exc) from exc
         return self
 
     def deserialize_numpy(self, data, numpy):

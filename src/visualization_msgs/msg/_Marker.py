@@ -5,6 +5,7 @@ from kame.msg.message import Message as _Message
 from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
+from kame.msg.message import refill as _refill
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -89,15 +90,36 @@ class Marker(_Message):
             if self.mesh_use_embedded_materials is None:
                 self.mesh_use_embedded_materials = False
         else:
-            self.header = _T_std_msgs__Header()
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.seq = 0
+            _v1.stamp = _t2 = _new(_Time)
+            _t2.secs = _t2.nsecs = 0
+            _v1.frame_id = ''
             self.ns = ''
             self.id = 0
             self.type = 0
             self.action = 0
-            self.pose = _T_geometry_msgs__Pose()
-            self.scale = _T_geometry_msgs__Vector3()
-            self.color = _T_std_msgs__ColorRGBA()
-            self.lifetime = _Duration()
+            self.pose = _v3 = _new(_T_geometry_msgs__Pose)
+            _v3.position = _v4 = _new(_T_geometry_msgs__Point)
+            _v4.x = 0.0
+            _v4.y = 0.0
+            _v4.z = 0.0
+            _v3.orientation = _v5 = _new(_T_geometry_msgs__Quaternion)
+            _v5.x = 0.0
+            _v5.y = 0.0
+            _v5.z = 0.0
+            _v5.w = 0.0
+            self.scale = _v6 = _new(_T_geometry_msgs__Vector3)
+            _v6.x = 0.0
+            _v6.y = 0.0
+            _v6.z = 0.0
+            self.color = _v7 = _new(_T_std_msgs__ColorRGBA)
+            _v7.r = 0.0
+            _v7.g = 0.0
+            _v7.b = 0.0
+            _v7.a = 0.0
+            self.lifetime = _t8 = _new(_Duration)
+            _t8.secs = _t8.nsecs = 0
             self.frame_locked = False
             self.points = []
             self.colors = []
@@ -108,26 +130,34 @@ class Marker(_Message):
     def serialize(self, buff):
         try:
             _w = buff.write
-            _b1 = self.header.frame_id
-            if _b1.__class__ is not bytes: _b1 = _b1.encode()
-            _w(_S0.pack(self.header.seq, self.header.stamp.secs, self.header.stamp.nsecs, len(_b1)) + _b1)
-            _b2 = self.ns
-            if _b2.__class__ is not bytes: _b2 = _b2.encode()
-            _w(_S1.pack(len(_b2)) + _b2)
-            _x3 = self.points
-            _w(_S2.pack(self.id, self.type, self.action, self.pose.position.x, self.pose.position.y, self.pose.position.z, self.pose.orientation.x, self.pose.orientation.y, self.pose.orientation.z, self.pose.orientation.w, self.scale.x, self.scale.y, self.scale.z, self.color.r, self.color.g, self.color.b, self.color.a, self.lifetime.secs, self.lifetime.nsecs, self.frame_locked, len(_x3)))
-            for _e4 in _x3:
-                _w(_S3.pack(_e4.x, _e4.y, _e4.z))
-            _x5 = self.colors
-            _w(_S1.pack(len(_x5)))
-            for _e6 in _x5:
-                _w(_S4.pack(_e6.r, _e6.g, _e6.b, _e6.a))
-            _b7 = self.text
-            if _b7.__class__ is not bytes: _b7 = _b7.encode()
-            _w(_S1.pack(len(_b7)) + _b7)
-            _b8 = self.mesh_resource
-            if _b8.__class__ is not bytes: _b8 = _b8.encode()
-            _w(_S1.pack(len(_b8)) + _b8)
+            _m1 = self.header
+            _m2 = _m1.stamp
+            _b3 = _m1.frame_id
+            if _b3.__class__ is not bytes: _b3 = _b3.encode()
+            _w(_S0.pack(_m1.seq, _m2.secs, _m2.nsecs, len(_b3)) + _b3)
+            _b4 = self.ns
+            if _b4.__class__ is not bytes: _b4 = _b4.encode()
+            _w(_S1.pack(len(_b4)) + _b4)
+            _m5 = self.pose
+            _m6 = _m5.position
+            _m7 = _m5.orientation
+            _m8 = self.scale
+            _m9 = self.color
+            _m10 = self.lifetime
+            _x11 = self.points
+            _w(_S2.pack(self.id, self.type, self.action, _m6.x, _m6.y, _m6.z, _m7.x, _m7.y, _m7.z, _m7.w, _m8.x, _m8.y, _m8.z, _m9.r, _m9.g, _m9.b, _m9.a, _m10.secs, _m10.nsecs, self.frame_locked, len(_x11)))
+            for _e12 in _x11:
+                _w(_S3.pack(_e12.x, _e12.y, _e12.z))
+            _x13 = self.colors
+            _w(_S1.pack(len(_x13)))
+            for _e14 in _x13:
+                _w(_S4.pack(_e14.r, _e14.g, _e14.b, _e14.a))
+            _b15 = self.text
+            if _b15.__class__ is not bytes: _b15 = _b15.encode()
+            _w(_S1.pack(len(_b15)) + _b15)
+            _b16 = self.mesh_resource
+            if _b16.__class__ is not bytes: _b16 = _b16.encode()
+            _w(_S1.pack(len(_b16)) + _b16)
             _w(_S5.pack(self.mesh_use_embedded_materials))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
@@ -137,43 +167,27 @@ class Marker(_Message):
 
     def deserialize(self, data):
         try:
+            _v1 = self.header
+            _t2 = _v1.stamp
+            _v3 = self.pose
+            _v4 = _v3.position
+            _v5 = _v3.orientation
+            _v6 = self.scale
+            _v7 = self.color
+            _t8 = self.lifetime
             _buf = data
-            _len = len(data)
-            _end = 0
-            _v1 = _new(_T_std_msgs__Header)
-            self.header = _v1
-            _t2 = _new(_Time)
-            _v1.stamp = _t2
-            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, _end)
-            _end += 16
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            _v1.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
             _n, = _S1.unpack_from(_buf, _end)
-            _end += 4
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            self.ns = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
-            _v3 = _new(_T_geometry_msgs__Pose)
-            self.pose = _v3
-            _v4 = _new(_T_geometry_msgs__Point)
-            _v3.position = _v4
-            _v5 = _new(_T_geometry_msgs__Quaternion)
-            _v3.orientation = _v5
-            _v6 = _new(_T_geometry_msgs__Vector3)
-            self.scale = _v6
-            _v7 = _new(_T_std_msgs__ColorRGBA)
-            self.color = _v7
-            _t8 = _new(_Duration)
-            self.lifetime = _t8
+            _s = _end + 4
+            _end = _s + _n
+            self.ns = str(_buf[_s:_end], 'utf-8', 'replace')
             self.id, self.type, self.action, _v4.x, _v4.y, _v4.z, _v5.x, _v5.y, _v5.z, _v5.w, _v6.x, _v6.y, _v6.z, _v7.r, _v7.g, _v7.b, _v7.a, _t8.secs, _t8.nsecs, self.frame_locked, _n = _S6.unpack_from(_buf, _end)
             _end += 121
             _l9 = []
             for _ in range(_n):
-                _v11 = _new(_T_geometry_msgs__Point)
-                _i10 = _v11
+                _i10 = _v11 = _new(_T_geometry_msgs__Point)
                 _v11.x, _v11.y, _v11.z = _S3.unpack_from(_buf, _end)
                 _end += 24
                 _l9.append(_i10)
@@ -182,28 +196,78 @@ class Marker(_Message):
             _end += 4
             _l12 = []
             for _ in range(_n):
-                _v14 = _new(_T_std_msgs__ColorRGBA)
-                _i13 = _v14
+                _i13 = _v14 = _new(_T_std_msgs__ColorRGBA)
                 _v14.r, _v14.g, _v14.b, _v14.a = _S4.unpack_from(_buf, _end)
                 _end += 16
                 _l12.append(_i13)
             self.colors = _l12
             _n, = _S1.unpack_from(_buf, _end)
-            _end += 4
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            self.text = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            _s = _end + 4
+            _end = _s + _n
+            self.text = str(_buf[_s:_end], 'utf-8', 'replace')
             _n, = _S1.unpack_from(_buf, _end)
-            _end += 4
-            _stop = _end + _n
-            if _stop > _len: raise _Truncated
-            self.mesh_resource = str(_buf[_end:_stop], 'utf-8', 'replace')
-            _end = _stop
+            _s = _end + 4
+            _end = _s + _n
+            self.mesh_resource = str(_buf[_s:_end], 'utf-8', 'replace')
             self.mesh_use_embedded_materials, = _S7.unpack_from(_buf, _end)
-            _end += 1
+            if _end > len(_buf): raise _Truncated
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
+        return _refill(self, Marker, data)
+
+    @classmethod
+    def _from_buffer(cls, data):
+        self = _new(cls)
+        try:
+            _buf = data
+            self.header = _v1 = _new(_T_std_msgs__Header)
+            _v1.stamp = _t2 = _new(_Time)
+            _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
+            _end = 16 + _n
+            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            _n, = _S1.unpack_from(_buf, _end)
+            _s = _end + 4
+            _end = _s + _n
+            self.ns = str(_buf[_s:_end], 'utf-8', 'replace')
+            self.pose = _v3 = _new(_T_geometry_msgs__Pose)
+            _v3.position = _v4 = _new(_T_geometry_msgs__Point)
+            _v3.orientation = _v5 = _new(_T_geometry_msgs__Quaternion)
+            self.scale = _v6 = _new(_T_geometry_msgs__Vector3)
+            self.color = _v7 = _new(_T_std_msgs__ColorRGBA)
+            self.lifetime = _t8 = _new(_Duration)
+            self.id, self.type, self.action, _v4.x, _v4.y, _v4.z, _v5.x, _v5.y, _v5.z, _v5.w, _v6.x, _v6.y, _v6.z, _v7.r, _v7.g, _v7.b, _v7.a, _t8.secs, _t8.nsecs, self.frame_locked, _n = _S6.unpack_from(_buf, _end)
+            _end += 121
+            _l9 = []
+            for _ in range(_n):
+                _i10 = _v11 = _new(_T_geometry_msgs__Point)
+                _v11.x, _v11.y, _v11.z = _S3.unpack_from(_buf, _end)
+                _end += 24
+                _l9.append(_i10)
+            self.points = _l9
+            _n, = _S1.unpack_from(_buf, _end)
+            _end += 4
+            _l12 = []
+            for _ in range(_n):
+                _i13 = _v14 = _new(_T_std_msgs__ColorRGBA)
+                _v14.r, _v14.g, _v14.b, _v14.a = _S4.unpack_from(_buf, _end)
+                _end += 16
+                _l12.append(_i13)
+            self.colors = _l12
+            _n, = _S1.unpack_from(_buf, _end)
+            _s = _end + 4
+            _end = _s + _n
+            self.text = str(_buf[_s:_end], 'utf-8', 'replace')
+            _n, = _S1.unpack_from(_buf, _end)
+            _s = _end + 4
+            _end = _s + _n
+            self.mesh_resource = str(_buf[_s:_end], 'utf-8', 'replace')
+            self.mesh_use_embedded_materials, = _S7.unpack_from(_buf, _end)
+            if _end > len(_buf): raise _Truncated
+        except Exception as exc:
+            raise _deserialize_failed(cls, data, exc) from exc
         return self
 
     def deserialize_numpy(self, data, numpy):

@@ -5,6 +5,7 @@ from kame.msg.message import Message as _Message
 from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
+from kame.msg.message import refill as _refill
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -54,26 +55,34 @@ class MarkerArray(_Message):
             _x1 = self.markers
             _w(_S0.pack(len(_x1)))
             for _e2 in _x1:
-                _b3 = _e2.header.frame_id
-                if _b3.__class__ is not bytes: _b3 = _b3.encode()
-                _w(_S1.pack(_e2.header.seq, _e2.header.stamp.secs, _e2.header.stamp.nsecs, len(_b3)) + _b3)
-                _b4 = _e2.ns
-                if _b4.__class__ is not bytes: _b4 = _b4.encode()
-                _w(_S0.pack(len(_b4)) + _b4)
-                _x5 = _e2.points
-                _w(_S2.pack(_e2.id, _e2.type, _e2.action, _e2.pose.position.x, _e2.pose.position.y, _e2.pose.position.z, _e2.pose.orientation.x, _e2.pose.orientation.y, _e2.pose.orientation.z, _e2.pose.orientation.w, _e2.scale.x, _e2.scale.y, _e2.scale.z, _e2.color.r, _e2.color.g, _e2.color.b, _e2.color.a, _e2.lifetime.secs, _e2.lifetime.nsecs, _e2.frame_locked, len(_x5)))
-                for _e6 in _x5:
-                    _w(_S3.pack(_e6.x, _e6.y, _e6.z))
-                _x7 = _e2.colors
-                _w(_S0.pack(len(_x7)))
-                for _e8 in _x7:
-                    _w(_S4.pack(_e8.r, _e8.g, _e8.b, _e8.a))
-                _b9 = _e2.text
-                if _b9.__class__ is not bytes: _b9 = _b9.encode()
-                _w(_S0.pack(len(_b9)) + _b9)
-                _b10 = _e2.mesh_resource
-                if _b10.__class__ is not bytes: _b10 = _b10.encode()
-                _w(_S0.pack(len(_b10)) + _b10)
+                _m3 = _e2.header
+                _m4 = _m3.stamp
+                _b5 = _m3.frame_id
+                if _b5.__class__ is not bytes: _b5 = _b5.encode()
+                _w(_S1.pack(_m3.seq, _m4.secs, _m4.nsecs, len(_b5)) + _b5)
+                _b6 = _e2.ns
+                if _b6.__class__ is not bytes: _b6 = _b6.encode()
+                _w(_S0.pack(len(_b6)) + _b6)
+                _m7 = _e2.pose
+                _m8 = _m7.position
+                _m9 = _m7.orientation
+                _m10 = _e2.scale
+                _m11 = _e2.color
+                _m12 = _e2.lifetime
+                _x13 = _e2.points
+                _w(_S2.pack(_e2.id, _e2.type, _e2.action, _m8.x, _m8.y, _m8.z, _m9.x, _m9.y, _m9.z, _m9.w, _m10.x, _m10.y, _m10.z, _m11.r, _m11.g, _m11.b, _m11.a, _m12.secs, _m12.nsecs, _e2.frame_locked, len(_x13)))
+                for _e14 in _x13:
+                    _w(_S3.pack(_e14.x, _e14.y, _e14.z))
+                _x15 = _e2.colors
+                _w(_S0.pack(len(_x15)))
+                for _e16 in _x15:
+                    _w(_S4.pack(_e16.r, _e16.g, _e16.b, _e16.a))
+                _b17 = _e2.text
+                if _b17.__class__ is not bytes: _b17 = _b17.encode()
+                _w(_S0.pack(len(_b17)) + _b17)
+                _b18 = _e2.mesh_resource
+                if _b18.__class__ is not bytes: _b18 = _b18.encode()
+                _w(_S0.pack(len(_b18)) + _b18)
                 _w(_S5.pack(_e2.mesh_use_embedded_materials))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
@@ -84,48 +93,32 @@ class MarkerArray(_Message):
     def deserialize(self, data):
         try:
             _buf = data
-            _len = len(data)
-            _end = 0
-            _n, = _S0.unpack_from(_buf, _end)
-            _end += 4
+            _n, = _S0.unpack_from(_buf, 0)
+            _end = 4
             _l1 = []
             for _ in range(_n):
-                _v3 = _new(_T_visualization_msgs__Marker)
-                _i2 = _v3
-                _v4 = _new(_T_std_msgs__Header)
-                _v3.header = _v4
-                _t5 = _new(_Time)
-                _v4.stamp = _t5
+                _i2 = _v3 = _new(_T_visualization_msgs__Marker)
+                _v3.header = _v4 = _new(_T_std_msgs__Header)
+                _v4.stamp = _t5 = _new(_Time)
                 _v4.seq, _t5.secs, _t5.nsecs, _n = _S1.unpack_from(_buf, _end)
-                _end += 16
-                _stop = _end + _n
-                if _stop > _len: raise _Truncated
-                _v4.frame_id = str(_buf[_end:_stop], 'utf-8', 'replace')
-                _end = _stop
+                _s = _end + 16
+                _end = _s + _n
+                _v4.frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
                 _n, = _S0.unpack_from(_buf, _end)
-                _end += 4
-                _stop = _end + _n
-                if _stop > _len: raise _Truncated
-                _v3.ns = str(_buf[_end:_stop], 'utf-8', 'replace')
-                _end = _stop
-                _v6 = _new(_T_geometry_msgs__Pose)
-                _v3.pose = _v6
-                _v7 = _new(_T_geometry_msgs__Point)
-                _v6.position = _v7
-                _v8 = _new(_T_geometry_msgs__Quaternion)
-                _v6.orientation = _v8
-                _v9 = _new(_T_geometry_msgs__Vector3)
-                _v3.scale = _v9
-                _v10 = _new(_T_std_msgs__ColorRGBA)
-                _v3.color = _v10
-                _t11 = _new(_Duration)
-                _v3.lifetime = _t11
+                _s = _end + 4
+                _end = _s + _n
+                _v3.ns = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v3.pose = _v6 = _new(_T_geometry_msgs__Pose)
+                _v6.position = _v7 = _new(_T_geometry_msgs__Point)
+                _v6.orientation = _v8 = _new(_T_geometry_msgs__Quaternion)
+                _v3.scale = _v9 = _new(_T_geometry_msgs__Vector3)
+                _v3.color = _v10 = _new(_T_std_msgs__ColorRGBA)
+                _v3.lifetime = _t11 = _new(_Duration)
                 _v3.id, _v3.type, _v3.action, _v7.x, _v7.y, _v7.z, _v8.x, _v8.y, _v8.z, _v8.w, _v9.x, _v9.y, _v9.z, _v10.r, _v10.g, _v10.b, _v10.a, _t11.secs, _t11.nsecs, _v3.frame_locked, _n = _S6.unpack_from(_buf, _end)
                 _end += 121
                 _l12 = []
                 for _ in range(_n):
-                    _v14 = _new(_T_geometry_msgs__Point)
-                    _i13 = _v14
+                    _i13 = _v14 = _new(_T_geometry_msgs__Point)
                     _v14.x, _v14.y, _v14.z = _S3.unpack_from(_buf, _end)
                     _end += 24
                     _l12.append(_i13)
@@ -134,30 +127,87 @@ class MarkerArray(_Message):
                 _end += 4
                 _l15 = []
                 for _ in range(_n):
-                    _v17 = _new(_T_std_msgs__ColorRGBA)
-                    _i16 = _v17
+                    _i16 = _v17 = _new(_T_std_msgs__ColorRGBA)
                     _v17.r, _v17.g, _v17.b, _v17.a = _S4.unpack_from(_buf, _end)
                     _end += 16
                     _l15.append(_i16)
                 _v3.colors = _l15
                 _n, = _S0.unpack_from(_buf, _end)
-                _end += 4
-                _stop = _end + _n
-                if _stop > _len: raise _Truncated
-                _v3.text = str(_buf[_end:_stop], 'utf-8', 'replace')
-                _end = _stop
+                _s = _end + 4
+                _end = _s + _n
+                _v3.text = str(_buf[_s:_end], 'utf-8', 'replace')
                 _n, = _S0.unpack_from(_buf, _end)
-                _end += 4
-                _stop = _end + _n
-                if _stop > _len: raise _Truncated
-                _v3.mesh_resource = str(_buf[_end:_stop], 'utf-8', 'replace')
-                _end = _stop
+                _s = _end + 4
+                _end = _s + _n
+                _v3.mesh_resource = str(_buf[_s:_end], 'utf-8', 'replace')
                 _v3.mesh_use_embedded_materials, = _S7.unpack_from(_buf, _end)
                 _end += 1
                 _l1.append(_i2)
             self.markers = _l1
+            if _end > len(_buf): raise _Truncated
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
+        return self
+
+    @classmethod
+    def _from_buffer(cls, data):
+        self = _new(cls)
+        try:
+            _buf = data
+            _n, = _S0.unpack_from(_buf, 0)
+            _end = 4
+            _l1 = []
+            for _ in range(_n):
+                _i2 = _v3 = _new(_T_visualization_msgs__Marker)
+                _v3.header = _v4 = _new(_T_std_msgs__Header)
+                _v4.stamp = _t5 = _new(_Time)
+                _v4.seq, _t5.secs, _t5.nsecs, _n = _S1.unpack_from(_buf, _end)
+                _s = _end + 16
+                _end = _s + _n
+                _v4.frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
+                _n, = _S0.unpack_from(_buf, _end)
+                _s = _end + 4
+                _end = _s + _n
+                _v3.ns = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v3.pose = _v6 = _new(_T_geometry_msgs__Pose)
+                _v6.position = _v7 = _new(_T_geometry_msgs__Point)
+                _v6.orientation = _v8 = _new(_T_geometry_msgs__Quaternion)
+                _v3.scale = _v9 = _new(_T_geometry_msgs__Vector3)
+                _v3.color = _v10 = _new(_T_std_msgs__ColorRGBA)
+                _v3.lifetime = _t11 = _new(_Duration)
+                _v3.id, _v3.type, _v3.action, _v7.x, _v7.y, _v7.z, _v8.x, _v8.y, _v8.z, _v8.w, _v9.x, _v9.y, _v9.z, _v10.r, _v10.g, _v10.b, _v10.a, _t11.secs, _t11.nsecs, _v3.frame_locked, _n = _S6.unpack_from(_buf, _end)
+                _end += 121
+                _l12 = []
+                for _ in range(_n):
+                    _i13 = _v14 = _new(_T_geometry_msgs__Point)
+                    _v14.x, _v14.y, _v14.z = _S3.unpack_from(_buf, _end)
+                    _end += 24
+                    _l12.append(_i13)
+                _v3.points = _l12
+                _n, = _S0.unpack_from(_buf, _end)
+                _end += 4
+                _l15 = []
+                for _ in range(_n):
+                    _i16 = _v17 = _new(_T_std_msgs__ColorRGBA)
+                    _v17.r, _v17.g, _v17.b, _v17.a = _S4.unpack_from(_buf, _end)
+                    _end += 16
+                    _l15.append(_i16)
+                _v3.colors = _l15
+                _n, = _S0.unpack_from(_buf, _end)
+                _s = _end + 4
+                _end = _s + _n
+                _v3.text = str(_buf[_s:_end], 'utf-8', 'replace')
+                _n, = _S0.unpack_from(_buf, _end)
+                _s = _end + 4
+                _end = _s + _n
+                _v3.mesh_resource = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v3.mesh_use_embedded_materials, = _S7.unpack_from(_buf, _end)
+                _end += 1
+                _l1.append(_i2)
+            self.markers = _l1
+            if _end > len(_buf): raise _Truncated
+        except Exception as exc:
+            raise _deserialize_failed(cls, data, exc) from exc
         return self
 
     def deserialize_numpy(self, data, numpy):
