@@ -86,6 +86,10 @@ class Master:
         except ValueError:
             raise ToolError(NO_MASTER, no_master_status) from None
 
+    @property
+    def proxy(self) -> MasterProxy:
+        return self._proxy
+
     def call(self, method: str, *args: object) -> Any:
         try:
             return self._proxy.call(method, *args)
