@@ -130,6 +130,30 @@ def emit(level: int, msg: Any, args: tuple[Any, ...], depth: int = 3, caller: tu
             pass
 
 
+_FROM_PY = {logging.DEBUG: DEBUG, logging.INFO: INFO, logging.WARNING: WARN, logging.ERROR: ERROR,
+            logging.CRITICAL: FATAL}
+
+
+class _RuntimeRecords(logging.Handler):
+    """Warnings and errors of kame's runtime (a refused connection, a bad peer) reach the
+    console and /rosout like rospy's own internal messages do."""
+
+    def emit(self, record: logging.LogRecord) -> None:
+        level = _FROM_PY.get(record.levelno, ERROR)
+        try:
+            text = record.getMessage()
+        except Exception:
+            text = str(record.msg)
+        emit(level, text, (), caller=(record.filename, record.lineno, record.funcName, None))
+
+
+def route_runtime_logs() -> None:
+    runtime = logging.getLogger("kame")
+    if not any(isinstance(h, _RuntimeRecords) for h in runtime.handlers):
+        runtime.addHandler(_RuntimeRecords(logging.WARNING))
+        runtime.propagate = False  # the handler writes them to the node's log file already
+
+
 def emit_once(level: int, msg: Any, args: tuple[Any, ...]) -> None:
     caller = _caller(3)
     with _lock:

@@ -120,6 +120,7 @@ def init_node(name: str, argv: list[str] | None = None, anonymous: bool = False,
         core.set_node(node, caller_id, namespace, remappings)
         _init_args = args
     _log.configure_file_logging(caller_id, special.get("log"))
+    _log.route_runtime_logs()
     _wait_for_master(node, master_uri)
     if ros_args.params:
         import yaml

@@ -3,15 +3,17 @@
 from __future__ import annotations
 
 import io
+import os
 import time
 import traceback
 from collections.abc import Callable
 from typing import Any
 
 from kame.msg.errors import SerializationError
-from kame.node.master_proxy import MasterError
+from kame.node.master_proxy import MasterError, MasterProxy
 from kame.node.services import ServiceClient, ServiceError, probe_service
 from rospy import _log, core
+from rospy.client import DEFAULT_MASTER_URI
 from rospy.exceptions import ROSException, ROSInitException, ROSInterruptException, ROSSerializationException
 from rospy.msg import args_kwds_to_message
 
@@ -25,6 +27,21 @@ def _node() -> Any:
     if node is None:
         raise ROSInitException("client code must call rospy.init_node() first")
     return node
+
+
+_anonymous_master: MasterProxy | None = None
+
+
+def _master_and_caller() -> tuple[MasterProxy, str]:
+    """The node's master and name, or, before init_node (allowed for service clients, as in
+    rospy), a master from ROS_MASTER_URI and the caller id /unnamed."""
+    global _anonymous_master
+    node = core.get_node()
+    if node is not None:
+        return node.master, node.name
+    if _anonymous_master is None:
+        _anonymous_master = MasterProxy(os.environ.get("ROS_MASTER_URI") or DEFAULT_MASTER_URI, core.get_caller_id())
+    return _anonymous_master, core.get_caller_id()
 
 
 def _serialize(msg: Any) -> bytes:
@@ -115,10 +132,10 @@ class ServiceProxy:
         return self.call(*args, **kwds)
 
     def call(self, *args: Any, **kwds: Any) -> Any:
-        node = _node()
         if self._client is None:
-            self._client = node.service_client(self.resolved_name, self.service_class._type,
-                                               self.service_class._md5sum, self.persistent, self.headers)
+            master, caller_id = _master_and_caller()
+            self._client = ServiceClient(master, caller_id, self.resolved_name, self.service_class._type,
+                                         self.service_class._md5sum, self.persistent, self.headers)
         try:
             request = args_kwds_to_message(self.request_class, args, kwds)
             data = _serialize(request)
@@ -141,14 +158,14 @@ class ServiceProxy:
 
 def wait_for_service(service: str, timeout: float | None = None) -> None:
     """Block until `service` answers a probe; ROSException on timeout, ROSInterruptException at shutdown."""
-    node = _node()
+    master, caller_id = _master_and_caller()
     resolved = core.resolve_name(service)
     deadline = None if timeout is None else time.monotonic() + timeout
     if timeout == 0.0:
         raise ValueError("timeout must be non-zero")
     while not core.is_shutdown():
         try:
-            probe_service(node, resolved, timeout=2.0)
+            probe_service(master, caller_id, resolved, timeout=2.0)
             return
         except (OSError, MasterError, ServiceError, ValueError):
             pass

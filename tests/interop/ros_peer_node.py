@@ -6,7 +6,6 @@ the master's paramUpdate reach a real node.
 """
 
 import rospy
-
 from std_msgs.msg import String
 from std_srvs.srv import SetBool, SetBoolResponse
 

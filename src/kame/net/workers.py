@@ -49,11 +49,12 @@ class WorkerPool:
                 return
             try:
                 job()
-            finally:
-                with self._lock:
-                    if self._closed:
-                        return
-                    self._idle += 1
+            except Exception:  # a job's own errors are its owner's to log; the worker goes on
+                pass
+            with self._lock:
+                if self._closed:
+                    return
+                self._idle += 1
 
     def close(self) -> None:
         """Idle workers end; running jobs finish on their own (their owners close their sockets)."""

@@ -158,7 +158,7 @@ class Node:
 
     def service_client(self, name: str, type: str, md5sum: str, persistent: bool = False,
                        headers: dict[str, str] | None = None) -> ServiceClient:
-        return ServiceClient(self, name, type, md5sum, persistent, headers)
+        return ServiceClient(self.master, self.name, name, type, md5sum, persistent, headers)
 
     # ------------------------------------------------------------------ TCPROS server
 

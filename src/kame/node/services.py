@@ -17,6 +17,7 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
 from kame.net.stream import connect, set_nodelay
+from kame.node.master_proxy import MasterProxy
 from kame.node.tcpros import HandshakeError, read_header, write_header
 from kame.protocol import tcpros
 
@@ -138,11 +139,15 @@ def _read_response(reader: _Reader) -> tuple[bool, bytes]:
 
 
 class ServiceClient:
-    """Calls one service; with `persistent`, the connection is kept across calls."""
+    """Calls one service; with `persistent`, the connection is kept across calls.
 
-    def __init__(self, node: Node, name: str, type: str, md5sum: str, persistent: bool,
-                 headers: dict[str, str] | None = None) -> None:
-        self.node = node
+    It needs a master and a caller id, not a node: rospy programs may call services without
+    ever calling init_node (the tutorials' AddTwoInts client does)."""
+
+    def __init__(self, master: MasterProxy, caller_id: str, name: str, type: str, md5sum: str,
+                 persistent: bool, headers: dict[str, str] | None = None) -> None:
+        self.master = master
+        self.caller_id = caller_id
         self.name = name
         self.type = type
         self.md5sum = md5sum
@@ -159,7 +164,7 @@ class ServiceClient:
         for attempt in (0, 1):
             cached = self._address is not None
             if self._address is None:
-                self._address = parse_rosrpc(self.node.master.call("lookupService", self.name))
+                self._address = parse_rosrpc(self.master.call("lookupService", self.name))
             try:
                 return self._handshake(self._address, timeout)
             except (OSError, HandshakeError, ServiceError):
@@ -173,7 +178,7 @@ class ServiceClient:
         try:
             sock.settimeout(timeout)
             write_header(sock, tcpros.service_client_header_fields(
-                callerid=self.node.name, service=self.name, md5sum=self.md5sum,
+                callerid=self.caller_id, service=self.name, md5sum=self.md5sum,
                 persistent=self.persistent, extra=self.headers))
             reply = tcpros.check_service_reply(read_header(sock))
             if isinstance(reply, tcpros.Rejected):
@@ -217,13 +222,13 @@ class ServiceClient:
             self._close_socket(self._sock)
 
 
-def probe_service(node: Node, name: str, timeout: float) -> dict[str, str]:
+def probe_service(master: MasterProxy, caller_id: str, name: str, timeout: float) -> dict[str, str]:
     """Ask a service for its header (what `rosservice` and wait_for_service do)."""
-    host, port = parse_rosrpc(node.master.call("lookupService", name))
+    host, port = parse_rosrpc(master.call("lookupService", name))
     sock = connect(host, port, timeout=timeout)
     try:
         sock.settimeout(timeout)
-        write_header(sock, tcpros.service_probe_header_fields(callerid=node.name, service=name))
+        write_header(sock, tcpros.service_probe_header_fields(callerid=caller_id, service=name))
         return read_header(sock)
     finally:
         sock.close()
