@@ -18,24 +18,13 @@ from tests.cli.live_graph import LiveGraph, live_graph, mask, no_master_env
 from tests.support import have_debian_ros
 
 SEP = "-" * 80
-GRAPH_NODE_RECORD = """\
-Node [/graph_node]
-Publications: 
- * /chatter [std_msgs/String]
- * /rosout [rosgraph_msgs/Log]
-
-Subscriptions: 
- * /turtle1/cmd_vel [unknown type]
-
-Services: 
- * /add_two_ints
- * /clear
- * /fail
- * /graph_node/get_loggers
- * /graph_node/set_logger_level
- * /set_flag
- * /spawn
-"""
+GRAPH_NODE_RECORD = (
+    "Node [/graph_node]\n"
+    "Publications: \n * /chatter [std_msgs/String]\n * /rosout [rosgraph_msgs/Log]\n\n"
+    "Subscriptions: \n * /turtle1/cmd_vel [unknown type]\n\n"
+    "Services: \n * /add_two_ints\n * /clear\n * /fail\n * /graph_node/get_loggers\n"
+    " * /graph_node/set_logger_level\n * /set_flag\n * /spawn\n"
+)
 
 
 @pytest.fixture(scope="module")
@@ -186,7 +175,8 @@ debian = pytest.mark.skipif(not have_debian_ros(), reason="Debian's ROS 1 is not
 
 @debian
 @pytest.mark.parametrize("args", [
-    ("list",), ("list", "-a"), ("list", "-u"), ("list", "/graph"), ("info", "/graph_node"), ("info", "-q", "/graph_node"),
+    ("list",), ("list", "-a"), ("list", "-u"), ("list", "/graph"), ("info", "/graph_node"),
+    ("info", "-q", "/graph_node"),
     ("info", "/nosuch"), ("ping", "-c", "2", "/graph_node"), ("ping", "-c", "1", "/nosuch"), ("ping",), ("machine",),
     ("machine", "127.0.0.1"), ("kill", "/nosuch"), ("bogus",), ("--help",), ("ping", "-a", "-c", "2"),
 ])
