@@ -41,6 +41,7 @@ from rospy.exceptions import (
     ROSTimeMovedBackwardsException,
 )
 from rospy.msg import AnyMsg
+from rospy.numpy_msg import numpy_msg
 from rospy.rostime import Duration, Time, get_rostime, get_time
 from rospy.service import Service, ServiceException, ServiceProxy, wait_for_service
 from rospy.timer import Rate, Timer, TimerEvent, sleep
@@ -148,6 +149,6 @@ __all__ = [
     "logerr", "logerr_once", "logerr_throttle", "logerr_throttle_identical", "logerror", "logfatal",
     "logfatal_once", "logfatal_throttle", "logfatal_throttle_identical", "loginfo", "loginfo_once",
     "loginfo_throttle", "loginfo_throttle_identical", "logout", "logwarn", "logwarn_once", "logwarn_throttle",
-    "logwarn_throttle_identical", "myargv", "on_shutdown", "remap_name", "resolve_name", "search_param",
+    "logwarn_throttle_identical", "myargv", "numpy_msg", "on_shutdown", "remap_name", "resolve_name", "search_param",
     "set_param", "signal_shutdown", "sleep", "spin", "wait_for_message", "wait_for_service",
 ]

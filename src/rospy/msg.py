@@ -32,6 +32,10 @@ class AnyMsg(Message):
         self._buff = bytes(data)
         return self
 
+    @classmethod
+    def _from_buffer(cls, data: Any) -> AnyMsg:
+        return cls().deserialize(data)
+
 
 def args_kwds_to_message(data_class: type[Any], args: tuple[Any, ...], kwds: dict[str, Any]) -> Any:
     """What publish(*args, **kwds) and ServiceProxy(*args) build their message from."""

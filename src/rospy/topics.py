@@ -18,8 +18,6 @@ from rospy import _log, core
 from rospy.exceptions import ROSException, ROSSerializationException
 from rospy.msg import AnyMsg, args_kwds_to_message
 
-_new = object.__new__
-
 
 class SubscribeListener:
     """Callbacks for a publisher's subscriber connections (rospy.SubscribeListener)."""
@@ -74,6 +72,7 @@ class Publisher(Topic):
                       "information.", (), depth=3)
         self.latch = latch
         self.queue_size = queue_size
+        self.headers = headers
         self.impl: Publication | None = None
         self._listener = subscriber_listener
         self._unregistered = False
@@ -89,7 +88,7 @@ class Publisher(Topic):
                 entry = None
             if entry is None:
                 impl = node.advertise(self.resolved_name, self.type, self.md5sum, self.data_class._full_text,
-                                      self.latch, self.queue_size or 0)
+                                      self.latch, self.queue_size or 0, self.headers)
                 entry = (impl, [])
                 _publications[self.resolved_name] = entry
             elif entry[0].md5sum != self.md5sum:
@@ -171,15 +170,15 @@ class _Callbacks:
         self.entries: list[tuple[Callable[..., Any], Any, bool]] = []
 
     def deliver(self, frames: list[memoryview], header: dict[str, str]) -> None:
-        cls = self.data_class
+        from_buffer = self.data_class._from_buffer
         entries = self.entries
         for frame in frames:
             try:
-                msg = _new(cls)
-                msg.deserialize(frame)
+                msg = from_buffer(frame)
             except Exception as exc:
                 _log.emit(_log.ERROR, "cannot deserialize a message on a subscription of type [%s] from [%s]: %s",
-                          (cls._type, header.get("callerid", "?"), exc), caller=("topics.py", 0, "deliver", None))
+                          (self.data_class._type, header.get("callerid", "?"), exc),
+                          caller=("topics.py", 0, "deliver", None))
                 raise
             msg._connection_header = header
             for callback, args, has_args in entries:

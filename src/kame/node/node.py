@@ -93,12 +93,13 @@ class Node:
     # ------------------------------------------------------------------ topics
 
     def advertise(self, topic: str, type: str, md5sum: str, definition: str, latch: bool = False,
-                  queue_size: int = 0) -> Publication:
-        """Publish `topic` (already resolved); registers with the master at once."""
+                  queue_size: int = 0, headers: dict[str, str] | None = None) -> Publication:
+        """Publish `topic` (already resolved); registers with the master at once. `headers` are
+        extra fields for the connection header subscribers receive."""
         with self._lock:
             pub = self.publications.get(topic)
             if pub is None:
-                pub = Publication(self, topic, type, md5sum, definition, latch, queue_size)
+                pub = Publication(self, topic, type, md5sum, definition, latch, queue_size, dict(headers or {}))
                 self.publications[topic] = pub
             else:
                 pub.latch = pub.latch or latch

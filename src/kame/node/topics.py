@@ -83,6 +83,7 @@ class Publication:
     definition: str
     latch: bool
     queue_size: int
+    extra_headers: dict[str, str] = field(default_factory=dict)
     links: list[SubscriberLink] = field(default_factory=list)
     latched: list[Any] | None = None
     seq: int = 0
@@ -107,7 +108,7 @@ class Publication:
 
     def attach(self, sock: socket.socket, accepted: tcpros.SubscriberAccepted) -> None:
         """Finish the handshake of a subscriber our TCPROS server accepted for this topic."""
-        write_header(sock, accepted.reply)
+        write_header(sock, {**accepted.reply, **self.extra_headers})
         set_nodelay(sock, accepted.tcp_nodelay)
         set_keepalive(sock)
         peer = _peer(sock)
