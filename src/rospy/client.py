@@ -151,7 +151,7 @@ def _start_rosout(node: Node) -> None:
         if core.is_shutdown() or publisher.impl is None:
             return
         msg = Log(level=level, name=node.name, msg=text, file=file, function=function, line=line,
-                  topics=[] if omit_topics else sorted(node.publications))
+                  topics=[] if omit_topics else sorted({*node.publications, *node.subscriptions}))
         msg.header.stamp = rostime.get_rostime() if rostime.is_rostime_initialized() else rostime.Time()
         publisher.publish(msg)
 
