@@ -11,7 +11,7 @@ import struct
 from typing import Any, ClassVar
 
 from kame.msg.errors import DeserializationError, SerializationError
-from kame.msg.spec import split_array
+from kame.msg.typenames import split_array
 from kame.rostime import Duration, Time, TVal
 
 _INT_RANGES: dict[str, tuple[int, int]] = {

@@ -9,6 +9,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+from kame.msg.typenames import split_array
+
 PRIMITIVE_TYPES: frozenset[str] = frozenset(
     {
         "bool", "int8", "uint8", "int16", "uint16", "int32", "uint32", "int64", "uint64",
@@ -18,14 +20,8 @@ PRIMITIVE_TYPES: frozenset[str] = frozenset(
 BUILTIN_TYPES: frozenset[str] = PRIMITIVE_TYPES | {"time", "duration"}
 HEADER_TYPE = "std_msgs/Header"
 
-
-def split_array(type_name: str) -> tuple[str, bool, int | None]:
-    """'float64[36]' -> ('float64', True, 36); 'Point[]' -> ('Point', True, None)."""
-    if not type_name.endswith("]"):
-        return type_name, False, None
-    base, _, rest = type_name.partition("[")
-    size = rest[:-1]
-    return base, True, (int(size) if size else None)
+__all__ = ["BUILTIN_TYPES", "HEADER_TYPE", "PRIMITIVE_TYPES", "ActionSpec", "Constant", "Field", "MsgSpec", "SrvSpec",
+           "is_builtin", "split_array"]
 
 
 def is_builtin(base_type: str) -> bool:

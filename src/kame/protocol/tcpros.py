@@ -22,8 +22,7 @@ from __future__ import annotations
 
 import struct
 from collections.abc import Mapping
-from dataclasses import dataclass, field
-from typing import Literal
+from typing import Literal, NamedTuple
 
 __all__ = [
     "DEFAULT_MAX_FRAME",
@@ -406,8 +405,7 @@ class FrameReader:
         return memoryview(body).toreadonly()[: self._need]
 
 
-@dataclass(frozen=True)
-class ServiceResponse:
+class ServiceResponse(NamedTuple):
     """One service response: ok=True carries the serialized Response, ok=False an error text."""
 
     ok: bool
@@ -459,8 +457,7 @@ class ServiceResponseReader:
 # -------------------------------------------------------------------------------- handshakes
 
 
-@dataclass(frozen=True)
-class TopicSpec:
+class TopicSpec(NamedTuple):
     """What a publisher offers on one topic (plain strings; no message classes needed)."""
 
     type: str
@@ -469,8 +466,7 @@ class TopicSpec:
     latching: bool = False
 
 
-@dataclass(frozen=True)
-class ServiceSpec:
+class ServiceSpec(NamedTuple):
     """What a service server offers. request/response types default to roscpp's `<type>Request`."""
 
     type: str
@@ -479,8 +475,7 @@ class ServiceSpec:
     response_type: str = ""
 
 
-@dataclass(frozen=True)
-class Rejected:
+class Rejected(NamedTuple):
     """A failed handshake: `error` is the text to send (`error=<text>`, then close) or to log."""
 
     error: str
@@ -490,18 +485,16 @@ class Rejected:
         return error_header_fields(self.error)
 
 
-@dataclass(frozen=True)
-class SubscriberAccepted:
+class SubscriberAccepted(NamedTuple):
     """A publisher accepted a subscriber: send `reply`, then frames (the latched one first)."""
 
     topic: str
     callerid: str
     tcp_nodelay: bool
-    reply: dict[str, str] = field(compare=False)
+    reply: dict[str, str]
 
 
-@dataclass(frozen=True)
-class ServiceClientAccepted:
+class ServiceClientAccepted(NamedTuple):
     """A service server accepted a client: send `reply`. If `probe`, close right after (rospy);
     else serve one request, or many while `persistent`."""
 
@@ -509,11 +502,10 @@ class ServiceClientAccepted:
     callerid: str
     persistent: bool
     probe: bool
-    reply: dict[str, str] = field(compare=False)
+    reply: dict[str, str]
 
 
-@dataclass(frozen=True)
-class ReplyInfo:
+class ReplyInfo(NamedTuple):
     """A publisher's or service server's reply header, checked by the connecting side."""
 
     type: str
@@ -521,7 +513,7 @@ class ReplyInfo:
     callerid: str
     latching: bool
     message_definition: str
-    fields: dict[str, str] = field(compare=False)
+    fields: dict[str, str]
 
 
 # rospy's TOPIC_ANYTYPE / SERVICE_ANYTYPE
