@@ -1,0 +1,157 @@
+"""Behaviour under trouble: slow subscribers, failing callbacks, a master that goes away."""
+
+from __future__ import annotations
+
+import sys
+import textwrap
+import time
+from pathlib import Path
+
+from ..support import Proc, free_port, kame_command, ros_env, wait_for_master
+
+
+def start_master(home: Path, port: int) -> Proc:
+    env = ros_env(home, f"http://127.0.0.1:{port}/")
+    master = Proc(kame_command("kame.cli.rosmaster", "--core", "-p", str(port)), env)
+    wait_for_master(f"http://127.0.0.1:{port}/", proc=master)
+    return master
+
+
+def node(home: Path, port: int, code: str) -> Proc:
+    return Proc([sys.executable, "-c", textwrap.dedent(code)], ros_env(home, f"http://127.0.0.1:{port}/"))
+
+
+def test_a_slow_subscriber_blocks_neither_the_publisher_nor_others(tmp_path: Path) -> None:
+    port = free_port()
+    master = start_master(tmp_path, port)
+    slow = fast = None
+    try:
+        slow = node(tmp_path, port, """
+            import rospy, time
+            from std_msgs.msg import String
+            rospy.init_node('slow')
+            rospy.Subscriber('/burst', String, lambda m: time.sleep(0.5), queue_size=1)
+            print('ready', flush=True)
+            rospy.spin()
+        """)
+        fast = node(tmp_path, port, """
+            import rospy
+            from std_msgs.msg import String
+            got = []
+            rospy.init_node('fast')
+            rospy.Subscriber('/burst', String, lambda m: got.append(m.data), queue_size=5000)
+            print('ready', flush=True)
+            while not rospy.is_shutdown() and len(got) < 3000:
+                rospy.sleep(0.01)
+            print('fast got', len(got), got[-1], flush=True)
+        """)
+        slow.wait_line("ready")
+        fast.wait_line("ready")
+        out, _ = run_publisher(tmp_path, port)
+        assert out.splitlines()[-1].startswith("published 3000 in ")
+        seconds = float(out.split()[-1])
+        assert seconds < 2.0, out  # the slow subscriber's 0.5 s callbacks did not hold it up
+        assert fast.wait_line("fast got 3000 2999")
+    finally:
+        for proc in (slow, fast):
+            if proc is not None:
+                proc.stop()
+        master.stop()
+
+
+def run_publisher(home: Path, port: int) -> tuple[str, str]:
+    pub = node(home, port, """
+        import rospy, time
+        from std_msgs.msg import String
+        rospy.init_node('bursty')
+        p = rospy.Publisher('/burst', String, queue_size=100)
+        while p.get_num_connections() < 2:
+            rospy.sleep(0.01)
+        start = time.monotonic()
+        for i in range(3000):
+            p.publish(str(i))
+        print('published 3000 in %.3f' % (time.monotonic() - start), flush=True)
+        rospy.sleep(1.0)
+    """)
+    pub.popen.wait(30)
+    return pub.stop()
+
+
+def test_a_failing_callback_is_logged_and_the_subscription_goes_on(tmp_path: Path) -> None:
+    port = free_port()
+    master = start_master(tmp_path, port)
+    try:
+        proc = node(tmp_path, port, """
+            import rospy
+            from std_msgs.msg import Int32
+            rospy.init_node('fragile')
+            seen = []
+            def callback(msg):
+                seen.append(msg.data)
+                if msg.data == 1:
+                    raise RuntimeError('boom on one')
+            rospy.Subscriber('/numbers', Int32, callback)
+            pub = rospy.Publisher('/numbers', Int32, queue_size=10)
+            while pub.get_num_connections() < 1:
+                rospy.sleep(0.01)
+            for i in range(3):
+                pub.publish(i)
+            while len(seen) < 3 and not rospy.is_shutdown():
+                rospy.sleep(0.01)
+            print('seen', seen, flush=True)
+        """)
+        proc.popen.wait(30)
+        out, err = proc.stop()
+        assert "seen [0, 1, 2]" in out
+        assert "bad callback: <function callback" in err
+        assert "RuntimeError: boom on one" in err
+        assert "Traceback (most recent call last)" in err
+    finally:
+        master.stop()
+
+
+def test_the_master_going_away_and_back_does_not_crash_a_node(tmp_path: Path) -> None:
+    port = free_port()
+    master = start_master(tmp_path, port)
+    proc = node(tmp_path, port, """
+        import rospy
+        from std_msgs.msg import String
+        rospy.init_node('survivor')
+        got = []
+        rospy.Subscriber('/loop', String, lambda m: got.append(m.data))
+        pub = rospy.Publisher('/loop', String, queue_size=10)
+        while pub.get_num_connections() < 1:
+            rospy.sleep(0.01)
+        print('connected', flush=True)
+        i = 0
+        while not rospy.is_shutdown():
+            pub.publish(str(i)); i += 1
+            print('got', len(got), flush=True)
+            try:
+                rospy.get_param('/anything', 0)
+                print('param ok', flush=True)
+            except Exception as e:
+                print('param failed', type(e).__name__, flush=True)
+            rospy.sleep(0.05)
+    """)
+    try:
+        proc.wait_line("connected")
+        master.stop()
+        deadline = time.monotonic() + 10
+        while "param failed" not in "".join(proc.out) and time.monotonic() < deadline:
+            time.sleep(0.05)
+        assert "param failed" in "".join(proc.out)
+        count = len(proc.out)
+        master = start_master(tmp_path, port)
+        deadline = time.monotonic() + 10
+        while "param ok" not in "".join(proc.out[count:]) and time.monotonic() < deadline:
+            time.sleep(0.05)
+        assert "param ok" in "".join(proc.out[count:])
+        time.sleep(0.3)
+        assert proc.popen.poll() is None
+        got = [int(line.split()[1]) for line in proc.out if line.startswith("got ")]
+        assert got and got[-1] > got[0], "".join(proc.out[-20:]) + "".join(proc.err)  # kept flowing
+        assert "Traceback" not in "".join(proc.err)
+    finally:
+        proc.stop()
+        master.stop()
