@@ -67,9 +67,11 @@ class Publisher(Topic):
                  queue_size: int | None = None) -> None:
         super().__init__(name, data_class)
         if queue_size is None:
-            _log.emit(_log.WARN, "The publisher should be created with an explicit keyword argument 'queue_size'. "
-                      "Please see http://wiki.ros.org/rospy/Overview/Publishers%%20and%%20Subscribers for more "
-                      "information.", (), depth=3)
+            import warnings
+
+            warnings.warn("The publisher should be created with an explicit keyword argument 'queue_size'. "
+                          "Please see http://wiki.ros.org/rospy/Overview/Publishers%20and%20Subscribers for more "
+                          "information.", SyntaxWarning, stacklevel=2)
         self.latch = latch
         self.queue_size = queue_size
         self.headers = headers

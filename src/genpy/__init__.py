@@ -1,0 +1,7 @@
+"""genpy, as ROS code imports it: the message base class, time values and errors, from kame."""
+
+from kame.msg.errors import DeserializationError, MessageError as MessageException, SerializationError
+from kame.msg.message import Message
+from kame.rostime import Duration, Time, TVal
+
+__all__ = ["DeserializationError", "Duration", "Message", "MessageException", "SerializationError", "TVal", "Time"]
