@@ -1,6 +1,7 @@
 """genpy, as ROS code imports it: the message base class, time values and errors, from kame."""
 
-from kame.msg.errors import DeserializationError, MessageError as MessageException, SerializationError
+from kame.msg.errors import DeserializationError, SerializationError
+from kame.msg.errors import MessageError as MessageException
 from kame.msg.message import Message
 from kame.rostime import Duration, Time, TVal
 
