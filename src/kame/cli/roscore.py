@@ -5,8 +5,9 @@ ROS_MASTER_URI, `setting /run_id to ...`, the refusal when a master already answ
 and the Ctrl-C lines. Logs go to <log dir>/<run_id>/ (master.log, roslaunch-<host>-<pid>.log)
 with <log dir>/latest pointing there; ROS_HOME/roscore-<port>.pid holds our PID while we run.
 
-The master runs in this process, so `process[master]` reports our own PID. The rosout node is
-not started yet: it is a kame node and needs the client runtime (see `start_core_nodes`).
+The master runs in this process, so `process[master]` reports our own PID. The rosout node runs
+as a child process (`python -m kame.cli.rosout`), respawned when it dies, its stdout in
+<run dir>/rosout-1-stdout.log, and stopped before the master on Ctrl-C (see `start_core_nodes`).
 """
 
 from __future__ import annotations
@@ -25,6 +26,7 @@ from urllib.parse import urlsplit
 
 from kame.cli.rosmaster import DEFAULT_PORT, flush_periodically, log_dir, ros_home, serve, setup_file_logging
 from kame.master.server import NOTIFY_TIMEOUT, MasterServer
+from kame.net.process import SupervisedProcess
 
 ROS_VERSION = "1.15.15"
 ROS_DISTRO = "noetic"
@@ -89,13 +91,43 @@ def _link_latest(logs: Path, run_dir: Path) -> None:
         pass  # a read-only or odd log dir must not stop the core; ROS ignores this too
 
 
-async def start_core_nodes(server: MasterServer, run_dir: Path) -> None:
-    """The single place where roscore's core nodes start.
+ROSOUT = "rosout-1"  # roslaunch's process name: the node's name and its launch counter
+
+
+async def start_core_nodes(server: MasterServer, uri: str, run_dir: Path) -> list[SupervisedProcess]:
+    """The single place where roscore's core nodes start; returns them for `stop_core_nodes`.
 
     roscore's only core node is rosout (`rosout __name:=rosout __log:=<run_dir>/rosout-1.log`,
-    respawned when it dies). It is a kame node and will be started from here once the client
-    runtime (kame.node) exists; until then nothing is started and nothing is claimed.
+    respawned when it dies), as roscore.xml declares it.
     """
+
+    def started(pid: int, restarted: bool) -> None:
+        if restarted:
+            print(f"[{ROSOUT}] restarting process", flush=True)
+        _bold(f"process[{ROSOUT}]: started with pid [{pid}]")
+
+    def died(pid: int, code: int) -> None:
+        log.warning("%s (pid %d) died with exit code %d; respawning", ROSOUT, pid, code)
+
+    env = {**os.environ, "ROS_MASTER_URI": uri}
+    rosout = SupervisedProcess(
+        ROSOUT, [sys.executable, "-m", "kame.cli.rosout", "__name:=rosout", f"__log:={run_dir / (ROSOUT + '.log')}"],
+        env=env, stdout=run_dir / f"{ROSOUT}-stdout.log", respawn=True, on_start=started, on_exit=died)
+    try:
+        await rosout.start()
+    except OSError as exc:
+        print(f"{RED}ERROR: cannot launch node of type [rosout/rosout]: {exc}{RESET}", file=sys.stderr, flush=True)
+        log.error("cannot start rosout: %s", exc)
+        return []
+    print("started core service [/rosout]", flush=True)
+    return [rosout]
+
+
+async def stop_core_nodes(nodes: list[SupervisedProcess]) -> None:
+    """SIGINT to each, SIGKILL to any still there after 1 s: all within roscore's 2 s budget."""
+    for node in nodes:
+        print(f"[{node.name}] killing on exit", flush=True)
+    await asyncio.gather(*(node.stop(timeout=1.0) for node in nodes))
 
 
 def main(argv: Sequence[str] | None = None) -> int:
@@ -146,6 +178,7 @@ def main(argv: Sequence[str] | None = None) -> int:
 
     master_log = setup_file_logging(run_dir / "master.log")
     pid_file = ros_home(env) / f"roscore-{port}.pid"
+    core_nodes: list[SupervisedProcess] = []
 
     async def on_started(server: MasterServer, uri: str) -> None:
         print("auto-starting new master", flush=True)
@@ -164,12 +197,15 @@ def main(argv: Sequence[str] | None = None) -> int:
         pid_file.parent.mkdir(parents=True, exist_ok=True)
         pid_file.write_text(f"{os.getpid()}\n")
         log.info("master at %s, run_id %s, pid file %s", uri, run_id, pid_file)
-        await start_core_nodes(server, run_dir)
+        core_nodes.extend(await start_core_nodes(server, uri, run_dir))
+
+    async def on_stopping() -> None:
+        await stop_core_nodes(core_nodes)
 
     async def run() -> int:
         flushers = [asyncio.ensure_future(flush_periodically(h)) for h in (handler, master_log)]
         try:
-            return await serve(port, options.timeout, on_started)
+            return await serve(port, options.timeout, on_started, on_stopping)
         finally:
             for f in flushers:
                 f.cancel()

@@ -92,8 +92,11 @@ async def flush_periodically(handler: logging.Handler, every: float = 1.0) -> No
 
 
 async def serve(port: int, notify_timeout: float,
-                on_started: Callable[[MasterServer, str], Awaitable[None]] | None = None) -> int:
-    """Run a master on `port` until SIGINT/SIGTERM or a shutdown call; returns the exit status."""
+                on_started: Callable[[MasterServer, str], Awaitable[None]] | None = None,
+                on_stopping: Callable[[], Awaitable[None]] | None = None) -> int:
+    """Run a master on `port` until SIGINT/SIGTERM or a shutdown call; returns the exit status.
+
+    `on_stopping` runs before the master closes, so what roscore started can still unregister."""
     override = address_override(os.environ)
     server = MasterServer(bind_host(override), port, advertised_host(override), notify_timeout=notify_timeout)
     try:
@@ -115,6 +118,8 @@ async def serve(port: int, notify_timeout: float,
         shutdown_call.cancel()
         stop_signal.cancel()
     finally:
+        if on_stopping is not None:
+            await on_stopping()  # a second Ctrl-C meanwhile only sets `stop` again
         for sig in (signal.SIGINT, signal.SIGTERM):
             loop.remove_signal_handler(sig)
         logging.getLogger("kame.master").info("stopping master...")
