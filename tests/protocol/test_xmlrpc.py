@@ -230,3 +230,142 @@ def test_agrees_with_stdlib_loads_on_python_output() -> None:
 
 def test_fault_str() -> None:
     assert str(x.Fault(1, "m")) == "<Fault 1: 'm'>"
+
+
+# ---------------------------------------------------------------------------------------- fast path
+# Flat requests skip expat. The fast path must give exactly the full parser's values, and must
+# decline (return None, so the full parser decides) everything outside its strict subset.
+
+def _full(body: bytes) -> tuple[str, list[object]] | type[x.MalformedError]:
+    try:
+        return x._decode_request_full(body)  # type: ignore[return-value]
+    except x.MalformedError:
+        return x.MalformedError
+
+
+FAST = [
+    xmlrpc.client.dumps(("/caller", "/node"), "lookupNode").encode(),
+    xmlrpc.client.dumps(("/c", "/t", "std_msgs/String", "http://h:1/"), "registerPublisher").encode(),
+    xmlrpc.client.dumps(("/c",), "getSystemState").encode(),
+    xmlrpc.client.dumps((), "getPid").encode(),
+    xmlrpc.client.dumps(("/c", "/k", 7, -(2**31), True, False, 1.5, -0.0, 1e300, 1.5e-07, ""), "m").encode(),
+    xmlrpc.client.dumps(("tab\tand\nnewline", "~!@#$%^*()_+{}|:\"'?/.,;=`"), "m").encode(),
+    XMLRPCPP_REQUEST,
+    b'<?xml version="1.0"?>\r\n<methodCall><methodName>getParam</methodName>\r\n<params><param><value>/n'
+    b"</value></param><param><value></value></param><param><value><i4>-5</i4></value></param>"
+    b"</params></methodCall>\r\n",
+    b"<methodCall><methodName>getPid</methodName></methodCall>",
+    b" \n<methodCall><methodName></methodName><params></params></methodCall>\n\n",
+    b"<methodCall><methodName>m</methodName><params><param><value><int>0007</int></value></param>"
+    b"<param><value><double>12</double></value></param></params></methodCall>",
+]
+
+
+@pytest.mark.parametrize("body", FAST)
+def test_fast_path_takes_flat_requests_with_identical_values(body: bytes) -> None:
+    fast = x._decode_flat_request(body)
+    assert fast is not None
+    assert fast == _full(body) == x.decode_request(body)
+    assert [type(v) for v in fast[1]] == [type(v) for v in _full(body)[1]]  # type: ignore[index]
+
+
+def _call(*params: bytes, method: bytes = b"m") -> bytes:
+    return (b"<?xml version='1.0'?>\n<methodCall>\n<methodName>" + method + b"</methodName>\n<params>\n"
+            + b"".join(b"<param>\n<value>" + p + b"</value>\n</param>\n" for p in params)
+            + b"</params>\n</methodCall>\n")
+
+
+# Valid requests the fast path leaves to expat (the full parser reads them).
+FALLBACK_VALID = [
+    _call(b"<string>a&amp;b</string>"),  # entity
+    _call(b"<string>&#x263A;</string>"),  # character reference
+    _call(b"<string><![CDATA[<x>]]></string>"),  # CDATA
+    _call(b"<string>\xc3\xbcn\xc3\xafc\xc3\xb8de</string>"),  # non-ASCII
+    _call(b"<string>[::1]</string>"),  # `]`
+    _call(b"<string>a\r\nb</string>"),  # CR, normalised by expat
+    _call(b"<array><data><value>a</value></data></array>"),  # nesting
+    _call(b"<struct><member><name>a</name><value>1</value></member></struct>"),
+    _call(b"<base64>aGk=\n</base64>"),
+    _call(b"<dateTime.iso8601>20260101T00:00:00</dateTime.iso8601>"),
+    _call(b"<int> 7 </int>"),
+    _call(b"<int>+7</int>"),
+    _call(b"<double>1E5</double>"),
+    _call(b"<double>inf</double>"),
+    _call(b"<i8>4294967296</i8>"),
+    _call(b"<int>" + b"9" * 19 + b"</int>"),
+    _call(b"\n<string>x</string>\n"),  # text around a typed value inside <value>
+    _call(b"<!-- hi --><string>x</string>"),  # comment
+    _call(b"x", method=b"a&amp;b"),
+    b"<?xml version='1.0' encoding='utf-8'?>\n<methodCall><methodName>m</methodName></methodCall>",
+    b"<?xml version='1.1'?><methodCall><methodName>m</methodName></methodCall>",
+    _call(b"<string>a&gt;b</string>"),
+    b"<?xml version='1.0'?><?pi x?><methodCall><methodName>m</methodName></methodCall>",
+    b"<methodCall><methodName>m</methodName><params/></methodCall>",
+    b"<methodCall><methodName>m</methodName><params><param><value/></param></params></methodCall>",
+    b'<methodCall ><methodName a="1">m</methodName></methodCall>',
+    b"\xef\xbb\xbf<methodCall><methodName>m</methodName></methodCall>",  # UTF-8 BOM
+    b"<methodCall><methodName>m</methodName><params><param>junk<value>a</value></param></params></methodCall>",
+]
+
+
+@pytest.mark.parametrize("body", FALLBACK_VALID)
+def test_fast_path_declines_what_only_the_full_parser_reads(body: bytes) -> None:
+    assert x._decode_flat_request(body) is None
+    assert x.decode_request(body) == _full(body) != x.MalformedError
+
+
+FALLBACK_INVALID = [
+    *MALFORMED,
+    _call(b"<string>a]]>b</string>"),
+    _call(b"<string>a\x01b</string>"),
+    _call(b"<string>a\xffb</string>"),
+    _call(b"<string>\xef\xbf\xbe</string>"),  # U+FFFE: valid UTF-8, not an XML character
+    _call(b"<string>x</str>"),
+    _call(b"<int>1</i4>"),
+    _call(b"<value>x</value>"),
+    _call(b"<boolean>2</boolean>"),
+    _call(b"<string>a</string>") + b"<trailing/>",
+    _call(b"<string>a</string>") + b"junk",
+    b"\n<?xml version='1.0'?><methodCall><methodName>m</methodName></methodCall>",  # decl not first
+    b"<methodCall><methodName>m</methodName><params></methodCall>",
+    b"<methodCall><methodName>m</methodName></params></methodCall>",
+    b"<methodCall><methodName>m</methodName>",
+    b"<methodcall><methodName>m</methodName></methodcall>",
+]
+
+
+@pytest.mark.parametrize("body", FALLBACK_INVALID)
+def test_fast_path_never_accepts_what_the_full_parser_refuses(body: bytes) -> None:
+    assert x._decode_flat_request(body) is None
+    with pytest.raises(x.MalformedError):
+        x.decode_request(body)
+
+
+def test_fast_path_agrees_with_full_parser_on_mutations() -> None:
+    # Differential fuzz: mutate accepted requests byte by byte; whatever the fast path accepts,
+    # the full parser must accept with identical values (and types).
+    import random
+
+    rng = random.Random(3)
+    alphabet = [*b"<>/&;]!?=x01-.e \t\r\n'\"", 0, 0x80, 0xC3, 0xFF, 0x0B]
+    seeds = [*FAST, _call(b"<string>ab</string>", b"<int>-12</int>", b"<double>1.5e+10</double>", b"zz")]
+    accepted = 0
+    for _ in range(20000):
+        body = bytearray(rng.choice(seeds))
+        for _ in range(rng.randint(1, 3)):
+            i = rng.randrange(len(body) + 1)
+            op = rng.randrange(3)
+            if op == 0:
+                body.insert(i, rng.choice(alphabet))
+            elif op == 1 and i < len(body):
+                del body[i]
+            elif i < len(body):
+                body[i] = rng.choice(alphabet)
+        data = bytes(body)
+        fast = x._decode_flat_request(data)
+        if fast is not None:
+            accepted += 1
+            full = _full(data)
+            assert full == fast, data
+            assert [type(v) for v in fast[1]] == [type(v) for v in full[1]], data  # type: ignore[index]
+    assert accepted > 300  # the fuzz did exercise the fast path

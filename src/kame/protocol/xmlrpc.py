@@ -12,12 +12,18 @@ Rules (ros1-interop spec §2):
   cannot build unbounded Python structures.
 This is the master's hot path: encoding appends strings to one list, decoding is a flat event
 loop over expat callbacks with a value stack, no per-element objects.
+- Requests as ROS clients send them (a flat list of ASCII string/int/i4/boolean/double params,
+  in xmlrpc.client's or XmlRpc++'s layout) are decoded by one regular expression per param
+  instead of expat: about 5x cheaper. That path accepts a strict subset of what expat accepts
+  (no entities, CDATA, comments, attributes, nesting, `]`, control characters or non-ASCII) and
+  gives identical values; anything else, malformed input included, goes to the full parser.
 """
 
 from __future__ import annotations
 
 import base64
 import binascii
+import re
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import TypeAlias
@@ -326,8 +332,68 @@ def _decode(data: bytes) -> _Message:
     return _Message(root[0], method[0] if method else None, stack, len(root) > 1)
 
 
+# The fast path for flat requests. Whitespace between elements is ignored by the full parser too;
+# text is printable ASCII, tab and newline, without `&` and `<` (no references or markup), `]`
+# (so never `]]>`) or CR (which expat would normalise). Numbers are limited to forms int() and
+# float() read exactly as they read the full parser's text.
+_WS = rb"[ \t\r\n]*"
+_TEXT = rb"[\t\n\x20-\x25\x27-\x3b\x3d-\x5c\x5e-\x7e]*"
+_FAST_HEAD = re.compile(
+    rb"(?:<\?xml version=(?:'1\.0'|\"1\.0\")\?>)?" + _WS + rb"<methodCall>" + _WS
+    + rb"<methodName>(" + _TEXT + rb")</methodName>" + _WS + rb"(<params>" + _WS + rb")?")
+_FAST_PARAM = re.compile(
+    rb"<param>" + _WS + rb"<value>(?:"
+    rb"<string>(" + _TEXT + rb")</string>"  # 1
+    rb"|<int>(-?[0-9]{1,18})</int>"  # 2
+    rb"|<i4>(-?[0-9]{1,18})</i4>"  # 3
+    rb"|<boolean>([01])</boolean>"  # 4
+    rb"|<double>(-?[0-9]{1,300}(?:\.[0-9]{1,300})?(?:e[-+]?[0-9]{1,3})?)</double>"  # 5
+    rb"|(" + _TEXT + rb"))"  # 6: XmlRpc++'s untagged string
+    rb"</value>" + _WS + rb"</param>" + _WS)
+_FAST_END_PARAMS = re.compile(rb"</params>" + _WS + rb"</methodCall>" + _WS)
+_FAST_END = re.compile(rb"</methodCall>" + _WS)
+
+
+def _decode_flat_request(data: bytes) -> tuple[str, list[Value]] | None:
+    """(method, params) if `data` is a flat request the fast path reads, else None."""
+    m = _FAST_HEAD.match(data)
+    if m is None:
+        return None
+    method = m.group(1).decode("ascii")
+    pos = m.end()
+    params: list[Value] = []
+    if m.group(2) is not None:
+        match_param = _FAST_PARAM.match
+        append = params.append
+        while (p := match_param(data, pos)) is not None:
+            kind = p.lastindex
+            text = p.group(kind)  # type: ignore[arg-type]
+            if kind == 1 or kind == 6:
+                append(text.decode("ascii"))
+            elif kind == 4:
+                append(text == b"1")
+            elif kind == 5:
+                append(float(text))
+            else:
+                append(int(text))
+            pos = p.end()
+        end = _FAST_END_PARAMS
+    else:
+        end = _FAST_END
+    if end.fullmatch(data, pos) is None:
+        return None
+    return method, params
+
+
 def decode_request(data: bytes) -> tuple[str, list[Value]]:
     """Decode a `methodCall` body into (method name, params). Raises MalformedError."""
+    fast = _decode_flat_request(data)
+    if fast is not None:
+        return fast
+    return _decode_request_full(data)
+
+
+def _decode_request_full(data: bytes) -> tuple[str, list[Value]]:
     msg = _decode(data)
     if msg.kind != "methodCall" or msg.method is None:
         raise MalformedError("not an XML-RPC method call")
