@@ -9,6 +9,6 @@ if [ ! -x .venv/bin/python ]; then
   "$python" -m venv .venv
 fi
 .venv/bin/python -m pip install -q --disable-pip-version-check -e '.[test]'
-.venv/bin/python -m ruff check src tests bench tools
+.venv/bin/python -m ruff check src tests bench
 .venv/bin/python -m mypy
 .venv/bin/python -m pytest -q "$@"
