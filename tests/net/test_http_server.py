@@ -5,6 +5,7 @@ from __future__ import annotations
 import asyncio
 import re
 import socket
+import time
 from collections.abc import Iterator
 
 import pytest
@@ -102,3 +103,66 @@ def test_client_refused_connection() -> None:
         port = s.getsockname()[1]
     with pytest.raises(OSError):
         asyncio.run(xmlrpc_client.call(f"http://127.0.0.1:{port}/", "getPid", ["/x"], 2))
+
+
+def _read_until(s: socket.socket, tail: bytes) -> bytes:
+    out = b""
+    while not out.endswith(tail):
+        chunk = s.recv(65536)
+        assert chunk, out
+        out += chunk
+    return out
+
+
+def test_requests_split_anywhere_and_heads_reused(server: tuple[HttpServer, LoopThread]) -> None:
+    # Requests arriving whole are parsed from the segment itself, split ones from the buffer;
+    # equal heads are parsed once and shared. Each way must give the same answers.
+    srv, _ = server
+    one = b"POST /p HTTP/1.1\r\nContent-Length: 3\r\n\r\n"
+    stream = one + b"abc" + one + b"def" + b"POST /q HTTP/1.1\r\nContent-Length: 3\r\n\r\nghi"
+    for cut in range(len(stream) + 1):
+        with socket.create_connection(("127.0.0.1", srv.port), timeout=3) as s:
+            s.sendall(stream[:cut])
+            time.sleep(0.002)
+            s.sendall(stream[cut:])
+            out = _read_until(s, b"/q ghi")
+        assert re.findall(rb"POST /\w [a-z]{3}", out) == [b"POST /p abc", b"POST /p def", b"POST /q ghi"], cut
+    with socket.create_connection(("127.0.0.1", srv.port), timeout=3) as s:  # byte by byte
+        for i in range(len(stream)):
+            s.sendall(stream[i : i + 1])
+        assert re.findall(rb"POST /\w [a-z]{3}", _read_until(s, b"/q ghi")) == [
+            b"POST /p abc", b"POST /p def", b"POST /q ghi"]
+
+
+def test_head_cache_is_bounded(server: tuple[HttpServer, LoopThread]) -> None:
+    srv, _ = server
+    with socket.create_connection(("127.0.0.1", srv.port), timeout=3) as s:
+        for i in range(600):
+            s.sendall(b"POST /%d HTTP/1.1\r\nContent-Length: 1\r\n\r\nx" % i)
+            _read_until(s, b"/%d x" % i)
+        s.sendall(b"POST /big HTTP/1.1\r\nX: " + b"a" * 2000 + b"\r\nContent-Length: 1\r\n\r\nx")
+        _read_until(s, b"/big x")
+    assert 0 < len(srv._heads) <= 256
+    assert not any(len(h) > 1024 for h in srv._heads)
+
+
+def test_partial_request_times_out_after_served_ones() -> None:
+    # Requests that arrive whole set no request deadline; one left incomplete still gets 408.
+    loop = LoopThread()
+    srv = HttpServer(echo, "127.0.0.1", 0, ServerLimits(idle_timeout=5.0, request_timeout=0.3))
+    loop.run(srv.start())
+    try:
+        with socket.create_connection(("127.0.0.1", srv.port), timeout=3) as s:
+            for _ in range(3):
+                s.sendall(b"POST /a HTTP/1.1\r\nContent-Length: 1\r\n\r\nx")
+                _read_until(s, b"/a x")
+            t0 = time.monotonic()
+            s.sendall(b"POST /a HTTP/1.1\r\nContent-Length: 1\r\n\r\nxPOST /b HTTP/1.1\r\nContent-Le")
+            _read_until(s, b"/a x")
+            time.sleep(0.1)
+            s.sendall(b"ngth: 5\r\n\r\nab")  # more bytes do not extend the request's deadline
+            assert _read_until(s, b"\r\n\r\n").startswith(b"HTTP/1.1 408 ")
+            assert 0.25 < time.monotonic() - t0 < 2
+    finally:
+        loop.run(srv.close())
+        loop.close()

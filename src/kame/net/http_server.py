@@ -13,14 +13,18 @@ Rules:
   a connection may stay silent, and the time a started request may take to arrive. A client
   that stops reading its responses is paused, not buffered for.
 - Refusals are logged at WARNING with the peer address; the server keeps serving everyone else.
+- Per request, the usual case costs little: a request that arrives in one segment is parsed from
+  it without copying into the buffer, a request head seen before (a client repeats its own) is
+  looked up instead of parsed, and the deadline is set once per batch of data, not per request.
 """
 
 from __future__ import annotations
 
 import asyncio
 import logging
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
+from types import MappingProxyType
 
 log = logging.getLogger("kame.net.http")
 
@@ -35,7 +39,7 @@ _REASONS = {
 class HttpRequest:
     method: str
     path: str
-    headers: dict[str, str]  # names lower-cased
+    headers: Mapping[str, str]  # names lower-cased; read-only, shared by requests with equal heads
     body: bytes
     peer: str
 
@@ -60,6 +64,12 @@ class ServerLimits:
     request_timeout: float = 30.0  # a request must arrive completely within this once started
 
 
+# A parsed request head: method, path, version, headers, Content-Length, keep-alive.
+_Head = tuple[str, str, str, Mapping[str, str], int, bool]
+_HEAD_CACHE_SIZE = 256  # distinct heads remembered per server (a client repeats its own)
+_HEAD_CACHE_MAX_BYTES = 1024  # longer heads are parsed every time, so the cache stays small
+
+
 @dataclass
 class _Budget:
     receiving: int = 0
@@ -72,8 +82,9 @@ class _Connection(asyncio.Protocol):
     peer: str = "?"
     buf: bytearray = field(default_factory=bytearray)
     # the request being received: its head, once parsed, and its Content-Length
-    head: tuple[str, str, str, dict[str, str]] | None = None
+    head: _Head | None = None
     need: int = 0
+    receiving: bool = False  # the deadline set is the current request's request_timeout
     reserved: int = 0  # bytes of the shared receive budget this connection holds
     deadline: float = 0.0
     timer: asyncio.TimerHandle | None = None
@@ -102,11 +113,13 @@ class _Connection(asyncio.Protocol):
         self.transport = None
 
     def data_received(self, data: bytes) -> None:
-        if not self.buf and self.head is None:
-            # a new request starts: it must arrive within request_timeout
-            self._arm(self.server.limits.request_timeout)
-        self.buf += data
-        self._process()
+        if self.buf:
+            self.buf += data
+            self._process(self.buf)
+        else:
+            # The usual case, a whole request in one segment, is parsed from `data` itself:
+            # only an incomplete rest is copied into `buf`.
+            self._process(data)
 
     def pause_writing(self) -> None:
         # The client does not read its responses: stop reading its requests until it does.
@@ -118,36 +131,44 @@ class _Connection(asyncio.Protocol):
         self.paused = False
         if self.transport is not None:
             self.transport.resume_reading()
-            self._process()
+            self._process(self.buf)
 
     # ---------------------------------------------------------------------------- requests
 
-    def _process(self) -> None:
+    def _process(self, data: bytes | bytearray) -> None:
+        """Serve the complete requests in `data` (which is either `buf` or, with `buf` empty,
+        what just arrived), keep the rest in `buf`, and set the connection's deadline."""
         limits = self.server.limits
+        pos = 0
+        served = False
         while self.transport is not None and not self.paused:
             if self.head is None:
-                end = self.buf.find(b"\r\n\r\n")
+                end = data.find(b"\r\n\r\n", pos)
                 if end < 0:
-                    if len(self.buf) > limits.max_header:
+                    if len(data) - pos > limits.max_header:
                         self._refuse(431, "request head too large")
-                    return
-                if end > limits.max_header:
+                        return
+                    break
+                if end - pos > limits.max_header:
                     self._refuse(431, "request head too large")
                     return
-                if not self._parse_head(bytes(self.buf[:end])):
+                if not self._start_request(bytes(data[pos:end])):
                     return
-                del self.buf[: end + 4]
-            if len(self.buf) < self.need:
-                return
-            body = bytes(self.buf[: self.need])
-            del self.buf[: self.need]
-            assert self.head is not None
-            method, path, version, headers = self.head
+                pos = end + 4
+            need = self.need
+            if len(data) - pos < need:
+                break
+            body = data[pos : pos + need]
+            pos += need
+            head = self.head
+            assert head is not None
+            method, path, version, headers, _, keep_alive = head
             self.head = None
-            self._release()
-            keep_alive = _keep_alive(version, headers)
+            if self.reserved:
+                self._release()
             try:
-                response = self.server.handler(HttpRequest(method, path, headers, body, self.peer))
+                response = self.server.handler(
+                    HttpRequest(method, path, headers, body if type(body) is bytes else bytes(body), self.peer))
             except Exception:
                 log.exception("handler failed for %s %s from %s", method, path, self.peer)
                 response = HttpResponse(500, b"", "text/plain")
@@ -155,55 +176,85 @@ class _Connection(asyncio.Protocol):
             if not keep_alive:
                 return
             self.served += 1
+            served = True
+        if data is self.buf:
+            del self.buf[:pos]
+        elif pos < len(data):
+            self.buf += memoryview(data)[pos:]
+        if self.transport is None:
+            return
+        if served:
             self.server._touch(self)
-            self._arm(limits.idle_timeout if not self.buf else limits.request_timeout)
+        # One deadline per batch: a request that arrived whole never needed its own.
+        if self.buf or self.head is not None:
+            if served or not self.receiving:
+                # a request has started arriving: it must be complete within request_timeout
+                self.receiving = True
+                self._arm(limits.request_timeout)
+        elif served:
+            self.receiving = False
+            self._arm(limits.idle_timeout)
 
-    def _parse_head(self, raw: bytes) -> bool:
+    def _start_request(self, raw: bytes) -> bool:
+        """Take a request head (cached by its bytes: a client repeats the same head)."""
+        heads = self.server._heads
+        head = heads.get(raw)
+        if head is None:
+            head = self._parse_head(raw)
+            if head is None:
+                return False
+            if len(raw) <= _HEAD_CACHE_MAX_BYTES:
+                if len(heads) >= _HEAD_CACHE_SIZE:
+                    heads.clear()
+                heads[raw] = head
+        length = head[4]
+        if length and not self.server._reserve(self, length):
+            self._refuse(503, f"busy: cannot take {length} more bytes now")
+            return False
+        self.head = head
+        self.need = length
+        return True
+
+    def _parse_head(self, raw: bytes) -> _Head | None:
         lines = raw.decode("latin-1").split("\r\n")
         parts = lines[0].split(" ")
         if len(parts) != 3 or not parts[2].startswith("HTTP/"):
             self._refuse(400, f"bad request line {lines[0][:80]!r}")
-            return False
+            return None
         method, path, version = parts
         if version not in ("HTTP/1.1", "HTTP/1.0"):
             self._refuse(505, f"unsupported {version[:20]!r}")
-            return False
+            return None
         headers: dict[str, str] = {}
         for line in lines[1:]:
             name, sep, value = line.partition(":")
             if not sep:
                 self._refuse(400, "bad header line")
-                return False
+                return None
             headers[name.strip().lower()] = value.strip()
         if "chunked" in headers.get("transfer-encoding", "").lower():
             self._refuse(411, "chunked request body")
-            return False
+            return None
         try:
             length = int(headers.get("content-length", "0"))
         except ValueError:
             length = -1
         if length < 0:
             self._refuse(400, "bad Content-Length")
-            return False
+            return None
         if length > self.server.limits.max_body:
             self._refuse(413, f"body of {length} bytes")
-            return False
-        if not self.server._reserve(self, length):
-            self._refuse(503, f"busy: cannot take {length} more bytes now")
-            return False
-        self.head = (method, path, version, headers)
-        self.need = length
-        return True
+            return None
+        return method, path, version, MappingProxyType(headers), length, _keep_alive(version, headers)
 
     def _send(self, response: HttpResponse, version: str, keep_alive: bool) -> None:
         assert self.transport is not None
-        head = (
-            f"{version} {response.status} {_REASONS.get(response.status, 'Unknown')}\r\n"
-            f"Content-type: {response.content_type}\r\nContent-length: {len(response.body)}\r\n"
-        )
-        if not keep_alive:
-            head += "Connection: close\r\n"
-        self.transport.write(head.encode("latin-1") + b"\r\n" + response.body)
+        key = (version, response.status, response.content_type, keep_alive)
+        head = _RESPONSE_HEADS.get(key)
+        if head is None:
+            head = _RESPONSE_HEADS[key] = _response_head(*key)
+        body = response.body
+        self.transport.write(head[0] + b"%d" % len(body) + head[1] + body)
         if not keep_alive:
             self.transport.close()
 
@@ -213,6 +264,7 @@ class _Connection(asyncio.Protocol):
             self._send(HttpResponse(status, b"", "text/plain"), "HTTP/1.1", keep_alive=False)
         self.buf.clear()
         self.head = None
+        self.receiving = False
 
     # ---------------------------------------------------------------------------- timing and budget
 
@@ -249,6 +301,16 @@ class _Connection(asyncio.Protocol):
         return not self.buf and self.head is None
 
 
+def _response_head(version: str, status: int, content_type: str, keep_alive: bool) -> tuple[bytes, bytes]:
+    """The response head's bytes before and after the Content-length value."""
+    before = f"{version} {status} {_REASONS.get(status, 'Unknown')}\r\nContent-type: {content_type}\r\nContent-length: "
+    after = "\r\n" if keep_alive else "\r\nConnection: close\r\n"
+    return before.encode("latin-1"), (after + "\r\n").encode("latin-1")
+
+
+_RESPONSE_HEADS: dict[tuple[str, int, str, bool], tuple[bytes, bytes]] = {}
+
+
 def _keep_alive(version: str, headers: dict[str, str]) -> bool:
     connection = headers.get("connection", "").lower()
     if version == "HTTP/1.1":
@@ -265,6 +327,7 @@ class HttpServer:
         self.port = port
         self.limits = limits or ServerLimits()
         self._budget = _Budget()
+        self._heads: dict[bytes, _Head] = {}
         self._connections: dict[_Connection, None] = {}  # least recently active first
         self._server: asyncio.Server | None = None
         self._loop: asyncio.AbstractEventLoop | None = None
