@@ -8,14 +8,11 @@ the system temp dir; without g++ or roscpp's headers those tests are skipped.
 
 from __future__ import annotations
 
-import hashlib
 import os
 import re
-import shutil
 import signal
 import subprocess
 import sys
-import tempfile
 import time
 import xmlrpc.client
 from collections.abc import Callable, Iterator
@@ -29,7 +26,6 @@ from ..support import SYSTEM_PYTHON, Proc, free_port, have_debian_ros, kame_comm
 pytestmark = pytest.mark.skipif(not have_debian_ros(), reason="Debian's ROS 1 (rospy, ros* tools) is not installed")
 
 HERE = Path(__file__).parent
-CPP = HERE / "cpp"
 LOG_NODE = HERE / "kame_log_node.py"
 PEER = HERE / "ros_peer_node.py"
 
@@ -82,38 +78,6 @@ def core(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Core]:
 
 
 # ------------------------------------------------------------------ roscpp peers
-
-
-def _roscpp_flags() -> list[str] | None:
-    if shutil.which("g++") is None or shutil.which("pkg-config") is None:
-        return None
-    result = subprocess.run(["pkg-config", "--cflags", "--libs", "roscpp", "std_msgs"], capture_output=True,
-                            text=True)
-    if result.returncode != 0 or not Path("/usr/include/ros/ros.h").exists():
-        return None
-    return result.stdout.split()
-
-
-@pytest.fixture(scope="module")
-def cpp_peers() -> dict[str, Path]:
-    """The compiled talker and listener (built once per source version, reused across runs)."""
-    flags = _roscpp_flags()
-    if flags is None:
-        pytest.skip("g++ or roscpp's headers (pkg-config roscpp std_msgs) are not installed")
-    sources = sorted(CPP.glob("*.cpp"))
-    digest = hashlib.sha256(b"".join(p.read_bytes() for p in sources) + " ".join(flags).encode()).hexdigest()[:16]
-    build = Path(tempfile.gettempdir()) / f"kame-roscpp-peers-{digest}"
-    build.mkdir(exist_ok=True)
-    built = {}
-    for source in sources:
-        target = build / source.stem
-        if not target.exists():
-            partial = build / f"{source.stem}.{os.getpid()}.tmp"  # atomic: parallel runs never see half a file
-            subprocess.run(["g++", "-O1", "-std=c++17", "-o", str(partial), str(source), *flags], check=True,
-                           capture_output=True, timeout=300)
-            partial.replace(target)
-        built[source.stem] = target
-    return built
 
 
 def test_roscpp_talker_and_listener(core: Core, cpp_peers: dict[str, Path]) -> None:

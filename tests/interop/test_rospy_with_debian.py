@@ -243,3 +243,16 @@ def test_a_parameterised_node_from_the_courses(graph: Graph) -> None:
     echoed = graph.tool("rostopic", "echo", "-n", "1", "/turtle1/cmd_vel")
     assert "linear: \n  x: 2.0" in echoed and "angular: \n  x: 0.0\n  y: 0.0\n  z: 4.0" in echoed
     assert wait_until(lambda: "/circle_driver" in graph.nodes())
+
+
+def test_kame_talker_to_roscpp_listener_and_roscpp_talker_to_kame_listener(
+        graph: Graph, cpp_peers: dict[str, Path]) -> None:
+    graph.kame("talker.py")
+    cpp_listener = Proc([str(cpp_peers["listener"])], graph.env)
+    graph.procs.append(cpp_listener)
+    assert cpp_listener.wait_line("I heard: [hello world ").startswith("I heard: [hello world ")
+    cpp_talker = Proc([str(cpp_peers["talker"]), "chatter:=from_cpp"], graph.env)
+    graph.procs.append(cpp_talker)
+    kame_listener = graph.kame("listener.py", "chatter:=from_cpp")
+    heard = kame_listener.wait_line("I heard hello ")
+    assert "]: /listener_" in heard and heard.rstrip().split("I heard hello ")[1].isdigit()
