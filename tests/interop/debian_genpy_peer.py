@@ -14,8 +14,9 @@ import sys
 
 import genmsg
 import genmsg.msg_loader
-import genpy
 from genmsg import gentools
+
+import genpy
 
 SHARE = "/usr/share"
 
