@@ -28,6 +28,9 @@ LAYERS: dict[str, int] = {
     "kame.master.server": 3,
     "kame.cli": 4,
     "kame.importhook": 4,
+    "kame.launch": 1,
+    "kame.launch.supervisor": 2,
+    "kame.launch.runner": 4,
 }
 PURE_FORBIDDEN = {"socket", "select", "selectors", "asyncio", "threading", "subprocess", "signal", "time",
                   "multiprocessing", "concurrent"}  # datetime is allowed: YAML dates are values

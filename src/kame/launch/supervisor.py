@@ -1,0 +1,230 @@
+"""The processes of a launch: started, watched, respawned, and stopped with no orphan left.
+
+Rules (roslaunch's nodeprocess and pmon, with its console wording):
+- Each child runs in its own session (process group), so a terminal's Ctrl-C reaches only us;
+  we stop a child by signalling its group: SIGINT, then after `sigint_timeout` SIGTERM
+  (`[name] escalating to SIGTERM`), then after `sigterm_timeout` SIGKILL.
+- A child that exits is reported (`[name] process has finished cleanly` in bold, or red
+  `process has died [pid, exit code, cmd]`). A respawning child starts again after its
+  respawn_delay (`[name] restarting process`); a required one ends the whole launch.
+- When every non-core child is gone and nothing will respawn, the monitor ends (unless told to
+  keep going, as roslaunch does when it started the master).
+- Shutdown stops the children in reverse start order, then the core processes (rosout, master).
+"""
+
+from __future__ import annotations
+
+import asyncio
+import contextlib
+import errno
+import logging
+import os
+import signal
+import sys
+from collections.abc import Callable
+from pathlib import Path
+from typing import IO
+
+from kame.launch.plan import ProcessSpec
+
+log = logging.getLogger("kame.launch")
+BOLD, RED, RESET = "\033[1m", "\033[31m", "\033[0m"
+
+
+def _write(stream: IO[str], text: str) -> None:
+    """A closed terminal or pipe must not stop the launch from stopping its children."""
+    try:
+        print(text, file=stream, flush=True)
+    except (OSError, ValueError):
+        pass
+
+
+def say(text: str) -> None:
+    _write(sys.stdout, text)
+
+
+def say_bold(text: str) -> None:
+    _write(sys.stdout, f"{BOLD}{text}{RESET}")
+
+
+def say_error(text: str) -> None:
+    _write(sys.stderr, f"{RED}{text}{RESET}")
+
+
+class LaunchFailure(Exception):
+    """A process that could not even be started (bad launch-prefix, missing program)."""
+
+
+class Child:
+    """One launched process (the same name across respawns)."""
+
+    def __init__(self, spec: ProcessSpec, run_dir: Path | None, core: bool = False) -> None:
+        self.spec = spec
+        self.run_dir = run_dir
+        self.core = core
+        self.proc: asyncio.subprocess.Process | None = None
+        self.pid = -1
+        self.starts = 0
+        self.exit_code: int | None = None
+        self.stopping = False
+
+    @property
+    def name(self) -> str:
+        return self.spec.name
+
+    async def start(self) -> int:
+        out: IO[bytes] | None = None
+        if self.spec.log_output and self.run_dir is not None:
+            self.run_dir.mkdir(parents=True, exist_ok=True)
+            out = open(self.run_dir / f"{self.spec.log_name}-stdout.log", "ab" if self.spec.respawn else "wb")
+        os.makedirs(self.spec.cwd, exist_ok=True)
+        try:
+            self.proc = await asyncio.create_subprocess_exec(
+                *self.spec.argv, env=dict(self.spec.env), cwd=self.spec.cwd, stdout=out, start_new_session=True)
+        except OSError as exc:
+            self.pid, self.exit_code = -1, None
+            if exc.errno == errno.ENOEXEC:
+                raise LaunchFailure(f"Unable to launch [{self.name}]. \n"
+                                    "If it is a script, you may be missing a '#!' declaration at the top.") from exc
+            if exc.errno == errno.ENOENT:
+                raise LaunchFailure(
+                    f"Roslaunch got a '{exc.strerror}' error while attempting to run:\n\n{' '.join(self.spec.argv)}\n\n"
+                    "Please make sure that all the executables in this command exist and have\n"
+                    "executable permission. This is often caused by a bad launch-prefix.") from exc
+            raise LaunchFailure(f"unable to launch [{' '.join(self.spec.argv)}]: {exc.strerror}") from exc
+        finally:
+            if out is not None:
+                out.close()
+        self.starts += 1
+        self.exit_code = None
+        self.pid = self.proc.pid
+        say_bold(f"process[{self.name}]: started with pid [{self.pid}]")
+        log.info("process[%s]: started %s with pid %d", self.name, self.spec.argv, self.pid)
+        return self.pid
+
+    def exit_description(self) -> str:
+        cmd = " ".join(self.spec.argv)
+        if self.exit_code is None:
+            text = f"process has died without exit code [pid {self.pid}, cmd {cmd}]."
+        elif self.exit_code != 0:
+            text = f"process has died [pid {self.pid}, exit code {self.exit_code}, cmd {cmd}]."
+        else:
+            text = "process has finished cleanly"
+        if self.run_dir is not None:
+            text += f"\nlog file: {self.run_dir / self.spec.log_name}*.log"
+        return text
+
+    async def stop(self, sigint_timeout: float, sigterm_timeout: float) -> None:
+        self.stopping = True
+        proc = self.proc
+        if proc is None or proc.returncode is not None:
+            return
+        steps = ((signal.SIGINT, sigint_timeout, "SIGTERM"), (signal.SIGTERM, sigterm_timeout, "SIGKILL"))
+        for sig, timeout, escalation in steps:
+            self._signal(sig)
+            try:
+                await asyncio.wait_for(proc.wait(), timeout)
+                return
+            except asyncio.TimeoutError:
+                say_error(f"[{self.name}] escalating to {escalation}")
+        self._signal(signal.SIGKILL)
+        await proc.wait()
+
+    def _signal(self, sig: signal.Signals) -> None:
+        """To the child's process group (its children too), or the child itself if the group is gone."""
+        assert self.proc is not None
+        try:
+            os.killpg(self.proc.pid, sig)
+        except ProcessLookupError:
+            with contextlib.suppress(ProcessLookupError):
+                os.kill(self.proc.pid, sig)
+        except PermissionError:
+            with contextlib.suppress(ProcessLookupError):
+                os.kill(self.proc.pid, sig)
+
+
+class Monitor:
+    """Watches the children; `run()` returns when the launch is over (or `shutdown_event` is set)."""
+
+    def __init__(self, sigint_timeout: float = 15.0, sigterm_timeout: float = 2.0, keep_alive: bool = False,
+                 on_death: Callable[[Child], None] | None = None) -> None:
+        self.sigint_timeout = sigint_timeout
+        self.sigterm_timeout = sigterm_timeout
+        self.keep_alive = keep_alive
+        self.on_death = on_death
+        self.children: list[Child] = []
+        self.core: list[Child] = []
+        self.done = asyncio.Event()
+        self._watchers: list[asyncio.Task[None]] = []
+
+    async def add(self, child: Child) -> bool:
+        """Start `child` and watch it; False (reported, recorded as dead) when it cannot start."""
+        (self.core if child.core else self.children).append(child)
+        try:
+            await child.start()
+        except LaunchFailure as exc:
+            say_error(f"RLException: {exc}")
+            say_error(f"[{child.name}] {child.exit_description()}")
+            (self.core if child.core else self.children).remove(child)
+            return False
+        self._watchers.append(asyncio.ensure_future(self._watch(child)))
+        return True
+
+    async def _watch(self, child: Child) -> None:
+        while True:
+            assert child.proc is not None
+            code = await child.proc.wait()
+            if child.stopping:
+                return
+            child.exit_code = code
+            description = child.exit_description()
+            if self.on_death is not None:
+                self.on_death(child)
+            if child.spec.required and not child.core:
+                say_error("=" * 80 + f"REQUIRED process [{child.name}] has died!\n{description}\n"
+                          "Initiating shutdown!\n" + "=" * 80)
+                self.done.set()
+                return
+            if code:
+                say_error(f"[{child.name}] {description}")
+            else:
+                say_bold(f"[{child.name}] {description}")
+            if not child.spec.respawn:
+                self._check_all_dead()
+                return
+            await asyncio.sleep(child.spec.node.respawn_delay)
+            if child.stopping or self.done.is_set():
+                return
+            say(f"[{child.name}] restarting process")
+            try:
+                await child.start()
+            except LaunchFailure as exc:
+                say_error(f"RLException: {exc}")
+                self._check_all_dead()
+                return
+
+    def _alive(self, child: Child) -> bool:
+        return child.proc is not None and (child.proc.returncode is None or child.spec.respawn)
+
+    def _check_all_dead(self) -> None:
+        if not self.keep_alive and not any(self._alive(c) for c in self.children):
+            say("all processes on machine have died, roslaunch will exit")
+            self.done.set()
+
+    def has_processes(self) -> bool:
+        return any(self._alive(c) for c in self.children) or bool(self.core)
+
+    async def shutdown(self) -> None:
+        """Stop everything: children in reverse start order (together), then core processes in turn."""
+        self.done.set()
+        for child in reversed(self.children):
+            say(f"[{child.name}] killing on exit")
+        await asyncio.gather(*(c.stop(self.sigint_timeout, self.sigterm_timeout) for c in reversed(self.children)))
+        for child in reversed(self.core):
+            say(f"[{child.name}] killing on exit")
+            await child.stop(self.sigint_timeout, self.sigterm_timeout)
+        for task in self._watchers:
+            task.cancel()
+        for task in self._watchers:
+            with contextlib.suppress(asyncio.CancelledError):
+                await task
