@@ -31,6 +31,8 @@ LAYERS: dict[str, int] = {
     "kame.launch": 1,
     "kame.launch.supervisor": 2,
     "kame.launch.runner": 4,
+    "kame.catkin": 2,
+    "kame.shell": 4,
 }
 PURE_FORBIDDEN = {"socket", "select", "selectors", "asyncio", "threading", "subprocess", "signal", "time",
                   "multiprocessing", "concurrent"}  # datetime is allowed: YAML dates are values

@@ -1,0 +1,84 @@
+"""One build of a workspace: plan the packages, set each up in the devel space, report.
+
+Rules:
+- A package is set up even when part of it cannot be built: its C/C++ targets are listed
+  in its result (kame builds Python packages), its scripts, setup.py and messages still
+  work, and the other packages go on building.
+- Messages, services and actions need no generation step (kame's import hook reads them
+  from ROS_PACKAGE_PATH); the result counts them.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from kame.catkin.devel import Devel
+from kame.catkin.workspace import (
+    CppTarget,
+    WorkspacePackage,
+    install_python_programs,
+)
+
+
+@dataclass
+class PackageResult:
+    name: str
+    cpp_targets: list[CppTarget] = field(default_factory=list)
+    python_modules: list[str] = field(default_factory=list)
+    scripts: list[str] = field(default_factory=list)
+    interfaces: dict[str, list[str]] = field(default_factory=dict)
+    warnings: list[str] = field(default_factory=list)
+
+    @property
+    def failed(self) -> bool:
+        return bool(self.cpp_targets)
+
+    def cpp_message(self) -> str:
+        names = ", ".join(t.name for t in self.cpp_targets)
+        return (f"package '{self.name}' needs a C++ build (targets: {names}); kame builds Python packages only, "
+                f"so these targets were not built (its Python scripts and messages are set up)")
+
+
+def underlay_workspaces(env: dict[str, str] | os._Environ[str], devel: Path) -> list[str]:
+    """Workspaces this one is built on: catkin devel folders in CMAKE_PREFIX_PATH, underlays first."""
+    found = []
+    for prefix in env.get("CMAKE_PREFIX_PATH", "").split(os.pathsep):
+        if prefix and Path(prefix, ".catkin").is_file() and Path(prefix).resolve() != devel.resolve():
+            found.append(prefix)
+    return list(reversed(found))
+
+
+def build_package(devel: Devel, package: WorkspacePackage, python: str) -> PackageResult:
+    result = PackageResult(package.name, cpp_targets=package.cpp_targets, interfaces=package.interface_files())
+    setup = package.python_setup()
+    if setup is not None and (package.uses_python_setup or not package.cmake_text):
+        result.warnings.extend(setup.warnings)
+        result.python_modules = devel.python_package(package.path, setup, python)
+        result.scripts += devel.scripts(f"lib/{package.name}", package.path, setup.scripts, python)
+    elif package.uses_python_setup:
+        result.warnings.append(f"package '{package.name}' calls catkin_python_setup() but has no setup.py")
+    by_destination: dict[str, list[str]] = {}
+    for script, destination in install_python_programs(package.cmake_text, package.name):
+        by_destination.setdefault(destination, []).append(script)
+    for destination, scripts in by_destination.items():
+        result.scripts += devel.scripts(destination, package.path, scripts, python)
+    return result
+
+
+def build(packages: list[WorkspacePackage], devel_path: Path, sources: list[Path], underlays: list[str],
+          python: str, shell_dir: Path, progress: Callable[[int, PackageResult], None]) -> list[PackageResult]:
+    """Set every package up in the devel space (in order) and write the setup files."""
+    devel = Devel(devel_path)
+    devel_path.mkdir(parents=True, exist_ok=True)
+    devel.clean_previous()
+    devel.setup_files(sources, underlays, python, shell_dir)
+    results = []
+    for index, package in enumerate(packages):
+        result = build_package(devel, package, python)
+        results.append(result)
+        progress(index, result)
+    devel.write_manifest()
+    return results

@@ -1,0 +1,280 @@
+"""catkin_make: build a catkin workspace's Python packages into its devel space, no CMake.
+
+As catkin_make: run in the workspace root (or -C DIR); source space src/, build space
+build/, devel space devel/; prints the spaces, the packages in topological order and the
+progress; `-DVAR=VALUE` arguments are CMake cache variables (CATKIN_WHITELIST_PACKAGES and
+CATKIN_BLACKLIST_PACKAGES are honoured and, as in CMake, remembered in build/CMakeCache.txt
+until set again, `-DCATKIN_WHITELIST_PACKAGES=""` clears); `--only-pkg-with-deps` and
+`--pkg` select packages; make flags (-j, -l) and targets are accepted. Errors are one red
+line on stderr, exit 1. A package needing a C++ build is named with the reason, the
+others build, and the exit status is 1.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+from collections.abc import Sequence
+from pathlib import Path
+
+from kame.catkin.build import PackageResult, build, underlay_workspaces
+from kame.catkin.workspace import (
+    WorkspaceError,
+    cmake_list,
+    find_workspace_packages,
+    select,
+    with_dependencies,
+)
+
+RED = "\033[31m"
+RESET = "\033[0m"
+CACHE = "CMakeCache.txt"
+CACHED = ("CATKIN_WHITELIST_PACKAGES", "CATKIN_BLACKLIST_PACKAGES")
+WORKSPACE_MARKER = "# This file currently only serves to mark the location of a catkin workspace for tool integration\n"
+
+
+class BuildError(Exception):
+    pass
+
+
+def shell_dir() -> Path:
+    from kame.shell import SHELL_DIR
+
+    return SHELL_DIR
+
+
+def read_cache(build_path: Path) -> dict[str, str]:
+    values: dict[str, str] = {}
+    try:
+        lines = (build_path / CACHE).read_text().splitlines()
+    except OSError:
+        return values
+    for line in lines:
+        key, sep, value = line.partition("=")
+        if sep and not line.startswith(("#", "//")):
+            values[key.partition(":")[0]] = value
+    return values
+
+
+def write_cache(build_path: Path, values: dict[str, str]) -> None:
+    lines = ["# kame catkin_make cache: CMake cache variables given with -D, remembered between builds\n"]
+    lines += [f"{key}:STRING={value}\n" for key, value in sorted(values.items())]
+    (build_path / CACHE).write_text("".join(lines))
+
+
+def split_arguments(argv: Sequence[str]) -> tuple[list[str], dict[str, str], list[str]]:
+    """(catkin_make's own arguments, -D cache variables, make arguments and targets)."""
+    own: list[str] = []
+    defines: dict[str, str] = {}
+    make: list[str] = []
+    args = list(argv)
+    i = 0
+    while i < len(args):
+        arg = args[i]
+        if arg == "--cmake-args":
+            for extra in args[i + 1 :]:
+                if extra.startswith("-D") and "=" in extra:
+                    key, _, value = extra[2:].partition("=")
+                    defines[key.partition(":")[0]] = value
+            break
+        if arg == "--make-args":
+            make += args[i + 1 :]
+            break
+        if arg.startswith("-D") and "=" in arg:
+            key, _, value = arg[2:].partition("=")
+            defines[key.partition(":")[0]] = value
+        elif arg.startswith(("-j", "-l")) or arg in ("--jobs", "--load-average"):
+            make.append(arg)
+            if arg in ("-j", "-l", "--jobs", "--load-average") and i + 1 < len(args) and args[i + 1].isdigit():
+                i += 1
+                make.append(args[i])
+        else:
+            own.append(arg)
+        i += 1
+    return own, defines, make
+
+
+def parser() -> argparse.ArgumentParser:
+    p = argparse.ArgumentParser(
+        prog="catkin_make",
+        description="Creates the catkin workspace layout and builds its Python packages into the devel space "
+        "(kame: no CMake or compiler). Any argument starting with -D sets a CMake cache variable "
+        '(e.g. -DCATKIN_WHITELIST_PACKAGES="foo;bar", -DCATKIN_BLACKLIST_PACKAGES="foo;bar").',
+    )
+    p.add_argument("-C", "--directory", default=os.curdir, help="The base path of the workspace (default '.')")
+    p.add_argument("--source", help="The path to the source space (default 'workspace_base/src')")
+    p.add_argument("--build", help="The path to the build space (default 'workspace_base/build')")
+    p.add_argument("--use-ninja", action="store_true", help="Accepted for compatibility")
+    p.add_argument("--use-nmake", action="store_true", help="Accepted for compatibility")
+    p.add_argument("--use-gmake", action="store_true", help="Accepted for compatibility")
+    p.add_argument("--force-cmake", action="store_true", help="Accepted for compatibility (kame always reconfigures)")
+    p.add_argument("--no-color", action="store_true", help="Disables colored output")
+    p.add_argument("--pkg", nargs="+", help="Build specific packages only")
+    p.add_argument("--only-pkg-with-deps", nargs="+",
+                   help="Whitelist only the specified packages and their dependencies (remembered, like "
+                        'CATKIN_WHITELIST_PACKAGES; clear with -DCATKIN_WHITELIST_PACKAGES="")')
+    p.add_argument("--override-build-tool-check", action="store_true", help="Build even if another tool built here")
+    p.add_argument("targets", nargs="*", help="make targets (all, install, clean, ...)")
+    return p
+
+
+def _path(cwd: str, base: Path, arg: str | None, default: str) -> Path:
+    return Path(os.path.abspath(os.path.join(cwd, arg))) if arg else base / default
+
+
+def _check_tool(space: Path, tool: str, override: bool) -> None:
+    marker = space / ".built_by"
+    try:
+        previous = marker.read_text().strip()
+    except OSError:
+        previous = ""
+    if previous and previous != tool and not override:
+        raise BuildError(f"The {space.name} space at '{space}' was previously built by '{previous}'. "
+                         f"Please remove the {space.name} space or pick a different {space.name} space.")
+
+
+def _mark(space: Path, tool: str) -> None:
+    space.mkdir(parents=True, exist_ok=True)
+    (space / ".built_by").write_text(tool)
+
+
+def working_directory() -> str:
+    """$PWD when it names the current folder (so symlinked workspaces keep their name)."""
+    pwd = os.environ.get("PWD")
+    if pwd and os.path.isdir(pwd) and os.path.samefile(pwd, os.curdir):
+        return pwd
+    return os.getcwd()
+
+
+def run(argv: Sequence[str]) -> int:
+    own, defines, _make_args = split_arguments(argv)
+    args = parser().parse_args(own)
+    color = not args.no_color
+
+    def say(line: str = "") -> None:
+        print(line, flush=True)
+
+    cwd = working_directory()
+    base = Path(os.path.abspath(os.path.join(cwd, args.directory)))
+    if not base.exists():
+        raise BuildError(f'The specified base path "{base}" does not exist')
+    say(f"Base path: {base}")
+    if (base / "package.xml").exists():
+        raise BuildError(f'The specified base path "{base}" contains a package but "catkin_make" must be invoked '
+                         "in the root of workspace")
+    source = _path(cwd, base, args.source, "src")
+    if not source.exists():
+        raise BuildError(f'The specified source space "{source}" does not exist')
+    say(f"Source space: {source}")
+    build_path = _path(cwd, base, args.build, "build")
+    say(f"Build space: {build_path}")
+    _check_tool(build_path, "catkin_make", args.override_build_tool_check)
+    devel = Path(os.path.abspath(os.path.join(cwd, defines.pop("CATKIN_DEVEL_PREFIX")))) \
+        if "CATKIN_DEVEL_PREFIX" in defines else base / "devel"
+    say(f"Devel space: {devel}")
+    _check_tool(devel, "catkin_make", args.override_build_tool_check)
+    install = Path(defines.pop("CMAKE_INSTALL_PREFIX", str(base / "install")))
+    say(f"Install space: {install}")
+    if "install" in args.targets:
+        raise BuildError('The "install" target is not supported by kame yet: use the devel space '
+                         "(source devel/setup.bash)")
+    _mark(build_path, "catkin_make")
+    _mark(devel, "catkin_make")
+
+    packages = find_workspace_packages(source)
+    cache = read_cache(build_path)
+    for key in CACHED:
+        if key in defines:
+            cache[key] = defines[key].strip('"')
+    if args.only_pkg_with_deps:
+        known = {p.name for p in packages}
+        unknown = [n for n in args.only_pkg_with_deps if n not in known]
+        if len(unknown) == len(args.only_pkg_with_deps):
+            raise BuildError(f'Packages "{", ".join(args.only_pkg_with_deps)}" not found in the workspace')
+        if unknown:
+            print(f'Packages "{", ".join(sorted(unknown))}" not found in the workspace - ignoring them',
+                  file=sys.stderr)
+        wanted = with_dependencies(packages, args.only_pkg_with_deps)
+        say(f"Whitelisted packages: {', '.join(sorted(wanted))}")
+        cache["CATKIN_WHITELIST_PACKAGES"] = ";".join(sorted(wanted))
+    write_cache(build_path, {k: v for k, v in cache.items() if v})
+    whitelist = cmake_list(cache.get("CATKIN_WHITELIST_PACKAGES", ""))
+    blacklist = cmake_list(cache.get("CATKIN_BLACKLIST_PACKAGES", ""))
+    chosen = select(packages, whitelist, blacklist)
+    if args.pkg:
+        names = {p.name for p in chosen}
+        unknown = [n for n in args.pkg if n not in names]
+        if len(unknown) == len(args.pkg):
+            raise BuildError(f'Packages "{", ".join(args.pkg)}" not found in the workspace')
+        chosen = [p for p in chosen if p.name in args.pkg]
+
+    if not (base / ".catkin_workspace").exists():
+        (base / ".catkin_workspace").write_text(WORKSPACE_MARKER)
+    python = sys.executable
+    underlays = underlay_workspaces(os.environ, devel)
+    say("####")
+    say(f'#### Configuring the workspace in "{build_path}" (kame: Python packages, no CMake)')
+    say("####")
+    say(f"-- Using CATKIN_DEVEL_PREFIX: {devel}")
+    say(f"-- Using CMAKE_PREFIX_PATH: {os.environ.get('CMAKE_PREFIX_PATH', '')}")
+    if underlays:
+        say(f"-- This workspace overlays: {';'.join(reversed(underlays))}")
+    say(f"-- Using PYTHON_EXECUTABLE: {python}")
+    if whitelist:
+        say(f"-- Using CATKIN_WHITELIST_PACKAGES: {';'.join(whitelist)}")
+    if blacklist:
+        say(f"-- Using CATKIN_BLACKLIST_PACKAGES: {';'.join(blacklist)}")
+    say(f"-- ~~  traversing {len(chosen)} packages in topological order:")
+    for package in chosen:
+        say(f"-- ~~  - {package.name}")
+    say("-- ~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~")
+    for package in chosen:
+        say(f"-- +++ processing catkin package: '{package.name}'")
+        say(f"-- ==> add_subdirectory({package.path.relative_to(source)})")
+        interfaces = package.interface_files()
+        if interfaces:
+            counts = ", ".join(f"{len(v)} {k}" for k, v in interfaces.items())
+            say(f"-- {package.name}: {counts} (no generation step: kame imports them from the package)")
+    say("-- Configuring done")
+    say("-- Generating done")
+    say(f"-- Build files have been written to: {build_path}")
+    say("####")
+    say(f'#### Building in "{build_path}"')
+    say("####")
+
+    failed: list[PackageResult] = []
+
+    def progress(index: int, result: PackageResult) -> None:
+        percent = (index + 1) * 100 // max(len(chosen), 1)
+        for warning in result.warnings:
+            print(f"WARNING: {warning}", file=sys.stderr)
+        if result.failed:
+            failed.append(result)
+            line = f"kame: {result.cpp_message()}"
+            print(f"{RED}{line}{RESET}" if color else line, file=sys.stderr, flush=True)
+        say(f"[{percent:3d}%] Built target {result.name}" + (" (Python parts only)" if result.failed else ""))
+
+    build(chosen, devel, [source], underlays, python, shell_dir(), progress)
+    if failed:
+        failed_names = ", ".join(r.name for r in failed)
+        raise BuildError(f"Not built by kame (C++): {failed_names}. The other packages were built; "
+                         "source devel/setup.bash to use them.")
+    return 0
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    args = list(sys.argv[1:] if argv is None else argv)
+    color = "--no-color" not in args
+    try:
+        return run(args)
+    except (BuildError, WorkspaceError) as exc:
+        message = str(exc)
+        print(f"{RED}{message}{RESET}" if color else message, file=sys.stderr)
+        return 1
+    except KeyboardInterrupt:
+        return 130
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,124 @@
+"""The environment a sourced setup file gives: kame's ROS_* variables and workspace overlays.
+
+Rules (as catkin's setup files and /opt/ros/noetic/setup.bash behave):
+- Sourcing any setup file first rolls back every catkin workspace found in CMAKE_PREFIX_PATH
+  (a folder holding a `.catkin` marker): its devel folder, its bin/ on PATH, its Python site
+  folder on PYTHONPATH and its source folders on ROS_PACKAGE_PATH go. So sourcing workspace A
+  and then workspace B leaves only B (and what B was built on).
+- Then kame's base: ROS_MASTER_URI (kept if set), ROS_DISTRO, ROS_ROOT, ROS_ETC_DIR,
+  ROS_VERSION, ROS_PYTHON_VERSION, the interpreter's bin/ first on PATH, kame's share folder
+  last on ROS_PACKAGE_PATH.
+- Then each workspace, underlays first: devel on CMAKE_PREFIX_PATH, devel/bin on PATH,
+  devel/lib/python3/dist-packages on PYTHONPATH, source folders on ROS_PACKAGE_PATH (each
+  prepended, so the last sourced wins).
+
+`python -m kame.shell.environment --python P [--workspaces DEVEL:DEVEL]` prints the result as
+`export`/`unset` lines for `eval` in sh, bash and zsh.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import shlex
+import sys
+from collections.abc import Mapping, Sequence
+from pathlib import Path
+
+DEFAULT_MASTER_URI = "http://localhost:11311"
+KAME_DIR = Path(__file__).resolve().parent.parent
+SHARE_DIR = KAME_DIR / "share"
+PYTHON_SITE = "lib/python3/dist-packages"
+PATH_VARIABLES = ("CMAKE_PREFIX_PATH", "PATH", "PYTHONPATH", "ROS_PACKAGE_PATH")
+CATKIN_MARKER = ".catkin"
+
+
+def _split(value: str | None) -> list[str]:
+    return [p for p in (value or "").split(os.pathsep) if p]
+
+
+def _norm(path: str) -> str:
+    return os.path.normpath(path)
+
+
+def workspace_sources(devel: Path) -> list[str]:
+    """The source folders a devel folder's .catkin marker names (`;`-separated, as catkin)."""
+    try:
+        text = (devel / CATKIN_MARKER).read_text()
+    except OSError:
+        return []
+    return [p for p in text.strip().split(";") if p]
+
+
+def is_workspace(path: str) -> bool:
+    return os.path.isfile(os.path.join(path, CATKIN_MARKER))
+
+
+def _remove(entries: list[str], unwanted: set[str]) -> list[str]:
+    return [e for e in entries if _norm(e) not in unwanted]
+
+
+def _prepend(entries: list[str], new: str) -> list[str]:
+    return [new, *[e for e in entries if _norm(e) != _norm(new)]]
+
+
+def _append(entries: list[str], new: str) -> list[str]:
+    return [*[e for e in entries if _norm(e) != _norm(new)], new]
+
+
+def compute(env: Mapping[str, str], python: str, workspaces: Sequence[str] = ()) -> dict[str, str | None]:
+    """The variables to set (None: unset) for kame's base plus `workspaces` (devel folders,
+    underlays first)."""
+    lists = {name: _split(env.get(name)) for name in PATH_VARIABLES}
+
+    # roll back workspaces sourced before
+    old = [p for p in lists["CMAKE_PREFIX_PATH"] if is_workspace(p)]
+    for devel in old:
+        lists["CMAKE_PREFIX_PATH"] = _remove(lists["CMAKE_PREFIX_PATH"], {_norm(devel)})
+        lists["PATH"] = _remove(lists["PATH"], {_norm(os.path.join(devel, "bin"))})
+        lists["PYTHONPATH"] = _remove(lists["PYTHONPATH"], {_norm(os.path.join(devel, PYTHON_SITE))})
+        lists["ROS_PACKAGE_PATH"] = _remove(lists["ROS_PACKAGE_PATH"],
+                                            {_norm(s) for s in workspace_sources(Path(devel))})
+
+    # kame's base
+    result: dict[str, str | None] = {
+        "ROS_MASTER_URI": env.get("ROS_MASTER_URI") or DEFAULT_MASTER_URI,
+        "ROS_DISTRO": "noetic",
+        "ROS_ROOT": str(SHARE_DIR / "ros"),
+        "ROS_ETC_DIR": str(KAME_DIR / "etc" / "ros"),
+        "ROS_VERSION": "1",
+        "ROS_PYTHON_VERSION": "3",
+    }
+    lists["PATH"] = _prepend(lists["PATH"], os.path.dirname(python))
+    lists["ROS_PACKAGE_PATH"] = _append(lists["ROS_PACKAGE_PATH"], str(SHARE_DIR))
+
+    for devel in workspaces:
+        lists["CMAKE_PREFIX_PATH"] = _prepend(lists["CMAKE_PREFIX_PATH"], devel)
+        lists["PATH"] = _prepend(lists["PATH"], os.path.join(devel, "bin"))
+        lists["PYTHONPATH"] = _prepend(lists["PYTHONPATH"], os.path.join(devel, PYTHON_SITE))
+        for source in reversed(workspace_sources(Path(devel))):
+            lists["ROS_PACKAGE_PATH"] = _prepend(lists["ROS_PACKAGE_PATH"], source)
+
+    for name, entries in lists.items():
+        result[name] = os.pathsep.join(entries) if entries else None
+    return result
+
+
+def shell_lines(changes: Mapping[str, str | None]) -> str:
+    lines = []
+    for name, value in changes.items():
+        lines.append(f"unset {name}" if value is None else f"export {name}={shlex.quote(value)}")
+    return "\n".join(lines) + "\n"
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(prog="python -m kame.shell.environment")
+    parser.add_argument("--python", default=sys.executable, help="the interpreter whose bin/ goes on PATH")
+    parser.add_argument("--workspaces", default="", help="devel folders, ':'-separated, underlays first")
+    args = parser.parse_args(argv)
+    sys.stdout.write(shell_lines(compute(os.environ, args.python, _split(args.workspaces))))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

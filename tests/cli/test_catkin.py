@@ -1,0 +1,275 @@
+"""Workspaces as the ROS tutorials build them: catkin_create_pkg, catkin_make, catkin build,
+the devel space's setup.bash, and a talker/listener package with its own msg and srv run
+through rosrun against a kame roscore (every process stopped by its PID)."""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+import textwrap
+from pathlib import Path
+
+from tests.shell.shell_env import bash, clean_env
+from tests.support import SYSTEM_PYTHON, Proc, free_port, wait_for_master
+
+BIN = Path(sys.executable).parent
+
+TALKER = '''#!/usr/bin/env python
+import rospy
+from beginner_tutorials.msg import Num
+
+def talker():
+    pub = rospy.Publisher('chatter', Num, queue_size=10)
+    rospy.init_node('talker', anonymous=True)
+    rate = rospy.Rate(20)
+    n = 0
+    while not rospy.is_shutdown():
+        n += 1
+        rospy.loginfo("num %s", n)
+        pub.publish(Num(num=n))
+        rate.sleep()
+
+if __name__ == '__main__':
+    try:
+        talker()
+    except rospy.ROSInterruptException:
+        pass
+'''
+
+LISTENER = '''#!/usr/bin/env python
+import rospy
+from beginner_tutorials.msg import Num
+from beginner_tutorials.srv import AddTwoInts, AddTwoIntsResponse
+
+def callback(data):
+    print(rospy.get_caller_id() + " I heard %d" % data.num, flush=True)
+
+def add(req):
+    return AddTwoIntsResponse(req.a + req.b)
+
+rospy.init_node('listener', anonymous=True)
+rospy.Subscriber('chatter', Num, callback)
+rospy.Service('add_two_ints', AddTwoInts, add)
+print("ready", flush=True)
+rospy.spin()
+'''
+
+
+def run(cmd: list[str], cwd: Path, env: dict[str, str]) -> subprocess.CompletedProcess[str]:
+    return subprocess.run(cmd, cwd=cwd, env=env, capture_output=True, text=True, timeout=60)
+
+
+def user_env(home: Path, master: str | None = None) -> dict[str, str]:
+    """After `source setup.bash` from kame: ROS_DISTRO set, the tools on PATH."""
+    env = clean_env(home, master)
+    env["ROS_DISTRO"] = "noetic"
+    env["PATH"] = f"{BIN}:{env['PATH']}"
+    return env
+
+
+def make_workspace(tmp_path: Path) -> tuple[Path, dict[str, str]]:
+    ws = tmp_path / "catkin_ws"
+    (ws / "src").mkdir(parents=True)
+    return ws, user_env(tmp_path)
+
+
+def create_beginner_tutorials(ws: Path, env: dict[str, str]) -> Path:
+    result = run(["catkin_create_pkg", "beginner_tutorials", "std_msgs", "rospy", "roscpp"], ws / "src", env)
+    assert result.returncode == 0, result.stderr
+    pkg = ws / "src" / "beginner_tutorials"
+    (pkg / "msg").mkdir()
+    (pkg / "msg" / "Num.msg").write_text("int64 num\n")
+    (pkg / "srv").mkdir()
+    (pkg / "srv" / "AddTwoInts.srv").write_text("int64 a\nint64 b\n---\nint64 sum\n")
+    (pkg / "scripts").mkdir()
+    for name, text in (("talker.py", TALKER), ("listener.py", LISTENER)):
+        (pkg / "scripts" / name).write_text(text)
+        (pkg / "scripts" / name).chmod(0o755)
+    return pkg
+
+
+def test_catkin_create_pkg_writes_what_ros_writes(tmp_path: Path) -> None:
+    env = user_env(tmp_path)
+    result = run(["catkin_create_pkg", "beginner_tutorials", "std_msgs", "rospy", "roscpp", "-D", "My tutorials",
+                  "-V", "1.2.3", "-l", "BSD", "-a", "Jane Doe"], tmp_path, env)
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.splitlines() == [
+        "Created file beginner_tutorials/package.xml",
+        "Created file beginner_tutorials/CMakeLists.txt",
+        "Created folder beginner_tutorials/include/beginner_tutorials",
+        "Created folder beginner_tutorials/src",
+        f"Successfully created files in {tmp_path}/beginner_tutorials. Please adjust the values in package.xml.",
+    ]
+    xml = (tmp_path / "beginner_tutorials" / "package.xml").read_text()
+    assert '<package format="2">' in xml
+    assert "<version>1.2.3</version>" in xml and "<description>My tutorials</description>" in xml
+    assert "<license>BSD</license>" in xml and "<author>Jane Doe</author>" in xml.replace("<author >", "<author>")
+    for dep in ("roscpp", "rospy", "std_msgs"):
+        for tag in ("build_depend", "build_export_depend", "exec_depend"):
+            assert f"<{tag}>{dep}</{tag}>" in xml
+    cmake = (tmp_path / "beginner_tutorials" / "CMakeLists.txt").read_text()
+    assert "project(beginner_tutorials)" in cmake
+    assert "find_package(catkin REQUIRED COMPONENTS\n  roscpp\n  rospy\n  std_msgs\n)" in cmake
+    if Path("/usr/bin/catkin_create_pkg").exists() and Path(SYSTEM_PYTHON).exists():
+        real = tmp_path / "real"
+        real.mkdir()
+        run([SYSTEM_PYTHON, "/usr/bin/catkin_create_pkg", "beginner_tutorials", "std_msgs", "rospy", "roscpp", "-D",
+             "My tutorials", "-V", "1.2.3", "-l", "BSD", "-a", "Jane Doe"], real, env)
+        for name in ("package.xml", "CMakeLists.txt"):
+            ours = (tmp_path / "beginner_tutorials" / name).read_text()
+            assert (real / "beginner_tutorials" / name).read_text() == ours
+
+
+def test_empty_workspace(tmp_path: Path) -> None:
+    ws, env = make_workspace(tmp_path)
+    result = run(["catkin_make"], ws, env)
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.splitlines()[:5] == [f"Base path: {ws}", f"Source space: {ws}/src", f"Build space: {ws}/build",
+                                              f"Devel space: {ws}/devel", f"Install space: {ws}/install"]
+    assert "-- ~~  traversing 0 packages in topological order:" in result.stdout
+    for name in ("setup.bash", "setup.sh", "setup.zsh", ".catkin"):
+        assert (ws / "devel" / name).is_file()
+    assert (ws / "build").is_dir() and (ws / ".catkin_workspace").is_file()
+    out = bash(f"source {ws}/devel/setup.bash && echo $ROS_PACKAGE_PATH && echo $CMAKE_PREFIX_PATH && "
+               f"echo $ROS_DISTRO && roscd && pwd", env)
+    lines = out.stdout.splitlines()
+    assert lines[0].split(":")[0] == f"{ws}/src"
+    assert lines[1:] == [f"{ws}/devel", "noetic", f"{ws}/devel"]
+
+
+def test_catkin_make_errors(tmp_path: Path) -> None:
+    env = user_env(tmp_path)
+    result = run(["catkin_make"], tmp_path, env)
+    assert result.returncode == 1
+    assert f'The specified source space "{tmp_path}/src" does not exist' in result.stderr
+    assert "Traceback" not in result.stderr
+
+
+def test_python_package_with_msg_srv_setup_py_and_scripts(tmp_path: Path) -> None:
+    ws, env = make_workspace(tmp_path)
+    pkg = create_beginner_tutorials(ws, env)
+    (pkg / "src" / "beginner_tutorials").mkdir(parents=True)
+    (pkg / "src" / "beginner_tutorials" / "__init__.py").write_text("VALUE = 42\n")
+    (pkg / "src" / "beginner_tutorials" / "helper.py").write_text("def f():\n    return 'helped'\n")
+    (pkg / "setup.py").write_text(textwrap.dedent("""\
+        from setuptools import setup
+        from catkin_pkg.python_setup import generate_distutils_setup
+
+        setup(**generate_distutils_setup(packages=['beginner_tutorials'], package_dir={'': 'src'}))
+        """))
+    cmake = pkg / "CMakeLists.txt"
+    cmake.write_text(cmake.read_text().replace("# catkin_python_setup()", "catkin_python_setup()")
+                     + "catkin_install_python(PROGRAMS scripts/talker.py\n"
+                     "  DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})\n")
+    result = run(["catkin_make"], ws, env)
+    assert result.returncode == 0, result.stdout + result.stderr
+    assert "-- +++ processing catkin package: 'beginner_tutorials'" in result.stdout
+    assert "[100%] Built target beginner_tutorials" in result.stdout
+    assert (ws / "devel" / "lib" / "beginner_tutorials" / "talker.py").is_file()
+    check = ("from beginner_tutorials.msg import Num; from beginner_tutorials.srv import AddTwoInts; "
+             "import beginner_tutorials, beginner_tutorials.helper as h; "
+             "print(Num(num=5).num, AddTwoInts._type, beginner_tutorials.VALUE, h.f())")
+    out = bash(f"source {ws}/devel/setup.bash && echo $PYTHONPATH && python -c '{check}' && "
+               "rospack find beginner_tutorials", env, cwd=tmp_path)
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.splitlines() == [f"{ws}/devel/lib/python3/dist-packages",
+                                       "5 beginner_tutorials/AddTwoInts 42 helped", f"{pkg}"]
+
+
+def test_cpp_package_is_reported_and_others_build(tmp_path: Path) -> None:
+    ws, env = make_workspace(tmp_path)
+    create_beginner_tutorials(ws, env)
+    run(["catkin_create_pkg", "cpp_tutorials", "roscpp"], ws / "src", env)
+    cmake = ws / "src" / "cpp_tutorials" / "CMakeLists.txt"
+    cmake.write_text(cmake.read_text() + "add_executable(talker src/talker.cpp)\n"
+                     "target_link_libraries(talker ${catkin_LIBRARIES})\n")
+    result = run(["catkin_make", "--no-color"], ws, env)
+    assert result.returncode == 1
+    assert "Traceback" not in result.stderr
+    assert ("kame: package 'cpp_tutorials' needs a C++ build (targets: talker); kame builds Python packages only"
+            in result.stderr)
+    assert "Not built by kame (C++): cpp_tutorials" in result.stderr
+    assert "Built target beginner_tutorials" in result.stdout
+    assert (ws / "devel" / "setup.bash").is_file()
+
+    build = run(["catkin", "build"], ws, env)
+    assert build.returncode == 1
+    assert "Finished  <<< beginner_tutorials" in build.stdout
+    assert "Failed     << cpp_tutorials" in build.stdout
+    assert "[build] Summary: 1 of 2 packages succeeded." in build.stdout
+    assert "kame builds Python packages only" in build.stderr and "Traceback" not in build.stderr
+
+
+def test_whitelist_is_remembered_until_cleared(tmp_path: Path) -> None:
+    ws, env = make_workspace(tmp_path)
+    for name in ("pkg_a", "pkg_b", "pkg_c"):
+        run(["catkin_create_pkg", name, "rospy"], ws / "src", env)
+
+    def built(*args: str) -> list[str]:
+        result = run(["catkin_make", *args], ws, env)
+        assert result.returncode == 0, result.stderr
+        return [line[len("-- ~~  - "):] for line in result.stdout.splitlines() if line.startswith("-- ~~  - ")]
+
+    assert built('-DCATKIN_WHITELIST_PACKAGES=pkg_a;pkg_c') == ["pkg_a", "pkg_c"]
+    assert built() == ["pkg_a", "pkg_c"]
+    assert built("-DCATKIN_WHITELIST_PACKAGES=") == ["pkg_a", "pkg_b", "pkg_c"]
+    assert built("-DCATKIN_BLACKLIST_PACKAGES=pkg_b") == ["pkg_a", "pkg_c"]
+    assert built("-DCATKIN_BLACKLIST_PACKAGES=", "--only-pkg-with-deps", "pkg_b") == ["pkg_b"]
+
+
+def test_catkin_build_and_clean(tmp_path: Path) -> None:
+    ws, env = make_workspace(tmp_path)
+    create_beginner_tutorials(ws, env)
+    result = run(["catkin", "build"], ws, env)
+    assert result.returncode == 0, result.stderr
+    assert "[build] Summary: All 1 packages succeeded!" in result.stdout
+    out = bash(f"source {ws}/devel/setup.bash && rospack find beginner_tutorials", env)
+    assert out.stdout.strip() == str(ws / "src" / "beginner_tutorials")
+    listed = run(["catkin", "list"], ws / "src" / "beginner_tutorials", env)
+    assert listed.stdout == "- beginner_tutorials\n"
+    clean = run(["catkin", "clean", "-y"], ws, env)
+    assert clean.returncode == 0 and not (ws / "devel").exists() and not (ws / "build").exists()
+
+
+def test_overlay_sourcing_replaces_the_previous_workspace(tmp_path: Path) -> None:
+    env = user_env(tmp_path)
+    for name in ("ws1", "ws2"):
+        (tmp_path / name / "src").mkdir(parents=True)
+        assert run(["catkin_make"], tmp_path / name, env).returncode == 0
+    out = bash(f"source {tmp_path}/ws1/devel/setup.bash; source {tmp_path}/ws2/devel/setup.bash; "
+               "echo $ROS_PACKAGE_PATH; echo $CMAKE_PREFIX_PATH", env)
+    rpp, cpp = out.stdout.splitlines()
+    assert rpp.split(":")[0] == f"{tmp_path}/ws2/src" and f"{tmp_path}/ws1/src" not in rpp
+    assert cpp == f"{tmp_path}/ws2/devel"
+
+
+def test_tutorial_flow_talker_listener_through_rosrun(tmp_path: Path) -> None:
+    """The wiki flow: create the package, add msg/srv and scripts, catkin_make, source, rosrun."""
+    ws, env = make_workspace(tmp_path)
+    create_beginner_tutorials(ws, env)
+    assert run(["catkin_make"], ws, env).returncode == 0
+    port = free_port()
+    uri = f"http://127.0.0.1:{port}/"
+    env = user_env(tmp_path, uri)
+    core = Proc([str(BIN / "roscore"), "-p", str(port)], env)
+    procs = [core]
+    try:
+        wait_for_master(uri, proc=core)
+        setup = f"source {ws}/devel/setup.bash && export ROS_MASTER_URI={uri} && exec "
+        listener = Proc(["bash", "-c", setup + "rosrun beginner_tutorials listener.py"], env)
+        procs.append(listener)
+        listener.wait_line("ready")
+        talker = Proc(["bash", "-c", setup + "rosrun beginner_tutorials talker.py"], env)
+        procs.append(talker)
+        line = listener.wait_line(" I heard ")
+        assert line.startswith("/listener_")
+        call = bash(f"source {ws}/devel/setup.bash && export ROS_MASTER_URI={uri} && "
+                    "rosservice call /add_two_ints 2 3 && rostopic type /chatter", env)
+        assert call.stdout.splitlines() == ["sum: 5", "beginner_tutorials/Num"], call.stderr
+        talker_out = talker.wait_line("num ")
+        assert "[INFO]" in talker_out
+    finally:
+        for proc in reversed(procs):
+            proc.stop()
+    assert os.path.isdir(ws / "devel")
