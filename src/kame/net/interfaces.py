@@ -1,0 +1,65 @@
+"""This machine's network addresses and host name resolution, for checks such as roswtf's.
+
+- Local addresses are the IPv4 address of every interface (SIOCGIFADDR), and with
+  `ipv6` also the IPv6 ones of /proc/net/if_inet6; where those are not available (not Linux),
+  what the machine's own host name resolves to.
+- `resolve` gives a name's addresses, or None when it does not resolve.
+"""
+
+from __future__ import annotations
+
+import socket
+import struct
+
+_SIOCGIFADDR = 0x8915
+_IF_INET6 = "/proc/net/if_inet6"
+
+
+def _ipv4_addresses() -> list[str]:
+    import fcntl
+
+    found = []
+    with socket.socket(socket.AF_INET, socket.SOCK_DGRAM) as sock:
+        for _, name in socket.if_nameindex():
+            request = struct.pack("256s", name.encode()[:15])
+            try:
+                answer = fcntl.ioctl(sock.fileno(), _SIOCGIFADDR, request)
+            except OSError:
+                continue  # no IPv4 address on this interface
+            found.append(socket.inet_ntoa(answer[20:24]))
+    return found
+
+
+def _ipv6_addresses() -> list[str]:
+    try:
+        with open(_IF_INET6, encoding="ascii") as f:
+            rows = [line.split() for line in f]
+    except OSError:
+        return []
+    found = []
+    for row in rows:
+        if row:
+            packed = bytes.fromhex(row[0])
+            found.append(socket.inet_ntop(socket.AF_INET6, packed))
+    return found
+
+
+def local_addresses(ipv6: bool = False) -> list[str]:
+    try:
+        v4 = _ipv4_addresses()
+    except (ImportError, OSError, AttributeError):
+        family = socket.AF_UNSPEC if ipv6 else socket.AF_INET
+        return resolve(socket.gethostname(), family) or []
+    return [*_ipv6_addresses(), *v4] if ipv6 else v4
+
+
+def resolve(host: str, family: int = socket.AF_UNSPEC) -> list[str] | None:
+    try:
+        infos = socket.getaddrinfo(host, 0, family, 0, socket.SOL_TCP)
+    except (OSError, UnicodeError):
+        return None
+    return list(dict.fromkeys(str(info[4][0]) for info in infos))
+
+
+def hostname() -> str:
+    return socket.gethostname()

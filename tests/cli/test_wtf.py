@@ -1,0 +1,183 @@
+"""roswtf's pure checks (kame.cli._wtf): tables of environments and graph snapshots, and the
+report text they give."""
+
+from __future__ import annotations
+
+import pytest
+
+from kame.cli import _wtf
+from kame.cli._wtf import Environment, Graph, Link, NodeFacts, PackageFacts, PathFacts, PathKind, Report
+
+DIR = PathFacts(PathKind.DIRECTORY)
+FILE = PathFacts(PathKind.FILE)
+RO_DIR = PathFacts(PathKind.DIRECTORY, writable=False)
+LOCAL = ("127.0.0.1", "10.0.0.5")
+URI = "http://localhost:11311/"
+
+
+def env_report(variables: dict[str, str], master_uri: str = URI, **facts: object) -> Report:
+    facts.setdefault("addresses", {"localhost": ["127.0.0.1"], "box": ["10.0.0.5"]})
+    facts.setdefault("paths", {"/ws": DIR})
+    env = Environment(variables, master_uri, hostname="box", local_addresses=LOCAL, **facts)  # type: ignore[arg-type]
+    report = Report()
+    _wtf.check_environment(env, report)
+    _wtf.check_network(env, report)
+    return report
+
+
+@pytest.mark.parametrize(("variables", "master_uri", "facts", "warnings", "errors"), [
+    ({"ROS_PACKAGE_PATH": "/ws"}, URI, {}, [], []),
+    ({}, URI, {}, ["ROS_PACKAGE_PATH is not set. This is not required, but is unusual"], []),
+    ({"ROS_PACKAGE_PATH": ""}, URI, {}, ["ROS_PACKAGE_PATH is empty. This is not required, but is unusual"], []),
+    ({"ROS_PACKAGE_PATH": "/ws:/gone:/f"}, URI, {"paths": {"/ws": DIR, "/f": FILE}}, [], [
+        "Path(s) in ROS_PACKAGE_PATH [/ws:/gone:/f] points to a file instead of a directory: \n * /f\n",
+        "Not all paths in ROS_PACKAGE_PATH [/ws:/gone:/f] point to an existing directory: \n * /gone\n * /f\n"]),
+    ({"ROS_PACKAGE_PATH": "/ws", "PYTHONPATH": "/ws:/nope"}, URI, {}, [],
+     ["Not all paths in PYTHONPATH [/ws:/nope] point to a directory: \n * /nope\n"]),
+    ({"ROS_PACKAGE_PATH": "/ws"}, "", {}, ["ROS_MASTER_URI is empty. This is not required, but is unusual"], []),
+    ({"ROS_PACKAGE_PATH": "/ws"}, "foo://x", {}, [],
+     ["ROS_MASTER_URI [foo://x] is not a valid URL: protocol is not 'http'"]),
+    ({"ROS_PACKAGE_PATH": "/ws"}, "http://localhost", {}, [],
+     ["ROS_MASTER_URI [http://localhost] is not a valid URL: port number is missing"]),
+    ({"ROS_PACKAGE_PATH": "/ws"}, "http://localhost:x/", {}, [],
+     ["ROS_MASTER_URI [http://localhost:x/] is not a valid URL: port number [x] is invalid"]),
+    ({"ROS_PACKAGE_PATH": "/ws"}, "http://nowhere:11311", {}, [
+        "Cannot resolve hostname in ROS_MASTER_URI [http://nowhere:11311]Unknown host nowhere"], []),
+    ({"ROS_PACKAGE_PATH": "/ws", "ROS_HOSTNAME": "nowhere"}, URI, {}, [
+        "ROS_HOSTNAME may be incorrect: ROS_HOSTNAME [nowhere] cannot be resolved to an IP address"], []),
+    ({"ROS_PACKAGE_PATH": "/ws", "ROS_HOSTNAME": "far"}, URI,
+     {"addresses": {"localhost": ["127.0.0.1"], "far": ["8.8.8.8"]}}, [
+         "ROS_HOSTNAME may be incorrect: ROS_HOSTNAME [far] resolves to [8.8.8.8], which does not appear to be a "
+         "local IP address ['127.0.0.1', '10.0.0.5']."], []),
+    ({"ROS_PACKAGE_PATH": "/ws", "ROS_HOSTNAME": "localhost", "ROS_IP": "10.0.0.5"}, URI, {}, [], []),
+    ({"ROS_PACKAGE_PATH": "/ws", "ROS_IP": "10.9.9.9"}, URI, {}, [
+        "ROS_IP may be incorrect: ROS_IP [10.9.9.9] does not appear to be an IP address of a local network "
+        "interface (one of ['127.0.0.1', '10.0.0.5'])."], []),
+    ({"ROS_PACKAGE_PATH": "/ws", "ROS_IP": "10.0.0.5 "}, URI, {}, [
+        "ROS_IP may be incorrect: ROS_IP [10.0.0.5 ] contains whitespace. This is not a valid IP."], []),
+    ({"ROS_PACKAGE_PATH": "/ws"}, URI, {"addresses": {"localhost": ["127.0.0.1"], "box": ["10.7.7.7"]}}, [], [
+        "Local network configuration is invalid: Local hostname [box] resolves to [10.7.7.7], which does not "
+        "appear to be a local IP address ['127.0.0.1', '10.0.0.5']."]),
+    ({"ROS_PACKAGE_PATH": "/ws", "ROS_HOME": "/f", "ROS_LOG_DIR": "/ro"}, URI,
+     {"paths": {"/ws": DIR, "/f": FILE, "/ro": RO_DIR}}, [],
+     ["ROS_HOME is invalid: ROS_HOME [/f] must point to a directory, not a file",
+      "ROS_LOG_DIR is invalid: ROS_LOG_DIR [/ro] is not writable"]),
+    ({"ROS_PACKAGE_PATH": "/ws", "ROSCONSOLE_CONFIG_FILE": "/none"}, URI, {},
+     ["ROS_CONSOLE_CONFIG_FILE does not point to an existing file"], []),
+])
+def test_environment_rules(variables: dict[str, str], master_uri: str, facts: dict[str, object],
+                           warnings: list[str], errors: list[str]) -> None:
+    report = env_report(variables, master_uri, **facts)
+    assert (report.warnings, report.errors) == (warnings, errors)
+
+
+def test_what_the_cli_must_look_up() -> None:
+    variables = {"ROS_PACKAGE_PATH": "/b:/a:", "PYTHONPATH": "/p", "ROS_HOME": "/h", "ROS_HOSTNAME": "me"}
+    assert _wtf.paths_to_inspect(variables) == ["/a", "/b", "/h", "/p"]
+    assert _wtf.hosts_to_resolve(variables, "http://master:11311/", "box") == ["box", "master", "me"]
+    assert _wtf.hosts_to_resolve({}, "http://a:b:c/", "box") == ["box"]
+
+
+def test_package_rules() -> None:
+    report = Report()
+    _wtf.check_packages([PackageFacts("ok", "/ws/ok"),
+                         PackageFacts("z", "/ws/z", "not well-formed XML: x", ["/ws/z/msg/A.msg:2: bad"]),
+                         PackageFacts("a", "/ws/a", None, ["/ws/a/srv/S.srv:1: worse"])], report)
+    assert report.errors == [
+        "The following packages have an invalid package.xml:\n * z [/ws/z]: not well-formed XML: x\n",
+        "The following message and service definitions cannot be loaded:\n"
+        " * /ws/a/srv/S.srv:1: worse\n * /ws/z/msg/A.msg:2: bad\n"]
+
+
+# ------------------------------------------------------------------ the graph
+
+UP = NodeFacts("http://h:1/")
+
+
+def node(*links: Link, pubs: list[tuple[str, str]] | None = None, subs: list[tuple[str, str]] | None = None,
+         **kw: object) -> NodeFacts:
+    return NodeFacts("http://h:1/", bus=list(links), publications=pubs, subscriptions=subs, **kw)  # type: ignore[arg-type]
+
+
+def graph_report(graph: Graph) -> Report:
+    report = Report()
+    _wtf.check_graph(graph, report)
+    return report
+
+
+CONNECTED = Graph({"/chatter": ["/talker"]}, {"/chatter": ["/listener"]}, {},
+                  {"/talker": node(Link("/chatter", "/talker", "/listener")),
+                   "/listener": node(Link("/chatter", "/talker", "/listener"))})
+
+
+@pytest.mark.parametrize(("graph", "warnings", "errors"), [
+    (CONNECTED, [], []),
+    (Graph({}, {"/b": ["/n"], "/a": ["/n"], "/clock": ["/n"]}, {"/n/s": ["/n"]}, {"/n": node()}),
+     ["The following node subscriptions are unconnected:\n * /n:\n   * /a\n   * /b\n"], []),
+    (Graph({}, {"/clock": ["/n"], "/reset_time": ["/n"]}, {"/s": ["/n"]}, {"/n": node()}, use_sim_time=True),
+     ["The following node subscriptions are unconnected:\n * /n:\n   * /clock\n"],
+     ["/use_sim_time is set but no publisher of /clock is present"]),
+    (Graph({"/t": ["/p"]}, {"/t": ["/s"]}, {}, {"/p": node(Link("/t", "/p", "/other")), "/s": node(),
+                                                 "/other": node(Link("/t", "/p", "/other"))}),
+     ["Node [/s] is not connected to anything",
+      "The following nodes are unexpectedly connected:\n * /p->/other (/t)\n"],
+     ["The following nodes should be connected but aren't:\n * /p->/s (/t)\n"]),
+    (Graph({"/t": ["/p", "/dead"]}, {}, {"/dead/srv": ["/dead"]},
+           {"/p": node(), "/dead": NodeFacts("http://h:2/", reachable=False)},
+           service_failures={"/dead/srv": "appears to be malfunctioning: Unable to communicate"}),
+     ["Node [/p] is not connected to anything"],
+     ["Could not contact the following nodes:\n * /dead\n",
+      "Errors connecting to the following services:\n"
+      " * service [/dead/srv] appears to be malfunctioning: Unable to communicate\n"]),
+    (Graph({"/t": ["/ghost"]}, {}, {}, {"/ghost": NodeFacts(None, reachable=False)}), [],
+     ["Master does not have lookup information for node [/ghost]",
+      "Could not contact the following nodes:\n * /ghost\n"]),
+    (Graph({"/t": ["/n"]}, {}, {"/s": ["/n"]}, {"/n": NodeFacts("http://h:1/", bus=None)}),
+     ["Node [/n] would not return bus info"], []),
+    (Graph({"/t": ["/n"]}, {}, {"/s": ["/n"]}, {"/n": NodeFacts("http://h:1/", error="boom")}), [],
+     ["Communication with [/n] raised an error: boom"]),
+])
+def test_graph_rules(graph: Graph, warnings: list[str], errors: list[str]) -> None:
+    report = graph_report(graph)
+    assert (report.warnings, report.errors) == (warnings, errors)
+
+
+def test_type_mismatch_names_every_node_with_its_type() -> None:
+    link = Link("/chatter", "/talker", "/ok")
+    graph = Graph({"/chatter": ["/talker"]}, {"/chatter": ["/wrong", "/ok"]}, {"/x": ["/wrong"]},
+                  {"/talker": node(link, pubs=[("/chatter", "std_msgs/String")]),
+                   "/ok": node(link, subs=[("/chatter", "std_msgs/String")]),
+                   "/wrong": node(subs=[("/chatter", "std_msgs/Int32")])})
+    assert graph_report(graph).errors == [
+        "The following nodes should be connected but aren't:\n * /talker->/wrong (/chatter)\n",
+        "The following topics have nodes that disagree on the message type:\n * /chatter:\n"
+        "   * /talker publishes [std_msgs/String]\n   * /ok subscribes [std_msgs/String]\n"
+        "   * /wrong subscribes [std_msgs/Int32]\n"]
+
+
+def test_registrations_the_node_does_not_report_are_stale() -> None:
+    graph = Graph({"/old": ["/n"], "/t": ["/n"]}, {"/gone": ["/n"]}, {"/s": ["/n"]},
+                  {"/n": node(pubs=[("/t", "std_msgs/String")], subs=[])})
+    assert graph_report(graph).warnings == [
+        "The following node subscriptions are unconnected:\n * /n:\n   * /gone\n",
+        "The master lists registrations these nodes do not report (stale, or another node of the same name):\n"
+        " * /n: publisher of /old\n * /n: subscriber of /gone\n"]
+
+
+def test_bus_links() -> None:
+    rows = [[1, "http://h:1/", "i", "TCPROS", "/a", True], [2, "/sub", "o", "TCPROS", "/b", 1, "info"],
+            [3, "http://x:9/", "i", "TCPROS", "/c"], [4, "/gone", "o", "TCPROS", "/d", False],
+            [5, "/x", "b", "T", "/e"]]
+    assert _wtf.bus_links("/me", rows, {"http://h:1/": "/pub"}) == [
+        Link("/a", "/pub", "/me"), Link("/b", "/me", "/sub"), Link("/c", "unknown (http://x:9/)", "/me")]
+
+
+@pytest.mark.parametrize(("report", "text"), [
+    (Report(), "No errors or warnings\n"),
+    (Report(["w1", "w2\n * x\n"], []),
+     "Found 2 warning(s).\nWarnings are things that may be just fine, but are sometimes at fault\n\n"
+     "\x1b[1mWARNING\x1b[0m w1\n\x1b[1mWARNING\x1b[0m w2\n * x\n\n\n"),
+    (Report([], ["e"]), "Found 1 error(s).\n\n\x1b[31m\x1b[1mERROR\x1b[0m e\n"),
+])
+def test_format_report(report: Report, text: str) -> None:
+    assert _wtf.format_report(report) == text
