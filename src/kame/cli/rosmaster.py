@@ -68,6 +68,33 @@ class _Formatter(logging.Formatter):
         return f"{self._stamp},{int(record.msecs):03d}"
 
 
+class _BatchedMemoryHandler(logging.handlers.MemoryHandler):
+    """A MemoryHandler whose flush writes its records to the target file in one write: the
+    stock flush hands them over one by one, and FileHandler flushes the file after each (a
+    syscall per record, most of the master's logging cost under a registration storm)."""
+
+    def flush(self) -> None:
+        with self.lock:  # type: ignore[union-attr]
+            target = self.target
+            if not self.buffer or not isinstance(target, logging.FileHandler) or target.filters:
+                super().flush()
+                return
+            try:
+                text = "".join([target.format(r) + target.terminator for r in self.buffer])
+            except Exception:
+                super().flush()  # let the stock path report the record that cannot be formatted
+                return
+            with target.lock:  # type: ignore[union-attr]
+                try:
+                    if target.stream is None:
+                        target.stream = target._open()
+                    target.stream.write(text)
+                    target.stream.flush()
+                except Exception:
+                    target.handleError(self.buffer[-1])
+            self.buffer.clear()
+
+
 def setup_file_logging(path: Path, logger: str = "kame") -> logging.handlers.MemoryHandler:
     """Log `logger`'s records to `path`, buffered: a registration must not wait for a disk write.
 
@@ -78,7 +105,7 @@ def setup_file_logging(path: Path, logger: str = "kame") -> logging.handlers.Mem
     target.setFormatter(_Formatter(LOG_FORMAT))
     # nothing we log uses them, and each costs a lookup per record
     logging.logThreads = logging.logProcesses = logging.logMultiprocessing = False
-    buffered = logging.handlers.MemoryHandler(1000, logging.WARNING, target)
+    buffered = _BatchedMemoryHandler(1000, logging.WARNING, target)
     log = logging.getLogger(logger)
     log.setLevel(logging.DEBUG)
     log.addHandler(buffered)

@@ -1,0 +1,45 @@
+"""The master's buffered file log: one write per flush, the same lines as logging's own path."""
+
+from __future__ import annotations
+
+import logging
+import logging.handlers
+from pathlib import Path
+
+from kame.cli import rosmaster
+
+
+def _log_through(handler: logging.Handler, name: str) -> None:
+    log = logging.getLogger(name)
+    log.propagate = False
+    log.setLevel(logging.DEBUG)
+    log.addHandler(handler)
+    try:
+        for i in range(2500):  # fills the 1000-record buffer twice over
+            log.info("registerPublisher %s -> %s", ["/n", f"/t{i}", "t/T"], [1, "ok & <fine>"])
+        log.debug("ünïcødé %d", 1)
+        log.warning("a warning flushes at once")
+        log.info("after the warning")
+        handler.flush()
+    finally:
+        log.removeHandler(handler)
+        handler.close()
+
+
+def _strip_time(text: str) -> list[str]:
+    return [line.split(" ", 1)[0] + line.split(": ", 1)[1] for line in text.splitlines()]
+
+
+def test_batched_log_writes_what_logging_writes(tmp_path: Path) -> None:
+    batched = rosmaster.setup_file_logging(tmp_path / "a" / "master.log", "test_rosmaster_logging.a")
+    logging.getLogger("test_rosmaster_logging.a").removeHandler(batched)
+    assert isinstance(batched, rosmaster._BatchedMemoryHandler)
+    _log_through(batched, "test_rosmaster_logging.a2")
+    stock_target = logging.FileHandler(tmp_path / "b.log")
+    stock_target.setFormatter(rosmaster._Formatter(rosmaster.LOG_FORMAT))
+    _log_through(logging.handlers.MemoryHandler(1000, logging.WARNING, stock_target), "test_rosmaster_logging.a2")
+    stock_target.close()
+    got = (tmp_path / "a" / "master.log").read_text()
+    want = (tmp_path / "b.log").read_text()
+    assert len(got.splitlines()) == 2503
+    assert _strip_time(got) == _strip_time(want)
