@@ -26,6 +26,17 @@ SAMPLES = [
     {"a": {"b": {"c": [1, 2, {"d": b"x"}]}}, "e&": "f<"},
     [1, "", 0],
     [[["/t", ["/n1", "/n2"]]], [], [["/s", ["/n"]]]],
+    # ROS's [code, message, value] triples (encoded by a shortcut) and near misses
+    [1, "node api", "http://h:1/"],
+    [-1, "unknown node [/a&b]", ""],
+    [1, "Registered [/n] as publisher of [/t]", ["http://h:1/", "http://h:2/"]],
+    [1, "current system state", [[["/t", ["/n"]]], [], []]],
+    [1, "Parameter [/p]", {"a": [1.5, True, b"x"]}],
+    [-(2**31), "", 0],
+    [True, "x", 1],
+    [1.0, "x", 1],
+    [1, 2, 3],
+    [1, "x"],
 ]
 
 
@@ -76,6 +87,7 @@ def test_tuple_and_subclasses_encode_as_base_types() -> None:
 @pytest.mark.parametrize(
     ("value", "error"),
     [(None, TypeError), ([1, None], TypeError), (2**31, OverflowError), (-(2**31) - 1, OverflowError),
+     ([2**31, "", 0], OverflowError), ([1, "", 2**31], OverflowError), ([1, "", None], TypeError),
      ({1: "a"}, TypeError), (object(), TypeError)],
 )
 def test_encode_refuses(value: object, error: type[Exception]) -> None:

@@ -156,8 +156,21 @@ def encode_request(method: str, params: Sequence[object]) -> bytes:
     return "".join(out).encode("utf-8", "xmlcharrefreplace")
 
 
+_TRIPLE_HEAD = _XML_DECL + "<methodResponse>\n<params>\n<param>\n<value><array><data>\n"
+_TRIPLE_TAIL = "</data></array></value>\n</param>\n</params>\n</methodResponse>\n"
+
+
 def encode_response(value: object) -> bytes:
     """A `methodResponse` body carrying one value."""
+    if type(value) is list and len(value) == 3:
+        # ROS's `[code, message, value]`, written without walking the outer list
+        code, message, item = value
+        if type(code) is int and type(message) is str and MIN_INT <= code <= MAX_INT:
+            out = [_TRIPLE_HEAD, f"<value><int>{code}</int></value>\n",
+                   f"<value><string>{_escape(message)}</string></value>\n"]
+            _encode_value(item, out)
+            out.append(_TRIPLE_TAIL)
+            return "".join(out).encode("utf-8", "xmlcharrefreplace")
     out = [_XML_DECL, "<methodResponse>\n"]
     _params((value,), out)
     out.append("</methodResponse>\n")
