@@ -3,14 +3,15 @@
 A package is a folder holding a package.xml; its interface files are msg/*.msg, srv/*.srv
 and action/*.action. ROS_PACKAGE_PATH entries are searched first, in order (the first
 package of a name wins, as with rospack), then the packages kame ships in kame/share.
-Folders holding CATKIN_IGNORE, and hidden folders, are not searched.
+Folders holding CATKIN_IGNORE, and hidden folders, are not searched; nor are the subfolders of
+one holding rospack_nosubdirs.
 """
 
 from __future__ import annotations
 
 import os
 import xml.etree.ElementTree as ElementTree
-from collections.abc import Iterable, Mapping
+from collections.abc import Iterable, Iterator, Mapping
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -45,21 +46,51 @@ def read_package_name(package_xml: Path) -> str | None:
     return name.strip() if name else None
 
 
-def _crawl(root: Path, found: dict[str, Package]) -> None:
+@dataclass(frozen=True)
+class CrawlStep:
+    """One step of a crawl: a folder entered ("enter"), left ("leave", with whether any package
+    was found below it), or a package found ("package")."""
+
+    kind: str
+    path: Path
+    package: Package | None = None
+    found_any: bool = False
+
+
+def crawl(root: Path) -> Iterator[CrawlStep]:
+    """Walk one search-path entry as rospack does, yielding each step (for timing or listing).
+
+    Package folders are not entered further; CATKIN_IGNORE and rospack_nosubdirs stop the
+    descent, hidden folders are skipped; folders are visited in name order.
+    """
     if not root.is_dir() or (root / "CATKIN_IGNORE").exists():
         return
     manifest = root / "package.xml"
     if manifest.is_file():
         name = read_package_name(manifest) or root.name
-        found.setdefault(name, Package(name, root))
+        yield CrawlStep("package", root, Package(name, root))
         return
-    try:
-        children = sorted(root.iterdir())
-    except OSError:
-        return
+    yield CrawlStep("enter", root)
+    found_any = False
+    children: list[Path] = []
+    if not (root / "rospack_nosubdirs").exists():
+        try:
+            children = sorted(root.iterdir())
+        except OSError:
+            children = []
     for child in children:
         if child.is_dir() and not child.name.startswith("."):
-            _crawl(child, found)
+            for step in crawl(child):
+                if step.path.parent == root and (step.kind == "package" or (step.kind == "leave" and step.found_any)):
+                    found_any = True
+                yield step
+    yield CrawlStep("leave", root, found_any=found_any)
+
+
+def _crawl(root: Path, found: dict[str, Package]) -> None:
+    for step in crawl(root):
+        if step.package is not None:
+            found.setdefault(step.package.name, step.package)
 
 
 def package_path_roots(ros_package_path: str | None = None) -> list[Path]:
