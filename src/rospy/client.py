@@ -65,12 +65,15 @@ def _wait_for_master(node: Node, master_uri: str) -> None:
 
 def _install_signal_handlers() -> None:
     def handler(signum: int, frame: Any) -> None:
-        # A main thread waiting in rospy (spin, sleep, Rate) wakes up through the shutdown event
-        # and leaves quietly; one busy in user code gets the KeyboardInterrupt Python would give.
+        # The shutdown runs on a thread of its own: the interrupted main thread may hold a lock
+        # the shutdown needs (it may be in the middle of a publish). A main thread waiting in
+        # rospy (spin, sleep, Rate) wakes up through the shutdown event and leaves quietly; one
+        # busy in user code gets a ROSInterruptException, which is a KeyboardInterrupt too, so
+        # both the tutorials' `except rospy.ROSInterruptException` and plain Python code see it.
         waiting = core.main_thread_is_waiting()
-        core.signal_shutdown(f"signal-{signum}")
+        threading.Thread(target=core.signal_shutdown, args=(f"signal-{signum}",), name="rospy-shutdown").start()
         if signum == signal.SIGINT and not waiting:
-            raise KeyboardInterrupt
+            raise ROSInterruptException("ROS shutdown request")
 
     if threading.current_thread() is not threading.main_thread():
         raise ValueError("signal only works in main thread")
