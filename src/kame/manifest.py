@@ -15,8 +15,6 @@ from collections.abc import Iterable
 from dataclasses import dataclass
 from pathlib import Path
 
-from catkin_pkg.package import InvalidPackage, parse_package_string
-
 MANIFEST = "package.xml"
 
 
@@ -40,6 +38,8 @@ def read_manifest(name: str, package_dir: Path) -> Manifest:
         data = path.read_text(encoding="utf-8")
     except (OSError, UnicodeDecodeError) as exc:
         raise failure from exc
+    from catkin_pkg.package import InvalidPackage, parse_package_string  # only when needed: it takes 40 ms
+
     try:
         package = parse_package_string(data, filename=str(path), warnings=[])
     except InvalidPackage:

@@ -164,7 +164,7 @@ def _package_arg(opts: Options) -> str:
 
 def cmd_help(opts: Options) -> list[str]:
     if not opts.package:
-        return USAGE.splitlines()
+        return [*USAGE.splitlines(), ""]
     command = ALIASES.get(opts.package, opts.package)
     usage, text = COMMAND_HELP.get(command, ("", ""))
     lines = [f"Usage: rospack {opts.package}{usage}"]
