@@ -33,6 +33,12 @@ LAYERS: dict[str, int] = {
     "kame.launch.runner": 4,
     "kame.catkin": 2,
     "kame.shell": 4,
+    "kame.turtlesim": 1,  # the world: no ROS, no GUI, no clock
+    "kame.turtlesim.gui": 4,  # Qt; knows only the world
+    "kame.turtlesim.node": 4,
+    "kame.turtlesim.teleop_key": 4,
+    "kame.turtlesim.draw_square": 4,
+    "kame.turtlesim.mimic": 4,
 }
 PURE_FORBIDDEN = {"socket", "select", "selectors", "asyncio", "threading", "subprocess", "signal", "time",
                   "multiprocessing", "concurrent"}  # datetime is allowed: YAML dates are values
