@@ -22,6 +22,9 @@ LAYERS: dict[str, int] = {
     "kame.names": 0,
     "kame.rostime": 0,
     "kame.protocol": 1,
+    "kame.bag": 1,  # the bag record format, compression, info text
+    "kame.bag.reader": 2,  # bag file I/O
+    "kame.bag.writer": 2,
     "kame.master": 1,
     "kame.net": 2,
     "kame.node": 3,
