@@ -25,6 +25,7 @@ LAYERS: dict[str, int] = {
     "kame.bag": 1,  # the bag record format, compression, info text
     "kame.bag.reader": 2,  # bag file I/O
     "kame.bag.writer": 2,
+    "kame.action": 1,
     "kame.master": 1,
     "kame.net": 2,
     "kame.node": 3,

@@ -1,0 +1,19 @@
+"""rospy's logging calls, typed (the caller reported is actionlib's, as with rospy.logerr)."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from rospy import _log
+
+
+def logdebug(msg: str, *args: Any) -> None:
+    _log.emit(_log.DEBUG, msg, args)
+
+
+def logwarn(msg: str, *args: Any) -> None:
+    _log.emit(_log.WARN, msg, args)
+
+
+def logerr(msg: str, *args: Any) -> None:
+    _log.emit(_log.ERROR, msg, args)

@@ -1,0 +1,190 @@
+"""An actionlib server or client on move_base_msgs/MoveBaseAction, the same code for kame and for
+Debian's rospy + python3-actionlib (both have the messages), so the two can be compared.
+
+server: a SimpleActionServer on `move_base`; a goal of x steps publishes x feedbacks 0.1 s apart,
+        checks for preemption every step, aborts when x < 0. Prints one line per event.
+client SCENARIO...: runs the scenarios in order and prints one line per observation: the
+        CommState names a goal passes through, its terminal status name, texts, counts.
+"""
+
+import sys
+import threading
+import time
+
+import actionlib
+import rospy
+from actionlib_msgs.msg import GoalID, GoalStatus
+from move_base_msgs.msg import MoveBaseAction, MoveBaseActionGoal, MoveBaseActionResult, MoveBaseGoal, MoveBaseResult
+
+ACTION = "move_base"
+STATUS_NAMES = {v: k for k, v in vars(GoalStatus).items() if k.isupper() and isinstance(v, int)}
+
+
+def out(*words):
+    print(*words, flush=True)
+
+
+def goal(x):
+    g = MoveBaseGoal()
+    g.target_pose.header.frame_id = "map"
+    g.target_pose.pose.position.x = float(x)
+    g.target_pose.pose.orientation.w = 1.0
+    return g
+
+
+# ---------------------------------------------------------------- server
+
+def serve():
+    rospy.init_node("move_base")
+    server = None
+
+    def execute(g):
+        steps = int(g.target_pose.pose.position.x)
+        out("GOAL", steps)
+        if steps < 0:
+            server.set_aborted(MoveBaseResult(), "negative")
+            out("ABORTED")
+            return
+        for i in range(steps):
+            if server.is_preempt_requested():
+                server.set_preempted(MoveBaseResult(), f"preempted at {i}")
+                out("PREEMPTED", i)
+                return
+            fb = server.action_server.ActionFeedback().feedback
+            fb.base_position.pose.position.x = float(i)
+            server.publish_feedback(fb)
+            time.sleep(0.1)
+        server.set_succeeded(MoveBaseResult(), f"done {steps}")
+        out("SUCCEEDED", steps)
+
+    server = actionlib.SimpleActionServer(ACTION, MoveBaseAction, execute_cb=execute, auto_start=False)
+    server.start()
+    out("SERVING")
+    rospy.spin()
+
+
+# ---------------------------------------------------------------- client
+
+class Tracked:
+    """One goal sent through the lower-level ActionClient: its CommStates and feedback."""
+
+    def __init__(self, client, x):
+        self.states = []
+        self.feedback = 0
+        self.done = threading.Event()
+        self.active = threading.Event()
+        self.gh = client.send_goal(goal(x), self.transition, self.on_feedback)
+
+    def transition(self, gh):
+        state = gh.get_comm_state()
+        name = actionlib.CommState.to_string(state)
+        if not self.states or self.states[-1] != name:
+            self.states.append(name)
+        if state in (actionlib.CommState.ACTIVE, actionlib.CommState.PREEMPTING):
+            self.active.set()
+        if state == actionlib.CommState.DONE:
+            self.done.set()
+
+    def on_feedback(self, gh, fb):
+        self.feedback += 1
+        self.active.set()
+
+    def report(self, label):
+        assert self.done.wait(10), f"{label}: goal not done, states {self.states}"
+        states = [s for s in self.states if s != "PENDING"]  # PENDING shows only if a status catches it
+        out(label, " ".join(states), STATUS_NAMES[self.gh.get_terminal_state()],
+            repr(self.gh.get_goal_status_text()))
+
+
+def scenario_succeed(ac, sac):
+    t = Tracked(ac, 3)
+    t.report("succeed")
+    out("succeed-feedback", t.feedback, "result", type(t.gh.get_result()).__name__)
+
+
+def scenario_cancel(ac, sac):
+    t = Tracked(ac, 100)
+    assert t.active.wait(5)
+    t.gh.cancel()
+    t.report("cancel")
+
+
+def scenario_newer_goal(ac, sac):
+    first = Tracked(ac, 100)
+    assert first.active.wait(5)
+    second = Tracked(ac, 2)
+    first.report("superseded")
+    second.report("newer")
+
+
+def scenario_cancel_all(ac, sac):
+    t = Tracked(ac, 100)
+    assert t.active.wait(5)
+    ac.cancel_all_goals()
+    t.report("cancel-all")
+
+
+def scenario_abort(ac, sac):
+    Tracked(ac, -1).report("abort")
+
+
+def scenario_unknown_cancel(ac, sac):
+    """A cancel for an id the server has not seen: RECALLING listed, RECALLED when the goal comes."""
+    results = []
+    sub = rospy.Subscriber(ACTION + "/result", MoveBaseActionResult, results.append, queue_size=10)
+    ghost = f"ghost-{int(time.time())}"
+    ac.pub_cancel.publish(GoalID(id=ghost))
+    deadline = time.time() + 5
+    seen = None
+    while time.time() < deadline and seen is None:
+        msg = ac.last_status_msg
+        if msg is not None:
+            seen = next((s.status for s in msg.status_list if s.goal_id.id == ghost), None)
+        time.sleep(0.02)
+    out("ghost-listed", STATUS_NAMES.get(seen, seen))
+    ac.pub_goal.publish(MoveBaseActionGoal(goal_id=GoalID(id=ghost, stamp=rospy.Time.now()), goal=goal(5)))
+    deadline = time.time() + 5
+    while time.time() < deadline and not any(r.status.goal_id.id == ghost for r in results):
+        time.sleep(0.02)
+    mine = [STATUS_NAMES[r.status.status] for r in results if r.status.goal_id.id == ghost]
+    out("ghost-result", " ".join(mine))
+    sub.unregister()
+
+
+def scenario_simple(ac, sac):
+    """SimpleActionClient: callbacks, state, send_goal_and_wait, wait_for_result timeout, preempt."""
+    events = []
+    sac.send_goal(goal(2), done_cb=lambda s, r: events.append("done:" + STATUS_NAMES[s]),
+                  active_cb=lambda: events.append("active"), feedback_cb=lambda f: events.append("fb"))
+    ok = sac.wait_for_result(rospy.Duration(10))
+    out("simple-wait", ok, STATUS_NAMES[sac.get_state()], repr(sac.get_goal_status_text()),
+        "active" in events, events.count("fb"), events[-1])
+    out("simple-and-wait", STATUS_NAMES[sac.send_goal_and_wait(goal(1), rospy.Duration(10))])
+    sac.send_goal(goal(100))
+    out("simple-timeout", sac.wait_for_result(rospy.Duration(0.3)), STATUS_NAMES[sac.get_state()])
+    sac.cancel_goal()
+    out("simple-canceled", sac.wait_for_result(rospy.Duration(5)), STATUS_NAMES[sac.get_state()])
+    out("simple-timed-out-goal", STATUS_NAMES[sac.send_goal_and_wait(goal(100), rospy.Duration(0.3),
+                                                                        rospy.Duration(5))])
+
+
+SCENARIOS = {name[len("scenario_"):]: f for name, f in list(globals().items()) if name.startswith("scenario_")}
+
+
+def client(names):
+    rospy.init_node("move_base_client")
+    ac = actionlib.ActionClient(ACTION, MoveBaseAction)
+    sac = actionlib.SimpleActionClient(ACTION, MoveBaseAction)
+    start = time.time()
+    ready = ac.wait_for_server(rospy.Duration(10)) and sac.wait_for_server(rospy.Duration(10))
+    out("ready", ready, "%.1f" % (time.time() - start) if not ready else "")
+    for name in names:
+        SCENARIOS[name](ac, sac)
+    out("FINISHED")
+
+
+if __name__ == "__main__":
+    if sys.argv[1] == "server":
+        serve()
+    else:
+        client(sys.argv[2:] or list(SCENARIOS))
