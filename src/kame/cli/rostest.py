@@ -455,7 +455,7 @@ def _run(settings: Settings, outname: str, logfile: Path) -> int:
         print("\n[ROSTEST WARNINGS]" + "-" * 62 + "\n", file=sys.stderr)
         for err in settings.config.errors:
             print(f" * {err}", file=sys.stderr)
-        print("")
+    print("")
     if settings.text_mode:
         print("WARNING: overall test result is not accurate when --text is enabled")
     else:
