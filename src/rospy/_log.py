@@ -33,6 +33,7 @@ _lock = threading.Lock()
 _once: set[Any] = set()
 _throttle_last: dict[Any, float] = {}
 _identical_last: dict[Any, tuple[str, float]] = {}
+_roscpp_console = False  # roscpp's look: `[ INFO] [1795311282.956206123]: text`
 
 
 def set_level(level: int) -> None:
@@ -47,6 +48,13 @@ def get_level() -> int:
 def set_rosout_publisher(publish: Callable[[int, str, str, str, int], None] | None) -> None:
     global _rosout_publish
     _rosout_publish = publish
+
+
+def use_roscpp_console(on: bool = True) -> None:
+    """Console lines as a roscpp node prints them (severity padded to 5, time in nanoseconds):
+    for kame's ports of C++ programs (turtlesim), whose users know those lines."""
+    global _roscpp_console
+    _roscpp_console = on
 
 
 def log_dir() -> str:
@@ -81,8 +89,12 @@ def _time_text() -> str:
 
 def _console(level: int, text: str, file: str, line: int, function: str) -> None:
     template = os.environ.get("ROSCONSOLE_FORMAT", DEFAULT_FORMAT)
+    severity, stamp = LEVEL_NAMES[level], _time_text()
+    if _roscpp_console:
+        ns = time.time_ns()
+        severity, stamp = f"{severity:>5}", f"{ns // 1_000_000_000}.{ns % 1_000_000_000:09d}"
     fields = {
-        "severity": LEVEL_NAMES[level], "time": _time_text(), "message": text, "node": core.get_caller_id(),
+        "severity": severity, "time": stamp, "message": text, "node": core.get_caller_id(),
         "logger": "rosout", "file": file, "line": str(line), "function": function,
         "thread": threading.current_thread().name, "walltime": f"{time.time():.6f}",
     }

@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import math
 import random
+import struct
 from dataclasses import dataclass, field
 
 from kame.turtlesim.canvas import Canvas, Rgb
@@ -251,7 +252,8 @@ class World:
                 self._events.append(RotationEvent(t.name, aborted=True))
         self._turtles.clear()
         self._counter = 0
-        name = self.spawn("", *self.centre, 0.0)
+        x, y = self.centre
+        name = self.spawn("", _f32(x), _f32(y), 0.0)  # turtlesim passes them as float
         self.clear(background)
         return name
 
@@ -397,6 +399,10 @@ class World:
 def _finite(*values: float) -> None:
     if not all(math.isfinite(v) for v in values):
         raise InvalidValue(f"values must be finite numbers, got {', '.join(repr(v) for v in values)}")
+
+
+def _f32(value: float) -> float:
+    return float(struct.unpack("<f", struct.pack("<f", value))[0])
 
 
 def _qround(value: float) -> int:

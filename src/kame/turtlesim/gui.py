@@ -1,0 +1,135 @@
+"""turtlesim's window: draws world snapshots with Qt (PySide6, the optional `kame[gui]` extra).
+
+Rules: knows only the world (kame.turtlesim.world's Snapshot), never ROS. The background and
+trails come from the world's raster as they are; the turtles are kame's own drawings, made
+with QPainter (no image files), one of IMAGE_COUNT shell colours per turtle, facing +x at
+theta 0. The window is fixed at the world's size and repaints only when the snapshot changed.
+"""
+
+from __future__ import annotations
+
+import math
+import sys
+from collections.abc import Callable
+
+from PySide6.QtCore import QPointF, QRectF, Qt, QTimer
+from PySide6.QtGui import QBrush, QColor, QImage, QPainter, QPaintEvent, QPen, QPolygonF
+from PySide6.QtWidgets import QApplication, QWidget
+
+from kame.turtlesim.world import IMAGE_COUNT, Snapshot, Sprite
+
+# (shell, shell pattern, skin): one per turtle image
+PALETTE: tuple[tuple[str, str, str], ...] = (
+    ("#2e8b57", "#1f5f3b", "#9acd32"),
+    ("#8b5a2b", "#5c3a1a", "#c8b560"),
+    ("#4169e1", "#27408b", "#87cefa"),
+    ("#b22222", "#7a1616", "#f4a460"),
+    ("#6a5acd", "#483d8b", "#d8bfd8"),
+    ("#ff8c00", "#b35f00", "#ffd27f"),
+    ("#008b8b", "#005f5f", "#7fffd4"),
+    ("#556b2f", "#3a4a20", "#bdb76b"),
+)
+assert len(PALETTE) == IMAGE_COUNT
+
+
+def draw_turtle(painter: QPainter, sprite: Sprite) -> None:
+    """A top view of a turtle about 45 px long, centred on its position, heading theta."""
+    shell, pattern, skin = (QColor(c) for c in PALETTE[sprite.image % len(PALETTE)])
+    outline = QPen(QColor("#1a1a1a"), 1.2)
+    painter.save()
+    painter.setRenderHint(QPainter.RenderHint.Antialiasing, True)
+    painter.translate(sprite.x, sprite.y)
+    painter.rotate(-math.degrees(sprite.theta))  # window y points down: CCW is negative
+    painter.setPen(outline)
+    painter.setBrush(QBrush(skin))
+    for fx, fy in ((9.0, 11.0), (9.0, -11.0), (-9.0, 11.0), (-9.0, -11.0)):  # flippers
+        painter.drawEllipse(QPointF(fx, fy), 5.0, 3.5)
+    painter.drawPolygon(QPolygonF([QPointF(-13.0, -2.5), QPointF(-20.0, 0.0), QPointF(-13.0, 2.5)]))  # tail
+    painter.drawEllipse(QPointF(16.0, 0.0), 6.0, 5.0)  # head
+    painter.setBrush(QBrush(QColor("#111111")))
+    painter.setPen(Qt.PenStyle.NoPen)
+    painter.drawEllipse(QPointF(19.0, 2.2), 1.1, 1.1)
+    painter.drawEllipse(QPointF(19.0, -2.2), 1.1, 1.1)
+    painter.setPen(outline)
+    painter.setBrush(QBrush(shell))
+    painter.drawEllipse(QRectF(-14.0, -11.0, 28.0, 22.0))  # shell
+    painter.setBrush(QBrush(pattern))
+    painter.setPen(Qt.PenStyle.NoPen)
+    hexagon = QPolygonF([QPointF(5.0 * math.cos(a), 5.0 * math.sin(a))
+                         for a in (k * math.pi / 3 for k in range(6))])
+    painter.drawPolygon(hexagon)
+    for k in range(6):
+        a = k * math.pi / 3 + math.pi / 6
+        painter.drawEllipse(QPointF(9.0 * math.cos(a), 7.0 * math.sin(a)), 2.4, 2.0)
+    painter.restore()
+
+
+def paint(painter: QPainter, snapshot: Snapshot) -> None:
+    image = QImage(snapshot.pixels, snapshot.width, snapshot.height, snapshot.width * 3,
+                   QImage.Format.Format_RGB888)
+    painter.drawImage(0, 0, image)
+    for sprite in snapshot.turtles:
+        draw_turtle(painter, sprite)
+
+
+def render(snapshot: Snapshot) -> QImage:
+    """The frame the window would show (needs a QGuiApplication)."""
+    image = QImage(snapshot.width, snapshot.height, QImage.Format.Format_RGB32)
+    painter = QPainter(image)
+    paint(painter, snapshot)
+    painter.end()
+    return image
+
+
+class TurtleWindow(QWidget):
+    def __init__(self, snapshot: Snapshot, title: str) -> None:
+        super().__init__()
+        self.snapshot = snapshot
+        self.setWindowTitle(title)
+        self.setFixedSize(snapshot.width, snapshot.height)
+
+    def show_snapshot(self, snapshot: Snapshot) -> None:
+        if snapshot.version != self.snapshot.version or snapshot is not self.snapshot:
+            self.snapshot = snapshot
+            self.update()
+
+    def paintEvent(self, event: QPaintEvent) -> None:
+        painter = QPainter(self)
+        paint(painter, self.snapshot)
+        painter.end()
+
+
+def application() -> QApplication:
+    app = QApplication.instance()
+    if isinstance(app, QApplication):
+        return app
+    return QApplication(sys.argv[:1])
+
+
+def run_window(frame: Callable[[], Snapshot | None], should_quit: Callable[[], bool], title: str,
+               period_ms: int) -> int:
+    """Call `frame` every `period_ms` and show what it returns (None: nothing changed) until
+    `should_quit` says so or the window is closed. Returns Qt's exit status."""
+    app = application()
+    first = frame()
+    while first is None:
+        first = frame()
+    window = TurtleWindow(first, title)
+    window.show()
+
+    def on_timer() -> None:
+        if should_quit():
+            app.quit()
+            return
+        snapshot = frame()
+        if snapshot is not None:
+            window.show_snapshot(snapshot)
+
+    timer = QTimer()
+    timer.setTimerType(Qt.TimerType.PreciseTimer)
+    timer.timeout.connect(on_timer)
+    timer.start(period_ms)
+    status = app.exec()
+    timer.stop()
+    window.close()
+    return int(status)

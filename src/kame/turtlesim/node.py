@@ -1,0 +1,389 @@
+"""turtlesim_node: the ROS face of a turtlesim world, with or without its window.
+
+    rosrun turtlesim turtlesim_node [--headless] [__name:=NAME] [remappings]
+
+The glue of ARCHITECTURE rule 4: the world (kame.turtlesim.world) simulates, the GUI
+(kame.turtlesim.gui) draws snapshots, and this module turns ROS traffic into world requests
+and world steps into ROS traffic, as turtlesim 0.10.2's TurtleFrame and Turtle do:
+- node `turtlesim`; services clear, reset, spawn, kill; params ~background_r/g/b (set to
+  69/86/255 when absent, read at start and on every clear/reset);
+- per turtle: cmd_vel in, pose and color_sensor out (every 16 ms step), services set_pen,
+  teleport_absolute, teleport_relative, and the rotate_absolute action when kame has actionlib;
+- roscpp's log lines; errors are logged and answered as failed calls with no text, as a
+  roscpp service returning false is.
+What kame adds: a cmd_vel or request with NaN/infinity is refused (the real turtle would
+vanish into NaN); the pre-0.9.2 global /background_r etc. of older tutorials are honoured
+while the private ones keep the values turtlesim gave them; with no display, or --headless,
+or without PySide6, the simulation runs without a window and says so once.
+"""
+
+from __future__ import annotations
+
+import importlib.util
+import io
+import os
+import sys
+import threading
+import time
+from collections.abc import Callable, Sequence
+from typing import Any
+
+import rospy
+from geometry_msgs.msg import Twist
+from kame.turtlesim.canvas import Rgb
+from kame.turtlesim.world import (
+    DEFAULT_BACKGROUND,
+    UPDATE_PERIOD,
+    RotationEvent,
+    Snapshot,
+    StepReport,
+    TurtleError,
+    World,
+)
+from rospy import _log
+from std_srvs.srv import Empty, EmptyResponse
+from turtlesim.msg import Color
+from turtlesim.msg import Pose as PoseMsg
+from turtlesim.srv import (
+    Kill,
+    KillResponse,
+    SetPen,
+    SetPenResponse,
+    Spawn,
+    SpawnResponse,
+    TeleportAbsolute,
+    TeleportAbsoluteResponse,
+    TeleportRelative,
+    TeleportRelativeResponse,
+)
+
+NODE_NAME = "turtlesim"
+WINDOW_TITLE = "TurtleSim"
+_CHANNELS = ("r", "g", "b")
+
+
+def _info(msg: str, *args: Any) -> None:
+    _log.emit(_log.INFO, msg, args)
+
+
+def _warn(msg: str, *args: Any) -> None:
+    _log.emit(_log.WARN, msg, args)
+
+
+def _error(msg: str, *args: Any) -> None:
+    _log.emit(_log.ERROR, msg, args)
+
+
+def _serialized(msg: Any) -> bytes:
+    buff = io.BytesIO()
+    msg.serialize(buff)
+    return buff.getvalue()
+
+
+class _TurtleInterfaces:
+    """One turtle's topics, services and action server, under `<name>/`."""
+
+    def __init__(self, sim: TurtlesimNode, name: str) -> None:
+        self.name = name
+        self.pose = rospy.Publisher(f"{name}/pose", PoseMsg, queue_size=1)
+        self.color = rospy.Publisher(f"{name}/color_sensor", Color, queue_size=1)
+        self.cmd_vel = rospy.Subscriber(f"{name}/cmd_vel", Twist, self._on_cmd_vel, queue_size=1)
+        self._sim = sim
+        self.services = [
+            sim.serve(f"{name}/set_pen", SetPen, self._set_pen),
+            sim.serve(f"{name}/teleport_absolute", TeleportAbsolute, self._teleport_absolute),
+            sim.serve(f"{name}/teleport_relative", TeleportRelative, self._teleport_relative),
+        ]
+        self.rotate: Any = sim.rotate_absolute_server(name)
+
+    def _on_cmd_vel(self, msg: Twist) -> None:
+        try:
+            with self._sim.lock:
+                self._sim.world.command(self.name, msg.linear.x, msg.linear.y, msg.angular.z)
+        except TurtleError as exc:
+            _warn("Ignoring a cmd_vel for [%s]: %s", self.name, exc)
+
+    def _set_pen(self, req: Any) -> SetPenResponse:
+        with self._sim.lock:
+            self._sim.world.set_pen(self.name, req.r, req.g, req.b, req.width, bool(req.off))
+        return SetPenResponse()
+
+    def _teleport_absolute(self, req: Any) -> TeleportAbsoluteResponse:
+        with self._sim.lock:
+            self._sim.world.teleport_absolute(self.name, req.x, req.y, req.theta)
+        return TeleportAbsoluteResponse()
+
+    def _teleport_relative(self, req: Any) -> TeleportRelativeResponse:
+        with self._sim.lock:
+            self._sim.world.teleport_relative(self.name, req.linear, req.angular)
+        return TeleportRelativeResponse()
+
+    def publish(self, pose: Any, color: Rgb) -> None:
+        self.pose.publish(PoseMsg(pose.x, pose.y, pose.theta, pose.linear_velocity, pose.angular_velocity))
+        self.color.publish(Color(color.r, color.g, color.b))
+
+    def close(self) -> None:
+        self.pose.unregister()
+        self.color.unregister()
+        self.cmd_vel.unregister()
+        node = rospy.core.get_node()
+        for service in self.services:
+            if node is not None:
+                node.unadvertise_service(service)
+        if self.rotate is not None:
+            self._sim.close_rotate_absolute_server(self.rotate)
+
+
+class TurtlesimNode:
+    """Steps a World every UPDATE_PERIOD and keeps its turtles' ROS interfaces in step with it.
+    Callbacks arrive on I/O threads: the world is touched only under `lock`."""
+
+    def __init__(self, world: World) -> None:
+        self.world = world
+        self.lock = threading.Lock()
+        self._sync_lock = threading.Lock()
+        self._turtles: dict[str, _TurtleInterfaces] = {}  # replaced whole, read without a lock
+        self._initial_background: dict[str, Any] = {}
+        self._drawn = -1
+
+    # ---------------------------------------------------------------- start-up
+
+    def start(self) -> None:
+        _info("Starting turtlesim with node name %s", rospy.get_name())
+        for channel, default in zip(_CHANNELS, (DEFAULT_BACKGROUND.r, DEFAULT_BACKGROUND.g, DEFAULT_BACKGROUND.b),
+                                    strict=True):
+            key = f"~background_{channel}"
+            if not rospy.has_param(key):
+                rospy.set_param(key, default)
+            self._initial_background[channel] = rospy.get_param(key, default)
+        self.serve("clear", Empty, self._clear)
+        self.serve("reset", Empty, self._reset_service)
+        self.serve("spawn", Spawn, self._spawn)
+        self.serve("kill", Kill, self._kill)
+        self._reset()
+
+    def serve(self, name: str, service_class: Any, handler: Callable[[Any], Any]) -> str:
+        """Advertise a service whose handler's TurtleError is logged and answered as a plain
+        failure (roscpp's `return false`)."""
+        resolved = rospy.resolve_name(name)
+        request_class = service_class._request_class
+
+        def handle(data: bytes) -> tuple[bool, bytes | str]:
+            try:
+                request = request_class().deserialize(data)
+            except Exception as exc:
+                return False, f"error processing request: {exc}"
+            try:
+                return True, _serialized(handler(request))
+            except TurtleError as exc:
+                _error("%s", exc)
+                return False, ""
+
+        node = rospy.core.get_node()
+        assert node is not None
+        node.advertise_service(resolved, service_class._type, service_class._md5sum, handle)
+        return resolved
+
+    # ---------------------------------------------------------------- services
+
+    def background(self) -> Rgb:
+        values = []
+        for channel in _CHANNELS:
+            private = rospy.get_param(f"~background_{channel}", self._initial_background.get(channel))
+            legacy = rospy.get_param(f"background_{channel}", None)
+            value = legacy if legacy is not None and private == self._initial_background.get(channel) else private
+            try:
+                values.append(int(value) & 0xFF)
+            except (TypeError, ValueError):
+                values.append(getattr(DEFAULT_BACKGROUND, channel))
+        return Rgb(*values)
+
+    def _clear(self, _req: Any) -> EmptyResponse:
+        _info("Clearing turtlesim.")
+        background = self.background()
+        with self.lock:
+            self.world.clear(background)
+        return EmptyResponse()
+
+    def _reset_service(self, _req: Any) -> EmptyResponse:
+        _info("Resetting turtlesim.")
+        self._reset()
+        return EmptyResponse()
+
+    def _reset(self) -> None:
+        background = self.background()
+        with self.lock:
+            name = self.world.reset(background)
+            pose = self.world.turtle(name).pose
+        self._log_spawn(name, pose.x, pose.y, pose.theta)
+        self._sync()
+
+    def _spawn(self, req: Any) -> SpawnResponse:
+        with self.lock:
+            name = self.world.spawn(req.name, req.x, req.y, req.theta)
+        self._log_spawn(name, req.x, req.y, req.theta)
+        self._sync()
+        return SpawnResponse(name)
+
+    def _kill(self, req: Any) -> KillResponse:
+        with self.lock:
+            self.world.kill(req.name)
+        self._sync()
+        return KillResponse()
+
+    @staticmethod
+    def _log_spawn(name: str, x: float, y: float, theta: float) -> None:
+        _info("Spawning turtle [%s] at x=[%f], y=[%f], theta=[%f]", name, x, y, theta)
+
+    def _sync(self) -> None:
+        """Give every turtle of the world its interfaces, and take them from turtles gone."""
+        with self._sync_lock:
+            with self.lock:
+                names = set(self.world.names())
+            current = dict(self._turtles)
+            for gone in sorted(set(current) - names):
+                current.pop(gone).close()
+            self._turtles = current
+            for new in sorted(names - set(current)):
+                current[new] = _TurtleInterfaces(self, new)
+                self._turtles = dict(current)
+
+    # ---------------------------------------------------------------- rotate_absolute
+
+    def rotate_absolute_server(self, name: str) -> Any:
+        """The turtle's rotate_absolute action server, when kame has actionlib; else None."""
+        if importlib.util.find_spec("actionlib") is None:
+            return None
+        try:
+            from actionlib import SimpleActionServer
+            from turtlesim.msg import RotateAbsoluteAction
+        except ImportError:
+            return None
+        server: Any = SimpleActionServer(f"{name}/rotate_absolute", RotateAbsoluteAction, auto_start=False)
+
+        def goal() -> None:
+            accepted = server.accept_new_goal()
+            with self.lock:
+                if self.world.has(name):
+                    self.world.rotate_absolute(name, accepted.theta)
+
+        def preempt() -> None:
+            with self.lock:
+                self.world.cancel_rotation(name)
+            if server.is_active():
+                server.set_preempted()
+
+        server.register_goal_callback(goal)
+        server.register_preempt_callback(preempt)
+        server.start()
+        return server
+
+    def close_rotate_absolute_server(self, server: Any) -> None:
+        for attr in ("shutdown", "stop"):
+            stop = getattr(getattr(server, "action_server", None), attr, None) or getattr(server, attr, None)
+            if callable(stop):
+                try:
+                    stop()
+                except Exception:
+                    pass
+                return
+
+    def _rotation(self, event: RotationEvent) -> None:
+        interfaces = self._turtles.get(event.name)
+        server = interfaces.rotate if interfaces is not None else None
+        if server is None or not server.is_active():
+            return
+        from turtlesim.msg import RotateAbsoluteFeedback, RotateAbsoluteResult
+
+        if event.succeeded:
+            server.set_succeeded(RotateAbsoluteResult(event.delta))
+        elif event.aborted:
+            server.set_aborted()
+        else:
+            server.publish_feedback(RotateAbsoluteFeedback(event.remaining))
+
+    # ---------------------------------------------------------------- time
+
+    def tick(self) -> StepReport:
+        """One simulation step, then its pose, colour, warning and action traffic."""
+        with self.lock:
+            report = self.world.step(UPDATE_PERIOD)
+        turtles = self._turtles
+        for update in report.updates:
+            interfaces = turtles.get(update.name)
+            if interfaces is not None:
+                interfaces.publish(update.pose, update.color)
+        for hit in report.hits:
+            _warn("Oh no! I hit the wall! (Clamping from [x=%f, y=%f])", hit.x, hit.y)
+        for event in report.rotations:
+            self._rotation(event)
+        return report
+
+    def frame(self) -> Snapshot | None:
+        """A step for a window: the new snapshot when something visible changed, else None."""
+        self.tick()
+        with self.lock:
+            if self.world.version == self._drawn:
+                return None
+            self._drawn = self.world.version
+            return self.world.snapshot()
+
+    def run_headless(self) -> None:
+        """Step every UPDATE_PERIOD until shutdown; a late step is not made up for by a burst."""
+        deadline = time.monotonic()
+        while not rospy.is_shutdown():
+            self.tick()
+            deadline += UPDATE_PERIOD
+            delay = deadline - time.monotonic()
+            if delay < -0.1:
+                deadline = time.monotonic()
+            elif delay > 0:
+                rospy.core.wait_for_shutdown(delay)
+
+    def shutdown(self) -> None:
+        with self._sync_lock:
+            for interfaces in self._turtles.values():
+                interfaces.close()
+            self._turtles = {}
+
+
+def window_problem(args: Sequence[str], env: dict[str, str] | os._Environ[str]) -> str | None:
+    """Why there will be no window (the text said once), or None when Qt can open one."""
+    if "--headless" in args:
+        return "--headless: turtlesim runs without a window"
+    if not (env.get("DISPLAY") or env.get("WAYLAND_DISPLAY") or env.get("QT_QPA_PLATFORM")):
+        return "No display (DISPLAY is not set): turtlesim runs headless, without a window"
+    if importlib.util.find_spec("PySide6") is None:
+        return "PySide6 is not installed (pip install 'kame[gui]'): turtlesim runs headless, without a window"
+    return None
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    argv = list(sys.argv if argv is None else argv)
+    args = rospy.myargv(argv)[1:]
+    _log.use_roscpp_console()
+    rospy.init_node(NODE_NAME, argv=argv)
+    sim = TurtlesimNode(World())
+    sim.start()
+    problem = window_problem(args, os.environ)
+    try:
+        if problem is not None:
+            _info("%s", problem)
+            sim.run_headless()
+        else:
+            from kame.turtlesim import gui
+
+            status = gui.run_window(sim.frame, rospy.is_shutdown, title=WINDOW_TITLE,
+                                    period_ms=round(UPDATE_PERIOD * 1000))
+            if status != 0 or not rospy.is_shutdown():
+                rospy.signal_shutdown("window closed")
+    except KeyboardInterrupt:
+        pass
+    finally:
+        sim.shutdown()
+        rospy.signal_shutdown("turtlesim exiting")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
