@@ -86,13 +86,12 @@ def unitrun(package: str, test_name: str, test: object, sysargs: Sequence[str] |
             coverage_packages: Sequence[str] | None = None) -> None:
     """Run offline unittests (no ROS graph needed) with JUnit XML results. Exits 1 when a test failed.
 
-    Deprecated in rostest (rosunit.unitrun is the same); coverage options are accepted and ignored.
+    Deprecated in rostest: rosunit.unitrun, which it calls.
     """
     warnings.warn("Call to deprecated function unitrun.", category=DeprecationWarning, stacklevel=2)
-    result = _run_suite(package, test_name, test, sys.argv if sysargs is None else sysargs)
-    print(_junit.unittest_summary(result), flush=True)
-    if not result.wasSuccessful():
-        sys.exit(1)
+    import rosunit
+
+    rosunit.unitrun(package, test_name, test, sysargs=sysargs, coverage_packages=coverage_packages)
 
 
 def rostestmain() -> None:

@@ -341,3 +341,20 @@ def test_ctrl_c_stops_every_process(workspace: Path) -> None:
     assert proc.popen.returncode == 1, out + err
     assert "rostest: interrupted, every process stopped" in err
     assert gone(pid)
+
+
+def test_rosunit_unitrun_failure_and_output_flag(workspace: Path) -> None:
+    script = workspace / "failing_unit.py"
+    script.write_text("import unittest, rosunit\n"
+                      "class Case(unittest.TestCase):\n"
+                      "    def test_bad(self):\n"
+                      "        self.assertTrue(False, 'nope')\n"
+                      "rosunit.unitrun('demo', 'failing', Case)\n")
+    out_file = workspace / "out" / "result.xml"
+    done = subprocess.run([sys.executable, str(script), f"--gtest_output=xml:{out_file}"], env=make_env(workspace),
+                          capture_output=True, text=True, timeout=30)
+    assert done.returncode == 1, done.stdout + done.stderr
+    assert "[Testcase: test_bad] ... FAILURE!\nFAILURE: False is not true : nope\n" in done.stdout
+    assert " * RESULT: FAIL\n * TESTS: 1\n * ERRORS: 0 []\n * FAILURES: 1 [test_bad]" in done.stdout
+    root = ET.parse(out_file).getroot()
+    assert (root.get("tests"), root.get("failures")) == ("1", "1")
