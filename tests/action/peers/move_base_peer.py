@@ -168,6 +168,36 @@ def scenario_simple(ac, sac):
                                                                         rospy.Duration(5))])
 
 
+def scenario_server_dies(ac, sac):
+    """Wait for the test to kill the server mid-goal: the goal must end LOST, without hanging."""
+    sac.send_goal(goal(100))
+    deadline = time.time() + 5
+    while sac.get_state() != GoalStatus.ACTIVE and time.time() < deadline:
+        time.sleep(0.02)
+    out("server-dies-active", STATUS_NAMES[sac.get_state()])
+    start = time.time()
+    done = sac.wait_for_result(rospy.Duration(20))
+    out("server-dies-done", done, STATUS_NAMES[sac.get_state()], f"{time.time() - start:.1f}")
+
+
+def scenario_status_timing(ac, sac):
+    """How often the status comes and how long a finished goal stays listed."""
+    t = Tracked(ac, 1)
+    t.report("timing-goal")
+    goal_id = t.gh.comm_state_machine.action_goal.goal_id.id
+    seen = []
+    from actionlib_msgs.msg import GoalStatusArray
+    sub = rospy.Subscriber(ACTION + "/status", GoalStatusArray,
+                           lambda m: seen.append((time.time(), any(s.goal_id.id == goal_id for s in m.status_list))),
+                           queue_size=100)
+    start = time.time()
+    time.sleep(2.0)
+    sub.unregister()
+    listed = [ts for ts, present in seen if present]
+    rate = len(seen) / 2.0
+    out("timing", f"rate={rate:.0f}", "listed-until=%.1f" % ((max(listed) - start) if listed else 0.0))
+
+
 SCENARIOS = {name[len("scenario_"):]: f for name, f in list(globals().items()) if name.startswith("scenario_")}
 
 
@@ -187,4 +217,4 @@ if __name__ == "__main__":
     if sys.argv[1] == "server":
         serve()
     else:
-        client(sys.argv[2:] or list(SCENARIOS))
+        client(sys.argv[2:])
