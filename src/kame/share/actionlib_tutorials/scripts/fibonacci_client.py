@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# mypy: ignore-errors
 # The actionlib tutorial's Fibonacci client: wait for the server, send order 20, print the result.
 import sys
 

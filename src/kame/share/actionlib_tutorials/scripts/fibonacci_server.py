@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# mypy: ignore-errors
 # ruff: noqa: UP031  (the tutorial formats with %)
 # The actionlib tutorial's Fibonacci server (SimpleActionServer with an execute callback),
 # written the way the ROS wiki teaches it; the action is served under the node's name.

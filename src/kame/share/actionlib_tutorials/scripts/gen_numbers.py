@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# mypy: ignore-errors
 # The Averaging tutorial's number source: normally distributed samples (mean 5, sd 1) on random_number.
 import random
 
