@@ -33,7 +33,9 @@ def compress(kind: str, data: bytes | bytearray | memoryview) -> bytes:
     if kind == BZ2:
         return bz2.compress(data, 9)
     if kind == LZ4:
-        out: bytes = _lz4().compress(bytes(data), store_size=False)
+        frame = _lz4()  # the frame roslz4 writes (and the only one it reads): 1 MB blocks, content checksum
+        out: bytes = frame.compress(bytes(data), store_size=False, block_size=frame.BLOCKSIZE_MAX1MB,
+                                    content_checksum=True)
         return out
     raise BagCompressionError(f"unsupported compression type: {kind}")
 

@@ -1,0 +1,327 @@
+# ruff: noqa: E501  (option help texts are rosbag's, one option per line)
+"""rosbag record: subscribe to topics and write what arrives, as raw bytes, to a bag.
+
+- Messages are never deserialized: the subscription delivers TCPROS frames and their
+  connection header, which becomes the bag's connection record (one connection per
+  topic and publisher, with callerid and latching, as the C++ recorder makes them).
+- The subscriber threads only queue (bytes, time); one writer thread owns the bag, so a
+  slow disk never stalls the sockets. The queue is bounded by -b MB (256); when full the
+  oldest messages are dropped with a warning, as rosbag does.
+- Ctrl-C (or SIGTERM) stops subscribing, drains the queue, closes the bag and renames
+  `name.bag.active` to `name.bag`. A killed recorder leaves complete chunks and no index:
+  `rosbag reindex` repairs it.
+- -a, -e and --node find topics by asking the master once a second.
+"""
+
+from __future__ import annotations
+
+import collections
+import datetime
+import optparse
+import os
+import re
+import signal
+import sys
+import threading
+import time
+from collections.abc import Callable
+from typing import Any
+
+from kame import names
+from kame.bag.writer import BagWriter
+from kame.net.address import address_override, advertised_host, bind_host
+from kame.node.master_proxy import MasterError
+from kame.node.node import Node, NodeConfig
+
+DEFAULT_MASTER_URI = "http://localhost:11311/"
+
+
+def log_info(text: str) -> None:
+    sys.stdout.write(f"\033[0m[ INFO] [{time.time():.9f}]: {text}\033[0m\n")
+    sys.stdout.flush()
+
+
+def log_warn(text: str) -> None:
+    sys.stderr.write(f"\033[33m[ WARN] [{time.time():.9f}]: {text}\033[0m\n")
+    sys.stderr.flush()
+
+
+def _size_arg(value: str) -> float:
+    return float(value)
+
+
+def _duration_arg(value: str) -> float:
+    mult = 1.0
+    if value.endswith("m"):
+        mult, value = 60.0, value[:-1]
+    elif value.endswith("h"):
+        mult, value = 3600.0, value[:-1]
+    elif value.endswith("s"):
+        value = value[:-1]
+    return float(value) * mult
+
+
+def parser() -> optparse.OptionParser:
+    p = optparse.OptionParser(usage="rosbag record TOPIC1 [TOPIC2 TOPIC3 ...]",
+                              description="Record a bag file with the contents of specified topics.",
+                              formatter=optparse.IndentedHelpFormatter())
+    p.add_option("-a", "--all", dest="all", default=False, action="store_true", help="record all topics")
+    p.add_option("-e", "--regex", dest="regex", default=False, action="store_true", help="match topics using regular expressions")
+    p.add_option("-x", "--exclude", dest="exclude_regex", default="", action="store",
+                 help="exclude topics matching the follow regular expression (subtracts from -a or regex)")
+    p.add_option("-q", "--quiet", dest="quiet", default=False, action="store_true", help="suppress console output")
+    p.add_option("-p", "--publish", dest="publish", default=False, action="store_true",
+                 help="Publish a msg when the record begin")
+    p.add_option("-o", "--output-prefix", dest="prefix", default=None, action="store", help="prepend PREFIX to beginning of bag name")
+    p.add_option("-O", "--output-name", dest="name", default=None, action="store", help="record to bag with name NAME.bag")
+    p.add_option("--split", dest="split", default=False, action="store_true",
+                 help="split the bag when maximum size or duration is reached")
+    p.add_option("--max-splits", dest="max_splits", type="int", action="store", help="Keep a maximum of N bag files")
+    p.add_option("--size", dest="size", type="float", action="store", help="record a bag of maximum size SIZE MB")
+    p.add_option("--duration", dest="duration", type="string", action="store",
+                 help="record a bag of maximum duration DURATION in seconds, unless 'm', or 'h' is appended.")
+    p.add_option("-b", "--buffsize", dest="buffsize", default=256, type="int", action="store",
+                 help="use an internal buffer of SIZE MB (Default: 256, 0 = infinite)")
+    p.add_option("--chunksize", dest="chunksize", default=768, type="int", action="store",
+                 help="Advanced. Record to chunks of SIZE KB (Default: 768)")
+    p.add_option("-l", "--limit", dest="num", default=0, type="int", action="store", help="only record NUM messages on each topic")
+    p.add_option("--node", dest="node", type="string", action="store", help="record all topics subscribed to by a specific node")
+    p.add_option("-j", "--bz2", dest="compression", default="none", action="store_const", const="bz2", help="use BZ2 compression")
+    p.add_option("--lz4", dest="compression", action="store_const", const="lz4", help="use LZ4 compression")
+    p.add_option("--tcpnodelay", dest="tcpnodelay", action="store_true", help="Use the TCP_NODELAY transport hint when subscribing to topics.")
+    p.add_option("--udp", dest="udp", action="store_true", help="Use the UDP transport hint when subscribing to topics.")
+    p.add_option("--repeat-latched", dest="repeat_latched", action="store_true",
+                 help="Repeat latched msgs at the start of each new bag file.")
+    return p
+
+
+def _stamp() -> str:
+    return datetime.datetime.now().strftime("%Y-%m-%d-%H-%M-%S")
+
+
+class BagNamer:
+    """Output names: `-O name` -> name.bag, `-o pre` -> pre_<stamp>.bag, else <stamp>.bag;
+    with --split an `_N` before `.bag`."""
+
+    def __init__(self, prefix: str | None, name: str | None, split: bool) -> None:
+        self.prefix = prefix
+        self.name = name
+        self.split = split
+        self.index = 0
+
+    def next(self) -> str:
+        if self.name:
+            base = self.name[:-4] if self.name.endswith(".bag") else self.name
+        elif self.prefix:
+            base = self.prefix[:-4] if self.prefix.endswith(".bag") else self.prefix
+            base = f"{base}_{_stamp()}"
+        else:
+            base = _stamp()
+        if self.split:
+            base = f"{base}_{self.index}"
+        self.index += 1
+        return base + ".bag"
+
+
+class Recorder:
+    def __init__(self, node: Node, options: Any, topics: list[str], stop: threading.Event) -> None:
+        self.node = node
+        self.options = options
+        self.stop = stop
+        self.explicit = topics
+        self.queue: collections.deque[tuple[tuple[str, str], dict[str, str], int, bytes]] = collections.deque()
+        self.queued_bytes = 0
+        self.limit_bytes = options.buffsize * 1024 * 1024 if options.buffsize > 0 else 0
+        self.cond = threading.Condition()
+        self.subscribed: set[str] = set()
+        self.counts: dict[str, int] = {}
+        self.dropped = 0
+        self.namer = BagNamer(options.prefix, options.name, bool(options.split))
+        self.max_size = int(options.size * 1024 * 1024) if options.split and options.size else 0
+        self.max_duration = _duration_arg(options.duration) if options.duration else 0.0
+        self.exclude = re.compile(options.exclude_regex) if options.exclude_regex else None
+        self.regexes = [re.compile(t) for t in topics] if options.regex else []
+        self.done_topics: set[str] = set()
+        self.finished = threading.Event()
+
+    # ------------------------------------------------------------------ subscribing
+
+    def wants(self, topic: str) -> bool:
+        if self.exclude is not None and self.exclude.search(topic):
+            return False
+        if self.options.all:
+            return True
+        if self.regexes:
+            return any(r.fullmatch(topic) for r in self.regexes)
+        return topic in self.explicit
+
+    def subscribe(self, topic: str) -> None:
+        if topic in self.subscribed:
+            return
+        self.subscribed.add(topic)
+        if not self.options.quiet:
+            log_info(f"Subscribing to {topic}")
+        def deliver(frames: list[memoryview], header: dict[str, str]) -> None:
+            self.deliver(topic, frames, header)
+
+        self.node.subscribe(topic, "*", "*", "", deliver, tcp_nodelay=bool(self.options.tcpnodelay))
+
+    def poll_master(self) -> None:
+        try:
+            if self.options.node:
+                node_name = names.canonicalize(self.options.node if names.is_global(self.options.node)
+                                               else "/" + self.options.node)
+                _, subs, _ = self.node.master.call("getSystemState")
+                for topic, nodes in subs:
+                    if node_name in nodes and self.wants_node_topic(topic):
+                        self.subscribe(topic)
+                return
+            for topic, _type in self.node.master.call("getPublishedTopics", ""):
+                if self.wants(topic):
+                    self.subscribe(topic)
+        except (OSError, MasterError):
+            pass
+
+    def wants_node_topic(self, topic: str) -> bool:
+        return self.exclude is None or not self.exclude.search(topic)
+
+    # ------------------------------------------------------------------ receiving
+
+    def deliver(self, topic: str, frames: list[memoryview], header: dict[str, str]) -> None:
+        now = time.time_ns()
+        key = (topic, header.get("callerid", ""))
+        limit = self.options.num
+        with self.cond:
+            for frame in frames:
+                if limit:
+                    n = self.counts.get(topic, 0)
+                    if n >= limit:
+                        break
+                    self.counts[topic] = n + 1
+                    if n + 1 >= limit:
+                        self.done_topics.add(topic)
+                data = bytes(frame)
+                self.queue.append((key, header, now, data))
+                self.queued_bytes += len(data)
+                while self.limit_bytes and self.queued_bytes > self.limit_bytes and len(self.queue) > 1:
+                    _, _, _, old = self.queue.popleft()
+                    self.queued_bytes -= len(old)
+                    self.dropped += 1
+                    if self.dropped == 1 or self.dropped % 100 == 0:
+                        log_warn(f"rosbag record buffer exceeded.  Dropping oldest queued message ({self.dropped} so far).")
+            self.cond.notify()
+        if limit and self.explicit and all(t in self.done_topics for t in self.explicit):
+            self.stop.set()
+
+    # ------------------------------------------------------------------ writing
+
+    def _open(self) -> tuple[BagWriter, str]:
+        path = self.namer.next()
+        if os.path.dirname(path):
+            os.makedirs(os.path.dirname(path), exist_ok=True)
+        writer = BagWriter(path + ".active", "w", self.options.compression, self.options.chunksize * 1024)
+        if not self.options.quiet:
+            log_info(f"Recording to '{path}'.")
+        return writer, path
+
+    def _close(self, writer: BagWriter, path: str) -> None:
+        writer.close()
+        os.replace(path + ".active", path)
+
+    def write_loop(self) -> None:
+        writer, path = self._open()
+        conns: dict[tuple[str, str], int] = {}
+        opened = time.monotonic()
+        written: list[str] = [path]
+        try:
+            while True:
+                with self.cond:
+                    while not self.queue and not self.stop.is_set():
+                        self.cond.wait(0.25)
+                    if not self.queue and self.stop.is_set():
+                        break
+                    batch = list(self.queue)
+                    self.queue.clear()
+                    self.queued_bytes = 0
+                for key, header, now, data in batch:
+                    conn_id = conns.get(key)
+                    if conn_id is None:
+                        conn_id = conns[key] = writer.add_connection(key[0], header)
+                    secs, nsecs = divmod(now, 1_000_000_000)
+                    writer.write(conn_id, secs, nsecs, data)
+                if self.options.split and ((self.max_size and writer.size >= self.max_size)
+                                           or (self.max_duration and time.monotonic() - opened >= self.max_duration)):
+                    self._close(writer, path)
+                    if self.options.max_splits and len(written) >= self.options.max_splits:
+                        old = written.pop(0)
+                        if os.path.exists(old):
+                            os.remove(old)
+                    writer, path = self._open()
+                    written.append(path)
+                    conns = {}
+                    opened = time.monotonic()
+                elif not self.options.split and self.max_duration and time.monotonic() - opened >= self.max_duration:
+                    self.stop.set()
+        finally:
+            self._close(writer, path)
+            self.finished.set()
+
+
+def main(argv: list[str]) -> int:
+    p = parser()
+    ros = names.parse_args(["rosbag", *argv])
+    options, args = p.parse_args([a for a in argv if ":=" not in a])
+    if not options.all and not args and not options.node:
+        p.error("You must specify a topic name or else use the '-a' option.")
+    if options.all and options.num:
+        p.error("Specifying a count is not valid with automatic topic subscription.")
+    if options.prefix and options.name:
+        p.error("Can't set both prefix and name.")
+    if options.split and not options.size and not options.duration:
+        p.error("Split specified without giving a maximum duration or size")
+    if options.size is not None and options.size <= 0:
+        p.error("Split size must be 0 or positive")
+    env = os.environ
+    special = ros.special
+    namespace = names.make_global_ns(special.get("ns") or env.get("ROS_NAMESPACE") or "/")
+    caller_id = names.canonicalize(namespace + special.get("name", f"record_{int(time.time() * 1000)}"))
+    master_uri = special.get("master") or env.get("ROS_MASTER_URI") or DEFAULT_MASTER_URI
+    override = address_override(env, special)
+    topics = [names.resolve(t, caller_id, {}) if not options.regex else t for t in args]
+    topics = [names.ns_join(namespace, t) if not names.is_global(t) and not options.regex else t for t in topics]
+
+    stop = threading.Event()
+
+    def on_signal(signum: int, frame: Any) -> None:
+        stop.set()
+
+    signal.signal(signal.SIGINT, on_signal)
+    signal.signal(signal.SIGTERM, on_signal)
+    node = Node(NodeConfig(caller_id, master_uri, advertised_host(override), bind_host(override)))
+    node.on_shutdown_request = lambda reason: stop.set()
+    recorder = Recorder(node, options, topics, stop)
+    writer_thread = threading.Thread(target=recorder.write_loop, name="rosbag-writer")
+    try:
+        while True:
+            try:
+                node.master.call("getPid", timeout=2.0)
+                break
+            except (OSError, MasterError):
+                if stop.wait(0.2):
+                    return 0
+        auto = options.all or options.regex or bool(options.node)
+        if not auto:
+            for topic in topics:
+                recorder.subscribe(topic)
+        writer_thread.start()
+        poll: Callable[[], None] = recorder.poll_master
+        while not stop.is_set():
+            if auto:
+                poll()
+            stop.wait(1.0 if auto else 0.5)
+    finally:
+        stop.set()
+        node.shutdown("rosbag record exiting")
+        if writer_thread.is_alive():
+            writer_thread.join()
+    return 0
