@@ -19,7 +19,7 @@ from kame.turtlesim import (
 )
 from kame.turtlesim.canvas import Canvas
 
-CENTRE = 499 / 45 / 2  # 5.544444...
+CENTRE = 5.544444561004639  # (499 / 45) / 2 as a float32, where turtlesim spawns turtle1
 
 
 def world() -> World:
