@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Installs real ROS 1 (Debian's ros_comm 1.15.15) as a test peer for the interop tests.
+# Installs real ROS 1 (Debian's ros_comm 1.15.15) as a test peer for the interop tests, and the
+# shells and terminal multiplexer some end-to-end tests drive.
 # It runs under the system interpreter (/usr/bin/python3) and is never a kame dependency.
 # Does nothing where apt is missing or we are not root: the interop tests then skip.
 set -euo pipefail
@@ -10,8 +11,9 @@ packages=(
   libroscpp-dev libstd-msgs-dev libgeometry-msgs-dev libsensor-msgs-dev libstd-srvs-dev
   ros-std-msgs ros-std-srvs ros-geometry-msgs ros-sensor-msgs ros-nav-msgs ros-rosgraph-msgs
   ros-actionlib-msgs ros-diagnostic-msgs ros-trajectory-msgs ros-visualization-msgs
-  ros-shape-msgs ros-stereo-msgs ros-tf2-msgs ros-roscpp-msg ros-move-base-msgs
+  ros-shape-msgs ros-stereo-msgs ros-tf2-msgs ros-roscpp-msg ros-move-base-msgs python3-rostest
   g++ pkg-config
+  zsh tmux  # the shell-integration and terminal (teleop) tests drive these
 )
 if ! command -v apt-get >/dev/null 2>&1 || [ "$(id -u)" != 0 ]; then
   echo "install-ros-peers: no apt-get or not root; interop tests with real ROS 1 will be skipped" >&2
