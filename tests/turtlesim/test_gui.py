@@ -12,7 +12,8 @@ import pytest
 from kame.turtlesim import World
 
 pytest.importorskip("PySide6.QtWidgets")
-os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
+if not os.environ.get("QT_QPA_PLATFORM"):
+    os.environ["QT_QPA_PLATFORM"] = "offscreen"  # before Qt starts: no display in the tests
 
 from PySide6.QtGui import QImage
 
