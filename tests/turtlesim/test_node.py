@@ -140,3 +140,30 @@ def test_several_simulators_at_once(tmp_path: Path) -> None:
         live.run("rostopic", "pub", "-1", "/two/turtle1/cmd_vel", "geometry_msgs/Twist", "--", "[1,0,0]", "[0,0,0]")
         assert live.echo("/two/turtle1/pose")["x"] > CENTRE + 0.9
         assert live.echo("/turtle1/pose")["x"] == CENTRE
+
+
+ROTATE = """
+import rospy, actionlib
+from turtlesim.msg import RotateAbsoluteAction, RotateAbsoluteGoal
+rospy.init_node("rotate_client")
+client = actionlib.SimpleActionClient("/turtle1/rotate_absolute", RotateAbsoluteAction)
+assert client.wait_for_server(rospy.Duration(10))
+client.send_goal(RotateAbsoluteGoal(theta=1.0))
+assert client.wait_for_result(rospy.Duration(10))
+print(client.get_state(), client.get_result().delta)
+"""
+
+
+def test_rotate_absolute_action(sim: Sim) -> None:
+    import importlib.util
+    import subprocess
+    import sys
+
+    if importlib.util.find_spec("actionlib") is None:
+        pytest.skip("kame has no actionlib here")
+    sim.run("rosservice", "call", "/reset")
+    result = subprocess.run([sys.executable, "-c", ROTATE], env=sim.env, capture_output=True, text=True, timeout=60)
+    assert result.returncode == 0, result.stderr
+    state, delta = result.stdout.split()
+    assert state == "3" and float(delta) == pytest.approx(-1.0, abs=0.02)  # SUCCEEDED, turned by 1 rad
+    assert sim.pose()["theta"] == pytest.approx(1.0, abs=0.02)

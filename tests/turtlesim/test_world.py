@@ -201,3 +201,25 @@ def test_canvas_lines() -> None:
     assert c.pixel(5, 0) == c.pixel(5, 19) == Rgb(9, 9, 9) and c.pixel(6, 0) == Rgb(0, 0, 0)
     c.line(0, 0, 19, 19, Rgb(7, 7, 7), 1)
     assert c.pixel(12, 12) == Rgb(7, 7, 7)
+
+
+def test_the_world_knows_nothing_of_ros_and_the_gui_only_the_world() -> None:
+    """ARCHITECTURE rule 4."""
+    import ast
+    from pathlib import Path
+
+    root = Path(__file__).resolve().parents[2] / "src" / "kame" / "turtlesim"
+
+    def imports(name: str) -> set[str]:
+        found: set[str] = set()
+        for node in ast.walk(ast.parse((root / name).read_text())):
+            if isinstance(node, ast.Import):
+                found.update(a.name for a in node.names)
+            elif isinstance(node, ast.ImportFrom) and node.module:
+                found.add(node.module)
+        return found
+
+    ros = ("rospy", "kame.node", "kame.net", "geometry_msgs", "turtlesim", "std_srvs", "PySide6")
+    for pure in ("world.py", "canvas.py"):
+        assert not [m for m in imports(pure) if m.startswith(ros) and not m.startswith("kame.turtlesim")]
+    assert {m for m in imports("gui.py") if m.startswith(("kame", "rospy"))} == {"kame.turtlesim.world"}
