@@ -233,6 +233,7 @@ class Bag:
         if conns == []:
             return
         classes: dict[int, type[Any]] = {}
+        new_time = Time.__new__
         for m in reader.messages(conns, _to_time(start_time), _to_time(end_time)):
             conn = m.conn
             cls = classes.get(conn.id)
@@ -242,7 +243,13 @@ class Bag:
                 msg: Any = (conn.datatype, m.data, conn.md5sum, m.position, cls)
             else:
                 msg = cls().deserialize(m.data)
-            t = Time(m.time[0], m.time[1])
+            secs, nsecs = m.time
+            if nsecs < 1_000_000_000:  # canonical, as every writer stores it: skip Time's checks
+                t = new_time(Time)
+                t.secs = secs
+                t.nsecs = nsecs
+            else:
+                t = Time(secs, nsecs)
             if return_connection_header:
                 yield BagMessageWithConnectionHeader(conn.topic, msg, t, conn.header)
             else:

@@ -21,6 +21,7 @@ from __future__ import annotations
 import heapq
 import itertools
 import os
+import struct
 from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass
 
@@ -336,12 +337,22 @@ class BagReader:
                         hi: Time) -> Iterator[RawMessage]:
         data = loaded.data
         pos = loaded.info.pos
-        span = records.message_data_span
+        unpack = records.unpack_u32
+        n = len(data)
         entries = loaded.entries
         if entries and ((entries[0][0], entries[0][1]) < lo or (entries[-1][0], entries[-1][1]) > hi):
             entries = [e for e in entries if lo <= (e[0], e[1]) <= hi]
         for secs, nsecs, offset, conn_id in entries:
-            a, b = span(data, offset)
+            # records.message_data_span, inlined: this loop runs once per message
+            try:
+                (header_len,) = unpack(data, offset)
+                a = offset + 8 + header_len
+                (data_len,) = unpack(data, a - 4)
+            except struct.error:
+                a, data_len = n + 1, 0
+            b = a + data_len
+            if b > n:
+                records.message_data_span(data, offset)  # raises the precise BagFormatError
             yield RawMessage(conns[conn_id], (secs, nsecs), data[a:b], (pos, offset))
 
     def _merged(self, chunks: list[ChunkInfo], wanted: set[int] | None, conns: dict[int, Connection],

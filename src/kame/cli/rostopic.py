@@ -13,7 +13,8 @@ node start-up (an anonymous `/rostopic_<pid>_<ms>` node), hz and bw subscribing 
 - pub checks the whole message before publishing and names the field that does not fit,
   also when nobody subscribes yet (rostopic only fails once a subscriber serializes);
 - field paths also work through array indices (`rostopic type /js/position[0]`);
-- bags are not read yet: `-b` says so.
+- `list -b` and `echo -b` read bags through kame's rosbag (any message type, from the
+  definitions stored in the bag).
 """
 
 from __future__ import annotations
@@ -27,7 +28,7 @@ import sys
 import threading
 import time
 from collections.abc import Callable, Iterator
-from typing import Any, NoReturn
+from typing import Any
 from urllib.parse import urlparse
 
 import yaml
@@ -328,10 +329,70 @@ def _print_list(pubs: list[tuple[str, str, list[str]]], subs: list[tuple[str, st
     print("\n".join(indent + t for t in sorted(topics)))
 
 
-def _bag_error(path: str) -> NoReturn:
+def _open_bag(path: str) -> Any:
     if not os.path.exists(path):
         raise RostopicError(f"bag file [{path}] does not exist")
-    raise RostopicError(f"unable to use bag file: kame cannot read bag files yet ({path})")
+    import rosbag
+
+    try:
+        return rosbag.Bag(path)
+    except rosbag.ROSBagException as exc:
+        raise RostopicError(f"unable to use bag file: {exc}") from None
+
+
+def _bag_list(path: str, topic: str | None, verbose: bool) -> None:
+    with _open_bag(path) as bag:
+        info = bag.get_type_and_topic_info()
+    topics = sorted(info.topics)
+    if topic:
+        ns = names.make_global_ns(topic)
+        topics = [t for t in topics if t == topic or t.startswith(ns)]
+    if verbose:
+        print("\nPublished topics:")
+        for t in topics:
+            print(f" * {t} [{info.topics[t].msg_type}] {info.topics[t].message_count} msgs")
+        return
+    print("\n".join(topics))
+
+
+def _bag_echo(path: str, topic: str, all_topics: bool, count: int | None, filter_fn: Callable[[Any, str], bool] | None,
+              nostr: bool, noarr: bool, width: int | None, plot: bool) -> None:
+    with _open_bag(path) as bag:
+        bag_topics = {c.topic for c in bag._read_side().connections.values()}
+        real = None
+        if not all_topics:
+            real = topic if topic in bag_topics else next(
+                (t for t in sorted(bag_topics, key=len, reverse=True) if topic.startswith(t + "/")), None)
+            if real is None:
+                return
+        path_spec = parse_field_path(topic[len(real):]) if real is not None and topic != real else None
+        printed = 0
+        first = True
+        for t, msg, stamp in bag.read_messages(topics=None if all_topics else [real]):
+            if filter_fn is not None and not filter_fn(msg, t):
+                continue
+            data: Any = msg
+            type_information = None
+            if path_spec is not None:
+                try:
+                    data = path_spec.evaluate(msg)
+                    type_information = field_type(type(msg), path_spec.pattern)
+                except FieldPathError as exc:
+                    sys.stderr.write(f"{exc}\n")
+                    continue
+                if data is None:
+                    continue
+            if plot:
+                text = (csv_header(data, None) + "\n") if first else ""
+                first = False
+                text += csv_row(data, stamp, None, None) + "\n"
+            else:
+                value = transform(as_field_value(data, type_information), type_information, nostr, noarr)
+                text = (f"topic: {t}\n" if all_topics else "") + to_yaml(value, width=width) + "\n---\n"
+            _write(text)
+            printed += 1
+            if count is not None and printed >= count:
+                return
 
 
 def _parser(usage: str) -> optparse.OptionParser:
@@ -359,7 +420,8 @@ def cmd_list(args: list[str]) -> None:
             parser.error("-p option is not valid with bags")
         elif options.hostname:
             parser.error("--host option is not valid with bags")
-        _bag_error(options.bag)
+        _bag_list(options.bag, topic, options.verbose)
+        return
     if options.subscribers and options.publishers:
         parser.error("you may only specify one of -p, -s")
     pubs, subs = _topic_list()
@@ -608,7 +670,9 @@ def cmd_echo(args: list[str]) -> None:
         parser.error("Fixed width for numeric values must be at least 2")
     filter_fn = _filter(options.filter_expr) if options.filter_expr else None
     if options.bag:
-        _bag_error(options.bag)
+        _bag_echo(options.bag, topic.rstrip("/") or "/", options.all_topics, count, filter_fn, options.nostr,
+                  options.noarr, width, options.plot)
+        return
     if topic.endswith("/"):
         topic = topic.rstrip("/") or "/"
 
