@@ -93,10 +93,6 @@ def remap_name(name: str, caller_id: str | None = None) -> str:
     return _remappings.get(resolved, name)
 
 
-def get_remappings() -> dict[str, str]:
-    return dict(_remappings)
-
-
 def is_shutdown() -> bool:
     return _shutdown.is_set()
 

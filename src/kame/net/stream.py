@@ -412,9 +412,3 @@ def recv_exactly(sock: socket.socket, size: int) -> bytes:
         chunks.append(chunk)
         remaining -= len(chunk)
     return b"".join(chunks)
-
-
-def sendall_buffers(sock: socket.socket, buffers: Sequence[Buffer]) -> None:
-    """Blocking write of several buffers (handshakes, service calls)."""
-    for buffer in buffers:
-        sock.sendall(buffer)

@@ -44,13 +44,3 @@ def read_header_and_rest(sock: socket.socket) -> tuple[dict[str, str], bytes]:
 
 def write_header(sock: socket.socket, fields: Mapping[str, str]) -> None:
     sock.sendall(encode_header(fields))
-
-
-def refuse(sock: socket.socket, text: str) -> None:
-    """Answer a handshake with `error=<text>` and close, as rospy and roscpp do."""
-    try:
-        write_header(sock, {"error": text})
-    except OSError:
-        pass
-    finally:
-        sock.close()
