@@ -15,6 +15,9 @@ import pytest
 from tests.support import Proc, free_port, ros_env, wait_for_master
 
 BIN = Path(sys.executable).parent
+# The interpreter rosrun itself runs on (its script's shebang): python and python3 in a venv
+# are the same interpreter under two names, and pytest may have been started by either.
+KAME_PY = (BIN / "rosrun").read_text().splitlines()[0].removeprefix("#!").strip()
 REAL_ROSRUN = "/usr/bin/rosrun"
 
 Result = subprocess.CompletedProcess[str]
@@ -65,14 +68,14 @@ def test_runs_with_args_in_the_same_process(ws: Path) -> None:
                             env=env_for(ws), stdout=subprocess.PIPE, text=True)
     out, _ = proc.communicate(timeout=30)
     # python scripts run with kame's interpreter, whatever their shebang; exec keeps the PID
-    assert out == f"ran {sys.executable} ['a', 'b c', '__name:=x', '_p:=1'] {proc.pid}\n"
+    assert out == f"ran {KAME_PY} ['a', 'b c', '__name:=x', '_p:=1'] {proc.pid}\n"
     assert proc.returncode == 0
 
 
 def test_paths_prefix_and_shell_scripts(ws: Path) -> None:
-    assert rosrun(ws, "runpkg", "scripts/show", "1").stdout.startswith(f"ran {sys.executable} ['1'] ")
+    assert rosrun(ws, "runpkg", "scripts/show", "1").stdout.startswith(f"ran {KAME_PY} ['1'] ")
     prefixed = rosrun(ws, "--prefix", "echo PFX", "runpkg", "show", "z")
-    assert prefixed.stdout == f"PFX {sys.executable} {ws / 'runpkg/scripts/show'} z\n"
+    assert prefixed.stdout == f"PFX {KAME_PY} {ws / 'runpkg/scripts/show'} z\n"
     assert rosrun(ws, "runpkg", "shell_no_shebang", "q").stdout == "no-shebang q\n"
 
 
