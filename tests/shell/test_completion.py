@@ -48,7 +48,7 @@ class FakeGraph(Sources):
     ("rossrv show turtlesim/Sp", ["turtlesim/Spawn"]),
     ("rosrun rospy_tut", ["rospy_tutorials"]),
     ("rosrun rospy_tutorials ", ["listener", "talker"]),
-    ("rosrun turtlesim ", []),
+    ("rosrun turtlesim ", ["draw_square", "mimic", "turtle_teleop_key", "turtlesim_node"]),
     ("roscd rospy_tut", ["rospy_tutorials/"]),
     ("roscd rospy_tutorials/s", ["rospy_tutorials/scripts/", "rospy_tutorials/srv/"]),
     ("roscat rospy_tutorials Add", ["AddTwoInts.srv"]),
