@@ -2,21 +2,29 @@
 """Master benchmark: Debian's rosmaster against kame's, same client, same run (stdlib only).
 
 For each measurement a fresh master is started on a free loopback port and stopped by its PID
-afterwards. The client is deliberately thin so that it measures the master, not itself: each
-thread holds its own keep-alive connection and sends a pre-encoded XML-RPC request, reading the
-response with Content-Length (reconnecting when the server closes, as rosmaster's HTTP/1.0 does).
+afterwards. The client is deliberately thin so that it measures the master, not itself: "N
+clients" are N keep-alive connections, each sending a pre-encoded XML-RPC request as soon as the
+previous response (read by Content-Length) is complete, reconnecting when the server closes, as
+rosmaster's HTTP/1.0 does. By default the N connections are spread round-robin over
+min(N, --procs) worker processes, each driving its connections from one epoll loop, so neither the
+GIL nor one process's core bounds the rate; the workers count the calls completed inside one
+window common to all of them (CLOCK_MONOTONIC). `--client threads` is the old client (one thread
+per connection, all in this process).
 
-  python3 bench/master_bench.py [--window 2] [--kame-python .venv/bin/python]
+  python3 bench/master_bench.py [--window 2] [--client procs|threads] [--procs 2]
+                                [--kame-python .venv/bin/python]
 
 Metrics: XML-RPC calls/s for registerPublisher, lookupNode and getSystemState with 1, 10 and 50
-concurrent client threads; ms to register 100 publishers + 100 subscribers; getSystemState
-latency (median) on a graph of 1000 topics.
+concurrent clients, with the master's and the client's CPU time per call; ms to register 100
+publishers + 100 subscribers; getSystemState latency (median) on a graph of 1000 topics.
 """
 
 from __future__ import annotations
 
 import argparse
+import multiprocessing
 import os
+import select
 import signal
 import socket
 import statistics
@@ -138,27 +146,35 @@ def cpu_seconds(pid: int) -> float:
     return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
 
 
-def throughput(m: Master, method: str, threads: int, window: float) -> tuple[float, float]:
-    """(calls/s, master CPU microseconds per call)."""
-    def requests_for(i: int) -> list[bytes]:
-        me = f"/bench_rpc_{i}"
-        if method == "registerPublisher":
-            return [request(method, me, f"/bench_rpc/t{n}", "std_msgs/String", NODE_API) for n in range(100)]
-        if method == "lookupNode":
-            return [request(method, me, "/bench_node")]
-        return [request(method, me)]
+def requests_for(method: str, i: int) -> list[bytes]:
+    """The pre-encoded requests client i cycles through."""
+    me = f"/bench_rpc_{i}"
+    if method == "registerPublisher":
+        return [request(method, me, f"/bench_rpc/t{n}", "std_msgs/String", NODE_API) for n in range(100)]
+    if method == "lookupNode":
+        return [request(method, me, "/bench_node")]
+    return [request(method, me)]
 
-    setup = Client(m.port)
-    if not ok(setup.call(request("registerPublisher", "/bench_node", "/bench_topic", "std_msgs/String", NODE_API))):
+
+def setup_graph(m: Master) -> None:
+    if not ok(Client(m.port).call(request("registerPublisher", "/bench_node", "/bench_topic", "std_msgs/String",
+                                          NODE_API))):
         raise RuntimeError("setup failed")
-    counts = [0] * threads
+
+
+def throughput_threads(m: Master, method: str, clients: int, window: float) -> tuple[float, float, float]:
+    """The old single-process client (--client threads): one thread per connection, all in this process.
+
+    Returns (calls/s, master CPU us per call, client CPU us per call)."""
+    setup_graph(m)
+    counts = [0] * clients
     errors: list[str] = []
-    start = threading.Barrier(threads + 1)
+    start = threading.Barrier(clients + 1)
     stop = threading.Event()
 
     def run(i: int) -> None:
         c = Client(m.port)
-        reqs = requests_for(i)
+        reqs = requests_for(method, i)
         start.wait()
         n = 0
         try:
@@ -171,19 +187,153 @@ def throughput(m: Master, method: str, threads: int, window: float) -> tuple[flo
             errors.append(repr(e))
         counts[i] = n
 
-    workers = [threading.Thread(target=run, args=(i,)) for i in range(threads)]
+    workers = [threading.Thread(target=run, args=(i,)) for i in range(clients)]
     for w in workers:
         w.start()
     start.wait()
-    t0, cpu0 = time.perf_counter(), cpu_seconds(m.proc.pid)
+    t0, cpu0, own0 = time.perf_counter(), cpu_seconds(m.proc.pid), time.process_time()
     time.sleep(window)
     stop.set()
     for w in workers:
         w.join()
     elapsed, cpu = time.perf_counter() - t0, cpu_seconds(m.proc.pid) - cpu0
+    own = time.process_time() - own0
     if errors:
         raise RuntimeError(f"{m.name}: {errors[0]}")
-    return sum(counts) / elapsed, cpu / max(sum(counts), 1) * 1e6
+    calls = max(sum(counts), 1)
+    return sum(counts) / elapsed, cpu / calls * 1e6, own / calls * 1e6
+
+
+class Conn:
+    """One keep-alive connection of a worker process, with one call in flight."""
+
+    __slots__ = ("buf", "n", "reqs", "sock")
+
+    def __init__(self, reqs: list[bytes]) -> None:
+        self.sock: socket.socket | None = None
+        self.buf = b""
+        self.reqs = reqs
+        self.n = 0
+
+
+def worker(port: int, method: str, ids: list[int], pipe) -> None:  # type: ignore[no-untyped-def]
+    """One client process: its connections driven by one epoll loop, each sending its next pre-encoded
+    request as soon as the previous response is complete.
+
+    Counts the calls completed inside [t0, t1) (CLOCK_MONOTONIC, the same clock in every process) and
+    sends back (calls, CPU seconds this process used in that window, error text or "")."""
+    ep = select.epoll()
+    conns: dict[int, Conn] = {}
+
+    def connect(c: Conn) -> None:
+        if c.sock is not None:
+            ep.unregister(c.sock.fileno())
+            del conns[c.sock.fileno()]
+            c.sock.close()
+        c.sock = socket.create_connection(("127.0.0.1", port))
+        c.sock.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
+        c.buf = b""
+        conns[c.sock.fileno()] = c
+        ep.register(c.sock.fileno(), select.EPOLLIN)
+
+    calls, cpu0, cpu1, error = 0, None, None, ""
+    try:
+        for i in ids:
+            connect(Conn(requests_for(method, i)))
+        pipe.send("ready")
+        t0, t1 = pipe.recv()
+        for c in list(conns.values()):
+            c.sock.sendall(c.reqs[0])  # type: ignore[union-attr]
+        while True:
+            events = ep.poll(0.05)
+            now = time.monotonic()
+            if now >= t1:
+                break
+            if cpu0 is None and now >= t0:
+                cpu0 = time.process_time()
+            for fd, _ in events:
+                c = conns[fd]
+                s = c.sock
+                chunk = s.recv(65536)  # type: ignore[union-attr]
+                if not chunk:  # closed before answering (keep-alive expiry): reconnect, send again
+                    connect(c)
+                    c.sock.sendall(c.reqs[c.n % len(c.reqs)])  # type: ignore[union-attr]
+                    continue
+                buf = c.buf + chunk
+                head, sep, rest = buf.partition(b"\r\n\r\n")
+                if not sep:
+                    c.buf = buf
+                    continue
+                lower = head.lower()
+                i = lower.find(b"content-length:")
+                j = head.find(b"\r\n", i)
+                length = int(head[i + 15: j if j > 0 else None])
+                if len(rest) < length:
+                    c.buf = buf
+                    continue
+                if not ok(rest[:length]):
+                    raise RuntimeError(f"{method} failed: {rest[:300]!r}")
+                c.buf = rest[length:]
+                if now >= t0:
+                    calls += 1
+                c.n += 1
+                if head.startswith(b"HTTP/1.0") or b"connection: close" in lower:
+                    connect(c)
+                c.sock.sendall(c.reqs[c.n % len(c.reqs)])  # type: ignore[union-attr]
+        cpu1 = time.process_time()
+    except Exception as e:  # reported to the parent, which raises it
+        error = repr(e)
+    for c in conns.values():
+        c.sock.close()  # type: ignore[union-attr]
+    pipe.send((calls, (cpu1 - cpu0) if cpu0 is not None and cpu1 is not None else 0.0, error))
+
+
+def throughput(m: Master, method: str, clients: int, window: float, procs: int) -> tuple[float, float, float]:
+    """The default client: `clients` connections spread round-robin over `procs` worker processes.
+
+    Returns (calls/s, master CPU us per call, client CPU us per call) over one window common to all
+    workers."""
+    setup_graph(m)
+    procs = max(1, min(procs, clients))
+    ctx = multiprocessing.get_context("fork")
+    pipes, workers = [], []
+    try:
+        for p in range(procs):
+            parent, child = ctx.Pipe()
+            w = ctx.Process(target=worker, args=(m.port, method, list(range(p, clients, procs)), child),
+                            daemon=True)
+            w.start()
+            child.close()
+            pipes.append(parent)
+            workers.append(w)
+        for pipe in pipes:
+            if not pipe.poll(30) or pipe.recv() != "ready":
+                raise RuntimeError(f"{m.name}: a client process did not connect")
+        t0 = time.monotonic() + 0.3  # warm-up: every connection is busy before the window opens
+        t1 = t0 + window
+        for pipe in pipes:
+            pipe.send((t0, t1))
+        time.sleep(max(0.0, t0 - time.monotonic()))
+        cpu0 = cpu_seconds(m.proc.pid)
+        time.sleep(max(0.0, t1 - time.monotonic()))
+        cpu = cpu_seconds(m.proc.pid) - cpu0
+        results = []
+        for pipe in pipes:
+            if not pipe.poll(30):
+                raise RuntimeError(f"{m.name}: a client process did not report")
+            results.append(pipe.recv())
+    finally:
+        for w in workers:
+            w.join(5)
+            if w.is_alive():
+                w.kill()
+                w.join()
+    errors = [e for _, _, e in results if e]
+    if errors:
+        raise RuntimeError(f"{m.name}: {errors[0]}")
+    calls = sum(n for n, _, _ in results)
+    own = sum(c for _, c, _ in results)
+    return calls / window, cpu / max(calls, 1) * 1e6, own / max(calls, 1) * 1e6
 
 
 def register_200(m: Master) -> float:
@@ -223,6 +373,11 @@ def main() -> int:
     ap.add_argument("--window", type=float, default=2.0, help="seconds per throughput measurement")
     ap.add_argument("--kame-python", default=str(REPO / ".venv" / "bin" / "python"))
     ap.add_argument("--rosmaster", default="/usr/bin/rosmaster", help="Debian's rosmaster script")
+    ap.add_argument("--client", choices=("procs", "threads"), default="procs",
+                    help="procs (default): N connections spread over worker processes, an epoll loop each; "
+                         "threads: the old client, one thread per connection in this one process")
+    ap.add_argument("--procs", type=int, default=os.cpu_count() or 1,
+                    help="client worker processes with --client procs (at most N; default: cpu count, %(default)s)")
     args = ap.parse_args()
     masters = {"rosmaster": ["/usr/bin/python3", args.rosmaster],
                "kame": [args.kame_python, "-m", "kame.cli.rosmaster"]}
@@ -231,26 +386,42 @@ def main() -> int:
     def measure(label: str, unit: str, fn) -> None:  # type: ignore[no-untyped-def]
         values: dict[str, float] = {}
         cpu: dict[str, float] = {}
+        own: dict[str, float] = {}
         for name, cmd in masters.items():
             m = Master(name, cmd)
             try:
                 result = fn(m)
             finally:
                 m.stop()
-            values[name], cpu[name] = result if isinstance(result, tuple) else (result, 0.0)
-            print(f"  {label} [{name}]: {values[name]:,.1f} {unit}", file=sys.stderr, flush=True)
+            values[name], cpu[name], own[name] = result if isinstance(result, tuple) else (result, 0.0, 0.0)
+            extra = ""
+            if own[name]:
+                extra = " (master %.1f us/call, client %.1f us/call = %.2f cores)" % (
+                    cpu[name], own[name], own[name] * values[name] / 1e6)
+            print(f"  {label} [{name}]: {values[name]:,.1f} {unit}{extra}", file=sys.stderr, flush=True)
         rows.append((label, unit, values))
         if all(cpu.values()):
             # on a shared machine the client and neighbours take CPU too: this is the master's own cost
             rows.append(("  master CPU per call", "us", cpu))
+            rows.append(("  client CPU per call", "us", own))
 
     for method in ("registerPublisher", "lookupNode", "getSystemState"):
-        for threads in (1, 10, 50):
-            measure(f"{method}, {threads} client{'s' if threads > 1 else ''}", "call/s",
-                    lambda m, method=method, threads=threads: throughput(m, method, threads, args.window))
+        for clients in (1, 10, 50):
+            def fn(m: Master, method: str = method, clients: int = clients) -> tuple[float, float, float]:
+                if args.client == "threads":
+                    return throughput_threads(m, method, clients, args.window)
+                return throughput(m, method, clients, args.window, args.procs)
+
+            measure(f"{method}, {clients} client{'s' if clients > 1 else ''}", "call/s", fn)
     measure("register 100 pubs + 100 subs", "ms", register_200)
     measure("getSystemState, 1000 topics (median)", "ms", system_state_latency)
 
+    if args.client == "threads":
+        how = "client: --client threads, N threads (one connection each) in this one process"
+    else:
+        how = (f"client: --client procs, N connections spread over min(N, {args.procs}) worker processes "
+               "(epoll loop each, one call in flight per connection)")
+    print(f"window {args.window:g} s; {how}; fresh master per measurement")
     print(f"{'metric':<40} {'unit':<7} {'rosmaster':>12} {'kame':>12} {'kame/rosmaster':>15}")
     print("-" * 90)
     for label, unit, v in rows:
