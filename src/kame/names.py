@@ -14,7 +14,6 @@ from __future__ import annotations
 
 import re
 from collections.abc import Iterable, Mapping
-from dataclasses import dataclass, field
 
 SEP = "/"
 GLOBAL_NS = "/"
@@ -124,7 +123,6 @@ def is_ros_arg(arg: str) -> bool:
     return _LEGAL_REMAP.match(arg) is not None
 
 
-@dataclass(frozen=True)
 class RosArgs:
     """The ROS arguments found in an argv, unresolved.
 
@@ -136,10 +134,13 @@ class RosArgs:
     without the leading underscores. `argv` is the program's own arguments (rospy's myargv()).
     """
 
-    remappings: dict[str, str] = field(default_factory=dict)
-    params: dict[str, str] = field(default_factory=dict)
-    special: dict[str, str] = field(default_factory=dict)
-    argv: list[str] = field(default_factory=list)
+    __slots__ = ("argv", "params", "remappings", "special")
+
+    def __init__(self) -> None:
+        self.remappings: dict[str, str] = {}
+        self.params: dict[str, str] = {}
+        self.special: dict[str, str] = {}
+        self.argv: list[str] = []
 
 
 def parse_args(argv: Iterable[str]) -> RosArgs:

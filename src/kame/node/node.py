@@ -17,8 +17,7 @@ import os
 import socket
 import threading
 from collections.abc import Callable
-from dataclasses import dataclass
-from typing import Any
+from typing import Any, NamedTuple
 
 from kame import names
 from kame.net.rpc_server import RpcServer
@@ -36,8 +35,7 @@ log = logging.getLogger("kame.node")
 HANDSHAKE_TIMEOUT = 10.0
 
 
-@dataclass(frozen=True)
-class NodeConfig:
+class NodeConfig(NamedTuple):
     name: str  # the full resolved node name, e.g. /ns/talker
     master_uri: str
     host: str  # the address advertised in our URIs

@@ -14,7 +14,6 @@ import struct
 import threading
 import time
 from collections.abc import Callable
-from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
 from kame.net.stream import connect, set_nodelay
@@ -39,16 +38,16 @@ class ServiceError(Exception):
     """A call failed: the server answered with an error, or the connection broke."""
 
 
-@dataclass(eq=False)
 class ServiceServer:
-    node: Node
-    name: str
-    type: str
-    md5sum: str
-    handler: ServiceHandler
-    closed: bool = False
-    _connections: set[socket.socket] = field(default_factory=set)
-    _lock: threading.Lock = field(default_factory=threading.Lock)
+    def __init__(self, node: Node, name: str, type: str, md5sum: str, handler: ServiceHandler) -> None:
+        self.node = node
+        self.name = name
+        self.type = type
+        self.md5sum = md5sum
+        self.handler = handler
+        self.closed = False
+        self._connections: set[socket.socket] = set()
+        self._lock = threading.Lock()
 
     @property
     def spec(self) -> tcpros.ServiceSpec:

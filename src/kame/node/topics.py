@@ -20,7 +20,6 @@ import struct
 import threading
 import time
 from collections.abc import Callable
-from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
 from kame.net.stream import Receiver, Sender, connect, set_keepalive, set_nodelay
@@ -64,33 +63,36 @@ def serialize_payload(msg: Any) -> bytes:
     return buff.getvalue()
 
 
-@dataclass(eq=False)
 class SubscriberLink:
     """One subscriber connected to one of our publications."""
 
-    connection_id: int
-    callerid: str
-    sender: Sender
-    peer: str
+    __slots__ = ("callerid", "connection_id", "peer", "sender")
+
+    def __init__(self, connection_id: int, callerid: str, sender: Sender, peer: str) -> None:
+        self.connection_id = connection_id
+        self.callerid = callerid
+        self.sender = sender
+        self.peer = peer
 
 
-@dataclass(eq=False)
 class Publication:
-    node: Node
-    topic: str
-    type: str
-    md5sum: str
-    definition: str
-    latch: bool
-    queue_size: int
-    extra_headers: dict[str, str] = field(default_factory=dict)
-    links: list[SubscriberLink] = field(default_factory=list)
-    latched: list[Any] | None = None
-    seq: int = 0
-    on_connect: list[Callable[[SubscriberLink], None]] = field(default_factory=list)
-    on_disconnect: list[Callable[[SubscriberLink], None]] = field(default_factory=list)
-    closed: bool = False
-    _lock: threading.Lock = field(default_factory=threading.Lock)
+    def __init__(self, node: Node, topic: str, type: str, md5sum: str, definition: str, latch: bool,
+                 queue_size: int, extra_headers: dict[str, str] | None = None) -> None:
+        self.node = node
+        self.topic = topic
+        self.type = type
+        self.md5sum = md5sum
+        self.definition = definition
+        self.latch = latch
+        self.queue_size = queue_size
+        self.extra_headers = extra_headers or {}
+        self.links: list[SubscriberLink] = []
+        self.latched: list[Any] | None = None
+        self.seq = 0
+        self.on_connect: list[Callable[[SubscriberLink], None]] = []
+        self.on_disconnect: list[Callable[[SubscriberLink], None]] = []
+        self.closed = False
+        self._lock = threading.Lock()
 
     def publish_frame(self, frame: list[Any]) -> None:
         """Send one framed message (from serialize_frame) to every subscriber."""
@@ -169,20 +171,20 @@ class Publication:
 Callback = Callable[[list[memoryview], dict[str, str]], None]
 
 
-@dataclass(eq=False)
 class PublisherLink:
     """Our connection to one publisher of a subscribed topic."""
 
-    subscription: Subscription
-    publisher_uri: str
-    connection_id: int
-    callerid: str = ""
-    header: dict[str, str] = field(default_factory=dict)
-    receiver: Receiver | None = None
-    sock: socket.socket | None = None
-    bytes_received: int = 0
-    closed: bool = False
-    connected: bool = False
+    def __init__(self, subscription: Subscription, publisher_uri: str, connection_id: int) -> None:
+        self.subscription = subscription
+        self.publisher_uri = publisher_uri
+        self.connection_id = connection_id
+        self.callerid = ""
+        self.header: dict[str, str] = {}
+        self.receiver: Receiver | None = None
+        self.sock: socket.socket | None = None
+        self.bytes_received = 0
+        self.closed = False
+        self.connected = False
 
     def run(self) -> None:
         """Connect, retrying while the publisher stays registered (runs on its own thread)."""
@@ -316,20 +318,21 @@ class _Frames:
             self._deliver(frames)
 
 
-@dataclass(eq=False)
 class Subscription:
-    node: Node
-    topic: str
-    type: str
-    md5sum: str
-    definition: str
-    queue_size: int | None
-    tcp_nodelay: bool
-    deliver_frames: Callback
-    links: dict[str, PublisherLink] = field(default_factory=dict)
-    closed: bool = False
-    _lock: threading.Lock = field(default_factory=threading.Lock)
-    callback_lock: threading.Lock = field(default_factory=threading.Lock)
+    def __init__(self, node: Node, topic: str, type: str, md5sum: str, definition: str, queue_size: int | None,
+                 tcp_nodelay: bool, deliver_frames: Callback) -> None:
+        self.node = node
+        self.topic = topic
+        self.type = type
+        self.md5sum = md5sum
+        self.definition = definition
+        self.queue_size = queue_size
+        self.tcp_nodelay = tcp_nodelay
+        self.deliver_frames = deliver_frames
+        self.links: dict[str, PublisherLink] = {}
+        self.closed = False
+        self._lock = threading.Lock()
+        self.callback_lock = threading.Lock()
 
     def deliver(self, frames: list[memoryview], header: dict[str, str]) -> None:
         if self.queue_size and len(frames) > self.queue_size:

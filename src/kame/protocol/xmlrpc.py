@@ -25,7 +25,6 @@ import base64
 import binascii
 import re
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
 from typing import TypeAlias
 from xml.parsers import expat
 
@@ -36,11 +35,24 @@ MIN_INT = -(2**31)
 MAX_DEPTH = 256
 
 
-@dataclass(frozen=True)
 class DateTime:
-    """An XML-RPC `dateTime.iso8601` value, kept as its text so it round-trips unchanged."""
+    """An XML-RPC `dateTime.iso8601` value, kept as its text so it round-trips unchanged.
 
-    value: str
+    (A plain value class, not a dataclass: every node imports this module at start-up.)"""
+
+    __slots__ = ("value",)
+
+    def __init__(self, value: str) -> None:
+        self.value = value
+
+    def __eq__(self, other: object) -> bool:
+        return isinstance(other, DateTime) and other.value == self.value
+
+    def __hash__(self) -> int:
+        return hash(self.value)
+
+    def __repr__(self) -> str:
+        return f"DateTime(value={self.value!r})"
 
 
 Value: TypeAlias = "bool | int | float | str | bytes | DateTime | list[Value] | dict[str, Value]"
@@ -236,12 +248,14 @@ _CONVERT: dict[str, Callable[[str], Value]] = {
 }
 
 
-@dataclass
 class _Message:
-    kind: str  # "methodCall" or "methodResponse"
-    method: str | None
-    params: list[Value]
-    fault: bool
+    __slots__ = ("fault", "kind", "method", "params")
+
+    def __init__(self, kind: str, method: str | None, params: list[Value], fault: bool) -> None:
+        self.kind = kind  # "methodCall" or "methodResponse"
+        self.method = method
+        self.params = params
+        self.fault = fault
 
 
 def _refuse_dtd(_name: str, _sysid: str | None, _pubid: str | None, _internal: bool) -> None:
