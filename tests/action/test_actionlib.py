@@ -51,7 +51,8 @@ def status_timing(home: Path, real_server: bool) -> list[tuple[float, float]]:
 
 def check_status_timing(found: list[tuple[float, float]]) -> None:
     (rate, listed), (fast_rate, fast_listed) = found
-    assert 4 <= rate <= 7 and listed > 1.8, found  # still listed at the end of the 2 s window
+    # still listed in the last status messages of the 2 s window (they come every 0.2 s at 5 Hz)
+    assert 4 <= rate <= 7 and listed >= 1.6, found
     assert 15 <= fast_rate <= 25 and fast_listed < 1.0, found
 
 
