@@ -198,7 +198,11 @@ class PublisherLink:
                     return
                 log.debug("connecting to %s for %s failed: %s", self.publisher_uri, self.subscription.topic, exc)
             except _Refused as exc:
-                log.error("%s refused our subscription to %s: %s", self.publisher_uri, self.subscription.topic, exc)
+                # A publisher on its way out (rospy answers "node shutting down") is no fault:
+                # the master's next publisherUpdate drops it.
+                level = logging.DEBUG if "shutting down" in str(exc) else logging.ERROR
+                log.log(level, "%s refused our subscription to %s: %s", self.publisher_uri,
+                        self.subscription.topic, exc)
                 return
             time.sleep(delay)
             delay = min(delay * 2, 2.0)
