@@ -47,11 +47,12 @@ class Message:
         if exc is not None:
             raise SerializationError(str(exc))
 
+    # Generated classes define these; the base class has no fields to write or read.
     def serialize(self, buff: Any) -> None:
-        raise NotImplementedError(f"{type(self).__name__} is abstract: use a generated message class")
+        raise TypeError(f"{type(self).__name__} has no generated serializer: use a generated message class")
 
     def deserialize(self, data: Any) -> Message:
-        raise NotImplementedError(f"{type(self).__name__} is abstract: use a generated message class")
+        raise TypeError(f"{type(self).__name__} has no generated deserializer: use a generated message class")
 
     def __getstate__(self) -> list[Any]:
         return [getattr(self, name) for name in self.__slots__]
