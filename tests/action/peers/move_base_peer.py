@@ -86,8 +86,9 @@ class Tracked:
             self.done.set()
 
     def on_feedback(self, gh, fb):
+        # Feedback and status travel on separate connections: feedback may arrive before the
+        # ACTIVE status, so only the transition marks the goal active.
         self.feedback += 1
-        self.active.set()
 
     def report(self, label):
         assert self.done.wait(10), f"{label}: goal not done, states {self.states}"
