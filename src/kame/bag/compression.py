@@ -6,8 +6,7 @@ chunk cannot make us allocate more than that; a size that does not match is an e
 
 from __future__ import annotations
 
-import bz2
-from typing import Any
+import types
 
 from kame.bag.errors import BagCompressionError
 
@@ -19,18 +18,21 @@ LZ4 = "lz4"
 COMPRESSIONS = (NONE, BZ2, LZ4)
 
 
-def _lz4() -> Any:
+def _lz4() -> types.ModuleType:
     try:
         import lz4.frame
     except ImportError as exc:  # pragma: no cover - lz4 is a dependency
         raise BagCompressionError("lz4 chunks need the 'lz4' package (pip install lz4)") from exc
-    return lz4.frame
+    frame: types.ModuleType = lz4.frame
+    return frame
 
 
 def compress(kind: str, data: bytes | bytearray | memoryview) -> bytes:
     if kind == NONE:
         return bytes(data)
     if kind == BZ2:
+        import bz2
+
         return bz2.compress(data, 9)
     if kind == LZ4:
         frame = _lz4()  # the frame roslz4 writes (and the only one it reads): 1 MB blocks, content checksum
@@ -45,6 +47,8 @@ def decompress(kind: str, data: bytes | memoryview, size: int, where: str = "") 
     if kind == NONE:
         out = bytes(data)
     elif kind == BZ2:
+        import bz2  # on demand: `rosbag info` never needs it
+
         try:
             decomp = bz2.BZ2Decompressor()
             out = decomp.decompress(data, max_length=size + 1)

@@ -9,23 +9,25 @@ compression lines rosbag adds for compressed chunks.
 
 from __future__ import annotations
 
-import datetime
-from dataclasses import dataclass
-from typing import Any
+import time
 
 from kame.bag.records import ChunkHeader, ChunkInfo, Connection
 
 __all__ = ["BagSummary", "human_readable_size", "info_text", "info_yaml", "yaml_key"]
 
 
-@dataclass(frozen=True)
 class BagSummary:
-    path: str
-    size: int
-    connections: dict[int, Connection]
-    chunk_infos: list[ChunkInfo]
-    chunk_headers: list[ChunkHeader]
-    frequencies: dict[str, float] | None = None  # topic -> median rate (--freq)
+    # A plain class, as the record types: `rosbag info` must not pay for importing dataclasses.
+    __slots__ = ("chunk_headers", "chunk_infos", "connections", "frequencies", "path", "size")
+
+    def __init__(self, path: str, size: int, connections: dict[int, Connection], chunk_infos: list[ChunkInfo],
+                 chunk_headers: list[ChunkHeader], frequencies: dict[str, float] | None = None) -> None:
+        self.path = path
+        self.size = size
+        self.connections = connections
+        self.chunk_infos = chunk_infos
+        self.chunk_headers = chunk_headers
+        self.frequencies = frequencies  # topic -> median rate (--freq)
 
 
 def human_readable_size(size: float) -> str:
@@ -46,7 +48,7 @@ def human_readable_frequency(freq: float) -> str:
 
 def _time_to_str(secs: float) -> str:
     frac = ("%.2f" % (secs - int(secs)))[1:]
-    return datetime.datetime.fromtimestamp(secs).strftime("%b %d %Y %H:%M:%S") + frac
+    return time.strftime("%b %d %Y %H:%M:%S", time.localtime(int(secs))) + frac
 
 
 def _to_sec(t: tuple[int, int]) -> float:
@@ -64,13 +66,16 @@ def _duration_str(duration: float) -> str:
     return "%.1fs" % duration
 
 
-@dataclass
 class _Topics:
-    datatype_infos: list[tuple[str, str]]
-    topics: list[str]
-    datatypes: dict[str, str]
-    conn_counts: dict[str, int]
-    msg_counts: dict[str, int]
+    __slots__ = ("conn_counts", "datatype_infos", "datatypes", "msg_counts", "topics")
+
+    def __init__(self, datatype_infos: list[tuple[str, str]], topics: list[str], datatypes: dict[str, str],
+                 conn_counts: dict[str, int], msg_counts: dict[str, int]) -> None:
+        self.datatype_infos = datatype_infos
+        self.topics = topics
+        self.datatypes = datatypes
+        self.conn_counts = conn_counts
+        self.msg_counts = msg_counts
 
 
 def _topics(s: BagSummary) -> _Topics:
@@ -205,7 +210,7 @@ def info_yaml(s: BagSummary) -> str:
 
 
 class _Obj:
-    def __init__(self, d: dict[str, Any]) -> None:
+    def __init__(self, d: dict[str, object]) -> None:
         for k, v in d.items():
             if isinstance(v, (list, tuple)):
                 setattr(self, k, [_Obj(x) if isinstance(x, dict) else x for x in v])
@@ -213,7 +218,7 @@ class _Obj:
                 setattr(self, k, _Obj(v) if isinstance(v, dict) else v)
 
 
-def _print_yaml(val: Any, indent: int = 0) -> str:
+def _print_yaml(val: object, indent: int = 0) -> str:
     pad = "  " * indent
     if isinstance(val, list):
         return "".join(f"{pad}- {_print_yaml(item, indent + 1)}\n" for item in val)
@@ -228,6 +233,8 @@ def _print_yaml(val: Any, indent: int = 0) -> str:
 
 def yaml_key(text: str, key: str) -> str | None:
     """What `rosbag info -y -k KEY` prints (rosbag evaluates `obj.KEY` on the YAML), or None."""
+    from typing import Any
+
     import yaml
 
     obj = _Obj(yaml.safe_load(text))

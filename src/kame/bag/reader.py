@@ -23,13 +23,12 @@ import itertools
 import os
 import struct
 from collections.abc import Callable, Iterable, Iterator
-from dataclasses import dataclass
 
 from kame.bag import records
 from kame.bag.compression import decompress
 from kame.bag.errors import BagError, BagFormatError, BagUnindexedError
 from kame.bag.records import ChunkHeader, ChunkInfo, Connection
-from kame.protocol.tcpros import TcprosError, decode_header_fields_raw
+from kame.protocol.header import TcprosError, decode_header_fields_raw
 
 __all__ = ["BagReader", "RawMessage"]
 
@@ -37,19 +36,25 @@ Time = tuple[int, int]
 _NO_END = (0xFFFFFFFF, 0xFFFFFFFF)
 
 
-@dataclass(frozen=True, slots=True)
 class RawMessage:
-    conn: Connection
-    time: Time
-    data: bytes
-    position: tuple[int, int]  # (chunk position, offset in the uncompressed chunk)
+    """One message as stored: its connection, receive time and serialized bytes."""
+
+    __slots__ = ("conn", "data", "position", "time")
+
+    def __init__(self, conn: Connection, time: Time, data: bytes, position: tuple[int, int]) -> None:
+        self.conn = conn
+        self.time = time
+        self.data = data
+        self.position = position  # (chunk position, offset in the uncompressed chunk)
 
 
-@dataclass
 class _ChunkEntries:
-    info: ChunkInfo
-    data: bytes
-    entries: list[tuple[int, int, int, int]]  # (secs, nsecs, offset, conn), sorted
+    __slots__ = ("data", "entries", "info")
+
+    def __init__(self, info: ChunkInfo, data: bytes, entries: list[tuple[int, int, int, int]]) -> None:
+        self.info = info
+        self.data = data
+        self.entries = entries  # (secs, nsecs, offset, conn), sorted
 
 
 class BagReader:

@@ -16,10 +16,9 @@ from __future__ import annotations
 
 import struct
 from collections.abc import Iterable, Mapping, Sequence
-from dataclasses import dataclass, field
 
 from kame.bag.errors import BagFormatError
-from kame.protocol.tcpros import TcprosError, decode_header_fields_raw
+from kame.protocol.header import TcprosError, decode_header_fields_raw
 
 __all__ = [
     "FILE_HEADER_RECORD_SIZE",
@@ -161,14 +160,36 @@ def chunk_info_record(info: ChunkInfo) -> bytes:
 # ------------------------------------------------------------------------------------ reading
 
 
-@dataclass(frozen=True)
-class Record:
+class _Value:
+    """Equality and repr over `__slots__`. The record types are plain slotted classes rather
+    than dataclasses: `rosbag info` must start in milliseconds and `dataclasses` alone costs
+    more to import than reading a bag's whole index."""
+
+    __slots__: tuple[str, ...] = ()
+
+    def _values(self) -> tuple[object, ...]:
+        return tuple(getattr(self, name) for name in self.__slots__)
+
+    def __eq__(self, other: object) -> bool:
+        return isinstance(other, _Value) and type(other) is type(self) and self._values() == other._values()
+
+    __hash__ = None  # type: ignore[assignment]
+
+    def __repr__(self) -> str:
+        fields = ", ".join(f"{name}={getattr(self, name)!r}" for name in self.__slots__)
+        return f"{type(self).__name__}({fields})"
+
+
+class Record(_Value):
     """A record found in a buffer: its header fields and where its data lies."""
 
-    pos: int
-    header: dict[str, bytes]
-    data_pos: int
-    data_len: int
+    __slots__ = ("data_len", "data_pos", "header", "pos")
+
+    def __init__(self, pos: int, header: dict[str, bytes], data_pos: int, data_len: int) -> None:
+        self.pos = pos
+        self.header = header
+        self.data_pos = data_pos
+        self.data_len = data_len
 
     @property
     def end(self) -> int:
@@ -242,11 +263,13 @@ def _expect(record: Record, op: int, what: str) -> None:
         raise BagFormatError(f"expected a {what} record at offset {record.pos}, found op {record.op:#04x}")
 
 
-@dataclass(frozen=True)
-class FileHeader:
-    index_pos: int
-    conn_count: int
-    chunk_count: int
+class FileHeader(_Value):
+    __slots__ = ("chunk_count", "conn_count", "index_pos")
+
+    def __init__(self, index_pos: int, conn_count: int, chunk_count: int) -> None:
+        self.index_pos = index_pos
+        self.conn_count = conn_count
+        self.chunk_count = chunk_count
 
 
 def parse_file_header(record: Record) -> FileHeader:
@@ -254,13 +277,16 @@ def parse_file_header(record: Record) -> FileHeader:
     return FileHeader(_u64(record, "index_pos"), _u32(record, "conn_count"), _u32(record, "chunk_count"))
 
 
-@dataclass(frozen=True)
-class ChunkHeader:
-    pos: int
-    compression: str
-    uncompressed_size: int
-    data_pos: int  # relative to the buffer the record was read from
-    compressed_size: int
+class ChunkHeader(_Value):
+    __slots__ = ("compressed_size", "compression", "data_pos", "pos", "uncompressed_size")
+
+    def __init__(self, pos: int, compression: str, uncompressed_size: int, data_pos: int,
+                 compressed_size: int) -> None:
+        self.pos = pos
+        self.compression = compression
+        self.uncompressed_size = uncompressed_size
+        self.data_pos = data_pos  # relative to the buffer the record was read from
+        self.compressed_size = compressed_size
 
 
 def parse_chunk_header(record: Record) -> ChunkHeader:
@@ -272,13 +298,15 @@ def parse_chunk_header(record: Record) -> ChunkHeader:
     return ChunkHeader(record.pos, compression, _u32(record, "size"), record.data_pos, record.data_len)
 
 
-@dataclass(frozen=True)
-class Connection:
+class Connection(_Value):
     """A connection: one topic as one publisher (or one writer) gave it."""
 
-    id: int
-    topic: str
-    header: dict[str, str]
+    __slots__ = ("header", "id", "topic")
+
+    def __init__(self, id: int, topic: str, header: dict[str, str]) -> None:
+        self.id = id
+        self.topic = topic
+        self.header = header
 
     @property
     def datatype(self) -> str:
@@ -304,14 +332,16 @@ def parse_connection(record: Record, buf: bytes | memoryview) -> Connection:
     return Connection(_u32(record, "conn"), topic, header)
 
 
-@dataclass
-class ChunkInfo:
+class ChunkInfo(_Value):
     """Where a chunk is, its time span and how many messages of each connection it holds."""
 
-    pos: int
-    start: Time
-    end: Time
-    counts: dict[int, int] = field(default_factory=dict)
+    __slots__ = ("counts", "end", "pos", "start")
+
+    def __init__(self, pos: int, start: Time, end: Time, counts: dict[int, int] | None = None) -> None:
+        self.pos = pos
+        self.start = start
+        self.end = end
+        self.counts = {} if counts is None else counts
 
     @property
     def message_count(self) -> int:

@@ -10,46 +10,106 @@ and prints, so it answers at once even for very large bags.
 
 from __future__ import annotations
 
-import optparse
 import os
-import shutil
 import sys
 import time
 from collections.abc import Callable, Sequence
 
 from kame.bag.errors import BagError, BagUnindexedError
 
+TYPE_CHECKING = False  # typing.TYPE_CHECKING without importing typing (`rosbag info` starts in ms)
+if TYPE_CHECKING:
+    import optparse
+
+    from kame.bag.info import BagSummary
+
 NAME = "rosbag"
 COMMANDS = ("check", "compress", "decompress", "filter", "fix", "help", "info", "play", "record", "reindex")
 
 
 def _parser(usage: str, description: str = "") -> optparse.OptionParser:
+    import optparse
+
     return optparse.OptionParser(usage=usage, description=description or None)
 
 
 # ------------------------------------------------------------------------------ info
 
 
+class _InfoOptions:
+    __slots__ = ("freq", "key", "yaml")
+
+    def __init__(self) -> None:
+        self.yaml = False
+        self.key: str | None = None
+        self.freq = False
+
+
+def _quick_info_args(argv: list[str]) -> tuple[_InfoOptions, list[str]] | None:
+    """`rosbag info`'s options parsed without optparse, whose import costs more than reading a
+    big bag's index; None for anything unusual (help, errors, `--`), which optparse then handles
+    with its own messages."""
+    options = _InfoOptions()
+    args: list[str] = []
+    it = iter(argv)
+    for arg in it:
+        if arg in ("-y", "--yaml"):
+            options.yaml = True
+        elif arg == "--freq":
+            options.freq = True
+        elif arg in ("-k", "--key"):
+            value = next(it, None)
+            if value is None:
+                return None
+            options.key = value
+        elif arg.startswith("--key="):
+            options.key = arg[len("--key="):]
+        elif arg.startswith("-") and arg != "-":
+            return None
+        else:
+            args.append(arg)
+    if not args or (options.key and not options.yaml):
+        return None
+    return options, args
+
+
+def _info_summary(path: str, frequencies: bool) -> BagSummary:
+    if frequencies:
+        from rosbag.bag import Bag
+
+        with Bag(path, "r") as bag:
+            return bag.summary(frequencies=True)
+    from kame.bag.info import BagSummary
+    from kame.bag.reader import BagReader
+
+    with BagReader(path) as reader:
+        return BagSummary(path, reader.size, reader.connections, reader.chunk_infos, reader.chunk_headers())
+
+
 def cmd_info(argv: list[str]) -> int:
-    parser = _parser("rosbag info [options] BAGFILE1 [BAGFILE2 BAGFILE3 ...]",
-                     "Summarize the contents of one or more bag files.")
-    parser.add_option("-y", "--yaml", dest="yaml", default=False, action="store_true",
-                      help="print information in YAML format")
-    parser.add_option("-k", "--key", dest="key", default=None, action="store", help="print information on the given key")
-    parser.add_option("--freq", dest="freq", default=False, action="store_true",
-                      help="display topic message frequency statistics")
-    options, args = parser.parse_args(argv)
-    if not args:
-        parser.error("You must specify at least 1 bag file.")
-    if options.key and not options.yaml:
-        parser.error("You can only specify key when printing in YAML format.")
+    quick = _quick_info_args(argv)
+    if quick is not None:
+        options, args = quick
+    else:
+        parser = _parser("rosbag info [options] BAGFILE1 [BAGFILE2 BAGFILE3 ...]",
+                         "Summarize the contents of one or more bag files.")
+        parser.add_option("-y", "--yaml", dest="yaml", default=False, action="store_true",
+                          help="print information in YAML format")
+        parser.add_option("-k", "--key", dest="key", default=None, action="store", help="print information on the given key")
+        parser.add_option("--freq", dest="freq", default=False, action="store_true",
+                          help="display topic message frequency statistics")
+        values, args = parser.parse_args(argv)
+        if not args:
+            parser.error("You must specify at least 1 bag file.")
+        if values.key and not values.yaml:
+            parser.error("You can only specify key when printing in YAML format.")
+        options = _InfoOptions()
+        options.yaml, options.key, options.freq = values.yaml, values.key, values.freq
     from kame.bag.info import info_text, info_yaml, yaml_key
-    from rosbag.bag import Bag
 
     for i, arg in enumerate(args):
         try:
-            with Bag(arg, "r") as bag:
-                summary = bag.summary(frequencies=options.freq)
+            summary = _info_summary(arg, options.freq)
             if options.yaml:
                 text: str | None = info_yaml(summary)
                 if options.key:
@@ -140,6 +200,8 @@ def rewrite(in_path: str, out_path: str, compression: str | None,
 
 
 def _in_place(argv: list[str], name: str, default_compression: str | None, allow_choice: bool) -> int:
+    import shutil
+
     parser = _parser(f"rosbag {name} [options] BAGFILE1 [BAGFILE2 ...]",
                      {"compress": "Compress one or more bag files.",
                       "decompress": "Decompress one or more bag files.",
@@ -195,6 +257,8 @@ def reindex_file(source: str, outbag: str, progress: Callable[[int, int], None] 
     from kame.bag.writer import BagWriter
 
     if os.path.abspath(source) != os.path.abspath(outbag):
+        import shutil
+
         shutil.copyfile(source, outbag)
     total = os.path.getsize(outbag)
     writer = BagWriter(outbag, "a", allow_unindexed=True)
