@@ -22,6 +22,8 @@ import tempfile
 import time
 from pathlib import Path
 
+from kame_bytecode import compile_kame
+
 REPO = Path(__file__).resolve().parents[1]
 BIN = Path(sys.executable).parent
 SYSTEM_PYTHON = "/usr/bin/python3"
@@ -145,6 +147,7 @@ def main() -> int:
     ap.add_argument("--record-seconds", type=float, default=10.0)
     ap.add_argument("--skip-debian-read", action="store_true")
     args = ap.parse_args()
+    compile_kame()
     bag = make_bag(args.small_count, args.images)
     rows = []
     k_info, _ = timed([str(BIN / "rosbag"), "info", str(bag)], 3)

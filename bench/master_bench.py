@@ -36,6 +36,8 @@ import time
 import xmlrpc.client
 from pathlib import Path
 
+from kame_bytecode import compile_kame
+
 REPO = Path(__file__).resolve().parents[1]
 NODE_API = "http://127.0.0.1:1/"  # never contacted: no subscriber is ever registered for these topics
 
@@ -379,6 +381,7 @@ def main() -> int:
     ap.add_argument("--procs", type=int, default=os.cpu_count() or 1,
                     help="client worker processes with --client procs (at most N; default: cpu count, %(default)s)")
     args = ap.parse_args()
+    compile_kame()
     masters = {"rosmaster": ["/usr/bin/python3", args.rosmaster],
                "kame": [args.kame_python, "-m", "kame.cli.rosmaster"]}
     rows: list[tuple[str, str, dict[str, float]]] = []

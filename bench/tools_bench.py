@@ -29,6 +29,8 @@ import time
 import xmlrpc.client
 from pathlib import Path
 
+from kame_bytecode import compile_kame
+
 REPO = Path(__file__).resolve().parents[1]
 VENV_BIN = REPO / ".venv" / "bin"
 
@@ -154,6 +156,7 @@ def main() -> int:
     parser.add_argument("--rate", type=float, default=1000.0)
     parser.add_argument("--echo-rate", type=float, default=10000.0)
     args = parser.parse_args()
+    compile_kame()
     rows = []
     for impl in implementations():
         print(f"{impl.name}: rostopic hz at {args.rate:g} Hz ...", file=sys.stderr)
