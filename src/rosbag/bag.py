@@ -232,18 +232,21 @@ class Bag:
         conns = reader.connections_for(topics, conn_filter) if topics is not None or conn_filter is not None else None
         if conns == []:
             return
-        classes: dict[int, type[Any]] = {}
+        # (class, its buffer constructor: deserialize without the __init__ defaults it would overwrite)
+        classes: dict[int, tuple[type[Any], Any]] = {}
         new_time = Time.__new__
-        for m in reader.messages(conns, _to_time(start_time), _to_time(end_time)):
-            conn = m.conn
-            cls = classes.get(conn.id)
-            if cls is None:
-                cls = classes[conn.id] = message_class(conn)
+        new_tuple = tuple.__new__
+        result_type = BagMessageWithConnectionHeader if return_connection_header else BagMessage
+        for conn, secs, nsecs, view, chunk_pos, offset in reader.message_views(conns, _to_time(start_time),
+                                                                                 _to_time(end_time)):
+            entry = classes.get(conn.id)
+            if entry is None:
+                cls = message_class(conn)
+                entry = classes[conn.id] = (cls, cls._from_buffer)
             if raw:
-                msg: Any = (conn.datatype, m.data, conn.md5sum, m.position, cls)
+                msg: Any = (conn.datatype, bytes(view), conn.md5sum, (chunk_pos, offset), entry[0])
             else:
-                msg = cls().deserialize(m.data)
-            secs, nsecs = m.time
+                msg = entry[1](view)  # straight from the chunk: one copy, into the message's fields
             if nsecs < 1_000_000_000:  # canonical, as every writer stores it: skip Time's checks
                 t = new_time(Time)
                 t.secs = secs
@@ -251,9 +254,9 @@ class Bag:
             else:
                 t = Time(secs, nsecs)
             if return_connection_header:
-                yield BagMessageWithConnectionHeader(conn.topic, msg, t, conn.header)
+                yield new_tuple(result_type, (conn.topic, msg, t, conn.header))
             else:
-                yield BagMessage(conn.topic, msg, t)
+                yield new_tuple(result_type, (conn.topic, msg, t))
 
     def get_message_count(self, topic_filters: Any = None) -> int:
         return self._read_side().message_count(topic_filters)

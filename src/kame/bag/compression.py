@@ -42,10 +42,12 @@ def compress(kind: str, data: bytes | bytearray | memoryview) -> bytes:
     raise BagCompressionError(f"unsupported compression type: {kind}")
 
 
-def decompress(kind: str, data: bytes | memoryview, size: int, where: str = "") -> bytes:
-    """The uncompressed bytes of a chunk, which must be exactly `size` long."""
+def decompress(kind: str, data: bytes | memoryview, size: int, where: str = "") -> bytes | memoryview:
+    """The uncompressed bytes of a chunk, which must be exactly `size` long (an uncompressed
+    chunk is returned as given, not copied)."""
+    out: bytes | memoryview
     if kind == NONE:
-        out = bytes(data)
+        out = data
     elif kind == BZ2:
         import bz2  # on demand: `rosbag info` never needs it
 

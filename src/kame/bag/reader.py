@@ -30,9 +30,11 @@ from kame.bag.errors import BagError, BagFormatError, BagUnindexedError
 from kame.bag.records import ChunkHeader, ChunkInfo, Connection
 from kame.protocol.header import TcprosError, decode_header_fields_raw
 
-__all__ = ["BagReader", "RawMessage"]
+__all__ = ["BagReader", "MessageView", "RawMessage"]
 
 Time = tuple[int, int]
+#: (connection, secs, nsecs, data, chunk position, offset in the uncompressed chunk)
+MessageView = tuple[Connection, int, int, memoryview, int, int]
 _NO_END = (0xFFFFFFFF, 0xFFFFFFFF)
 
 
@@ -51,7 +53,7 @@ class RawMessage:
 class _ChunkEntries:
     __slots__ = ("data", "entries", "info")
 
-    def __init__(self, info: ChunkInfo, data: bytes, entries: list[tuple[int, int, int, int]]) -> None:
+    def __init__(self, info: ChunkInfo, data: bytes | memoryview, entries: list[tuple[int, int, int, int]]) -> None:
         self.info = info
         self.data = data
         self.entries = entries  # (secs, nsecs, offset, conn), sorted
@@ -269,7 +271,9 @@ class BagReader:
         blob = self._read(info.pos, end - info.pos)
         record = records.read_record(blob, 0, base=info.pos)
         chunk = records.parse_chunk_header(record)
-        data = decompress(chunk.compression, blob[record.data_pos:record.end], chunk.uncompressed_size, where)
+        # a view, not a slice: an uncompressed chunk's messages are then copied once, not twice
+        data = decompress(chunk.compression, memoryview(blob)[record.data_pos:record.end], chunk.uncompressed_size,
+                          where)
         entries = self._reindexed.get(info.pos)
         if entries is None:
             entries = self._index_entries(blob, record.end, info, len(data))
@@ -300,7 +304,7 @@ class BagReader:
             out.sort()
         return out
 
-    def _walk_entries(self, data: bytes, info: ChunkInfo) -> list[tuple[int, int, int, int]]:
+    def _walk_entries(self, data: bytes | memoryview, info: ChunkInfo) -> list[tuple[int, int, int, int]]:
         out = []
         for record in records.walk_records(data, base=0):
             if record.op == records.OP_MSG_DATA:
@@ -322,6 +326,15 @@ class BagReader:
     def messages(self, connections: list[Connection] | None = None, start: Time | None = None,
                  end: Time | None = None) -> Iterator[RawMessage]:
         """Messages of `connections` (default: all) with start <= time <= end, in time order."""
+        for conn, secs, nsecs, view, chunk_pos, offset in self.message_views(connections, start, end):
+            yield RawMessage(conn, (secs, nsecs), bytes(view), (chunk_pos, offset))
+
+    def message_views(self, connections: list[Connection] | None = None, start: Time | None = None,
+                      end: Time | None = None) -> Iterator[MessageView]:
+        """As `messages`, as plain tuples (connection, secs, nsecs, data, chunk position, offset)
+        whose data is a zero-copy view into the chunk (holding it keeps the chunk's buffer
+        alive): for readers that deserialize at once and need neither a copy nor an object per
+        message."""
         conns = {c.id: c for c in (self.connections.values() if connections is None else connections)}
         wanted = None if connections is None else set(conns)
         lo = start or (0, 0)
@@ -333,14 +346,14 @@ class BagReader:
         sequential = all(a.end <= b.start for a, b in itertools.pairwise(chunks))
         if sequential:
             for info in chunks:
-                loaded = self._load_chunk(info, wanted)
-                yield from self._chunk_messages(loaded, conns, lo, hi)
+                yield from self._chunk_messages(self._load_chunk(info, wanted), conns, lo, hi)
         else:
             yield from self._merged(chunks, wanted, conns, lo, hi)
 
     def _chunk_messages(self, loaded: _ChunkEntries, conns: dict[int, Connection], lo: Time,
-                        hi: Time) -> Iterator[RawMessage]:
+                        hi: Time) -> Iterator[MessageView]:
         data = loaded.data
+        view = memoryview(data)
         pos = loaded.info.pos
         unpack = records.unpack_u32
         n = len(data)
@@ -358,27 +371,27 @@ class BagReader:
             b = a + data_len
             if b > n:
                 records.message_data_span(data, offset)  # raises the precise BagFormatError
-            yield RawMessage(conns[conn_id], (secs, nsecs), data[a:b], (pos, offset))
+            yield conns[conn_id], secs, nsecs, view[a:b], pos, offset
 
     def _merged(self, chunks: list[ChunkInfo], wanted: set[int] | None, conns: dict[int, Connection],
-                lo: Time, hi: Time) -> Iterator[RawMessage]:
-        heap: list[tuple[tuple[int, int], int, int, Iterator[RawMessage], RawMessage]] = []
+                lo: Time, hi: Time) -> Iterator[MessageView]:
+        heap: list[tuple[int, int, int, int, Iterator[MessageView], MessageView]] = []
         i = 0
         n = len(chunks)
         while heap or i < n:
-            while i < n and (not heap or chunks[i].start <= heap[0][0]):
+            while i < n and (not heap or chunks[i].start <= (heap[0][0], heap[0][1])):
                 it = self._chunk_messages(self._load_chunk(chunks[i], wanted), conns, lo, hi)
                 first = next(it, None)
                 if first is not None:
-                    heapq.heappush(heap, (first.time, chunks[i].pos, first.position[1], it, first))
+                    heapq.heappush(heap, (first[1], first[2], chunks[i].pos, first[5], it, first))
                 i += 1
             if not heap:
                 continue
-            _, cpos, _, it, msg = heapq.heappop(heap)
+            _, _, cpos, _, it, msg = heapq.heappop(heap)
             yield msg
             nxt = next(it, None)
             if nxt is not None:
-                heapq.heappush(heap, (nxt.time, cpos, nxt.position[1], it, nxt))
+                heapq.heappush(heap, (nxt[1], nxt[2], cpos, nxt[5], it, nxt))
 
     def index_times(self, connections: list[Connection]) -> list[Time]:
         """The receive times of the messages of `connections`, sorted, from the index data
