@@ -3,8 +3,10 @@
 
 - Messages are published as the bytes in the bag, with the connection's type, md5sum,
   message_definition and latching; nothing is deserialized.
-- Timing: message time t is published at wall start + (t - bag start - skip) / rate, the
-  pause time excluded. --clock publishes /clock (rosgraph_msgs/Clock) at --hz while waiting.
+- Timing: message time t is published at wall start + (t - t0) / rate, the pause time
+  excluded, where t0 is the first message played (as rosbag's view begin: --topics and -s
+  never make the player wait for messages it does not play). -s and -u count from the start
+  of the whole bag. --clock publishes /clock (rosgraph_msgs/Clock) at --hz while waiting.
 - In a terminal, space toggles pause and `s` publishes one message while paused; the status
   line is rewritten in place with `\\r` unless -q.
 """
@@ -143,6 +145,8 @@ class Player:
         ends = [r.end_time for r in readers if r.end_time is not None]
         self.bag_start = _ns(min(starts)) if starts else 0
         self.bag_end = _ns(max(ends)) if ends else 0
+        self.view_start = self.bag_start  # the first message played, once known
+        self.view_end = self.bag_end
         self.last_status = 0.0
 
     def advertise(self) -> None:
@@ -179,8 +183,8 @@ class Player:
             return
         self.last_status = now
         state = "[PAUSED ]" if self.paused else "[RUNNING]"
-        text = (f"\r {state}  Bag Time: {bag_ns / 1e9:13.6f}   Duration: {(bag_ns - self.bag_start) / 1e9:.6f} / "
-                f"{(self.bag_end - self.bag_start) / 1e9:.6f}               \r")
+        text = (f"\r {state}  Bag Time: {bag_ns / 1e9:13.6f}   Duration: {(bag_ns - self.view_start) / 1e9:.6f} / "
+                f"{(self.view_end - self.view_start) / 1e9:.6f}               \r")
         sys.stdout.write(text)
         sys.stdout.flush()
 
@@ -212,18 +216,32 @@ class Player:
                 self.status(bag_ns, force=True)
         return target, False
 
+    def selected_end(self, end_ns: int | None) -> int:
+        """The end of the played view for the status line: the last chunk holding a selected
+        topic (an upper bound with --topics), cut at -u."""
+        ends = []
+        for reader in self.readers:
+            ids = {c.id for c in reader.connections_for(self.options.topics)} if self.options.topics else None
+            ends += [_ns(info.end) for info in reader.chunk_infos if ids is None or not ids.isdisjoint(info.counts)]
+        last = max(ends, default=self.bag_end)
+        return min(last, end_ns) if end_ns is not None else last
+
     def play_once(self) -> None:
         opts = self.options
-        start_ns = self.bag_start + int(opts.start * 1e9)
-        end_ns = start_ns + int(opts.duration * 1e9) if opts.duration is not None else None
-        start_t = divmod(start_ns, 1_000_000_000)
+        initial_ns = self.bag_start + int(opts.start * 1e9)
+        end_ns = initial_ns + int(opts.duration * 1e9) if opts.duration is not None else None
+        start_t = divmod(initial_ns, 1_000_000_000)
         end_t = divmod(end_ns, 1_000_000_000) if end_ns is not None else None
+        self.view_end = self.selected_end(end_ns)
         wall0 = time.monotonic()
-        prev_ns = start_ns
+        start_ns = prev_ns = -1
         for m in _merged(self.readers, opts.topics, start_t, end_t):
             if self.stop.is_set():
                 return
             t_ns = _ns(m.time)
+            if start_ns < 0:  # timing counts from the first message played, as rosbag's view begin
+                start_ns = prev_ns = self.view_start = t_ns
+                wall0 = time.monotonic()
             if opts.skip_empty and (t_ns - prev_ns) / 1e9 > opts.skip_empty:
                 wall0 -= (t_ns - prev_ns) / 1e9 / opts.rate
             if not opts.immediate:
