@@ -9,7 +9,7 @@ compression lines rosbag adds for compressed chunks.
 
 from __future__ import annotations
 
-import time
+import datetime
 
 from kame.bag.records import ChunkHeader, ChunkInfo, Connection
 
@@ -48,7 +48,7 @@ def human_readable_frequency(freq: float) -> str:
 
 def _time_to_str(secs: float) -> str:
     frac = ("%.2f" % (secs - int(secs)))[1:]
-    return time.strftime("%b %d %Y %H:%M:%S", time.localtime(int(secs))) + frac
+    return datetime.datetime.fromtimestamp(secs).strftime("%b %d %Y %H:%M:%S") + frac
 
 
 def _to_sec(t: tuple[int, int]) -> float:
