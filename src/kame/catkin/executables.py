@@ -1,9 +1,11 @@
-"""Where `<node pkg="P" type="T">` finds its program, as roslib.packages.find_node does.
+"""Package programs: where `<node pkg="P" type="T">` finds its program, and how any package
+program is run (roslaunch here, rosrun in kame.cli.rosrun with its own search rules).
 
-Rules: the catkin workspaces' lib/P (first workspace on CMAKE_PREFIX_PATH holding it), then the
-package folder searched recursively (links followed, hidden folders skipped) for a regular
-file named T with an execute bit. Python programs (a python shebang, or .py with none) run with
-this interpreter, whatever their shebang says, so they import kame's rospy.
+Rules: roslaunch looks as roslib.packages.find_node does: the catkin workspaces' lib/P (first
+workspace on CMAKE_PREFIX_PATH holding it), then the package folder searched recursively
+(links followed, hidden folders skipped) for a regular file named T with an execute bit.
+Python programs (a python shebang, or .py with none) run with this interpreter, whatever their
+shebang says, so they import kame's rospy.
 """
 
 from __future__ import annotations
@@ -48,12 +50,17 @@ def _walk(top: Path, name: str) -> list[Path]:
         dirnames[:] = sorted(d for d in dirnames if not d.startswith("."))
         if name in filenames:
             path = Path(folder, name)
-            try:
-                if path.is_file() and os.stat(path).st_mode & _EXEC_BITS:
-                    hits.append(path)
-            except OSError:
-                continue
+            if path.is_file() and is_executable(path):
+                hits.append(path)
     return hits
+
+
+def is_executable(path: Path) -> bool:
+    """An execute bit for anyone (rosrun's and roslib's test, not os.access)."""
+    try:
+        return bool(os.stat(path).st_mode & _EXEC_BITS)
+    except OSError:
+        return False
 
 
 def find_node(package: Package, node_type: str, env: Mapping[str, str]) -> list[Path]:

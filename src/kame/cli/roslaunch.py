@@ -26,9 +26,10 @@ from collections.abc import Mapping, Sequence
 from pathlib import Path
 
 from kame import names
+from kame.catkin import executables
 from kame.cli.roscore import _disk_usage_check, _link_latest, _title
 from kame.cli.rosmaster import setup_file_logging
-from kame.launch import executables, plan
+from kame.launch import plan
 from kame.launch.errors import LaunchError, PackageNotFound
 from kame.launch.loader import ArgDecl, LaunchLoader, LoaderHost
 from kame.launch.model import LaunchConfig, Node

@@ -23,13 +23,13 @@ import fnmatch
 import os
 import re
 import shlex
-import stat
 import sys
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 from importlib import metadata
 from pathlib import Path
 
+from kame.catkin.executables import command_for, is_executable
 from kame.msg.catalog import find_packages, package_path_roots
 
 USAGE = """Usage: rosrun [--prefix cmd] [--debug] PACKAGE EXECUTABLE [ARGS]
@@ -37,7 +37,6 @@ USAGE = """Usage: rosrun [--prefix cmd] [--debug] PACKAGE EXECUTABLE [ARGS]
   an executable named EXECUTABLE in the PACKAGE tree.
   If it finds it, it will run it with ARGS."""
 ENTRY_POINT_GROUP = "kame.rosrun"
-_EXEC_BITS = stat.S_IXUSR | stat.S_IXGRP | stat.S_IXOTH
 
 
 @dataclass(frozen=True)
@@ -109,19 +108,12 @@ def _walk_files(top: Path, pattern: str) -> Iterator[Path]:
         yield from walk(top)
 
 
-def _executable(path: Path) -> bool:
-    try:
-        return bool(os.stat(path).st_mode & _EXEC_BITS)
-    except OSError:
-        return False
-
-
 def find_executables(dirs: Sequence[Path], pkgdir: Path | None, name: str) -> list[Path]:
     build = re.compile(".*" + re.escape(str(pkgdir)) + "/build/.*") if pkgdir is not None else None
     hits: dict[str, Path] = {}
     for top in dirs:
         for path in _walk_files(top, name):
-            if _executable(path) and not (build is not None and build.fullmatch(str(path))):
+            if is_executable(path) and not (build is not None and build.fullmatch(str(path))):
                 hits.setdefault(str(path), path)
     return list(hits.values())
 
@@ -148,24 +140,6 @@ def entry_point(package: str, name: str) -> EntryPointTarget | None:
             script = Path(sys.executable).parent / name
             return EntryPointTarget(name, ep.value, ep.group, script if script.is_file() else None)
     return None
-
-
-def is_python_program(path: Path) -> bool:
-    try:
-        with open(path, "rb") as f:
-            first = f.readline(256)
-    except OSError:
-        return False
-    if first.startswith(b"#!"):
-        words = first[2:].decode("utf-8", "replace").split()
-        if words and os.path.basename(words[0]) == "env":
-            words = [w for w in words[1:] if not w.startswith("-")]
-        return bool(words) and os.path.basename(words[0]).startswith("python")
-    return path.suffix == ".py"
-
-
-def command_for(path: Path) -> list[str]:
-    return [sys.executable, str(path)] if is_python_program(path) else [str(path)]
 
 
 def _entry_point_command(target: EntryPointTarget) -> list[str]:
@@ -217,7 +191,7 @@ def resolve(package: str, name: str, debug: bool) -> list[str]:
     if "/" in name:
         path = (pkgdir or Path("")) / name
         say(f"Path given. Looing for {path}")
-        if not (path.is_file() and _executable(path)):
+        if not (path.is_file() and is_executable(path)):
             print(f"[rosrun] Couldn't find executable named {path}")
             raise _Exit(3)
         return command_for(path)

@@ -40,9 +40,10 @@ import uuid
 from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
 
+from kame.catkin import executables
 from kame.cli import _junit
 from kame.cli.rosmaster import log_dir, setup_file_logging
-from kame.launch import executables, plan
+from kame.launch import plan
 from kame.launch.errors import LaunchError
 from kame.launch.model import LaunchConfig, Node
 from kame.launch.runner import CALLER, LaunchRun, RunOptions, ros_home_of, run_dir_of

@@ -17,9 +17,10 @@ from dataclasses import dataclass
 from pathlib import Path
 from urllib.parse import urlsplit
 
+from kame.catkin import executables
 from kame.cli.roscore import ROS_DISTRO, ROS_VERSION
 from kame.cli.rosmaster import log_dir, ros_home
-from kame.launch import executables, plan
+from kame.launch import plan
 from kame.launch.errors import LaunchError
 from kame.launch.model import LOCAL_ADDRESSES, LaunchConfig, Node, Param
 from kame.launch.supervisor import Child, Monitor, say, say_bold, say_error
