@@ -6,9 +6,11 @@
    (<tmp>/kame-bench/bag_<n>.bag) and reused by later runs; --small-count picks a smaller one.
 2. Record throughput: a kame publisher sends 1 kHz small messages and 30 Hz 6 MB images for
    --record-seconds; kame's `rosbag record` and Debian's C++ recorder each record one run;
-   the table shows what each recorder got of what was published.
+   the table shows what each recorder got of what was published. --busy N runs N busy-loop
+   processes meanwhile (a loaded machine: where recorders that need more CPU than they get
+   start dropping).
 
-Usage: .venv/bin/python bench/bag_bench.py [--small-count N] [--record-seconds S] [--skip-debian-read]
+Usage: .venv/bin/python bench/bag_bench.py [--small-count N] [--record-seconds S] [--skip-debian-read] [--busy N]
 """
 
 from __future__ import annotations
@@ -146,6 +148,7 @@ def main() -> int:
     ap.add_argument("--images", type=int, default=1000)
     ap.add_argument("--record-seconds", type=float, default=10.0)
     ap.add_argument("--skip-debian-read", action="store_true")
+    ap.add_argument("--busy", type=int, default=0, help="busy-loop processes running during the record runs")
     args = ap.parse_args()
     compile_kame()
     bag = make_bag(args.small_count, args.images)
@@ -170,8 +173,10 @@ def main() -> int:
     core = subprocess.Popen([str(BIN / "roscore"), "-p", str(port)], env=env, stdout=subprocess.DEVNULL,
                             stderr=subprocess.DEVNULL)
     rec_rows = []
+    busy: list[subprocess.Popen[bytes]] = []
     try:
         time.sleep(2.0)
+        busy = [subprocess.Popen([sys.executable, "-c", "while True: pass"]) for _ in range(args.busy)]
         with tempfile.TemporaryDirectory() as d:
             for name, cmd in (("kame", [str(BIN / "rosbag"), "record"]), ("Debian C++", ["/usr/lib/rosbag/record"])):
                 if name.startswith("Debian") and not os.path.exists(cmd[0]):
@@ -182,13 +187,18 @@ def main() -> int:
                 print(f"record {name}: small {got.get('/small', 0)}/{n_small}, images {got.get('/image', 0)}/{n_img}",
                       flush=True)
     finally:
+        for p in busy:
+            os.kill(p.pid, signal.SIGKILL)
+            p.wait()
         os.kill(core.pid, signal.SIGINT)
         core.wait(20)
 
     print("\n| measure | kame | Debian rosbag | speed-up |\n|---|---|---|---|")
     for label, k, dbt in rows:
         print(f"| {label} ({bag.stat().st_size / 2**30:.2f} GiB) | {k:.3f} s | {dbt:.3f} s | {dbt / k:.1f}x |")
-    print("\n| recorder (1 kHz small + 30 Hz 6 MB) | small got/published | images got/published |\n|---|---|---|")
+    load = f", {args.busy} busy loops" if args.busy else ""
+    print(f"\n| recorder (1 kHz small + 30 Hz 6 MB{load}) | small got/published | images got/published |")
+    print("|---|---|---|")
     for name, ns, gs, ni, gi in rec_rows:
         print(f"| {name} | {gs}/{ns} | {gi}/{ni} |")
     return 0
