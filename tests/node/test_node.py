@@ -214,3 +214,38 @@ def test_slave_api_answers_what_tools_ask(make_node: Any) -> None:
     assert proxy.getBusInfo("/x")[0] == 1
     with pytest.raises(xmlrpc.client.Fault, match='method "bogus" is not supported'):
         proxy.bogus("/x")
+
+
+def test_bad_slave_api_arguments_are_refused_and_keep_the_connections(make_node: Any) -> None:
+    # A publisherUpdate whose list is not a list of URLs used to replace the publisher set with
+    # its garbage (a string became one "publisher" per character): the real publisher was
+    # dropped and the subscription went quiet. rospy refuses such calls with -1; so do we.
+    listener = make_node("/guarded")
+    got, event = collect(listener, "/guarded_topic")
+    pub = make_node("/guard_pub").advertise("/guarded_topic", *STRING)
+    assert wait_until(lambda: len(pub.links) == 1)
+    proxy = xmlrpc.client.ServerProxy(listener.uri)
+    bad_updates: list[tuple[Any, Any, str]] = [
+        ("/guarded_topic", "http://127.0.0.1:1/", "ERROR: param [publishers] must be a list"),
+        ("/guarded_topic", 5, "ERROR: param [publishers] must be a list"),
+        ("/guarded_topic", [5], "ERROR: param [publishers] must be a list of strings"),
+        ("/guarded_topic", ["not a uri"], "ERROR: param [publishers] does not contain valid URLs [not a uri]"),
+        ("/guarded_topic", ["http://"], "ERROR: param [publishers] does not contain valid URLs [http://]"),
+        (["/guarded_topic"], [], "ERROR: parameter [topic] must be a non-empty string"),
+        ("", [], "ERROR: parameter [topic] must be a non-empty string"),
+        ("http://x:1/", [], "ERROR: parameter [topic] contains illegal chars"),
+    ]
+    for topic, publishers, text in bad_updates:
+        assert proxy.publisherUpdate("/evil", topic, publishers) == [-1, text, 0]
+    assert proxy.requestTopic("/evil", {"a": 1}, [["TCPROS"]]) == [
+        -1, "ERROR: parameter [topic] must be a non-empty string", []]
+    assert proxy.requestTopic("/evil", "/guarded_topic", "TCPROS") == [
+        -1, "ERROR: parameter [protocols] must be specified and non-empty", []]
+    assert proxy.paramUpdate("/evil", 5, 1) == [-1, "ERROR: parameter [parameter_key] must be a non-empty string", 0]
+    assert proxy.paramUpdate("/evil", ["/a"], 1)[0] == -1
+    assert proxy.publisherUpdate("/evil", "/guarded_topic") == [-1, "Error: bad call arity", 0]
+    # Nothing above touched the subscription: the publisher is still connected and delivering.
+    assert len(listener.subscriptions["/guarded_topic"].links) == 1
+    assert len(pub.links) == 1
+    pub.publish_frame(serialize_frame(String("still here")))
+    assert event.wait(5) and got == ["still here"]

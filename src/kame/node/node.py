@@ -223,6 +223,10 @@ class Node:
             return encode_response([-1, "missing required caller_id parameter", 0])
         if not isinstance(params[0], str):
             return encode_response([-1, "caller_id must be a string", 0])
+        invalid = _invalid_param(method, params)
+        if invalid is not None:
+            log.warning("slave API %s from [%s] refused: %s", method, params[0], invalid)
+            return encode_response([-1, invalid, _ERROR_VALUE.get(method, 0)])
         try:
             return encode_response(handler(self, *params))
         except TypeError:
@@ -331,6 +335,61 @@ def _subvalue(value: Any, path: str) -> Any:
 
 def _uri_host(host: str) -> str:
     return f"[{host}]" if ":" in host else host
+
+
+# rospy's argument validators (rospy.impl.masterslave / validators), with their texts: a bad
+# value is refused with -1 before it can touch the node's state (a publisherUpdate whose list
+# is not a list of URLs must not drop the publishers we have).
+
+
+def _check_topic(name: str, value: Any) -> str | None:
+    if not value or not isinstance(value, str):
+        return f"ERROR: parameter [{name}] must be a non-empty string"
+    if ":" in value or " " in value:
+        return f"ERROR: parameter [{name}] contains illegal chars"
+    return None
+
+
+def _check_non_empty_list(name: str, value: Any) -> str | None:
+    if not value or not isinstance(value, list):
+        return f"ERROR: parameter [{name}] must be specified and non-empty"
+    return None
+
+
+def _check_non_empty_str(name: str, value: Any) -> str | None:
+    if not value or not isinstance(value, str):
+        return f"ERROR: parameter [{name}] must be a non-empty string"
+    return None
+
+
+def _check_publishers(name: str, value: Any) -> str | None:
+    if not isinstance(value, list):
+        return f"ERROR: param [{name}] must be a list"
+    for uri in value:
+        if not isinstance(uri, str):
+            return f"ERROR: param [{name}] must be a list of strings"
+        scheme, sep, rest = uri.partition("://")
+        if not sep or not scheme or not rest.split("/", 1)[0]:
+            return f"ERROR: param [{name}] does not contain valid URLs [{uri}]"
+    return None
+
+
+_PARAM_CHECKS: dict[str, tuple[tuple[str, Callable[[str, Any], str | None]], ...]] = {
+    "requestTopic": (("topic", _check_topic), ("protocols", _check_non_empty_list)),
+    "publisherUpdate": (("topic", _check_topic), ("publishers", _check_publishers)),
+    "paramUpdate": (("parameter_key", _check_non_empty_str),),
+}
+_ERROR_VALUE: dict[str, Any] = {"requestTopic": []}
+
+
+def _invalid_param(method: str, params: list[Any]) -> str | None:
+    """rospy's text for the first invalid argument after caller_id, or None (arity is checked
+    when the handler is called)."""
+    for (name, check), value in zip(_PARAM_CHECKS.get(method, ()), params[1:], strict=False):
+        error = check(name, value)
+        if error is not None:
+            return error
+    return None
 
 
 _SLAVE_METHODS: dict[str, Callable[..., list[Any]]] = {

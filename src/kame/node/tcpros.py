@@ -24,7 +24,7 @@ def read_header(sock: socket.socket) -> dict[str, str]:
     try:
         return decode_header_fields(recv_exactly(sock, size))
     except TcprosError as exc:
-        raise HandshakeError(f"malformed connection header: {exc}") from exc
+        raise HandshakeError(str(exc)) from exc
 
 
 def read_header_and_rest(sock: socket.socket) -> tuple[dict[str, str], bytes]:
@@ -37,7 +37,7 @@ def read_header_and_rest(sock: socket.socket) -> tuple[dict[str, str], bytes]:
         try:
             fields = reader.feed(data)
         except TcprosError as exc:
-            raise HandshakeError(f"malformed connection header: {exc}") from exc
+            raise HandshakeError(str(exc)) from exc
         if fields is not None:
             return fields, bytes(reader.trailing)
 
