@@ -3,7 +3,10 @@
 A node gets few calls (requestTopic, publisherUpdate, getBusInfo, ...), so one thread per
 connection is plenty, and it keeps asyncio out of every node's start-up. The listening
 socket is bound in the constructor, so its port can be advertised before serving starts.
-Bounded like the master's server: header and body sizes, connections, idle time.
+Bounded like the master's server: header and body sizes, idle time, the time a started
+request may take to arrive, and the number of connections; at that limit the connection that has
+been quiet longest is closed to make room, so clients that connect and stall can never lock the
+master's publisherUpdate (or anyone else) out.
 """
 
 from __future__ import annotations
@@ -11,6 +14,7 @@ from __future__ import annotations
 import logging
 import socket
 import threading
+import time
 from collections.abc import Callable
 
 log = logging.getLogger("kame.net.rpc")
@@ -19,6 +23,7 @@ MAX_HEAD = 64 * 1024
 MAX_BODY = 32 * 1024 * 1024
 MAX_CONNECTIONS = 64
 IDLE_TIMEOUT = 60.0
+REQUEST_TIMEOUT = 30.0  # a request must arrive completely within this once its first byte has
 
 # handler(body) -> response body (text/xml); it runs on the connection's thread.
 RpcHandler = Callable[[bytes], bytes]
@@ -36,7 +41,8 @@ class RpcServer:
         self._name = name
         self._closing = False
         self._lock = threading.Lock()
-        self._connections: set[socket.socket] = set()
+        # each open connection -> when it last received bytes or answered a request
+        self._connections: dict[socket.socket, float] = {}
         self._thread = threading.Thread(target=self._accept_loop, name=name, daemon=True)
 
     def start(self) -> None:
@@ -68,20 +74,32 @@ class RpcServer:
                     return
                 continue
             with self._lock:
+                quietest = None
                 if len(self._connections) >= MAX_CONNECTIONS:
-                    log.warning("refusing XML-RPC connection from %s: too many connections", addr)
-                    conn.close()
-                    continue
-                self._connections.add(conn)
+                    quietest = min(self._connections, key=self._connections.__getitem__)
+                    del self._connections[quietest]
+                self._connections[conn] = time.monotonic()
+            if quietest is not None:
+                log.warning("too many XML-RPC connections: closing the one quiet longest (%s) for %s",
+                            _peer(quietest), addr)
+                try:
+                    quietest.shutdown(socket.SHUT_RDWR)  # its thread sees the end and closes it
+                except OSError:
+                    pass
             threading.Thread(target=self._serve, args=(conn,), name=f"{self._name}-conn", daemon=True).start()
 
     def _serve(self, conn: socket.socket) -> None:
-        conn.settimeout(IDLE_TIMEOUT)
         conn.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
         buf = bytearray()
+
+        def touch() -> None:
+            with self._lock:
+                if conn in self._connections:
+                    self._connections[conn] = time.monotonic()
+
         try:
             while not self._closing:
-                request = _read_request(conn, buf)
+                request = _read_request(conn, buf, touch)
                 if request is None:
                     return
                 body, keep_alive, status = request
@@ -95,13 +113,14 @@ class RpcServer:
                     conn.sendall(_response(500, b"", False))
                     return
                 conn.sendall(_response(200, answer, keep_alive))
+                touch()
                 if not keep_alive:
                     return
         except OSError:
             return
         finally:
             with self._lock:
-                self._connections.discard(conn)
+                self._connections.pop(conn, None)
             conn.close()
 
 
@@ -117,17 +136,41 @@ def _response(status: int, body: bytes, keep_alive: bool) -> bytes:
     return head.encode("latin-1") + body
 
 
-def _read_request(conn: socket.socket, buf: bytearray) -> tuple[bytes, bool, int] | None:
-    """One request from `buf` + the socket: (body, keep_alive, status); None at a clean end."""
+def _peer(conn: socket.socket) -> str:
+    try:
+        return str(conn.getpeername())
+    except OSError:
+        return "?"
+
+
+def _recv(conn: socket.socket, size: int, deadline: float | None) -> bytes:
+    """recv, waiting at most IDLE_TIMEOUT, or until `deadline` once a request has started."""
+    if deadline is not None:
+        remaining = deadline - time.monotonic()
+        if remaining <= 0:
+            raise TimeoutError("request not received in time")
+        conn.settimeout(min(IDLE_TIMEOUT, remaining))
+    return conn.recv(size)
+
+
+def _read_request(conn: socket.socket, buf: bytearray,
+                  touch: Callable[[], None] = lambda: None) -> tuple[bytes, bool, int] | None:
+    """One request from `buf` + the socket: (body, keep_alive, status); None at a clean end.
+    Raises OSError (TimeoutError) when the peer goes quiet or a request takes too long."""
+    deadline = time.monotonic() + REQUEST_TIMEOUT if buf else None
+    conn.settimeout(IDLE_TIMEOUT)
     while True:
         end = buf.find(b"\r\n\r\n")
         if end >= 0:
             break
         if len(buf) > MAX_HEAD:
             return b"", False, 431
-        chunk = conn.recv(65536)
+        chunk = _recv(conn, 65536, deadline)
         if not chunk:
             return None
+        if deadline is None:
+            deadline = time.monotonic() + REQUEST_TIMEOUT
+        touch()
         buf += chunk
     lines = bytes(buf[:end]).decode("latin-1").split("\r\n")
     del buf[: end + 4]
@@ -154,9 +197,10 @@ def _read_request(conn: socket.socket, buf: bytearray) -> tuple[bytes, bool, int
     if length > MAX_BODY or length < 0:
         return b"", False, 413
     while len(buf) < length:
-        chunk = conn.recv(min(1 << 20, length - len(buf)))
+        chunk = _recv(conn, min(1 << 20, length - len(buf)), deadline)
         if not chunk:
             return None
+        touch()
         buf += chunk
     body = bytes(buf[:length])
     del buf[:length]
