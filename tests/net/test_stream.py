@@ -135,3 +135,63 @@ def test_closing_a_receiver_ourselves_reports_nothing() -> None:
     assert ended == []
     a.close()
     b.close()
+
+
+_STARVED_SERVER = r'''
+import logging, resource, socket, sys, time
+logging.basicConfig(stream=sys.stderr, level=logging.INFO, format="%(levelname)s %(message)s")
+from kame.net.rpc_server import RpcServer
+from kame.net.stream import Listener
+held = []
+listener = Listener("127.0.0.1", 0, lambda sock, addr: held.append(sock))
+rpc = RpcServer("127.0.0.1", 0, lambda body: b"ok")
+rpc.start()
+resource.setrlimit(resource.RLIMIT_NOFILE, (48, 48))
+print(listener.port, rpc.port, flush=True)
+sys.stdin.readline()  # the client has filled our descriptor table
+start = time.process_time()
+time.sleep(1.0)
+print(round(time.process_time() - start, 2), flush=True)
+sys.stdin.readline()  # the client has let go
+for sock in held:
+    sock.close()
+held.clear()
+time.sleep(0.5)
+print(len(held), flush=True)
+'''
+
+
+def test_accept_loops_pause_when_out_of_file_descriptors() -> None:
+    # Out of descriptors, accept() fails at once for as long as a connection is queued: the
+    # accept loops retried in a tight loop (a whole CPU, nothing logged). Now they log once and pause.
+    import subprocess
+    import sys
+
+    proc = subprocess.Popen([sys.executable, "-c", _STARVED_SERVER], stdin=subprocess.PIPE,
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    clients: list[socket.socket] = []
+    try:
+        assert proc.stdin is not None and proc.stdout is not None and proc.stderr is not None
+        port, rpc_port = map(int, proc.stdout.readline().split())
+        for target in [port] * 60 + [rpc_port] * 3:
+            clients.append(socket.create_connection(("127.0.0.1", target), timeout=5))
+        time.sleep(0.3)
+        proc.stdin.write("\n")
+        proc.stdin.flush()
+        assert float(proc.stdout.readline()) < 0.5  # was ~1.0: a spinning accept loop
+        for sock in clients[:30]:
+            sock.close()
+        proc.stdin.write("\n")
+        proc.stdin.flush()
+        assert int(proc.stdout.readline()) > 0  # accepting again once descriptors are free
+        proc.stdin.close()
+        proc.wait(5)
+        err = proc.stderr.read()
+        assert err.count("cannot accept connections") <= 2, err  # once per loop, not a flood
+        assert "Too many open files" in err
+    finally:
+        for sock in clients:
+            sock.close()
+        if proc.poll() is None:
+            proc.kill()
+            proc.wait()

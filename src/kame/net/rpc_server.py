@@ -17,6 +17,8 @@ import threading
 import time
 from collections.abc import Callable
 
+from kame.net.stream import AcceptStarvation
+
 log = logging.getLogger("kame.net.rpc")
 
 MAX_HEAD = 64 * 1024
@@ -66,13 +68,16 @@ class RpcServer:
             self._thread.join(timeout=1.0)
 
     def _accept_loop(self) -> None:
+        starved = AcceptStarvation(self.sock)
         while not self._closing:
             try:
                 conn, addr = self.sock.accept()
-            except OSError:
+            except OSError as exc:
                 if self._closing:
                     return
+                starved.failed(exc)
                 continue
+            starved.ok()
             with self._lock:
                 quietest = None
                 if len(self._connections) >= MAX_CONNECTIONS:

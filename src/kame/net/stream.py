@@ -18,10 +18,12 @@ This module moves bytes; what the bytes mean is the caller's business.
 from __future__ import annotations
 
 import collections
+import errno
 import logging
 import selectors
 import socket
 import threading
+import time
 from collections.abc import Callable, Sequence
 from typing import Any, Protocol
 
@@ -361,13 +363,16 @@ class Listener:
         self._thread.start()
 
     def _run(self) -> None:
+        starved = AcceptStarvation(self.sock)
         while not self._closing:
             try:
                 conn, addr = self.sock.accept()
-            except OSError:
+            except OSError as exc:
                 if self._closing:
                     return
+                starved.failed(exc)
                 continue
+            starved.ok()
             try:
                 self._on_accept(conn, addr)
             except Exception:
@@ -379,6 +384,43 @@ class Listener:
         _shutdown(self.sock)
         self.sock.close()
         self._thread.join(timeout=1.0)
+
+
+class AcceptStarvation:
+    """What an accept loop does when accept() fails. Out of file descriptors (or memory), the
+    pending connection stays queued and accept() fails again at once: retrying straight away
+    spun a CPU at 100% and logged nothing. We log once per episode and pause before retrying;
+    other failures (a client that reset before we got to it) retry at once, silently."""
+
+    PAUSE = 0.1
+
+    def __init__(self, sock: socket.socket) -> None:
+        self._sock = sock
+        self._logged = False
+
+    def failed(self, exc: OSError) -> None:
+        if exc.errno not in _STARVED:
+            return
+        if not self._logged:
+            self._logged = True
+            log.error("cannot accept connections on %s: %s; retrying every %.1f s until it clears",
+                      _local(self._sock), exc, self.PAUSE)
+        time.sleep(self.PAUSE)
+
+    def ok(self) -> None:
+        if self._logged:
+            self._logged = False
+            log.warning("accepting connections on %s again", _local(self._sock))
+
+
+_STARVED = frozenset({errno.EMFILE, errno.ENFILE, errno.ENOBUFS, errno.ENOMEM})
+
+
+def _local(sock: socket.socket) -> str:
+    try:
+        return str(sock.getsockname())
+    except OSError:
+        return "?"
 
 
 def _shutdown(sock: socket.socket) -> None:
