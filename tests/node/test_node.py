@@ -249,3 +249,36 @@ def test_bad_slave_api_arguments_are_refused_and_keep_the_connections(make_node:
     assert len(pub.links) == 1
     pub.publish_frame(serialize_frame(String("still here")))
     assert event.wait(5) and got == ["still here"]
+
+
+def test_a_handshake_trickling_in_is_cut_off(make_node: Any, monkeypatch: pytest.MonkeyPatch) -> None:
+    # The handshake timeout was per recv: a byte every few seconds held the connection (a socket
+    # and a thread) for as long as the claimed header took, up to 1 MiB of bytes. The whole
+    # header must now arrive within HANDSHAKE_TIMEOUT.
+    from kame.node import node as node_module
+
+    monkeypatch.setattr(node_module, "HANDSHAKE_TIMEOUT", 0.5)
+    talker = make_node("/trickled")
+    pub = talker.advertise("/trickled_topic", *STRING)
+    sock = socket.create_connection(("127.0.0.1", talker.tcpros_port), timeout=5)
+    sock.sendall(struct.pack("<I", 1000))
+    start = time.monotonic()
+    closed = False
+    while time.monotonic() - start < 3:
+        try:
+            sock.sendall(b"x")
+            sock.settimeout(0.1)
+            closed = sock.recv(100) == b""
+        except TimeoutError:
+            continue
+        except OSError:
+            closed = True
+        if closed:
+            break
+    sock.close()
+    assert closed and time.monotonic() - start < 2
+    # and honest subscribers still get in
+    got, event = collect(make_node("/after_trickle"), "/trickled_topic")
+    assert wait_until(lambda: len(pub.links) == 1)
+    pub.publish_frame(serialize_frame(String("ok")))
+    assert event.wait(5) and got == ["ok"]

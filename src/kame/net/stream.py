@@ -443,11 +443,18 @@ def connect(host: str, port: int, timeout: float) -> socket.socket:
     return sock
 
 
-def recv_exactly(sock: socket.socket, size: int) -> bytes:
-    """Blocking read of exactly `size` bytes (handshakes); raises ConnectionError at EOF."""
+def recv_exactly(sock: socket.socket, size: int, deadline: float | None = None) -> bytes:
+    """Blocking read of exactly `size` bytes (handshakes); raises ConnectionError at EOF.
+    With a `deadline` (time.monotonic()), TimeoutError once it passes: a peer that trickles a
+    byte now and then cannot keep us reading, as a per-recv timeout would let it."""
     chunks: list[bytes] = []
     remaining = size
     while remaining:
+        if deadline is not None:
+            left = deadline - time.monotonic()
+            if left <= 0:
+                raise TimeoutError(f"timed out with {remaining} of {size} bytes still to come")
+            sock.settimeout(left)
         chunk = sock.recv(min(remaining, 1 << 20))
         if not chunk:
             raise ConnectionError("connection closed by the peer")

@@ -166,8 +166,7 @@ class Node:
 
     def _handshake(self, sock: socket.socket) -> None:
         try:
-            sock.settimeout(HANDSHAKE_TIMEOUT)
-            header = read_header(sock)
+            header = read_header(sock, HANDSHAKE_TIMEOUT)
             sock.settimeout(None)
         except (OSError, HandshakeError) as exc:
             log.warning("bad TCPROS connection attempt: %s", exc)

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import socket
 import struct
+import time
 from collections.abc import Mapping
 
 from kame.net.stream import recv_exactly
@@ -17,20 +18,30 @@ class HandshakeError(Exception):
     """The peer's header was missing, malformed or refused the connection."""
 
 
-def read_header(sock: socket.socket) -> dict[str, str]:
-    (size,) = _LENGTH.unpack(recv_exactly(sock, 4))
+def read_header(sock: socket.socket, timeout: float | None = None) -> dict[str, str]:
+    """A connection header; with `timeout`, the whole header must arrive within it (else
+    TimeoutError), not merely each read, so a peer trickling bytes cannot hold us."""
+    deadline = None if timeout is None else time.monotonic() + timeout
+    (size,) = _LENGTH.unpack(recv_exactly(sock, 4, deadline))
     if size > MAX_HEADER:
         raise HandshakeError(f"connection header of {size} bytes is too large")
     try:
-        return decode_header_fields(recv_exactly(sock, size))
+        return decode_header_fields(recv_exactly(sock, size, deadline))
     except TcprosError as exc:
         raise HandshakeError(str(exc)) from exc
 
 
-def read_header_and_rest(sock: socket.socket) -> tuple[dict[str, str], bytes]:
-    """Read a header with the bytes that followed it in the same reads (a latched message)."""
+def read_header_and_rest(sock: socket.socket, timeout: float | None = None) -> tuple[dict[str, str], bytes]:
+    """Read a header with the bytes that followed it in the same reads (a latched message);
+    with `timeout`, the whole header must arrive within it."""
+    deadline = None if timeout is None else time.monotonic() + timeout
     reader = HeaderReader(MAX_HEADER)
     while True:
+        if deadline is not None:
+            left = deadline - time.monotonic()
+            if left <= 0:
+                raise TimeoutError("connection header not received in time")
+            sock.settimeout(left)
         data = sock.recv(65536)
         if not data:
             raise HandshakeError("connection closed during the handshake")

@@ -225,8 +225,7 @@ class PublisherLink:
             write_header(sock, tcpros.subscriber_header_fields(
                 callerid=node.name, topic=sub.topic, type=sub.type, md5sum=sub.md5sum,
                 message_definition=sub.definition, tcp_nodelay=sub.tcp_nodelay))
-            sock.settimeout(5.0)
-            header, trailing = read_header_and_rest(sock)
+            header, trailing = read_header_and_rest(sock, 5.0)
             sock.settimeout(None)
         except BaseException:
             sock.close()
