@@ -67,3 +67,26 @@ def test_pretty_text() -> None:
     assert param_yaml.pretty_text(value) == "d:\n  k: true\ne: \nl: - 1\n- 2\nn: 3\ns: |\n  x\n  y\n"
     assert param_yaml.pretty_text("a\nb") == "a\nb\n"
     assert param_yaml.pretty_text(3) == "3\n"
+
+
+def test_values_that_contain_themselves_or_nest_too_deep_are_refused() -> None:
+    # Each of these used to end in a RecursionError traceback (rosparam load, roslaunch), or, for
+    # a deep but finite value, in the master's refusal reported as "Unable to communicate with master!".
+    with pytest.raises(ParamValueError, match="a value cannot contain itself"):
+        param_yaml.load_all("a: &x [*x]\n")
+    with pytest.raises(ParamValueError, match="a value cannot contain itself"):
+        param_yaml.load("&x {a: {b: *x}}")
+    with pytest.raises(ParamValueError, match="nested more than 50 levels deep"):
+        param_yaml.load_all("a: " + "[" * 5000 + "]" * 5000)
+    with pytest.raises(ParamValueError, match="nested more than 50 levels deep"):
+        param_yaml.load("[" * 100 + "]" * 100)
+    cyclic: list[Any] = []
+    cyclic.append(cyclic)
+    with pytest.raises(ParamValueError, match=r"cannot set parameter \[/a\]: a value cannot contain itself"):
+        param_yaml.check("/a", cyclic)
+    # shared (not enclosing) aliases and moderate nesting are fine
+    nested: list[Any] = []
+    for _ in range(48):
+        nested = [nested]
+    assert param_yaml.load_all("a: &x [1]\nb: *x\nc: " + "[" * 49 + "]" * 49) == [{"a": [1], "b": [1], "c": nested}]
+    param_yaml.check("/c", {"c": nested})

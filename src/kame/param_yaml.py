@@ -7,6 +7,9 @@ Rules (ros1-user-behaviour spec §7, as the rosparam library behaves):
   is arithmetic over numbers and `pi` (evaluated here without eval()).
 - The parameter server holds bool, 32-bit int, double, string, binary, list and string-keyed
   dict. Anything else (null, dates, sets, wider ints) is refused before anything is sent.
+- Values nest at most MAX_NESTING containers deep (the master's XML-RPC reader refuses much
+  deeper ones) and never contain themselves (a YAML alias to an enclosing node): both are
+  refused with a clear error, as YAML nested too deeply for the parser is.
 - A dict is set leaf by leaf (it merges into an existing namespace); an empty dict sets nothing.
 - Output is PyYAML block style with sorted keys, the way `rosparam get/dump` print it.
 Pure: text and values in, values and text out.
@@ -28,6 +31,8 @@ from kame import names
 
 MAX_INT = 2**31 - 1
 MIN_INT = -(2**31)
+#: Deepest nesting of lists and dicts a parameter value may have.
+MAX_NESTING = 50
 
 
 class ParamValueError(ValueError):
@@ -102,21 +107,62 @@ def load(text: str) -> Any:
     if text == "":
         return ""
     try:
-        return yaml.load(text, Loader=ParamLoader)
+        value = yaml.load(text, Loader=ParamLoader)
     except yaml.YAMLError as exc:
         raise ParamValueError(f"invalid YAML: {_one_line(exc)}") from None
+    except RecursionError:
+        raise ParamValueError(_TOO_DEEP) from None
+    check_shape(value)
+    return value
 
 
 def load_all(text: str) -> list[Any]:
     """Every document of a YAML file, empty documents left out."""
     try:
-        return [doc for doc in yaml.load_all(text, Loader=ParamLoader) if doc is not None]
+        documents = [doc for doc in yaml.load_all(text, Loader=ParamLoader) if doc is not None]
     except yaml.YAMLError as exc:
         raise ParamValueError(f"invalid YAML: {_one_line(exc)}") from None
+    except RecursionError:
+        raise ParamValueError(_TOO_DEEP) from None
+    for doc in documents:
+        check_shape(doc)
+    return documents
 
 
 def _one_line(exc: yaml.YAMLError) -> str:
     return " ".join(str(exc).split())
+
+
+_TOO_DEEP = f"invalid YAML: nested more than {MAX_NESTING} levels deep"
+_SELF = "a value cannot contain itself (a YAML alias refers to a node that encloses it)"
+
+
+def check_shape(value: Any) -> None:
+    """Raise ParamValueError if `value` contains itself or nests deeper than MAX_NESTING (what
+    every walk over it, and the XML-RPC encoding, would otherwise fail on with RecursionError)."""
+    problem = _shape_problem(value, 0, set())
+    if problem:
+        raise ParamValueError(problem)
+
+
+def _shape_problem(value: Any, depth: int, enclosing: set[int]) -> str | None:
+    if isinstance(value, dict):
+        items: Any = value.values()
+    elif isinstance(value, (list, tuple)):
+        items = value
+    else:
+        return None
+    if id(value) in enclosing:
+        return _SELF
+    if depth >= MAX_NESTING:
+        return f"values nested more than {MAX_NESTING} levels deep cannot be stored"
+    enclosing.add(id(value))
+    for item in items:
+        problem = _shape_problem(item, depth + 1, enclosing)
+        if problem:
+            return problem
+    enclosing.discard(id(value))
+    return None
 
 
 # ------------------------------------------------------------------ what the server can hold
@@ -124,7 +170,7 @@ def _one_line(exc: yaml.YAMLError) -> str:
 
 def check(name: str, value: Any) -> None:
     """Raise ParamValueError if `value` (to be stored at `name`) cannot go to the parameter server."""
-    problem = _problem(value)
+    problem = _shape_problem(value, 0, set()) or _problem(value)
     if problem:
         raise ParamValueError(f"cannot set parameter [{name}]: {problem}")
 

@@ -193,6 +193,11 @@ def test_unknown_tags_and_attributes_warn(tmp_path: Path) -> None:
     ('<launch>\n<param name="p" value="$(env NOPE)"/></launch>', "environment variable 'NOPE' is not set", 2),
     ('<launch>\n<param name="p" value="$(find nopkg)"/></launch>', "nopkg", 2),
     ('<launch>\n<rosparam>a: [1, 2</rosparam></launch>', "Error within YAML block", 2),
+    # these ended in a RecursionError traceback: an alias to its own enclosing node, and YAML
+    # nested deeper than the parser's recursion
+    ('<launch>\n<rosparam>a: &amp;x {b: *x}</rosparam></launch>', "a value cannot contain itself", 2),
+    ('<launch>\n<rosparam>a: &amp;x [*x]</rosparam></launch>', "a value cannot contain itself", 2),
+    ('<launch>\n<rosparam>a: ' + '[' * 3000 + ']' * 3000 + '</rosparam></launch>', "nested too deeply", 2),
     ('<launch>\n<node name="a" pkg="demo" type="x"/><node name="a" pkg="demo" type="x"/></launch>',
      "roslaunch file contains multiple nodes named [/a]", 2),
     ('<launch>\n<node name="a" pkg="demo" type="x">\n</launch>', "Invalid roslaunch XML syntax: mismatched tag", 3),

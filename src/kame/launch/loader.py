@@ -34,7 +34,7 @@ from kame.launch.model import Executable, LaunchConfig, Machine, Node, Param
 from kame.launch.substitution import Substituter
 from kame.launch.values import bool_attr, convert_value, float_attr
 from kame.launch.xmltree import Element
-from kame.param_yaml import ParamLoader
+from kame.param_yaml import ParamLoader, ParamValueError, check_shape
 
 NODE_ATTRS = ("pkg", "type", "machine", "name", "args", "output", "respawn", "respawn_delay", "cwd", "ns",
               "clear_params", "launch-prefix", "required")
@@ -505,10 +505,12 @@ class LaunchLoader:
             text = subst(text)
         try:
             data = yaml.load(text, Loader=ParamLoader)
-        except yaml.YAMLError as exc:
+            check_shape(data)
+        except (yaml.YAMLError, RecursionError, ParamValueError) as exc:
+            detail = "nested too deeply" if isinstance(exc, RecursionError) else exc
             if file_:
-                raise ValueError(f"file {file_} contains invalid YAML:\n{exc}") from None
-            raise ValueError(f"Error within YAML block:\n\t{exc}\n\nYAML is:\n{text}") from None
+                raise ValueError(f"file {file_} contains invalid YAML:\n{detail}") from None
+            raise ValueError(f"Error within YAML block:\n\t{detail}\n\nYAML is:\n{text}") from None
         if data is None:
             data = {}
         if not param and not isinstance(data, dict):
