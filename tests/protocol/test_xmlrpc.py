@@ -95,6 +95,24 @@ def test_encode_refuses(value: object, error: type[Exception]) -> None:
         x.encode_response(value)
 
 
+def test_encode_refuses_recursive_and_too_deep_values_with_a_type_error() -> None:
+    # These escaped as RecursionError (xmlrpc.client says TypeError: cannot marshal recursive ...).
+    cyclic: list[object] = []
+    cyclic.append(cyclic)
+    looped: dict[str, object] = {}
+    looped["a"] = looped
+    deep: list[object] = []
+    for _ in range(5000):
+        deep = [deep]
+    for value in (cyclic, looped, deep):
+        with pytest.raises(TypeError, match="recursive or too deeply nested"):
+            x.encode_response(value)
+        with pytest.raises(TypeError, match="recursive or too deeply nested"):
+            x.encode_response([1, "", value])
+        with pytest.raises(TypeError, match="recursive or too deeply nested"):
+            x.encode_request("setParam", ["/n", "/p", value])
+
+
 # What roscpp (XmlRpc++ 0.7) sends: untagged strings, <i4>, CRLF and tabs between elements.
 XMLRPCPP_REQUEST = (
     b'<?xml version="1.0"?>\r\n<methodCall><methodName>registerPublisher</methodName>\r\n<params>'
@@ -381,3 +399,43 @@ def test_fast_path_agrees_with_full_parser_on_mutations() -> None:
             assert full == fast, data
             assert [type(v) for v in fast[1]] == [type(v) for v in full[1]], data  # type: ignore[index]
     assert accepted > 300  # the fuzz did exercise the fast path
+
+
+def test_decoders_raise_only_their_own_errors_on_mutated_bodies() -> None:
+    # Seeded fuzz: structural tokens and bytes spliced into valid calls, responses and faults.
+    # Whatever comes in, the decoders raise MalformedError or Fault, never anything else.
+    import random
+
+    rng = random.Random(11)
+    seeds = [
+        x.encode_request("registerPublisher", ["/n", "/t", "std_msgs/String", "http://h:1/"]),
+        x.encode_request("m", [[1, 2.5, True, "x", b"abc", {"a": [1, {"b": "c"}]}]]),
+        x.encode_response([1, "ok", [["/a", ["/b"]]]]),
+        x.encode_fault(1, "bad"),
+        XMLRPCPP_REQUEST,
+    ]
+    tokens = [b"<value>", b"</value>", b"<struct>", b"</struct>", b"<member>", b"</member>", b"<name>",
+              b"</name>", b"<array>", b"</array>", b"<data>", b"</data>", b"<param>", b"</param>",
+              b"<params>", b"</params>", b"<int>", b"</int>", b"<fault>", b"</fault>", b"<methodName>",
+              b"</methodName>", b"<string>", b"</string>", b"<base64>", b"</base64>", b"<double>",
+              b"<boolean>", b"<dateTime.iso8601>", b"<nil/>", b"<i8>", b"9" * 5000, b"&amp;", b"&#0;", b"\xff"]
+    for _ in range(6000):
+        body = bytearray(rng.choice(seeds))
+        for _ in range(rng.randint(1, 4)):
+            i = rng.randrange(len(body) + 1)
+            op = rng.randrange(4)
+            if op == 0:
+                del body[i:i + rng.randint(1, 10)]
+            elif op == 1:
+                body[i:i] = rng.choice(tokens)
+            elif op == 2 and i < len(body):
+                body[i] = rng.randrange(256)
+            else:
+                j = rng.randrange(len(body) + 1)
+                body[i:i] = body[j:j + rng.randint(1, 40)]
+        data = bytes(body)
+        for decode in (x.decode_request, x.decode_response):
+            try:
+                decode(data)
+            except (x.MalformedError, x.Fault):
+                pass

@@ -163,7 +163,10 @@ def _params(params: Sequence[object], out: list[str]) -> None:
 def encode_request(method: str, params: Sequence[object]) -> bytes:
     """A `methodCall` body, as xmlrpc.client.dumps(params, method) writes it."""
     out = [_XML_DECL, f"<methodCall>\n<methodName>{_escape(method)}</methodName>\n"]
-    _params(params, out)
+    try:
+        _params(params, out)
+    except RecursionError:
+        raise TypeError(_RECURSIVE) from None
     out.append("</methodCall>\n")
     return "".join(out).encode("utf-8", "xmlcharrefreplace")
 
@@ -172,8 +175,18 @@ _TRIPLE_HEAD = _XML_DECL + "<methodResponse>\n<params>\n<param>\n<value><array><
 _TRIPLE_TAIL = "</data></array></value>\n</param>\n</params>\n</methodResponse>\n"
 
 
+_RECURSIVE = "cannot marshal recursive or too deeply nested values"
+
+
 def encode_response(value: object) -> bytes:
     """A `methodResponse` body carrying one value."""
+    try:
+        return _encode_response(value)
+    except RecursionError:
+        raise TypeError(_RECURSIVE) from None
+
+
+def _encode_response(value: object) -> bytes:
     if type(value) is list and len(value) == 3:
         # ROS's `[code, message, value]`, written without walking the outer list
         code, message, item = value
