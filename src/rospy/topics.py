@@ -170,6 +170,7 @@ class _Callbacks:
     def __init__(self, data_class: type[Any]) -> None:
         self.data_class = data_class
         self.entries: list[tuple[Callable[..., Any], Any, bool]] = []
+        self.undeserializable: dict[str, int] = {}  # publisher callerid -> messages skipped
 
     def deliver(self, frames: list[memoryview], header: dict[str, str]) -> None:
         from_buffer = self.data_class._from_buffer
@@ -178,10 +179,10 @@ class _Callbacks:
             try:
                 msg = from_buffer(frame)
             except Exception as exc:
-                _log.emit(_log.ERROR, "cannot deserialize a message on a subscription of type [%s] from [%s]: %s",
-                          (self.data_class._type, header.get("callerid", "?"), exc),
-                          caller=("topics.py", 0, "deliver", None))
-                raise
+                # As rospy: the message is skipped and the connection kept (the frames after it
+                # are good TCPROS). Logged for the first message per publisher, not for each.
+                self._undeserializable(header.get("callerid", "?"), exc)
+                continue
             msg._connection_header = header
             for callback, args, has_args in entries:
                 try:
@@ -192,6 +193,15 @@ class _Callbacks:
                 except Exception:
                     _log.emit(_log.ERROR, "bad callback: %s\n%s", (callback, traceback.format_exc()),
                               caller=("topics.py", 0, "deliver", None))
+
+
+    def _undeserializable(self, callerid: str, exc: Exception) -> None:
+        count = self.undeserializable.get(callerid, 0)
+        self.undeserializable[callerid] = count + 1
+        if count == 0:
+            _log.emit(_log.ERROR, "cannot deserialize a message on a subscription of type [%s] from [%s]: %s "
+                      "(the message is skipped; further failures from this publisher are not logged)",
+                      (self.data_class._type, callerid, exc), caller=("topics.py", 0, "deliver", None))
 
 
 class Subscriber(Topic):

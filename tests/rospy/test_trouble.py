@@ -155,3 +155,66 @@ def test_the_master_going_away_and_back_does_not_crash_a_node(tmp_path: Path) ->
     finally:
         proc.stop()
         master.stop()
+
+
+def test_an_undeserializable_message_is_skipped_and_the_connection_kept(tmp_path: Path) -> None:
+    # One bad frame from a publisher used to end the connection for good ("no retry"), losing the
+    # good messages that came with it in the same read and every one after it. rospy logs and
+    # reads on; so do we now, logging the first failure per publisher, not a line per message.
+    import socket
+    import struct
+    import threading
+
+    from kame.node.node import Node, NodeConfig
+    from kame.protocol import tcpros
+    from std_msgs.msg import String
+
+    port = free_port()
+    master = start_master(tmp_path, port)
+    server = socket.socket()
+    server.bind(("127.0.0.1", 0))
+    server.listen(1)
+    liar = Node(NodeConfig("/liar", f"http://127.0.0.1:{port}/", "127.0.0.1"))
+    proc = None
+    try:
+        proc = node(tmp_path, port, """
+            import rospy
+            from std_msgs.msg import String
+            rospy.init_node('reader')
+            rospy.Subscriber('/mixed', String, lambda msg: print('got', msg.data, flush=True))
+            print('ready', flush=True)
+            rospy.spin()
+        """)
+        proc.wait_line("ready")
+
+        def good(text: str) -> bytes:
+            return tcpros.encode_frame(struct.pack("<I", len(text)) + text.encode())
+
+        bad = tcpros.encode_frame(struct.pack("<I", 1000) + b"abc")  # claims 1000 bytes, has 3
+
+        def serve() -> None:
+            conn, _ = server.accept()
+            conn.recv(65536)
+            conn.sendall(tcpros.encode_header(tcpros.publisher_reply_fields(
+                callerid="/liar", topic="/mixed", spec=tcpros.TopicSpec("std_msgs/String", String._md5sum))))
+            conn.sendall(good("a") + bad + good("b") + bad + bad)  # one read: good ones around bad ones
+            time.sleep(0.3)
+            conn.sendall(bad + good("c"))
+            time.sleep(5)
+            conn.close()
+
+        threading.Thread(target=serve, daemon=True).start()
+        liar.advertise("/mixed", "std_msgs/String", String._md5sum, String._full_text)
+        liar.tcpros_port = server.getsockname()[1]  # requestTopic now points at the fake server
+        proc.wait_line("got c", timeout=10)
+        out, err = proc.stop()
+        assert [line.split()[1] for line in out.splitlines() if line.startswith("got")] == ["a", "b", "c"]
+        assert sum("cannot deserialize" in line for line in err.splitlines()) == 1, err
+        assert "/liar" in err and "std_msgs/String" in err
+        assert "Traceback" not in err
+    finally:
+        if proc is not None:
+            proc.stop()
+        liar.shutdown("test over")
+        server.close()
+        master.stop()
