@@ -282,3 +282,71 @@ def test_a_handshake_trickling_in_is_cut_off(make_node: Any, monkeypatch: pytest
     assert wait_until(lambda: len(pub.links) == 1)
     pub.publish_frame(serialize_frame(String("ok")))
     assert event.wait(5) and got == ["ok"]
+
+
+def test_a_refused_service_response_closes_the_persistent_connection(make_node: Any, master_uri: str) -> None:
+    # A response refused for its size raised ServiceError but kept the persistent socket, so the
+    # next call read its answer from the middle of the refused one: here the server's planted "evil".
+    from kame.node import services
+
+    server = socket.socket()
+    server.bind(("127.0.0.1", 0))
+    server.listen(4)
+    connections: list[int] = []
+
+    def serve() -> None:
+        while True:
+            try:
+                conn, _ = server.accept()
+            except OSError:
+                return
+            connections.append(1)
+            conn.recv(65536)
+            conn.sendall(tcpros.encode_header({"callerid": "/fake", "md5sum": "*", "type": "x/Y"}))
+            calls = 0
+            while conn.recv(65536):
+                calls += 1
+                if calls == 2:  # a refused size, then bytes that parse as a whole response
+                    refused = struct.pack("<BI", 1, services.MAX_REQUEST + 1)
+                    conn.sendall(refused + tcpros.encode_service_response(True, b"evil"))
+                else:
+                    conn.sendall(tcpros.encode_service_response(True, b"good"))
+            conn.close()
+
+    threading.Thread(target=serve, daemon=True).start()
+    master = xmlrpc.client.ServerProxy(master_uri)
+    port = server.getsockname()[1]
+    assert master.registerService("/fake", "/fake_srv", f"rosrpc://127.0.0.1:{port}", "http://127.0.0.1:1/")[0] == 1
+    try:
+        client = make_node("/fake_client").service_client("/fake_srv", "x/Y", "*", persistent=True)
+        assert client.call(b"1") == b"good"
+        with pytest.raises(ServiceError, match="too large"):
+            client.call(b"2")
+        assert client.call(b"3") == b"good"
+        assert len(connections) == 2
+        client.close()
+    finally:
+        master.unregisterService("/fake", "/fake_srv", f"rosrpc://127.0.0.1:{port}")
+        server.close()
+
+
+def test_a_lying_request_length_reserves_no_gigabyte(make_node: Any) -> None:
+    # The service server read a request with recv(claimed size): a client claiming ~1 GiB and
+    # sending three bytes made the node allocate ~1 GiB per connection.
+    import tracemalloc
+
+    node = make_node("/lied_to")
+    node.advertise_service("/lied_srv", "std_srvs/Empty", "d41d8cd98f00b204e9800998ecf8427e", lambda data: (True, b""))
+    tracemalloc.start()
+    try:
+        sock = socket.create_connection(("127.0.0.1", node.tcpros_port), timeout=5)
+        sock.sendall(tcpros.encode_header(tcpros.service_client_header_fields(
+            callerid="/liar", service="/lied_srv", md5sum="*")))
+        sock.recv(65536)
+        sock.sendall(struct.pack("<I", (1 << 30) - 1) + b"abc")
+        time.sleep(0.5)
+        _, peak = tracemalloc.get_traced_memory()
+        sock.close()
+    finally:
+        tracemalloc.stop()
+    assert peak < 64 << 20, peak

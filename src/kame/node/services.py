@@ -28,6 +28,7 @@ log = logging.getLogger("kame.services")
 
 _LENGTH = struct.Struct("<I")
 MAX_REQUEST = 1 << 30
+_RECV_MAX = 1 << 20
 SPIN_FOR_ANSWER = 200e-6  # seconds a caller (or a persistent server) polls before it blocks
 
 # handler(request bytes) -> (ok, response bytes) or (False, error text)
@@ -125,7 +126,9 @@ class _Reader:
 
     def read(self, size: int) -> bytes:
         while len(self.buf) < size:
-            chunk = self._recv(max(65536, size - len(self.buf)))
+            # At most 1 MiB per recv: recv(n) allocates n bytes first, so a peer claiming a
+            # gigabyte and sending three bytes made us reserve a gigabyte per connection.
+            chunk = self._recv(max(65536, min(size - len(self.buf), _RECV_MAX)))
             if not chunk:
                 raise ConnectionError("connection closed by the peer")
             self.buf += chunk
@@ -218,6 +221,10 @@ class ServiceClient:
             except (OSError, HandshakeError) as exc:
                 self._close_socket(sock)
                 raise ServiceError(f"transport error completing service call: {exc}") from exc
+            except ServiceError:
+                # a refused response leaves the stream mid-frame: never read the next answer from it
+                self._close_socket(sock)
+                raise
             if self.persistent:
                 self._sock = sock
             else:
