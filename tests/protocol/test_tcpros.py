@@ -446,3 +446,29 @@ def test_server_rejections() -> None:
         f"request from [/client]: md5sums do not match: [{'a' * 32}] vs. [{SRV_MD5}]")
     assert t.accept_service_client({**header, "service": "/nope"}, callerid="/server", services=SRVS) == t.Rejected(
         "[/server] is not a provider of  [/nope]")
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_readers_raise_only_tcpros_errors_on_garbage(seed: int) -> None:
+    # Seeded fuzz: random bytes (biased to hostile length prefixes and header fields) fed in
+    # random chunks. The readers raise TcprosError or wait for more; they never raise anything
+    # else, never buffer more than they were given plus a frame's declared (bounded) size.
+    rng = random.Random(seed)
+    pieces = [struct.pack("<I", 0xFFFFFFFF), struct.pack("<I", 1 << 20), struct.pack("<I", 0),
+              struct.pack("<I", 4), b"topic=", b"=", b"\xff\xfe", b"md5sum=*", b"\x00"]
+    for _ in range(1500):
+        data = b"".join(rng.choice(pieces) if rng.random() < 0.5 else bytes([rng.randrange(256)])
+                        for _ in range(rng.randint(0, 24)))
+        for reader in (t.HeaderReader(), t.FrameReader(max_frame=1 << 16), t.ServiceResponseReader(max_frame=1 << 16)):
+            pos = 0
+            try:
+                while pos < len(data) and not (isinstance(reader, t.HeaderReader) and reader.done):
+                    step = rng.randint(1, 8)
+                    reader.feed(data[pos : pos + step])
+                    pos += step
+            except t.TcprosError:
+                pass
+        try:
+            t.decode_header(data)
+        except t.TcprosError:
+            pass
