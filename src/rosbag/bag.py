@@ -92,7 +92,7 @@ def message_class(conn: Connection) -> type[Any]:
 
             try:
                 cls = generate_dynamic(conn.datatype, conn.msg_def)[conn.datatype]
-            except MessageError as exc:
+            except (MessageError, ValueError) as exc:  # ValueError: a type name that is none
                 raise BagError(f"cannot build message type [{conn.datatype}] from the bag's definition: "
                                f"{exc}") from exc
         _class_cache[key] = cls

@@ -212,6 +212,49 @@ def test_lying_lengths_are_errors_not_reads_outside_the_file(tmp_path: Path) -> 
         assert bag.get_message_count() == 400
 
 
+@pytest.mark.parametrize("compression", ["none", "bz2", "lz4"])
+def test_random_damage_is_a_clear_error(tmp_path: Path, compression: str) -> None:
+    """Seeded fuzzing: flipped bytes, truncation and lying lengths anywhere in a small bag give
+    rosbag's exception or a message's DeserializationError (a corrupt message body), never
+    another exception; opening with allow_unindexed as well. Found: a connection record whose
+    type became garbage escaped as a ValueError."""
+    import random
+
+    from geometry_msgs.msg import PoseStamped
+    from kame.msg import MessageError
+    from rospy import Time
+    from std_msgs.msg import String
+
+    src = tmp_path / "src.bag"
+    with rosbag.Bag(src, "w", compression=compression, chunk_threshold=300) as bag:
+        for i in range(30):
+            bag.write("/s", String(data="x" * i), Time(100 + i))
+            bag.write("/p", PoseStamped(), Time(100 + i, 5))
+    base = src.read_bytes()
+    rng = random.Random(7)
+    damaged = tmp_path / "damaged.bag"
+    for _ in range(600):
+        data = bytearray(base)
+        kind = rng.random()
+        if kind < 0.5:
+            for _ in range(rng.randint(1, 4)):
+                data[rng.randrange(len(data))] = rng.randrange(256)
+        elif kind < 0.8:
+            del data[rng.randrange(len(data)):]
+        else:
+            pos = rng.randrange(len(data) - 4)
+            data[pos:pos + 4] = rng.choice([b"\xff\xff\xff\xff", b"\0\0\0\0", b"\xff\xff\xff\x7f", b"\1\0\0\0"])
+        damaged.write_bytes(data)
+        for allow_unindexed in (False, True):
+            try:
+                with rosbag.Bag(damaged, allow_unindexed=allow_unindexed) as bag:
+                    bag.get_type_and_topic_info()
+                    for _ in bag.read_messages():
+                        pass
+            except (rosbag.ROSBagException, MessageError):
+                pass
+
+
 def test_corrupt_compressed_chunk_and_unknown_compression(tmp_path: Path) -> None:
     path = tmp_path / "c.bag"
     _write_sample(path, "bz2", n=3000)
