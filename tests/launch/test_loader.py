@@ -203,6 +203,9 @@ def test_unknown_tags_and_attributes_warn(tmp_path: Path) -> None:
     ('<launch>\n<node name="a" pkg="demo" type="x">\n</launch>', "Invalid roslaunch XML syntax: mismatched tag", 3),
     ('<!DOCTYPE l [<!ENTITY e "x">]><launch/>', "DOCTYPE and entity declarations are not accepted", 1),
     ("<nolaunch/>", "Invalid roslaunch XML syntax: no root <launch> tag", 1),
+    # was a RecursionError traceback
+    ('<launch>\n' + "<group>" * 3000 + "</group>" * 3000 + "</launch>",
+     "Invalid roslaunch XML syntax: elements nested more than 200 deep", 2),
 ])
 def test_errors_name_file_and_line(tmp_path: Path, xml: str, message: str, line: int) -> None:
     with pytest.raises(LaunchError) as info:
@@ -264,3 +267,15 @@ def test_summary_and_dump(tmp_path: Path) -> None:
         "NODES\n  /\n    m (demo/y)\n  /g/\n    n (demo/x)\n")
     assert plan.dump_params(config) == ("/d:\n  a: 1\n  b:\n  - 2\n  - 3\n/long: abcdefghijklmnopqrstuvwxyz\n"
                                         "/multi: 'a\n\n  b'\n\n")
+
+
+def test_a_long_include_chain_is_a_launch_error(tmp_path: Path) -> None:
+    # 400 files each including the next ended in a RecursionError traceback.
+    files = {f"c{i}.launch": f'<launch><include file="{tmp_path}/c{i + 1}.launch"/></launch>' for i in range(400)}
+    files["c400.launch"] = '<launch><param name="p" value="1"/></launch>'
+    with pytest.raises(LaunchError, match="launch files nested too deeply"):
+        load(tmp_path, f'<launch><include file="{tmp_path}/c0.launch"/></launch>', **files)
+    # a moderate chain and moderate nesting still load
+    files = {f"d{i}.launch": f'<launch><include file="{tmp_path}/d{i + 1}.launch"/></launch>' for i in range(20)}
+    files["d20.launch"] = "<launch>" + "<group>" * 50 + '<param name="p" value="1"/>' + "</group>" * 50 + "</launch>"
+    assert params(load(tmp_path, f'<launch><include file="{tmp_path}/d0.launch"/></launch>', **files)) == {"/p": 1}

@@ -163,6 +163,10 @@ class LaunchLoader:
             if not self.ignore_unset_args:
                 raise LaunchError(f"[{filename}] requires the '{exc.message}' arg to be set",
                                   exc.filename, exc.line) from None
+        except RecursionError:
+            # each file's nesting is bounded (xmltree.MAX_DEPTH); a long chain of includes is not
+            raise LaunchError("launch files nested too deeply (groups within includes within groups)",
+                              filename) from None
 
     def load_string(self, text: str, argv: Sequence[str] = (), core: bool = False) -> None:
         if self.verbose:

@@ -36,8 +36,14 @@ class Element:
         return f"<{self.tag}{attrs}>{inner}</{self.tag}>"
 
 
+#: Deepest element nesting accepted. Real launch files nest a handful of groups; without a
+#: bound, a file of thousands of nested tags ended every recursive walk in a RecursionError.
+MAX_DEPTH = 200
+
+
 def parse(data: bytes | str, filename: str) -> Element:
-    """The document's root element; LaunchError for bad XML or any DOCTYPE."""
+    """The document's root element; LaunchError for bad XML, any DOCTYPE, or nesting deeper
+    than MAX_DEPTH."""
     parser = expat.ParserCreate()
     stack: list[Element] = []
     roots: list[Element] = []
@@ -47,6 +53,9 @@ def parse(data: bytes | str, filename: str) -> Element:
                           filename, parser.CurrentLineNumber)
 
     def start(tag: str, attrs: dict[str, str]) -> None:
+        if len(stack) >= MAX_DEPTH:
+            raise LaunchError(f"Invalid roslaunch XML syntax: elements nested more than {MAX_DEPTH} deep",
+                              filename, parser.CurrentLineNumber)
         element = Element(tag, dict(attrs), parser.CurrentLineNumber, filename)
         if stack:
             stack[-1].children.append(element)
@@ -82,7 +91,11 @@ def parse(data: bytes | str, filename: str) -> Element:
 
 def find_all(root: Element, tag: str) -> list[Element]:
     """Every element named `tag` at or below `root`, in document order."""
-    found = [root] if root.tag == tag else []
-    for child in root.children:
-        found.extend(find_all(child, tag))
+    found: list[Element] = []
+    pending = [root]
+    while pending:
+        element = pending.pop()
+        if element.tag == tag:
+            found.append(element)
+        pending.extend(reversed(element.children))
     return found
