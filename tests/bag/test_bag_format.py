@@ -255,6 +255,22 @@ def test_random_damage_is_a_clear_error(tmp_path: Path, compression: str) -> Non
                 pass
 
 
+def test_rostopic_on_a_bag_damaged_past_its_index_says_so_in_one_line(tmp_path: Path) -> None:
+    path = tmp_path / "d.bag"
+    _write_sample(path, "none", n=300)
+    data = bytearray(path.read_bytes())
+    with BagReader(path) as reader:
+        pos = reader.chunk_infos[-1].pos
+    data[pos:pos + 4] = (0xFFFFFFF0).to_bytes(4, "little")  # the last chunk's header length
+    path.write_bytes(data)
+    rostopic = str(Path(ROSBAG).with_name("rostopic"))
+    for args in (["echo", "-b", str(path), "/pose"], ["list", "-b", str(path)]):
+        res = subprocess.run([rostopic, *args], capture_output=True, text=True, timeout=60)
+        assert res.returncode == 1, res
+        assert "Traceback" not in res.stderr
+        assert "unable to use bag file:" in res.stderr and "offset" in res.stderr
+
+
 def test_corrupt_compressed_chunk_and_unknown_compression(tmp_path: Path) -> None:
     path = tmp_path / "c.bag"
     _write_sample(path, "bz2", n=3000)

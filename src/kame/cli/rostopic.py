@@ -20,6 +20,7 @@ node start-up (an anonymous `/rostopic_<pid>_<ms>` node), hz and bw subscribing 
 from __future__ import annotations
 
 import argparse
+import contextlib
 import importlib
 import optparse
 import os
@@ -34,6 +35,7 @@ from urllib.parse import urlparse
 import yaml
 
 from kame import names
+from kame.bag.errors import BagError
 from kame.msg.echo import as_field_value, csv_header, csv_row, field_filter, to_yaml, transform
 from kame.msg.errors import MessageError
 from kame.msg.fieldpath import FieldPath, FieldPathError, field_type, has_field, parse_field_path
@@ -340,6 +342,15 @@ def _open_bag(path: str) -> Any:
         raise RostopicError(f"unable to use bag file: {exc}") from None
 
 
+@contextlib.contextmanager
+def _bag_errors() -> Iterator[None]:
+    """A damaged bag found while reading (after it opened) ends the command with one line."""
+    try:
+        yield
+    except (BagError, MessageError) as exc:
+        raise RostopicError(f"unable to use bag file: {exc}") from None
+
+
 def _bag_list(path: str, topic: str | None, verbose: bool) -> None:
     with _open_bag(path) as bag:
         info = bag.get_type_and_topic_info()
@@ -420,7 +431,8 @@ def cmd_list(args: list[str]) -> None:
             parser.error("-p option is not valid with bags")
         elif options.hostname:
             parser.error("--host option is not valid with bags")
-        _bag_list(options.bag, topic, options.verbose)
+        with _bag_errors():
+            _bag_list(options.bag, topic, options.verbose)
         return
     if options.subscribers and options.publishers:
         parser.error("you may only specify one of -p, -s")
@@ -670,8 +682,9 @@ def cmd_echo(args: list[str]) -> None:
         parser.error("Fixed width for numeric values must be at least 2")
     filter_fn = _filter(options.filter_expr) if options.filter_expr else None
     if options.bag:
-        _bag_echo(options.bag, topic.rstrip("/") or "/", options.all_topics, count, filter_fn, options.nostr,
-                  options.noarr, width, options.plot)
+        with _bag_errors():
+            _bag_echo(options.bag, topic.rstrip("/") or "/", options.all_topics, count, filter_fn, options.nostr,
+                      options.noarr, width, options.plot)
         return
     if topic.endswith("/"):
         topic = topic.rstrip("/") or "/"
