@@ -113,3 +113,24 @@ def test_filter_compress_decompress(core: dict[str, str], tmp_path: Path) -> Non
     assert (tmp_path / "in.orig.bag").exists()
     res = _run(core, "compress", "in.bag", cwd=tmp_path)
     assert "Skipping in.bag. Backup path in.orig.bag already exists." in res.stderr
+
+
+def test_play_of_a_bag_damaged_past_its_index_plays_what_it_can_then_says_why(core: dict[str, str],
+                                                                               tmp_path: Path) -> None:
+    from kame.bag.reader import BagReader
+    from rospy import Time
+    from std_msgs.msg import String
+
+    path = tmp_path / "d.bag"
+    with rosbag.Bag(path, "w", chunk_threshold=300) as bag:
+        for i in range(30):
+            bag.write("/d", String(data="x" * i), Time(100, i * 10_000_000))
+    data = bytearray(path.read_bytes())
+    with BagReader(path) as reader:
+        pos = reader.chunk_infos[-1].pos
+    data[pos:pos + 4] = (0xFFFFFFF0).to_bytes(4, "little")  # the last chunk's header length
+    path.write_bytes(data)
+    play = _run(core, "play", "-q", "-d", "0", "d.bag", cwd=tmp_path)
+    assert play.returncode == 1
+    assert "Traceback" not in play.stderr
+    assert "[FATAL]" in play.stderr and "claims a 4294967280-byte header" in play.stderr

@@ -326,6 +326,10 @@ def main(argv: list[str]) -> int:
                 if stop.wait(0.2):
                     return 0
         Player(node, options, readers, stop).run()
+    except BagError as exc:  # damage past the index, found while playing: rosbag's player says it and ends
+        sys.stdout.write("\n")
+        _log("FATAL", str(exc), "31")
+        return 1
     finally:
         node.shutdown("rosbag play exiting")
         for reader in readers:
