@@ -148,14 +148,15 @@ def test_same_as_real_rosrun(ws: Path, args: tuple[str, ...]) -> None:
     assert (ours.returncode, ours.stdout, ours.stderr) == (theirs.returncode, theirs.stdout, theirs.stderr)
 
 
-def test_rospy_tutorials_talker(tmp_path: Path) -> None:
+@pytest.mark.parametrize("exe", ["talker", "talker.py"])  # ros_tutorials installs both names
+def test_rospy_tutorials_talker(tmp_path: Path, exe: str) -> None:
     port = free_port()
     uri = f"http://127.0.0.1:{port}/"
     env = ros_env(tmp_path, uri)
     master = Proc([str(BIN / "rosmaster"), "--core", "-p", str(port)], env)
     try:
         wait_for_master(uri, proc=master)
-        talker = Proc([str(BIN / "rosrun"), "rospy_tutorials", "talker"], env)
+        talker = Proc([str(BIN / "rosrun"), "rospy_tutorials", exe], env)
         try:
             assert "hello world" in talker.wait_line("hello world", timeout=20)
         finally:
