@@ -134,3 +134,26 @@ def test_play_of_a_bag_damaged_past_its_index_plays_what_it_can_then_says_why(co
     assert play.returncode == 1
     assert "Traceback" not in play.stderr
     assert "[FATAL]" in play.stderr and "claims a 4294967280-byte header" in play.stderr
+
+
+def test_record_into_a_missing_folder_or_onto_a_full_disk_says_so_and_ends(core: dict[str, str],
+                                                                           tmp_path: Path) -> None:
+    import resource
+
+    talker = Proc([str(BIN / "rostopic"), "pub", "-r", "50", "/big", "std_msgs/String", "data: " + "x" * 20000], core)
+    try:
+        res = _run(core, "record", "-O", str(tmp_path / "missing" / "r.bag"), "/big", cwd=tmp_path)
+        assert res.returncode == 1
+        assert f"Error writing: Error opening file: {tmp_path}/missing/r.bag.active" in res.stderr
+        assert not (tmp_path / "missing").exists()  # rosbag makes no folder for it
+
+        def small_files() -> None:  # a full disk, as the writer sees it: EFBIG past 100 KB
+            resource.setrlimit(resource.RLIMIT_FSIZE, (100_000, 100_000))
+
+        full = subprocess.run([str(BIN / "rosbag"), "record", "-O", "f.bag", "/big"], env=core, cwd=tmp_path,
+                              capture_output=True, text=True, timeout=30, preexec_fn=small_files)
+    finally:
+        talker.stop()
+    assert full.returncode == 1
+    assert "Error writing: cannot write f.bag.active: File too large" in full.stderr
+    assert "Traceback" not in full.stderr

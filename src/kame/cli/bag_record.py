@@ -20,6 +20,7 @@
 from __future__ import annotations
 
 import collections
+import contextlib
 import datetime
 import optparse
 import os
@@ -48,6 +49,15 @@ def log_info(text: str) -> None:
 def log_warn(text: str) -> None:
     sys.stderr.write(f"\033[33m[ WARN] [{time.time():.9f}]: {text}\033[0m\n")
     sys.stderr.flush()
+
+
+def log_error(text: str) -> None:
+    sys.stderr.write(f"\033[31m[ERROR] [{time.time():.9f}]: {text}\033[0m\n")
+    sys.stderr.flush()
+
+
+class RecordingFailed(Exception):
+    """The bag cannot be opened or written (no such folder, no permission, a full disk)."""
 
 
 def _size_arg(value: str) -> float:
@@ -147,6 +157,7 @@ class Recorder:
         self.regexes = [re.compile(t) for t in topics] if options.regex else []
         self.done_topics: set[str] = set()
         self.finished = threading.Event()
+        self.failed = False
 
     # ------------------------------------------------------------------ subscribing
 
@@ -221,19 +232,35 @@ class Recorder:
 
     def _open(self) -> tuple[BagWriter, str]:
         path = self.namer.next()
-        if os.path.dirname(path):
-            os.makedirs(os.path.dirname(path), exist_ok=True)
-        writer = BagWriter(path + ".active", "w", self.options.compression, self.options.chunksize * 1024,
-                           drop_behind=True)
+        try:  # no folder is made for it, as with rosbag's recorder
+            writer = BagWriter(path + ".active", "w", self.options.compression, self.options.chunksize * 1024,
+                               drop_behind=True)
+        except OSError as exc:
+            raise RecordingFailed(f"Error opening file: {path}.active") from exc
         if not self.options.quiet:
             log_info(f"Recording to '{path}'.")
         return writer, path
 
     def _close(self, writer: BagWriter, path: str) -> None:
-        writer.close()
-        os.replace(path + ".active", path)
+        try:
+            writer.close()
+            os.replace(path + ".active", path)
+        except OSError as exc:
+            raise RecordingFailed(f"cannot close {path}.active: {exc.strerror or exc}") from exc
 
     def write_loop(self) -> None:
+        """Write what the subscriptions queue until stopped; a bag that cannot be opened or
+        written is said once (rosbag's `Error writing: ...`) and ends the recording."""
+        try:
+            self._write_until_stopped()
+        except RecordingFailed as exc:
+            log_error(f"Error writing: {exc}")
+            self.failed = True
+            self.stop.set()
+        finally:
+            self.finished.set()
+
+    def _write_until_stopped(self) -> None:
         writer, path = self._open()
         conns: dict[tuple[str, str], int] = {}
         opened = time.monotonic()
@@ -253,7 +280,10 @@ class Recorder:
                     if conn_id is None:
                         conn_id = conns[key] = writer.add_connection(key[0], header)
                     secs, nsecs = divmod(now, 1_000_000_000)
-                    writer.write(conn_id, secs, nsecs, data, owned=True)
+                    try:
+                        writer.write(conn_id, secs, nsecs, data, owned=True)
+                    except OSError as exc:
+                        raise RecordingFailed(f"cannot write {path}.active: {exc.strerror or exc}") from exc
                 if self.options.split and ((self.max_size and writer.size >= self.max_size)
                                            or (self.max_duration and time.monotonic() - opened >= self.max_duration)):
                     self._close(writer, path)
@@ -267,9 +297,11 @@ class Recorder:
                     opened = time.monotonic()
                 elif not self.options.split and self.max_duration and time.monotonic() - opened >= self.max_duration:
                     self.stop.set()
-        finally:
-            self._close(writer, path)
-            self.finished.set()
+        except BaseException:
+            with contextlib.suppress(RecordingFailed):  # keep what reached the disk, if it lets us
+                self._close(writer, path)
+            raise
+        self._close(writer, path)
 
 
 def main(argv: list[str]) -> int:
@@ -329,4 +361,4 @@ def main(argv: list[str]) -> int:
         node.shutdown("rosbag record exiting")
         if writer_thread.is_alive():
             writer_thread.join()
-    return 0
+    return 1 if recorder.failed else 0
