@@ -28,6 +28,11 @@ def myargv(argv: list[str] | None = None) -> list[str]:
     return names.parse_args(sys.argv if argv is None else argv).argv
 
 
+def _print_shutdown_call(caller_id: str, msg: str) -> None:
+    """What rospy prints on stdout when the master or `rosnode kill` asks it to shut down."""
+    print(f"shutdown request: {msg}" if msg else "shutdown requst", flush=True)  # sic: rospy's typo
+
+
 def _advertised_host(special: dict[str, str]) -> str:
     for value in (special.get("hostname"), special.get("ip"), os.environ.get("ROS_HOSTNAME"),
                   os.environ.get("ROS_IP")):
@@ -120,6 +125,7 @@ def init_node(name: str, argv: list[str] | None = None, anonymous: bool = False,
         node = Node(NodeConfig(caller_id, master_uri, host, remappings=tuple(remappings.items()),
                                xmlrpc_port=xmlrpc_port, tcpros_port=tcpros_port))
         node.on_shutdown_request = core.signal_shutdown
+        node.on_shutdown_call = _print_shutdown_call
         core.set_node(node, caller_id, namespace, remappings)
         _init_args = args
     _log.configure_file_logging(caller_id, special.get("log"))

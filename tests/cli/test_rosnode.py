@@ -92,6 +92,10 @@ def test_kill(graph: LiveGraph) -> None:
     victim = graph.start_node("__name:=victim")
     assert ok(graph, "kill", "/victim") == "killing /victim\nkilled\n"
     victim.popen.wait(10)
+    time.sleep(0.1)  # the reader threads take the last lines
+    # rospy prints the request's message on stdout, as it is, and logs no warning about it
+    assert "shutdown request: user request\n" in victim.out
+    assert not any("shutdown request" in line for line in victim.err), victim.err
     assert "/victim" not in user_nodes(graph)
     result = graph.kame("rosnode", "kill", "/nosuch", "/graph_node")
     assert (result.returncode, result.stdout, result.stderr) == (1, "", "ERROR: Unknown node(s):\n * /nosuch\n")

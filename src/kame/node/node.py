@@ -16,6 +16,7 @@ import logging
 import os
 import socket
 import threading
+import time
 from collections.abc import Callable
 from typing import Any, NamedTuple
 
@@ -25,7 +26,7 @@ from kame.net.stream import Flusher, Listener
 from kame.net.workers import WorkerPool
 from kame.node.master_proxy import MasterError, MasterProxy
 from kame.node.services import ServiceClient, ServiceHandler, ServiceServer
-from kame.node.tcpros import HandshakeError, read_header, write_header
+from kame.node.tcpros import ClosedBeforeHeader, HandshakeError, read_header, write_header
 from kame.node.topics import Callback, Publication, Subscription
 from kame.protocol import tcpros
 from kame.protocol.xmlrpc import Fault, MalformedError, decode_request, encode_fault, encode_response
@@ -61,11 +62,14 @@ class Node:
         self.param_cache: dict[str, Any] = {}
         self.on_param_update: list[Callable[[str, Any], None]] = []
         self.on_shutdown_request: Callable[[str], None] = self.shutdown
+        # told the caller and message of a shutdown call before the shutdown starts (rospy prints them)
+        self.on_shutdown_call: Callable[[str, str], None] | None = None
         self._shutdown_hooks: list[Callable[[str], None]] = []
         bind = config.bind_host or ("" if config.host not in ("localhost",) and not config.host.startswith("127.")
                                     else config.host)
         self.flusher = Flusher(name="kame-flusher")
         self.workers = WorkerPool("kame-handshake")
+        self._bad_attempts = _Throttled(log)
         self.listener = Listener(bind, config.tcpros_port, self._accept, name="kame-tcpros")
         self.rpc = RpcServer(bind, config.xmlrpc_port, self._rpc, name="kame-xmlrpc")
         self.uri = f"http://{_uri_host(config.host)}:{self.rpc.port}/"
@@ -168,8 +172,11 @@ class Node:
         try:
             header = read_header(sock, HANDSHAKE_TIMEOUT)
             sock.settimeout(None)
+        except ClosedBeforeHeader:
+            sock.close()
+            return
         except (OSError, HandshakeError) as exc:
-            log.warning("bad TCPROS connection attempt: %s", exc)
+            self._bad_attempts.warning("bad TCPROS connection attempt from %s: %s", _peer(sock), exc)
             sock.close()
             return
         kind = tcpros.classify_connection(header)
@@ -285,7 +292,9 @@ class Node:
 
     def _shutdown_call(self, caller_id: str, msg: str = "") -> list[Any]:
         reason = f"external shutdown request from [{caller_id}]: {msg}"
-        log.warning("shutdown request: %s", reason)
+        log.info("shutdown request: %s", reason)
+        if self.on_shutdown_call is not None:
+            self.on_shutdown_call(caller_id, msg)
         self.spawn(lambda: self.on_shutdown_request(reason), "kame-shutdown")
         return [1, "shutdown", 0]
 
@@ -322,6 +331,39 @@ class Node:
         self.rpc.close()
         self.flusher.close()
         self.master.close()
+
+
+class _Throttled:
+    """Warnings about other peers' bad attempts, at most one per `interval`: a flood of garbage
+    connections gives a line a second with a count, not a line per connection."""
+
+    def __init__(self, logger: logging.Logger, interval: float = 1.0) -> None:
+        self._log = logger
+        self._interval = interval
+        self._lock = threading.Lock()
+        self._last = -interval
+        self._suppressed = 0
+
+    def warning(self, fmt: str, *args: object) -> None:
+        now = time.monotonic()
+        with self._lock:
+            if now - self._last < self._interval:
+                self._suppressed += 1
+                return
+            self._last = now
+            suppressed, self._suppressed = self._suppressed, 0
+        if suppressed:
+            self._log.warning(fmt + " (and %d more like it in the last second, not shown)", *args, suppressed)
+        else:
+            self._log.warning(fmt, *args)
+
+
+def _peer(sock: socket.socket) -> str:
+    try:
+        host, port = sock.getpeername()[:2]
+        return f"{host}:{port}"
+    except OSError:
+        return "?"
 
 
 def _subvalue(value: Any, path: str) -> Any:
