@@ -350,3 +350,31 @@ def test_a_lying_request_length_reserves_no_gigabyte(make_node: Any) -> None:
     finally:
         tracemalloc.stop()
     assert peak < 64 << 20, peak
+
+
+def test_a_flood_of_bad_connections_is_a_few_log_lines(make_node: Any, caplog: pytest.LogCaptureFixture) -> None:
+    # Every bad connection attempt was a warning line: 3000 garbage or connect-and-close clients
+    # gave 3000 lines. Connect-and-close (a port probe) is now silent, and the rest is throttled
+    # to a line a second with a count.
+    import logging
+
+    talker = make_node("/flooded")
+    pub = talker.advertise("/flooded_topic", *STRING)
+    with caplog.at_level(logging.WARNING, logger="kame.node"):
+        for i in range(100):
+            sock = socket.create_connection(("127.0.0.1", talker.tcpros_port), timeout=5)
+            if i % 2:
+                sock.sendall(b"\xde\xad\xbe\xef" * 4)  # a 4 GB header length
+                try:
+                    sock.recv(100)  # until the node hangs up
+                except OSError:
+                    pass
+            sock.close()
+        time.sleep(0.3)
+    lines = [r.getMessage() for r in caplog.records if "bad TCPROS connection attempt" in r.getMessage()]
+    assert 1 <= len(lines) <= 3, lines
+    assert "connection header of" in lines[0] and "127.0.0.1:" in lines[0]
+    got, event = collect(make_node("/after_flood"), "/flooded_topic")
+    assert wait_until(lambda: len(pub.links) == 1)
+    pub.publish_frame(serialize_frame(String("ok")))
+    assert event.wait(5) and got == ["ok"]

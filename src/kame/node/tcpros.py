@@ -18,11 +18,19 @@ class HandshakeError(Exception):
     """The peer's header was missing, malformed or refused the connection."""
 
 
+class ClosedBeforeHeader(HandshakeError):
+    """The peer closed the connection without sending a byte (a port probe, not a bad peer)."""
+
+
 def read_header(sock: socket.socket, timeout: float | None = None) -> dict[str, str]:
     """A connection header; with `timeout`, the whole header must arrive within it (else
     TimeoutError), not merely each read, so a peer trickling bytes cannot hold us."""
     deadline = None if timeout is None else time.monotonic() + timeout
-    (size,) = _LENGTH.unpack(recv_exactly(sock, 4, deadline))
+    try:
+        first = recv_exactly(sock, 1, deadline)
+    except ConnectionError:
+        raise ClosedBeforeHeader("connection closed before any header byte") from None
+    (size,) = _LENGTH.unpack(first + recv_exactly(sock, 3, deadline))
     if size > MAX_HEADER:
         raise HandshakeError(f"connection header of {size} bytes is too large")
     try:
