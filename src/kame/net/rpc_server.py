@@ -69,6 +69,7 @@ class RpcServer:
 
     def _accept_loop(self) -> None:
         starved = AcceptStarvation(self.sock)
+        last_warning, evicted = -1.0, 0
         while not self._closing:
             try:
                 conn, addr = self.sock.accept()
@@ -85,8 +86,15 @@ class RpcServer:
                     del self._connections[quietest]
                 self._connections[conn] = time.monotonic()
             if quietest is not None:
-                log.warning("too many XML-RPC connections: closing the one quiet longest (%s) for %s",
-                            _peer(quietest), addr)
+                # one line a second at most, with a count: a flood of connections is not a flood of lines
+                now = time.monotonic()
+                if now - last_warning >= 1.0:
+                    more = f" (and {evicted} more since the last warning)" if evicted else ""
+                    log.warning("too many XML-RPC connections: closing the one quiet longest (%s) for %s%s",
+                                _peer(quietest), addr, more)
+                    last_warning, evicted = now, 0
+                else:
+                    evicted += 1
                 try:
                     quietest.shutdown(socket.SHUT_RDWR)  # its thread sees the end and closes it
                 except OSError:
