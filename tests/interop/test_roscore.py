@@ -38,7 +38,8 @@ def test_roscore_banner_params_logs_and_ctrl_c(tmp_path: Path) -> None:
         assert second.popen.wait(15) == 1
         _, err = second.stop()
         assert "roscore cannot run as another roscore/master is already running. \n" in err
-        assert f"The ROS_MASTER_URI is http://localhost:{port}/" in err
+        # roslaunch names the master by the advertised host (ROS_HOSTNAME here), as Debian's roscore does
+        assert f"The ROS_MASTER_URI is http://127.0.0.1:{port}/\033[0m\n" in err
 
         if have_debian_ros():
             assert "/rosdistro" in ros_tool("rosparam", "list", env=env).stdout.split()
@@ -55,7 +56,10 @@ def test_roscore_banner_params_logs_and_ctrl_c(tmp_path: Path) -> None:
     assert f"\033[1mROS_MASTER_URI=http://127.0.0.1:{port}/\033[0m" in lines
     assert "... shutting down processing monitor complete" in lines
     rosout_at = lines.index(f"\033[1mprocess[rosout-1]: started with pid [{rosout_pid}]\033[0m")
-    assert lines[rosout_at - 1].endswith(f"\033[1msetting /run_id to {run_id}\033[0m")
+    assert lines[rosout_at - 1] == f"\033[1msetting /run_id to {run_id}\033[0m"
+    # the terminal titles are print()ed: each on a line of its own, as roslaunch's
+    assert lines[start - 4:start] == ["\033]2;roscore\007", "ros_comm version 1.15.15", "", ""]
+    assert lines[rosout_at - 2] == f"\033]2;roscore http://127.0.0.1:{port}/\007"
     assert lines[rosout_at + 1] == "started core service [/rosout]"
     ctrl_c = lines.index("[rosout-1] killing on exit")
     assert lines[ctrl_c:ctrl_c + 4] == ["[rosout-1] killing on exit", "[master] killing on exit",

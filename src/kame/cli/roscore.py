@@ -26,6 +26,7 @@ from urllib.parse import urlsplit
 
 from kame.cli.rosmaster import DEFAULT_PORT, flush_periodically, log_dir, ros_home, serve, setup_file_logging
 from kame.master.server import NOTIFY_TIMEOUT, MasterServer
+from kame.net.address import address_override, advertised_host
 from kame.net.process import SupervisedProcess
 
 ROS_VERSION = "1.15.15"
@@ -36,6 +37,7 @@ log = logging.getLogger(LOGGER)
 
 
 def _title(text: str) -> str:
+    """The terminal-title escape; roslaunch print()s it, so a newline follows it on the output."""
     return f"\033]2;{text}\007"
 
 
@@ -74,7 +76,7 @@ def _disk_usage_check(directory: Path) -> None:
 
 
 def _summary() -> None:
-    print(f"{_title('roscore')}", end="", flush=True)
+    print(_title("roscore"), flush=True)
     print(f"ros_comm version {ROS_VERSION}\n\n")
     print("SUMMARY\n========\n")
     print(f"PARAMETERS\n * /rosdistro: {ROS_DISTRO}\n * /rosversion: {ROS_VERSION}\n")
@@ -142,6 +144,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     env = os.environ
     port = options.port
     local_uri = f"http://localhost:{port}/"
+    # what roslaunch calls the master in its refusal: the advertised host (ROS_HOSTNAME, ROS_IP or hostname)
+    named_uri = f"http://{advertised_host(address_override(env))}:{port}/"
 
     existing = _running_master(local_uri)
     run_id = str(uuid.uuid1())
@@ -160,7 +164,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     if existing is not None:
         print(f"{RED}RLException: roscore cannot run as another roscore/master is already running. \n"
               f"Please kill other roscore/master processes before relaunching.\n"
-              f"The ROS_MASTER_URI is {local_uri}{RESET}\n"
+              f"The ROS_MASTER_URI is {named_uri}{RESET}\n"
               f"{RED}The traceback for the exception was written to the log file{RESET}",
               file=sys.stderr, flush=True)
         log.error("another master is running at %s", local_uri)
@@ -184,7 +188,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         print("auto-starting new master", flush=True)
         _bold(f"process[master]: started with pid [{os.getpid()}]")
         _bold(f"ROS_MASTER_URI={uri}")
-        print(_title(f"roscore {uri}"), end="", flush=True)
+        print(_title(f"roscore {uri}"), flush=True)
         assert server.api is not None
         api = server.api
         if not api.params.has("/run_id"):

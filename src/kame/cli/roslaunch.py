@@ -329,7 +329,7 @@ def _launch(options: argparse.Namespace, files: list[str], argv: list[str]) -> i
             _disk_usage_check(run_dir.parent)
         title = "roscore" if options.core else " ".join(files)
         if not options.disable_title:
-            print(_title(title), end="", flush=True)
+            print(_title(title), flush=True)
         strings = []
         if "-" in files:
             say("Passed '-' as file argument, attempting to read roslaunch XML from stdin.")

@@ -156,7 +156,7 @@ class LaunchRun:
     def _announce(self, uri: str) -> None:
         say_bold(f"ROS_MASTER_URI={uri}")
         if self.options.title is not None:
-            print(f"\033]2;{self.options.title} {uri}\007", end="", flush=True)
+            print(f"\033]2;{self.options.title} {uri}\007", flush=True)  # roslaunch print()s it
 
     def _run_id(self, proxy: MasterProxy) -> None:
         if not proxy.call("hasParam", "/run_id"):
