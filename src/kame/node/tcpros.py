@@ -26,11 +26,14 @@ def read_header(sock: socket.socket, timeout: float | None = None) -> dict[str, 
     """A connection header; with `timeout`, the whole header must arrive within it (else
     TimeoutError), not merely each read, so a peer trickling bytes cannot hold us."""
     deadline = None if timeout is None else time.monotonic() + timeout
-    try:
-        first = recv_exactly(sock, 1, deadline)
-    except ConnectionError:
-        raise ClosedBeforeHeader("connection closed before any header byte") from None
-    (size,) = _LENGTH.unpack(first + recv_exactly(sock, 3, deadline))
+    if timeout is not None:
+        sock.settimeout(timeout)
+    first = sock.recv(4)  # usually the whole prefix, in the one recv it always took
+    if not first:
+        raise ClosedBeforeHeader("connection closed before any header byte")
+    if len(first) < 4:
+        first += recv_exactly(sock, 4 - len(first), deadline)
+    (size,) = _LENGTH.unpack(first)
     if size > MAX_HEADER:
         raise HandshakeError(f"connection header of {size} bytes is too large")
     try:
