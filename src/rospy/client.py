@@ -61,8 +61,8 @@ def _wait_for_master(node: Node, master_uri: str) -> None:
             return
         except (OSError, MasterError):
             if not warned:
-                _log.emit(_log.ERROR, "Unable to register with master node [%s]: master may not be running yet. "
-                          "Will keep trying.", (master_uri,), caller=("client.py", 0, "init_node", None))
+                _log.emit(_log.ERROR, "Unable to immediately register with master node [%s]: "
+                          "master may not be running yet. Will keep trying.", (master_uri,), caller=("client.py", 0, "init_node", None))
                 warned = True
             core.wait_for_shutdown(0.2)
     raise ROSInitException("init_node interrupted before it could complete")
