@@ -62,7 +62,8 @@ def _wait_for_master(node: Node, master_uri: str) -> None:
         except (OSError, MasterError):
             if not warned:
                 _log.emit(_log.ERROR, "Unable to immediately register with master node [%s]: "
-                          "master may not be running yet. Will keep trying.", (master_uri,), caller=("client.py", 0, "init_node", None))
+                          "master may not be running yet. Will keep trying.", (master_uri,),
+                          caller=("client.py", 0, "init_node", None))
                 warned = True
             core.wait_for_shutdown(0.2)
     raise ROSInitException("init_node interrupted before it could complete")
