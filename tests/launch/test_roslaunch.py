@@ -303,3 +303,15 @@ def test_master_already_running(workspace: Path) -> None:
     finally:
         with_master.stop()
     assert "auto-starting" not in out and f"ROS_MASTER_URI=http://127.0.0.1:{port}" in out
+
+
+@pytest.mark.parametrize("args", [["demo", "nope.launch"], ["--nodes", "demo", "nope.launch"], ["/no/such.launch"]])
+def test_a_file_not_found_is_said_once(workspace: Path, args: list[str]) -> None:
+    result = subprocess.run(kame_command("kame.cli.roslaunch", *args), env=launch_env(workspace, free_port()),
+                            capture_output=True, text=True, timeout=30)
+    text = (f"[{args[-1]}] is not a launch file name" if len(args) == 1 else
+            "[nope.launch] is neither a launch file in package [demo] nor is [demo] a launch file name")
+    assert (result.returncode, result.stdout) == (1, "")
+    # as Debian's roslaunch: the red RLException and the traceback line, and no bare copy of the text
+    assert result.stderr == (f"\033[31mRLException: {text}\033[0m\n"
+                             "\033[31mThe traceback for the exception was written to the log file\033[0m\n")

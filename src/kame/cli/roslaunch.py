@@ -265,7 +265,8 @@ def _run_options(options: argparse.Namespace, run_id: str, env: Mapping[str, str
 def _fail(text: str) -> int:
     say_error(f"RLException: {text}")
     say_error("The traceback for the exception was written to the log file")
-    log.error("%s", text)
+    if log.hasHandlers():  # before the log file is set up, logging's last resort would print it again
+        log.error("%s", text)
     return 1
 
 
