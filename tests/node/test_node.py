@@ -378,3 +378,21 @@ def test_a_flood_of_bad_connections_is_a_few_log_lines(make_node: Any, caplog: p
     assert wait_until(lambda: len(pub.links) == 1)
     pub.publish_frame(serialize_frame(String("ok")))
     assert event.wait(5) and got == ["ok"]
+
+
+def test_a_consumer_failure_that_ends_a_link_is_logged(make_node: Any, caplog: pytest.LogCaptureFixture) -> None:
+    # An exception from a subscription's consumer (other than the transport's own errors) ended
+    # the link to that publisher without a word: the subscription just went quiet.
+    import logging
+
+    def deliver(frames: list[memoryview], header: dict[str, str]) -> None:
+        raise RuntimeError("consumer bug")
+
+    listener = make_node("/failing_consumer")
+    listener.subscribe("/consumed", *STRING, deliver)
+    pub = make_node("/consumed_pub").advertise("/consumed", *STRING)
+    assert wait_until(lambda: len(pub.links) == 1)
+    with caplog.at_level(logging.ERROR, logger="kame.topics"):
+        pub.publish_frame(serialize_frame(String("x")))
+        assert wait_until(lambda: any("RuntimeError: consumer bug" in r.getMessage() for r in caplog.records))
+    assert any("dropping the connection to /consumed_pub on /consumed" in r.getMessage() for r in caplog.records)

@@ -259,11 +259,11 @@ class PublisherLink:
     def _ended(self, exc: BaseException | None) -> None:
         self.connected = False
         if exc is not None and not isinstance(exc, OSError):
-            # The publisher sent something that is not TCPROS or not its type: one error, and
-            # no retry (it would send the same again). Bad message bytes were already reported
-            # by whoever failed to read them.
-            if isinstance(exc, tcpros.TcprosError):
-                log.error("dropping the connection to %s on %s: %s", self.callerid, self.subscription.topic, exc)
+            # The publisher sent something that is not TCPROS, or our consumer failed on what it
+            # sent: one error, and no retry (it would send the same again). Never silent: a link
+            # that ends without a word is a subscription that stops for no visible reason.
+            detail = str(exc) if isinstance(exc, tcpros.TcprosError) else f"{type(exc).__name__}: {exc}"
+            log.error("dropping the connection to %s on %s: %s", self.callerid, self.subscription.topic, detail)
             return
         if exc is not None:
             log.warning("connection to %s on %s broke: %s", self.callerid or self.publisher_uri,
