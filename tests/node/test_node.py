@@ -396,3 +396,24 @@ def test_a_consumer_failure_that_ends_a_link_is_logged(make_node: Any, caplog: p
         pub.publish_frame(serialize_frame(String("x")))
         assert wait_until(lambda: any("RuntimeError: consumer bug" in r.getMessage() for r in caplog.records))
     assert any("dropping the connection to /consumed_pub on /consumed" in r.getMessage() for r in caplog.records)
+
+
+def test_a_failing_service_handler_is_logged_and_the_socket_closed(make_node: Any,
+                                                                    caplog: pytest.LogCaptureFixture) -> None:
+    # A node-level service handler's exception went to the handshake worker pool, which swallows
+    # job errors: the client saw the connection close, and nothing was logged anywhere.
+    import logging
+
+    def handler(data: bytes) -> tuple[bool, bytes]:
+        raise RuntimeError("handler bug")
+
+    server = make_node("/buggy_server")
+    server.advertise_service("/buggy", "std_srvs/Empty", "d41d8cd98f00b204e9800998ecf8427e", handler)
+    client = make_node("/buggy_client").service_client("/buggy", "std_srvs/Empty", "d41d8cd98f00b204e9800998ecf8427e")
+    with caplog.at_level(logging.ERROR, logger="kame.node"):
+        start = time.monotonic()
+        with pytest.raises(ServiceError, match="transport error"):
+            client.call(b"", timeout=5)
+        assert time.monotonic() - start < 2
+        assert wait_until(lambda: any("RuntimeError: handler bug" in (r.exc_text or "") or
+                                      "handler bug" in str(r.exc_info) for r in caplog.records))

@@ -206,6 +206,11 @@ class Node:
         except (OSError, KeyError) as exc:
             log.debug("connection ended during the handshake: %s", exc)
             sock.close()
+        except Exception:
+            # the worker pool would swallow it, leaving the socket open and nothing in the log
+            log.exception("TCPROS connection from %s for %s failed", header.get("callerid", "?"),
+                          header.get("topic") or header.get("service") or "?")
+            sock.close()
 
     def _refuse(self, sock: socket.socket, text: str, header: dict[str, str]) -> None:
         log.error("refusing connection from %s: %s", header.get("callerid", "?"), text)
