@@ -57,6 +57,7 @@ FILES = {
   <node name="boss" pkg="demo" type="recorder.py" required="true">
     <env name="LIFETIME" value="1.5"/>
   </node>
+  <node name="brief" pkg="demo" type="recorder.py"><env name="LIFETIME" value="0.1"/></node>
 </launch>""",
     "launch/main.launch": """<launch>
   <arg name="robot" default="r1"/>
@@ -184,8 +185,10 @@ def test_respawn_required_and_launch_prefix(workspace: Path) -> None:
     assert out.count("[resp-2] restarting process") >= 2
     assert "REQUIRED process [boss-4] has died!\nprocess has finished cleanly" in err
     assert "[resp-2] process has died [pid" in err and "exit code 3" in err
+    assert "[brief-5] process has finished cleanly" in out
+    # as pmon: the ended required one is still listed, one that ended for good (brief) no longer
     kills = re.findall(r"^\[([^\]\n]+)\] killing on exit", out, re.M)
-    assert kills[:3] == ["boss-4", "prefixed-3", "resp-2"] and kills[-2:] == ["rosout-1", "master"]
+    assert kills == ["boss-4", "prefixed-3", "resp-2", "rosout-1", "master"]
     prefixed = record(workspace, "prefixed")
     assert prefixed["env"]["PREFIXED"] == "yes"
     assert all(gone(pid) for pid in started_pids(out).values())

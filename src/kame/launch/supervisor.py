@@ -9,7 +9,9 @@ Rules (roslaunch's nodeprocess and pmon, with its console wording):
   respawn_delay (`[name] restarting process`); a required one ends the whole launch.
 - When every non-core child is gone and nothing will respawn, the monitor ends (unless told to
   keep going, as roslaunch does when it started the master).
-- Shutdown stops the children in reverse start order, then the core processes (rosout, master).
+- Shutdown stops the children in reverse start order, then the core processes (rosout, master);
+  `[name] killing on exit` names those still registered: running, respawning, or the required
+  one that ended the launch (not those that already ended for good).
 """
 
 from __future__ import annotations
@@ -67,6 +69,7 @@ class Child:
         self.starts = 0
         self.exit_code: int | None = None
         self.stopping = False
+        self.gone = False  # exited for good and was not required: pmon unregisters it, shutdown skips it
 
     @property
     def name(self) -> str:
@@ -190,6 +193,7 @@ class Monitor:
             else:
                 say_bold(f"[{child.name}] {description}")
             if not child.spec.respawn:
+                child.gone = True
                 self._check_all_dead()
                 return
             await asyncio.sleep(child.spec.node.respawn_delay)
@@ -200,6 +204,7 @@ class Monitor:
                 await child.start()
             except LaunchFailure as exc:
                 say_error(f"RLException: {exc}")
+                child.gone = True
                 self._check_all_dead()
                 return
 
@@ -218,7 +223,8 @@ class Monitor:
         """Stop everything: children in reverse start order (together), then core processes in turn."""
         self.done.set()
         for child in reversed(self.children):
-            say(f"[{child.name}] killing on exit")
+            if not child.gone:  # as pmon: one that already ended is no longer listed
+                say(f"[{child.name}] killing on exit")
         await asyncio.gather(*(c.stop(self.sigint_timeout, self.sigterm_timeout) for c in reversed(self.children)))
         for child in reversed(self.core):
             say(f"[{child.name}] killing on exit")
