@@ -113,7 +113,7 @@ CONNECTED = Graph({"/chatter": ["/talker"]}, {"/chatter": ["/listener"]}, {},
 @pytest.mark.parametrize(("graph", "warnings", "errors"), [
     (CONNECTED, [], []),
     (Graph({}, {"/b": ["/n"], "/a": ["/n"], "/clock": ["/n"]}, {"/n/s": ["/n"]}, {"/n": node()}),
-     ["The following node subscriptions are unconnected:\n * /n:\n   * /a\n   * /b\n"], []),
+     ["The following node subscriptions are unconnected:\n * /n:\n   * /b\n   * /a\n"], []),  # master order
     (Graph({}, {"/clock": ["/n"], "/reset_time": ["/n"]}, {"/s": ["/n"]}, {"/n": node()}, use_sim_time=True),
      ["The following node subscriptions are unconnected:\n * /n:\n   * /clock\n"],
      ["/use_sim_time is set but no publisher of /clock is present"]),

@@ -343,8 +343,8 @@ def unconnected_subscriptions(graph: Graph) -> str:
         for sub in subs:
             by_node.setdefault(sub, []).append(topic)
     out = ""
-    for node in sorted(by_node):
-        topics = sorted(t for t in by_node[node] if t not in ignored)
+    for node in by_node:  # as roswtf: in the master's order (nodes as first met), not sorted
+        topics = [t for t in by_node[node] if t not in ignored]
         if topics:
             out += f" * {node}:\n" + "".join(f"   * {t}\n" for t in topics)
     return out
