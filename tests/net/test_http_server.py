@@ -166,3 +166,31 @@ def test_partial_request_times_out_after_served_ones() -> None:
     finally:
         loop.run(srv.close())
         loop.close()
+
+
+def test_clients_stalled_mid_request_cannot_lock_others_out(caplog: pytest.LogCaptureFixture) -> None:
+    # Only idle connections were closed to make room: max_connections clients that each start a
+    # request and stall got every further caller refused (reset) until their request_timeout.
+    import logging
+
+    loop = LoopThread()
+    srv = HttpServer(echo, "127.0.0.1", 0, ServerLimits(max_connections=20, request_timeout=30.0))
+    loop.run(srv.start())
+    stalled: list[socket.socket] = []
+    try:
+        with caplog.at_level(logging.WARNING, logger="kame.net.http"):
+            for _ in range(60):
+                s = socket.create_connection(("127.0.0.1", srv.port), timeout=3)
+                s.sendall(b"POST /a HTTP/1.1\r\nContent-Length: 100\r\n\r\nab")
+                stalled.append(s)
+            time.sleep(0.2)
+            with socket.create_connection(("127.0.0.1", srv.port), timeout=3) as s:
+                s.sendall(b"POST /ok HTTP/1.1\r\nContent-Length: 2\r\n\r\nhi")
+                assert _read_until(s, b"/ok hi").startswith(b"HTTP/1.1 200 ")
+        lines = [r.getMessage() for r in caplog.records if "to make room" in r.getMessage()]
+        assert 1 <= len(lines) <= 3, lines  # 41 closed, a line or two said so
+    finally:
+        for s in stalled:
+            s.close()
+        loop.run(srv.close())
+        loop.close()

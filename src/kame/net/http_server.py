@@ -329,6 +329,8 @@ class HttpServer:
         self._budget = _Budget()
         self._heads: dict[bytes, _Head] = {}
         self._connections: dict[_Connection, None] = {}  # least recently active first
+        self._evicted = 0  # connections closed to make room since the last warning about it
+        self._evict_logged = float("-inf")
         self._server: asyncio.Server | None = None
         self._loop: asyncio.AbstractEventLoop | None = None
 
@@ -363,12 +365,23 @@ class HttpServer:
         if len(self._connections) >= self.limits.max_connections:
             # Make room by closing a connection that is doing nothing: first one that never sent
             # a request (a flood), else the one idle the longest. Python's XML-RPC client
-            # reconnects once by itself when a kept-alive connection turns out closed.
+            # reconnects once by itself when a kept-alive connection turns out closed. When none
+            # is idle (clients that start a request and stall: they used to lock everyone else
+            # out until their request_timeout), the one whose deadline is nearest goes: it would
+            # be closed soonest anyway.
             idle = [c for c in self._connections if c.idle]
             victim = next((c for c in idle if not c.served), idle[0] if idle else None)
             if victim is None:
+                victim = min(self._connections, key=lambda c: c.deadline, default=None)
+            if victim is None:
                 return False
-            log.warning("closing idle connection from %s to make room", victim.peer)
+            self._evicted += 1
+            now = self.loop.time()
+            if now - self._evict_logged >= 1.0:  # a flood of connections is not a flood of lines
+                more = f" ({self._evicted - 1} more since the last such line)" if self._evicted > 1 else ""
+                log.warning("too many connections: closing %s connection from %s to make room%s",
+                            "idle" if victim.idle else "stalled", victim.peer, more)
+                self._evict_logged, self._evicted = now, 0
             self._forget(victim)
             if victim.transport is not None:
                 victim.transport.abort()
