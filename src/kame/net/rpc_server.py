@@ -217,4 +217,5 @@ def _read_request(conn: socket.socket, buf: bytearray,
         buf += chunk
     body = bytes(buf[:length])
     del buf[:length]
+    conn.settimeout(IDLE_TIMEOUT)  # the answer is sent with the whole idle timeout, not what the request left
     return body, keep_alive, 200
