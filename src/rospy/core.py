@@ -6,10 +6,11 @@ Only this facade holds process-wide state; kame's Node is an explicit object und
 from __future__ import annotations
 
 import atexit
+import contextlib
 import logging
 import os
 import threading
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from typing import Any
 
 from kame import names
@@ -118,6 +119,22 @@ def wait_for_shutdown(timeout: float | None) -> bool:
 
 def main_thread_is_waiting() -> bool:
     return _main_waiting > 0
+
+
+@contextlib.contextmanager
+def main_thread_waiting() -> Iterator[None]:
+    """Mark the main thread as waiting while it runs someone else's loop (e.g. Qt's exec) that
+    watches `is_shutdown()`: Ctrl-C then shuts the node down instead of raising
+    ROSInterruptException into that loop's callbacks (where it could only be printed)."""
+    global _main_waiting
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    _main_waiting += 1
+    try:
+        yield
+    finally:
+        _main_waiting -= 1
 
 
 def on_shutdown(hook: Callable[..., Any]) -> None:

@@ -65,3 +65,7 @@ def test_the_node_opens_a_window_when_qt_can(tmp_path: Path) -> None:
         out = "".join(node.out)
         assert "headless" not in out and "without a window" not in out
         assert node.popen.poll() is None
+        # Ctrl-C ends the window's loop quietly (it used to raise into a Qt slot: a traceback)
+        out, err = node.stop()
+        assert node.popen.returncode == 0
+        assert "Traceback" not in out + err, err

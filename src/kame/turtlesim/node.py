@@ -374,9 +374,11 @@ def main(argv: Sequence[str] | None = None) -> int:
             sim.run_headless()
         else:
             from kame.turtlesim import gui
+            from rospy import core
 
-            status = gui.run_window(sim.frame, rospy.is_shutdown, title=WINDOW_TITLE,
-                                    period_ms=round(UPDATE_PERIOD * 1000))
+            with core.main_thread_waiting():  # Ctrl-C ends Qt's loop through is_shutdown, no traceback
+                status = gui.run_window(sim.frame, rospy.is_shutdown, title=WINDOW_TITLE,
+                                        period_ms=round(UPDATE_PERIOD * 1000))
             if status != 0 or not rospy.is_shutdown():
                 rospy.signal_shutdown("window closed")
     except KeyboardInterrupt:
