@@ -1,4 +1,7 @@
 #!/usr/bin/env python3
+# ruff: noqa
+# mypy: ignore-errors
+# (the tutorial text as users copy it, so the linters leave it alone)
 # The rospy tutorial listener, as the ROS wiki gives it.
 # (ros_tutorials installs it as both `listener` and `listener.py`; tutorials use either name.)
 import rospy

@@ -1,4 +1,7 @@
 #!/usr/bin/env python3
+# ruff: noqa
+# mypy: ignore-errors
+# (the tutorial text as users copy it, so the linters leave it alone)
 # The rospy tutorial talker, as the ROS wiki gives it (print() for Python 3).
 # (ros_tutorials installs it as both `talker` and `talker.py`; tutorials use either name.)
 import rospy
