@@ -34,6 +34,7 @@ LAYERS: dict[str, int] = {
     "kame.importhook": 4,
     "kame.launch": 1,
     "kame.launch.supervisor": 2,
+    "kame.launch.server": 2,  # the roslaunch XML-RPC server
     "kame.launch.runner": 4,
     "kame.catkin": 2,
     "kame.shell": 4,

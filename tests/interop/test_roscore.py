@@ -30,6 +30,16 @@ def test_roscore_banner_params_logs_and_ctrl_c(tmp_path: Path) -> None:
         assert master.getParam("/x", "/run_id")[2] == run_id
         assert master.getParam("/x", "/rosdistro")[2] == "noetic\n"
         assert master.getParam("/x", "/rosversion")[2] == "1.15.15\n"
+        # the roslaunch server (spec §11): announced, stored under /roslaunch/uris, answering
+        server_uri = re.search(r"started roslaunch server (http://127\.0\.0\.1:(\d+)/)",  # type: ignore[union-attr]
+                               core.wait_line("started roslaunch server"))
+        uris = master.getParam("/x", "/roslaunch/uris")[2]
+        assert uris == {f"host_127_0_0_1__{server_uri.group(2)}": server_uri.group(1)}
+        launcher = xmlrpc.client.ServerProxy(server_uri.group(1))
+        assert launcher.get_pid() == [1, "", core.pid]
+        assert launcher.list_processes() == [1, "processes on parent machine", [[["master", 1], ["rosout-1", 1]], []]]
+        assert launcher.process_info("rosout-1")[2]["respawn"] is True
+        assert launcher.process_info("nobody") == [-1, "no process by that name", {}]
         assert (tmp_path / f"roscore-{port}.pid").read_text().strip() == str(core.pid)
         assert (tmp_path / "log" / run_id / "master.log").exists()
         assert (tmp_path / "log" / "latest").resolve() == (tmp_path / "log" / run_id).resolve()
@@ -58,7 +68,8 @@ def test_roscore_banner_params_logs_and_ctrl_c(tmp_path: Path) -> None:
     rosout_at = lines.index(f"\033[1mprocess[rosout-1]: started with pid [{rosout_pid}]\033[0m")
     assert lines[rosout_at - 1] == f"\033[1msetting /run_id to {run_id}\033[0m"
     # the terminal titles are print()ed: each on a line of its own, as roslaunch's
-    assert lines[start - 4:start] == ["\033]2;roscore\007", "ros_comm version 1.15.15", "", ""]
+    announced = f"\033[1mstarted roslaunch server {server_uri.group(1)}\033[0m"
+    assert lines[start - 5:start] == ["\033]2;roscore\007", announced, "ros_comm version 1.15.15", "", ""]
     assert lines[rosout_at - 2] == f"\033]2;roscore http://127.0.0.1:{port}/\007"
     assert lines[rosout_at + 1] == "started core service [/rosout]"
     ctrl_c = lines.index("[rosout-1] killing on exit")

@@ -159,6 +159,13 @@ def test_talker_listener_autostarts_master_and_stops_cleanly(workspace: Path) ->
         assert ["/chat2", ["/listener"]] in subscribers
         assert master.getParam("/t", "/rosdistro")[2] == "noetic\n"
         run_id = master.getParam("/t", "/run_id")[2]
+        server = re.search(r"started roslaunch server (http://127\.0\.0\.1:(\d+)/)",  # type: ignore[union-attr]
+                           proc.wait_line("started roslaunch server"))
+        assert master.getParam("/t", f"/roslaunch/uris/host_127_0_0_1__{server.group(2)}")[2] == server.group(1)
+        launcher = xmlrpc.client.ServerProxy(server.group(1))
+        assert launcher.list_processes() == [1, "processes on parent machine",
+                                             [[["master", 1], ["rosout-1", 1], ["listener-2", 1], ["talker-3", 1]], []]]
+        assert launcher.get_node_names()[2] == ["master", "rosout-1", "listener-2", "talker-3"]
     finally:
         out, err = proc.stop(timeout=10)
     assert proc.popen.returncode == 0, err

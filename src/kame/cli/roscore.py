@@ -25,8 +25,9 @@ from pathlib import Path
 from urllib.parse import urlsplit
 
 from kame.cli.rosmaster import DEFAULT_PORT, flush_periodically, log_dir, ros_home, serve, setup_file_logging
+from kame.launch.server import LaunchServer, ProcessState
 from kame.master.server import NOTIFY_TIMEOUT, MasterServer
-from kame.net.address import address_override, advertised_host
+from kame.net.address import address_override, advertised_host, bind_host
 from kame.net.process import SupervisedProcess
 
 ROS_VERSION = "1.15.15"
@@ -75,8 +76,9 @@ def _disk_usage_check(directory: Path) -> None:
         print("Done checking log file disk usage. Usage is <1GB.", flush=True)
 
 
-def _summary() -> None:
+def _summary(server_uri: str) -> None:
     print(_title("roscore"), flush=True)
+    _bold(f"started roslaunch server {server_uri}")
     print(f"ros_comm version {ROS_VERSION}\n\n")
     print("SUMMARY\n========\n")
     print(f"PARAMETERS\n * /rosdistro: {ROS_DISTRO}\n * /rosversion: {ROS_VERSION}\n")
@@ -159,7 +161,16 @@ def main(argv: Sequence[str] | None = None) -> int:
     handler = setup_file_logging(own_log, LOGGER)
     print(f"... logging to {own_log}", flush=True)
     _disk_usage_check(logs)
-    _summary()
+    core_nodes: list[SupervisedProcess] = []
+
+    def processes() -> list[ProcessState]:  # the master runs in this process: it is the first
+        return [ProcessState("master", 1, True),
+                *(ProcessState(p.name, p.starts, p.running, args=p.args, respawn=p.respawn) for p in core_nodes)]
+
+    override = address_override(env)
+    launch_server = LaunchServer(bind_host(override), advertised_host(override), processes)
+    launch_server.start()
+    _summary(launch_server.uri)
 
     if existing is not None:
         print(f"{RED}RLException: roscore cannot run as another roscore/master is already running. \n"
@@ -168,6 +179,7 @@ def main(argv: Sequence[str] | None = None) -> int:
               f"{RED}The traceback for the exception was written to the log file{RESET}",
               file=sys.stderr, flush=True)
         log.error("another master is running at %s", local_uri)
+        launch_server.close()
         handler.close()
         return 1
 
@@ -182,7 +194,6 @@ def main(argv: Sequence[str] | None = None) -> int:
 
     master_log = setup_file_logging(run_dir / "master.log")
     pid_file = ros_home(env) / f"roscore-{port}.pid"
-    core_nodes: list[SupervisedProcess] = []
 
     async def on_started(server: MasterServer, uri: str) -> None:
         print("auto-starting new master", flush=True)
@@ -197,6 +208,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         # as the output of `rosversion -d` / `rosversion roslaunch`, with their newline
         api.call("setParam", ["/roslaunch", "/rosversion", ROS_VERSION + "\n"])
         api.call("setParam", ["/roslaunch", "/rosdistro", ROS_DISTRO + "\n"])
+        api.call("setParam", ["/roslaunch", launch_server.param, launch_server.uri])
         _link_latest(logs, run_dir)
         pid_file.parent.mkdir(parents=True, exist_ok=True)
         pid_file.write_text(f"{os.getpid()}\n")
@@ -217,6 +229,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     try:
         status = asyncio.run(run())
     finally:
+        launch_server.close()
         pid_file.unlink(missing_ok=True)
         handler.close()
         master_log.close()

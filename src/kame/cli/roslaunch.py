@@ -34,7 +34,9 @@ from kame.launch.errors import LaunchError, PackageNotFound
 from kame.launch.loader import ArgDecl, LaunchLoader, LoaderHost
 from kame.launch.model import LaunchConfig, Node
 from kame.launch.runner import LaunchRun, RunOptions, core_params, master_answers, ros_home_of, run_dir_of
+from kame.launch.server import LaunchServer
 from kame.launch.supervisor import say, say_bold, say_error
+from kame.net.address import address_override, advertised_host, bind_host
 from kame.node.master_proxy import MasterError, MasterProxy
 
 LOGGER = "kame.launch"
@@ -345,6 +347,10 @@ def _launch(options: argparse.Namespace, files: list[str], argv: list[str]) -> i
             run.check()
         except LaunchError as exc:
             return _fail(exc.describe())
+        override = address_override(env)
+        run.server = server = LaunchServer(bind_host(override), advertised_host(override), run.process_states)
+        server.start()
+        say_bold(f"started roslaunch server {server.uri}")
         for line in config.messages:
             say(line)
         if options.core:
@@ -354,7 +360,10 @@ def _launch(options: argparse.Namespace, files: list[str], argv: list[str]) -> i
         for err in config.errors:
             say_error(f"WARNING: {err}")
         _link_latest(run_dir.parent, run_dir)
-        status = asyncio.run(_run(run))
+        try:
+            status = asyncio.run(_run(run))
+        finally:
+            server.close()
         if status == 0:
             say_bold("done")
         return status

@@ -23,6 +23,7 @@ from kame.cli.rosmaster import log_dir, ros_home
 from kame.launch import plan
 from kame.launch.errors import LaunchError
 from kame.launch.model import LOCAL_ADDRESSES, LaunchConfig, Node, Param
+from kame.launch.server import LaunchServer, ProcessState
 from kame.launch.supervisor import Child, Monitor, say, say_bold, say_error
 from kame.node.master_proxy import MasterError, MasterProxy
 from kame.param_yaml import ParamValueError, check
@@ -45,10 +46,6 @@ def master_answers(uri: str, timeout: float = 1.0) -> bool:
         return False
     finally:
         proxy.close()
-
-
-def hostname_to_rosname(host: str) -> str:
-    return "host_" + "".join(c if c.isalnum() else "_" for c in host.lower())
 
 
 @dataclass
@@ -83,6 +80,17 @@ class LaunchRun:
         self.monitor = Monitor(options.sigint_timeout, options.sigterm_timeout, keep_alive=options.is_core)
         self.failed: list[str] = []
         self.succeeded: list[str] = []
+        self.server: LaunchServer | None = None  # announced on the parameter server when set
+
+    def process_states(self) -> list[ProcessState]:
+        """The launched processes as the roslaunch server reports them (read from its threads)."""
+        states = []
+        for child in [*self.monitor.core, *self.monitor.children]:
+            node = child.spec.node
+            alive = child.proc is not None and child.proc.returncode is None and not child.gone
+            states.append(ProcessState(child.name, child.starts, alive, args=list(child.spec.argv),
+                                       respawn=node.respawn, required=node.required, exit_code=child.exit_code))
+        return states
 
     # ------------------------------------------------------------------ setup
 
@@ -110,6 +118,8 @@ class LaunchRun:
         proxy = MasterProxy(self.options.master_uri, CALLER)
         try:
             self._run_id(proxy)
+            if self.server is not None:
+                proxy.call("setParam", self.server.param, self.server.uri)
             if self.started_master:
                 await self._core_nodes()
             for exe in self.config.executables:

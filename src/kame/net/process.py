@@ -46,6 +46,10 @@ class SupervisedProcess:
     def pid(self) -> int | None:
         return self._proc.pid if self._proc is not None else None
 
+    @property
+    def running(self) -> bool:
+        return self._proc is not None and self._proc.returncode is None
+
     async def start(self) -> int:
         """Start the child (and its watcher); returns its PID."""
         pid = await self._spawn()
