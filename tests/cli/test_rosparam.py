@@ -130,6 +130,13 @@ def test_errors(graph: LiveGraph, args: tuple[str, ...], stderr: str) -> None:
     assert (result.returncode, result.stdout, result.stderr) == (1, "", stderr)
 
 
+def test_load_of_a_file_that_is_not_text_is_one_line(graph: LiveGraph) -> None:
+    (graph.home / "binary.yaml").write_bytes(b"a: 1\nb: \xff\xfe\x00\n")
+    result = graph.kame("rosparam", "load", "binary.yaml")
+    assert (result.returncode, result.stdout) == (1, "")
+    assert result.stderr == "ERROR: file [binary.yaml] is not UTF-8 text (byte 8): not a YAML file?\n"
+
+
 def test_usage_errors(graph: LiveGraph) -> None:
     result = graph.kame("rosparam", "set", "/x")
     assert result.returncode == 2

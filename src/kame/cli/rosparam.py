@@ -193,8 +193,13 @@ def _read_documents(filename: str, default_ns: str, verbose: bool) -> list[tuple
             raise ToolError(f"file [{filename}] does not exist")
         if verbose:
             print(f"reading parameters from [{filename}]")
-        with open(filename) as f:
-            text = f.read()
+        try:
+            with open(filename, encoding="utf-8") as f:
+                text = f.read()
+        except UnicodeDecodeError as exc:
+            raise ToolError(f"file [{filename}] is not UTF-8 text (byte {exc.start}): not a YAML file?") from None
+        except OSError as exc:
+            raise ToolError(f"cannot read file [{filename}]: {exc.strerror or exc}") from None
     try:
         documents = param_yaml.load_all(text)
     except param_yaml.ParamValueError as exc:
