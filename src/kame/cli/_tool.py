@@ -18,7 +18,7 @@ from typing import Any
 
 from kame import names
 from kame.node.master_proxy import MasterError, MasterProxy
-from kame.protocol.xmlrpc import XmlRpcError
+from kame.protocol.xmlrpc import Fault, XmlRpcError
 
 DEFAULT_MASTER_URI = "http://localhost:11311/"
 NO_MASTER = "Unable to communicate with master!"
@@ -93,6 +93,8 @@ class Master:
     def call(self, method: str, *args: object) -> Any:
         try:
             return self._proxy.call(method, *args)
+        except Fault as exc:  # the master answered: say what it said, not that it cannot be reached
+            raise ToolError(f"the master refused {method}: {exc.message}") from None
         except (OSError, XmlRpcError):
             raise ToolError(NO_MASTER, self.no_master_status) from None
 
