@@ -181,3 +181,14 @@ def test_bus_links() -> None:
 ])
 def test_format_report(report: Report, text: str) -> None:
     assert _wtf.format_report(report) == text
+
+
+def test_roslaunch_rules_over_list_processes_answers() -> None:
+    report = Report()
+    _wtf.check_launches([([["master", 1], ["resp-2", 3]], [["brief-5", 1]]),
+                         ([["talker-1", 2]], [])], report)
+    assert report.warnings == ["These nodes have respawned at least once:\n * resp-2 (3)\n * talker-1 (2)\n",
+                               "These nodes have died:\n * brief-5\n"]
+    quiet = Report()
+    _wtf.check_launches([([["master", 1]], [])], quiet)
+    assert quiet.warnings == [] and quiet.errors == []

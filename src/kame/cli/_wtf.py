@@ -434,3 +434,15 @@ def check_graph(graph: Graph, report: Report) -> None:
     report.error("The following nodes should be connected but aren't:", missing_links(graph))
     report.error("Errors connecting to the following services:", service_failures(graph))
     report.error("The following topics have nodes that disagree on the message type:", type_mismatches(graph))
+
+
+def check_launches(listings: Sequence[tuple[Sequence[Sequence[object]], Sequence[Sequence[object]]]],
+                   report: Report) -> None:
+    """roswtf's roslaunch rules over each roslaunch server's `list_processes` answer (running,
+    dead; each [process name, spawn count]); servers that did not answer are left out, as
+    roswtf leaves them to a rule it has switched off."""
+    respawned = [f"{name} ({count})" for running, _ in listings for name, count, *_ in running
+                 if isinstance(count, int) and count > 1]
+    died = [str(name) for _, dead in listings for name, *_ in dead]
+    report.warn("These nodes have respawned at least once:", respawned)
+    report.warn("These nodes have died:", died)

@@ -29,6 +29,7 @@ from kame.cli._tool import DEFAULT_MASTER_URI, run
 from kame.msg.catalog import SHARE_DIR, MsgCatalog, Package, find_packages, package_path_roots
 from kame.msg.errors import MessageError
 from kame.net import interfaces
+from kame.net.xmlrpc_proxy import XmlRpcProxy
 from kame.node.master_proxy import MasterError, MasterProxy
 from kame.node.services import probe_service
 from kame.protocol.xmlrpc import XmlRpcError
@@ -266,6 +267,38 @@ def gather_graph(master_uri: str) -> tuple[_wtf.Graph, list[str]]:
     return _wtf.Graph(pubs, subs, srvs, nodes, use_sim_time, failures), complaints
 
 
+def gather_launches(master_uri: str) -> list[tuple[Sequence[Sequence[object]], Sequence[Sequence[object]]]]:
+    """Each roslaunch server's process lists, from the URIs under /roslaunch/uris."""
+    master = MasterProxy(master_uri, ID, timeout=TIMEOUT)
+    try:
+        uris = master.call("getParam", "/roslaunch/uris")
+    except (OSError, XmlRpcError, MasterError):
+        return []
+    finally:
+        master.close()
+    listings: list[tuple[Sequence[Sequence[object]], Sequence[Sequence[object]]]] = []
+    for uri in (uris.values() if isinstance(uris, dict) else []):
+        try:
+            proxy = XmlRpcProxy(str(uri), timeout=TIMEOUT)
+        except ValueError:
+            continue
+        try:
+            answer = proxy.call("list_processes")
+        except (OSError, XmlRpcError):
+            continue  # an unreachable server: roswtf's rule for it is switched off
+        finally:
+            proxy.close()
+        if not (isinstance(answer, list) and len(answer) == 3 and answer[0] == 1):
+            continue
+        value = answer[2]
+        if isinstance(value, list) and len(value) == 2:
+            running, dead = value
+            if isinstance(running, list) and isinstance(dead, list):
+                listings.append(([p for p in running if isinstance(p, list) and len(p) >= 2],
+                                 [p for p in dead if isinstance(p, list) and len(p) >= 2]))
+    return listings
+
+
 def _master_online(uri: str) -> bool:
     try:
         proxy = MasterProxy(uri, ID, timeout=TIMEOUT)
@@ -347,6 +380,7 @@ def _main(argv: list[str]) -> int:
     sys.stderr.flush()
     _wtf.check_graph(graph, online)
     print("... done running graph rules")
+    _wtf.check_launches(gather_launches(uri), online)
     out.write(f"\nOnline checks summary:\n\n{_wtf.format_report(online)}")
     return 0
 
