@@ -42,6 +42,11 @@ class SimpleActionClient:
         self.done_cb: Callable[[int, Any], Any] | None = None
         self.active_cb: Callable[[], Any] | None = None
         self.feedback_cb: Callable[[Any], Any] | None = None
+        # Held while send_goal publishes the goal and records its handle: the server's first
+        # status or feedback can arrive on another thread before the handle is recorded, and
+        # actionlib then drops it as "not tracking" (no active_cb, a feedback lost). Callbacks
+        # wait for the handle instead. Reentrant: a callback on the sending thread passes.
+        self._sending = threading.RLock()
 
     def wait_for_server(self, timeout: Any = None) -> bool:
         return self.action_client.wait_for_server(timeout)
@@ -55,7 +60,8 @@ class SimpleActionClient:
         self.active_cb = active_cb
         self.feedback_cb = feedback_cb
         self.simple_state = SimpleGoalState.PENDING
-        self.gh = self.action_client.send_goal(goal, self._handle_transition, self._handle_feedback)
+        with self._sending:
+            self.gh = self.action_client.send_goal(goal, self._handle_transition, self._handle_feedback)
 
     def send_goal_and_wait(self, goal: Any, execute_timeout: Any = None, preempt_timeout: Any = None) -> int:
         """Send, wait up to execute_timeout, cancel when it runs out and wait up to preempt_timeout."""
@@ -122,6 +128,8 @@ class SimpleActionClient:
         self.gh = None
 
     def _handle_transition(self, gh: ClientGoalHandle) -> None:
+        with self._sending:
+            pass  # the goal being sent has its handle recorded
         if gh != self.gh:
             logerr("Got a transition callback on a goal handle that we're not tracking")
             return
@@ -143,6 +151,8 @@ class SimpleActionClient:
                 self.done_condition.notify_all()
 
     def _handle_feedback(self, gh: ClientGoalHandle, feedback: Any) -> None:
+        with self._sending:
+            pass
         if self.gh is None:
             return  # old feedback between forgetting a goal and sending the next: not an error
         if gh != self.gh:
