@@ -17,7 +17,6 @@ import heapq
 import optparse
 import os
 import select
-import signal
 import struct
 import sys
 import threading
@@ -28,12 +27,10 @@ from typing import Any
 from kame import names
 from kame.bag.errors import BagError
 from kame.bag.reader import BagReader, RawMessage
-from kame.net.address import address_override, advertised_host, bind_host
-from kame.node.master_proxy import MasterError
-from kame.node.node import Node, NodeConfig
+from kame.cli._node import ToolNode
+from kame.node.node import Node
 from kame.node.topics import Publication, serialize_payload
 
-DEFAULT_MASTER_URI = "http://localhost:11311/"
 _LEN = struct.Struct("<I")
 
 
@@ -302,29 +299,11 @@ def main(argv: list[str]) -> int:
         except (BagError, OSError) as exc:
             _log("FATAL", f"Error opening file: {path}" if isinstance(exc, OSError) else str(exc), "31")
             return 1
-    env = os.environ
-    special = ros.special
-    namespace = names.make_global_ns(special.get("ns") or env.get("ROS_NAMESPACE") or "/")
-    caller_id = names.canonicalize(namespace + special.get("name", f"play_{int(time.time() * 1000)}"))
-    master_uri = special.get("master") or env.get("ROS_MASTER_URI") or DEFAULT_MASTER_URI
-    override = address_override(env, special)
-    stop = threading.Event()
-
-    def on_signal(signum: int, frame: Any) -> None:
-        stop.set()
-
-    signal.signal(signal.SIGINT, on_signal)
-    signal.signal(signal.SIGTERM, on_signal)
-    node = Node(NodeConfig(caller_id, master_uri, advertised_host(override), bind_host(override)))
-    node.on_shutdown_request = lambda reason: stop.set()
+    tool = ToolNode(ros.special, f"play_{int(time.time() * 1000)}")
+    node, stop = tool.node, tool.stop
     try:
-        while True:
-            try:
-                node.master.call("getPid", timeout=2.0)
-                break
-            except (OSError, MasterError):
-                if stop.wait(0.2):
-                    return 0
+        if not tool.wait_for_master():
+            return 0
         Player(node, options, readers, stop).run()
     except BagError as exc:  # damage past the index, found while playing: rosbag's player says it and ends
         sys.stdout.write("\n")

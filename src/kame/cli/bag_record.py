@@ -25,7 +25,6 @@ import datetime
 import optparse
 import os
 import re
-import signal
 import sys
 import threading
 import time
@@ -34,11 +33,9 @@ from typing import Any
 
 from kame import names
 from kame.bag.writer import BagWriter
-from kame.net.address import address_override, advertised_host, bind_host
+from kame.cli._node import ToolNode
 from kame.node.master_proxy import MasterError
-from kame.node.node import Node, NodeConfig
-
-DEFAULT_MASTER_URI = "http://localhost:11311/"
+from kame.node.node import Node
 
 
 def log_info(text: str) -> None:
@@ -318,34 +315,15 @@ def main(argv: list[str]) -> int:
         p.error("Split specified without giving a maximum duration or size")
     if options.size is not None and options.size <= 0:
         p.error("Split size must be 0 or positive")
-    env = os.environ
-    special = ros.special
-    namespace = names.make_global_ns(special.get("ns") or env.get("ROS_NAMESPACE") or "/")
-    caller_id = names.canonicalize(namespace + special.get("name", f"record_{int(time.time() * 1000)}"))
-    master_uri = special.get("master") or env.get("ROS_MASTER_URI") or DEFAULT_MASTER_URI
-    override = address_override(env, special)
-    topics = [names.resolve(t, caller_id, {}) if not options.regex else t for t in args]
+    tool = ToolNode(ros.special, f"record_{int(time.time() * 1000)}")
+    node, stop, namespace = tool.node, tool.stop, tool.namespace
+    topics = [names.resolve(t, tool.caller_id, {}) if not options.regex else t for t in args]
     topics = [names.ns_join(namespace, t) if not names.is_global(t) and not options.regex else t for t in topics]
-
-    stop = threading.Event()
-
-    def on_signal(signum: int, frame: Any) -> None:
-        stop.set()
-
-    signal.signal(signal.SIGINT, on_signal)
-    signal.signal(signal.SIGTERM, on_signal)
-    node = Node(NodeConfig(caller_id, master_uri, advertised_host(override), bind_host(override)))
-    node.on_shutdown_request = lambda reason: stop.set()
     recorder = Recorder(node, options, topics, stop)
     writer_thread = threading.Thread(target=recorder.write_loop, name="rosbag-writer")
     try:
-        while True:
-            try:
-                node.master.call("getPid", timeout=2.0)
-                break
-            except (OSError, MasterError):
-                if stop.wait(0.2):
-                    return 0
+        if not tool.wait_for_master():
+            return 0
         auto = options.all or options.regex or bool(options.node)
         if not auto:
             for topic in topics:

@@ -22,25 +22,22 @@ from __future__ import annotations
 
 import logging
 import os
-import signal
 import struct
 import sys
-import threading
 import time
 from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any, BinaryIO, NamedTuple
 
 from kame import names
-from kame.net.address import address_override, advertised_host, bind_host
+from kame.cli._node import ToolNode
 from kame.node.master_proxy import MasterError
-from kame.node.node import Node, NodeConfig
+from kame.node.node import Node
 from kame.node.topics import SMALL_FRAME, Publication, serialize_payload
 
 LOGGER = "kame.rosout"  # not __name__, which is __main__ under python -m
 log = logging.getLogger(LOGGER)
 
-DEFAULT_MASTER_URI = "http://localhost:11311/"
 MAX_FILE_SIZE = 100 * 1024 * 1024
 MAX_BACKUPS = 10
 OMIT_TOPICS_PARAM = "/rosout/omit_topics"
@@ -322,34 +319,13 @@ def _open_file(log_arg: str | None, env: Mapping[str, str]) -> RotatingLog | Non
 def main(argv: Sequence[str] | None = None) -> int:
     ros = names.parse_args(sys.argv[1:] if argv is None else argv)
     special = ros.special
-    env = os.environ
-    name = special.get("name", "rosout")
-    namespace = names.make_global_ns(special.get("ns") or env.get("ROS_NAMESPACE") or "/")
-    caller_id = names.canonicalize(namespace + name)
-    master_uri = special.get("master") or env.get("ROS_MASTER_URI") or DEFAULT_MASTER_URI
-    override = address_override(env, special)
-
-    stop = threading.Event()
-
-    def on_signal(signum: int, frame: Any) -> None:
-        stop.set()
-
-    signal.signal(signal.SIGINT, on_signal)
-    signal.signal(signal.SIGTERM, on_signal)
-
-    node = Node(NodeConfig(caller_id, master_uri, advertised_host(override), bind_host(override),
-                           remappings=tuple(names.resolve_remappings(ros.remappings, caller_id).items())))
-    node.on_shutdown_request = lambda reason: stop.set()
+    tool = ToolNode(special, "rosout", ros.remappings)
+    node, stop = tool.node, tool.stop
     file = None
     try:
-        while True:  # like roscpp, wait for the master to answer
-            try:
-                node.master.call("getPid", timeout=2.0)
-                break
-            except (OSError, MasterError):
-                if stop.wait(0.2):
-                    return 0
-        file = _open_file(special.get("log"), env)
+        if not tool.wait_for_master():  # like roscpp, wait for the master to answer
+            return 0
+        file = _open_file(special.get("log"), os.environ)
         Rosout(node, file)
         stop.wait()
     finally:
