@@ -167,14 +167,17 @@ class Publisher(Topic):
 class _Callbacks:
     """The callbacks of one subscribed topic, run for each message in arrival order."""
 
-    def __init__(self, data_class: type[Any]) -> None:
+    def __init__(self, data_class: type[Any], entries: list[tuple[Callable[..., Any], Any, bool]]) -> None:
         self.data_class = data_class
-        self.entries: list[tuple[Callable[..., Any], Any, bool]] = []
+        self.entries = entries
         self.undeserializable: dict[str, int] = {}  # publisher callerid -> messages skipped
 
     def deliver(self, frames: list[memoryview], header: dict[str, str]) -> None:
+        self.deliver_to(self.entries, frames, header)
+
+    def deliver_to(self, entries: list[tuple[Callable[..., Any], Any, bool]], frames: list[memoryview],
+                   header: dict[str, str]) -> None:
         from_buffer = self.data_class._from_buffer
-        entries = self.entries
         for frame in frames:
             try:
                 msg = from_buffer(frame)
@@ -221,12 +224,18 @@ class Subscriber(Topic):
         if self._unregistered:
             return
         self.resolved_name = self.name = core.resolve_name(self.unresolved_name)
+        mine: list[tuple[Callable[..., Any], Any, bool]] = []
+        if self.callback is not None:
+            mine.append((self.callback, self.callback_args, self.callback_args is not None))
         with _registry_lock:
             entry = _subscriptions.get(self.resolved_name)
             if entry is not None and entry[0].closed:
                 entry = None
+            joined = entry is not None
             if entry is None:
-                callbacks = _Callbacks(self.data_class)
+                # The callback is in place before the first connection starts: a latched message
+                # that comes with the publisher's handshake is delivered at once, to it.
+                callbacks = _Callbacks(self.data_class, mine)
                 any_type = self.data_class is AnyMsg
                 impl = node.subscribe(self.resolved_name, self.type, "*" if any_type else self.md5sum,
                                       "" if any_type else self.data_class._full_text, callbacks.deliver,
@@ -239,10 +248,11 @@ class Subscriber(Topic):
             entry[2].append(self)
         self.impl = entry[0]
         self._callbacks = entry[1]
-        if self.callback is not None:
+        if joined and mine:
             with entry[0].callback_lock:
-                entry[1].entries = [*entry[1].entries,
-                                    (self.callback, self.callback_args, self.callback_args is not None)]
+                entry[1].entries = [*entry[1].entries, *mine]
+                for frame, header in entry[0].latched_messages():  # rospy's #1852
+                    entry[1].deliver_to(mine, [memoryview(frame)], header)
 
     def get_num_connections(self) -> int:
         return self.impl.connection_count if self.impl is not None else 0

@@ -182,6 +182,47 @@ def test_wait_for_message_timer_and_logging_variants(env: dict[str, str]) -> Non
     assert "[WARN] [" in err
 
 
+def test_a_latched_message_that_comes_with_the_handshake_reaches_the_callback(env: dict[str, str]) -> None:
+    # Under load the latched message arrives in the same read as the publisher's header, so it
+    # is delivered the moment the connection starts: forced here by holding subscribe() until
+    # then. The callback must already be in place (it once was added after, and missed it).
+    out, _ = run(env, """
+        import threading
+        import rospy
+        from kame.node import topics
+        from std_msgs.msg import String
+        rospy.init_node('handshake_latch')
+        delivered = threading.Event()
+        deliver, set_publishers = topics.Subscription.deliver, topics.Subscription.set_publishers
+        topics.Subscription.deliver = lambda self, *a: (deliver(self, *a), delivered.set())
+        topics.Subscription.set_publishers = lambda self, uris: (set_publishers(self, uris), delivered.wait(5))
+        rospy.Publisher('/early', String, latch=True, queue_size=1).publish('first')
+        got = threading.Event()
+        rospy.Subscriber('/early', String, lambda msg: (print(msg.data), got.set()))
+        print(delivered.is_set(), got.wait(5))
+    """)
+    assert out.splitlines() == ["first", "True True"]
+
+
+def test_a_second_subscriber_gets_the_latched_message_too(env: dict[str, str]) -> None:
+    # rospy's #1852: a callback added to a topic this process already subscribes to is given
+    # each connected latching publisher's last message.
+    out, _ = run(env, """
+        import threading
+        import rospy
+        from std_msgs.msg import String
+        rospy.init_node('second_latch')
+        rospy.Publisher('/kept', String, latch=True, queue_size=1).publish('kept')
+        first = threading.Event()
+        rospy.Subscriber('/kept', String, lambda msg: first.set())
+        print(first.wait(5))
+        second = threading.Event()
+        rospy.Subscriber('/kept', String, lambda msg, arg: (print(msg.data, arg), second.set()), 'B')
+        print(second.wait(5))
+    """)
+    assert out.splitlines() == ["True", "kept B", "True"]
+
+
 def test_simulated_time_follows_clock(env: dict[str, str]) -> None:
     out, _ = run(env, """
         import rospy, threading, time, os, subprocess, sys

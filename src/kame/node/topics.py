@@ -185,6 +185,10 @@ class PublisherLink:
         self.bytes_received = 0
         self.closed = False
         self.connected = False
+        self.latching = False
+        # With a latching publisher, its last message (a copy: frames are reused buffers), so a
+        # callback added later still gets it, as rospy's add_callback does (#1852).
+        self.latched: bytes | None = None
 
     def run(self) -> None:
         """Connect, retrying while the publisher stays registered (runs on its own thread)."""
@@ -242,6 +246,7 @@ class PublisherLink:
         set_keepalive(sock)
         self.header = header
         self.callerid = header.get("callerid", "")
+        self.latching = reply.latching
         if self.closed:
             sock.close()
             return
@@ -254,7 +259,7 @@ class PublisherLink:
     def _deliver(self, frames: list[memoryview]) -> None:
         for frame in frames:
             self.bytes_received += len(frame) + 4
-        self.subscription.deliver(frames, self.header)
+        self.subscription.deliver(frames, self.header, self)
 
     def _ended(self, exc: BaseException | None) -> None:
         self.connected = False
@@ -337,12 +342,21 @@ class Subscription:
         self._lock = threading.Lock()
         self.callback_lock = threading.Lock()
 
-    def deliver(self, frames: list[memoryview], header: dict[str, str]) -> None:
+    def deliver(self, frames: list[memoryview], header: dict[str, str], link: PublisherLink | None = None) -> None:
         if self.queue_size and len(frames) > self.queue_size:
             frames = frames[-self.queue_size:]  # a slow callback keeps the newest, as queue_size promises
         with self.callback_lock:
+            if link is not None and link.latching:
+                link.latched = bytes(frames[-1])
             if not self.closed:
                 self.deliver_frames(frames, header)
+
+    def latched_messages(self) -> list[tuple[bytes, dict[str, str]]]:
+        """The last message of each connected latching publisher, with its connection header.
+        Hold callback_lock while using them, so none is also delivered as new meanwhile."""
+        with self._lock:
+            links = list(self.links.values())
+        return [(link.latched, link.header) for link in links if link.connected and link.latched is not None]
 
     def set_publishers(self, uris: list[str]) -> None:
         """The master's complete list of publishers: connect to new ones, drop the gone."""
