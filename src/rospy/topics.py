@@ -84,13 +84,15 @@ class Publisher(Topic):
         if self._unregistered:
             return
         self.resolved_name = self.name = core.resolve_name(self.unresolved_name)
+        connected, disconnected = self._listener_callbacks(self._listener) if self._listener else (None, None)
         with _registry_lock:
             entry = _publications.get(self.resolved_name)
             if entry is not None and entry[0].closed:
                 entry = None
+            joined = entry is not None
             if entry is None:
                 impl = node.advertise(self.resolved_name, self.type, self.md5sum, self.data_class._full_text,
-                                      self.latch, self.queue_size or 0, self.headers)
+                                      self.latch, self.queue_size or 0, self.headers, connected, disconnected)
                 entry = (impl, [])
                 _publications[self.resolved_name] = entry
             elif entry[0].md5sum != self.md5sum:
@@ -98,13 +100,12 @@ class Publisher(Topic):
                                    f"but it is already published as [{entry[0].type}]")
             entry[1].append(self)
         self.impl = entry[0]
-        if self._listener is not None:
-            self._add_listener(self._listener)
+        if joined and connected is not None and disconnected is not None:
+            self.impl.on_connect.append(connected)
+            self.impl.on_disconnect.append(disconnected)
 
-    def _add_listener(self, listener: SubscribeListener) -> None:
-        impl = self.impl
-        assert impl is not None
-
+    def _listener_callbacks(self, listener: SubscribeListener) -> tuple[Callable[[SubscriberLink], None],
+                                                                          Callable[[SubscriberLink], None]]:
         def connected(link: SubscriberLink) -> None:
             def peer_publish(msg: Any) -> None:
                 frame = serialize_frame(msg)
@@ -113,10 +114,10 @@ class Publisher(Topic):
             listener.peer_subscribe(self.resolved_name, self.publish, peer_publish)
 
         def disconnected(link: SubscriberLink) -> None:
-            listener.peer_unsubscribe(self.resolved_name, len(impl.links))
+            impl = self.impl
+            listener.peer_unsubscribe(self.resolved_name, len(impl.links) if impl is not None else 0)
 
-        impl.on_connect.append(connected)
-        impl.on_disconnect.append(disconnected)
+        return connected, disconnected
 
     def get_num_connections(self) -> int:
         return len(self.impl.links) if self.impl is not None else 0

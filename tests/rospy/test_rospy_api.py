@@ -223,6 +223,40 @@ def test_a_second_subscriber_gets_the_latched_message_too(env: dict[str, str]) -
     assert out.splitlines() == ["True", "kept B", "True"]
 
 
+def test_a_subscribe_listener_hears_of_a_subscriber_that_connects_at_once(env: dict[str, str]) -> None:
+    # A subscriber already waiting connects as soon as the master hears of the publisher: forced
+    # here by holding advertise() until it has. The listener must already be in place.
+    out, _ = run(env, """
+        import threading, time
+        import rospy
+        from kame.node.node import Node
+        from std_msgs.msg import String
+        rospy.init_node('early_listener')
+        heard = []
+        rospy.Subscriber('/listened', String, lambda msg: heard.append(msg.data))
+        advertise = Node.advertise
+        def held(self, *args):
+            pub = advertise(self, *args)
+            deadline = time.monotonic() + 5
+            while not pub.links and time.monotonic() < deadline:
+                time.sleep(0.01)
+            return pub
+        Node.advertise = held
+
+        class Listener(rospy.SubscribeListener):
+            def peer_subscribe(self, topic, publish, peer_publish):
+                print('peer_subscribe', topic, flush=True)
+                peer_publish(String('hello you'))
+
+        rospy.Publisher('/listened', String, subscriber_listener=Listener(), queue_size=1)
+        deadline = time.monotonic() + 5
+        while not heard and time.monotonic() < deadline:
+            time.sleep(0.01)
+        print(heard)
+    """)
+    assert out.splitlines() == ["peer_subscribe /listened", "['hello you']"]
+
+
 def test_simulated_time_follows_clock(env: dict[str, str]) -> None:
     out, _ = run(env, """
         import rospy, threading, time, os, subprocess, sys

@@ -27,7 +27,7 @@ from kame.net.workers import WorkerPool
 from kame.node.master_proxy import MasterError, MasterProxy
 from kame.node.services import ServiceClient, ServiceHandler, ServiceServer
 from kame.node.tcpros import ClosedBeforeHeader, HandshakeError, read_header, write_header
-from kame.node.topics import Callback, Publication, Subscription
+from kame.node.topics import Callback, Publication, SubscriberLink, Subscription
 from kame.protocol import tcpros
 from kame.protocol.xmlrpc import Fault, MalformedError, decode_request, encode_fault, encode_response
 
@@ -95,9 +95,12 @@ class Node:
     # ------------------------------------------------------------------ topics
 
     def advertise(self, topic: str, type: str, md5sum: str, definition: str, latch: bool = False,
-                  queue_size: int = 0, headers: dict[str, str] | None = None) -> Publication:
+                  queue_size: int = 0, headers: dict[str, str] | None = None,
+                  on_connect: Callable[[SubscriberLink], None] | None = None,
+                  on_disconnect: Callable[[SubscriberLink], None] | None = None) -> Publication:
         """Publish `topic` (already resolved); registers with the master at once. `headers` are
-        extra fields for the connection header subscribers receive."""
+        extra fields for the connection header subscribers receive. `on_connect`/`on_disconnect`
+        are in place before registering, so no early subscriber is missed."""
         with self._lock:
             pub = self.publications.get(topic)
             if pub is None:
@@ -106,6 +109,10 @@ class Node:
             else:
                 pub.latch = pub.latch or latch
                 pub.queue_size = max(pub.queue_size, queue_size)
+            if on_connect is not None:
+                pub.on_connect.append(on_connect)
+            if on_disconnect is not None:
+                pub.on_disconnect.append(on_disconnect)
         self.master.call("registerPublisher", topic, type, self.uri)
         return pub
 
