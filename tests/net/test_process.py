@@ -11,7 +11,10 @@ from pathlib import Path
 
 from kame.net.process import SupervisedProcess
 
-SLEEPER = "import sys, time\nprint('up', flush=True)\ntime.sleep(60)\n"
+# The default SIGINT handler set explicitly: a shell that runs the tests in the background
+# (`cmd &` without job control) hands every child SIGINT ignored, and Python keeps it so.
+SLEEPER = ("import signal, time\nsignal.signal(signal.SIGINT, signal.default_int_handler)\n"
+           "print('up', flush=True)\ntime.sleep(60)\n")
 STUBBORN = ("import signal, time\nsignal.signal(signal.SIGINT, signal.SIG_IGN)\nprint('up', flush=True)\n"
             "time.sleep(60)\n")
 
