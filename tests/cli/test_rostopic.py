@@ -247,45 +247,65 @@ def test_echo_waits_for_a_topic_not_yet_published(graph: Graph) -> None:
 # ---------------------------------------------------------------- hz, bw, delay
 
 
-def run_for(graph: Graph, seconds: float, *args: str) -> tuple[str, str]:
+def run_until(graph: Graph, done: Callable[[str], bool], *args: str, timeout: float = 30.0) -> tuple[str, str]:
+    """Run `rostopic *args` until its output satisfies `done` (or `timeout` passes), then Ctrl-C it.
+
+    Not a fixed run time: the tool's start-up (a second or more on a loaded machine) would eat
+    into the reports a fixed time leaves room for."""
     proc = graph.start(*args)
-    time.sleep(seconds)
+    deadline = time.monotonic() + timeout
+    while not done("".join(proc.out)) and proc.popen.poll() is None and time.monotonic() < deadline:
+        time.sleep(0.05)
     out, err = proc.stop()
     assert proc.popen.returncode == 0, err
     assert "Traceback" not in err, err
     return out, err
 
 
+HZ_REPORT = (r"average rate: ([\d.]+)\n\tmin: \d+\.\d{3}s max: \d+\.\d{3}s std dev: \d+\.\d{5}s "
+             r"window: (\d+)\n")
+BW_REPORT = r"average: ([\d.]+)B/s\n\tmean: 24\.00B min: 24\.00B max: 24\.00B window: (\d+)\n"
+DELAY_REPORT = (r"average delay: \d+\.\d{3}\n\tmin: -?\d+\.\d{3}s max: \d+\.\d{3}s std dev: \d+\.\d{5}s "
+                r"window: \d+\n")
+MULTI_TABLE = (r"    topic        rate +min_delta +max_delta +std_dev +window\n=+\n"
+               r"/turtle1/pose   \S+ .*\n/pose2d         \S+ .* 5 +\n\n")
+
+
 def test_hz_bw_delay(graph: Graph) -> None:
     with ThreadPoolExecutor(4) as pool:
-        hz_f = pool.submit(run_for, graph, 3.6, "hz", "/turtle1/pose")
-        bw_f = pool.submit(run_for, graph, 3.6, "bw", "-w", "10", "/pose2d")
-        delay_f = pool.submit(run_for, graph, 3.6, "delay", "/stamped")
-        multi_f = pool.submit(run_for, graph, 3.6, "hz", "-w", "5", "/turtle1/pose", "/pose2d")
+        hz_f = pool.submit(run_until, graph, lambda out: len(re.findall(HZ_REPORT, out)) >= 2,
+                           "hz", "/turtle1/pose")
+        bw_f = pool.submit(run_until, graph, lambda out: len(re.findall(BW_REPORT, out)) >= 2,
+                           "bw", "-w", "10", "/pose2d")
+        delay_f = pool.submit(run_until, graph, lambda out: re.search(DELAY_REPORT, out) is not None,
+                              "delay", "/stamped")
+        multi_f = pool.submit(run_until, graph, lambda out: re.search(MULTI_TABLE, out) is not None,
+                              "hz", "-w", "5", "/turtle1/pose", "/pose2d")
     hz, _ = hz_f.result()
     lines = hz.splitlines()
     assert lines[0] == "subscribed to [/turtle1/pose]"
-    reports = re.findall(r"average rate: ([\d.]+)\n\tmin: \d+\.\d{3}s max: \d+\.\d{3}s std dev: \d+\.\d{5}s "
-                         r"window: (\d+)\n", hz)
+    reports = re.findall(HZ_REPORT, hz)
     assert len(reports) >= 2, hz
     assert all(15 < float(rate) < 25 for rate, _ in reports), hz
     bw, _ = bw_f.result()
     assert bw.startswith("subscribed to [/pose2d]\n")
-    found = re.findall(r"average: ([\d.]+)B/s\n\tmean: 24\.00B min: 24\.00B max: 24\.00B window: (\d+)\n", bw)
+    found = re.findall(BW_REPORT, bw)
     assert len(found) >= 2 and all(int(w) <= 10 for _, w in found), bw
     delay, _ = delay_f.result()
     assert delay.startswith("subscribed to [/stamped]\n")
-    assert re.search(r"average delay: \d+\.\d{3}\n\tmin: -?\d+\.\d{3}s max: \d+\.\d{3}s std dev: \d+\.\d{5}s "
-                     r"window: \d+\n", delay), delay
+    assert re.search(DELAY_REPORT, delay), delay
     multi, _ = multi_f.result()
     assert multi.startswith("subscribed to [/turtle1/pose]\nsubscribed to [/pose2d]\n")
-    assert re.search(r"    topic        rate +min_delta +max_delta +std_dev +window\n=+\n"
-                     r"/turtle1/pose   \S+ .*\n/pose2d         \S+ .* 5 +\n\n", multi), multi
+    assert re.search(MULTI_TABLE, multi), multi
 
 
 def test_hz_filter(graph: Graph) -> None:
-    out, _ = run_for(graph, 2.6, "hz", "--filter", "m.x > 100", "/pose2d")
-    assert out == "subscribed to [/pose2d]\nno new messages\nno new messages\n"
+    out, _ = run_until(graph, lambda out: out.count("no new messages\n") >= 2, "hz", "--filter", "m.x > 100",
+                       "/pose2d")
+    # a report a second, and every one says nothing got through the filter
+    lines = out.splitlines()
+    assert lines[0] == "subscribed to [/pose2d]" and len(lines) >= 3, out
+    assert set(lines[1:]) == {"no new messages"}, out
 
 
 # ---------------------------------------------------------------- pub
