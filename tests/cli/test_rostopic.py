@@ -482,10 +482,21 @@ def test_same_output_as_debian_rostopic(graph: Graph, command: tuple[str, ...]) 
     assert normalise(ours.stderr) == normalise(real.stderr)
 
 
+def wait_for_waiting(echo: Proc, topic: str, timeout: float = 30.0) -> None:
+    """Until `echo` is up and polling the master for `topic`: a `pub -1` latches for 3 s only, and
+    an echo still starting (Debian's rospy takes a second or two on a loaded machine) missed it."""
+    warning = f"WARNING: topic [{topic}] does not appear to be published yet\n"
+    deadline = time.monotonic() + timeout
+    while warning not in echo.err:
+        assert echo.popen.poll() is None and time.monotonic() < deadline, "".join(echo.out + echo.err)
+        time.sleep(0.05)
+
+
 @debian
 def test_debian_echo_sees_kame_pub(graph: Graph) -> None:
     echo = Proc([SYSTEM_PYTHON, "/usr/bin/rostopic", "echo", "-n", "1", "/from_kame"], graph.env)
     try:
+        wait_for_waiting(echo, "/from_kame")
         pub = graph.run("pub", "-1", "/from_kame", "geometry_msgs/Twist", "--", "[2,0,0]", "[0,0,-2]")
         assert ok(pub) == "publishing and latching message for 3.0 seconds\n"
         assert echo.popen.wait(10) == 0
@@ -498,6 +509,7 @@ def test_debian_echo_sees_kame_pub(graph: Graph) -> None:
 def test_kame_echo_of_debian_pub(graph: Graph) -> None:
     echo = graph.start("echo", "-n", "1", "/from_debian")
     try:
+        wait_for_waiting(echo, "/from_debian")
         pub = graph.debian("pub", "-1", "/from_debian", "sensor_msgs/JointState",
                            "{header: {stamp: {secs: 7, nsecs: 5}, frame_id: base}, name: [a, b], position: [1, 2.5]}")
         assert pub.returncode == 0, pub.stderr
