@@ -56,8 +56,9 @@ def test_record_with_limit_then_play_into_a_subscriber(core: dict[str, str], tmp
     assert msgs[0].connection_header["callerid"].startswith("/rostopic_")
     echo = Proc([str(BIN / "rostopic"), "echo", "/chatter", "-n", "5"], core)
     try:
-        time.sleep(1.0)
-        play = _run(core, "play", "-q", "-r", "4", "-d", "0.5", "rec.bag", cwd=tmp_path)
+        # -d alone is a guess at how long the echo takes to find the topic and connect: the 20
+        # messages go out in 50 ms, so a slow echo missed them. Wait for the subscriber too.
+        play = _run(core, "play", "-q", "-r", "4", "-d", "0.5", "--wait-for-subscribers", "rec.bag", cwd=tmp_path)
         assert play.returncode == 0, play.stderr
         assert "Hit space to toggle paused, or 's' to step." in play.stdout and play.stdout.endswith("Done.\n")
         echo.popen.wait(10)
@@ -66,19 +67,29 @@ def test_record_with_limit_then_play_into_a_subscriber(core: dict[str, str], tmp
     assert out.count('data: "hi"') == 5
 
 
+def wait_for_bytes(path: Path, size: int = 20_000, timeout: float = 30.0) -> None:
+    """Until the recorder has written `size` bytes of chunks (a String 'hi' takes under 70 bytes
+    with its index, so 20 kB is well over the 100 messages the test wants), not for a fixed time:
+    under load the talker and the recorder's connection can take most of a second or two to get going."""
+    deadline = time.monotonic() + timeout
+    while not (path.exists() and path.stat().st_size > size):
+        assert time.monotonic() < deadline, f"{path} did not reach {size} bytes in {timeout}s"
+        time.sleep(0.05)
+
+
 def test_ctrl_c_closes_and_kill_is_repaired_by_reindex(core: dict[str, str], tmp_path: Path) -> None:
     talker = _talker(core, "/fast", "500")
     try:
         rec = Proc([str(BIN / "rosbag"), "record", "-O", "clean", "-a", "--chunksize", "4"], core, cwd=tmp_path)
         rec.wait_line("Recording to")
-        time.sleep(1.5)
+        wait_for_bytes(tmp_path / "clean.bag.active")
         rec.stop()
         assert (tmp_path / "clean.bag").exists() and not (tmp_path / "clean.bag.active").exists()
         with rosbag.Bag(tmp_path / "clean.bag") as bag:
             assert bag.get_message_count("/fast") > 100
         killed = Proc([str(BIN / "rosbag"), "record", "-O", "killed", "/fast", "--chunksize", "4"], core, cwd=tmp_path)
         killed.wait_line("Recording to")
-        time.sleep(1.5)
+        wait_for_bytes(tmp_path / "killed.bag.active")
         os.kill(killed.pid, signal.SIGKILL)
         killed.stop()
     finally:
