@@ -7,7 +7,7 @@ import os
 import shutil
 import signal
 import subprocess
-import time
+import xmlrpc.client
 from pathlib import Path
 
 import pytest
@@ -27,13 +27,23 @@ def test_keys_map_to_the_real_speeds() -> None:
     assert twist_for(0x1B, 2.0, 2.0) is None and twist_for(ord("["), 2.0, 2.0) is None
 
 
+def teleop_connected(master_uri: str) -> bool:
+    """True once teleop's /turtle1/cmd_vel has a subscriber connected: a key pressed before that
+    is published to nobody, and the turtle never moves."""
+    code, _, uri = xmlrpc.client.ServerProxy(master_uri).lookupNode("/test", "/teleop_turtle")
+    if code != 1:
+        return False
+    _, _, links = xmlrpc.client.ServerProxy(uri).getBusInfo("/test")
+    return any(link[2] == "o" and link[4] == "/turtle1/cmd_vel" for link in links)
+
+
 @pytest.mark.skipif(shutil.which("tmux") is None, reason="tmux is not installed")
 def test_arrow_keys_through_tmux(tmp_path: Path) -> None:
     with turtlesim(tmp_path) as (sim, _node):
         sock = str(tmp_path / "tmux.sock")
         stty = tmp_path / "stty.txt"
         script = (f"stty -a > {tmp_path}/before.txt; {BIN}/rosrun turtlesim turtle_teleop_key; "
-                  f"stty -a > {stty}; exec sleep 60")
+                  f"stty -a > {stty}.part; mv {stty}.part {stty}; exec sleep 60")  # whole once it exists
 
         def tmux(*args: str) -> str:
             return subprocess.run(["tmux", "-S", sock, *args], env=sim.env, capture_output=True, text=True,
@@ -44,14 +54,13 @@ def test_arrow_keys_through_tmux(tmp_path: Path) -> None:
         try:
             wait_until(lambda: "Use arrow keys to move the turtle. 'q' to quit." in tmux("capture-pane", "-p"),
                        what="teleop's banner")
-            time.sleep(0.5)  # its publisher connects to turtlesim
+            wait_until(lambda: teleop_connected(sim.uri), what="teleop's publisher to connect to turtlesim")
             tmux("send-keys", "Up")
             wait_until(lambda: sim.pose()["x"] > CENTRE + 1.0, what="the turtle to move forward")
             tmux("send-keys", "Left")
             wait_until(lambda: sim.pose()["theta"] > 1.0, what="the turtle to turn left")
             tmux("send-keys", "q")
             wait_until(stty.exists, what="teleop to quit")
-            time.sleep(0.2)
             after = stty.read_text()
             assert " icanon" in after and " echo " in after
             assert after == (tmp_path / "before.txt").read_text()
