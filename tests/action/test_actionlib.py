@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import sys
 import time
+import xmlrpc.client
 from collections.abc import Iterator
 from pathlib import Path
 
@@ -95,6 +96,16 @@ def test_averaging_tutorial(graph: ActionGraph) -> None:
     assert 4.0 < mean < 6.0
 
 
+def wait_for_subscriber(master_uri: str, node: str, topic: str, timeout: float = 30.0) -> None:
+    """Until `node`'s publisher of `topic` has a subscriber connected (the node's getBusInfo)."""
+    deadline = time.monotonic() + timeout
+    _, _, uri = xmlrpc.client.ServerProxy(master_uri).lookupNode("/test", node)
+    while not any(link[2] == "o" and link[4] == topic
+                  for link in xmlrpc.client.ServerProxy(uri).getBusInfo("/test")[2]):
+        assert time.monotonic() < deadline, f"no subscriber connected to {node}'s {topic}"
+        time.sleep(0.05)
+
+
 def test_rostopic_pub_of_a_goal_and_a_goal_of_the_wrong_type(graph: ActionGraph) -> None:
     server = graph.start([sys.executable, str(TUTORIAL_SCRIPTS / "fibonacci_server.py")])
     graph.run(kame_command("kame.cli.rostopic", "echo", "-n", "1", "/fibonacci/status"), timeout=10)  # it is up
@@ -102,7 +113,7 @@ def test_rostopic_pub_of_a_goal_and_a_goal_of_the_wrong_type(graph: ActionGraph)
     wrong = graph.start(kame_command("kame.cli.rostopic", "pub", "/fibonacci/goal", "std_msgs/String", "hi"))
     wrong.wait_line("publishing")
     echo = graph.start(kame_command("kame.cli.rostopic", "echo", "-n", "1", "/fibonacci/result"))
-    time.sleep(1.0)
+    wait_for_subscriber(graph.uri, "/fibonacci", "/fibonacci/result")  # or the result goes to nobody
     graph.run(kame_command("kame.cli.rostopic", "pub", "-1", "/fibonacci/goal",
                            "actionlib_tutorials/FibonacciActionGoal", "{goal: {order: 2}}"))
     echo.popen.wait(10)
