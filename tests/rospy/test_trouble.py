@@ -204,8 +204,10 @@ def test_an_undeserializable_message_is_skipped_and_the_connection_kept(tmp_path
             conn.close()
 
         threading.Thread(target=serve, daemon=True).start()
+        # requestTopic points at the fake server: set before advertising, since the reader asks
+        # as soon as the master tells it about the publisher, which can be before advertise returns
+        liar.tcpros_port = server.getsockname()[1]
         liar.advertise("/mixed", "std_msgs/String", String._md5sum, String._full_text)
-        liar.tcpros_port = server.getsockname()[1]  # requestTopic now points at the fake server
         proc.wait_line("got c", timeout=10)
         out, err = proc.stop()
         assert [line.split()[1] for line in out.splitlines() if line.startswith("got")] == ["a", "b", "c"]
