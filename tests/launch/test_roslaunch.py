@@ -25,8 +25,20 @@ if os.environ.get("STUBBORN"):
     signal.signal(signal.SIGTERM, signal.SIG_IGN)
     grandchild = subprocess.Popen(["sleep", "60"])
     os.environ["GRANDCHILD"] = str(grandchild.pid)
-with open(os.path.join(os.environ["RECORD_DIR"], name + ".json"), "w") as f:
+record = os.path.join(os.environ["RECORD_DIR"], name + ".json")
+with open(record + ".part", "w") as f:
     json.dump({"argv": sys.argv, "env": dict(os.environ), "cwd": os.getcwd(), "pid": os.getpid()}, f)
+os.replace(record + ".part", record)  # whole once it exists
+with open(os.path.join(os.environ["RECORD_DIR"], name + ".runs"), "a") as f:
+    f.write("run\\n")
+if os.environ.get("AFTER_RUNS"):  # "<name>:<n>": live on only once that node has started n times
+    other, n = os.environ["AFTER_RUNS"].split(":")
+    runs = os.path.join(os.environ["RECORD_DIR"], other + ".runs")
+    deadline = time.monotonic() + 60
+    while time.monotonic() < deadline:
+        if os.path.exists(runs) and open(runs).read().count("\\n") >= int(n):
+            break
+        time.sleep(0.05)
 print("recorder", name, "up", flush=True)
 lifetime = float(os.environ.get("LIFETIME", "60"))
 try:
@@ -55,7 +67,7 @@ FILES = {
   </node>
   <node name="prefixed" pkg="demo" type="recorder.py" launch-prefix="env PREFIXED=yes"/>
   <node name="boss" pkg="demo" type="recorder.py" required="true">
-    <env name="LIFETIME" value="1.5"/>
+    <env name="AFTER_RUNS" value="resp:3"/><env name="LIFETIME" value="1.5"/>
   </node>
   <node name="brief" pkg="demo" type="recorder.py"><env name="LIFETIME" value="0.1"/></node>
 </launch>""",
@@ -141,9 +153,7 @@ def wait_for(predicate, timeout: float = 10.0) -> None:  # type: ignore[no-untyp
 
 def record(workspace: Path, name: str) -> dict:  # type: ignore[type-arg]
     path = workspace / "records" / f"{name}.json"
-    wait_for(path.exists)
-    wait_for(lambda: path.stat().st_size > 0)
-    time.sleep(0.05)
+    wait_for(path.exists)  # written aside and moved there: whole
     return json.loads(path.read_text())  # type: ignore[no-any-return]
 
 
