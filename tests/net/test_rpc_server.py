@@ -42,7 +42,11 @@ def test_a_full_house_of_stalled_clients_does_not_lock_others_out(server: RpcSer
             sock = socket.create_connection(("127.0.0.1", server.port), timeout=5)
             sock.sendall(b"POST / HTTP/1.1\r\nContent-Le")
             stalled.append(sock)
-        time.sleep(0.2)  # the accept thread logs
+        deadline = time.monotonic() + 10  # until the accept thread has evicted (and logged)
+        while not any("too many XML-RPC connections" in r.getMessage() for r in caplog.records):
+            assert time.monotonic() < deadline, "no eviction logged"
+            time.sleep(0.02)
+        time.sleep(0.2)  # room for any further lines, which the next assert bounds
     # 50 evictions, but not 50 lines
     assert 1 <= sum("too many XML-RPC connections" in r.getMessage() for r in caplog.records) <= 3
     try:
