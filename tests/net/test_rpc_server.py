@@ -69,7 +69,7 @@ def test_a_request_trickling_in_is_cut_off(server: RpcServer, monkeypatch: pytes
         sock.sendall(b"POST / HTTP/1.1\r\nContent-Length: 100\r\n\r\n")
         start = time.monotonic()
         closed = False
-        while time.monotonic() - start < 3:
+        while time.monotonic() - start < 6:
             try:
                 sock.sendall(b"x")
             except OSError:
@@ -82,7 +82,7 @@ def test_a_request_trickling_in_is_cut_off(server: RpcServer, monkeypatch: pytes
                     break
             except TimeoutError:
                 pass
-        assert closed and time.monotonic() - start < 2
+        assert closed and time.monotonic() - start < 5  # 0.5 s allowed; trickling all of it takes 10 s
     assert _post(server.port).endswith(b"echo ping")
 
 

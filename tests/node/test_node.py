@@ -264,7 +264,7 @@ def test_a_handshake_trickling_in_is_cut_off(make_node: Any, monkeypatch: pytest
     sock.sendall(struct.pack("<I", 1000))
     start = time.monotonic()
     closed = False
-    while time.monotonic() - start < 3:
+    while time.monotonic() - start < 6:
         try:
             sock.sendall(b"x")
             sock.settimeout(0.1)
@@ -276,7 +276,7 @@ def test_a_handshake_trickling_in_is_cut_off(make_node: Any, monkeypatch: pytest
         if closed:
             break
     sock.close()
-    assert closed and time.monotonic() - start < 2
+    assert closed and time.monotonic() - start < 5  # 0.5 s allowed; trickling all of it takes 100 s
     # and honest subscribers still get in
     got, event = collect(make_node("/after_trickle"), "/trickled_topic")
     assert wait_until(lambda: len(pub.links) == 1)
@@ -414,6 +414,6 @@ def test_a_failing_service_handler_is_logged_and_the_socket_closed(make_node: An
         start = time.monotonic()
         with pytest.raises(ServiceError, match="transport error"):
             client.call(b"", timeout=5)
-        assert time.monotonic() - start < 2
+        assert time.monotonic() - start < 4  # closed at once, not left to the 5 s timeout
         assert wait_until(lambda: any("RuntimeError: handler bug" in (r.exc_text or "") or
                                       "handler bug" in str(r.exc_info) for r in caplog.records))
