@@ -39,6 +39,7 @@ import math
 import subprocess
 import sys
 import time
+import xmlrpc.client
 from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
@@ -82,8 +83,26 @@ def recorded(tmp_path_factory: pytest.TempPathFactory) -> Iterator[tuple[Sim, Pa
 
 def _recorder(sim: Sim, name: str, *topics: str) -> Proc:
     rec = Proc([str(BIN / "rosbag"), "record", "-O", name, *topics], sim.env, cwd=sim.home)
-    rec.wait_line("Recording to")
+    rec.wait_line("Recording to")  # registered by then, but maybe not yet connected
+    _wait_connected(sim, "/turtle1/pose")
     return rec
+
+
+def _wait_connected(sim: Sim, topic: str) -> None:
+    """Until turtlesim sends `topic` to every recorder subscribed to it (turtlesim's getBusInfo):
+    a pose missed at the start of the drive would shorten its first run."""
+    master = xmlrpc.client.ServerProxy(sim.uri)
+
+    def connected() -> bool:
+        subscribers = dict(master.getSystemState("/test")[2][1]).get(topic, [])
+        recorders = {n for n in subscribers if n.startswith("/record_")}
+        code, _, uri = master.lookupNode("/test", "/turtlesim")
+        if code != 1 or not recorders:
+            return False
+        links = xmlrpc.client.ServerProxy(uri).getBusInfo("/test")[2]
+        return recorders <= {link[1] for link in links if link[2] == "o" and link[4] == topic}
+
+    wait_until(connected, what=f"the recorder's connection to turtlesim's {topic}")
 
 
 def _wait_stopped(sim: Sim) -> None:
@@ -107,7 +126,7 @@ def _replay(sim: Sim, bag: Path, name: str, play: list[str]) -> list[Pose]:
     assert (pose["x"], pose["y"], pose["theta"]) == pytest.approx((5.544445, 5.544445, 0.0), abs=1e-6)
     rec = _recorder(sim, name, "/turtle1/pose")
     try:
-        time.sleep(0.3)  # the recorder's connection to turtlesim: some idle poses before the drive
+        time.sleep(0.3)  # some idle poses before the drive (the recorder is connected already)
         res = subprocess.run([*play, str(bag), "-q", "--wait-for-subscribers", "--topics", "/turtle1/cmd_vel"],
                              env=sim.env, cwd=sim.home, capture_output=True, text=True, timeout=30)
         assert res.returncode == 0, res.stdout + res.stderr
