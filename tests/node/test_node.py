@@ -360,6 +360,7 @@ def test_a_flood_of_bad_connections_is_a_few_log_lines(make_node: Any, caplog: p
 
     talker = make_node("/flooded")
     pub = talker.advertise("/flooded_topic", *STRING)
+    started = time.monotonic()
     with caplog.at_level(logging.WARNING, logger="kame.node"):
         for i in range(100):
             sock = socket.create_connection(("127.0.0.1", talker.tcpros_port), timeout=5)
@@ -371,8 +372,11 @@ def test_a_flood_of_bad_connections_is_a_few_log_lines(make_node: Any, caplog: p
                     pass
             sock.close()
         time.sleep(0.3)
+    elapsed = time.monotonic() - started
     lines = [r.getMessage() for r in caplog.records if "bad TCPROS connection attempt" in r.getMessage()]
-    assert 1 <= len(lines) <= 3, lines
+    # a line a second at most: 3 when the flood takes under two seconds, one more per extra
+    # second a loaded machine makes it last (50 bad attempts would be 50 lines)
+    assert 1 <= len(lines) <= max(3, 2 + int(elapsed)), (lines, elapsed)
     assert "connection header of" in lines[0] and "127.0.0.1:" in lines[0]
     got, event = collect(make_node("/after_flood"), "/flooded_topic")
     assert wait_until(lambda: len(pub.links) == 1)
