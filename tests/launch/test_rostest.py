@@ -229,13 +229,16 @@ def test_failures_only_exit_2(workspace: Path) -> None:
 
 
 def test_time_limit_overrun(workspace: Path) -> None:
+    # 3 s, not 1 s: the test program must have started and written its PID before it is stopped
+    test_file = workspace / "ws" / "demo" / "test" / "slow.test"
+    test_file.write_text(test_file.read_text().replace('time-limit="1"', 'time-limit="3"'))
     env = make_env(workspace)
     started = time.monotonic()
     done = rostest(env, "demo", "slow.test")
     elapsed = time.monotonic() - started
     assert done.returncode == 1, done.stdout + done.stderr
     assert elapsed < 15
-    assert "[Testcase: testslow_test] ... ERROR!\nERROR: max time [1.0s] allotted for test [slow_test] of type " \
+    assert "[Testcase: testslow_test] ... ERROR!\nERROR: max time [3.0s] allotted for test [slow_test] of type " \
            "[demo/slow_test.py]\n" in done.stdout
     assert " * TESTS: 0\n\033[1;31m * ERRORS: 1\033[0m\n * FAILURES: 0\n" in done.stdout
     run = results(workspace, "rostest-test_slow.xml")
