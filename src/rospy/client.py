@@ -242,11 +242,7 @@ def get_param_cached(param_name: str, default: Any = _unspecified) -> Any:
     if node is None:
         raise ROSInitException("client code must call rospy.init_node() first")
     key = core.resolve_name(param_name)
-    if key in node.param_cache:
-        value = node.param_cache[key]
-    else:
-        value = node.master.call("subscribeParam", node.uri, key)
-        node.param_cache[key] = value
+    value = node.cached_param(key)
     if value == {} and not node.master.call_raw("hasParam", key)[2]:
         if default is _unspecified:
             raise KeyError(param_name)

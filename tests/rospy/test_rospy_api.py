@@ -96,6 +96,34 @@ def test_params_and_cached_params(env: dict[str, str]) -> None:
     assert lines[5] == "True False"
 
 
+def test_a_param_update_during_the_first_cached_get_is_kept(env: dict[str, str]) -> None:
+    # get_param_cached subscribed, then stored the value subscribeParam returned: a paramUpdate
+    # that arrived in between (another node set the parameter) was refused, as nothing was
+    # cached yet, and the stale value then stayed in the cache for good.
+    out, _ = run(env, """
+        import os, threading, xmlrpc.client
+        import rospy
+        from rospy import core
+        rospy.init_node('cached_race')
+        rospy.set_param('/race', 'old')
+        node = core.get_node()
+        updated = threading.Event()
+        node.on_param_update.append(lambda key, value: updated.set())
+        call = node.master.call
+
+        def slow_reply(method, *args, **kwargs):
+            result = call(method, *args, **kwargs)
+            if method == 'subscribeParam':  # someone sets it before our reply is stored
+                xmlrpc.client.ServerProxy(os.environ['ROS_MASTER_URI']).setParam('/other', '/race', 'new')
+                assert updated.wait(10)
+            return result
+
+        node.master.call = slow_reply
+        print(rospy.get_param_cached('/race'), rospy.get_param_cached('/race'))
+    """)
+    assert out.splitlines() == ["new new"]
+
+
 def test_publisher_subscriber_details(env: dict[str, str]) -> None:
     out, _ = run(env, """
         import rospy, threading

@@ -232,11 +232,9 @@ class Rosout:
 
     def _subscribe_omit_topics(self) -> None:
         try:
-            value = self.node.master.call("subscribeParam", self.node.uri, OMIT_TOPICS_PARAM)
+            self.node.cached_param(OMIT_TOPICS_PARAM)  # subscribed, and an update meanwhile kept
         except (OSError, MasterError) as exc:
             log.warning("cannot subscribe to %s: %s", OMIT_TOPICS_PARAM, exc)
-            return
-        self.node.param_cache[OMIT_TOPICS_PARAM] = value
 
     @property
     def omit_topics(self) -> bool:

@@ -60,6 +60,8 @@ class Node:
         self.subscriptions: dict[str, Subscription] = {}
         self.services: dict[str, ServiceServer] = {}
         self.param_cache: dict[str, Any] = {}
+        # keys whose subscribeParam is on its way: the latest paramUpdate for each, if any came
+        self._param_pending: dict[str, Any] = {}
         self.on_param_update: list[Callable[[str, Any], None]] = []
         self.on_shutdown_request: Callable[[str], None] = self.shutdown
         # told the caller and message of a shutdown call before the shutdown starts (rospy prints them)
@@ -285,17 +287,41 @@ class Node:
             sub.set_publishers([str(uri) for uri in publishers])
         return [1, "", 0]
 
+    def cached_param(self, key: str) -> Any:
+        """`key`'s value from the parameter cache, subscribing (subscribeParam) on first use.
+        A paramUpdate that arrives while subscribeParam is on its way is newer than what it
+        returns, and is what gets cached."""
+        with self._lock:
+            if key in self.param_cache:
+                return self.param_cache[key]
+            self._param_pending.setdefault(key, _NO_UPDATE)
+        try:
+            value = self.master.call("subscribeParam", self.uri, key)
+        except BaseException:
+            with self._lock:
+                self._param_pending.pop(key, None)
+            raise
+        with self._lock:
+            newer = self._param_pending.pop(key, _NO_UPDATE)
+            if key in self.param_cache:  # a concurrent first use stored it; updates went there since
+                return self.param_cache[key]
+            if newer is not _NO_UPDATE:
+                value = newer
+            self.param_cache[key] = value
+        return value
+
     def _param_update(self, caller_id: str, key: str, value: Any) -> list[Any]:
         key = names.canonicalize(key) or "/"
         matched = False
         with self._lock:
-            for cached in list(self.param_cache):
-                if cached == key or cached.startswith(key.rstrip("/") + "/"):
-                    matched = True
-                    if cached == key:
-                        self.param_cache[cached] = value
-                    else:
-                        self.param_cache[cached] = _subvalue(value, cached[len(key.rstrip("/")) + 1:])
+            for store in (self.param_cache, self._param_pending):
+                for cached in list(store):
+                    if cached == key or cached.startswith(key.rstrip("/") + "/"):
+                        matched = True
+                        if cached == key:
+                            store[cached] = value
+                        else:
+                            store[cached] = _subvalue(value, cached[len(key.rstrip("/")) + 1:])
         for callback in self.on_param_update:
             callback(key, value)
         if not matched:
@@ -343,6 +369,9 @@ class Node:
         self.rpc.close()
         self.flusher.close()
         self.master.close()
+
+
+_NO_UPDATE = object()  # no paramUpdate came while subscribeParam was on its way
 
 
 class _Throttled:
