@@ -17,7 +17,7 @@ import threading
 import time
 from collections.abc import Callable
 
-from kame.net.stream import AcceptStarvation
+from kame.net.stream import AcceptStarvation, peer_of
 
 log = logging.getLogger("kame.net.rpc")
 
@@ -91,7 +91,7 @@ class RpcServer:
                 if now - last_warning >= 1.0:
                     more = f" (and {evicted} more since the last warning)" if evicted else ""
                     log.warning("too many XML-RPC connections: closing the one quiet longest (%s) for %s%s",
-                                _peer(quietest), addr, more)
+                                peer_of(quietest), addr, more)
                     last_warning, evicted = now, 0
                 else:
                     evicted += 1
@@ -147,13 +147,6 @@ def _response(status: int, body: bytes, keep_alive: bool) -> bytes:
         f"Content-Length: {len(body)}\r\nConnection: {'keep-alive' if keep_alive else 'close'}\r\n\r\n"
     )
     return head.encode("latin-1") + body
-
-
-def _peer(conn: socket.socket) -> str:
-    try:
-        return str(conn.getpeername())
-    except OSError:
-        return "?"
 
 
 def _recv(conn: socket.socket, size: int, deadline: float | None) -> bytes:

@@ -430,9 +430,11 @@ def _shutdown(sock: socket.socket) -> None:
         pass
 
 
-def _peer(sock: socket.socket) -> str:
+def peer_of(sock: socket.socket) -> str:
+    """`host:port` of the other end, for log lines ("?" once the socket is gone)."""
     try:
-        return str(sock.getpeername())
+        host, port = sock.getpeername()[:2]
+        return f"{host}:{port}"
     except OSError:
         return "?"
 

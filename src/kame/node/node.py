@@ -22,7 +22,7 @@ from typing import Any, NamedTuple
 
 from kame import names
 from kame.net.rpc_server import RpcServer
-from kame.net.stream import Flusher, Listener
+from kame.net.stream import Flusher, Listener, peer_of
 from kame.net.workers import WorkerPool
 from kame.node.master_proxy import MasterError, MasterProxy
 from kame.node.services import ServiceClient, ServiceHandler, ServiceServer
@@ -185,7 +185,7 @@ class Node:
             sock.close()
             return
         except (OSError, HandshakeError) as exc:
-            self._bad_attempts.warning("bad TCPROS connection attempt from %s: %s", _peer(sock), exc)
+            self._bad_attempts.warning("bad TCPROS connection attempt from %s: %s", peer_of(sock), exc)
             sock.close()
             return
         kind = tcpros.classify_connection(header)
@@ -397,14 +397,6 @@ class _Throttled:
             self._log.warning(fmt + " (and %d more like it in the last second, not shown)", *args, suppressed)
         else:
             self._log.warning(fmt, *args)
-
-
-def _peer(sock: socket.socket) -> str:
-    try:
-        host, port = sock.getpeername()[:2]
-        return f"{host}:{port}"
-    except OSError:
-        return "?"
 
 
 def _subvalue(value: Any, path: str) -> Any:

@@ -22,7 +22,7 @@ import time
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
-from kame.net.stream import Receiver, Sender, connect, set_keepalive, set_nodelay
+from kame.net.stream import Receiver, Sender, connect, peer_of, set_keepalive, set_nodelay
 from kame.net.xmlrpc_proxy import XmlRpcProxy
 from kame.node.master_proxy import unwrap
 from kame.node.tcpros import HandshakeError, read_header_and_rest, write_header
@@ -113,7 +113,7 @@ class Publication:
         write_header(sock, {**accepted.reply, **self.extra_headers})
         set_nodelay(sock, accepted.tcp_nodelay)
         set_keepalive(sock)
-        peer = _peer(sock)
+        peer = peer_of(sock)
         link_box: list[SubscriberLink] = []
 
         def broken(exc: BaseException | None) -> None:
@@ -396,11 +396,3 @@ class Subscription:
     @property
     def connection_count(self) -> int:
         return sum(1 for link in self.links.values() if link.connected)
-
-
-def _peer(sock: socket.socket) -> str:
-    try:
-        host, port = sock.getpeername()[:2]
-        return f"{host}:{port}"
-    except OSError:
-        return "?"
