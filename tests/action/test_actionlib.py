@@ -6,13 +6,12 @@ from __future__ import annotations
 
 import sys
 import time
-import xmlrpc.client
 from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
 
-from ..support import kame_command
+from ..support import kame_command, sending_to
 from .graph import ALL_SCENARIOS, EXPECTED, PEERS, TUTORIAL_SCRIPTS, ActionGraph, normalized
 
 
@@ -97,11 +96,9 @@ def test_averaging_tutorial(graph: ActionGraph) -> None:
 
 
 def wait_for_subscriber(master_uri: str, node: str, topic: str, timeout: float = 30.0) -> None:
-    """Until `node`'s publisher of `topic` has a subscriber connected (the node's getBusInfo)."""
+    """Until `node`'s publisher of `topic` has a subscriber connected."""
     deadline = time.monotonic() + timeout
-    _, _, uri = xmlrpc.client.ServerProxy(master_uri).lookupNode("/test", node)
-    while not any(link[2] == "o" and link[4] == topic
-                  for link in xmlrpc.client.ServerProxy(uri).getBusInfo("/test")[2]):
+    while not sending_to(master_uri, node, topic):
         assert time.monotonic() < deadline, f"no subscriber connected to {node}'s {topic}"
         time.sleep(0.05)
 

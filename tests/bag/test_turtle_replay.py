@@ -47,7 +47,7 @@ from typing import Any
 import pytest
 
 import rosbag
-from tests.support import SYSTEM_PYTHON, Proc, have_debian_ros
+from tests.support import SYSTEM_PYTHON, Proc, have_debian_ros, sending_to
 from tests.turtlesim.sim import Sim, turtlesim, wait_until
 
 BIN = Path(sys.executable).parent
@@ -96,11 +96,7 @@ def _wait_connected(sim: Sim, topic: str) -> None:
     def connected() -> bool:
         subscribers = dict(master.getSystemState("/test")[2][1]).get(topic, [])
         recorders = {n for n in subscribers if n.startswith("/record_")}
-        code, _, uri = master.lookupNode("/test", "/turtlesim")
-        if code != 1 or not recorders:
-            return False
-        links = xmlrpc.client.ServerProxy(uri).getBusInfo("/test")[2]
-        return recorders <= {link[1] for link in links if link[2] == "o" and link[4] == topic}
+        return bool(recorders) and recorders <= sending_to(sim.uri, "/turtlesim", topic)
 
     wait_until(connected, what=f"the recorder's connection to turtlesim's {topic}")
 

@@ -228,3 +228,14 @@ class SilentPeer:
         self.sock.close()
         for c in self.accepted:
             c.close()
+
+
+def sending_to(master_uri: str, node: str, topic: str) -> set[str]:
+    """The subscribers `node` is connected to and sending `topic` to, from its getBusInfo (empty
+    while the node is not registered): publishing an unlatched message before a subscriber is
+    in this set publishes it to nobody."""
+    code, _, uri = xmlrpc.client.ServerProxy(master_uri).lookupNode("/test", node)
+    if code != 1:
+        return set()
+    links = xmlrpc.client.ServerProxy(uri).getBusInfo("/test")[2]
+    return {str(link[1]) for link in links if link[2] == "o" and link[4] == topic}

@@ -7,12 +7,12 @@ import os
 import shutil
 import signal
 import subprocess
-import xmlrpc.client
 from pathlib import Path
 
 import pytest
 
 from kame.turtlesim.teleop_key import twist_for
+from tests.support import sending_to
 from tests.turtlesim.sim import BIN, turtlesim, wait_until
 
 CENTRE = 5.544444561004639
@@ -25,16 +25,6 @@ def test_keys_map_to_the_real_speeds() -> None:
     assert left is not None and left.angular.z == 2.0
     assert right is not None and right.angular.z == -2.0
     assert twist_for(0x1B, 2.0, 2.0) is None and twist_for(ord("["), 2.0, 2.0) is None
-
-
-def teleop_connected(master_uri: str) -> bool:
-    """True once teleop's /turtle1/cmd_vel has a subscriber connected: a key pressed before that
-    is published to nobody, and the turtle never moves."""
-    code, _, uri = xmlrpc.client.ServerProxy(master_uri).lookupNode("/test", "/teleop_turtle")
-    if code != 1:
-        return False
-    _, _, links = xmlrpc.client.ServerProxy(uri).getBusInfo("/test")
-    return any(link[2] == "o" and link[4] == "/turtle1/cmd_vel" for link in links)
 
 
 @pytest.mark.skipif(shutil.which("tmux") is None, reason="tmux is not installed")
@@ -54,7 +44,9 @@ def test_arrow_keys_through_tmux(tmp_path: Path) -> None:
         try:
             wait_until(lambda: "Use arrow keys to move the turtle. 'q' to quit." in tmux("capture-pane", "-p"),
                        what="teleop's banner")
-            wait_until(lambda: teleop_connected(sim.uri), what="teleop's publisher to connect to turtlesim")
+            # a key pressed before then is published to nobody, and the turtle never moves
+            wait_until(lambda: bool(sending_to(sim.uri, "/teleop_turtle", "/turtle1/cmd_vel")),
+                       what="teleop's publisher to connect to turtlesim")
             tmux("send-keys", "Up")
             wait_until(lambda: sim.pose()["x"] > CENTRE + 1.0, what="the turtle to move forward")
             tmux("send-keys", "Left")
