@@ -1,4 +1,4 @@
-"""The layering of ../shared/ARCHITECTURE.md, enforced: imports point down, pure layers stay pure.
+"""The layering of docs/ARCHITECTURE.md, enforced: imports point down, pure layers stay pure.
 
 L0 foundations (msg, names, time values) and L1 pure logic (protocol codecs, the master's
 registry and parameter tree, ...) never import I/O, concurrency or clock modules. net/ (L2)

@@ -15,7 +15,7 @@ import rosbag
 from kame.bag import records
 from kame.bag.reader import BagReader
 from kame.bag.writer import BagWriter
-from tests.shared_spec import vectors
+from tests.ros1_vectors import vectors
 from tests.support import SYSTEM_PYTHON, have_debian_ros
 
 ROSBAG = shutil.which("rosbag", path=str(Path(__import__("sys").executable).parent)) or "rosbag"

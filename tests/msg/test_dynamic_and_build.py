@@ -9,7 +9,7 @@ import pytest
 from kame.msg import MsgNotFoundError, generate_dynamic
 from kame.msg import build as genmsg
 
-from ..shared_spec import vectors
+from ..ros1_vectors import vectors
 
 VECTORS = vectors()
 

@@ -12,7 +12,7 @@ from kame.msg import Message, MsgCatalog
 from kame.msg.md5 import Md5Cache, full_text, split_full_text
 from kame.msg.parser import parse_msg
 
-from ..shared_spec import vectors as load_vectors
+from ..ros1_vectors import vectors as load_vectors
 from .values import build
 
 VECTORS = load_vectors()

@@ -1,4 +1,4 @@
-"""kame.protocol.tcpros against the real ROS 1 bytes of ../shared/spec/vectors.json (§6)."""
+"""kame.protocol.tcpros against the real ROS 1 bytes of tests/data/ros1_vectors.json (§6)."""
 
 from __future__ import annotations
 
@@ -9,7 +9,7 @@ from typing import Any
 import pytest
 
 from kame.protocol import tcpros as t
-from tests.shared_spec import vectors
+from tests.ros1_vectors import vectors
 
 HEADERS: list[dict[str, Any]] = vectors()["tcpros_headers"]
 FRAMES: list[dict[str, Any]] = vectors()["tcpros_frames"]

@@ -2,7 +2,7 @@
 steps it and publishes it (`node`), an optional Qt window that draws it (`gui`), and the
 package's other programs (`teleop_key`, `draw_square`, `mimic`).
 
-Rule (../shared/ARCHITECTURE.md, 4): the world knows nothing of ROS; the GUI knows only the
+Rule (docs/ARCHITECTURE.md, 4): the world knows nothing of ROS; the GUI knows only the
 world; the node glues. This package's public API is the world's.
 """
 
