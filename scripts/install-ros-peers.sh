@@ -12,6 +12,7 @@ packages=(
   ros-std-msgs ros-std-srvs ros-geometry-msgs ros-sensor-msgs ros-nav-msgs ros-rosgraph-msgs
   ros-actionlib-msgs ros-diagnostic-msgs ros-trajectory-msgs ros-visualization-msgs
   ros-shape-msgs ros-stereo-msgs ros-tf2-msgs ros-roscpp-msg ros-move-base-msgs python3-rostest
+  rosbash  # rosrun and rospack (rospack-tools), compared with kame's
   g++ pkg-config
   zsh tmux  # the shell-integration and terminal (teleop) tests drive these
 )
