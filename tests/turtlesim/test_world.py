@@ -191,6 +191,24 @@ def test_snapshot_and_versions() -> None:
     assert snap.turtles[0].x == pytest.approx((CENTRE + 0.016) * 45)
 
 
+def test_a_snapshot_copies_the_pixels_only_after_they_changed() -> None:
+    world = World(rng=random.Random(1))
+    world.reset()
+    first = world.snapshot()
+    world.command("turtle1", 0.0, 0.0, 1.0)  # turning in place draws nothing
+    world.step()
+    turned = world.snapshot()
+    assert turned.version != first.version and turned.turtles != first.turtles
+    assert turned.pixels is first.pixels
+    world.command("turtle1", 1.0, 0.0, 0.0)
+    world.step()
+    moved = world.snapshot()
+    assert moved.pixels is not first.pixels and moved.pixels != first.pixels
+    assert moved.pixels == bytes(world.canvas.pixels)
+    world.clear()
+    assert world.snapshot().pixels == bytes(world.canvas.pixels) != moved.pixels
+
+
 def test_canvas_lines() -> None:
     c = Canvas(20, 20, Rgb(0, 0, 0))
     c.line(2, 10, 17, 10, Rgb(1, 2, 3), 3)
