@@ -2,7 +2,8 @@
 # The main job: set kame up in .venv (with the GUI extra when it installs) and roslaunch
 # turtlesim's demo: a master, turtlesim and draw_square, so a turtle draws squares at once.
 # Drive it from another terminal: `source .venv/bin/activate && rosrun turtlesim turtle_teleop_key`.
-# With no display the same simulation runs headless. Ctrl-C stops everything.
+# With no display the same simulation runs headless, and turtlesim says why there is no window.
+# Ctrl-C stops everything.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 python=${KAME_PYTHON:-python3}
@@ -21,7 +22,11 @@ port=${ROS_MASTER_URI##*:}; port=${port%%/*}
 headless=false
 if [ -z "${DISPLAY:-}${WAYLAND_DISPLAY:-}${QT_QPA_PLATFORM:-}" ]; then
   headless=true
-  echo "kame demo: no display, so turtlesim runs headless (try: rostopic echo /turtle1/pose)." >&2
+  echo "kame demo: no display (DISPLAY is not set), so turtlesim runs headless (try: rostopic echo /turtle1/pose)." >&2
+else
+  # Qt's X11 plugin needs system libraries a fresh Debian lacks; turtlesim checks before it
+  # opens its window, and names the missing one (then runs headless) when this could not help.
+  bash scripts/install-gui-libs.sh || true
 fi
 cat >&2 <<MSG
 kame demo: turtlesim with a turtle drawing squares (Ctrl-C stops it).

@@ -1,10 +1,18 @@
-"""turtlesim's window, offscreen: a screenshot of the widget, checked pixel by pixel; and the
-node opening its window (no 'headless' line) when Qt can."""
+"""turtlesim's window, offscreen and on a real X server (Xvfb): a screenshot of the widget checked
+pixel by pixel; 20,000 frames painted in one process (a Qt binding that loses references
+aborts Python within them); the node opening its window when Qt can, and running headless
+with the reason when it cannot; on Xvfb, the mapped window, its screenshot, and teleop moving
+the turtle in it."""
 
 from __future__ import annotations
 
 import os
+import pty
 import random
+import re
+import subprocess
+import sys
+from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
@@ -69,3 +77,115 @@ def test_the_node_opens_a_window_when_qt_can(tmp_path: Path) -> None:
         out, err = node.stop()
         assert node.popen.returncode == 0
         assert "Traceback" not in out + err, err
+
+
+@pytest.fixture(params=["offscreen", "xvfb"])
+def qt_env(request: pytest.FixtureRequest) -> Iterator[dict[str, str]]:
+    """An environment whose Qt draws offscreen, or on a private Xvfb."""
+    from tests.turtlesim.xserver import xvfb
+
+    env = {k: v for k, v in os.environ.items() if k not in ("DISPLAY", "WAYLAND_DISPLAY", "QT_QPA_PLATFORM")}
+    if request.param == "offscreen":
+        yield dict(env, QT_QPA_PLATFORM="offscreen")
+        return
+    with xvfb() as display:
+        yield dict(env, DISPLAY=display)
+
+
+def test_twenty_thousand_frames_in_one_process(qt_env: dict[str, str]) -> None:
+    from tests.support import REPO
+
+    run = subprocess.run([sys.executable, "-m", "tests.turtlesim.many_frames", "20000"], env=qt_env, cwd=REPO,
+                         capture_output=True, text=True, timeout=300)
+    said = run.stdout + run.stderr
+    assert "Fatal Python error" not in said, said[-2000:]
+    assert run.returncode == 0, said[-2000:]
+    match = re.search(r"painted (\d+) lost (-?\d+)", run.stdout)
+    assert match is not None, said
+    assert int(match.group(1)) >= 20000
+    assert int(match.group(2)) == 0, "the Qt binding loses a reference to None per call"
+
+
+def test_no_window_and_the_reason_when_qt_cannot_open_one(tmp_path: Path) -> None:
+    from tests.turtlesim.sim import master
+
+    with master(tmp_path) as live:
+        env = dict(live.env, DISPLAY=":4093")  # no X server there
+        env.pop("QT_QPA_PLATFORM", None)
+        node = live.start("turtlesim", "turtlesim_node", env=env, wait="runs headless, without a window")
+        reason = node.wait_line("without a window")
+        assert "Qt cannot" in reason, reason
+        assert live.pose()["x"] == pytest.approx(5.544444561004639)  # the simulation runs all the same
+        assert node.popen.poll() is None
+
+
+CENTRE = 5.544444561004639
+BACKGROUND = (69, 86, 255)
+PEN = (179, 184, 255)
+
+
+def shell_colours(image: int) -> set[tuple[int, int, int]]:
+    from PySide6.QtGui import QColor
+
+    return {(QColor(c).red(), QColor(c).green(), QColor(c).blue()) for c in gui.PALETTE[image][:2]}
+
+
+def test_the_window_on_a_real_x_server_and_teleop_moves_the_turtle(tmp_path: Path) -> None:
+    from tests.support import sending_to
+    from tests.turtlesim.sim import master, wait_until
+    from tests.turtlesim.xserver import XWindow, find_window, screenshot, xvfb
+
+    with xvfb() as display, master(tmp_path) as live:
+        env = dict(live.env, DISPLAY=display)
+        env.pop("QT_QPA_PLATFORM", None)
+        node = live.start("turtlesim", "turtlesim_node", env=env, wait="Spawning turtle [turtle1]")
+        found: list[XWindow] = []
+
+        def mapped() -> bool:
+            window = find_window(display, "TurtleSim")
+            found[:] = [window] if window is not None and window.viewable else []
+            return bool(found)
+
+        wait_until(mapped, timeout=20, what="the TurtleSim window to be mapped")
+        window = found[0]
+        assert (window.width, window.height) == (500, 500)
+        out = "".join(node.out)
+        assert "without a window" not in out, out
+
+        def shows_the_turtle_at(x_px: int) -> bool:
+            shot = screenshot(display, window.id)
+            return bool(shot.colours(x_px - 20, 230, x_px + 21, 271) & everyone)
+
+        everyone = set().union(*(shell_colours(i) for i in range(len(gui.PALETTE))))
+        wait_until(lambda: shows_the_turtle_at(250), what="the turtle drawn at the centre")
+        shot = screenshot(display, window.id)
+        assert (shot.width, shot.height) == (500, 500)
+        assert shot.rgb(5, 5) == BACKGROUND and shot.rgb(495, 495) == BACKGROUND
+        assert PEN not in shot.colours(0, 0, 500, 500), "no trail before the turtle moved"
+
+        leader, follower = pty.openpty()  # teleop reads the keys of a terminal
+        teleop = subprocess.Popen([str(Path(sys.executable).parent / "rosrun"), "turtlesim", "turtle_teleop_key"],
+                                  env=live.env, stdin=follower, stdout=follower, stderr=follower, cwd=tmp_path)
+        os.close(follower)
+        try:
+            wait_until(lambda: bool(sending_to(live.uri, "/teleop_turtle", "/turtle1/cmd_vel")), timeout=20,
+                       what="teleop's publisher to connect to turtlesim")
+            os.write(leader, b"\x1b[A")  # Up: 2 m/s forward for turtlesim's 1 s command timeout
+            wait_until(lambda: live.pose()["x"] > CENTRE + 1.5, timeout=20, what="the turtle to move forward")
+            wait_until(lambda: live.pose()["linear_velocity"] == 0.0, timeout=20, what="the turtle to stop")
+            x_px = round(live.pose()["x"] * 45)
+            wait_until(lambda: shows_the_turtle_at(x_px), what="the turtle drawn where it stopped")
+            shot = screenshot(display, window.id)
+            assert shot.rgb(250 + (x_px - 250) // 3, 250) == PEN, "the trail behind the turtle"
+            assert shot.rgb(5, 5) == BACKGROUND
+            os.write(leader, b"q")
+            teleop.wait(10)
+        finally:
+            if teleop.poll() is None:
+                teleop.kill()
+                teleop.wait()
+            os.close(leader)
+        assert node.popen.poll() is None
+        _, err = node.stop()
+        assert node.popen.returncode == 0
+        assert "Traceback" not in err, err

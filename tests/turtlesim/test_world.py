@@ -191,6 +191,24 @@ def test_snapshot_and_versions() -> None:
     assert snap.turtles[0].x == pytest.approx((CENTRE + 0.016) * 45)
 
 
+def test_a_snapshot_copies_the_pixels_only_after_they_changed() -> None:
+    world = World(rng=random.Random(1))
+    world.reset()
+    first = world.snapshot()
+    world.command("turtle1", 0.0, 0.0, 1.0)  # turning in place draws nothing
+    world.step()
+    turned = world.snapshot()
+    assert turned.version != first.version and turned.turtles != first.turtles
+    assert turned.pixels is first.pixels
+    world.command("turtle1", 1.0, 0.0, 0.0)
+    world.step()
+    moved = world.snapshot()
+    assert moved.pixels is not first.pixels and moved.pixels != first.pixels
+    assert moved.pixels == bytes(world.canvas.pixels)
+    world.clear()
+    assert world.snapshot().pixels == bytes(world.canvas.pixels) != moved.pixels
+
+
 def test_canvas_lines() -> None:
     c = Canvas(20, 20, Rgb(0, 0, 0))
     c.line(2, 10, 17, 10, Rgb(1, 2, 3), 3)
@@ -220,6 +238,8 @@ def test_the_world_knows_nothing_of_ros_and_the_gui_only_the_world() -> None:
         return found
 
     ros = ("rospy", "kame.node", "kame.net", "geometry_msgs", "turtlesim", "std_srvs", "PySide6")
-    for pure in ("world.py", "canvas.py"):
+    for pure in ("world.py", "canvas.py", "window_probe.py"):
         assert not [m for m in imports(pure) if m.startswith(ros) and not m.startswith("kame.turtlesim")]
-    assert {m for m in imports("gui.py") if m.startswith(("kame", "rospy"))} == {"kame.turtlesim.world"}
+    # the GUI draws the world, and its start-up probe speaks window_probe's words (no ROS either)
+    assert {m for m in imports("gui.py") if m.startswith(("kame", "rospy"))} == {
+        "kame.turtlesim.world", "kame.turtlesim.window_probe"}

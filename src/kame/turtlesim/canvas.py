@@ -23,15 +23,18 @@ class Rgb:
 
 
 class Canvas:
-    """A width x height RGB888 raster, rows top to bottom."""
+    """A width x height RGB888 raster, rows top to bottom. `revision` counts the changes, so a
+    reader can tell that its copy of the pixels is still the picture."""
 
     def __init__(self, width: int, height: int, fill: Rgb) -> None:
         self.width = width
         self.height = height
         self.pixels = bytearray(bytes(fill) * (width * height))
+        self.revision = 0
 
     def fill(self, color: Rgb) -> None:
         self.pixels[:] = bytes(color) * (self.width * self.height)
+        self.revision += 1
 
     def pixel(self, x: int, y: int) -> Rgb:
         if not (0 <= x < self.width and 0 <= y < self.height):
@@ -52,6 +55,7 @@ class Canvas:
         top = max(0, math.ceil(min(ys) - 1e-9))
         bottom = min(self.height - 1, math.floor(max(ys) + 1e-9))
         ink = bytes(color)
+        self.revision += 1
         # The stroke: -h <= n.(p - p0) <= h and -h <= u.(p - p0) <= length + h.
         limits = ((nx, ny, -h, h), (ux, uy, -h, length + h))
         for row in range(top, bottom + 1):

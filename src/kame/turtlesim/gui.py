@@ -8,12 +8,14 @@ theta 0. The window is fixed at the world's size and repaints only when the snap
 
 from __future__ import annotations
 
+import functools
 import math
 import sys
 from collections.abc import Callable
+from dataclasses import dataclass
 
 from PySide6.QtCore import QPointF, QRectF, Qt, QTimer
-from PySide6.QtGui import QBrush, QColor, QImage, QPainter, QPaintEvent, QPen, QPolygonF
+from PySide6.QtGui import QBrush, QColor, QImage, QPainter, QPaintEvent, QPen, QPolygonF, QTransform
 from PySide6.QtWidgets import QApplication, QWidget
 
 from kame.turtlesim.world import IMAGE_COUNT, Snapshot, Sprite
@@ -32,42 +34,77 @@ PALETTE: tuple[tuple[str, str, str], ...] = (
 assert len(PALETTE) == IMAGE_COUNT
 
 
+@dataclass(frozen=True)
+class _Look:
+    """One turtle image's pens, brushes and outlines, made once: a frame only places them."""
+    outline: QPen
+    no_pen: QPen
+    skin: QBrush
+    eyes: QBrush
+    shell: QBrush
+    pattern: QBrush
+    tail: QPolygonF
+    hexagon: QPolygonF
+
+
+@functools.cache
+def _look(image: int) -> _Look:
+    shell, pattern, skin = (QColor(c) for c in PALETTE[image % len(PALETTE)])
+    return _Look(
+        outline=QPen(QColor("#1a1a1a"), 1.2), no_pen=QPen(Qt.PenStyle.NoPen), skin=QBrush(skin),
+        eyes=QBrush(QColor("#111111")), shell=QBrush(shell), pattern=QBrush(pattern),
+        tail=QPolygonF([QPointF(-13.0, -2.5), QPointF(-20.0, 0.0), QPointF(-13.0, 2.5)]),
+        hexagon=QPolygonF([QPointF(5.0 * math.cos(k * math.pi / 3), 5.0 * math.sin(k * math.pi / 3))
+                           for k in range(6)]))
+
+
 def draw_turtle(painter: QPainter, sprite: Sprite) -> None:
-    """A top view of a turtle about 45 px long, centred on its position, heading theta."""
-    shell, pattern, skin = (QColor(c) for c in PALETTE[sprite.image % len(PALETTE)])
-    outline = QPen(QColor("#1a1a1a"), 1.2)
-    painter.save()
-    painter.setRenderHint(QPainter.RenderHint.Antialiasing, True)
-    painter.translate(sprite.x, sprite.y)
-    painter.rotate(-math.degrees(sprite.theta))  # window y points down: CCW is negative
-    painter.setPen(outline)
-    painter.setBrush(QBrush(skin))
+    """A top view of a turtle about 45 px long, centred on its position, heading theta.
+
+    The transform is set whole (setTransform) and reset after, never save()/restore(): every
+    call of a void Qt method costs PySide6 6.12.0 a reference to None, and save/restore is two
+    more of them per turtle per frame (see paint())."""
+    look = _look(sprite.image)
+    place = QTransform()
+    place.translate(sprite.x, sprite.y)
+    place.rotate(-math.degrees(sprite.theta))  # window y points down: CCW is negative
+    painter.setTransform(place)
+    painter.setPen(look.outline)
+    painter.setBrush(look.skin)
     for fx, fy in ((9.0, 11.0), (9.0, -11.0), (-9.0, 11.0), (-9.0, -11.0)):  # flippers
         painter.drawEllipse(QPointF(fx, fy), 5.0, 3.5)
-    painter.drawPolygon(QPolygonF([QPointF(-13.0, -2.5), QPointF(-20.0, 0.0), QPointF(-13.0, 2.5)]))  # tail
+    painter.drawPolygon(look.tail)
     painter.drawEllipse(QPointF(16.0, 0.0), 6.0, 5.0)  # head
-    painter.setBrush(QBrush(QColor("#111111")))
-    painter.setPen(Qt.PenStyle.NoPen)
+    painter.setPen(look.no_pen)
+    painter.setBrush(look.eyes)
     painter.drawEllipse(QPointF(19.0, 2.2), 1.1, 1.1)
     painter.drawEllipse(QPointF(19.0, -2.2), 1.1, 1.1)
-    painter.setPen(outline)
-    painter.setBrush(QBrush(shell))
+    painter.setPen(look.outline)
+    painter.setBrush(look.shell)
     painter.drawEllipse(QRectF(-14.0, -11.0, 28.0, 22.0))  # shell
-    painter.setBrush(QBrush(pattern))
-    painter.setPen(Qt.PenStyle.NoPen)
-    hexagon = QPolygonF([QPointF(5.0 * math.cos(a), 5.0 * math.sin(a))
-                         for a in (k * math.pi / 3 for k in range(6))])
-    painter.drawPolygon(hexagon)
+    painter.setPen(look.no_pen)
+    painter.setBrush(look.pattern)
+    painter.drawPolygon(look.hexagon)
     for k in range(6):
         a = k * math.pi / 3 + math.pi / 6
         painter.drawEllipse(QPointF(9.0 * math.cos(a), 7.0 * math.sin(a)), 2.4, 2.0)
-    painter.restore()
+    painter.resetTransform()
 
 
 def paint(painter: QPainter, snapshot: Snapshot) -> None:
+    """One frame: the world's raster as it is (QImage wraps the snapshot's bytes, no copy), then
+    the turtles.
+
+    PySide6-Essentials 6.12.0 decrements None's reference count on every call of a method that
+    returns void (QPainter's setPen, drawEllipse, ..., QWidget.update, QTimer.start alike): on
+    Python 3.10/3.11, where None is not immortal, a process aborts with `Fatal Python error:
+    none_dealloc` after some thousands of calls, whatever the calls are. No way of painting
+    avoids that, so pyproject.toml keeps 6.12.0 out and the node's start-up probe refuses a
+    binding that loses references (the window stays shut, the simulation runs)."""
     image = QImage(snapshot.pixels, snapshot.width, snapshot.height, snapshot.width * 3,
                    QImage.Format.Format_RGB888)
     painter.drawImage(0, 0, image)
+    painter.setRenderHint(QPainter.RenderHint.Antialiasing, True)
     for sprite in snapshot.turtles:
         draw_turtle(painter, sprite)
 
@@ -87,6 +124,7 @@ class TurtleWindow(QWidget):
         self.snapshot = snapshot
         self.setWindowTitle(title)
         self.setFixedSize(snapshot.width, snapshot.height)
+        self.frames_painted = 0
 
     def show_snapshot(self, snapshot: Snapshot) -> None:
         if snapshot.version != self.snapshot.version or snapshot is not self.snapshot:
@@ -97,6 +135,7 @@ class TurtleWindow(QWidget):
         painter = QPainter(self)
         paint(painter, self.snapshot)
         painter.end()
+        self.frames_painted += 1
 
 
 def application() -> QApplication:
@@ -133,3 +172,32 @@ def run_window(frame: Callable[[], Snapshot | None], should_quit: Callable[[], b
     timer.stop()
     window.close()
     return int(status)
+
+
+def references_lost_to_none(calls: int = 200) -> int:
+    """How many references to None `calls` calls of a void Qt method lose (0 on a sound binding;
+    always 0 on Python 3.12+, where None is immortal and cannot be freed)."""
+    point = QPointF(0.0, 0.0)
+    before = sys.getrefcount(None)
+    for _ in range(calls):
+        point.setX(1.0)
+    return before - sys.getrefcount(None)
+
+
+def probe() -> int:
+    """The node's start-up check, run in a child process (Qt aborts a process whose platform
+    plugin cannot load): can this binding draw for hours, and can Qt open its platform?"""
+    from PySide6 import __version__
+
+    from kame.turtlesim.window_probe import PROBE_LEAK, PROBE_OK
+
+    if references_lost_to_none() > 0:
+        print(f"{PROBE_LEAK} {__version__}", flush=True)
+        return 2
+    app = application()
+    print(f"{PROBE_OK} {app.platformName()}", flush=True)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(probe())

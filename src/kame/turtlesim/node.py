@@ -22,15 +22,18 @@ from __future__ import annotations
 import importlib.util
 import io
 import os
+import platform
 import sys
 import threading
 import time
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from typing import Any
 
 import rospy
 from geometry_msgs.msg import Twist
+from kame.net.command import run_command
 from kame.turtlesim.canvas import Rgb
+from kame.turtlesim.window_probe import window_verdict
 from kame.turtlesim.world import (
     DEFAULT_BACKGROUND,
     UPDATE_PERIOD,
@@ -349,15 +352,41 @@ class TurtlesimNode:
             self._turtles = {}
 
 
-def window_problem(args: Sequence[str], env: dict[str, str] | os._Environ[str]) -> str | None:
-    """Why there will be no window (the text said once), or None when Qt can open one."""
+WINDOW_PROBE_SECONDS = 20.0  # Qt starts in well under a second; a loaded machine gets slack
+
+
+def window_problem(args: Sequence[str], env: Mapping[str, str]) -> str | None:
+    """Why there will be no window (the text said once), or None when Qt can open one. The last
+    word is a probe child's (kame.turtlesim.gui's probe): Qt aborts a process whose platform
+    plugin cannot load, and the simulation must not be that process."""
     if "--headless" in args:
         return "--headless: turtlesim runs without a window"
     if not (env.get("DISPLAY") or env.get("WAYLAND_DISPLAY") or env.get("QT_QPA_PLATFORM")):
         return "No display (DISPLAY is not set): turtlesim runs headless, without a window"
     if importlib.util.find_spec("PySide6") is None:
         return "PySide6 is not installed (pip install 'kame[gui]'): turtlesim runs headless, without a window"
-    return None
+    probe = run_command([sys.executable, "-m", "kame.turtlesim.gui"], env={**env, "QT_DEBUG_PLUGINS": "1"},
+                        timeout=WINDOW_PROBE_SECONDS)
+    return window_verdict(probe.returncode, probe.output, platform.python_version())
+
+
+def run_with_window(sim: TurtlesimNode) -> bool:
+    """Step the world from Qt's loop while the window is open; False when the window failed
+    (the caller goes on headless), True when it closed or turtlesim shut down."""
+    from rospy import core
+
+    try:
+        from kame.turtlesim import gui
+
+        with core.main_thread_waiting():  # Ctrl-C ends Qt's loop through is_shutdown, no traceback
+            status = gui.run_window(sim.frame, rospy.is_shutdown, title=WINDOW_TITLE,
+                                    period_ms=round(UPDATE_PERIOD * 1000))
+    except Exception as exc:  # a window that breaks must not take the simulation with it
+        _warn("The window failed (%s: %s): turtlesim continues headless, without a window", type(exc).__name__, exc)
+        return False
+    if status != 0 or not rospy.is_shutdown():
+        rospy.signal_shutdown("window closed")
+    return True
 
 
 def main(argv: Sequence[str] | None = None) -> int:
@@ -372,15 +401,8 @@ def main(argv: Sequence[str] | None = None) -> int:
         if problem is not None:
             _info("%s", problem)
             sim.run_headless()
-        else:
-            from kame.turtlesim import gui
-            from rospy import core
-
-            with core.main_thread_waiting():  # Ctrl-C ends Qt's loop through is_shutdown, no traceback
-                status = gui.run_window(sim.frame, rospy.is_shutdown, title=WINDOW_TITLE,
-                                        period_ms=round(UPDATE_PERIOD * 1000))
-            if status != 0 or not rospy.is_shutdown():
-                rospy.signal_shutdown("window closed")
+        elif not run_with_window(sim):
+            sim.run_headless()
     except KeyboardInterrupt:
         pass
     finally:

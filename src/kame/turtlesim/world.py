@@ -183,6 +183,7 @@ class World:
         self.height = (height - 1) / PIXELS_PER_METRE
         self.background = background
         self.canvas = Canvas(width, height, background)
+        self._pixels = (-1, b"")  # (canvas revision, its pixels): one copy per change, not per frame
         self.time = 0.0
         self.version = 0
         self._rng = rng or random.Random()
@@ -209,7 +210,9 @@ class World:
     def snapshot(self) -> Snapshot:
         sprites = tuple(Sprite(t.name, t.x * PIXELS_PER_METRE, t.y * PIXELS_PER_METRE, t.theta, t.image)
                         for t in self._sorted())
-        return Snapshot(self.width_px, self.height_px, bytes(self.canvas.pixels), sprites, self.version)
+        if self._pixels[0] != self.canvas.revision:
+            self._pixels = (self.canvas.revision, bytes(self.canvas.pixels))
+        return Snapshot(self.width_px, self.height_px, self._pixels[1], sprites, self.version)
 
     # ---------------------------------------------------------------- requests
 

@@ -1,0 +1,105 @@
+"""A real X server for the window tests: a private Xvfb, and what xwininfo and xwd say of it.
+
+Xvfb picks a free display number itself (-displayfd) and is stopped by its PID. Without Xvfb
+(or xwininfo of x11-utils, xwd of x11-apps) the tests that need them skip and say which is missing;
+scripts/install-gui-libs.sh --xvfb installs them.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+import shutil
+import signal
+import struct
+import subprocess
+from collections.abc import Iterator
+from contextlib import contextmanager
+from dataclasses import dataclass
+
+import pytest
+
+
+def require_x_tools() -> None:
+    for tool, package in (("Xvfb", "xvfb"), ("xwininfo", "x11-utils"), ("xwd", "x11-apps")):
+        if shutil.which(tool) is None:
+            pytest.skip(f"{tool} is not installed (apt-get install {package}; scripts/install-gui-libs.sh --xvfb)")
+
+
+@contextmanager
+def xvfb() -> Iterator[str]:
+    """A running Xvfb; yields its DISPLAY (":N")."""
+    require_x_tools()
+    read, write = os.pipe()
+    server = subprocess.Popen(["Xvfb", "-displayfd", str(write), "-screen", "0", "800x600x24", "-nolisten", "tcp"],
+                              pass_fds=(write,), stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    os.close(write)
+    try:
+        with os.fdopen(read) as pipe:
+            number = pipe.readline().strip()  # written once the server accepts clients
+        if not number:
+            raise RuntimeError(f"Xvfb did not start: {server.stderr.read().decode() if server.stderr else ''}")
+        yield f":{number}"
+    finally:
+        if server.poll() is None:
+            os.kill(server.pid, signal.SIGTERM)
+            try:
+                server.wait(10)
+            except subprocess.TimeoutExpired:
+                os.kill(server.pid, signal.SIGKILL)
+                server.wait()
+
+
+@dataclass(frozen=True)
+class XWindow:
+    id: str
+    title: str
+    width: int
+    height: int
+    viewable: bool
+
+
+def find_window(display: str, title: str) -> XWindow | None:
+    """The top-level window called `title` (as xwininfo sees it), or None while there is none."""
+    env = dict(os.environ, DISPLAY=display)
+    tree = subprocess.run(["xwininfo", "-root", "-tree"], env=env, capture_output=True, text=True, timeout=10).stdout
+    match = re.search(r"^\s*(0x[0-9a-f]+) \"" + re.escape(title) + r"\"", tree, re.MULTILINE)
+    if match is None:
+        return None
+    info = subprocess.run(["xwininfo", "-id", match.group(1)], env=env, capture_output=True, text=True,
+                          timeout=10).stdout
+    width = int(re.search(r"Width: (\d+)", info).group(1))  # type: ignore[union-attr]
+    height = int(re.search(r"Height: (\d+)", info).group(1))  # type: ignore[union-attr]
+    return XWindow(match.group(1), title, width, height, "Map State: IsViewable" in info)
+
+
+@dataclass(frozen=True)
+class Screenshot:
+    """An xwd dump of a window (ZPixmap, 24/32 bits per pixel, TrueColor)."""
+    width: int
+    height: int
+    data: bytes
+    bytes_per_line: int
+    bytes_per_pixel: int
+    little_endian: bool
+
+    def rgb(self, x: int, y: int) -> tuple[int, int, int]:
+        i = y * self.bytes_per_line + x * self.bytes_per_pixel
+        pixel = int.from_bytes(self.data[i:i + self.bytes_per_pixel], "little" if self.little_endian else "big")
+        return (pixel >> 16) & 0xFF, (pixel >> 8) & 0xFF, pixel & 0xFF
+
+    def colours(self, x0: int, y0: int, x1: int, y1: int) -> set[tuple[int, int, int]]:
+        return {self.rgb(x, y) for x in range(max(x0, 0), min(x1, self.width))
+                for y in range(max(y0, 0), min(y1, self.height))}
+
+
+def screenshot(display: str, window_id: str) -> Screenshot:
+    """What the X server shows of a window (xwd), read as XWD's documented header says."""
+    dump = subprocess.run(["xwd", "-silent", "-id", window_id], env=dict(os.environ, DISPLAY=display),
+                          capture_output=True, timeout=20, check=True).stdout
+    header = struct.unpack(">25I", dump[:100])
+    header_size, pixmap_format, width, height = header[0], header[2], header[4], header[5]
+    byte_order, bits_per_pixel, bytes_per_line, ncolors = header[7], header[11], header[12], header[19]
+    assert pixmap_format == 2 and bits_per_pixel in (24, 32), header  # ZPixmap, true colour
+    start = header_size + 12 * ncolors
+    return Screenshot(width, height, dump[start:], bytes_per_line, bits_per_pixel // 8, byte_order == 0)
