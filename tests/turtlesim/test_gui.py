@@ -189,3 +189,23 @@ def test_the_window_on_a_real_x_server_and_teleop_moves_the_turtle(tmp_path: Pat
         _, err = node.stop()
         assert node.popen.returncode == 0
         assert "Traceback" not in err, err
+
+
+def test_the_simulation_outlives_its_x_server(tmp_path: Path) -> None:
+    """The window is a process of its own: when the X server goes, Qt ends it, not turtlesim."""
+    from tests.turtlesim.sim import master, wait_until
+    from tests.turtlesim.xserver import find_window, xvfb
+
+    with master(tmp_path) as live:
+        with xvfb() as display:
+            env = dict(live.env, DISPLAY=display)
+            env.pop("QT_QPA_PLATFORM", None)
+            node = live.start("turtlesim", "turtlesim_node", env=env, wait="Spawning turtle [turtle1]")
+            wait_until(lambda: find_window(display, "TurtleSim") is not None, timeout=20, what="the window")
+        wait_until(lambda: "The window ended" in "".join(node.err), what="turtlesim's warning")  # WARN: stderr
+        assert "turtlesim continues headless, without a window" in "".join(node.err)
+        assert node.popen.poll() is None
+        live.run("rostopic", "pub", "-1", "/turtle1/cmd_vel", "geometry_msgs/Twist", "[2, 0, 0]", "[0, 0, 0]")
+        wait_until(lambda: live.pose()["x"] > CENTRE + 0.5, timeout=20, what="the turtle to move, headless")
+        _, err = node.stop()
+        assert node.popen.returncode == 0 and "Traceback" not in err, err
