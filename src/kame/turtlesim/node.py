@@ -30,6 +30,7 @@ import sys
 import threading
 import time
 from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass
 from typing import Any
 
 import rospy
@@ -364,19 +365,27 @@ class TurtlesimNode:
 WINDOW_PROBE_SECONDS = 20.0  # Qt starts in well under a second; a loaded machine gets slack
 
 
-def window_problem(args: Sequence[str], env: Mapping[str, str]) -> str | None:
-    """Why there will be no window (the text said once), or None when Qt can open one. The last
-    word is a probe child's (kame.turtlesim.gui's probe): Qt aborts a process whose platform
-    plugin cannot load, and the simulation must not be that process."""
+@dataclass(frozen=True)
+class NoWindow:
+    reason: str  # said once
+    asked_for: bool  # --headless or no display (an INFO line), else something is wrong (a WARN)
+
+
+def window_problem(args: Sequence[str], env: Mapping[str, str]) -> NoWindow | None:
+    """Why there will be no window, or None when Qt can open one. The last word is a probe
+    child's (kame.turtlesim.gui's probe): Qt aborts a process whose platform plugin cannot load,
+    and the simulation must not be that process."""
     if "--headless" in args:
-        return "--headless: turtlesim runs without a window"
+        return NoWindow("--headless: turtlesim runs without a window", True)
     if not (env.get("DISPLAY") or env.get("WAYLAND_DISPLAY") or env.get("QT_QPA_PLATFORM")):
-        return "No display (DISPLAY is not set): turtlesim runs headless, without a window"
+        return NoWindow("No display (DISPLAY is not set): turtlesim runs headless, without a window", True)
     if importlib.util.find_spec("PySide6") is None:
-        return "PySide6 is not installed (pip install 'kame[gui]'): turtlesim runs headless, without a window"
+        return NoWindow("PySide6 is not installed (pip install 'kame[gui]'): turtlesim runs headless, "
+                        "without a window", False)
     probe = run_command([sys.executable, "-m", "kame.turtlesim.gui"], env={**env, "QT_DEBUG_PLUGINS": "1"},
                         timeout=WINDOW_PROBE_SECONDS)
-    return window_verdict(probe.returncode, probe.output, platform.python_version())
+    verdict = window_verdict(probe.returncode, probe.output, platform.python_version())
+    return NoWindow(verdict, False) if verdict is not None else None
 
 
 def window_command() -> list[str]:
@@ -408,7 +417,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     window = None
     try:
         if problem is not None:
-            _info("%s", problem)
+            (_info if problem.asked_for else _warn)("%s", problem.reason)
         else:
             window = open_window()
         sim.run(show=window.offer if window is not None else None)
