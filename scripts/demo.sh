@@ -19,9 +19,8 @@ export PATH="$PWD/.venv/bin:$PATH"
 export ROS_MASTER_URI=${ROS_MASTER_URI:-http://localhost:11311/}
 port=${ROS_MASTER_URI##*:}; port=${port%%/*}
 
-headless=false
+# turtlesim itself decides whether it can have a window, and says why not.
 if [ -z "${DISPLAY:-}${WAYLAND_DISPLAY:-}${QT_QPA_PLATFORM:-}" ]; then
-  headless=true
   echo "kame demo: no display (DISPLAY is not set), so turtlesim runs headless (try: rostopic echo /turtle1/pose)." >&2
 else
   # Qt's X11 plugin needs system libraries a fresh Debian lacks; turtlesim checks before it
@@ -34,4 +33,4 @@ kame demo: turtlesim with a turtle drawing squares (Ctrl-C stops it).
     source $PWD/.venv/bin/activate
     rosrun turtlesim turtle_teleop_key
 MSG
-exec roslaunch -p "$port" turtlesim demo.launch headless:="$headless"
+exec roslaunch -p "$port" turtlesim demo.launch

@@ -37,5 +37,8 @@ else
   exit 0
 fi
 echo "install-gui-libs: installing ${missing[*]}" >&2
-"${as_root[@]}" apt-get update -qq
-"${as_root[@]}" env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+if ! { "${as_root[@]}" apt-get update -qq &&
+       "${as_root[@]}" env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends \
+         "${missing[@]}" >/dev/null; }; then
+  echo "install-gui-libs: apt-get failed; turtlesim will name what it misses, and the Xvfb tests skip" >&2
+fi

@@ -107,14 +107,15 @@ def test_twenty_thousand_frames_in_one_process(qt_env: dict[str, str]) -> None:
 
 
 def test_no_window_and_the_reason_when_qt_cannot_open_one(tmp_path: Path) -> None:
-    from tests.turtlesim.sim import master
+    from tests.turtlesim.sim import master, wait_until
 
     with master(tmp_path) as live:
         env = dict(live.env, DISPLAY=":4093")  # no X server there
         env.pop("QT_QPA_PLATFORM", None)
-        node = live.start("turtlesim", "turtlesim_node", env=env, wait="runs headless, without a window")
-        reason = node.wait_line("without a window")
-        assert "Qt cannot" in reason, reason
+        node = live.start("turtlesim", "turtlesim_node", env=env, wait="Spawning turtle [turtle1]")
+        wait_until(lambda: "without a window" in "".join(node.err), what="the reason, a warning (stderr)")
+        reason = "".join(node.err)
+        assert "[ WARN]" in reason and "Qt cannot" in reason and "runs headless" in reason, reason
         assert live.pose()["x"] == pytest.approx(5.544444561004639)  # the simulation runs all the same
         assert node.popen.poll() is None
 
@@ -189,3 +190,23 @@ def test_the_window_on_a_real_x_server_and_teleop_moves_the_turtle(tmp_path: Pat
         _, err = node.stop()
         assert node.popen.returncode == 0
         assert "Traceback" not in err, err
+
+
+def test_the_simulation_outlives_its_x_server(tmp_path: Path) -> None:
+    """The window is a process of its own: when the X server goes, Qt ends it, not turtlesim."""
+    from tests.turtlesim.sim import master, wait_until
+    from tests.turtlesim.xserver import find_window, xvfb
+
+    with master(tmp_path) as live:
+        with xvfb() as display:
+            env = dict(live.env, DISPLAY=display)
+            env.pop("QT_QPA_PLATFORM", None)
+            node = live.start("turtlesim", "turtlesim_node", env=env, wait="Spawning turtle [turtle1]")
+            wait_until(lambda: find_window(display, "TurtleSim") is not None, timeout=20, what="the window")
+        wait_until(lambda: "The window ended" in "".join(node.err), what="turtlesim's warning")  # WARN: stderr
+        assert "turtlesim continues headless, without a window" in "".join(node.err)
+        assert node.popen.poll() is None
+        live.run("rostopic", "pub", "-1", "/turtle1/cmd_vel", "geometry_msgs/Twist", "[2, 0, 0]", "[0, 0, 0]")
+        wait_until(lambda: live.pose()["x"] > CENTRE + 0.5, timeout=20, what="the turtle to move, headless")
+        _, err = node.stop()
+        assert node.popen.returncode == 0 and "Traceback" not in err, err

@@ -1,6 +1,8 @@
 """turtlesim's window: draws world snapshots with Qt (PySide6, the optional `kame[gui]` extra).
 
-Rules: knows only the world (kame.turtlesim.world's Snapshot), never ROS. The background and
+Rules: knows only the world (kame.turtlesim.world's Snapshot), never ROS. It runs in a process
+of its own (`python -m kame.turtlesim.gui --window TITLE`), fed frames on its stdin by the
+node, so that a window that dies (its X server gone, Qt aborting) leaves the simulation running. The background and
 trails come from the world's raster as they are; the turtles are kame's own drawings, made
 with QPainter (no image files), one of IMAGE_COUNT shell colours per turtle, facing +x at
 theta 0. The window is fixed at the world's size and repaints only when the snapshot changed.
@@ -10,14 +12,16 @@ from __future__ import annotations
 
 import functools
 import math
+import os
 import sys
-from collections.abc import Callable
+from collections.abc import Sequence
 from dataclasses import dataclass
 
-from PySide6.QtCore import QPointF, QRectF, Qt, QTimer
+from PySide6.QtCore import QPointF, QRectF, QSocketNotifier, Qt
 from PySide6.QtGui import QBrush, QColor, QImage, QPainter, QPaintEvent, QPen, QPolygonF, QTransform
 from PySide6.QtWidgets import QApplication, QWidget
 
+from kame.turtlesim.frame_codec import FrameDecoder, FrameError
 from kame.turtlesim.world import IMAGE_COUNT, Snapshot, Sprite
 
 # (shell, shell pattern, skin): one per turtle image
@@ -138,40 +142,46 @@ class TurtleWindow(QWidget):
         self.frames_painted += 1
 
 
-def application() -> QApplication:
+def application(program: str | None = None) -> QApplication:
+    """This process's QApplication; `program` names it to the window system (WM_CLASS)."""
     app = QApplication.instance()
     if isinstance(app, QApplication):
         return app
-    return QApplication(sys.argv[:1])
+    return QApplication([program] if program else sys.argv[:1])
 
 
-def run_window(frame: Callable[[], Snapshot | None], should_quit: Callable[[], bool], title: str,
-               period_ms: int) -> int:
-    """Call `frame` every `period_ms` and show what it returns (None: nothing changed) until
-    `should_quit` says so or the window is closed. Returns Qt's exit status."""
-    app = application()
-    first = frame()
-    while first is None:
-        first = frame()
+def show_frames(fd: int, title: str) -> int:
+    """The window process: draw the frames (kame.turtlesim.frame_codec) that arrive on `fd` until
+    they end (EOF: the simulation is gone or closed us) or the user closes the window. A
+    broken frame ends it with status 3; Qt itself ends it when its display goes away."""
+    decoder = FrameDecoder()
+    while (first := decoder.latest()) is None:
+        data = os.read(fd, 1 << 20)
+        if not data:
+            return 0
+        decoder.feed(data)
+    app = application("turtlesim_node")
     window = TurtleWindow(first, title)
     window.show()
 
-    def on_timer() -> None:
-        if should_quit():
-            app.quit()
+    def on_readable() -> None:
+        try:
+            data = os.read(fd, 1 << 20)
+            if not data:
+                app.exit(0)
+                return
+            decoder.feed(data)
+        except (OSError, FrameError) as exc:
+            print(f"turtlesim window: {exc}", file=sys.stderr, flush=True)
+            app.exit(3)
             return
-        snapshot = frame()
-        if snapshot is not None:
-            window.show_snapshot(snapshot)
+        latest = decoder.latest()
+        if latest is not None:
+            window.show_snapshot(latest)
 
-    timer = QTimer()
-    timer.setTimerType(Qt.TimerType.PreciseTimer)
-    timer.timeout.connect(on_timer)
-    timer.start(period_ms)
-    status = app.exec()
-    timer.stop()
-    window.close()
-    return int(status)
+    notifier = QSocketNotifier(fd, QSocketNotifier.Type.Read)
+    notifier.activated.connect(on_readable)
+    return int(app.exec())
 
 
 def references_lost_to_none(calls: int = 200) -> int:
@@ -199,5 +209,12 @@ def probe() -> int:
     return 0
 
 
+def main(argv: Sequence[str]) -> int:
+    """`python -m kame.turtlesim.gui`: the probe; `... --window TITLE`: the window process."""
+    if argv[:1] == ["--window"]:
+        return show_frames(sys.stdin.fileno(), argv[1] if len(argv) > 1 else "TurtleSim")
+    return probe()
+
+
 if __name__ == "__main__":
-    sys.exit(probe())
+    sys.exit(main(sys.argv[1:]))

@@ -14,7 +14,10 @@ and world steps into ROS traffic, as turtlesim 0.10.2's TurtleFrame and Turtle d
 What kame adds: a cmd_vel or request with NaN/infinity is refused (the real turtle would
 vanish into NaN); the pre-0.9.2 global /background_r etc. of older tutorials are honoured
 while the private ones keep the values turtlesim gave them; with no display, or --headless,
-or without PySide6, the simulation runs without a window and says so once.
+or without PySide6, or when a probe child finds that Qt cannot open a window (a missing system
+library, a Qt binding known to crash), the simulation runs without a window and says why once.
+The window is a process of its own, fed snapshots (kame.net.feed): when it dies (its X server
+gone) the simulation goes on headless and says so; when the user closes it, turtlesim ends.
 """
 
 from __future__ import annotations
@@ -27,12 +30,15 @@ import sys
 import threading
 import time
 from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass
 from typing import Any
 
 import rospy
 from geometry_msgs.msg import Twist
 from kame.net.command import run_command
+from kame.net.feed import ChildFeed
 from kame.turtlesim.canvas import Rgb
+from kame.turtlesim.frame_codec import FrameEncoder
 from kame.turtlesim.window_probe import window_verdict
 from kame.turtlesim.world import (
     DEFAULT_BACKGROUND,
@@ -333,11 +339,15 @@ class TurtlesimNode:
             self._drawn = self.world.version
             return self.world.snapshot()
 
-    def run_headless(self) -> None:
-        """Step every UPDATE_PERIOD until shutdown; a late step is not made up for by a burst."""
+    def run(self, show: Callable[[Snapshot], None] | None = None) -> None:
+        """Step every UPDATE_PERIOD until shutdown, handing `show` each snapshot that differs from
+        the last; a late step is not made up for by a burst."""
         deadline = time.monotonic()
         while not rospy.is_shutdown():
-            self.tick()
+            if show is None:
+                self.tick()
+            elif (snapshot := self.frame()) is not None:
+                show(snapshot)
             deadline += UPDATE_PERIOD
             delay = deadline - time.monotonic()
             if delay < -0.1:
@@ -355,38 +365,45 @@ class TurtlesimNode:
 WINDOW_PROBE_SECONDS = 20.0  # Qt starts in well under a second; a loaded machine gets slack
 
 
-def window_problem(args: Sequence[str], env: Mapping[str, str]) -> str | None:
-    """Why there will be no window (the text said once), or None when Qt can open one. The last
-    word is a probe child's (kame.turtlesim.gui's probe): Qt aborts a process whose platform
-    plugin cannot load, and the simulation must not be that process."""
+@dataclass(frozen=True)
+class NoWindow:
+    reason: str  # said once
+    asked_for: bool  # --headless or no display (an INFO line), else something is wrong (a WARN)
+
+
+def window_problem(args: Sequence[str], env: Mapping[str, str]) -> NoWindow | None:
+    """Why there will be no window, or None when Qt can open one. The last word is a probe
+    child's (kame.turtlesim.gui's probe): Qt aborts a process whose platform plugin cannot load,
+    and the simulation must not be that process."""
     if "--headless" in args:
-        return "--headless: turtlesim runs without a window"
+        return NoWindow("--headless: turtlesim runs without a window", True)
     if not (env.get("DISPLAY") or env.get("WAYLAND_DISPLAY") or env.get("QT_QPA_PLATFORM")):
-        return "No display (DISPLAY is not set): turtlesim runs headless, without a window"
+        return NoWindow("No display (DISPLAY is not set): turtlesim runs headless, without a window", True)
     if importlib.util.find_spec("PySide6") is None:
-        return "PySide6 is not installed (pip install 'kame[gui]'): turtlesim runs headless, without a window"
+        return NoWindow("PySide6 is not installed (pip install 'kame[gui]'): turtlesim runs headless, "
+                        "without a window", False)
     probe = run_command([sys.executable, "-m", "kame.turtlesim.gui"], env={**env, "QT_DEBUG_PLUGINS": "1"},
                         timeout=WINDOW_PROBE_SECONDS)
-    return window_verdict(probe.returncode, probe.output, platform.python_version())
+    verdict = window_verdict(probe.returncode, probe.output, platform.python_version())
+    return NoWindow(verdict, False) if verdict is not None else None
 
 
-def run_with_window(sim: TurtlesimNode) -> bool:
-    """Step the world from Qt's loop while the window is open; False when the window failed
-    (the caller goes on headless), True when it closed or turtlesim shut down."""
-    from rospy import core
+def window_command() -> list[str]:
+    return [sys.executable, "-m", "kame.turtlesim.gui", "--window", WINDOW_TITLE]
 
-    try:
-        from kame.turtlesim import gui
 
-        with core.main_thread_waiting():  # Ctrl-C ends Qt's loop through is_shutdown, no traceback
-            status = gui.run_window(sim.frame, rospy.is_shutdown, title=WINDOW_TITLE,
-                                    period_ms=round(UPDATE_PERIOD * 1000))
-    except Exception as exc:  # a window that breaks must not take the simulation with it
-        _warn("The window failed (%s: %s): turtlesim continues headless, without a window", type(exc).__name__, exc)
-        return False
-    if status != 0 or not rospy.is_shutdown():
-        rospy.signal_shutdown("window closed")
-    return True
+def open_window() -> ChildFeed[Snapshot]:
+    """The window, a process of its own fed snapshots: when it dies, the simulation goes on."""
+    encoder = FrameEncoder()
+
+    def ended(status: int) -> None:
+        if status == 0:  # the user closed it: turtlesim ends, as ROS's does
+            rospy.signal_shutdown("window closed")
+            return
+        how = f"signal {-status}" if status < 0 else f"status {status}"
+        _warn("The window ended (%s): turtlesim continues headless, without a window", how)
+
+    return ChildFeed(window_command(), encoder.encode, ended)
 
 
 def main(argv: Sequence[str] | None = None) -> int:
@@ -397,15 +414,18 @@ def main(argv: Sequence[str] | None = None) -> int:
     sim = TurtlesimNode(World())
     sim.start()
     problem = window_problem(args, os.environ)
+    window = None
     try:
         if problem is not None:
-            _info("%s", problem)
-            sim.run_headless()
-        elif not run_with_window(sim):
-            sim.run_headless()
+            (_info if problem.asked_for else _warn)("%s", problem.reason)
+        else:
+            window = open_window()
+        sim.run(show=window.offer if window is not None else None)
     except KeyboardInterrupt:
         pass
     finally:
+        if window is not None:
+            window.close()
         sim.shutdown()
         rospy.signal_shutdown("turtlesim exiting")
     return 0
