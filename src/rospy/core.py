@@ -14,6 +14,7 @@ from collections.abc import Callable, Iterator
 from typing import Any
 
 from kame import names
+from kame.arity import accepts
 from kame.node.node import Node
 
 _node: Node | None = None
@@ -153,9 +154,9 @@ def add_preshutdown_hook(hook: Callable[..., Any]) -> None:
 
 def _call_hook(hook: Callable[..., Any], reason: str) -> None:
     try:
-        try:
+        if accepts(hook, 1):
             hook(reason)
-        except TypeError:
+        else:
             hook()
     except Exception:
         log.exception("shutdown hook %s failed", hook)
