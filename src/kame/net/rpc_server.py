@@ -46,6 +46,7 @@ class RpcServer:
         # each open connection -> when it last received bytes or answered a request
         self._connections: dict[socket.socket, float] = {}
         self._connection_threads: set[threading.Thread] = set()
+        self._starved = AcceptStarvation(self.sock)
         self._thread = threading.Thread(target=self._accept_loop, name=name, daemon=True)
 
     def start(self) -> None:
@@ -55,6 +56,7 @@ class RpcServer:
         """Stop accepting, end every connection and wait up to `timeout` for their threads."""
         deadline = time.monotonic() + timeout
         self._closing = True
+        self._starved.stop()
         try:
             self.sock.shutdown(socket.SHUT_RDWR)
         except OSError:
@@ -74,7 +76,7 @@ class RpcServer:
             thread.join(max(0.0, deadline - time.monotonic()))
 
     def _accept_loop(self) -> None:
-        starved = AcceptStarvation(self.sock)
+        starved = self._starved
         last_warning, evicted = -1.0, 0
         while not self._closing:
             try:

@@ -359,11 +359,12 @@ class Listener:
         self.port: int = self.sock.getsockname()[1]
         self._on_accept = on_accept
         self._closing = False
+        self._starved = AcceptStarvation(self.sock)
         self._thread = threading.Thread(target=self._run, name=name, daemon=True)
         self._thread.start()
 
     def _run(self) -> None:
-        starved = AcceptStarvation(self.sock)
+        starved = self._starved
         while not self._closing:
             try:
                 conn, addr = self.sock.accept()
@@ -381,6 +382,7 @@ class Listener:
 
     def close(self) -> None:
         self._closing = True
+        self._starved.stop()
         _shutdown(self.sock)
         self.sock.close()
         self._thread.join(timeout=1.0)
@@ -390,13 +392,18 @@ class AcceptStarvation:
     """What an accept loop does when accept() fails. Out of file descriptors (or memory), the
     pending connection stays queued and accept() fails again at once: retrying straight away
     spun a CPU at 100% and logged nothing. We log once per episode and pause before retrying;
-    other failures (a client that reset before we got to it) retry at once, silently."""
+    other failures (a client that reset before we got to it) retry at once, silently. The
+    pause ends at once when the owner closes the server (`stop()`)."""
 
     PAUSE = 0.1
 
     def __init__(self, sock: socket.socket) -> None:
         self._sock = sock
         self._logged = False
+        self._stopped = threading.Event()
+
+    def stop(self) -> None:
+        self._stopped.set()
 
     def failed(self, exc: OSError) -> None:
         if exc.errno not in _STARVED:
@@ -405,7 +412,7 @@ class AcceptStarvation:
             self._logged = True
             log.error("cannot accept connections on %s: %s; retrying every %.1f s until it clears",
                       _local(self._sock), exc, self.PAUSE)
-        time.sleep(self.PAUSE)
+        self._stopped.wait(self.PAUSE)
 
     def ok(self) -> None:
         if self._logged:
