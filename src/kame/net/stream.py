@@ -341,7 +341,7 @@ class Receiver:
 
     def close(self) -> None:
         self._closing = True
-        _shutdown(self.sock)
+        shut_down(self.sock)
         if self._thread.is_alive() and self._thread is not threading.current_thread():
             self._thread.join(timeout=1.0)
 
@@ -383,7 +383,7 @@ class Listener:
     def close(self) -> None:
         self._closing = True
         self._starved.stop()
-        _shutdown(self.sock)
+        shut_down(self.sock)
         self.sock.close()
         self._thread.join(timeout=1.0)
 
@@ -430,7 +430,9 @@ def _local(sock: socket.socket) -> str:
         return "?"
 
 
-def _shutdown(sock: socket.socket) -> None:
+def shut_down(sock: socket.socket) -> None:
+    """End both directions now: a thread blocked reading `sock` wakes (closing alone would not
+    wake it). The caller still closes the socket."""
     try:
         sock.shutdown(socket.SHUT_RDWR)
     except OSError:

@@ -18,16 +18,15 @@ from __future__ import annotations
 import itertools
 import logging
 import os
-import socket
 import threading
 import time
 from collections.abc import Callable
-from typing import Any, NamedTuple
+from typing import TYPE_CHECKING, Any, NamedTuple
 
 from kame import names
 from kame.arity import accepts
 from kame.net.rpc_server import RpcServer
-from kame.net.stream import Flusher, Listener, peer_of
+from kame.net.stream import Flusher, Listener, peer_of, shut_down
 from kame.net.workers import WorkerPool
 from kame.node.master_proxy import MasterError, MasterProxy
 from kame.node.services import ServiceClient, ServiceHandler, ServiceServer
@@ -35,6 +34,9 @@ from kame.node.tcpros import ClosedBeforeHeader, HandshakeError, read_header, wr
 from kame.node.topics import Callback, Publication, SubscriberLink, Subscription
 from kame.protocol import tcpros
 from kame.protocol.xmlrpc import Fault, MalformedError, decode_request, encode_fault, encode_response
+
+if TYPE_CHECKING:
+    import socket
 
 log = logging.getLogger("kame.node")
 
@@ -397,7 +399,7 @@ class Node:
         with self._lock:
             handshaking = list(self._handshaking)
         for sock in handshaking:  # wakes the workers reading their headers
-            _shut(sock)
+            shut_down(sock)
         self.workers.close(timeout=_left(deadline))
         self.rpc.close(timeout=_left(deadline))
         self.flusher.close()
@@ -441,13 +443,6 @@ class _Throttled:
 
 def _left(deadline: float) -> float:
     return max(0.0, deadline - time.monotonic())
-
-
-def _shut(sock: socket.socket) -> None:
-    try:
-        sock.shutdown(socket.SHUT_RDWR)
-    except OSError:
-        pass
 
 
 def _subvalue(value: Any, path: str) -> Any:

@@ -16,19 +16,20 @@ from __future__ import annotations
 
 import io
 import logging
-import socket
 import struct
 import threading
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
-from kame.net.stream import Receiver, Sender, connect, peer_of, set_keepalive, set_nodelay
+from kame.net.stream import Receiver, Sender, connect, peer_of, set_keepalive, set_nodelay, shut_down
 from kame.net.xmlrpc_proxy import XmlRpcProxy
 from kame.node.master_proxy import unwrap
 from kame.node.tcpros import HandshakeError, read_header_and_rest, write_header
 from kame.protocol import tcpros
 
 if TYPE_CHECKING:
+    import socket
+
     from kame.node.node import Node
 
 log = logging.getLogger("kame.topics")
@@ -161,7 +162,7 @@ class Publication:
         for link in links:
             link.sender.close()
             try:
-                link.sender.sock.shutdown(socket.SHUT_RDWR)
+                shut_down(link.sender.sock)
                 link.sender.sock.close()
             except OSError:
                 pass
@@ -299,7 +300,7 @@ class PublisherLink:
             receiver.close()
         if sock is not None:
             try:
-                sock.shutdown(socket.SHUT_RDWR)  # wakes a handshake read in progress
+                shut_down(sock)  # wakes a handshake read in progress
                 sock.close()
             except OSError:
                 pass
