@@ -1,0 +1,72 @@
+"""rospy's blocking waits end on what they wait for or on shutdown, whichever comes first (one
+event each, no polling): wait_for_message, spin and on_shutdown hooks with either shape."""
+
+from __future__ import annotations
+
+import sys
+import textwrap
+from collections.abc import Iterator
+from pathlib import Path
+
+import pytest
+
+from ..support import Proc, free_port, kame_command, ros_env, wait_for_master
+
+
+@pytest.fixture(scope="module")
+def env(tmp_path_factory: pytest.TempPathFactory) -> Iterator[dict[str, str]]:
+    home = Path(tmp_path_factory.mktemp("rospy_waits"))
+    port = free_port()
+    uri = f"http://127.0.0.1:{port}/"
+    environment = ros_env(home, uri)
+    master = Proc(kame_command("kame.cli.rosmaster", "--core", "-p", str(port)), environment)
+    try:
+        wait_for_master(uri, proc=master)
+        yield environment
+    finally:
+        master.stop()
+
+
+def run(env: dict[str, str], code: str, timeout: float = 30) -> str:
+    proc = Proc([sys.executable, "-c", textwrap.dedent(code)], env)
+    try:
+        proc.popen.wait(timeout)
+    finally:
+        out, err = proc.stop()
+    assert proc.popen.returncode == 0, f"exit {proc.popen.returncode}\n{out}\n{err}"
+    assert "Traceback" not in err, err
+    return out
+
+
+def test_shutdown_ends_wait_for_message_spin_and_runs_both_hook_shapes(env: dict[str, str]) -> None:
+    out = run(env, """
+        import threading
+        import rospy
+        from std_msgs.msg import String
+        rospy.init_node('waiter')
+        rospy.on_shutdown(lambda: print('hook without arguments'))
+        rospy.on_shutdown(lambda reason: print('hook told', reason))
+        waiting = threading.Event()
+        def stop_later():
+            waiting.wait()
+            rospy.signal_shutdown('enough')
+        threading.Thread(target=stop_later).start()
+        def wait():
+            try:
+                rospy.wait_for_message('/never', String)  # no timeout: only shutdown ends it
+            except rospy.ROSInterruptException as e:
+                print('interrupted:', e)
+        waiter = threading.Thread(target=wait)
+        waiter.start()
+        waiting.set()
+        rospy.spin()  # ends with the shutdown too
+        waiter.join()
+        print('spin returned')
+        try:
+            rospy.wait_for_message('/never', String, timeout=5)  # already shut down: at once
+        except rospy.ROSInterruptException as e:
+            print('after shutdown:', e)
+    """)
+    assert sorted(out.splitlines()) == sorted([
+        "hook without arguments", "hook told enough", "interrupted: rospy shutdown", "spin returned",
+        "after shutdown: rospy shutdown"])
