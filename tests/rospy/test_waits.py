@@ -50,7 +50,8 @@ def test_shutdown_ends_wait_for_message_spin_and_runs_both_hook_shapes(env: dict
         def stop_later():
             waiting.wait()
             rospy.signal_shutdown('enough')
-        threading.Thread(target=stop_later).start()
+        stopper = threading.Thread(target=stop_later)
+        stopper.start()
         def wait():
             try:
                 rospy.wait_for_message('/never', String)  # no timeout: only shutdown ends it
@@ -62,6 +63,8 @@ def test_shutdown_ends_wait_for_message_spin_and_runs_both_hook_shapes(env: dict
         rospy.spin()  # ends with the shutdown too
         waiter.join()
         print('spin returned')
+        stopper.join()  # signal_shutdown returns once the node is down
+        print('threads left:', sorted(t.name for t in threading.enumerate() if t is not threading.main_thread()))
         try:
             rospy.wait_for_message('/never', String, timeout=5)  # already shut down: at once
         except rospy.ROSInterruptException as e:
@@ -69,4 +72,4 @@ def test_shutdown_ends_wait_for_message_spin_and_runs_both_hook_shapes(env: dict
     """)
     assert sorted(out.splitlines()) == sorted([
         "hook without arguments", "hook told enough", "interrupted: rospy shutdown", "spin returned",
-        "after shutdown: rospy shutdown"])
+        "after shutdown: rospy shutdown", "threads left: []"])
