@@ -1,5 +1,6 @@
 """rospy's blocking waits end on what they wait for or on shutdown, whichever comes first (one
-event each, no polling): wait_for_message, spin and on_shutdown hooks with either shape."""
+event each, no polling): wait_for_message, spin and on_shutdown hooks with either shape; and
+after shutdown no thread is left running, an action server's included."""
 
 from __future__ import annotations
 
@@ -73,3 +74,26 @@ def test_shutdown_ends_wait_for_message_spin_and_runs_both_hook_shapes(env: dict
     assert sorted(out.splitlines()) == sorted([
         "hook without arguments", "hook told enough", "interrupted: rospy shutdown", "spin returned",
         "after shutdown: rospy shutdown", "threads left: []"])
+
+
+def test_an_action_servers_execute_thread_is_joined_at_shutdown(env: dict[str, str]) -> None:
+    out = run(env, """
+        import threading
+        import actionlib
+        import rospy
+        from actionlib_tutorials.msg import FibonacciAction, FibonacciResult
+        rospy.init_node('action_waiter')
+        def execute(goal):
+            server.set_succeeded(FibonacciResult(sequence=[goal.order]))
+        server = actionlib.SimpleActionServer('fib', FibonacciAction, execute, auto_start=False)
+        server.start()
+        client = actionlib.SimpleActionClient('fib', FibonacciAction)
+        client.wait_for_server()
+        from actionlib_tutorials.msg import FibonacciGoal
+        client.send_goal(FibonacciGoal(order=7))
+        client.wait_for_result()
+        print('result', list(client.get_result().sequence))
+        rospy.signal_shutdown('done')
+        print('threads left:', sorted(t.name for t in threading.enumerate() if t is not threading.main_thread()))
+    """)
+    assert out.splitlines() == ["result [7]", "threads left: []"]
