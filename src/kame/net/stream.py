@@ -115,7 +115,7 @@ class Flusher:
         try:
             while not self._closed:
                 self._apply()
-                for key, mask in self._selector.select(timeout=1.0):
+                for key, mask in self._selector.select():  # changes and close() wake it
                     sender = key.data
                     if sender is None:
                         try:
