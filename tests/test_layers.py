@@ -116,8 +116,7 @@ KNOWN_VIOLATIONS: frozenset[tuple[str, str, str]] = frozenset({
     ("socket", "kame.cli.rostest", "socket"),
     ("socket", "kame.cli.roswtf", "socket"),
     ("socket", "rostest", "xmlrpc.client"),
-    # host-name and address lookups (gethostname, getaddrinfo, a UDP probe), which net/ also has
-    ("socket", "kame.launch.runner", "socket"),
+    # rospy finds the host to advertise itself (gethostname, a UDP probe) instead of asking net/address
     ("socket", "rospy.client", "socket"),
 })
 
