@@ -44,9 +44,10 @@ def test_shutdown_ends_wait_for_message_spin_and_runs_both_hook_shapes(env: dict
         import threading
         import rospy
         from std_msgs.msg import String
+        said = []  # lines from several threads, printed at the end (print is not atomic)
         rospy.init_node('waiter')
-        rospy.on_shutdown(lambda: print('hook without arguments'))
-        rospy.on_shutdown(lambda reason: print('hook told', reason))
+        rospy.on_shutdown(lambda: said.append('hook without arguments'))
+        rospy.on_shutdown(lambda reason: said.append('hook told ' + reason))
         waiting = threading.Event()
         def stop_later():
             waiting.wait()
@@ -57,19 +58,21 @@ def test_shutdown_ends_wait_for_message_spin_and_runs_both_hook_shapes(env: dict
             try:
                 rospy.wait_for_message('/never', String)  # no timeout: only shutdown ends it
             except rospy.ROSInterruptException as e:
-                print('interrupted:', e)
+                said.append('interrupted: ' + str(e))
         waiter = threading.Thread(target=wait)
         waiter.start()
         waiting.set()
         rospy.spin()  # ends with the shutdown too
         waiter.join()
-        print('spin returned')
+        said.append('spin returned')
         stopper.join()  # signal_shutdown returns once the node is down
-        print('threads left:', sorted(t.name for t in threading.enumerate() if t is not threading.main_thread()))
+        left = sorted(t.name for t in threading.enumerate() if t is not threading.main_thread())
+        said.append('threads left: ' + str(left))
         try:
             rospy.wait_for_message('/never', String, timeout=5)  # already shut down: at once
         except rospy.ROSInterruptException as e:
-            print('after shutdown:', e)
+            said.append('after shutdown: ' + str(e))
+        print('\\n'.join(said))
     """)
     assert sorted(out.splitlines()) == sorted([
         "hook without arguments", "hook told enough", "interrupted: rospy shutdown", "spin returned",
