@@ -22,6 +22,9 @@ _ACCEPTED = "This goal has been accepted by the simple action server"
 _SUPERSEDED = "This goal was canceled because another goal was received by the simple action server"
 
 
+EXECUTE_JOIN_TIMEOUT = 2.0
+
+
 class SimpleActionServer:
     def __init__(self, name: str, ActionSpec: Any, execute_cb: Callable[[Any], Any] | None = None,
                  auto_start: bool = True) -> None:
@@ -46,9 +49,14 @@ class SimpleActionServer:
                                           self.internal_preempt_callback, auto_start)
 
     def _terminate(self) -> None:
+        """At shutdown: end the execute loop and join its thread (a goal still running gets a
+        bounded wait; its callback sees rospy.is_shutdown())."""
         with self.execute_condition:
             self.need_to_terminate = True
             self.execute_condition.notify_all()
+        thread = self.execute_thread
+        if thread is not None and thread is not threading.current_thread():
+            thread.join(EXECUTE_JOIN_TIMEOUT)
 
     def start(self) -> None:
         self.action_server.start()
@@ -153,7 +161,7 @@ class SimpleActionServer:
                 if self.need_to_terminate:
                     return
                 if not self.is_new_goal_available():
-                    self.execute_condition.wait(1.0)  # woken by goals and shutdown
+                    self.execute_condition.wait()  # woken by goals and by shutdown (_terminate)
                     continue
             if self.is_active():
                 logerr("Should never reach this code with an active goal")

@@ -211,8 +211,7 @@ def spin() -> None:
     if not core.is_initialized():
         raise ROSInitException("client code must call rospy.init_node() first")
     try:
-        while not core.wait_for_shutdown(0.5):
-            pass
+        core.wait_for_shutdown(None)
     except KeyboardInterrupt:
         core.signal_shutdown("keyboard interrupt")
 
@@ -304,13 +303,12 @@ def wait_for_message(topic: str, topic_type: type[Any], timeout: float | None = 
 
     subscriber = Subscriber(topic, topic_type, callback)
     try:
-        deadline = None if timeout is None else time.monotonic() + timeout
-        while not event.is_set():
-            if core.is_shutdown():
-                raise ROSInterruptException("rospy shutdown")
-            if deadline is not None and time.monotonic() >= deadline:
-                raise ROSException(f"timeout exceeded while waiting for message on topic {topic}")
-            event.wait(0.05)
+        with core.woken_at_shutdown(event):  # the message, or shutdown, sets it
+            event.wait(timeout)
     finally:
         subscriber.unregister()
-    return got[0]
+    if got:
+        return got[0]
+    if core.is_shutdown():
+        raise ROSInterruptException("rospy shutdown")
+    raise ROSException(f"timeout exceeded while waiting for message on topic {topic}")

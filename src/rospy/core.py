@@ -14,6 +14,7 @@ from collections.abc import Callable, Iterator
 from typing import Any
 
 from kame import names
+from kame.arity import accepts
 from kame.node.node import Node
 
 _node: Node | None = None
@@ -103,6 +104,7 @@ def is_shutdown_requested() -> bool:
 
 
 _main_waiting = 0  # >0 while the main thread blocks in one of our waits
+_wakers: set[threading.Event] = set()  # events that shutdown sets (woken_at_shutdown)
 
 
 def wait_for_shutdown(timeout: float | None) -> bool:
@@ -115,6 +117,21 @@ def wait_for_shutdown(timeout: float | None) -> bool:
         return _shutdown.wait(timeout)
     finally:
         _main_waiting -= 1
+
+
+@contextlib.contextmanager
+def woken_at_shutdown(event: threading.Event) -> Iterator[None]:
+    """Within the block, shutdown sets `event` too (at once if it already happened): a wait
+    for "this event or shutdown" is then one wait on `event`, not a poll of both."""
+    with _hooks_lock:
+        _wakers.add(event)
+        if _shutdown.is_set():
+            event.set()
+    try:
+        yield
+    finally:
+        with _hooks_lock:
+            _wakers.discard(event)
 
 
 def main_thread_is_waiting() -> bool:
@@ -153,9 +170,9 @@ def add_preshutdown_hook(hook: Callable[..., Any]) -> None:
 
 def _call_hook(hook: Callable[..., Any], reason: str) -> None:
     try:
-        try:
+        if accepts(hook, 1):
             hook(reason)
-        except TypeError:
+        else:
             hook()
     except Exception:
         log.exception("shutdown hook %s failed", hook)
@@ -171,7 +188,10 @@ def signal_shutdown(reason: str) -> None:
         pre = list(_preshutdown_hooks)
     for hook in pre:
         _call_hook(hook, reason)
-    _shutdown.set()
+    with _hooks_lock:
+        _shutdown.set()
+        for waker in _wakers:
+            waker.set()
     from rospy import rostime
 
     rostime.set_sim_time(rostime._sim_time)  # wake sleepers waiting on simulated time

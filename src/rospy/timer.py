@@ -39,7 +39,7 @@ class Rate:
     """Keeps a loop at `hz` iterations a second: `rate.sleep()` waits out the rest of the period."""
 
     def __init__(self, hz: float, reset: bool = False) -> None:
-        self.last_time = rostime.get_rostime()
+        self.last_time: values.Time = rostime.get_rostime()
         self.sleep_dur = rostime.Duration.from_sec(1.0 / hz)
         self._reset = reset
 

@@ -59,6 +59,7 @@ class Topic(abc.ABC):
 _publications: dict[str, tuple[Publication, list[Publisher]]] = {}
 _subscriptions: dict[str, tuple[Subscription, _Callbacks, list[Subscriber]]] = {}
 _registry_lock = threading.Lock()
+DEFAULT_BUFF_SIZE = 65536  # rospy's
 
 
 class Publisher(Topic):
@@ -75,6 +76,7 @@ class Publisher(Topic):
         self.latch = latch
         self.queue_size = queue_size
         self.headers = headers
+        self.tcp_nodelay = tcp_nodelay
         self.impl: Publication | None = None
         self._listener = subscriber_listener
         self._unregistered = False
@@ -92,7 +94,8 @@ class Publisher(Topic):
             joined = entry is not None
             if entry is None:
                 impl = node.advertise(self.resolved_name, self.type, self.md5sum, self.data_class._full_text,
-                                      self.latch, self.queue_size or 0, self.headers, connected, disconnected)
+                                      self.latch, self.queue_size or 0, self.headers, connected, disconnected,
+                                      self.tcp_nodelay)
                 entry = (impl, [])
                 _publications[self.resolved_name] = entry
             elif entry[0].md5sum != self.md5sum:
@@ -100,6 +103,8 @@ class Publisher(Topic):
                                    f"but it is already published as [{entry[0].type}]")
             entry[1].append(self)
         self.impl = entry[0]
+        if joined and self.tcp_nodelay:  # as rospy: for the topic's connections from now on
+            self.impl.tcp_nodelay = True
         if joined and connected is not None and disconnected is not None:
             self.impl.on_connect.append(connected)
             self.impl.on_disconnect.append(disconnected)
@@ -210,13 +215,20 @@ class _Callbacks:
 
 class Subscriber(Topic):
     def __init__(self, name: str, data_class: type[Any], callback: Callable[..., Any] | None = None,
-                 callback_args: Any = None, queue_size: int | None = None, buff_size: int = 65536,
+                 callback_args: Any = None, queue_size: int | None = None, buff_size: int = DEFAULT_BUFF_SIZE,
                  tcp_nodelay: bool = False) -> None:
+        """`buff_size` is the bytes each read from a publisher asks for, and `tcp_nodelay` asks
+        publishers to send without delay (see kame.node.topics.Subscription)."""
         super().__init__(name, data_class)
+        if type(buff_size) is not int:
+            raise ROSException("buff_size must be an integer")
+        if buff_size <= 0:
+            raise ROSException("buff_size must be positive")
         self.callback = callback
         self.callback_args = callback_args
         self.queue_size = queue_size
         self.tcp_nodelay = tcp_nodelay
+        self.buff_size = buff_size
         self.impl: Subscription | None = None
         self._unregistered = False
         self._when_initialized()
@@ -240,7 +252,7 @@ class Subscriber(Topic):
                 any_type = self.data_class is AnyMsg
                 impl = node.subscribe(self.resolved_name, self.type, "*" if any_type else self.md5sum,
                                       "" if any_type else self.data_class._full_text, callbacks.deliver,
-                                      self.queue_size, self.tcp_nodelay)
+                                      self.queue_size, self.tcp_nodelay, self.buff_size)
                 entry = (impl, callbacks, [])
                 _subscriptions[self.resolved_name] = entry
             elif entry[0].md5sum not in ("*", self.md5sum):
@@ -249,6 +261,11 @@ class Subscriber(Topic):
             entry[2].append(self)
         self.impl = entry[0]
         self._callbacks = entry[1]
+        if joined:  # as rospy: a non-default choice applies to the topic's connections from now on
+            if self.tcp_nodelay:
+                self.impl.tcp_nodelay = True
+            if self.buff_size != DEFAULT_BUFF_SIZE:
+                self.impl.buff_size = self.buff_size
         if joined and mine:
             with entry[0].callback_lock:
                 entry[1].entries = [*entry[1].entries, *mine]

@@ -716,9 +716,8 @@ def cmd_echo(args: list[str]) -> None:
         if echo.count == 0 and not echo.done.is_set():
             sys.stderr.write("WARNING: no messages received and simulated time is active.\n"
                              "Is /clock being published?\n")
-    while not echo.done.is_set():
-        if wait_shutdown(0.05):
-            break
+    _rospy().on_shutdown(echo.done.set)  # Ctrl-C or rosnode kill ends the wait at once
+    echo.done.wait()
     if echo.failure:
         raise RostopicError(echo.failure)
 

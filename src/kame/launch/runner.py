@@ -9,7 +9,6 @@ declaration order. A node that cannot be started is reported and the rest run.
 from __future__ import annotations
 
 import asyncio
-import socket
 import sys
 import time
 from collections.abc import Callable, Mapping
@@ -25,6 +24,7 @@ from kame.launch.errors import LaunchError
 from kame.launch.model import LOCAL_ADDRESSES, LaunchConfig, Node, Param
 from kame.launch.server import LaunchServer, ProcessState
 from kame.launch.supervisor import Child, Monitor, say, say_bold, say_error
+from kame.net.address import is_this_host
 from kame.node.master_proxy import MasterError, MasterProxy
 from kame.param_yaml import ParamValueError, check
 
@@ -107,7 +107,7 @@ class LaunchRun:
             machine = self.config.machines.get(node.machine_name or "")
             if node.machine_name and machine is None:
                 raise LaunchError(f"ERROR: unknown machine [{node.machine_name}]", node.filename, node.line)
-            if machine is not None and machine.address not in LOCAL_ADDRESSES and not _is_this_host(machine.address):
+            if machine is not None and machine.address not in LOCAL_ADDRESSES and not is_this_host(machine.address):
                 raise LaunchError(
                     f"node [{node.resolved_name}] is to run on machine [{machine.name}] ({machine.address}): "
                     "kame does not launch nodes on other machines over ssh yet; run roslaunch there, "
@@ -139,7 +139,7 @@ class LaunchRun:
             self._announce(uri)
             return
         parts = urlsplit(uri)
-        if parts.hostname not in LOCAL_ADDRESSES and not _is_this_host(parts.hostname or ""):
+        if parts.hostname not in LOCAL_ADDRESSES and not is_this_host(parts.hostname or ""):
             raise LaunchError(f"ERROR: unable to contact ROS master at [{uri}]\n"
                               "The traceback for the exception was written to the log file")
         port = self.options.port or parts.port or 11311
@@ -240,7 +240,7 @@ class LaunchRun:
 
     def _local(self, node: Node) -> bool:
         machine = self.config.machines.get(node.machine_name or "")
-        return machine is None or machine.address in LOCAL_ADDRESSES or _is_this_host(machine.address)
+        return machine is None or machine.address in LOCAL_ADDRESSES or is_this_host(machine.address)
 
     async def launch_nodes(self) -> None:
         for node in self.config.nodes:
@@ -260,15 +260,6 @@ class LaunchRun:
         await self.monitor.shutdown()
         say("shutting down processing monitor...")
         say("... shutting down processing monitor complete")
-
-
-def _is_this_host(address: str) -> bool:
-    if address in (socket.gethostname(), socket.getfqdn()):
-        return True
-    try:
-        return address in {a[4][0] for a in socket.getaddrinfo(socket.gethostname(), None)}
-    except OSError:
-        return False
 
 
 def run_dir_of(env: Mapping[str, str], run_id: str) -> Path:

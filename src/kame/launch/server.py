@@ -18,6 +18,7 @@ import logging
 import os
 from collections.abc import Callable
 
+from kame.arity import accepts
 from kame.net.rpc_server import RpcServer
 from kame.protocol.xmlrpc import Fault, MalformedError, decode_request, encode_fault, encode_response
 
@@ -82,10 +83,10 @@ class LaunchServer:
         handler = _METHODS.get(method)
         if handler is None:
             return encode_fault(1, f"<class 'Exception'>:method \"{method}\" is not supported")
+        if not accepts(handler, 1 + len(params)):
+            return encode_fault(1, f"<class 'TypeError'>:{method}: wrong number or type of arguments")
         try:
             return encode_response(handler(self, *params))
-        except TypeError:
-            return encode_fault(1, f"<class 'TypeError'>:{method}: wrong number or type of arguments")
         except Exception as exc:  # a bug reading the process table must not end the server
             log.exception("roslaunch server: %s failed", method)
             return encode_fault(1, f"<class 'Exception'>:{exc}")

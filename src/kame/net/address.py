@@ -39,3 +39,14 @@ def bind_host(override: str | None) -> str:
     if override and _is_loopback(override):
         return "127.0.0.1" if override == "localhost" else override
     return "0.0.0.0"
+
+
+def is_this_host(address: str) -> bool:
+    """Whether `address` (a name or an address) names this machine: its host name, its fully
+    qualified name, or an address its host name resolves to."""
+    if address in (socket.gethostname(), socket.getfqdn()):
+        return True
+    try:
+        return address in {a[4][0] for a in socket.getaddrinfo(socket.gethostname(), None)}
+    except OSError:
+        return False

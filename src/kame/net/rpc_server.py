@@ -45,30 +45,38 @@ class RpcServer:
         self._lock = threading.Lock()
         # each open connection -> when it last received bytes or answered a request
         self._connections: dict[socket.socket, float] = {}
+        self._connection_threads: set[threading.Thread] = set()
+        self._starved = AcceptStarvation(self.sock)
         self._thread = threading.Thread(target=self._accept_loop, name=name, daemon=True)
 
     def start(self) -> None:
         self._thread.start()
 
-    def close(self) -> None:
+    def close(self, timeout: float = 2.0) -> None:
+        """Stop accepting, end every connection and wait up to `timeout` for their threads."""
+        deadline = time.monotonic() + timeout
         self._closing = True
+        self._starved.stop()
         try:
             self.sock.shutdown(socket.SHUT_RDWR)
         except OSError:
             pass
         self.sock.close()
-        with self._lock:
+        if self._thread.is_alive() and self._thread is not threading.current_thread():
+            self._thread.join(max(0.0, deadline - time.monotonic()))
+        with self._lock:  # the accept loop has ended: no connection comes after this
             connections = list(self._connections)
+            threads = [t for t in self._connection_threads if t is not threading.current_thread()]
         for conn in connections:
             try:
                 conn.shutdown(socket.SHUT_RDWR)
             except OSError:
                 pass
-        if self._thread.is_alive() and self._thread is not threading.current_thread():
-            self._thread.join(timeout=1.0)
+        for thread in threads:
+            thread.join(max(0.0, deadline - time.monotonic()))
 
     def _accept_loop(self) -> None:
-        starved = AcceptStarvation(self.sock)
+        starved = self._starved
         last_warning, evicted = -1.0, 0
         while not self._closing:
             try:
@@ -99,7 +107,11 @@ class RpcServer:
                     quietest.shutdown(socket.SHUT_RDWR)  # its thread sees the end and closes it
                 except OSError:
                     pass
-            threading.Thread(target=self._serve, args=(conn,), name=f"{self._name}-conn", daemon=True).start()
+            thread = threading.Thread(target=self._serve, args=(conn,), name=f"{self._name}-conn", daemon=True)
+            with self._lock:
+                self._connection_threads = {t for t in self._connection_threads if t.is_alive()}
+                self._connection_threads.add(thread)
+                thread.start()
 
     def _serve(self, conn: socket.socket) -> None:
         conn.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)

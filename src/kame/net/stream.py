@@ -115,7 +115,7 @@ class Flusher:
         try:
             while not self._closed:
                 self._apply()
-                for key, mask in self._selector.select(timeout=1.0):
+                for key, mask in self._selector.select():  # changes and close() wake it
                     sender = key.data
                     if sender is None:
                         try:
@@ -341,7 +341,7 @@ class Receiver:
 
     def close(self) -> None:
         self._closing = True
-        _shutdown(self.sock)
+        shut_down(self.sock)
         if self._thread.is_alive() and self._thread is not threading.current_thread():
             self._thread.join(timeout=1.0)
 
@@ -359,11 +359,12 @@ class Listener:
         self.port: int = self.sock.getsockname()[1]
         self._on_accept = on_accept
         self._closing = False
+        self._starved = AcceptStarvation(self.sock)
         self._thread = threading.Thread(target=self._run, name=name, daemon=True)
         self._thread.start()
 
     def _run(self) -> None:
-        starved = AcceptStarvation(self.sock)
+        starved = self._starved
         while not self._closing:
             try:
                 conn, addr = self.sock.accept()
@@ -381,7 +382,8 @@ class Listener:
 
     def close(self) -> None:
         self._closing = True
-        _shutdown(self.sock)
+        self._starved.stop()
+        shut_down(self.sock)
         self.sock.close()
         self._thread.join(timeout=1.0)
 
@@ -390,13 +392,18 @@ class AcceptStarvation:
     """What an accept loop does when accept() fails. Out of file descriptors (or memory), the
     pending connection stays queued and accept() fails again at once: retrying straight away
     spun a CPU at 100% and logged nothing. We log once per episode and pause before retrying;
-    other failures (a client that reset before we got to it) retry at once, silently."""
+    other failures (a client that reset before we got to it) retry at once, silently. The
+    pause ends at once when the owner closes the server (`stop()`)."""
 
     PAUSE = 0.1
 
     def __init__(self, sock: socket.socket) -> None:
         self._sock = sock
         self._logged = False
+        self._stopped = threading.Event()
+
+    def stop(self) -> None:
+        self._stopped.set()
 
     def failed(self, exc: OSError) -> None:
         if exc.errno not in _STARVED:
@@ -405,7 +412,7 @@ class AcceptStarvation:
             self._logged = True
             log.error("cannot accept connections on %s: %s; retrying every %.1f s until it clears",
                       _local(self._sock), exc, self.PAUSE)
-        time.sleep(self.PAUSE)
+        self._stopped.wait(self.PAUSE)
 
     def ok(self) -> None:
         if self._logged:
@@ -423,7 +430,9 @@ def _local(sock: socket.socket) -> str:
         return "?"
 
 
-def _shutdown(sock: socket.socket) -> None:
+def shut_down(sock: socket.socket) -> None:
+    """End both directions now: a thread blocked reading `sock` wakes (closing alone would not
+    wake it). The caller still closes the socket."""
     try:
         sock.shutdown(socket.SHUT_RDWR)
     except OSError:

@@ -3,13 +3,15 @@
 Starting a Python thread costs tens of microseconds; a node that accepts a connection per
 service call pays that on every call. Idle workers wait on a queue for the next job and end
 after `idle_timeout`; a job that finds no idle worker gets a new one, so long jobs (a
-persistent service connection) never hold up short ones.
+persistent service connection) never hold up short ones. The pool owns its workers: `close()`
+ends the idle ones and joins them all (a running job's owner must first end what it waits on).
 """
 
 from __future__ import annotations
 
 import queue
 import threading
+import time
 from collections.abc import Callable
 
 _STOP = None
@@ -23,17 +25,20 @@ class WorkerPool:
         self._lock = threading.Lock()
         self._idle = 0
         self._closed = False
+        self._threads: set[threading.Thread] = set()
 
     def submit(self, job: Callable[[], None]) -> None:
         with self._lock:
             if self._closed:
                 return
-            start_one = self._idle == 0
-            if not start_one:
+            self._jobs.put(job)
+            if self._idle:
                 self._idle -= 1
-        self._jobs.put(job)
-        if start_one:
-            threading.Thread(target=self._work, name=self._name, daemon=True).start()
+                return
+            worker = threading.Thread(target=self._work, name=self._name, daemon=True)
+            self._threads = {t for t in self._threads if t.is_alive()}
+            self._threads.add(worker)
+            worker.start()  # under the lock: close() never sees a worker that has not started
 
     def _work(self) -> None:
         while True:
@@ -56,10 +61,15 @@ class WorkerPool:
                     return
                 self._idle += 1
 
-    def close(self) -> None:
-        """Idle workers end; running jobs finish on their own (their owners close their sockets)."""
+    def close(self, timeout: float = 2.0) -> None:
+        """End the idle workers and wait up to `timeout` for every worker to end: the running
+        jobs' owners close what those jobs wait on (their sockets) before closing the pool."""
         with self._lock:
             self._closed = True
             idle, self._idle = self._idle, 0
+            workers = [t for t in self._threads if t is not threading.current_thread()]
         for _ in range(idle):
             self._jobs.put(_STOP)
+        deadline = time.monotonic() + timeout
+        for worker in workers:
+            worker.join(max(0.0, deadline - time.monotonic()))

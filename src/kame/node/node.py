@@ -7,6 +7,10 @@ Nothing here is process-wide; the rospy facade keeps the one node of a rospy pro
 The slave API answers from the node's own tables (requestTopic, publisherUpdate,
 paramUpdate, getBusInfo, getBusStats, getPid, shutdown, ...). Work a call starts that
 could wait on the network (connecting to new publishers) runs on threads of its own.
+
+Every thread the node starts is its own: `spawn` records it, and `shutdown()` closes what the
+thread waits on (sockets, the reconnect back-off's event) and joins it, with a bounded wait,
+so after shutdown no thread of the node is left running.
 """
 
 from __future__ import annotations
@@ -14,15 +18,15 @@ from __future__ import annotations
 import itertools
 import logging
 import os
-import socket
 import threading
 import time
 from collections.abc import Callable
-from typing import Any, NamedTuple
+from typing import TYPE_CHECKING, Any, NamedTuple
 
 from kame import names
+from kame.arity import accepts
 from kame.net.rpc_server import RpcServer
-from kame.net.stream import Flusher, Listener, peer_of
+from kame.net.stream import Flusher, Listener, peer_of, shut_down
 from kame.net.workers import WorkerPool
 from kame.node.master_proxy import MasterError, MasterProxy
 from kame.node.services import ServiceClient, ServiceHandler, ServiceServer
@@ -31,9 +35,13 @@ from kame.node.topics import Callback, Publication, SubscriberLink, Subscription
 from kame.protocol import tcpros
 from kame.protocol.xmlrpc import Fault, MalformedError, decode_request, encode_fault, encode_response
 
+if TYPE_CHECKING:
+    import socket
+
 log = logging.getLogger("kame.node")
 
 HANDSHAKE_TIMEOUT = 10.0
+JOIN_TIMEOUT = 2.0  # how long shutdown waits, in all, for the node's threads to end
 
 
 class NodeConfig(NamedTuple):
@@ -69,6 +77,8 @@ class Node:
         self._shutdown_hooks: list[Callable[[str], None]] = []
         bind = config.bind_host or ("" if config.host not in ("localhost",) and not config.host.startswith("127.")
                                     else config.host)
+        self._threads: set[threading.Thread] = set()
+        self._handshaking: set[socket.socket] = set()  # accepted sockets whose header is still to come
         self.flusher = Flusher(name="kame-flusher")
         self.workers = WorkerPool("kame-handshake")
         self._bad_attempts = _Throttled(log)
@@ -84,8 +94,13 @@ class Node:
         return next(self._ids)
 
     def spawn(self, target: Callable[[], None], name: str) -> threading.Thread:
+        """Run `target` on a thread the node owns: shutdown() joins it. The target must end
+        once the node shuts down (it waits on sockets or events that shutdown closes or sets)."""
         thread = threading.Thread(target=target, name=name, daemon=True)
-        thread.start()
+        with self._lock:
+            self._threads = {t for t in self._threads if t.is_alive()}
+            self._threads.add(thread)
+            thread.start()  # under the lock: shutdown never sees a thread that has not started
         return thread
 
     def resolve(self, name: str) -> str:
@@ -99,18 +114,22 @@ class Node:
     def advertise(self, topic: str, type: str, md5sum: str, definition: str, latch: bool = False,
                   queue_size: int = 0, headers: dict[str, str] | None = None,
                   on_connect: Callable[[SubscriberLink], None] | None = None,
-                  on_disconnect: Callable[[SubscriberLink], None] | None = None) -> Publication:
+                  on_disconnect: Callable[[SubscriberLink], None] | None = None,
+                  tcp_nodelay: bool = False) -> Publication:
         """Publish `topic` (already resolved); registers with the master at once. `headers` are
         extra fields for the connection header subscribers receive. `on_connect`/`on_disconnect`
-        are in place before registering, so no early subscriber is missed."""
+        are in place before registering, so no early subscriber is missed. `tcp_nodelay` is for
+        subscribers that do not ask for it either way in their header (as rospy's)."""
         with self._lock:
             pub = self.publications.get(topic)
             if pub is None:
-                pub = Publication(self, topic, type, md5sum, definition, latch, queue_size, dict(headers or {}))
+                pub = Publication(self, topic, type, md5sum, definition, latch, queue_size, dict(headers or {}),
+                                  tcp_nodelay)
                 self.publications[topic] = pub
             else:
                 pub.latch = pub.latch or latch
                 pub.queue_size = max(pub.queue_size, queue_size)
+                pub.tcp_nodelay = pub.tcp_nodelay or tcp_nodelay
             if on_connect is not None:
                 pub.on_connect.append(on_connect)
             if on_disconnect is not None:
@@ -127,11 +146,13 @@ class Node:
         self._best_effort("unregisterPublisher", topic, self.uri)
 
     def subscribe(self, topic: str, type: str, md5sum: str, definition: str, deliver: Callback,
-                  queue_size: int | None = None, tcp_nodelay: bool = False) -> Subscription:
+                  queue_size: int | None = None, tcp_nodelay: bool = False,
+                  buff_size: int | None = None) -> Subscription:
+        """Subscribe to `topic` (already resolved); see Subscription for tcp_nodelay and buff_size."""
         with self._lock:
             if topic in self.subscriptions:
                 raise ValueError(f"already subscribed to {topic}")
-            sub = Subscription(self, topic, type, md5sum, definition, queue_size, tcp_nodelay, deliver)
+            sub = Subscription(self, topic, type, md5sum, definition, queue_size, tcp_nodelay, deliver, buff_size)
             self.subscriptions[topic] = sub
         publishers = self.master.call("registerSubscriber", topic, type, self.uri)
         sub.set_publishers([str(uri) for uri in publishers])
@@ -178,6 +199,11 @@ class Node:
         self.workers.submit(lambda: self._handshake(sock))
 
     def _handshake(self, sock: socket.socket) -> None:
+        with self._lock:
+            if self.is_shutdown:
+                sock.close()
+                return
+            self._handshaking.add(sock)
         try:
             header = read_header(sock, HANDSHAKE_TIMEOUT)
             sock.settimeout(None)
@@ -185,9 +211,13 @@ class Node:
             sock.close()
             return
         except (OSError, HandshakeError) as exc:
-            self._bad_attempts.warning("bad TCPROS connection attempt from %s: %s", peer_of(sock), exc)
+            if not self.is_shutdown:
+                self._bad_attempts.warning("bad TCPROS connection attempt from %s: %s", peer_of(sock), exc)
             sock.close()
             return
+        finally:
+            with self._lock:
+                self._handshaking.discard(sock)
         kind = tcpros.classify_connection(header)
         try:
             if kind == "topic":
@@ -247,10 +277,10 @@ class Node:
         if invalid is not None:
             log.warning("slave API %s from [%s] refused: %s", method, params[0], invalid)
             return encode_response([-1, invalid, _ERROR_VALUE.get(method, 0)])
+        if not accepts(handler, 1 + len(params)):
+            return encode_response([-1, "Error: bad call arity", 0])
         try:
             return encode_response(handler(self, *params))
-        except TypeError:
-            return encode_response([-1, "Error: bad call arity", 0])
         except Exception as exc:
             log.exception("slave API %s failed", method)
             return encode_response([0, f"internal failure: {exc}", 0])
@@ -364,11 +394,23 @@ class Node:
             self.unadvertise_service(name)
         for key in list(self.param_cache):
             self._best_effort("unsubscribeParam", self.uri, key)
+        deadline = time.monotonic() + JOIN_TIMEOUT
         self.listener.close()
-        self.workers.close()
-        self.rpc.close()
+        with self._lock:
+            handshaking = list(self._handshaking)
+        for sock in handshaking:  # wakes the workers reading their headers
+            shut_down(sock)
+        self.workers.close(timeout=_left(deadline))
+        self.rpc.close(timeout=_left(deadline))
         self.flusher.close()
         self.master.close()
+        with self._lock:
+            threads = [t for t in self._threads if t is not threading.current_thread()]
+        for thread in threads:
+            thread.join(_left(deadline))
+        stuck = [t.name for t in threads if t.is_alive()]
+        if stuck:
+            log.warning("threads still running %.1f s after shutdown began: %s", JOIN_TIMEOUT, ", ".join(stuck))
 
 
 _NO_UPDATE = object()  # no paramUpdate came while subscribeParam was on its way
@@ -397,6 +439,10 @@ class _Throttled:
             self._log.warning(fmt + " (and %d more like it in the last second, not shown)", *args, suppressed)
         else:
             self._log.warning(fmt, *args)
+
+
+def _left(deadline: float) -> float:
+    return max(0.0, deadline - time.monotonic())
 
 
 def _subvalue(value: Any, path: str) -> Any:

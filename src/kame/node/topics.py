@@ -8,27 +8,28 @@ subscriber never slows the publisher or the other subscribers.
 Subscribing connects to each publisher the master names (requestTopic, then a TCPROS
 handshake), reads frames on one thread per publisher and runs the callbacks there, in
 order, one subscription's callbacks never concurrently. When a publisher goes away but is
-still registered, the link is retried with a growing delay.
+still registered, the link is retried with a growing delay, waiting on an event that
+closing the link (and so the node's shutdown) sets: no retry outlives its subscription.
 """
 
 from __future__ import annotations
 
 import io
 import logging
-import socket
 import struct
 import threading
-import time
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
-from kame.net.stream import Receiver, Sender, connect, peer_of, set_keepalive, set_nodelay
+from kame.net.stream import Receiver, Sender, connect, peer_of, set_keepalive, set_nodelay, shut_down
 from kame.net.xmlrpc_proxy import XmlRpcProxy
 from kame.node.master_proxy import unwrap
 from kame.node.tcpros import HandshakeError, read_header_and_rest, write_header
 from kame.protocol import tcpros
 
 if TYPE_CHECKING:
+    import socket
+
     from kame.node.node import Node
 
 log = logging.getLogger("kame.topics")
@@ -36,6 +37,7 @@ log = logging.getLogger("kame.topics")
 _LENGTH = struct.Struct("<I")
 SMALL_FRAME = 64 * 1024
 MAX_FRAME = 1 << 30
+READ_SIZE = 256 * 1024  # bytes a subscriber's read asks for when it names no buff_size
 
 
 class _Chunks(list[Any]):
@@ -77,7 +79,7 @@ class SubscriberLink:
 
 class Publication:
     def __init__(self, node: Node, topic: str, type: str, md5sum: str, definition: str, latch: bool,
-                 queue_size: int, extra_headers: dict[str, str] | None = None) -> None:
+                 queue_size: int, extra_headers: dict[str, str] | None = None, tcp_nodelay: bool = False) -> None:
         self.node = node
         self.topic = topic
         self.type = type
@@ -86,6 +88,8 @@ class Publication:
         self.latch = latch
         self.queue_size = queue_size
         self.extra_headers = extra_headers or {}
+        # TCP_NODELAY for subscribers whose header does not ask either way (rospy's Publisher option)
+        self.tcp_nodelay = tcp_nodelay
         self.links: list[SubscriberLink] = []
         self.latched: list[Any] | None = None
         self.seq = 0
@@ -111,7 +115,7 @@ class Publication:
     def attach(self, sock: socket.socket, accepted: tcpros.SubscriberAccepted) -> None:
         """Finish the handshake of a subscriber our TCPROS server accepted for this topic."""
         write_header(sock, {**accepted.reply, **self.extra_headers})
-        set_nodelay(sock, accepted.tcp_nodelay)
+        set_nodelay(sock, self.tcp_nodelay if accepted.tcp_nodelay is None else accepted.tcp_nodelay)
         set_keepalive(sock)
         peer = peer_of(sock)
         link_box: list[SubscriberLink] = []
@@ -158,7 +162,7 @@ class Publication:
         for link in links:
             link.sender.close()
             try:
-                link.sender.sock.shutdown(socket.SHUT_RDWR)
+                shut_down(link.sender.sock)
                 link.sender.sock.close()
             except OSError:
                 pass
@@ -184,6 +188,8 @@ class PublisherLink:
         self.sock: socket.socket | None = None
         self.bytes_received = 0
         self.closed = False
+        self._closing = threading.Event()  # set by close(): ends a retry's wait at once
+        self._lock = threading.Lock()
         self.connected = False
         self.latching = False
         # With a latching publisher, its last message (a copy: frames are reused buffers), so a
@@ -208,7 +214,8 @@ class PublisherLink:
                 log.log(level, "%s refused our subscription to %s: %s", self.publisher_uri,
                         self.subscription.topic, exc)
                 return
-            time.sleep(delay)
+            if self._closing.wait(delay):
+                return
             delay = min(delay * 2, 2.0)
 
     def _connect(self) -> None:
@@ -225,6 +232,11 @@ class PublisherLink:
             raise _Refused(f"unsupported protocol parameters {answer!r}")
         host, port = str(answer[1]), int(answer[2])
         sock = connect(host, port, timeout=5.0)
+        with self._lock:  # from here close() ends the handshake too
+            if self.closed:
+                sock.close()
+                return
+            self.sock = sock
         try:
             write_header(sock, tcpros.subscriber_header_fields(
                 callerid=node.name, topic=sub.topic, type=sub.type, md5sum=sub.md5sum,
@@ -247,14 +259,15 @@ class PublisherLink:
         self.header = header
         self.callerid = header.get("callerid", "")
         self.latching = reply.latching
-        if self.closed:
-            sock.close()
-            return
         consumer = _Frames(self._deliver, trailing, sub.queue_size)
-        self.sock = sock
-        self.receiver = Receiver(sock, consumer, self._ended, name=f"kame-sub{sub.topic}")
-        self.connected = True
-        self.receiver.start()
+        with self._lock:  # close() either sees the receiver, or we see that it was closed
+            if self.closed:
+                sock.close()
+                return
+            self.receiver = Receiver(sock, consumer, self._ended, name=f"kame-sub{sub.topic}",
+                                     chunk_size=sub.buff_size)
+            self.connected = True
+            self.receiver.start()
 
     def _deliver(self, frames: list[memoryview]) -> None:
         for frame in frames:
@@ -279,12 +292,16 @@ class PublisherLink:
         self.subscription.reconnect(self)
 
     def close(self) -> None:
-        self.closed = True
-        if self.receiver is not None:
-            self.receiver.close()
-        if self.sock is not None:
+        with self._lock:
+            self.closed = True
+            receiver, sock = self.receiver, self.sock
+        self._closing.set()
+        if receiver is not None:
+            receiver.close()
+        if sock is not None:
             try:
-                self.sock.close()
+                shut_down(sock)  # wakes a handshake read in progress
+                sock.close()
             except OSError:
                 pass
 
@@ -327,8 +344,18 @@ class _Frames:
 
 
 class Subscription:
+    """One subscribed topic: its publisher links and the callback they deliver to.
+
+    `tcp_nodelay` goes to each publisher in our connection header (`tcp_nodelay=1`), asking
+    it to send without Nagle's delay, and is set on our side of the socket too. `buff_size`
+    is how many bytes each read asks of the kernel, as rospy's (the default is kame's own);
+    with a queue_size, a read asks for no more than about queue_size messages' worth. A
+    message larger than `buff_size` still arrives whole: once its length is known, the rest
+    is read straight into its own buffer.
+    """
+
     def __init__(self, node: Node, topic: str, type: str, md5sum: str, definition: str, queue_size: int | None,
-                 tcp_nodelay: bool, deliver_frames: Callback) -> None:
+                 tcp_nodelay: bool, deliver_frames: Callback, buff_size: int | None = None) -> None:
         self.node = node
         self.topic = topic
         self.type = type
@@ -336,6 +363,7 @@ class Subscription:
         self.definition = definition
         self.queue_size = queue_size
         self.tcp_nodelay = tcp_nodelay
+        self.buff_size = buff_size or READ_SIZE
         self.deliver_frames = deliver_frames
         self.links: dict[str, PublisherLink] = {}
         self.closed = False

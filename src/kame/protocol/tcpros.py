@@ -405,7 +405,7 @@ class SubscriberAccepted(NamedTuple):
 
     topic: str
     callerid: str
-    tcp_nodelay: bool
+    tcp_nodelay: bool | None  # None: the subscriber did not say, and the publisher's own choice applies
     reply: dict[str, str]
 
 
@@ -551,7 +551,7 @@ def accept_subscriber(
     return SubscriberAccepted(
         topic=topic,
         callerid=header["callerid"],
-        tcp_nodelay=header.get("tcp_nodelay", "0") == "1",
+        tcp_nodelay=header["tcp_nodelay"].strip() == "1" if "tcp_nodelay" in header else None,
         reply=publisher_reply_fields(callerid=callerid, topic=topic, spec=spec, extra=extra),
     )
 

@@ -1,0 +1,102 @@
+"""rospy's blocking waits end on what they wait for or on shutdown, whichever comes first (one
+event each, no polling): wait_for_message, spin and on_shutdown hooks with either shape; and
+after shutdown no thread is left running, an action server's included."""
+
+from __future__ import annotations
+
+import sys
+import textwrap
+from collections.abc import Iterator
+from pathlib import Path
+
+import pytest
+
+from ..support import Proc, free_port, kame_command, ros_env, wait_for_master
+
+
+@pytest.fixture(scope="module")
+def env(tmp_path_factory: pytest.TempPathFactory) -> Iterator[dict[str, str]]:
+    home = Path(tmp_path_factory.mktemp("rospy_waits"))
+    port = free_port()
+    uri = f"http://127.0.0.1:{port}/"
+    environment = ros_env(home, uri)
+    master = Proc(kame_command("kame.cli.rosmaster", "--core", "-p", str(port)), environment)
+    try:
+        wait_for_master(uri, proc=master)
+        yield environment
+    finally:
+        master.stop()
+
+
+def run(env: dict[str, str], code: str, timeout: float = 30) -> str:
+    proc = Proc([sys.executable, "-c", textwrap.dedent(code)], env)
+    try:
+        proc.popen.wait(timeout)
+    finally:
+        out, err = proc.stop()
+    assert proc.popen.returncode == 0, f"exit {proc.popen.returncode}\n{out}\n{err}"
+    assert "Traceback" not in err, err
+    return out
+
+
+def test_shutdown_ends_wait_for_message_spin_and_runs_both_hook_shapes(env: dict[str, str]) -> None:
+    out = run(env, """
+        import threading
+        import rospy
+        from std_msgs.msg import String
+        said = []  # lines from several threads, printed at the end (print is not atomic)
+        rospy.init_node('waiter')
+        rospy.on_shutdown(lambda: said.append('hook without arguments'))
+        rospy.on_shutdown(lambda reason: said.append('hook told ' + reason))
+        waiting = threading.Event()
+        def stop_later():
+            waiting.wait()
+            rospy.signal_shutdown('enough')
+        stopper = threading.Thread(target=stop_later)
+        stopper.start()
+        def wait():
+            try:
+                rospy.wait_for_message('/never', String)  # no timeout: only shutdown ends it
+            except rospy.ROSInterruptException as e:
+                said.append('interrupted: ' + str(e))
+        waiter = threading.Thread(target=wait)
+        waiter.start()
+        waiting.set()
+        rospy.spin()  # ends with the shutdown too
+        waiter.join()
+        said.append('spin returned')
+        stopper.join()  # signal_shutdown returns once the node is down
+        left = sorted(t.name for t in threading.enumerate() if t is not threading.main_thread())
+        said.append('threads left: ' + str(left))
+        try:
+            rospy.wait_for_message('/never', String, timeout=5)  # already shut down: at once
+        except rospy.ROSInterruptException as e:
+            said.append('after shutdown: ' + str(e))
+        print('\\n'.join(said))
+    """)
+    assert sorted(out.splitlines()) == sorted([
+        "hook without arguments", "hook told enough", "interrupted: rospy shutdown", "spin returned",
+        "after shutdown: rospy shutdown", "threads left: []"])
+
+
+def test_an_action_servers_execute_thread_is_joined_at_shutdown(env: dict[str, str]) -> None:
+    out = run(env, """
+        import threading
+        import actionlib
+        import rospy
+        from actionlib_tutorials.msg import FibonacciAction, FibonacciResult
+        rospy.init_node('action_waiter')
+        def execute(goal):
+            server.set_succeeded(FibonacciResult(sequence=[goal.order]))
+        server = actionlib.SimpleActionServer('fib', FibonacciAction, execute, auto_start=False)
+        server.start()
+        client = actionlib.SimpleActionClient('fib', FibonacciAction)
+        client.wait_for_server()
+        from actionlib_tutorials.msg import FibonacciGoal
+        client.send_goal(FibonacciGoal(order=7))
+        client.wait_for_result()
+        print('result', list(client.get_result().sequence))
+        rospy.signal_shutdown('done')
+        print('threads left:', sorted(t.name for t in threading.enumerate() if t is not threading.main_thread()))
+    """)
+    assert out.splitlines() == ["result [7]", "threads left: []"]

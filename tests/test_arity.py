@@ -1,0 +1,75 @@
+"""kame.arity: a callback's shape read from its signature, and rospy's shutdown hooks using it."""
+
+from __future__ import annotations
+
+import functools
+import logging
+import threading
+from typing import Any
+
+import pytest
+
+from kame.arity import accepts
+
+
+class _Hooks:
+    def with_reason(self, reason: str) -> None: ...
+
+    def without(self) -> None: ...
+
+
+def _two(a: int, b: int) -> None: ...
+
+
+def _defaulted(a: int, b: int = 0) -> None: ...
+
+
+def _star(*args: Any) -> None: ...
+
+
+def _keyword_only(a: int, *, b: int) -> None: ...
+
+
+@pytest.mark.parametrize(("function", "count", "expected"), [
+    (_Hooks().with_reason, 1, True),  # bound: self is not counted
+    (_Hooks().with_reason, 0, False),
+    (_Hooks().without, 0, True),
+    (_Hooks().without, 1, False),
+    (functools.partial(_two, 1), 1, True),  # partial: what is left
+    (functools.partial(_two, 1), 2, False),
+    (_defaulted, 1, True),
+    (_defaulted, 2, True),
+    (_defaulted, 3, False),
+    (_star, 0, True),
+    (_star, 5, True),
+    (_keyword_only, 1, False),  # b is required and cannot be given positionally
+    (lambda: None, 0, True),
+    (threading.Event().set, 0, True),
+    (threading.Event().set, 1, False),
+])
+def test_accepts_reads_the_signature(function: Any, count: int, expected: bool) -> None:
+    assert accepts(function, count) is expected
+
+
+def test_a_hook_raising_type_error_inside_is_called_once_and_logged(caplog: pytest.LogCaptureFixture) -> None:
+    from rospy.core import _call_hook
+
+    calls: list[tuple[Any, ...]] = []
+
+    def hook(*args: Any) -> None:  # takes the reason, then fails on its own
+        calls.append(args)
+        raise TypeError("a bug inside the hook")
+
+    with caplog.at_level(logging.ERROR):
+        _call_hook(hook, "bye")
+    assert calls == [("bye",)]  # not called again as hook() after its TypeError
+    (record,) = [r for r in caplog.records if "shutdown hook" in r.getMessage()]
+    assert record.exc_info is not None and str(record.exc_info[1]) == "a bug inside the hook"
+
+
+def test_a_hook_without_arguments_gets_none() -> None:
+    from rospy.core import _call_hook
+
+    done = threading.Event()
+    _call_hook(done.set, "bye")
+    assert done.is_set()
