@@ -102,7 +102,6 @@ KNOWN_VIOLATIONS: frozenset[tuple[str, str, str]] = frozenset({
     ("upward", "kame.turtlesim.node", "actionlib"),
     ("upward", "kame.turtlesim.node", "rospy"),
     ("upward", "kame.turtlesim.node", "rospy._log"),
-    ("upward", "kame.turtlesim.node", "rospy.core"),
     ("upward", "kame.turtlesim.teleop_key", "rospy"),
     ("upward", "kame.turtlesim.teleop_key", "rospy._log"),
     # TCPROS handshakes and service calls done on blocking sockets in kame/node, not through net/

@@ -103,7 +103,9 @@ def test_twenty_thousand_frames_in_one_process(qt_env: dict[str, str]) -> None:
     match = re.search(r"painted (\d+) lost (-?\d+)", run.stdout)
     assert match is not None, said
     assert int(match.group(1)) >= 20000
-    assert int(match.group(2)) == 0, "the Qt binding loses a reference to None per call"
+    # the bad binding loses one per call (several per frame); a few come and go with whatever
+    # else the interpreter holds (an X event in flight, a frame object), so allow a margin
+    assert abs(int(match.group(2))) < 1000, "the Qt binding loses a reference to None per call"
 
 
 def test_no_window_and_the_reason_when_qt_cannot_open_one(tmp_path: Path) -> None:
