@@ -44,6 +44,10 @@ LAYERS: dict[str, int] = {
     "kame.turtlesim.teleop_key": 4,
     "kame.turtlesim.draw_square": 4,
     "kame.turtlesim.mimic": 4,
+    "kame.rqt": 1,  # the rqt tools' models, layout and file writers: no Qt, no sockets
+    "kame.rqt.graph_source": 4,  # asks the master and the nodes
+    "kame.rqt.graph_window": 4,  # Qt
+    "kame.rqt.graph_main": 4,
 }
 PURE_FORBIDDEN = {"socket", "select", "selectors", "asyncio", "threading", "subprocess", "signal", "time",
                   "multiprocessing", "concurrent"}  # datetime is allowed: YAML dates are values
