@@ -48,6 +48,13 @@ LAYERS: dict[str, int] = {
     "kame.rqt.graph_source": 4,  # asks the master and the nodes
     "kame.rqt.graph_window": 4,  # Qt
     "kame.rqt.graph_main": 4,
+    "kame.rqt.ros_node": 4,  # the tools' node
+    "kame.rqt.console_source": 4,
+    "kame.rqt.console_window": 4,
+    "kame.rqt.console_main": 4,
+    "kame.rqt.logger_source": 4,
+    "kame.rqt.logger_window": 4,
+    "kame.rqt.logger_main": 4,
 }
 PURE_FORBIDDEN = {"socket", "select", "selectors", "asyncio", "threading", "subprocess", "signal", "time",
                   "multiprocessing", "concurrent"}  # datetime is allowed: YAML dates are values
