@@ -55,6 +55,9 @@ LAYERS: dict[str, int] = {
     "kame.rqt.logger_source": 4,
     "kame.rqt.logger_window": 4,
     "kame.rqt.logger_main": 4,
+    "kame.rqt.plot_source": 4,
+    "kame.rqt.plot_window": 4,
+    "kame.rqt.plot_main": 4,
 }
 PURE_FORBIDDEN = {"socket", "select", "selectors", "asyncio", "threading", "subprocess", "signal", "time",
                   "multiprocessing", "concurrent"}  # datetime is allowed: YAML dates are values
