@@ -11,7 +11,15 @@ import pytest
 from geometry_msgs.msg import PoseStamped, Twist
 from kame.msg.fieldpath import field_type
 from kame.rostime import Duration, Time
-from kame.rqt.plot_model import Series, SeriesNameError, as_number, expand_series_args, numeric_fields, split_series
+from kame.rqt.plot_model import (
+    Series,
+    SeriesNameError,
+    as_number,
+    expand_series_args,
+    numeric_fields,
+    split_series,
+    visible_peaks,
+)
 from kame.rqt.plot_source import PlotSource
 from kame.rqt.ros_node import start_node
 from sensor_msgs.msg import JointState
@@ -78,6 +86,23 @@ def test_a_series_keeps_its_history_and_no_more() -> None:
     assert len(series) == 0 and series.last() is None
     with pytest.raises(ValueError):
         Series(history=0)
+
+
+def test_what_a_plot_draws_is_thinned_to_its_pixels_keeping_the_peaks() -> None:
+    t = np.arange(60_000) / 1000.0
+    v = np.sin(t)
+    v[30_123] = 5.0  # a spike one sample wide
+    shown_t, shown_v = visible_peaks(t, v, 10.0, 50.0, 400)
+    assert len(shown_t) <= 2 * 400 + 2 and np.all(np.diff(shown_t) >= 0)
+    assert shown_t[0] < 10.0 and shown_t[-1] > 50.0  # one point beyond each edge: lines reach them
+    assert shown_v.max() == 5.0 and shown_v.min() == pytest.approx(-1.0, abs=1e-4)
+    few_t, few_v = visible_peaks(t[:50], v[:50], 0.0, 1.0, 400)
+    assert np.array_equal(few_t, t[:50]) and np.array_equal(few_v, v[:50])  # nothing to thin
+    series = Series()
+    series.extend(t, v)
+    peak_t, _ = series.peaks(0.0, 60.0, 100)
+    peak_t[:] = -1.0
+    assert series.data()[0][0] == 0.0  # the peaks are copies
 
 
 @pytest.fixture(scope="module")

@@ -165,7 +165,38 @@ class Series:
         """Copies of the kept times and values (safe to hand to another thread)."""
         return self._t[self._start:self._end].copy(), self._v[self._start:self._end].copy()
 
+    def peaks(self, start: float, end: float, bins: int) -> tuple[np.ndarray, np.ndarray]:
+        """visible_peaks of the kept points, as new arrays (nothing shared with the series)."""
+        t, v = visible_peaks(self._t[self._start:self._end], self._v[self._start:self._end], start, end, bins)
+        return np.array(t), np.array(v)
+
     def last(self) -> tuple[float, float] | None:
         if not len(self):
             return None
         return float(self._t[self._end - 1]), float(self._v[self._end - 1])
+
+
+def visible_peaks(t: np.ndarray, v: np.ndarray, start: float, end: float, bins: int) -> tuple[np.ndarray, np.ndarray]:
+    """The points of (t, v) between `start` and `end` (and one on each side, so lines reach the
+    edges), thinned to at most 2 * `bins` + 2 points: each bin's minimum and maximum, in time
+    order. What a screen `bins` pixels wide can show of them, at a cost that does not grow with
+    the frame rate times the history."""
+    first = max(int(np.searchsorted(t, start, side="left")) - 1, 0)
+    last = min(int(np.searchsorted(t, end, side="right")) + 1, len(t))
+    t, v = t[first:last], v[first:last]
+    if bins < 1 or len(t) <= 2 * bins + 2:
+        return t, v
+    per_bin = len(t) // bins
+    used = per_bin * bins
+    tb, vb = t[:used].reshape(bins, per_bin), v[:used].reshape(bins, per_bin)
+    low, high = vb.argmin(axis=1), vb.argmax(axis=1)
+    rows = np.arange(bins)
+    early = np.minimum(low, high)
+    late = np.maximum(low, high)
+    out_t = np.empty(2 * bins + (len(t) - used > 0))
+    out_v = np.empty_like(out_t)
+    out_t[0:2 * bins:2], out_t[1:2 * bins:2] = tb[rows, early], tb[rows, late]
+    out_v[0:2 * bins:2], out_v[1:2 * bins:2] = vb[rows, early], vb[rows, late]
+    if len(t) > used:  # the newest points that did not fill a bin: keep the last
+        out_t[-1], out_v[-1] = t[-1], v[-1]
+    return out_t, out_v

@@ -134,6 +134,18 @@ class PlotSource:
         with self._lock:
             return {name: series.data() for name, series in self.series.items()}
 
+    def newest(self) -> float | None:
+        """The time of the newest point of any series."""
+        with self._lock:
+            ends = [last[0] for last in (s.last() for s in self.series.values()) if last is not None]
+        return max(ends) if ends else None
+
+    def peaks(self, start: float, end: float, bins: int) -> dict[str, tuple[np.ndarray, np.ndarray]]:
+        """What a plot `bins` pixels wide shows of each series between `start` and `end`
+        (plot_model.visible_peaks), without copying whole histories."""
+        with self._lock:
+            return {name: series.peaks(start, end, bins) for name, series in self.series.items()}
+
     def clear(self) -> None:
         with self._lock:
             for series in self.series.values():

@@ -1,9 +1,9 @@
 """rqt_plot's window: a pyqtgraph time plot of the series a PlotSource keeps.
 
-Rules: the window redraws at a fixed frame rate (FPS) from copies of the series, so the number
-of messages never sets the amount of drawing; pyqtgraph downsamples long series to the pixels
-shown and clips to the visible range. Autoscroll keeps the newest `history` seconds in view;
-pausing freezes the picture while data keeps arriving. Series are added with completion of
+Rules: the window redraws at a fixed frame rate (FPS) from copies of the series, each thinned to
+the visible time range and to a minimum and maximum per pixel column (PlotSource.peaks), so
+neither the message rate nor the history sets the amount of drawing. Autoscroll keeps the
+newest `history` seconds in view; pausing freezes the picture while data keeps arriving. Series are added with completion of
 the published numeric fields and removed from a menu.
 """
 
@@ -43,8 +43,6 @@ class PlotWindow(QWidget):
         self.plot = pg.PlotWidget()
         self.plot.showGrid(x=True, y=True, alpha=0.3)
         self.plot.setLabel("bottom", "time", units="s")
-        self.plot.setClipToView(True)
-        self.plot.setDownsampling(auto=True, mode="peak")
         self.legend = self.plot.addLegend()
         self.curves: dict[str, pg.PlotDataItem] = {}
 
@@ -152,16 +150,15 @@ class PlotWindow(QWidget):
     def redraw(self) -> None:
         if self.pause_button.isChecked():
             return
-        newest = None
-        for name, (t, v) in self.source.data().items():
-            curve = self.curves.get(name)
-            if curve is None:
-                continue
-            curve.setData(t, v)
-            if len(t):
-                newest = t[-1] if newest is None else max(newest, t[-1])
+        newest = self.source.newest()
         if self.autoscroll.isChecked() and newest is not None:
             self.plot.setXRange(max(0.0, newest - self.source.history), max(newest, 1.0), padding=0.02)
+        view = self.plot.getViewBox()
+        (start, end), _ = view.viewRange()
+        for name, (t, v) in self.source.peaks(start, end, max(int(view.width()), 100)).items():
+            curve = self.curves.get(name)
+            if curve is not None:
+                curve.setData(t, v)
         errors = sorted(set(self.source.errors.values()))
         if errors:
             self.status.setText(errors[-1])
