@@ -3,8 +3,8 @@
 Rules: the window redraws at a fixed frame rate (FPS) from copies of the series, each thinned to
 the visible time range and to a minimum and maximum per pixel column (PlotSource.peaks), so
 neither the message rate nor the history sets the amount of drawing. Autoscroll keeps the
-newest `history` seconds in view; pausing freezes the picture while data keeps arriving. Series are added with completion of
-the published numeric fields and removed from a menu.
+newest `history` seconds in view; pausing freezes the picture while data keeps arriving.
+Series are added with completion of the published numeric fields and removed from a menu.
 """
 
 from __future__ import annotations
