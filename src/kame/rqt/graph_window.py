@@ -290,7 +290,7 @@ class GraphWindow(QWidget):
             line.editingFinished.connect(self.redraw)
         for box in (self.group_box, self.debug_box, self.dead_box, self.leaf_box, self.unreachable_box):
             box.toggled.connect(self.redraw)
-        self.highlight_box.toggled.connect(lambda on: self.graphics and not on and self.graphics.highlight(None))
+        self.highlight_box.toggled.connect(self._highlight_toggled)
 
     def options(self) -> GraphOptions:
         return GraphOptions(mode=self.mode_box.currentData(), group_namespaces=self.group_box.isChecked(),
@@ -357,6 +357,10 @@ class GraphWindow(QWidget):
     def _hover(self, vertex_id: str | None) -> None:
         if self.graphics is not None and self.highlight_box.isChecked():
             self.graphics.highlight(vertex_id)
+
+    def _highlight_toggled(self, on: bool) -> None:
+        if self.graphics is not None and not on:
+            self.graphics.highlight(None)
 
     def fit(self) -> None:
         if self.graphics is not None:
