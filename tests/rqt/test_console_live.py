@@ -156,3 +156,53 @@ def test_a_real_rospy_nodes_level_changes_what_it_logs(sim: Sim, node: Node) -> 
     finally:
         levels.close()
         chatty.stop()
+
+
+def test_a_roscpp_nodes_level_set_from_rqt_logger_level_and_its_link_in_the_graph(sim: Sim, node: Node) -> None:
+    """roscpp's set_logger_level from kame: `ros` at warn silences the talker's ROS_INFO lines,
+    back at info they return. (Debian's roscpp 1.15.15 with log4cxx 1.0 segfaults after answering
+    get_loggers, whoever asks (rospy's ServiceProxy too), so its loggers are not read here.)"""
+    from kame.rqt.graph_model import GraphOptions, build_scene
+    from kame.rqt.graph_source import GraphSource
+    from std_msgs.msg import String
+    from tests.support.roscpp import build_peers, roscpp_flags
+
+    flags = roscpp_flags()
+    if flags is None:
+        pytest.skip("g++ or roscpp's headers (pkg-config roscpp std_msgs) are not installed")
+    talker = Proc([str(build_peers(flags)["talker"])], sim.env)
+    levels = LoggerLevels(sim.uri, "/rqt_logger_level_test")
+    graph = GraphSource(sim.uri)
+    view = LogView()
+    feed = LogFeed(node, lambda: None)
+    published: list[int] = []
+
+    def on_chatter(frames: list[memoryview], header: dict[str, str]) -> None:
+        published.extend(int(bytes(frame[4:]).decode().split()[1]) for frame in frames)
+
+    node.subscribe("/chatter", "std_msgs/String", String._md5sum, String._full_text, on_chatter)
+    try:
+        wait_until(lambda: "/cpp_talker" in levels.nodes(), what="roscpp's logger services")
+        wait_until(lambda: len(published) > 2, what="the talker's messages")
+
+        def logged() -> list[int]:
+            view.add(feed.take())
+            return [int(e.message.split()[1]) for e in view.rows() if e.node == "/cpp_talker"]
+
+        wait_until(lambda: bool(logged()), what="the talker's ROS_INFO lines")
+        levels.set_level("/cpp_talker", "ros", "warn")
+        silenced_from = published[-1] + 3  # lines already logged may still be on their way
+        wait_until(lambda: published[-1] >= silenced_from + 15, what="1.5 s more of the talker")
+        levels.set_level("/cpp_talker", "ros", "info")
+        resumed_from = published[-1]
+        wait_until(lambda: any(n >= resumed_from for n in logged()), what="the lines to come back")
+        # /rosout keeps each publisher's order, so every line logged while silenced came before these
+        assert not [n for n in logged() if silenced_from <= n < silenced_from + 15]
+        assert graph.fetch().unreachable == frozenset()
+        links = build_scene(graph.fetch(), GraphOptions(hide_debug=False)).edge_names()  # /rqt* is debug
+        assert ("/cpp_talker", node.name, "/chatter") in links
+        assert ("/cpp_talker", node.name, "/chatter") not in build_scene(graph.fetch(), GraphOptions()).edge_names()
+    finally:
+        graph.close()
+        levels.close()
+        talker.stop()
