@@ -171,3 +171,32 @@ def test_the_window_plots_adds_and_removes(sim: Sim, source: PlotSource, qtbot, 
     assert points() == frozen
     window.grab().save(str(tmp_path / "plot.png"))
     assert (tmp_path / "plot.png").stat().st_size > 0
+
+
+def test_a_type_kame_does_not_have_is_read_from_its_publishers_definition(sim: Sim, source: PlotSource) -> None:
+    from kame.msg.loader import generate_dynamic
+    from kame.node.topics import serialize_frame
+
+    odd = generate_dynamic("lab_msgs/Reading", "float64 value\nstring unit\n")["lab_msgs/Reading"]
+    publisher_node = start_node("publisher", {"master": sim.uri}, sim.env)
+    try:
+        publication = publisher_node.advertise("/reading", "lab_msgs/Reading", odd._md5sum, odd._full_text)
+        source.add("/reading/value")  # no lab_msgs here: subscribed as any type
+        with pytest.raises(SeriesNameError, match="no published topic"):
+            source.add("/readings/value")
+        count = 0
+
+        def publish_until_seen() -> bool:
+            nonlocal count
+            count += 1
+            publication.publish_frame(serialize_frame(odd(value=float(count), unit="V")))
+            return len(source.data()["/reading/value"][1]) > 0
+
+        wait_until(publish_until_seen, what="a reading in the plot")
+        assert source.data()["/reading/value"][1][-1] >= 1.0
+        source.add("/reading/unit")  # a string: known only from the definition, refused when it comes
+        publication.publish_frame(serialize_frame(odd(value=2.5, unit="V")))
+        wait_until(lambda: bool(source.problems()), what="the string field's problem")
+        assert "str is not a number" in source.problems()[0]
+    finally:
+        publisher_node.shutdown("test over")

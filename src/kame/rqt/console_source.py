@@ -60,6 +60,3 @@ class LogFeed:
         with self._lock:
             batch, self._pending = self._pending, []
         return batch
-
-    def close(self) -> None:
-        self.node.unsubscribe(self.topic)

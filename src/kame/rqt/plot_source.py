@@ -116,7 +116,13 @@ class PlotSource:
         messages = []
         for frame in frames:
             msg = cls()
-            msg.deserialize(bytes(frame))
+            try:
+                msg.deserialize(bytes(frame))
+            except Exception as exc:  # the publisher's fault; the plot goes on with the next message
+                with self._lock:
+                    for name in self._by_topic.get(topic, []):
+                        self.errors[name] = f"a message on {topic} does not deserialize: {exc}"
+                continue
             messages.append(msg)
         with self._lock:
             for name in self._by_topic.get(topic, []):
@@ -129,10 +135,16 @@ class PlotSource:
                         self.errors[name] = str(exc)
                 if values:
                     self.series[name].extend(np.full(len(values), now), values)
+                    self.errors.pop(name, None)
 
     def data(self) -> dict[str, tuple[np.ndarray, np.ndarray]]:
         with self._lock:
             return {name: series.data() for name, series in self.series.items()}
+
+    def problems(self) -> list[str]:
+        """Why series got no value from their last messages, sorted."""
+        with self._lock:
+            return sorted(set(self.errors.values()))
 
     def newest(self) -> float | None:
         """The time of the newest point of any series."""

@@ -159,7 +159,7 @@ class PlotWindow(QWidget):
             curve = self.curves.get(name)
             if curve is not None:
                 curve.setData(t, v)
-        errors = sorted(set(self.source.errors.values()))
+        errors = self.source.problems()
         if errors:
             self.status.setText(errors[-1])
 
