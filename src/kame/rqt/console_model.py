@@ -183,6 +183,10 @@ class LogView:
         return [entry for _, entry in self._store]
 
     @property
+    def stored_count(self) -> int:
+        return len(self._store)
+
+    @property
     def first_kept(self) -> int:
         return self._store[0][0] if self._store else self._next
 

@@ -2,17 +2,19 @@
 
 Rules: the table model only reads the LogView; every change goes through the view and comes
 back as a console_model.Change, which becomes one row insertion/removal per batch. New
-messages arrive through `messages_ready` (a queued signal the feed's thread emits once per
-batch) and are taken in one go.
+messages arrive through `messages_ready` (a queued signal the feed's thread emits when its
+pending list stops being empty) and are taken in one go, at most UPDATES_PER_SECOND times a
+second, so a flood costs a few table updates a second, not one per message.
 """
 
 from __future__ import annotations
 
+import time
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
-from PySide6.QtCore import QAbstractTableModel, QModelIndex, QPersistentModelIndex, Qt, Signal
+from PySide6.QtCore import QAbstractTableModel, QModelIndex, QPersistentModelIndex, Qt, QTimer, Signal
 from PySide6.QtGui import QBrush, QCloseEvent, QColor
 from PySide6.QtWidgets import (
     QAbstractItemView,
@@ -51,6 +53,7 @@ from kame.rqt.console_model import (
 SEVERITY_COLOURS = {DEBUG: QColor("#707070"), WARN: QColor("#b35f00"), ERROR: QColor("#c00000"),
                     FATAL: QColor("#800080")}
 HIGHLIGHT = QColor("#fff3a0")
+UPDATES_PER_SECOND = 20
 Index = QModelIndex | QPersistentModelIndex
 
 
@@ -187,6 +190,8 @@ class ConsoleWindow(QWidget):
         page.addWidget(self.highlight)
         self.resize(1100, 600)
 
+        self._last_take = 0.0
+        self._take_pending = False
         self.messages_ready.connect(self.take_messages)
         self.pause_button.toggled.connect(self.set_paused)
         self.clear_button.clicked.connect(self.clear)
@@ -201,6 +206,20 @@ class ConsoleWindow(QWidget):
         self._show_status()
 
     def take_messages(self) -> None:
+        """Take what arrived, at most UPDATES_PER_SECOND times a second: what comes meanwhile waits
+        in the feed (which wakes the window again only once it has been emptied)."""
+        if self.take is None or self._take_pending:
+            return
+        wait = self._last_take + 1.0 / UPDATES_PER_SECOND - time.monotonic()
+        if wait > 0:
+            self._take_pending = True
+            QTimer.singleShot(int(wait * 1000) + 1, self._take_now)
+            return
+        self._take_now()
+
+    def _take_now(self) -> None:
+        self._take_pending = False
+        self._last_take = time.monotonic()
         if self.take is not None:
             self.add(self.take())
 
@@ -215,7 +234,7 @@ class ConsoleWindow(QWidget):
         self._show_status()
 
     def _show_status(self) -> None:
-        text = f"{len(self.view)} of {len(self.view.stored())} messages shown"
+        text = f"{len(self.view)} of {self.view.stored_count} messages shown"
         if self.view.paused:
             text += " (paused)"
         if self.view.matcher.errors:

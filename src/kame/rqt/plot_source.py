@@ -31,6 +31,7 @@ from kame.rqt.plot_model import (
 )
 
 ANY_MD5 = "*"
+STAGE_LIMIT = 65_536  # values staged per series before they are folded in without the window
 
 
 class PlotSource:
@@ -46,6 +47,9 @@ class PlotSource:
         self._by_topic: dict[str, list[str]] = {}
         self._classes: dict[str, type[Any]] = {}
         self._lock = threading.Lock()
+        # values the subscribers brought since the window last looked: plain lists, because a
+        # numpy append per message costs more than the message; folded into the series on demand
+        self._staged: dict[str, tuple[list[float], list[float]]] = {}
 
     def topic_types(self) -> list[tuple[str, str]]:
         return [(str(t), str(ty)) for t, ty in self.node.master.call("getTopicTypes")]
@@ -85,6 +89,7 @@ class PlotSource:
         with self._lock:
             spec = self.specs.pop(name, None)
             self.series.pop(name, None)
+            self._staged.pop(name, None)
             if spec is None:
                 return
             names = self._by_topic[spec.topic]
@@ -134,11 +139,25 @@ class PlotSource:
                     except (FieldPathError, TypeError) as exc:
                         self.errors[name] = str(exc)
                 if values:
-                    self.series[name].extend(np.full(len(values), now), values)
+                    times, staged = self._staged.setdefault(name, ([], []))
+                    staged += values
+                    times += [now] * len(values)
+                    if len(staged) > STAGE_LIMIT:
+                        self._fold(name)
                     self.errors.pop(name, None)
+
+    def _fold(self, name: str) -> None:
+        times, values = self._staged.pop(name, ([], []))
+        if values and name in self.series:
+            self.series[name].extend(np.asarray(times), np.asarray(values))
+
+    def _fold_all(self) -> None:
+        for name in list(self._staged):
+            self._fold(name)
 
     def data(self) -> dict[str, tuple[np.ndarray, np.ndarray]]:
         with self._lock:
+            self._fold_all()
             return {name: series.data() for name, series in self.series.items()}
 
     def problems(self) -> list[str]:
@@ -149,6 +168,7 @@ class PlotSource:
     def newest(self) -> float | None:
         """The time of the newest point of any series."""
         with self._lock:
+            self._fold_all()
             ends = [last[0] for last in (s.last() for s in self.series.values()) if last is not None]
         return max(ends) if ends else None
 
@@ -156,15 +176,18 @@ class PlotSource:
         """What a plot `bins` pixels wide shows of each series between `start` and `end`
         (plot_model.visible_peaks), without copying whole histories."""
         with self._lock:
+            self._fold_all()
             return {name: series.peaks(start, end, bins) for name, series in self.series.items()}
 
     def clear(self) -> None:
         with self._lock:
+            self._staged.clear()
             for series in self.series.values():
                 series.clear()
 
     def set_history(self, seconds: float) -> None:
         with self._lock:
+            self._fold_all()
             self.history = seconds
             for series in self.series.values():
                 series.set_history(seconds)

@@ -41,7 +41,6 @@ class PlotWindow(QWidget):
         self.source = source
         pg.setConfigOptions(antialias=False, background="w", foreground="k")
         self.plot = pg.PlotWidget()
-        self.plot.showGrid(x=True, y=True, alpha=0.3)
         self.plot.setLabel("bottom", "time", units="s")
         self.legend = self.plot.addLegend()
         self.curves: dict[str, pg.PlotDataItem] = {}
@@ -124,7 +123,7 @@ class PlotWindow(QWidget):
                 continue
             if name not in self.curves:
                 colour = COLOURS[len(self.curves) % len(COLOURS)]
-                self.curves[name] = self.plot.plot([], [], name=name, pen=pg.mkPen(colour, width=1.5))
+                self.curves[name] = self.plot.plot([], [], name=name, pen=pg.mkPen(colour, width=1))
                 self.remove_box.addItem(name)
                 added.append(name)
         self.status.setText("; ".join(problems))
@@ -158,7 +157,7 @@ class PlotWindow(QWidget):
         for name, (t, v) in self.source.peaks(start, end, max(int(view.width()), 100)).items():
             curve = self.curves.get(name)
             if curve is not None:
-                curve.setData(t, v)
+                curve.setData(t, v, skipFiniteCheck=True)
         errors = self.source.problems()
         if errors:
             self.status.setText(errors[-1])
