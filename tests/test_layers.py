@@ -65,6 +65,20 @@ LAYERS: dict[str, int] = {
     "kame.turtlesim.teleop_key": 4,
     "kame.turtlesim.draw_square": 4,
     "kame.turtlesim.mimic": 4,
+    "kame.rqt": 1,  # the rqt tools' models, layout and file writers: no Qt, no sockets
+    "kame.rqt.graph_source": 4,  # asks the master and the nodes
+    "kame.rqt.graph_window": 4,  # Qt
+    "kame.rqt.graph_main": 4,
+    "kame.rqt.ros_node": 4,  # the tools' node
+    "kame.rqt.console_source": 4,
+    "kame.rqt.console_window": 4,
+    "kame.rqt.console_main": 4,
+    "kame.rqt.logger_source": 4,
+    "kame.rqt.logger_window": 4,
+    "kame.rqt.logger_main": 4,
+    "kame.rqt.plot_source": 4,
+    "kame.rqt.plot_window": 4,
+    "kame.rqt.plot_main": 4,
     # L5 the compatibility packages: thin facades over kame, which never imports them
     **{facade: 5 for facade in FACADES},
     # L6 the ROS programs kame ships (tutorial scripts): user code, free to import anything

@@ -51,11 +51,13 @@ def ros_env(home: Path, master_uri: str | None = None) -> dict[str, str]:
 class Proc:
     """A started process, stopped by its PID; its output is collected line by line as it comes."""
 
-    def __init__(self, args: Sequence[str], env: dict[str, str], cwd: Path | None = None) -> None:
+    def __init__(self, args: Sequence[str], env: dict[str, str], cwd: Path | None = None,
+                 stdin: int | None = None) -> None:
+        """`stdin=subprocess.PIPE` keeps a program that reads its input (teleop) waiting for keys."""
         import threading
 
         self.args = list(args)
-        self.popen = subprocess.Popen(self.args, env=env, cwd=cwd, stdout=subprocess.PIPE,
+        self.popen = subprocess.Popen(self.args, env=env, cwd=cwd, stdin=stdin, stdout=subprocess.PIPE,
                                       stderr=subprocess.PIPE, text=True)
         self.out: list[str] = []
         self.err: list[str] = []
@@ -96,6 +98,8 @@ class Proc:
                 self.popen.wait(timeout)
         for t in self._readers:
             t.join(5)
+        if self.popen.stdin is not None:
+            self.popen.stdin.close()
         return "".join(self.out), "".join(self.err)
 
 

@@ -1,0 +1,256 @@
+"""Where rqt_graph draws each node, topic, edge and namespace box (pure; no graphviz binary).
+
+Rules: a layered (Sugiyama) layout from grandalf, turned to run left to right as rqt_graph's
+`rankdir=LR`: publishers left of their topics, subscribers right. Each connected part of the
+graph is laid out on its own and the parts are stacked top to bottom. Edges are polylines
+through grandalf's dummy vertices, clipped to the shapes' borders; a node's edge to itself
+is a loop above it, and parallel edges between the same two vertices bow apart. Text is
+measured by the caller (the window passes its font's metrics); `text_width` estimates it
+for drawings made without Qt (the SVG of `rqt_graph --output`).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+
+from grandalf.graphs import Edge, Graph, Vertex
+from grandalf.layouts import SugiyamaLayout
+
+from kame.rqt.graph_model import Kind, Scene
+
+FONT_SIZE = 12.0
+MARGIN = 16.0
+NODE_PAD = (28.0, 20.0)  # ellipse: room left and right of the text, above and below
+TOPIC_PAD = (16.0, 14.0)
+VERTEX_GAP = 18.0  # between vertices of one layer; room for cluster frames and titles when grouping
+GROUPED_VERTEX_GAP = 2 * 10.0 + 16.0 + 8.0
+LAYER_GAP = 56.0  # between layers; nodes-only mode adds the widest edge label
+PART_GAP = 28.0  # between the laid-out connected parts
+GROUP_PAD = 10.0
+GROUP_TITLE = 16.0
+LOOP = 26.0
+
+Point = tuple[float, float]
+Measure = Callable[[str], float]
+
+
+@dataclass(frozen=True)
+class Box:
+    x: float  # top left
+    y: float
+    w: float
+    h: float
+
+    @property
+    def centre(self) -> Point:
+        return (self.x + self.w / 2, self.y + self.h / 2)
+
+    def united(self, other: Box) -> Box:
+        x, y = min(self.x, other.x), min(self.y, other.y)
+        return Box(x, y, max(self.x + self.w, other.x + other.w) - x, max(self.y + self.h, other.y + other.h) - y)
+
+
+@dataclass(frozen=True)
+class Layout:
+    scene: Scene
+    boxes: dict[str, Box]  # vertex id -> its shape's bounding box
+    paths: tuple[tuple[Point, ...], ...]  # one per scene edge, source to target
+    groups: dict[str, tuple[Box, ...]]  # namespace -> its cluster (split where one box would hold others)
+    width: float
+    height: float
+
+    def label_position(self, edge_index: int) -> Point:
+        """Where an edge's label goes: the middle of its path."""
+        points = self.paths[edge_index]
+        if len(points) % 2:
+            return points[len(points) // 2]
+        a, b = points[len(points) // 2 - 1], points[len(points) // 2]
+        return ((a[0] + b[0]) / 2, (a[1] + b[1]) / 2)
+
+
+def text_width(text: str, size: float = FONT_SIZE) -> float:
+    """An estimate of `text`'s width in a sans-serif font of `size` px."""
+    em = 0.0
+    for char in text:
+        if char in "il.,:;'|!/[]()-tfrj ":
+            em += 0.32
+        elif char in "mwMW@":
+            em += 0.86
+        elif char.isupper() or char in "_#%&":
+            em += 0.68
+        else:
+            em += 0.56
+    return em * size
+
+
+def vertex_size(kind: Kind, label: str, measure: Measure) -> tuple[float, float]:
+    pad = NODE_PAD if kind is Kind.NODE else TOPIC_PAD
+    return (measure(label) + 2 * pad[0], FONT_SIZE + 2 * pad[1])
+
+
+class _View:
+    """grandalf's view of a vertex, sized as turned a quarter: its w is our height."""
+
+    def __init__(self, w: float, h: float) -> None:
+        self.w = w
+        self.h = h
+        self.xy: Point = (0.0, 0.0)
+
+
+class _EdgeView:
+    def __init__(self) -> None:
+        self.points: list[Point] = []
+
+    def setpath(self, points: list[Point]) -> None:
+        self.points = list(points)
+
+
+def layout(scene: Scene, measure: Measure = text_width) -> Layout:
+    sizes = {v.id: vertex_size(v.kind, v.name, measure) for v in scene.vertices}
+    layer_gap = LAYER_GAP + max((measure(e.label) for e in scene.edges if e.label), default=0.0)
+    vertices = {vid: Vertex(vid) for vid in sizes}
+    for vid, vertex in vertices.items():
+        vertex.view = _View(sizes[vid][1], sizes[vid][0])
+    pairs: dict[tuple[str, str], Edge] = {}
+    for edge in scene.edges:
+        key = (edge.source, edge.target)
+        if edge.source != edge.target and key not in pairs and (edge.target, edge.source) not in pairs:
+            pairs[key] = Edge(vertices[edge.source], vertices[edge.target])
+            pairs[key].view = _EdgeView()
+    graph = Graph(list(vertices.values()), list(pairs.values()))
+    centres: dict[str, Point] = {}
+    routes: dict[tuple[str, str], list[Point]] = {}
+    top = MARGIN
+    for part in sorted(graph.C, key=lambda c: min(str(v.data) for v in c.sV)):
+        placed = _place_part(part, layer_gap, GROUPED_VERTEX_GAP if scene.groups else VERTEX_GAP)
+        ys = [y - sizes[vid][1] / 2 for vid, (_, y) in placed.items()]
+        xs = [x - sizes[vid][0] / 2 for vid, (x, _) in placed.items()]
+        dx, dy = MARGIN - min(xs), top - min(ys)
+        for vid, (x, y) in placed.items():
+            centres[vid] = (x + dx, y + dy)
+        for e in part.sE:
+            routes[(e.v[0].data, e.v[1].data)] = [(x + dx, y + dy) for x, y in _turn(e.view.points)]
+        top = max(centres[vid][1] + sizes[vid][1] / 2 for vid in placed) + PART_GAP
+    boxes = {vid: Box(x - sizes[vid][0] / 2, y - sizes[vid][1] / 2, *sizes[vid]) for vid, (x, y) in centres.items()}
+    kinds = {v.id: v.kind for v in scene.vertices}
+    paths = tuple(_edge_path(scene, index, boxes, kinds, routes) for index in range(len(scene.edges)))
+    groups = {group.namespace: _clusters(group.members, boxes) for group in scene.groups}
+    extent = list(boxes.values()) + [b for hulls in groups.values() for b in hulls]
+    right = max((b.x + b.w for b in extent), default=0.0)
+    bottom = max((b.y + b.h for b in extent), default=0.0)
+    for path in paths:
+        right = max([right, *(p[0] for p in path)])
+        bottom = max([bottom, *(p[1] for p in path)])
+    shift = max(0.0, MARGIN - min((b.y for b in extent), default=MARGIN))  # group titles above the first part
+    if shift:
+        boxes = {k: Box(b.x, b.y + shift, b.w, b.h) for k, b in boxes.items()}
+        groups = {k: tuple(Box(b.x, b.y + shift, b.w, b.h) for b in hulls) for k, hulls in groups.items()}
+        paths = tuple(tuple((x, y + shift) for x, y in path) for path in paths)
+    return Layout(scene, boxes, paths, groups, right + MARGIN, bottom + shift + MARGIN)
+
+
+def _clusters(members: Sequence[str], boxes: dict[str, Box]) -> tuple[Box, ...]:
+    """Boxes around a namespace's members: as few as can be drawn without enclosing a vertex of
+    another namespace (the layers are not built around namespaces, graphviz's clusters are)."""
+    mine = set(members)
+    others = [Box(b.x - GROUP_PAD, b.y - GROUP_PAD, b.w + 2 * GROUP_PAD, b.h + 2 * GROUP_PAD)
+              for vid, b in boxes.items() if vid not in mine]
+    hulls: list[Box] = []
+    for member in sorted(members, key=lambda m: (boxes[m].x, boxes[m].y)):
+        box = boxes[member]
+        for i, hull in enumerate(hulls):
+            merged = hull.united(box)
+            if not any(_overlaps(_framed(merged), other) for other in others):
+                hulls[i] = merged
+                break
+        else:
+            hulls.append(box)
+    return tuple(_framed(h) for h in hulls)
+
+
+def _framed(hull: Box) -> Box:
+    return Box(hull.x - GROUP_PAD, hull.y - GROUP_PAD - GROUP_TITLE, hull.w + 2 * GROUP_PAD,
+               hull.h + 2 * GROUP_PAD + GROUP_TITLE)
+
+
+def _overlaps(a: Box, b: Box) -> bool:
+    return a.x < b.x + b.w and b.x < a.x + a.w and a.y < b.y + b.h and b.y < a.y + a.h
+
+
+def _place_part(part: object, layer_gap: float, vertex_gap: float) -> dict[str, Point]:
+    """Centres of one connected part's vertices, turned to run left to right."""
+    sug = SugiyamaLayout(part)
+    sug.xspace = vertex_gap
+    sug.yspace = layer_gap
+    sug.init_all()
+    sug.draw(3)
+    return {str(v.data): (v.view.xy[1], v.view.xy[0]) for v in part.sV}  # type: ignore[attr-defined]
+
+
+def _turn(points: Sequence[Point]) -> list[Point]:
+    return [(y, x) for x, y in points]
+
+
+def _edge_path(scene: Scene, index: int, boxes: dict[str, Box], kinds: dict[str, Kind],
+               routes: dict[tuple[str, str], list[Point]]) -> tuple[Point, ...]:
+    edge = scene.edges[index]
+    source, target = boxes[edge.source], boxes[edge.target]
+    if edge.source == edge.target:
+        x = source.centre[0]
+        top = source.y
+        return ((x - source.w / 4, top + 2), (x - source.w / 4, top - LOOP), (x + source.w / 4, top - LOOP),
+                (x + source.w / 4, top + 2))
+    route = routes.get((edge.source, edge.target))
+    if route is None:
+        reverse = routes.get((edge.target, edge.source))
+        route = list(reversed(reverse)) if reverse else [source.centre, target.centre]
+    route = [source.centre, *route[1:-1], target.centre]
+    # parallel edges (two topics between the same nodes) bow apart around the middle
+    twins = [i for i, e in enumerate(scene.edges) if {e.source, e.target} == {edge.source, edge.target}]
+    rank = twins.index(index)
+    if len(twins) > 1:
+        offset = (rank - (len(twins) - 1) / 2) * 22.0
+        if offset:
+            route = _bow(route, offset)
+    start = _clip(route[1], source, kinds[edge.source])
+    end = _clip(route[-2], target, kinds[edge.target])
+    return (start, *route[1:-1], end)
+
+
+def _bow(route: list[Point], offset: float) -> list[Point]:
+    (x0, y0), (x1, y1) = route[0], route[-1]
+    length = math.hypot(x1 - x0, y1 - y0) or 1.0
+    nx, ny = -(y1 - y0) / length, (x1 - x0) / length
+    if len(route) == 2:
+        return [route[0], ((x0 + x1) / 2 + nx * offset, (y0 + y1) / 2 + ny * offset), route[1]]
+    return [route[0], *((x + nx * offset, y + ny * offset) for x, y in route[1:-1]), route[-1]]
+
+
+def _clip(towards: Point, box: Box, kind: Kind) -> Point:
+    """Where the line from the box's centre to `towards` leaves the shape."""
+    cx, cy = box.centre
+    dx, dy = towards[0] - cx, towards[1] - cy
+    if dx == 0 and dy == 0:
+        return (cx, cy)
+    a, b = box.w / 2, box.h / 2
+    if kind is Kind.NODE:
+        scale = 1.0 / math.sqrt((dx / a) ** 2 + (dy / b) ** 2)
+    else:
+        scale = min(a / abs(dx) if dx else math.inf, b / abs(dy) if dy else math.inf)
+    return (cx + dx * min(scale, 1.0), cy + dy * min(scale, 1.0))
+
+
+def cubic_segments(points: Sequence[Point]) -> list[tuple[Point, Point, Point]]:
+    """A smooth curve through `points` as cubic Bezier segments (control, control, end) from the
+    first point: Catmull-Rom, so the curve passes through every routing point."""
+    segments: list[tuple[Point, Point, Point]] = []
+    for i in range(len(points) - 1):
+        p0 = points[i - 1] if i > 0 else points[i]
+        p1, p2 = points[i], points[i + 1]
+        p3 = points[i + 2] if i + 2 < len(points) else p2
+        c1 = (p1[0] + (p2[0] - p0[0]) / 6, p1[1] + (p2[1] - p0[1]) / 6)
+        c2 = (p2[0] - (p3[0] - p1[0]) / 6, p2[1] - (p3[1] - p1[1]) / 6)
+        segments.append((c1, c2, p2))
+    return segments

@@ -1,0 +1,167 @@
+"""rqt_plot's window: a pyqtgraph time plot of the series a PlotSource keeps.
+
+Rules: the window redraws at a fixed frame rate (FPS) from copies of the series, each thinned to
+the visible time range and to a minimum and maximum per pixel column (PlotSource.peaks), so
+neither the message rate nor the history sets the amount of drawing. Autoscroll keeps the
+newest `history` seconds in view; pausing freezes the picture while data keeps arriving.
+Series are added with completion of the published numeric fields and removed from a menu.
+"""
+
+from __future__ import annotations
+
+import pyqtgraph as pg
+from PySide6.QtCore import Qt, QTimer
+from PySide6.QtGui import QCloseEvent
+from PySide6.QtWidgets import (
+    QCheckBox,
+    QComboBox,
+    QCompleter,
+    QDoubleSpinBox,
+    QHBoxLayout,
+    QLabel,
+    QLineEdit,
+    QPushButton,
+    QVBoxLayout,
+    QWidget,
+)
+
+from kame.node.master_proxy import MasterError
+from kame.rqt.plot_model import SeriesNameError, expand_series_args
+from kame.rqt.plot_source import PlotSource
+
+FPS = 30
+COLOURS = ("#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22",
+           "#17becf")
+
+
+class PlotWindow(QWidget):
+    def __init__(self, source: PlotSource) -> None:
+        super().__init__()
+        self.setWindowTitle("rqt_plot")
+        self.source = source
+        pg.setConfigOptions(antialias=False, background="w", foreground="k")
+        self.plot = pg.PlotWidget()
+        self.plot.setLabel("bottom", "time", units="s")
+        self.legend = self.plot.addLegend()
+        self.curves: dict[str, pg.PlotDataItem] = {}
+
+        self.topic = QLineEdit()
+        self.topic.setPlaceholderText("/topic/field (x:y for several)")
+        self.completer = QCompleter([])
+        self.completer.setCaseSensitivity(Qt.CaseSensitivity.CaseInsensitive)
+        self.completer.setFilterMode(Qt.MatchFlag.MatchContains)
+        self.topic.setCompleter(self.completer)
+        self.add_button = QPushButton("+")
+        self.remove_box = QComboBox()
+        self.remove_button = QPushButton("-")
+        self.pause_button = QPushButton("Pause")
+        self.pause_button.setCheckable(True)
+        self.clear_button = QPushButton("Clear")
+        self.autoscroll = QCheckBox("Autoscroll")
+        self.autoscroll.setChecked(True)
+        self.history = QDoubleSpinBox()
+        self.history.setRange(1, 3600)
+        self.history.setValue(source.history)
+        self.history.setSuffix(" s")
+        self.y_auto = QCheckBox("Y auto")
+        self.y_auto.setChecked(True)
+        self.y_min = QDoubleSpinBox()
+        self.y_max = QDoubleSpinBox()
+        for box, value in ((self.y_min, -1.0), (self.y_max, 12.0)):
+            box.setRange(-1e9, 1e9)
+            box.setDecimals(3)
+            box.setValue(value)
+        self.status = QLabel("")
+
+        top = QHBoxLayout()
+        top.addWidget(QLabel("Topic"))
+        top.addWidget(self.topic, 1)
+        for button in (self.add_button, self.remove_box, self.remove_button, self.pause_button, self.clear_button):
+            top.addWidget(button)
+        axes = QHBoxLayout()
+        for widget in (self.autoscroll, QLabel("history"), self.history, self.y_auto, QLabel("y from"), self.y_min,
+                       QLabel("to"), self.y_max):
+            axes.addWidget(widget)
+        axes.addStretch(1)
+        axes.addWidget(self.status)
+        page = QVBoxLayout(self)
+        page.addLayout(top)
+        page.addWidget(self.plot, 1)
+        page.addLayout(axes)
+        self.resize(900, 560)
+
+        self.add_button.clicked.connect(lambda: self.add_series(self.topic.text()))
+        self.topic.returnPressed.connect(lambda: self.add_series(self.topic.text()))
+        self.remove_button.clicked.connect(lambda: self.remove_series(self.remove_box.currentText()))
+        self.clear_button.clicked.connect(self.source.clear)
+        self.history.valueChanged.connect(self.source.set_history)
+        self.y_auto.toggled.connect(self._apply_y_range)
+        self.y_min.valueChanged.connect(self._apply_y_range)
+        self.y_max.valueChanged.connect(self._apply_y_range)
+        self.pause_button.toggled.connect(lambda on: self.pause_button.setText("Resume" if on else "Pause"))
+        self.timer = QTimer(self)
+        self.timer.timeout.connect(self.redraw)
+        self.timer.start(1000 // FPS)
+
+    def refresh_completions(self) -> None:
+        try:
+            names = self.source.completions()
+        except (OSError, MasterError) as exc:
+            self.status.setText(f"cannot list topics: {exc}")
+            return
+        self.completer.model().setStringList(names)  # type: ignore[attr-defined]
+
+    def add_series(self, text: str) -> list[str]:
+        """Add every series `text` names; returns the ones added (errors go to the status line)."""
+        added = []
+        problems = []
+        for name in expand_series_args([text]):
+            try:
+                self.source.add(name)
+            except (SeriesNameError, OSError, MasterError) as exc:
+                problems.append(str(exc))
+                continue
+            if name not in self.curves:
+                colour = COLOURS[len(self.curves) % len(COLOURS)]
+                self.curves[name] = self.plot.plot([], [], name=name, pen=pg.mkPen(colour, width=1))
+                self.remove_box.addItem(name)
+                added.append(name)
+        self.status.setText("; ".join(problems))
+        if added:
+            self.topic.clear()
+        return added
+
+    def remove_series(self, name: str) -> None:
+        curve = self.curves.pop(name, None)
+        if curve is None:
+            return
+        self.source.remove(name)
+        self.plot.removeItem(curve)
+        self.legend.removeItem(curve)
+        self.remove_box.removeItem(self.remove_box.findText(name))
+
+    def _apply_y_range(self) -> None:
+        if self.y_auto.isChecked():
+            self.plot.enableAutoRange(axis="y")
+        else:
+            self.plot.setYRange(self.y_min.value(), self.y_max.value(), padding=0)
+
+    def redraw(self) -> None:
+        if self.pause_button.isChecked():
+            return
+        newest = self.source.newest()
+        if self.autoscroll.isChecked() and newest is not None:
+            self.plot.setXRange(max(0.0, newest - self.source.history), max(newest, 1.0), padding=0.02)
+        view = self.plot.getViewBox()
+        (start, end), _ = view.viewRange()
+        for name, (t, v) in self.source.peaks(start, end, max(int(view.width()), 100)).items():
+            curve = self.curves.get(name)
+            if curve is not None:
+                curve.setData(t, v, skipFiniteCheck=True)
+        errors = self.source.problems()
+        if errors:
+            self.status.setText(errors[-1])
+
+    def closeEvent(self, event: QCloseEvent) -> None:
+        self.timer.stop()
+        super().closeEvent(event)

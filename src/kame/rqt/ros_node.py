@@ -1,0 +1,25 @@
+"""The node an rqt tool runs as: `/rqt_<tool>_<pid>` (rqt_graph hides `/rqt*` as debug), on the
+master of `__master:=`, else ROS_MASTER_URI, with `__ip`/`__hostname` and ROS_IP/ROS_HOSTNAME
+honoured as every ROS program does. The caller owns the node and shuts it down."""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Mapping
+
+from kame.net.address import address_override, advertised_host, bind_host
+from kame.node.node import Node, NodeConfig
+
+DEFAULT_MASTER_URI = "http://localhost:11311/"
+
+
+def master_uri(special: Mapping[str, str], env: Mapping[str, str] | None = None) -> str:
+    env = os.environ if env is None else env
+    return special.get("master") or env.get("ROS_MASTER_URI") or DEFAULT_MASTER_URI
+
+
+def start_node(tool: str, special: Mapping[str, str], env: Mapping[str, str] | None = None) -> Node:
+    env = os.environ if env is None else env
+    override = address_override(env, special)
+    name = f"/rqt_{tool}_{os.getpid()}"
+    return Node(NodeConfig(name, master_uri(special, env), advertised_host(override), bind_host(override)))

@@ -1,0 +1,202 @@
+"""rqt_plot: series names, the bounded history, numeric fields, and the live turtle's pose."""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from geometry_msgs.msg import PoseStamped, Twist
+from kame.msg.fieldpath import field_type
+from kame.rostime import Duration, Time
+from kame.rqt.plot_model import (
+    Series,
+    SeriesNameError,
+    as_number,
+    expand_series_args,
+    numeric_fields,
+    split_series,
+    visible_peaks,
+)
+from kame.rqt.plot_source import PlotSource
+from kame.rqt.ros_node import start_node
+from sensor_msgs.msg import JointState
+from tests.turtlesim.sim import Sim, turtlesim, wait_until
+from turtlesim.msg import Pose
+
+TYPES = [("/turtle1/pose", "turtlesim/Pose"), ("/turtle1/cmd_vel", "geometry_msgs/Twist"),
+         ("/joints", "sensor_msgs/JointState")]
+CLASSES = {"turtlesim/Pose": Pose, "geometry_msgs/Twist": Twist, "sensor_msgs/JointState": JointState}
+
+
+def check(type_name: str, field: str) -> str:
+    return field_type(CLASSES[type_name], field)
+
+
+def test_series_arguments_as_rqt_plot_reads_them() -> None:
+    assert expand_series_args(["/turtle1/pose/x:y"]) == ["/turtle1/pose/x", "/turtle1/pose/y"]
+    assert expand_series_args(["/a/b/c", "/turtle1/pose/x:theta,/x/y"]) == ["/a/b/c", "/turtle1/pose/x",
+                                                                          "/turtle1/pose/theta", "/x/y"]
+    assert expand_series_args(["/a/x:x"]) == ["/a/x"]
+
+
+def test_series_names_split_against_the_published_topics() -> None:
+    spec = split_series("/turtle1/pose/x", TYPES, check)
+    assert (spec.topic, spec.type) == ("/turtle1/pose", "turtlesim/Pose")
+    assert spec.path.evaluate(Pose(x=3.5)) == 3.5
+    assert split_series("/turtle1/cmd_vel/linear/x", TYPES, check).path.evaluate(Twist()) == 0.0
+    assert split_series("/joints/position[1]", TYPES, check).topic == "/joints"
+    for bad, why in (("/turtle1/pose", "is a topic"), ("/nowhere/x", "no published topic"),
+                     ("/turtle1/cmd_vel/linear", "not a number"), ("/joints/position", "not a number"),
+                     ("/turtle1/pose/q", "no field named"), ("/joints/name[0]", "not a number")):
+        with pytest.raises(SeriesNameError, match=why):
+            split_series(bad, TYPES, check)
+
+
+def test_numeric_fields_for_completion() -> None:
+    assert numeric_fields(Pose) == ["x", "y", "theta", "linear_velocity", "angular_velocity"]
+    assert numeric_fields(Twist) == ["linear/x", "linear/y", "linear/z", "angular/x", "angular/y", "angular/z"]
+    fields = numeric_fields(PoseStamped)
+    assert {"header/seq", "header/stamp", "pose/position/x", "pose/orientation/w"} <= set(fields)
+    assert "header/frame_id" not in fields
+    assert numeric_fields(JointState)[-3:] == ["position[0]", "velocity[0]", "effort[0]"]
+    assert (as_number(True), as_number(3), as_number(Time(1, 500_000_000)), as_number(Duration(2, 0))) == (
+        1.0, 3.0, 1.5, 2.0)
+    with pytest.raises(TypeError):
+        as_number("7")
+
+
+def test_a_series_keeps_its_history_and_no_more() -> None:
+    series = Series(history=10.0, max_points=50_000)
+    for second in range(30):  # 30 s at 1 kHz, in batches as a subscriber hands them over
+        t = second + np.arange(1000) / 1000.0
+        series.extend(t, np.sin(t))
+    t, v = series.data()
+    assert t[0] >= 29.999 - 10.0 and t[-1] == pytest.approx(29.999)
+    assert len(t) == len(v) == 10_001 and np.all(np.diff(t) > 0)
+    assert series.last() == (pytest.approx(29.999), pytest.approx(np.sin(29.999)))
+    capped = Series(history=1e9, max_points=100)
+    capped.extend(np.arange(250.0), np.arange(250.0))
+    assert len(capped) == 100 and capped.data()[0][0] == 150.0
+    series.set_history(1.0)
+    assert len(series) == 1001
+    series.clear()
+    assert len(series) == 0 and series.last() is None
+    with pytest.raises(ValueError):
+        Series(history=0)
+
+
+def test_what_a_plot_draws_is_thinned_to_its_pixels_keeping_the_peaks() -> None:
+    t = np.arange(60_000) / 1000.0
+    v = np.sin(t)
+    v[30_123] = 5.0  # a spike one sample wide
+    shown_t, shown_v = visible_peaks(t, v, 10.0, 50.0, 400)
+    assert len(shown_t) <= 2 * 400 + 2 and np.all(np.diff(shown_t) >= 0)
+    assert shown_t[0] < 10.0 and shown_t[-1] > 50.0  # one point beyond each edge: lines reach them
+    assert shown_v.max() == 5.0 and shown_v.min() == pytest.approx(-1.0, abs=1e-4)
+    few_t, few_v = visible_peaks(t[:50], v[:50], 0.0, 1.0, 400)
+    assert np.array_equal(few_t, t[:50]) and np.array_equal(few_v, v[:50])  # nothing to thin
+    series = Series()
+    series.extend(t, v)
+    peak_t, _ = series.peaks(0.0, 60.0, 100)
+    peak_t[:] = -1.0
+    assert series.data()[0][0] == 0.0  # the peaks are copies
+
+
+@pytest.fixture(scope="module")
+def sim(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Sim]:
+    with turtlesim(tmp_path_factory.mktemp("rqt_plot")) as (live, _node):
+        yield live
+
+
+@pytest.fixture
+def source(sim: Sim) -> Iterator[PlotSource]:
+    node = start_node("plot", {"master": sim.uri}, sim.env)
+    plot = PlotSource(node)
+    yield plot
+    plot.close()
+    node.shutdown("test over")
+
+
+def test_pose_x_rises_after_a_cmd_vel(sim: Sim, source: PlotSource) -> None:
+    sim.run("rosservice", "call", "/reset")
+    for name in expand_series_args(["/turtle1/pose/x:y"]):
+        source.add(name)
+    assert sorted(source.series) == ["/turtle1/pose/x", "/turtle1/pose/y"]
+    wait_until(lambda: len(source.data()["/turtle1/pose/x"][0]) > 5, what="pose samples")
+    start_x = source.data()["/turtle1/pose/x"][1][-1]
+    sim.run("rostopic", "pub", "-1", "/turtle1/cmd_vel", "geometry_msgs/Twist", "--", "[2,0,0]", "[0,0,0]")
+    wait_until(lambda: source.data()["/turtle1/pose/x"][1][-1] > start_x + 1.0, what="x to rise")
+    t, x = source.data()["/turtle1/pose/x"]
+    y = source.data()["/turtle1/pose/y"][1]
+    assert np.all(np.diff(t) >= 0) and x.max() > x.min() + 1.0
+    assert np.ptp(y) < 1e-6  # straight along x
+    with pytest.raises(SeriesNameError):
+        source.add("/turtle1/pose/nothing")
+    assert "/turtle1/pose/x" in source.completions() and "/turtle1/cmd_vel/linear/x" in source.completions()
+    source.remove("/turtle1/pose/x")
+    source.remove("/turtle1/pose/y")
+    assert "/turtle1/pose" not in source.node.subscriptions
+
+
+def test_the_window_plots_adds_and_removes(sim: Sim, source: PlotSource, qtbot, tmp_path: Path) -> None:  # type: ignore[no-untyped-def]
+    from kame.rqt.plot_window import PlotWindow
+
+    window = PlotWindow(source)
+    qtbot.addWidget(window)
+    window.show()
+    assert window.add_series("/turtle1/pose/x:theta") == ["/turtle1/pose/x", "/turtle1/pose/theta"]
+    assert window.add_series("/turtle1/pose/bogus") == [] and "no field named" in window.status.text()
+    def points() -> int:  # what the curve was given (getData is what is drawn: downsampled, clipped)
+        x = window.curves["/turtle1/pose/x"].xData
+        return 0 if x is None else len(x)
+
+    qtbot.waitUntil(lambda: points() > 3, timeout=10_000)
+    window.refresh_completions()
+    assert "/turtle1/pose/y" in window.completer.model().stringList()
+    labels = [label.text for _, label in window.legend.items]
+    assert labels == ["/turtle1/pose/x", "/turtle1/pose/theta"]
+    window.remove_series("/turtle1/pose/theta")
+    assert list(window.curves) == ["/turtle1/pose/x"] and window.remove_box.count() == 1
+    window.y_auto.setChecked(False)
+    window.y_min.setValue(0.0)
+    window.y_max.setValue(11.0)
+    assert window.plot.getViewBox().viewRange()[1] == pytest.approx([0.0, 11.0])
+    window.pause_button.setChecked(True)
+    frozen = points()
+    wait_until(lambda: len(source.data()["/turtle1/pose/x"][0]) > frozen + 3, what="more samples")
+    window.redraw()
+    assert points() == frozen
+    window.grab().save(str(tmp_path / "plot.png"))
+    assert (tmp_path / "plot.png").stat().st_size > 0
+
+
+def test_a_type_kame_does_not_have_is_read_from_its_publishers_definition(sim: Sim, source: PlotSource) -> None:
+    from kame.msg.loader import generate_dynamic
+    from kame.node.topics import serialize_frame
+
+    odd = generate_dynamic("lab_msgs/Reading", "float64 value\nstring unit\n")["lab_msgs/Reading"]
+    publisher_node = start_node("publisher", {"master": sim.uri}, sim.env)
+    try:
+        publication = publisher_node.advertise("/reading", "lab_msgs/Reading", odd._md5sum, odd._full_text)
+        source.add("/reading/value")  # no lab_msgs here: subscribed as any type
+        with pytest.raises(SeriesNameError, match="no published topic"):
+            source.add("/readings/value")
+        count = 0
+
+        def publish_until_seen() -> bool:
+            nonlocal count
+            count += 1
+            publication.publish_frame(serialize_frame(odd(value=float(count), unit="V")))
+            return len(source.data()["/reading/value"][1]) > 0
+
+        wait_until(publish_until_seen, what="a reading in the plot")
+        assert source.data()["/reading/value"][1][-1] >= 1.0
+        source.add("/reading/unit")  # a string: known only from the definition, refused when it comes
+        publication.publish_frame(serialize_frame(odd(value=2.5, unit="V")))
+        wait_until(lambda: bool(source.problems()), what="the string field's problem")
+        assert "str is not a number" in source.problems()[0]
+    finally:
+        publisher_node.shutdown("test over")
