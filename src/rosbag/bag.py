@@ -8,7 +8,6 @@ whatever is installed). Timestamps are rospy.Time values.
 from __future__ import annotations
 
 import collections
-import importlib
 import io
 import itertools
 import os
@@ -22,6 +21,8 @@ from kame.bag.info import BagSummary, info_text, info_yaml, yaml_key
 from kame.bag.reader import BagReader
 from kame.bag.records import Connection
 from kame.bag.writer import DEFAULT_CHUNK_THRESHOLD, BagWriter
+from kame.msg.errors import MessageError
+from kame.msg.lookup import class_for, installed_class
 
 __all__ = [
     "Bag",
@@ -61,41 +62,16 @@ TypesAndTopicsTuple = collections.namedtuple("TypesAndTopicsTuple", ["msg_types"
 CompressionTuple = collections.namedtuple("CompressionTuple", ["compression", "uncompressed", "compressed"])
 
 
-def _installed_class(type_name: str, md5sum: str) -> type[Any] | None:
-    package, _, short = type_name.partition("/")
-    if not package.isidentifier() or not short.isidentifier():
-        return None
-    try:
-        module = importlib.import_module(f"{package}.msg")
-    except Exception:
-        return None
-    cls = getattr(module, short, None)
-    if isinstance(cls, type) and getattr(cls, "_md5sum", None) == md5sum and getattr(cls, "_type", None) == type_name:
-        return cls
-    return None
-
-
-_class_cache: dict[tuple[str, str, str], type[Any]] = {}
-
-
 def message_class(conn: Connection) -> type[Any]:
     """The class that deserializes a connection's messages."""
-    key = (conn.datatype, conn.md5sum, conn.msg_def)
-    cls = _class_cache.get(key)
+    try:
+        cls = class_for(conn.datatype, conn.md5sum, conn.msg_def)
+    except MessageError as exc:
+        raise BagError(f"cannot build message type [{conn.datatype}] from the bag's definition: "
+                       f"{exc}") from exc
     if cls is None:
-        cls = _installed_class(conn.datatype, conn.md5sum)
-        if cls is None:
-            if not conn.msg_def:
-                raise BagError(f"Cannot deserialize messages of type [{conn.datatype}]: the bag has no "
-                               "message_definition for it and kame does not have it installed")
-            from kame.msg import MessageError, generate_dynamic
-
-            try:
-                cls = generate_dynamic(conn.datatype, conn.msg_def)[conn.datatype]
-            except (MessageError, ValueError) as exc:  # ValueError: a type name that is none
-                raise BagError(f"cannot build message type [{conn.datatype}] from the bag's definition: "
-                               f"{exc}") from exc
-        _class_cache[key] = cls
+        raise BagError(f"Cannot deserialize messages of type [{conn.datatype}]: the bag has no "
+                       "message_definition for it and kame does not have it installed")
     return cls
 
 
@@ -352,7 +328,7 @@ class Bag:
             if raw:
                 definition = getattr(pytype, "_full_text", None) if pytype is not None else None
                 if definition is None:
-                    found = _installed_class(msg_type, md5sum)
+                    found = installed_class(msg_type, md5sum)
                     if found is None:
                         raise BagError(f"cannot locate message class and no message class provided for [{msg_type}]")
                     definition = found._full_text

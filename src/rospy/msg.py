@@ -4,37 +4,10 @@ from __future__ import annotations
 
 from typing import Any
 
+from kame.msg.anymsg import AnyMsg
 from kame.msg.message import Message
-from rospy.exceptions import ROSException
 
-
-class AnyMsg(Message):
-    """A message of any type, kept as its serialized bytes (`_buff`): for relays and recorders."""
-
-    __slots__ = ("_buff",)
-    _type = "*"
-    _md5sum = "*"
-    _full_text = ""
-    _has_header = False
-    _slot_types = ()
-
-    def __init__(self, *args: Any) -> None:
-        if args:
-            raise ROSException("AnyMsg does not accept arguments")
-        self._buff: bytes | None = None
-
-    def serialize(self, buff: Any) -> None:
-        if self._buff is None:
-            raise ROSException("AnyMsg is not initialized")
-        buff.write(self._buff)
-
-    def deserialize(self, data: Any) -> AnyMsg:
-        self._buff = bytes(data)
-        return self
-
-    @classmethod
-    def _from_buffer(cls, data: Any) -> AnyMsg:
-        return cls().deserialize(data)
+__all__ = ["AnyMsg", "args_kwds_to_message"]
 
 
 def args_kwds_to_message(data_class: type[Any], args: tuple[Any, ...], kwds: dict[str, Any]) -> Any:

@@ -11,7 +11,6 @@ master (no init_node): it only needs a caller id for the service connection.
 
 from __future__ import annotations
 
-import importlib
 import io
 import optparse
 import os
@@ -24,6 +23,7 @@ from typing import Any
 import yaml
 
 from kame.cli._tool import Master, ToolError, run, script_resolve_name, strip_remappings
+from kame.msg import lookup
 from kame.msg.catalog import MsgCatalog
 from kame.msg.describe import describe_srv, load_srv
 from kame.msg.errors import MessageError, SerializationError
@@ -124,17 +124,10 @@ def tool(caller_id: str = ID) -> Iterator[Tool]:
 
 def load_service_class(service_type: str) -> Any:
     """`pkg/Name` -> the service class, or None (kame's packages and the workspace's alike)."""
-    package, _, short = service_type.partition("/")
-    if not package or not short:
-        return None
     try:
-        module = importlib.import_module(f"{package}.srv")
-    except (ImportError, MessageError):
+        return lookup.service_class(service_type)
+    except MessageError:
         return None
-    cls = getattr(module, short, None)
-    if cls is None and short.endswith("Request"):  # roscpp once named the request type
-        cls = getattr(module, short[: -len("Request")], None)
-    return cls if cls is not None and hasattr(cls, "_request_class") else None
 
 
 def _srv_text(service_type: str) -> str:
