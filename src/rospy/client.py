@@ -4,19 +4,19 @@ from __future__ import annotations
 
 import os
 import signal
-import socket
 import sys
 import threading
 import time
 from typing import Any
 
-from kame import names
+from kame import environ, names
+from kame.node.config import node_config
 from kame.node.master_proxy import MasterError
-from kame.node.node import Node, NodeConfig
+from kame.node.node import Node
 from rospy import _log, core, rostime
 from rospy.exceptions import ROSException, ROSInitException, ROSInterruptException
 
-DEFAULT_MASTER_URI = "http://localhost:11311/"
+DEFAULT_MASTER_URI = environ.DEFAULT_MASTER_URI
 _unspecified = object()
 _init_lock = threading.Lock()
 _init_args: tuple[Any, ...] | None = None
@@ -31,26 +31,6 @@ def myargv(argv: list[str] | None = None) -> list[str]:
 def _print_shutdown_call(caller_id: str, msg: str) -> None:
     """What rospy prints on stdout when the master or `rosnode kill` asks it to shut down."""
     print(f"shutdown request: {msg}" if msg else "shutdown requst", flush=True)  # sic: rospy's typo
-
-
-def _advertised_host(special: dict[str, str]) -> str:
-    for value in (special.get("hostname"), special.get("ip"), os.environ.get("ROS_HOSTNAME"),
-                  os.environ.get("ROS_IP")):
-        if value:
-            return value
-    host = socket.gethostname()
-    if host and host != "localhost" and not host.startswith("127."):
-        return host
-    try:
-        probe = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
-        try:
-            probe.connect(("10.255.255.255", 1))  # no packet is sent: this only picks a route
-            address: str = probe.getsockname()[0]
-            return address
-        finally:
-            probe.close()
-    except OSError:
-        return "127.0.0.1"
 
 
 def _wait_for_master(node: Node, master_uri: str) -> None:
@@ -114,17 +94,15 @@ def init_node(name: str, argv: list[str] | None = None, anonymous: bool = False,
 
             warnings.warn(f"'{name}' is not a legal ROS base name. This may cause problems with other ROS tools.",
                           stacklevel=2)
-        namespace = names.make_global_ns(special.get("ns") or os.environ.get("ROS_NAMESPACE") or "/")
-        caller_id = names.canonicalize(namespace + name)
-        master_uri = special.get("master") or os.environ.get("ROS_MASTER_URI") or DEFAULT_MASTER_URI
-        remappings = names.resolve_remappings(ros_args.remappings, caller_id)
+        config = node_config(name, {**special, "name": name}, os.environ, ros_args.remappings,
+                             xmlrpc_port=xmlrpc_port, tcpros_port=tcpros_port)
+        namespace, caller_id, master_uri = environ.namespace(os.environ, special), config.name, config.master_uri
+        remappings = dict(config.remappings)
         if log_level is not None:
             _log.set_level(log_level)
         if not disable_signals:
             _install_signal_handlers()
-        host = _advertised_host(special)
-        node = Node(NodeConfig(caller_id, master_uri, host, remappings=tuple(remappings.items()),
-                               xmlrpc_port=xmlrpc_port, tcpros_port=tcpros_port))
+        node = Node(config)
         node.on_shutdown_request = core.signal_shutdown
         node.on_shutdown_call = _print_shutdown_call
         core.set_node(node, caller_id, namespace, remappings)

@@ -13,12 +13,12 @@ import threading
 from collections.abc import Callable, Iterator
 from typing import Any
 
-from kame import names
+from kame import environ, names
 from kame.node.node import Node
 
 _node: Node | None = None
 _caller_id = "/unnamed"
-_namespace = names.make_global_ns(os.environ.get("ROS_NAMESPACE", "/")) if os.environ.get("ROS_NAMESPACE") else "/"
+_namespace = environ.namespace(os.environ)
 _remappings: dict[str, str] = {}
 _shutdown = threading.Event()
 _node_down = threading.Event()  # set once signal_shutdown has unregistered and closed the node

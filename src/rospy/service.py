@@ -9,11 +9,11 @@ import traceback
 from collections.abc import Callable
 from typing import Any
 
+from kame import environ
 from kame.msg.errors import SerializationError
 from kame.node.master_proxy import MasterError, MasterProxy
 from kame.node.services import ServiceClient, ServiceError, probe_service
 from rospy import _log, core
-from rospy.client import DEFAULT_MASTER_URI
 from rospy.exceptions import ROSException, ROSInitException, ROSInterruptException, ROSSerializationException
 from rospy.msg import args_kwds_to_message
 
@@ -40,7 +40,7 @@ def _master_and_caller() -> tuple[MasterProxy, str]:
     if node is not None:
         return node.master, node.name
     if _anonymous_master is None:
-        _anonymous_master = MasterProxy(os.environ.get("ROS_MASTER_URI") or DEFAULT_MASTER_URI, core.get_caller_id())
+        _anonymous_master = MasterProxy(environ.master_uri(os.environ), core.get_caller_id())
     return _anonymous_master, core.get_caller_id()
 
 

@@ -21,7 +21,6 @@ from __future__ import annotations
 
 import argparse
 import contextlib
-import importlib
 import optparse
 import os
 import select
@@ -34,8 +33,10 @@ from urllib.parse import urlparse
 
 import yaml
 
-from kame import names
+from kame import environ, names
 from kame.bag.errors import BagError
+from kame.msg import lookup
+from kame.msg.anymsg import AnyMsg
 from kame.msg.echo import as_field_value, csv_header, csv_row, field_filter, to_yaml, transform
 from kame.msg.errors import MessageError
 from kame.msg.fieldpath import FieldPath, FieldPathError, field_type, has_field, parse_field_path
@@ -52,7 +53,6 @@ EX_USAGE = 64
 ANYTYPE = "*"
 ONCE_DELAY = 3.0
 SUBSCRIBER_TIMEOUT = 5.0
-DEFAULT_MASTER_URI = "http://localhost:11311/"
 
 
 class RostopicError(Exception):
@@ -68,8 +68,7 @@ class MasterUnreachable(RostopicError):
 
 
 def _ros_namespace() -> str:
-    special = names.parse_args(sys.argv).special
-    return names.make_global_ns(special.get("ns") or os.environ.get("ROS_NAMESPACE") or "/")
+    return environ.namespace(os.environ, names.parse_args(sys.argv).special)
 
 
 def script_resolve_name(name: str) -> str:
@@ -85,8 +84,7 @@ def script_resolve_name(name: str) -> str:
 
 
 def _master_uri() -> str:
-    special = names.parse_args(sys.argv).special
-    return special.get("master") or os.environ.get("ROS_MASTER_URI") or DEFAULT_MASTER_URI
+    return environ.master_uri(os.environ, names.parse_args(sys.argv).special)
 
 
 class Master:
@@ -135,33 +133,21 @@ def topic_types() -> list[tuple[str, str]]:
 
 def load_message_class(type_name: str) -> type[Message] | None:
     """The class of a message type (kame's packages, or user packages on ROS_PACKAGE_PATH)."""
-    if type_name == "Header":
-        type_name = "std_msgs/Header"
-    package, _, short = type_name.partition("/")
-    if not package or not short or "/" in short or not package.isidentifier() or not short.isidentifier():
-        return None
     try:
-        module = importlib.import_module(f"{package}.msg")
-    except ImportError:
-        return None
+        return lookup.message_class(type_name)
     except MessageError as exc:
         raise RostopicError(str(exc)) from None
-    cls = getattr(module, short, None)
-    if isinstance(cls, type) and issubclass(cls, Message) and cls._type == type_name:
-        return cls
-    return None
 
 
 def _dynamic_class(header: dict[str, str]) -> type[Message]:
-    """The class of a message that came from a publisher, made from its message_definition."""
-    from kame.msg.loader import generate_dynamic
-
+    """The class of a message that came from a publisher: installed, or made from its message_definition."""
     type_name = header.get("type", "")
-    definition = header.get("message_definition", "")
-    if not type_name or type_name == ANYTYPE or not definition:
+    cls = None
+    if type_name and type_name != ANYTYPE:
+        cls = lookup.class_for(type_name, header.get("md5sum", ""), header.get("message_definition", ""))
+    if cls is None:
         raise RostopicError(f"the publisher [{header.get('callerid', '?')}] did not send the definition of its "
                             f"message type [{type_name}], and kame does not have it installed")
-    cls: type[Message] = generate_dynamic(type_name, definition)[type_name]
     return cls
 
 
@@ -174,11 +160,7 @@ class Decoder:
 
     @property
     def subscribe_class(self) -> type[Any]:
-        if self.cls is not None:
-            return self.cls
-        from rospy import AnyMsg
-
-        return AnyMsg
+        return self.cls if self.cls is not None else AnyMsg
 
     def __call__(self, msg: Any) -> Message:
         if self.cls is not None:
