@@ -138,8 +138,7 @@ class Publisher(Topic):
             except (TypeError, ValueError, AttributeError) as exc:
                 raise ROSSerializationException(str(exc)) from exc
         if msg._has_header:
-            impl.seq += 1
-            msg.header.seq = impl.seq
+            msg.header.seq = impl.next_seq()
         try:
             frame = serialize_frame(msg)
         except SerializationError as exc:
