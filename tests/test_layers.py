@@ -31,6 +31,7 @@ LAYERS: dict[str, int] = {
     "kame.node": 3,
     "kame.master.server": 3,
     "kame.cli": 4,
+    "kame.client": 4,  # a program's one node (what rospy re-exports): process-wide state
     "kame.importhook": 4,
     "kame.launch": 1,
     "kame.launch.supervisor": 2,

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from rospy import _log
+from kame.client import log as _log
 
 
 def logdebug(msg: str, *args: Any) -> None:

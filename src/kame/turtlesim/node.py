@@ -28,8 +28,8 @@ import time
 from collections.abc import Callable, Sequence
 from typing import Any
 
-import rospy
 from geometry_msgs.msg import Twist
+from kame.client import core, log, process, topics
 from kame.turtlesim.canvas import Rgb
 from kame.turtlesim.world import (
     DEFAULT_BACKGROUND,
@@ -40,7 +40,6 @@ from kame.turtlesim.world import (
     TurtleError,
     World,
 )
-from rospy import _log
 from std_srvs.srv import Empty, EmptyResponse
 from turtlesim.msg import Color
 from turtlesim.msg import Pose as PoseMsg
@@ -63,15 +62,15 @@ _CHANNELS = ("r", "g", "b")
 
 
 def _info(msg: str, *args: Any) -> None:
-    _log.emit(_log.INFO, msg, args)
+    log.emit(log.INFO, msg, args)
 
 
 def _warn(msg: str, *args: Any) -> None:
-    _log.emit(_log.WARN, msg, args)
+    log.emit(log.WARN, msg, args)
 
 
 def _error(msg: str, *args: Any) -> None:
-    _log.emit(_log.ERROR, msg, args)
+    log.emit(log.ERROR, msg, args)
 
 
 def _serialized(msg: Any) -> bytes:
@@ -85,9 +84,9 @@ class _TurtleInterfaces:
 
     def __init__(self, sim: TurtlesimNode, name: str) -> None:
         self.name = name
-        self.pose = rospy.Publisher(f"{name}/pose", PoseMsg, queue_size=1)
-        self.color = rospy.Publisher(f"{name}/color_sensor", Color, queue_size=1)
-        self.cmd_vel = rospy.Subscriber(f"{name}/cmd_vel", Twist, self._on_cmd_vel, queue_size=1)
+        self.pose = topics.Publisher(f"{name}/pose", PoseMsg, queue_size=1)
+        self.color = topics.Publisher(f"{name}/color_sensor", Color, queue_size=1)
+        self.cmd_vel = topics.Subscriber(f"{name}/cmd_vel", Twist, self._on_cmd_vel, queue_size=1)
         self._sim = sim
         self.services = [
             sim.serve(f"{name}/set_pen", SetPen, self._set_pen),
@@ -126,7 +125,7 @@ class _TurtleInterfaces:
         self.pose.unregister()
         self.color.unregister()
         self.cmd_vel.unregister()
-        node = rospy.core.get_node()
+        node = core.get_node()
         for service in self.services:
             if node is not None:
                 node.unadvertise_service(service)
@@ -149,13 +148,13 @@ class TurtlesimNode:
     # ---------------------------------------------------------------- start-up
 
     def start(self) -> None:
-        _info("Starting turtlesim with node name %s", rospy.get_name())
+        _info("Starting turtlesim with node name %s", core.get_name())
         for channel, default in zip(_CHANNELS, (DEFAULT_BACKGROUND.r, DEFAULT_BACKGROUND.g, DEFAULT_BACKGROUND.b),
                                     strict=True):
             key = f"~background_{channel}"
-            if not rospy.has_param(key):
-                rospy.set_param(key, default)
-            self._initial_background[channel] = rospy.get_param(key, default)
+            if not process.has_param(key):
+                process.set_param(key, default)
+            self._initial_background[channel] = process.get_param(key, default)
         self.serve("clear", Empty, self._clear)
         self.serve("reset", Empty, self._reset_service)
         self.serve("spawn", Spawn, self._spawn)
@@ -165,7 +164,7 @@ class TurtlesimNode:
     def serve(self, name: str, service_class: Any, handler: Callable[[Any], Any]) -> str:
         """Advertise a service whose handler's TurtleError is logged and answered as a plain
         failure (roscpp's `return false`)."""
-        resolved = rospy.resolve_name(name)
+        resolved = core.resolve_name(name)
         request_class = service_class._request_class
 
         def handle(data: bytes) -> tuple[bool, bytes | str]:
@@ -179,7 +178,7 @@ class TurtlesimNode:
                 _error("%s", exc)
                 return False, ""
 
-        node = rospy.core.get_node()
+        node = core.get_node()
         assert node is not None
         node.advertise_service(resolved, service_class._type, service_class._md5sum, handle)
         return resolved
@@ -189,8 +188,8 @@ class TurtlesimNode:
     def background(self) -> Rgb:
         values = []
         for channel in _CHANNELS:
-            private = rospy.get_param(f"~background_{channel}", self._initial_background.get(channel))
-            legacy = rospy.get_param(f"background_{channel}", None)
+            private = process.get_param(f"~background_{channel}", self._initial_background.get(channel))
+            legacy = process.get_param(f"background_{channel}", None)
             value = legacy if legacy is not None and private == self._initial_background.get(channel) else private
             try:
                 values.append(int(value) & 0xFF)
@@ -333,14 +332,14 @@ class TurtlesimNode:
     def run_headless(self) -> None:
         """Step every UPDATE_PERIOD until shutdown; a late step is not made up for by a burst."""
         deadline = time.monotonic()
-        while not rospy.is_shutdown():
+        while not core.is_shutdown():
             self.tick()
             deadline += UPDATE_PERIOD
             delay = deadline - time.monotonic()
             if delay < -0.1:
                 deadline = time.monotonic()
             elif delay > 0:
-                rospy.core.wait_for_shutdown(delay)
+                core.wait_for_shutdown(delay)
 
     def shutdown(self) -> None:
         with self._sync_lock:
@@ -362,9 +361,9 @@ def window_problem(args: Sequence[str], env: dict[str, str] | os._Environ[str]) 
 
 def main(argv: Sequence[str] | None = None) -> int:
     argv = list(sys.argv if argv is None else argv)
-    args = rospy.myargv(argv)[1:]
-    _log.use_roscpp_console()
-    rospy.init_node(NODE_NAME, argv=argv)
+    args = process.myargv(argv)[1:]
+    log.use_roscpp_console()
+    process.init_node(NODE_NAME, argv=argv)
     sim = TurtlesimNode(World())
     sim.start()
     problem = window_problem(args, os.environ)
@@ -374,18 +373,16 @@ def main(argv: Sequence[str] | None = None) -> int:
             sim.run_headless()
         else:
             from kame.turtlesim import gui
-            from rospy import core
-
             with core.main_thread_waiting():  # Ctrl-C ends Qt's loop through is_shutdown, no traceback
-                status = gui.run_window(sim.frame, rospy.is_shutdown, title=WINDOW_TITLE,
+                status = gui.run_window(sim.frame, core.is_shutdown, title=WINDOW_TITLE,
                                         period_ms=round(UPDATE_PERIOD * 1000))
-            if status != 0 or not rospy.is_shutdown():
-                rospy.signal_shutdown("window closed")
+            if status != 0 or not core.is_shutdown():
+                core.signal_shutdown("window closed")
     except KeyboardInterrupt:
         pass
     finally:
         sim.shutdown()
-        rospy.signal_shutdown("turtlesim exiting")
+        core.signal_shutdown("turtlesim exiting")
     return 0
 
 
