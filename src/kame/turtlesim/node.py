@@ -8,7 +8,7 @@ and world steps into ROS traffic, as turtlesim 0.10.2's TurtleFrame and Turtle d
 - node `turtlesim`; services clear, reset, spawn, kill; params ~background_r/g/b (set to
   69/86/255 when absent, read at start and on every clear/reset);
 - per turtle: cmd_vel in, pose and color_sensor out (every 16 ms step), services set_pen,
-  teleport_absolute, teleport_relative, and the rotate_absolute action when kame has actionlib;
+  teleport_absolute, teleport_relative, and the rotate_absolute action;
 - roscpp's log lines; errors are logged and answered as failed calls with no text, as a
   roscpp service returning false is.
 What kame adds: a cmd_vel or request with NaN/infinity is refused (the real turtle would
@@ -30,6 +30,7 @@ from typing import Any
 
 from geometry_msgs.msg import Twist
 from kame.client import core, log, process, topics
+from kame.client.action.simple_action_server import SimpleActionServer
 from kame.turtlesim.canvas import Rgb
 from kame.turtlesim.world import (
     DEFAULT_BACKGROUND,
@@ -250,15 +251,12 @@ class TurtlesimNode:
     # ---------------------------------------------------------------- rotate_absolute
 
     def rotate_absolute_server(self, name: str) -> Any:
-        """The turtle's rotate_absolute action server, when kame has actionlib; else None."""
-        if importlib.util.find_spec("actionlib") is None:
-            return None
+        """The turtle's rotate_absolute action server (None if it cannot be served)."""
         try:
-            from actionlib import SimpleActionServer
             from turtlesim.msg import RotateAbsoluteAction
 
             server: Any = SimpleActionServer(f"{name}/rotate_absolute", RotateAbsoluteAction, auto_start=False)
-        except Exception as exc:  # an actionlib that cannot serve: turtlesim goes on without the action
+        except Exception as exc:  # a server that cannot start: turtlesim goes on without the action
             _warn("No rotate_absolute action for [%s]: %s", name, exc)
             return None
 

@@ -1,0 +1,5 @@
+"""actionlib's exception."""
+
+
+class ActionException(Exception):
+    pass
