@@ -4,7 +4,7 @@
 kame.cli.rosbag.
 """
 
-from rosbag.bag import (
+from kame.client.bag import (
     Bag,
     BagMessage,
     Compression,

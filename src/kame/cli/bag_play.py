@@ -166,8 +166,8 @@ class Player:
     def publish_clock(self, bag_ns: int) -> None:
         if self.clock is None:
             return
+        from kame.client.clock import Time
         from rosgraph_msgs.msg import Clock
-        from rospy.rostime import Time
 
         payload = serialize_payload(Clock(clock=Time(*divmod(bag_ns, 1_000_000_000))))
         self.clock.publish_frame([_LEN.pack(len(payload)) + payload])

@@ -75,7 +75,7 @@ def _quick_info_args(argv: list[str]) -> tuple[_InfoOptions, list[str]] | None:
 
 def _info_summary(path: str, frequencies: bool) -> BagSummary:
     if frequencies:
-        from rosbag.bag import Bag
+        from kame.client.bag import Bag
 
         with Bag(path, "r") as bag:
             return bag.summary(frequencies=True)
@@ -165,7 +165,7 @@ def rewrite(in_path: str, out_path: str, compression: str | None,
     messages are copied as bytes unless `keep` needs them decoded. Returns messages written."""
     from kame.bag.reader import BagReader
     from kame.bag.writer import BagWriter
-    from rosbag.bag import message_class
+    from kame.client.bag import message_class
 
     with BagReader(in_path) as reader:
         if compression is None:
@@ -307,7 +307,7 @@ def cmd_filter(argv: list[str]) -> int:
     except SyntaxError as exc:
         print(f"ERROR: invalid expression: {exc}", file=sys.stderr)
         return 1
-    from rospy.rostime import Time
+    from kame.client.clock import Time
 
     def keep(topic: str, m: object, t: tuple[int, int]) -> bool:
         env = {"topic": topic, "m": m, "t": Time(t[0], t[1])}
@@ -336,7 +336,7 @@ def cmd_check(argv: list[str]) -> int:
     _options, args = parser.parse_args(argv)
     if not args:
         parser.error("You must specify a bag file to check.")
-    from rosbag.bag import Bag
+    from kame.client.bag import Bag
 
     try:  # kame reads every message with the definition stored in the bag: nothing to migrate
         with Bag(args[0]):
