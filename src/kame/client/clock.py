@@ -1,4 +1,4 @@
-"""rospy.Time and rospy.Duration: kame's time values plus the clock (wall or simulated)."""
+"""ROS time: Time and Duration (rospy's) with now(), on the wall clock or simulated (/clock)."""
 
 from __future__ import annotations
 

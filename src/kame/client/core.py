@@ -1,6 +1,7 @@
-"""The process-wide state of a rospy program: its one node, shutdown, and names.
+"""The process-wide state of a program's node: the one Node, shutdown and its hooks, and names.
 
-Only this facade holds process-wide state; kame's Node is an explicit object underneath.
+kame.client (and the CLI entry points) are the only holders of process-wide state; kame's Node
+underneath is an explicit object.
 """
 
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""rospy's exception classes."""
+"""The client's exceptions, under rospy's names (ROSException, ROSInterruptException, ...)."""
 
 from kame.msg.errors import DeserializationError, SerializationError
 

@@ -1,4 +1,4 @@
-"""rospy logging: the console lines ROS users know, a log file per node, and /rosout.
+"""Logging of a program's node: the console lines ROS users know, a log file per node, /rosout.
 
 Console: `[INFO] [1795311282.956206]: text` (ROSCONSOLE_FORMAT overrides the template),
 DEBUG and INFO to stdout, WARN and above to stderr, coloured on a tty only. Every record

@@ -1,4 +1,4 @@
-"""rospy.init_node, spin, parameters, myargv and the other top-level client functions."""
+"""init_node, spin, parameters, myargv and the other top-level functions (rospy's)."""
 
 from __future__ import annotations
 

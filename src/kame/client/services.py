@@ -1,4 +1,4 @@
-"""rospy.Service, rospy.ServiceProxy, wait_for_service and ServiceException over kame's Node."""
+"""Service, ServiceProxy, wait_for_service and ServiceException (rospy's) over kame's Node."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""rospy.Rate, rospy.Timer and rospy.sleep, on ROS time (wall clock or /clock)."""
+"""Rate, Timer and sleep (rospy's), on ROS time (wall clock or /clock)."""
 
 from __future__ import annotations
 

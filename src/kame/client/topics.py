@@ -1,4 +1,4 @@
-"""rospy.Publisher and rospy.Subscriber over kame's Node.
+"""Publisher and Subscriber (rospy's) over kame's Node.
 
 Several Publisher (or Subscriber) objects for one topic in a process share the node's one
 publication (subscription), as in rospy; unregister() drops a handle, the last one the topic.

@@ -1,4 +1,4 @@
-"""rospy's logging calls, typed (the caller reported is actionlib's, as with rospy.logerr)."""
+"""The action layer's log calls (the caller reported is the action code, as with rospy.logerr)."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""actionlib's exception."""
+"""ActionException (actionlib's)."""
 
 
 class ActionException(Exception):
