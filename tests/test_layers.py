@@ -37,6 +37,7 @@ LAYERS: dict[str, int] = {
     "kame.launch.supervisor": 2,
     "kame.launch.server": 2,  # the roslaunch XML-RPC server
     "kame.launch.runner": 4,
+    "kame.launch.scripting": 4,  # roslaunch's script API
     "kame.catkin": 2,
     "kame.shell": 4,
     "kame.turtlesim": 1,  # the world: no ROS, no GUI, no clock

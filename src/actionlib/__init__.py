@@ -4,8 +4,7 @@ lower-level ActionServer/ActionClient with their goal handles, wire-compatible w
 The rules (status transitions, cancel matching, CommState) are plain data in kame.action.
 """
 
-from actionlib_msgs.msg import GoalID, GoalStatus, GoalStatusArray
-from kame.client.action.action_client import (
+from actionlib.action_client import (
     ActionClient,
     ClientGoalHandle,
     CommState,
@@ -14,13 +13,14 @@ from kame.client.action.action_client import (
     TerminalState,
     get_name_of_constant,
 )
-from kame.client.action.action_server import ActionServer, nop_cb
-from kame.client.action.exceptions import ActionException
-from kame.client.action.goal_id_generator import GoalIDGenerator
-from kame.client.action.server_goal_handle import ServerGoalHandle
-from kame.client.action.simple_action_client import SimpleActionClient, SimpleGoalState
-from kame.client.action.simple_action_server import SimpleActionServer
-from kame.client.action.status_tracker import StatusTracker
+from actionlib.action_server import ActionServer, nop_cb
+from actionlib.exceptions import ActionException
+from actionlib.goal_id_generator import GoalIDGenerator
+from actionlib.server_goal_handle import ServerGoalHandle
+from actionlib.simple_action_client import SimpleActionClient, SimpleGoalState
+from actionlib.simple_action_server import SimpleActionServer
+from actionlib.status_tracker import StatusTracker
+from actionlib_msgs.msg import GoalID, GoalStatus, GoalStatusArray
 
 __all__ = [
     "ActionClient", "ActionException", "ActionServer", "ClientGoalHandle", "CommState", "CommStateMachine",

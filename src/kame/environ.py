@@ -11,11 +11,13 @@ from collections.abc import Mapping
 
 from kame import names
 
-DEFAULT_MASTER_URI = "http://localhost:11311/"
+DEFAULT_MASTER_URI = "http://localhost:11311/"  # rosgraph's, for a node when nothing names a master
+SETUP_MASTER_URI = "http://localhost:11311"  # what ROS's setup files export and roslaunch prints
 
 
-def master_uri(env: Mapping[str, str], special: Mapping[str, str] | None = None) -> str:
-    return (special or {}).get("master") or env.get("ROS_MASTER_URI") or DEFAULT_MASTER_URI
+def master_uri(env: Mapping[str, str], special: Mapping[str, str] | None = None,
+               default: str = DEFAULT_MASTER_URI) -> str:
+    return (special or {}).get("master") or env.get("ROS_MASTER_URI") or default
 
 
 def namespace(env: Mapping[str, str], special: Mapping[str, str] | None = None) -> str:

@@ -4,7 +4,7 @@
 kame.cli.rosbag.
 """
 
-from kame.client.bag import (
+from rosbag.bag import (
     Bag,
     BagMessage,
     Compression,

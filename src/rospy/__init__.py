@@ -5,27 +5,8 @@ Publisher/Subscriber, Service/ServiceProxy, parameters, time, logging.
 """
 
 from kame.client import log as _log
-from kame.client.clock import Duration, Time, get_rostime, get_time
-from kame.client.core import (
-    get_caller_id,
-    get_name,
-    get_namespace,
-    get_node_uri,
-    is_shutdown,
-    on_shutdown,
-    remap_name,
-    resolve_name,
-    signal_shutdown,
-)
-from kame.client.errors import (
-    ROSException,
-    ROSInitException,
-    ROSInternalException,
-    ROSInterruptException,
-    ROSSerializationException,
-    ROSTimeMovedBackwardsException,
-)
-from kame.client.process import (
+from kame.msg.message import Message
+from rospy.client import (
     delete_param,
     get_master,
     get_param,
@@ -40,12 +21,31 @@ from kame.client.process import (
     spin,
     wait_for_message,
 )
-from kame.client.services import Service, ServiceException, ServiceProxy, wait_for_service
-from kame.client.timer import Rate, Timer, TimerEvent, sleep
-from kame.client.topics import Publisher, SubscribeListener, Subscriber
-from kame.msg.anymsg import AnyMsg
-from kame.msg.message import Message
+from rospy.core import (
+    get_caller_id,
+    get_name,
+    get_namespace,
+    get_node_uri,
+    is_shutdown,
+    on_shutdown,
+    remap_name,
+    resolve_name,
+    signal_shutdown,
+)
+from rospy.exceptions import (
+    ROSException,
+    ROSInitException,
+    ROSInternalException,
+    ROSInterruptException,
+    ROSSerializationException,
+    ROSTimeMovedBackwardsException,
+)
+from rospy.msg import AnyMsg
 from rospy.numpy_msg import numpy_msg
+from rospy.rostime import Duration, Time, get_rostime, get_time
+from rospy.service import Service, ServiceException, ServiceProxy, wait_for_service
+from rospy.timer import Rate, Timer, TimerEvent, sleep
+from rospy.topics import Publisher, SubscribeListener, Subscriber
 
 DEBUG = _log.DEBUG
 INFO = _log.INFO
