@@ -1,5 +1,9 @@
-"""actionlib's exception."""
+"""actionlib.exceptions: kame.client.action.exceptions under actionlib's name."""
 
+from kame.client.action.exceptions import (
+    ActionException,
+)
 
-class ActionException(Exception):
-    pass
+__all__ = [
+    "ActionException",
+]

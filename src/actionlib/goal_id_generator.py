@@ -1,27 +1,9 @@
-"""GoalIDGenerator: `<name>-<counter>-<secs>.<nsecs>` ids, one counter per process (as ROS)."""
+"""actionlib.goal_id_generator: kame.client.action.goal_id_generator under actionlib's name."""
 
-from __future__ import annotations
+from kame.client.action.goal_id_generator import (
+    GoalIDGenerator,
+)
 
-import itertools
-import threading
-
-import rospy
-from actionlib_msgs.msg import GoalID
-from kame.action import generated_goal_id
-
-_counter = itertools.count(1)
-_counter_lock = threading.Lock()
-
-
-class GoalIDGenerator:
-    def __init__(self, name: str | None = None) -> None:
-        self.name = name if name is not None else rospy.get_name()
-
-    def set_name(self, name: str) -> None:
-        self.name = name
-
-    def generate_ID(self) -> GoalID:
-        now = rospy.Time.now()
-        with _counter_lock:
-            count = next(_counter)
-        return GoalID(stamp=now, id=generated_goal_id(self.name, count, now.secs, now.nsecs))
+__all__ = [
+    "GoalIDGenerator",
+]

@@ -4,8 +4,8 @@ Programs written for rospy run unchanged: `import rospy`, `rospy.init_node(...)`
 Publisher/Subscriber, Service/ServiceProxy, parameters, time, logging.
 """
 
+from kame.client import log as _log
 from kame.msg.message import Message
-from rospy import _log
 from rospy.client import (
     delete_param,
     get_master,

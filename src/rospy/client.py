@@ -1,314 +1,35 @@
-"""rospy.init_node, spin, parameters, myargv and the other top-level client functions."""
-
-from __future__ import annotations
-
-import os
-import signal
-import socket
-import sys
-import threading
-import time
-from typing import Any
-
-from kame import names
-from kame.node.master_proxy import MasterError
-from kame.node.node import Node, NodeConfig
-from rospy import _log, core, rostime
-from rospy.exceptions import ROSException, ROSInitException, ROSInterruptException
-
-DEFAULT_MASTER_URI = "http://localhost:11311/"
-_unspecified = object()
-_init_lock = threading.Lock()
-_init_args: tuple[Any, ...] | None = None
-_log_file: str | None = None
-
-
-def myargv(argv: list[str] | None = None) -> list[str]:
-    """argv without the ROS arguments (`a:=b`, `__name:=x`, `_p:=v`)."""
-    return names.parse_args(sys.argv if argv is None else argv).argv
-
-
-def _print_shutdown_call(caller_id: str, msg: str) -> None:
-    """What rospy prints on stdout when the master or `rosnode kill` asks it to shut down."""
-    print(f"shutdown request: {msg}" if msg else "shutdown requst", flush=True)  # sic: rospy's typo
-
-
-def _advertised_host(special: dict[str, str]) -> str:
-    for value in (special.get("hostname"), special.get("ip"), os.environ.get("ROS_HOSTNAME"),
-                  os.environ.get("ROS_IP")):
-        if value:
-            return value
-    host = socket.gethostname()
-    if host and host != "localhost" and not host.startswith("127."):
-        return host
-    try:
-        probe = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
-        try:
-            probe.connect(("10.255.255.255", 1))  # no packet is sent: this only picks a route
-            address: str = probe.getsockname()[0]
-            return address
-        finally:
-            probe.close()
-    except OSError:
-        return "127.0.0.1"
-
-
-def _wait_for_master(node: Node, master_uri: str) -> None:
-    warned = False
-    while not core.is_shutdown():
-        try:
-            node.master.call("getPid", timeout=2.0)
-            return
-        except (OSError, MasterError):
-            if not warned:
-                _log.emit(_log.ERROR, "Unable to immediately register with master node [%s]: "
-                          "master may not be running yet. Will keep trying.", (master_uri,),
-                          caller=("client.py", 0, "init_node", None))
-                warned = True
-            core.wait_for_shutdown(0.2)
-    raise ROSInitException("init_node interrupted before it could complete")
-
-
-def _install_signal_handlers() -> None:
-    def handler(signum: int, frame: Any) -> None:
-        # The shutdown runs on a thread of its own: the interrupted main thread may hold a lock
-        # the shutdown needs (it may be in the middle of a publish). A main thread waiting in
-        # rospy (spin, sleep, Rate) wakes up through the shutdown event and leaves quietly; one
-        # busy in user code gets a ROSInterruptException, which is a KeyboardInterrupt too, so
-        # both the tutorials' `except rospy.ROSInterruptException` and plain Python code see it.
-        waiting = core.main_thread_is_waiting()
-        threading.Thread(target=core.signal_shutdown, args=(f"signal-{signum}",), name="rospy-shutdown").start()
-        if signum == signal.SIGINT and not waiting:
-            raise ROSInterruptException("ROS shutdown request")
-
-    if threading.current_thread() is not threading.main_thread():
-        raise ValueError("signal only works in main thread")
-    signal.signal(signal.SIGINT, handler)
-    signal.signal(signal.SIGTERM, handler)
-
-
-def init_node(name: str, argv: list[str] | None = None, anonymous: bool = False, log_level: int | None = None,
-              disable_rostime: bool = False, disable_rosout: bool = False, disable_signals: bool = False,
-              xmlrpc_port: int = 0, tcpros_port: int = 0) -> None:
-    """Register this process as the node `name` with the master (rospy.init_node)."""
-    global _init_args
-    args = (name, anonymous, log_level, disable_rostime, disable_rosout, disable_signals)
-    with _init_lock:
-        if _init_args is not None:
-            if _init_args != args:
-                raise ROSException("rospy.init_node() has already been called with different arguments: "
-                                   + str(_init_args))
-            return
-        if not name:
-            raise ValueError("name must not be empty")
-        if names.SEP in name:
-            raise ValueError("namespaces are not allowed in node names")
-        ros_args = names.parse_args(sys.argv if argv is None else argv)
-        special = ros_args.special
-        if "name" in special:
-            name = special["name"]
-        elif anonymous:
-            name = f"{name}_{os.getpid()}_{int(time.time() * 1000)}"
-        if not names.is_legal_base_name(name):
-            import warnings
-
-            warnings.warn(f"'{name}' is not a legal ROS base name. This may cause problems with other ROS tools.",
-                          stacklevel=2)
-        namespace = names.make_global_ns(special.get("ns") or os.environ.get("ROS_NAMESPACE") or "/")
-        caller_id = names.canonicalize(namespace + name)
-        master_uri = special.get("master") or os.environ.get("ROS_MASTER_URI") or DEFAULT_MASTER_URI
-        remappings = names.resolve_remappings(ros_args.remappings, caller_id)
-        if log_level is not None:
-            _log.set_level(log_level)
-        if not disable_signals:
-            _install_signal_handlers()
-        host = _advertised_host(special)
-        node = Node(NodeConfig(caller_id, master_uri, host, remappings=tuple(remappings.items()),
-                               xmlrpc_port=xmlrpc_port, tcpros_port=tcpros_port))
-        node.on_shutdown_request = core.signal_shutdown
-        node.on_shutdown_call = _print_shutdown_call
-        core.set_node(node, caller_id, namespace, remappings)
-        _init_args = args
-    _log.configure_file_logging(caller_id, special.get("log"))
-    _log.route_runtime_logs()
-    _wait_for_master(node, master_uri)
-    if ros_args.params:
-        import yaml
-
-        for key, text in ros_args.params.items():
-            set_param(key, yaml.safe_load(text) if text else "")
-    core.run_deferred()
-    if not disable_rosout:
-        _start_rosout(node)
-    if not disable_rostime:
-        _start_time(node)
-    else:
-        rostime.set_rostime_initialized(True)
-    _start_logger_services()
-
-
-def _start_rosout(node: Node) -> None:
-    from rosgraph_msgs.msg import Log
-    from rospy.topics import Publisher
-
-    publisher = Publisher("/rosout", Log, latch=True, queue_size=100)
-    try:
-        omit_topics = bool(get_param("/rosout_disable_topics_generation", False))
-    except Exception:
-        omit_topics = False
-
-    def publish(level: int, text: str, file: str, function: str, line: int) -> None:
-        if core.is_shutdown() or publisher.impl is None:
-            return
-        msg = Log(level=level, name=node.name, msg=text, file=file, function=function, line=line,
-                  topics=[] if omit_topics else sorted({*node.publications, *node.subscriptions}))
-        msg.header.stamp = rostime.get_rostime() if rostime.is_rostime_initialized() else rostime.Time()
-        publisher.publish(msg)
-
-    _log.set_rosout_publisher(publish)
-
-
-def _start_time(node: Node) -> None:
-    try:
-        use_sim_time = bool(get_param("/use_sim_time", False))
-    except Exception:
-        use_sim_time = False
-    if use_sim_time:
-        from rosgraph_msgs.msg import Clock
-        from rospy.topics import Subscriber
-
-        rostime.set_sim_time(rostime.Time(0, 0))
-        Subscriber("/clock", Clock, lambda msg: rostime.set_sim_time(msg.clock), queue_size=1)
-    rostime.set_rostime_initialized(True)
-
-
-_LEVEL_BY_NAME = {"debug": _log.DEBUG, "info": _log.INFO, "warn": _log.WARN, "error": _log.ERROR,
-                  "fatal": _log.FATAL}
-
-
-def _start_logger_services() -> None:
-    from roscpp.msg import Logger
-    from roscpp.srv import GetLoggers, GetLoggersResponse, SetLoggerLevel, SetLoggerLevelResponse
-    from rospy.service import Service, ServiceException
-
-    def get_loggers(request: Any) -> Any:
-        level = _log.LEVEL_NAMES[_log.get_level()].lower()
-        return GetLoggersResponse(loggers=[Logger(name=n, level=level) for n in ("rosout", "rospy")])
-
-    def set_logger_level(request: Any) -> Any:
-        level = _LEVEL_BY_NAME.get(request.level.lower())
-        if level is None:
-            raise ServiceException(f"Invalid logger level [{request.level}]")
-        _log.set_level(level)
-        return SetLoggerLevelResponse()
-
-    Service("~get_loggers", GetLoggers, get_loggers)
-    Service("~set_logger_level", SetLoggerLevel, set_logger_level)
-
-
-def spin() -> None:
-    """Block until the node is shut down (Ctrl-C, rosnode kill, signal_shutdown)."""
-    if not core.is_initialized():
-        raise ROSInitException("client code must call rospy.init_node() first")
-    try:
-        core.wait_for_shutdown(None)
-    except KeyboardInterrupt:
-        core.signal_shutdown("keyboard interrupt")
-
-
-def _master() -> Any:
-    node = core.get_node()
-    if node is None:
-        raise ROSInitException("client code must call rospy.init_node() first")
-    return node.master
-
-
-# ------------------------------------------------------------------ parameters
-
-
-def get_param(param_name: str, default: Any = _unspecified) -> Any:
-    try:
-        return _master().call("getParam", core.resolve_name(param_name))
-    except MasterError:
-        if default is _unspecified:
-            raise KeyError(param_name) from None
-        return default
-
-
-def get_param_cached(param_name: str, default: Any = _unspecified) -> Any:
-    """get_param, answered from a cache the master keeps up to date (subscribeParam)."""
-    node = core.get_node()
-    if node is None:
-        raise ROSInitException("client code must call rospy.init_node() first")
-    key = core.resolve_name(param_name)
-    value = node.cached_param(key)
-    if value == {} and not node.master.call_raw("hasParam", key)[2]:
-        if default is _unspecified:
-            raise KeyError(param_name)
-        return default
-    return value
-
-
-def set_param(param_name: str, param_value: Any) -> None:
-    if param_value is None:
-        raise ROSException("cannot set a parameter to None")
-    _master().call("setParam", core.resolve_name(param_name), param_value)
-
-
-def has_param(param_name: str) -> bool:
-    return bool(_master().call("hasParam", core.resolve_name(param_name)))
-
-
-def delete_param(param_name: str) -> None:
-    try:
-        _master().call("deleteParam", core.resolve_name(param_name))
-    except MasterError:
-        raise KeyError(param_name) from None
-
-
-def search_param(param_name: str) -> str | None:
-    try:
-        found: str = _master().call("searchParam", param_name)
-        return found
-    except MasterError:
-        return None
-
-
-def get_param_names() -> list[str]:
-    return list(_master().call("getParamNames"))
-
-
-# ------------------------------------------------------------------ graph
-
-
-def get_published_topics(namespace: str = "/") -> list[list[str]]:
-    return [list(pair) for pair in _master().call("getPublishedTopics", namespace)]
-
-
-def get_master(env: dict[str, str] | None = None) -> Any:
-    return _master()
-
-
-def wait_for_message(topic: str, topic_type: type[Any], timeout: float | None = None) -> Any:
-    """Subscribe, wait for one message, unsubscribe; ROSException on timeout."""
-    from rospy.topics import Subscriber
-
-    got: list[Any] = []
-    event = threading.Event()
-
-    def callback(msg: Any) -> None:
-        if not got:
-            got.append(msg)
-            event.set()
-
-    subscriber = Subscriber(topic, topic_type, callback)
-    try:
-        with core.woken_at_shutdown(event):  # the message, or shutdown, sets it
-            event.wait(timeout)
-    finally:
-        subscriber.unregister()
-    if got:
-        return got[0]
-    if core.is_shutdown():
-        raise ROSInterruptException("rospy shutdown")
-    raise ROSException(f"timeout exceeded while waiting for message on topic {topic}")
+"""rospy.client: init_node, spin, parameters and the other top-level functions (kame.client.process)."""
+
+from kame.client.process import (
+    DEFAULT_MASTER_URI,
+    delete_param,
+    get_master,
+    get_param,
+    get_param_cached,
+    get_param_names,
+    get_published_topics,
+    has_param,
+    init_node,
+    myargv,
+    search_param,
+    set_param,
+    spin,
+    wait_for_message,
+)
+
+__all__ = [
+    "DEFAULT_MASTER_URI",
+    "delete_param",
+    "get_master",
+    "get_param",
+    "get_param_cached",
+    "get_param_names",
+    "get_published_topics",
+    "has_param",
+    "init_node",
+    "myargv",
+    "search_param",
+    "set_param",
+    "spin",
+    "wait_for_message",
+]

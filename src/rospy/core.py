@@ -1,214 +1,35 @@
-"""The process-wide state of a rospy program: its one node, shutdown, and names.
+"""rospy.core: the process's node, shutdown and names (kame.client.core)."""
 
-Only this facade holds process-wide state; kame's Node is an explicit object underneath.
-"""
+from kame.client.core import (
+    add_preshutdown_hook,
+    get_caller_id,
+    get_name,
+    get_namespace,
+    get_node,
+    get_node_uri,
+    is_initialized,
+    is_shutdown,
+    is_shutdown_requested,
+    on_shutdown,
+    remap_name,
+    resolve_name,
+    signal_shutdown,
+    wait_for_shutdown,
+)
 
-from __future__ import annotations
-
-import atexit
-import contextlib
-import logging
-import os
-import threading
-from collections.abc import Callable, Iterator
-from typing import Any
-
-from kame import names
-from kame.arity import accepts
-from kame.node.node import Node
-
-_node: Node | None = None
-_caller_id = "/unnamed"
-_namespace = names.make_global_ns(os.environ.get("ROS_NAMESPACE", "/")) if os.environ.get("ROS_NAMESPACE") else "/"
-_remappings: dict[str, str] = {}
-_shutdown = threading.Event()
-_node_down = threading.Event()  # set once signal_shutdown has unregistered and closed the node
-_shutdown_reason = ""
-_shutdown_hooks: list[Callable[..., Any]] = []
-_preshutdown_hooks: list[Callable[..., Any]] = []
-_hooks_lock = threading.Lock()
-_initialized = False
-
-log = logging.getLogger("rospy.core")
-
-
-_deferred: list[Callable[[Node], None]] = []
-
-
-def defer_until_initialized(action: Callable[[Node], None]) -> None:
-    with _hooks_lock:
-        if _node is None:
-            _deferred.append(action)
-            return
-    action(_node)
-
-
-def run_deferred() -> None:
-    """Bind the topics and services created before init_node() (called by init_node)."""
-    with _hooks_lock:
-        actions, _deferred[:] = list(_deferred), []
-    assert _node is not None
-    for action in actions:
-        action(_node)
-
-
-def get_node() -> Node | None:
-    return _node
-
-
-def set_node(node: Node, caller_id: str, namespace: str, remappings: dict[str, str]) -> None:
-    global _node, _caller_id, _namespace, _remappings, _initialized
-    _node = node
-    _caller_id = caller_id
-    _namespace = namespace
-    _remappings = remappings
-    _initialized = True
-
-
-def is_initialized() -> bool:
-    return _initialized
-
-
-def get_caller_id() -> str:
-    return _caller_id
-
-
-def get_name() -> str:
-    return _caller_id
-
-
-def get_namespace() -> str:
-    return _namespace
-
-
-def get_node_uri() -> str | None:
-    return _node.uri if _node is not None else None
-
-
-def resolve_name(name: str, caller_id: str | None = None) -> str:
-    """Resolve a name for this node (or `caller_id`), remappings applied."""
-    return names.resolve(name, caller_id or _caller_id, _remappings)
-
-
-def remap_name(name: str, caller_id: str | None = None) -> str:
-    resolved = names.resolve(name, caller_id or _caller_id)
-    return _remappings.get(resolved, name)
-
-
-def is_shutdown() -> bool:
-    return _shutdown.is_set()
-
-
-def is_shutdown_requested() -> bool:
-    return _shutdown.is_set()
-
-
-_main_waiting = 0  # >0 while the main thread blocks in one of our waits
-_wakers: set[threading.Event] = set()  # events that shutdown sets (woken_at_shutdown)
-
-
-def wait_for_shutdown(timeout: float | None) -> bool:
-    """Wait up to `timeout` for shutdown; True once it happened. A signal wakes it at once."""
-    global _main_waiting
-    if threading.current_thread() is not threading.main_thread():
-        return _shutdown.wait(timeout)
-    _main_waiting += 1
-    try:
-        return _shutdown.wait(timeout)
-    finally:
-        _main_waiting -= 1
-
-
-@contextlib.contextmanager
-def woken_at_shutdown(event: threading.Event) -> Iterator[None]:
-    """Within the block, shutdown sets `event` too (at once if it already happened): a wait
-    for "this event or shutdown" is then one wait on `event`, not a poll of both."""
-    with _hooks_lock:
-        _wakers.add(event)
-        if _shutdown.is_set():
-            event.set()
-    try:
-        yield
-    finally:
-        with _hooks_lock:
-            _wakers.discard(event)
-
-
-def main_thread_is_waiting() -> bool:
-    return _main_waiting > 0
-
-
-@contextlib.contextmanager
-def main_thread_waiting() -> Iterator[None]:
-    """Mark the main thread as waiting while it runs someone else's loop (e.g. Qt's exec) that
-    watches `is_shutdown()`: Ctrl-C then shuts the node down instead of raising
-    ROSInterruptException into that loop's callbacks (where it could only be printed)."""
-    global _main_waiting
-    if threading.current_thread() is not threading.main_thread():
-        yield
-        return
-    _main_waiting += 1
-    try:
-        yield
-    finally:
-        _main_waiting -= 1
-
-
-def on_shutdown(hook: Callable[..., Any]) -> None:
-    """Run `hook` (with no argument, or the reason) when the node shuts down."""
-    with _hooks_lock:
-        if _shutdown.is_set():
-            _call_hook(hook, _shutdown_reason)
-            return
-        _shutdown_hooks.append(hook)
-
-
-def add_preshutdown_hook(hook: Callable[..., Any]) -> None:
-    with _hooks_lock:
-        _preshutdown_hooks.append(hook)
-
-
-def _call_hook(hook: Callable[..., Any], reason: str) -> None:
-    try:
-        if accepts(hook, 1):
-            hook(reason)
-        else:
-            hook()
-    except Exception:
-        log.exception("shutdown hook %s failed", hook)
-
-
-def signal_shutdown(reason: str) -> None:
-    """Shut the node down: hooks run, everything is unregistered, waits are interrupted."""
-    global _shutdown_reason
-    with _hooks_lock:
-        if _shutdown.is_set():
-            return
-        _shutdown_reason = reason
-        pre = list(_preshutdown_hooks)
-    for hook in pre:
-        _call_hook(hook, reason)
-    with _hooks_lock:
-        _shutdown.set()
-        for waker in _wakers:
-            waker.set()
-    from rospy import rostime
-
-    rostime.set_sim_time(rostime._sim_time)  # wake sleepers waiting on simulated time
-    with _hooks_lock:
-        hooks, _shutdown_hooks[:] = list(_shutdown_hooks), []
-    for hook in hooks:
-        _call_hook(hook, reason)
-    if _node is not None:
-        _node.shutdown(reason)
-    _node_down.set()
-
-
-def _at_exit() -> None:
-    """rospy's atexit hook: unregister before the interpreter goes, and let a shutdown that
-    another thread started (e.g. `rosnode kill`) finish unregistering instead of dying with it."""
-    signal_shutdown("atexit")
-    _node_down.wait(5.0)
-
-
-atexit.register(_at_exit)
+__all__ = [
+    "add_preshutdown_hook",
+    "get_caller_id",
+    "get_name",
+    "get_namespace",
+    "get_node",
+    "get_node_uri",
+    "is_initialized",
+    "is_shutdown",
+    "is_shutdown_requested",
+    "on_shutdown",
+    "remap_name",
+    "resolve_name",
+    "signal_shutdown",
+    "wait_for_shutdown",
+]

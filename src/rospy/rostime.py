@@ -1,77 +1,23 @@
-"""rospy.Time and rospy.Duration: kame's time values plus the clock (wall or simulated)."""
+"""rospy.rostime: Time, Duration and the ROS clock (kame.client.clock)."""
 
-from __future__ import annotations
+from kame.client.clock import (
+    Duration,
+    Time,
+    get_rostime,
+    get_time,
+    is_rostime_initialized,
+    is_sim_time,
+    set_rostime_initialized,
+    wallsleep,
+)
 
-import threading
-import time as _time
-from typing import Any
-
-from kame import rostime as _values
-
-
-class Duration(_values.Duration):
-    __slots__ = ()
-
-
-class Time(_values.Time):
-    __slots__ = ()
-
-    @staticmethod
-    def now() -> Time:
-        """The current ROS time: wall clock, or /clock when /use_sim_time is true."""
-        return get_rostime()
-
-    @classmethod
-    def from_seconds(cls, float_secs: float) -> Any:
-        return cls.from_sec(float_secs)
-
-
-_sim_time: _values.Time | None = None
-_sim_lock = threading.Condition()
-_initialized = False
-
-
-def set_sim_time(value: _values.Time | None) -> None:
-    """Switch to simulated time (a value) or back to the wall clock (None); wakes sleepers."""
-    global _sim_time
-    with _sim_lock:
-        _sim_time = value
-        _sim_lock.notify_all()
-
-
-def is_sim_time() -> bool:
-    return _sim_time is not None
-
-
-def wait_for_sim_change(timeout: float) -> None:
-    with _sim_lock:
-        _sim_lock.wait(timeout)
-
-
-def set_rostime_initialized(value: bool) -> None:
-    global _initialized
-    _initialized = value
-
-
-def is_rostime_initialized() -> bool:
-    return _initialized
-
-
-def get_rostime() -> Time:
-    if not _initialized:
-        from rospy.exceptions import ROSInitException
-
-        raise ROSInitException("time is not initialized. Have you called init_node()?")
-    sim = _sim_time
-    if sim is not None:
-        return Time(sim.secs, sim.nsecs)
-    return Time.from_nsec(_time.time_ns())
-
-
-def get_time() -> float:
-    return get_rostime().to_sec()
-
-
-def wallsleep(duration: float) -> None:
-    if duration > 0:
-        _time.sleep(duration)
+__all__ = [
+    "Duration",
+    "Time",
+    "get_rostime",
+    "get_time",
+    "is_rostime_initialized",
+    "is_sim_time",
+    "set_rostime_initialized",
+    "wallsleep",
+]

@@ -15,6 +15,7 @@ import xmlrpc.client
 from collections.abc import Sequence
 from typing import Any
 
+from kame import environ, names
 from kame.cli import _junit
 
 XML_OUTPUT_FLAG = _junit.XML_OUTPUT_FLAG
@@ -22,10 +23,7 @@ _GLOBAL_CALLER_ID = "/script"
 
 
 def _master_uri() -> str:
-    for arg in sys.argv[1:]:
-        if arg.startswith("__master:="):
-            return arg.split(":=", 1)[1]
-    return os.environ.get("ROS_MASTER_URI") or "http://localhost:11311"
+    return environ.master_uri(os.environ, names.parse_args(sys.argv).special, default=environ.SETUP_MASTER_URI)
 
 
 def get_master() -> xmlrpc.client.ServerProxy:

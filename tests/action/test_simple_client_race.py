@@ -10,7 +10,7 @@ from typing import Any
 
 import pytest
 
-import actionlib.simple_action_client as simple_module
+import kame.client.action.simple_action_client as simple_module
 from actionlib import CommState
 
 

@@ -421,3 +421,20 @@ def test_a_failing_service_handler_is_logged_and_the_socket_closed(make_node: An
         assert time.monotonic() - start < 4  # closed at once, not left to the 5 s timeout
         assert wait_until(lambda: any("RuntimeError: handler bug" in (r.exc_text or "") or
                                       "handler bug" in str(r.exc_info) for r in caplog.records))
+
+
+def test_header_seq_numbers_are_unique_across_publishing_threads(make_node: Any) -> None:
+    node = make_node("/seq_pub")
+    publication = node.advertise("/seq", String._type, String._md5sum, String._full_text)
+    taken: list[list[int]] = [[] for _ in range(4)]
+
+    def take(into: list[int]) -> None:
+        into.extend(publication.next_seq() for _ in range(5000))
+
+    threads = [threading.Thread(target=take, args=(into,)) for into in taken]
+    for thread in threads:
+        thread.start()
+    for thread in threads:
+        thread.join()
+    numbers = sorted(n for into in taken for n in into)
+    assert numbers == list(range(1, 20001))

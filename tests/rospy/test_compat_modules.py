@@ -35,3 +35,20 @@ def test_roslib_lookups() -> None:
     assert roslib.message.get_service_class("std_srvs/SetBool") is SetBool
     assert roslib.message.get_message_class("no_such_pkg/Nope") is None
     assert roslib.message.get_message_class("malformed") is None
+
+
+def test_importing_a_package_brings_its_modules_as_in_ros() -> None:
+    """`import rospy` then `rospy.core.is_shutdown()` (and the like) works, as with ROS's packages."""
+    import subprocess
+    import sys
+
+    code = (
+        "import rospy, actionlib, rosbag, roslaunch\n"
+        "rospy.core.is_shutdown, rospy.client.init_node, rospy.rostime.Time, rospy.topics.Publisher\n"
+        "rospy.service.ServiceException, rospy.exceptions.ROSException, rospy.timer.Rate, rospy.msg.AnyMsg\n"
+        "actionlib.action_client.ActionClient, actionlib.simple_action_server.SimpleActionServer\n"
+        "rosbag.bag.Bag, roslaunch.parent.ROSLaunchParent, roslaunch.scriptapi.ROSLaunch, roslaunch.core.Node\n"
+        "assert rospy.rostime.Time is rospy.Time and rospy.msg.AnyMsg is rospy.AnyMsg\n"
+    )
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr

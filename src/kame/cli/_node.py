@@ -10,12 +10,10 @@ import threading
 from collections.abc import Mapping
 from typing import Any
 
-from kame import names
-from kame.net.address import address_override, advertised_host, bind_host
+from kame import environ
+from kame.node.config import node_config
 from kame.node.master_proxy import MasterError
-from kame.node.node import Node, NodeConfig
-
-DEFAULT_MASTER_URI = "http://localhost:11311/"
+from kame.node.node import Node
 
 
 class ToolNode:
@@ -24,12 +22,9 @@ class ToolNode:
 
     def __init__(self, special: Mapping[str, str], default_name: str,
                  remappings: Mapping[str, str] | None = None) -> None:
-        env = os.environ
-        self.namespace = names.make_global_ns(special.get("ns") or env.get("ROS_NAMESPACE") or "/")
-        self.caller_id = names.canonicalize(self.namespace + special.get("name", default_name))
-        master_uri = special.get("master") or env.get("ROS_MASTER_URI") or DEFAULT_MASTER_URI
-        override = address_override(env, special)
-        resolved = names.resolve_remappings(remappings, self.caller_id) if remappings else {}
+        config = node_config(default_name, special, os.environ, remappings)
+        self.namespace = environ.namespace(os.environ, special)
+        self.caller_id = config.name
         self.stop = threading.Event()
 
         def on_signal(signum: int, frame: Any) -> None:
@@ -37,8 +32,7 @@ class ToolNode:
 
         signal.signal(signal.SIGINT, on_signal)
         signal.signal(signal.SIGTERM, on_signal)
-        self.node = Node(NodeConfig(self.caller_id, master_uri, advertised_host(override), bind_host(override),
-                                    remappings=tuple(resolved.items())))
+        self.node = Node(config)
         self.node.on_shutdown_request = lambda reason: self.stop.set()
 
     def wait_for_master(self) -> bool:

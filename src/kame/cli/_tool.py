@@ -16,11 +16,11 @@ from collections.abc import Callable, Iterator, Mapping, Sequence
 from contextlib import contextmanager
 from typing import Any
 
-from kame import names
+from kame import environ, names
 from kame.node.master_proxy import MasterError, MasterProxy
 from kame.protocol.xmlrpc import Fault, XmlRpcError
 
-DEFAULT_MASTER_URI = "http://localhost:11311/"
+DEFAULT_MASTER_URI = environ.DEFAULT_MASTER_URI
 NO_MASTER = "Unable to communicate with master!"
 
 
@@ -49,8 +49,7 @@ def run(main: Callable[[list[str]], int | None], argv: Sequence[str] | None = No
 
 
 def ros_namespace(env: Mapping[str, str] | None = None) -> str:
-    env = os.environ if env is None else env
-    return names.make_global_ns(env.get("ROS_NAMESPACE") or "/")
+    return environ.namespace(os.environ if env is None else env)
 
 
 def script_resolve_name(script: str, name: str, env: Mapping[str, str] | None = None) -> str:
@@ -70,8 +69,7 @@ def strip_remappings(argv: Sequence[str]) -> list[str]:
 
 
 def master_uri(env: Mapping[str, str] | None = None) -> str:
-    env = os.environ if env is None else env
-    return env.get("ROS_MASTER_URI") or DEFAULT_MASTER_URI
+    return environ.master_uri(os.environ if env is None else env)
 
 
 class Master:

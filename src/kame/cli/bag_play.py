@@ -14,7 +14,6 @@
 from __future__ import annotations
 
 import heapq
-import optparse
 import os
 import select
 import struct
@@ -28,6 +27,7 @@ from kame import names
 from kame.bag.errors import BagError
 from kame.bag.reader import BagReader, RawMessage
 from kame.cli._node import ToolNode
+from kame.cli._options import OptionParser
 from kame.node.node import Node
 from kame.node.topics import Publication, serialize_payload
 
@@ -40,42 +40,31 @@ def _log(level: str, text: str, color: str = "0") -> None:
     stream.flush()
 
 
-def parser() -> optparse.OptionParser:
-    p = optparse.OptionParser(usage="rosbag play BAGFILE1 [BAGFILE2 BAGFILE3 ...]",
+def parser() -> OptionParser:
+    p = OptionParser(usage="rosbag play BAGFILE1 [BAGFILE2 BAGFILE3 ...]",
                               description="Play back the contents of one or more bag files in a time-synchronized fashion.")
-    p.add_option("-p", "--prefix", dest="prefix", default="", type="str", help="prefix all output topics")
-    p.add_option("-q", "--quiet", dest="quiet", default=False, action="store_true", help="suppress console output")
-    p.add_option("-i", "--immediate", dest="immediate", default=False, action="store_true", help="play back all messages without waiting")
-    p.add_option("--pause", dest="pause", default=False, action="store_true", help="start in paused mode")
-    p.add_option("--queue", dest="queue", default=100, type="int", action="store", help="use an outgoing queue of size SIZE (defaults to 100)")
-    p.add_option("--clock", dest="clock", default=False, action="store_true", help="publish the clock time")
-    p.add_option("--hz", dest="freq", default=100, type="float", action="store", help="use a frequency of HZ when publishing clock time (default: 100)")
-    p.add_option("-d", "--delay", dest="delay", default=0.2, type="float", action="store", help="sleep SEC seconds after every advertise call (to allow subscribers to connect)")
-    p.add_option("-r", "--rate", dest="rate", default=1.0, type="float", action="store", help="multiply the publish rate by FACTOR")
-    p.add_option("-s", "--start", dest="start", default=0.0, type="float", action="store", help="start SEC seconds into the bag files")
-    p.add_option("-u", "--duration", dest="duration", default=None, type="float", action="store", help="play only SEC seconds from the bag files")
-    p.add_option("--skip-empty", dest="skip_empty", default=None, type="float", action="store", help="skip regions in the bag with no messages for more than SEC seconds")
-    p.add_option("-l", "--loop", dest="loop", default=False, action="store_true", help="loop playback")
-    p.add_option("-k", "--keep-alive", dest="keep_alive", default=False, action="store_true", help="keep alive past end of bag (useful for publishing latched topics)")
-    p.add_option("--try-future-version", dest="try_future", default=False, action="store_true", help="still try to open a bag file, even if the version is not known to the player")
-    p.add_option("--topics", dest="topics", default=[], callback=_take_list, action="callback", help="topics to play back")
-    p.add_option("--pause-topics", dest="pause_topics", default=[], callback=_take_list, action="callback", help="topics to pause playback on")
-    p.add_option("--bags", help="bags files to play back from", dest="bags", default=[], callback=_take_list, action="callback")
-    p.add_option("--wait-for-subscribers", dest="wait_for_subscribers", default=False, action="store_true", help="wait for at least one subscriber on each topic before publishing")
-    p.add_option("--rate-control-topic", dest="rate_control_topic", default="", type="str", help="watch the given topic, and if the last publish was more than <rate-control-max-delay> ago, wait until the topic publishes again to continue playback")
-    p.add_option("--rate-control-max-delay", dest="rate_control_max_delay", default=1.0, type="float", help="maximum time difference from <rate-control-topic> before pausing")
+    p.add_argument("-p", "--prefix", dest="prefix", default="", type=str, help="prefix all output topics")
+    p.add_argument("-q", "--quiet", dest="quiet", default=False, action="store_true", help="suppress console output")
+    p.add_argument("-i", "--immediate", dest="immediate", default=False, action="store_true", help="play back all messages without waiting")
+    p.add_argument("--pause", dest="pause", default=False, action="store_true", help="start in paused mode")
+    p.add_argument("--queue", dest="queue", default=100, type=int, action="store", help="use an outgoing queue of size SIZE (defaults to 100)")
+    p.add_argument("--clock", dest="clock", default=False, action="store_true", help="publish the clock time")
+    p.add_argument("--hz", dest="freq", default=100, type=float, action="store", help="use a frequency of HZ when publishing clock time (default: 100)")
+    p.add_argument("-d", "--delay", dest="delay", default=0.2, type=float, action="store", help="sleep SEC seconds after every advertise call (to allow subscribers to connect)")
+    p.add_argument("-r", "--rate", dest="rate", default=1.0, type=float, action="store", help="multiply the publish rate by FACTOR")
+    p.add_argument("-s", "--start", dest="start", default=0.0, type=float, action="store", help="start SEC seconds into the bag files")
+    p.add_argument("-u", "--duration", dest="duration", default=None, type=float, action="store", help="play only SEC seconds from the bag files")
+    p.add_argument("--skip-empty", dest="skip_empty", default=None, type=float, action="store", help="skip regions in the bag with no messages for more than SEC seconds")
+    p.add_argument("-l", "--loop", dest="loop", default=False, action="store_true", help="loop playback")
+    p.add_argument("-k", "--keep-alive", dest="keep_alive", default=False, action="store_true", help="keep alive past end of bag (useful for publishing latched topics)")
+    p.add_argument("--try-future-version", dest="try_future", default=False, action="store_true", help="still try to open a bag file, even if the version is not known to the player")
+    p.add_argument("--topics", dest="topics", default=[], nargs="*", action="extend", help="topics to play back")
+    p.add_argument("--pause-topics", dest="pause_topics", default=[], nargs="*", action="extend", help="topics to pause playback on")
+    p.add_argument("--bags", help="bags files to play back from", dest="bags", default=[], nargs="*", action="extend")
+    p.add_argument("--wait-for-subscribers", dest="wait_for_subscribers", default=False, action="store_true", help="wait for at least one subscriber on each topic before publishing")
+    p.add_argument("--rate-control-topic", dest="rate_control_topic", default="", type=str, help="watch the given topic, and if the last publish was more than <rate-control-max-delay> ago, wait until the topic publishes again to continue playback")
+    p.add_argument("--rate-control-max-delay", dest="rate_control_max_delay", default=1.0, type=float, help="maximum time difference from <rate-control-topic> before pausing")
     return p
-
-
-def _take_list(option: Any, opt_str: str, value: Any, p: optparse.OptionParser) -> None:
-    taken: list[str] = []
-    rargs: list[str] = p.rargs or []
-    for arg in rargs:
-        if arg.startswith("-") and len(arg) > 1:
-            break
-        taken.append(arg)
-    del rargs[:len(taken)]
-    getattr(p.values, option.dest).extend(taken)
 
 
 class Keyboard:
@@ -166,8 +155,8 @@ class Player:
     def publish_clock(self, bag_ns: int) -> None:
         if self.clock is None:
             return
+        from kame.client.clock import Time
         from rosgraph_msgs.msg import Clock
-        from rospy.rostime import Time
 
         payload = serialize_payload(Clock(clock=Time(*divmod(bag_ns, 1_000_000_000))))
         self.clock.publish_frame([_LEN.pack(len(payload)) + payload])
@@ -285,7 +274,8 @@ class Player:
 def main(argv: list[str]) -> int:
     p = parser()
     ros = names.parse_args(["rosbag", *argv])
-    options, args = p.parse_args([a for a in argv if ":=" not in a])
+    options = p.parse_args([a for a in argv if ":=" not in a])
+    args = options.args
     bags = [*args, *options.bags]
     if not bags:
         p.error("You must specify at least 1 bag file to play back.")

@@ -22,7 +22,6 @@ from __future__ import annotations
 import collections
 import contextlib
 import datetime
-import optparse
 import os
 import re
 import sys
@@ -34,6 +33,7 @@ from typing import Any
 from kame import names
 from kame.bag.writer import BagWriter
 from kame.cli._node import ToolNode
+from kame.cli._options import OptionParser
 from kame.node.master_proxy import MasterError
 from kame.node.node import Node
 
@@ -72,36 +72,35 @@ def _duration_arg(value: str) -> float:
     return float(value) * mult
 
 
-def parser() -> optparse.OptionParser:
-    p = optparse.OptionParser(usage="rosbag record TOPIC1 [TOPIC2 TOPIC3 ...]",
-                              description="Record a bag file with the contents of specified topics.",
-                              formatter=optparse.IndentedHelpFormatter())
-    p.add_option("-a", "--all", dest="all", default=False, action="store_true", help="record all topics")
-    p.add_option("-e", "--regex", dest="regex", default=False, action="store_true", help="match topics using regular expressions")
-    p.add_option("-x", "--exclude", dest="exclude_regex", default="", action="store",
+def parser() -> OptionParser:
+    p = OptionParser(usage="rosbag record TOPIC1 [TOPIC2 TOPIC3 ...]",
+                              description="Record a bag file with the contents of specified topics.")
+    p.add_argument("-a", "--all", dest="all", default=False, action="store_true", help="record all topics")
+    p.add_argument("-e", "--regex", dest="regex", default=False, action="store_true", help="match topics using regular expressions")
+    p.add_argument("-x", "--exclude", dest="exclude_regex", default="", action="store",
                  help="exclude topics matching the follow regular expression (subtracts from -a or regex)")
-    p.add_option("-q", "--quiet", dest="quiet", default=False, action="store_true", help="suppress console output")
-    p.add_option("-p", "--publish", dest="publish", default=False, action="store_true",
+    p.add_argument("-q", "--quiet", dest="quiet", default=False, action="store_true", help="suppress console output")
+    p.add_argument("-p", "--publish", dest="publish", default=False, action="store_true",
                  help="Publish a msg when the record begin")
-    p.add_option("-o", "--output-prefix", dest="prefix", default=None, action="store", help="prepend PREFIX to beginning of bag name")
-    p.add_option("-O", "--output-name", dest="name", default=None, action="store", help="record to bag with name NAME.bag")
-    p.add_option("--split", dest="split", default=False, action="store_true",
+    p.add_argument("-o", "--output-prefix", dest="prefix", default=None, action="store", help="prepend PREFIX to beginning of bag name")
+    p.add_argument("-O", "--output-name", dest="name", default=None, action="store", help="record to bag with name NAME.bag")
+    p.add_argument("--split", dest="split", default=False, action="store_true",
                  help="split the bag when maximum size or duration is reached")
-    p.add_option("--max-splits", dest="max_splits", type="int", action="store", help="Keep a maximum of N bag files")
-    p.add_option("--size", dest="size", type="float", action="store", help="record a bag of maximum size SIZE MB")
-    p.add_option("--duration", dest="duration", type="string", action="store",
+    p.add_argument("--max-splits", dest="max_splits", type=int, action="store", help="Keep a maximum of N bag files")
+    p.add_argument("--size", dest="size", type=float, action="store", help="record a bag of maximum size SIZE MB")
+    p.add_argument("--duration", dest="duration", type=str, action="store",
                  help="record a bag of maximum duration DURATION in seconds, unless 'm', or 'h' is appended.")
-    p.add_option("-b", "--buffsize", dest="buffsize", default=256, type="int", action="store",
+    p.add_argument("-b", "--buffsize", dest="buffsize", default=256, type=int, action="store",
                  help="use an internal buffer of SIZE MB (Default: 256, 0 = infinite)")
-    p.add_option("--chunksize", dest="chunksize", default=768, type="int", action="store",
+    p.add_argument("--chunksize", dest="chunksize", default=768, type=int, action="store",
                  help="Advanced. Record to chunks of SIZE KB (Default: 768)")
-    p.add_option("-l", "--limit", dest="num", default=0, type="int", action="store", help="only record NUM messages on each topic")
-    p.add_option("--node", dest="node", type="string", action="store", help="record all topics subscribed to by a specific node")
-    p.add_option("-j", "--bz2", dest="compression", default="none", action="store_const", const="bz2", help="use BZ2 compression")
-    p.add_option("--lz4", dest="compression", action="store_const", const="lz4", help="use LZ4 compression")
-    p.add_option("--tcpnodelay", dest="tcpnodelay", action="store_true", help="Use the TCP_NODELAY transport hint when subscribing to topics.")
-    p.add_option("--udp", dest="udp", action="store_true", help="Use the UDP transport hint when subscribing to topics.")
-    p.add_option("--repeat-latched", dest="repeat_latched", action="store_true",
+    p.add_argument("-l", "--limit", dest="num", default=0, type=int, action="store", help="only record NUM messages on each topic")
+    p.add_argument("--node", dest="node", type=str, action="store", help="record all topics subscribed to by a specific node")
+    p.add_argument("-j", "--bz2", dest="compression", default="none", action="store_const", const="bz2", help="use BZ2 compression")
+    p.add_argument("--lz4", dest="compression", action="store_const", const="lz4", help="use LZ4 compression")
+    p.add_argument("--tcpnodelay", dest="tcpnodelay", action="store_true", help="Use the TCP_NODELAY transport hint when subscribing to topics.")
+    p.add_argument("--udp", dest="udp", action="store_true", help="Use the UDP transport hint when subscribing to topics.")
+    p.add_argument("--repeat-latched", dest="repeat_latched", action="store_true",
                  help="Repeat latched msgs at the start of each new bag file.")
     return p
 
@@ -304,7 +303,8 @@ class Recorder:
 def main(argv: list[str]) -> int:
     p = parser()
     ros = names.parse_args(["rosbag", *argv])
-    options, args = p.parse_args([a for a in argv if ":=" not in a])
+    options = p.parse_args([a for a in argv if ":=" not in a])
+    args = options.args
     if not options.all and not args and not options.node:
         p.error("You must specify a topic name or else use the '-a' option.")
     if options.all and options.num:

@@ -1,7 +1,7 @@
 # ruff: noqa: E501  (option help texts are rosbag's, one option per line)
 """rosbag: info, record, play, filter, compress, decompress, reindex, check, fix.
 
-Behaviour and texts follow rosbag 1.15 (ros1-user-behaviour spec §9): optparse usage errors
+Behaviour and texts follow rosbag 1.15 (ros1-user-behaviour spec §9): its optparse usage errors
 (exit 2), `ERROR reading X: ...` for bad bags, `info` in rosbag's layout or YAML, compress/
 decompress/reindex rewriting in place and keeping `name.orig.bag`. record and play live in
 kame.cli.bag_record and kame.cli.bag_play. `info` imports no message code: it reads the index
@@ -19,18 +19,17 @@ from kame.bag.errors import BagError, BagUnindexedError
 
 TYPE_CHECKING = False  # typing.TYPE_CHECKING without importing typing (`rosbag info` starts in ms)
 if TYPE_CHECKING:
-    import optparse
-
     from kame.bag.info import BagSummary
+    from kame.cli._options import OptionParser
 
 NAME = "rosbag"
 COMMANDS = ("check", "compress", "decompress", "filter", "fix", "help", "info", "play", "record", "reindex")
 
 
-def _parser(usage: str, description: str = "") -> optparse.OptionParser:
-    import optparse
+def _parser(usage: str, description: str = "") -> OptionParser:
+    from kame.cli._options import OptionParser
 
-    return optparse.OptionParser(usage=usage, description=description or None)
+    return OptionParser(usage=usage, description=description or None)
 
 
 # ------------------------------------------------------------------------------ info
@@ -46,8 +45,8 @@ class _InfoOptions:
 
 
 def _quick_info_args(argv: list[str]) -> tuple[_InfoOptions, list[str]] | None:
-    """`rosbag info`'s options parsed without optparse, whose import costs more than reading a
-    big bag's index; None for anything unusual (help, errors, `--`), which optparse then handles
+    """`rosbag info`'s options parsed without argparse, whose import costs more than reading a
+    big bag's index; None for anything unusual (help, errors, `--`), which the parser then handles
     with its own messages."""
     options = _InfoOptions()
     args: list[str] = []
@@ -75,7 +74,7 @@ def _quick_info_args(argv: list[str]) -> tuple[_InfoOptions, list[str]] | None:
 
 def _info_summary(path: str, frequencies: bool) -> BagSummary:
     if frequencies:
-        from rosbag.bag import Bag
+        from kame.client.bag import Bag
 
         with Bag(path, "r") as bag:
             return bag.summary(frequencies=True)
@@ -93,12 +92,13 @@ def cmd_info(argv: list[str]) -> int:
     else:
         parser = _parser("rosbag info [options] BAGFILE1 [BAGFILE2 BAGFILE3 ...]",
                          "Summarize the contents of one or more bag files.")
-        parser.add_option("-y", "--yaml", dest="yaml", default=False, action="store_true",
+        parser.add_argument("-y", "--yaml", dest="yaml", default=False, action="store_true",
                           help="print information in YAML format")
-        parser.add_option("-k", "--key", dest="key", default=None, action="store", help="print information on the given key")
-        parser.add_option("--freq", dest="freq", default=False, action="store_true",
+        parser.add_argument("-k", "--key", dest="key", default=None, action="store", help="print information on the given key")
+        parser.add_argument("--freq", dest="freq", default=False, action="store_true",
                           help="display topic message frequency statistics")
-        values, args = parser.parse_args(argv)
+        values = parser.parse_args(argv)
+        args = values.args
         if not args:
             parser.error("You must specify at least 1 bag file.")
         if values.key and not values.yaml:
@@ -165,7 +165,7 @@ def rewrite(in_path: str, out_path: str, compression: str | None,
     messages are copied as bytes unless `keep` needs them decoded. Returns messages written."""
     from kame.bag.reader import BagReader
     from kame.bag.writer import BagWriter
-    from rosbag.bag import message_class
+    from kame.client.bag import message_class
 
     with BagReader(in_path) as reader:
         if compression is None:
@@ -206,14 +206,15 @@ def _in_place(argv: list[str], name: str, default_compression: str | None, allow
                      {"compress": "Compress one or more bag files.",
                       "decompress": "Decompress one or more bag files.",
                       "reindex": "Reindexes one or more bag files."}[name])
-    parser.add_option("--output-dir", action="store", dest="output_dir", help="write to directory DIR", metavar="DIR")
-    parser.add_option("-f", "--force", action="store_true", dest="force", help="force overwriting of backup file if it exists")
-    parser.add_option("-q", "--quiet", action="store_true", dest="quiet", help="suppress noncritical messages")
+    parser.add_argument("--output-dir", action="store", dest="output_dir", help="write to directory DIR", metavar="DIR")
+    parser.add_argument("-f", "--force", action="store_true", dest="force", help="force overwriting of backup file if it exists")
+    parser.add_argument("-q", "--quiet", action="store_true", dest="quiet", help="suppress noncritical messages")
     if allow_choice:
-        parser.add_option("-j", "--bz2", action="store_const", dest="compression", help="use BZ2 compression",
+        parser.add_argument("-j", "--bz2", action="store_const", dest="compression", help="use BZ2 compression",
                           const="bz2", default="bz2")
-        parser.add_option("--lz4", action="store_const", dest="compression", help="use lz4 compression", const="lz4")
-    options, args = parser.parse_args(argv)
+        parser.add_argument("--lz4", action="store_const", dest="compression", help="use lz4 compression", const="lz4")
+    options = parser.parse_args(argv)
+    args = options.args
     if not args:
         parser.error("You must specify at least one bag file.")
     compression = getattr(options, "compression", default_compression)
@@ -283,9 +284,10 @@ def cmd_filter(argv: list[str]) -> int:
     parser = _parser("rosbag filter [options] INBAG OUTBAG EXPRESSION",
                      'Filter the contents of the bag. EXPRESSION can be any Python-evaluable expression using '
                      'the variables: topic, m (message) and t (time of message, a genpy.Time).')
-    parser.add_option("-p", "--print", action="store", dest="verbose_pattern", default=None, metavar="PRINT-EXPRESSION",
+    parser.add_argument("-p", "--print", action="store", dest="verbose_pattern", default=None, metavar="PRINT-EXPRESSION",
                       help="Python expression to print for verbose debugging. Uses same variables as filter-expression")
-    options, args = parser.parse_args(argv)
+    options = parser.parse_args(argv)
+    args = options.args
     if len(args) == 0:
         parser.error("You must specify an in bag, an out bag, and an expression.")
     if len(args) == 1:
@@ -307,7 +309,7 @@ def cmd_filter(argv: list[str]) -> int:
     except SyntaxError as exc:
         print(f"ERROR: invalid expression: {exc}", file=sys.stderr)
         return 1
-    from rospy.rostime import Time
+    from kame.client.clock import Time
 
     def keep(topic: str, m: object, t: tuple[int, int]) -> bool:
         env = {"topic": topic, "m": m, "t": Time(t[0], t[1])}
@@ -329,14 +331,15 @@ def cmd_filter(argv: list[str]) -> int:
 def cmd_check(argv: list[str]) -> int:
     parser = _parser("rosbag check BAG [-g RULEFILE] [EXTRARULES1 EXTRARULES2 ...]",
                      "Determine whether a bag is playable in the current system, or if it can be migrated.")
-    parser.add_option("-g", "--genrules", action="store", dest="rulefile", default=None,
+    parser.add_argument("-g", "--genrules", action="store", dest="rulefile", default=None,
                       help="generate a rulefile named RULEFILE")
-    parser.add_option("-a", "--append", action="store_true", dest="append", help="append to the end of an existing rulefile")
-    parser.add_option("-n", "--noplugins", action="store_true", dest="noplugins", help="do not load rulefiles via plugins")
-    _options, args = parser.parse_args(argv)
+    parser.add_argument("-a", "--append", action="store_true", dest="append", help="append to the end of an existing rulefile")
+    parser.add_argument("-n", "--noplugins", action="store_true", dest="noplugins", help="do not load rulefiles via plugins")
+    parsed = parser.parse_args(argv)
+    args = parsed.args
     if not args:
         parser.error("You must specify a bag file to check.")
-    from rosbag.bag import Bag
+    from kame.client.bag import Bag
 
     try:  # kame reads every message with the definition stored in the bag: nothing to migrate
         with Bag(args[0]):
@@ -351,9 +354,10 @@ def cmd_check(argv: list[str]) -> int:
 def cmd_fix(argv: list[str]) -> int:
     parser = _parser("rosbag fix INBAG OUTBAG [EXTRARULES1 EXTRARULES2 ...]",
                      "Repair the messages in a bag file so that it can be played in the current system.")
-    parser.add_option("-n", "--noplugins", action="store_true", dest="noplugins", help="do not load rulefiles via plugins")
-    parser.add_option("--force", action="store_true", dest="force", help="proceed with migrations, even if not all rules defined")
-    _options, args = parser.parse_args(argv)
+    parser.add_argument("-n", "--noplugins", action="store_true", dest="noplugins", help="do not load rulefiles via plugins")
+    parser.add_argument("--force", action="store_true", dest="force", help="proceed with migrations, even if not all rules defined")
+    parsed = parser.parse_args(argv)
+    args = parsed.args
     if len(args) < 2:
         parser.error("You must pass input and output bag files.")
     inbag, outbag = args[0], args[1]

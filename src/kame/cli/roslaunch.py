@@ -25,7 +25,7 @@ import uuid
 from collections.abc import Mapping, Sequence
 from pathlib import Path
 
-from kame import names
+from kame import environ, names
 from kame.catkin import executables
 from kame.cli.roscore import _disk_usage_check, _link_latest, _title
 from kame.cli.rosmaster import setup_file_logging
@@ -174,7 +174,7 @@ def get_or_generate_uuid(run_id: str | None, wait_for_master: bool, env: Mapping
     if run_id:
         return run_id
     env = os.environ if env is None else env
-    uri = env.get("ROS_MASTER_URI") or "http://localhost:11311"
+    uri = environ.master_uri(env, default=environ.SETUP_MASTER_URI)
     while True:
         proxy = MasterProxy(uri, "/roslaunch", timeout=2.0)
         try:
@@ -250,7 +250,7 @@ def _print_info(options: argparse.Namespace, files: list[str], argv: list[str]) 
 
 def _run_options(options: argparse.Namespace, run_id: str, env: Mapping[str, str], title: str | None = None
                  ) -> RunOptions:
-    uri = env.get("ROS_MASTER_URI") or "http://localhost:11311"
+    uri = environ.master_uri(env, default=environ.SETUP_MASTER_URI)
     if options.port:
         uri = f"http://localhost:{options.port}/"
     elif options.core:
@@ -314,7 +314,7 @@ def _launch(options: argparse.Namespace, files: list[str], argv: list[str]) -> i
         if options.core:
             print("usage: roslaunch [options]\nroslaunch: error: --wait cannot be used with roscore", file=sys.stderr)
             return 2
-        uri = env.get("ROS_MASTER_URI") or "http://localhost:11311"
+        uri = environ.master_uri(env, default=environ.SETUP_MASTER_URI)
         if not master_answers(uri):
             say("roscore/master is not yet running, will wait for it to start")
             while not master_answers(uri):

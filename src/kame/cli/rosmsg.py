@@ -1,7 +1,7 @@
 """rosmsg and rossrv: show, list, md5, package and packages of message and service types.
 
 Command-line parsing and printing only; the texts come from kame.msg.describe. Options are
-parsed with optparse, as the real tools do, so that usage, help and error output match them
+parsed as the real tools' optparse does (kame.cli._options), so usage, help and errors match
 (usage errors: usage line and `rosmsg: error: ...` on stderr, exit 2). Lookup failures print
 one line on stderr and exit 1, except an unknown package or a malformed type name given to
 `package`/`md5`, which exit 64 (EX_USAGE) as in real ROS. Deliberate differences: a failed
@@ -11,12 +11,13 @@ its `ROS path [i]=` lines), and an empty stdin is a usage error (real rosmsg spi
 
 from __future__ import annotations
 
-import optparse
+import argparse
 import os
 import sys
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
+from kame.cli._options import OptionParser
 from kame.msg.catalog import MsgCatalog
 from kame.msg.describe import (
     Kind,
@@ -85,15 +86,16 @@ def _out(text: str) -> None:
     sys.stdout.flush()
 
 
-def _parser(mode: Mode, usage: str) -> optparse.OptionParser:
-    return optparse.OptionParser(usage=usage, prog=mode.cmd)
+def _parser(mode: Mode, usage: str) -> OptionParser:
+    return OptionParser(usage=usage, prog=mode.cmd)
 
 
 def _one_argument(
-    parser: optparse.OptionParser, mode: Mode, args: Sequence[str]
-) -> tuple[optparse.Values, str]:
+    parser: OptionParser, mode: Mode, args: Sequence[str]
+) -> tuple[argparse.Namespace, str]:
     """The single type/package argument, read from stdin (first non-blank line) when absent."""
-    options, rest = parser.parse_args(list(args))
+    options = parser.parse_args(list(args))
+    rest = options.args
     if len(rest) > 1:
         parser.error(f"you may only specify one {mode.full}")
     if rest:
@@ -120,11 +122,11 @@ def _expanded(catalog: MsgCatalog, mode: Mode, type_name: str, raw: bool) -> str
 
 def cmd_show(mode: Mode, alias: str, args: Sequence[str]) -> int:
     parser = _parser(mode, f"usage: {mode.cmd} {alias} [options] <{mode.full}>")
-    parser.add_option(
+    parser.add_argument(
         "-r", "--raw", dest="raw", default=False, action="store_true",
         help="show raw message text, including comments",
     )
-    parser.add_option(
+    parser.add_argument(
         "-b", "--bag", dest="bag", default=None, help="show message from .bag file", metavar="BAGFILE"
     )
     options, arg = _one_argument(parser, mode, args)
@@ -189,7 +191,7 @@ def cmd_md5(mode: Mode, args: Sequence[str]) -> int:
 
 def cmd_package(mode: Mode, args: Sequence[str]) -> int:
     parser = _parser(mode, f"usage: {mode.cmd} package <package>")
-    parser.add_option(
+    parser.add_argument(
         "-s", dest="single_line", default=False, action="store_true",
         help="list all msgs on a single line",  # sic: rossrv says msgs too
     )
@@ -204,11 +206,11 @@ def cmd_package(mode: Mode, args: Sequence[str]) -> int:
 
 def cmd_packages(mode: Mode, args: Sequence[str]) -> int:
     parser = _parser(mode, f"usage: {mode.cmd} packages")
-    parser.add_option(
+    parser.add_argument(
         "-s", dest="single_line", default=False, action="store_true",
         help="list all packages on a single line",
     )
-    options, _ = parser.parse_args(list(args))
+    options = parser.parse_args(list(args))
     catalog = MsgCatalog.from_environment()
     _out((" " if options.single_line else "\n").join(packages_with(catalog, mode.kind)) + "\n")
     return 0

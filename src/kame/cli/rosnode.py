@@ -1,8 +1,8 @@
 """rosnode: list, info, ping, kill, cleanup and machine, as ros_comm's rosnode behaves.
 
 Nodes are reached over their XML-RPC API through kame.node (getPid, getBusInfo, shutdown),
-the master through kame.cli._tool. Options are parsed with optparse like the real tool, so
-usage errors look the same (`rosnode: error: ...`, exit 2). As in the real tool, a failed
+the master through kame.cli._tool. Options are parsed as the real tool's optparse does
+(kame.cli._options), so usage errors look the same (`rosnode: error: ...`, exit 2). As in the real tool, a failed
 ping reports on stderr and still exits 0. Deliberate differences: `ping --all` pings in sorted
 order (the real one in set order), and `cleanup` treats end of input as `n`.
 """
@@ -10,7 +10,6 @@ order (the real one in set order), and `cleanup` treats end of input as `n`.
 from __future__ import annotations
 
 import errno
-import optparse
 import os
 import socket
 import sys
@@ -19,6 +18,7 @@ from collections.abc import Sequence
 from urllib.parse import urlsplit
 
 from kame.cli import _nodeinfo
+from kame.cli._options import OptionParser
 from kame.cli._tool import Master, ToolError, node_names, run, script_resolve_name
 from kame.node.master_proxy import MasterError, MasterProxy
 from kame.protocol.xmlrpc import XmlRpcError
@@ -150,16 +150,17 @@ def ping_all(graph: Graph, verbose: bool = False) -> tuple[list[str], list[str]]
 # ------------------------------------------------------------------ commands
 
 
-def _parser(usage: str) -> optparse.OptionParser:
-    return optparse.OptionParser(usage=usage, prog=NAME)
+def _parser(usage: str) -> OptionParser:
+    return OptionParser(usage=usage, prog=NAME)
 
 
 def cmd_list(argv: list[str]) -> None:
     parser = _parser("usage: %prog list")
-    parser.add_option("-u", dest="list_uri", default=False, action="store_true", help="list XML-RPC URIs")
-    parser.add_option("-a", "--all", dest="list_all", default=False, action="store_true",
+    parser.add_argument("-u", dest="list_uri", default=False, action="store_true", help="list XML-RPC URIs")
+    parser.add_argument("-a", "--all", dest="list_all", default=False, action="store_true",
                       help="list all information")
-    options, args = parser.parse_args(argv)
+    options = parser.parse_args(argv)
+    args = options.args
     namespace = None
     if len(args) > 1:
         parser.error("invalid args: you may only specify one namespace")
@@ -198,10 +199,11 @@ def info(graph: Graph, node: str, quiet: bool) -> None:
 
 def cmd_info(argv: list[str]) -> None:
     parser = _parser("usage: %prog info [options] node1 [node2...]")
-    parser.add_option("-q", "--quiet", dest="quiet", default=False, action="store_true",
+    parser.add_argument("-q", "--quiet", dest="quiet", default=False, action="store_true",
                       help="Prints only basic information such as pubs/subs and does not contact nodes for "
                            "more information")
-    options, args = parser.parse_args(argv)
+    options = parser.parse_args(argv)
+    args = options.args
     if not args:
         parser.error("You must specify at least one node name")
     graph = Graph()
@@ -215,7 +217,8 @@ def _addresses(host: str) -> list[str]:
 
 def cmd_machine(argv: list[str]) -> None:
     parser = _parser("usage: %prog machine [machine-name]")
-    _, args = parser.parse_args(argv)
+    parsed = parser.parse_args(argv)
+    args = parsed.args
     if len(args) > 1:
         parser.error("please enter only one machine name")
     graph = Graph()
@@ -270,8 +273,9 @@ def kill(graph: Graph, nodes: list[str]) -> list[str]:
 
 def cmd_kill(argv: list[str]) -> int:
     parser = _parser("usage: %prog kill [node]...")
-    parser.add_option("-a", "--all", dest="kill_all", default=False, action="store_true", help="kill all nodes")
-    options, args = parser.parse_args(argv)
+    parser.add_argument("-a", "--all", dest="kill_all", default=False, action="store_true", help="kill all nodes")
+    options = parser.parse_args(argv)
+    args = options.args
     graph = Graph()
     if options.kill_all:
         if args:
@@ -372,10 +376,11 @@ def cmd_cleanup(argv: list[str]) -> None:
 
 def cmd_ping(argv: list[str]) -> None:
     parser = _parser("usage: %prog ping [options] <node>")
-    parser.add_option("--all", "-a", dest="ping_all", default=False, action="store_true", help="ping all nodes")
-    parser.add_option("-c", dest="ping_count", default=None, metavar="COUNT", type="int",
+    parser.add_argument("--all", "-a", dest="ping_all", default=False, action="store_true", help="ping all nodes")
+    parser.add_argument("-c", dest="ping_count", default=None, metavar="COUNT", type=int,
                       help="number of pings to send. Not available with --all")
-    options, args = parser.parse_args(argv)
+    options = parser.parse_args(argv)
+    args = options.args
     node = ""
     if not options.ping_all:
         if not args:

@@ -1,6 +1,6 @@
 """rosparam: set, get, load, dump, delete and list parameters on the parameter server.
 
-Options are parsed with optparse as the real tool does (usage errors: `rosparam: error: ...`,
+Options are parsed as the real tool's optparse does (kame.cli._options; usage errors: `rosparam: error: ...`,
 exit 2); `set` lets negative numbers through as values. Values follow ROS's YAML typing rules
 (kame.param_yaml); a value the server cannot hold is refused before anything is set, with one
 `ERROR:` line (the real tool prints a traceback). Dicts are set leaf by leaf, so they merge.
@@ -9,13 +9,14 @@ Deliberate difference: `dump -` prints to stdout (the real tool writes a file na
 
 from __future__ import annotations
 
-import optparse
+import argparse
 import os
 import sys
 from collections.abc import Sequence
 from typing import Any
 
 from kame import names, param_yaml
+from kame.cli._options import OptionParser
 from kame.cli._tool import Master, ToolError, ros_namespace, run, script_resolve_name
 from kame.node.master_proxy import MasterError
 
@@ -34,8 +35,8 @@ Commands:
 """
 
 
-def _parser(usage: str) -> optparse.OptionParser:
-    return optparse.OptionParser(usage=usage, prog=NAME)
+def _parser(usage: str) -> OptionParser:
+    return OptionParser(usage=usage, prog=NAME)
 
 
 def _master() -> Master:
@@ -76,10 +77,11 @@ def cmd_get_dump(cmd: str, argv: list[str]) -> None:
         parser = _parser("usage: %prog dump [options] file [namespace]")
     else:
         parser = _parser("usage: %prog get [options] parameter")
-        parser.add_option("-p", dest="pretty", default=False, action="store_true",
+        parser.add_argument("-p", dest="pretty", default=False, action="store_true",
                           help="pretty print. WARNING: not YAML-safe")
-    parser.add_option("-v", dest="verbose", default=False, action="store_true", help="turn on verbose output")
-    options, args = parser.parse_args(argv)
+    parser.add_argument("-v", dest="verbose", default=False, action="store_true", help="turn on verbose output")
+    options = parser.parse_args(argv)
+    args = options.args
     arg: str | None = None
     ns = ""
     if not args:
@@ -117,8 +119,8 @@ def cmd_get_dump(cmd: str, argv: list[str]) -> None:
         raise ToolError(f"cannot write [{arg}]: {exc.strerror}") from None
 
 
-def _split_negative_args(parser: optparse.OptionParser, argv: list[str]) -> tuple[optparse.Values, list[str]]:
-    """optparse for the options only, so that `rosparam set x -3` keeps -3 as a value."""
+def _split_negative_args(parser: OptionParser, argv: list[str]) -> tuple[argparse.Namespace, list[str]]:
+    """The options parsed alone, so that `rosparam set x -3` keeps -3 as a value."""
     args: list[str] = []
     option_args: list[str] = []
     takes_value = False
@@ -138,17 +140,17 @@ def _split_negative_args(parser: optparse.OptionParser, argv: list[str]) -> tupl
             option_args.append(arg)
         else:
             args.append(arg)
-    options, _ = parser.parse_args(option_args)
+    options = parser.parse_args(option_args)
     return options, args
 
 
 def cmd_set(argv: list[str]) -> None:
     parser = _parser("usage: %prog set [options] parameter value")
-    parser.add_option("-t", "--textfile", dest="text_file", default=None, metavar="TEXT_FILE",
+    parser.add_argument("-t", "--textfile", dest="text_file", default=None, metavar="TEXT_FILE",
                       help="set parameters to contents of text file")
-    parser.add_option("-b", "--binfile", dest="bin_file", default=None, metavar="BINARY_FILE",
+    parser.add_argument("-b", "--binfile", dest="bin_file", default=None, metavar="BINARY_FILE",
                       help="set parameters to contents of binary file")
-    parser.add_option("-v", dest="verbose", default=False, action="store_true", help="turn on verbose output")
+    parser.add_argument("-v", dest="verbose", default=False, action="store_true", help="turn on verbose output")
     options, args = _split_negative_args(parser, argv)
     if options.text_file and options.bin_file:
         parser.error("you may only specify one of --textfile or --binfile")
@@ -217,8 +219,9 @@ def _read_documents(filename: str, default_ns: str, verbose: bool) -> list[tuple
 
 def cmd_load(argv: list[str]) -> None:
     parser = _parser("usage: %prog load [options] file [namespace]")
-    parser.add_option("-v", dest="verbose", default=False, action="store_true", help="turn on verbose output")
-    options, args = parser.parse_args(argv)
+    parser.add_argument("-v", dest="verbose", default=False, action="store_true", help="turn on verbose output")
+    options = parser.parse_args(argv)
+    args = options.args
     if not args:
         parser.error("invalid arguments. Please specify a file name or - for stdin")
     if len(args) > 2:
@@ -241,8 +244,9 @@ def cmd_load(argv: list[str]) -> None:
 
 def cmd_delete(argv: list[str]) -> None:
     parser = _parser("usage: %prog delete [options] parameter")
-    parser.add_option("-v", dest="verbose", default=False, action="store_true", help="turn on verbose output")
-    options, args = parser.parse_args(argv)
+    parser.add_argument("-v", dest="verbose", default=False, action="store_true", help="turn on verbose output")
+    options = parser.parse_args(argv)
+    args = options.args
     if not args:
         parser.error("invalid arguments. Please specify a parameter name")
     if len(args) > 1:
@@ -265,7 +269,8 @@ def cmd_delete(argv: list[str]) -> None:
 
 def cmd_list(argv: list[str]) -> None:
     parser = _parser("usage: %prog list [namespace]")
-    _, args = parser.parse_args(argv)
+    parsed = parser.parse_args(argv)
+    args = parsed.args
     ns = "/"
     if len(args) == 1:
         ns = _resolve(args[0])

@@ -11,9 +11,7 @@ master (no init_node): it only needs a caller id for the service connection.
 
 from __future__ import annotations
 
-import importlib
 import io
-import optparse
 import os
 import sys
 import time
@@ -23,7 +21,9 @@ from typing import Any
 
 import yaml
 
+from kame.cli._options import OptionParser
 from kame.cli._tool import Master, ToolError, run, script_resolve_name, strip_remappings
+from kame.msg import lookup
 from kame.msg.catalog import MsgCatalog
 from kame.msg.describe import describe_srv, load_srv
 from kame.msg.errors import MessageError, SerializationError
@@ -124,17 +124,10 @@ def tool(caller_id: str = ID) -> Iterator[Tool]:
 
 def load_service_class(service_type: str) -> Any:
     """`pkg/Name` -> the service class, or None (kame's packages and the workspace's alike)."""
-    package, _, short = service_type.partition("/")
-    if not package or not short:
-        return None
     try:
-        module = importlib.import_module(f"{package}.srv")
-    except (ImportError, MessageError):
+        return lookup.service_class(service_type)
+    except MessageError:
         return None
-    cls = getattr(module, short, None)
-    if cls is None and short.endswith("Request"):  # roscpp once named the request type
-        cls = getattr(module, short[: -len("Request")], None)
-    return cls if cls is not None and hasattr(cls, "_request_class") else None
 
 
 def _srv_text(service_type: str) -> str:
@@ -239,13 +232,14 @@ def _wait_for_service(t: Tool, service: str) -> None:
 # ------------------------------------------------------------------ commands
 
 
-def _parser(usage: str) -> optparse.OptionParser:
-    return optparse.OptionParser(usage=usage, prog=NAME)
+def _parser(usage: str) -> OptionParser:
+    return OptionParser(usage=usage, prog=NAME)
 
 
 def _service_only(cmd: str, argv: list[str]) -> str:
     parser = _parser(f"usage: %prog {cmd} /service")
-    _, args = parser.parse_args(argv)
+    parsed = parser.parse_args(argv)
+    args = parsed.args
     if not args:
         parser.error("service must be specified")
     if len(args) > 1:
@@ -255,9 +249,10 @@ def _service_only(cmd: str, argv: list[str]) -> str:
 
 def cmd_list(argv: list[str]) -> None:
     parser = _parser("usage: %prog list [/namespace]")
-    parser.add_option("-n", "--nodes", dest="print_nodes", default=False, action="store_true",
+    parser.add_argument("-n", "--nodes", dest="print_nodes", default=False, action="store_true",
                       help="print nodes that provide service(s)")
-    options, args = parser.parse_args(argv)
+    options = parser.parse_args(argv)
+    args = options.args
     namespace = None
     if len(args) == 1:
         namespace = script_resolve_name(NAME, args[0])
@@ -305,7 +300,8 @@ def cmd_args(argv: list[str]) -> None:
 
 def cmd_info(argv: list[str]) -> None:
     parser = _parser("usage: %prog info /service")
-    _, args = parser.parse_args(argv)
+    parsed = parser.parse_args(argv)
+    args = parsed.args
     if len(args) > 1:
         parser.error("you may only specify one service")
     if not args:
@@ -332,7 +328,8 @@ def cmd_info(argv: list[str]) -> None:
 
 def cmd_find(argv: list[str]) -> None:
     parser = _parser("usage: %prog find msg-type")
-    _, args = parser.parse_args(argv)
+    parsed = parser.parse_args(argv)
+    args = parsed.args
     if not args:
         parser.error("please specify a message type")
     if len(args) > 1:
@@ -354,12 +351,13 @@ def _is_negative_number(arg: str) -> bool:
 
 def cmd_call(argv: list[str]) -> None:
     parser = _parser("usage: %prog call /service [args...]")
-    parser.add_option("-v", dest="verbose", default=False, action="store_true", help="print verbose output")
-    parser.add_option("--wait", dest="wait", default=False, action="store_true",
+    parser.add_argument("-v", dest="verbose", default=False, action="store_true", help="print verbose output")
+    parser.add_argument("--wait", dest="wait", default=False, action="store_true",
                       help="wait for service to be advertised")
     # Values such as -3 or -.5 are arguments, not options (the real tool needs `--` for them).
     negatives = {f"\0{i}": arg for i, arg in enumerate(argv) if _is_negative_number(arg)}
-    options, args = parser.parse_args([f"\0{i}" if _is_negative_number(a) else a for i, a in enumerate(argv)])
+    options = parser.parse_args([f"\0{i}" if _is_negative_number(a) else a for i, a in enumerate(argv)])
+    args = options.args
     args = [negatives.get(a, a) for a in args]
     if not args:
         parser.error("service must be specified")

@@ -40,6 +40,7 @@ import uuid
 from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
 
+from kame import environ
 from kame.catkin import executables
 from kame.cli import _junit
 from kame.cli.rosmaster import log_dir, setup_file_logging
@@ -240,7 +241,7 @@ class Harness:
         env = settings.env
         master: PrivateMaster | None = None
         if settings.reuse_master:
-            uri = env.get("ROS_MASTER_URI") or "http://localhost:11311"
+            uri = environ.master_uri(env, default=environ.SETUP_MASTER_URI)
             run_id = self._existing_run_id(uri)
         else:
             run_id = str(uuid.uuid1())

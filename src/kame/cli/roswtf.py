@@ -11,7 +11,6 @@ online part is skipped, saying so, when no master answers.
 from __future__ import annotations
 
 import errno
-import optparse
 import os
 import socket
 import sys
@@ -25,6 +24,7 @@ from urllib.parse import urlsplit
 from catkin_pkg.package import InvalidPackage, parse_package_string
 
 from kame.cli import _wtf
+from kame.cli._options import OptionParser
 from kame.cli._tool import DEFAULT_MASTER_URI, run
 from kame.msg.catalog import SHARE_DIR, MsgCatalog, Package, find_packages, package_path_roots
 from kame.msg.errors import MessageError
@@ -328,14 +328,15 @@ def _load_launch_files(files: Sequence[str]) -> str | None:
 
 
 def _main(argv: list[str]) -> int:
-    parser = optparse.OptionParser(usage=USAGE, description=DESCRIPTION, prog="roswtf")
-    parser.add_option("--all", dest="all_packages", default=False, action="store_true",
+    parser = OptionParser(usage=USAGE, description=DESCRIPTION, prog="roswtf")
+    parser.add_argument("--all", dest="all_packages", default=False, action="store_true",
                       help="run roswtf against all packages")
-    parser.add_option("--no-plugins", dest="disable_plugins", default=False, action="store_true",
+    parser.add_argument("--no-plugins", dest="disable_plugins", default=False, action="store_true",
                       help="disable roswtf plugins")
-    parser.add_option("--offline", dest="offline", default=False, action="store_true",
+    parser.add_argument("--offline", dest="offline", default=False, action="store_true",
                       help="only run offline tests")
-    options, args = parser.parse_args(argv)
+    options = parser.parse_args(argv)
+    args = options.args
     out = sys.stdout
     if args:
         problem = _load_launch_files(args)

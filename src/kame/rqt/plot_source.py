@@ -16,9 +16,9 @@ from typing import Any
 
 import numpy as np
 
-from kame.cli.rostopic import load_message_class
 from kame.msg.fieldpath import FieldPathError, field_type
 from kame.msg.loader import generate_dynamic
+from kame.msg.lookup import message_class as load_message_class
 from kame.node.node import Node
 from kame.rqt.plot_model import (
     DEFAULT_HISTORY,

@@ -20,6 +20,7 @@ from functools import cache
 from pathlib import Path
 from typing import Any
 
+from kame import environ
 from kame.msg.catalog import Package
 from kame.shell import locate
 
@@ -164,7 +165,7 @@ class Sources:
     def _master(self, method: str, *args: object) -> Any:
         from kame.node.master_proxy import MasterProxy
 
-        uri = self.env.get("ROS_MASTER_URI") or "http://localhost:11311/"
+        uri = environ.master_uri(self.env)
         proxy = MasterProxy(uri, "/rosbash_complete", timeout=MASTER_TIMEOUT)
         try:
             return proxy.call(method, *args)

@@ -25,7 +25,9 @@ import sys
 from collections.abc import Mapping, Sequence
 from pathlib import Path
 
-DEFAULT_MASTER_URI = "http://localhost:11311"
+from kame import environ
+
+DEFAULT_MASTER_URI = environ.SETUP_MASTER_URI
 KAME_DIR = Path(__file__).resolve().parent.parent
 SHARE_DIR = KAME_DIR / "share"
 PYTHON_SITE = "lib/python3/dist-packages"

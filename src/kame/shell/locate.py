@@ -22,6 +22,7 @@ import sys
 from collections.abc import Iterator, Mapping, Sequence
 from pathlib import Path
 
+from kame import environ
 from kame.msg.catalog import Package, find_packages, package_path_roots
 
 
@@ -50,7 +51,7 @@ def run_id(env: Mapping[str, str]) -> str | None:
     """The master's /run_id, or None when no master answers quickly."""
     from kame.node.master_proxy import MasterError, MasterProxy
 
-    uri = env.get("ROS_MASTER_URI") or "http://localhost:11311/"
+    uri = environ.master_uri(env)
     try:
         proxy = MasterProxy(uri, "/roslaunch", timeout=2.0)
     except ValueError:

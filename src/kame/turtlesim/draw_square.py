@@ -14,9 +14,8 @@ import sys
 from collections.abc import Sequence
 from typing import Any
 
-import rospy
 from geometry_msgs.msg import Twist
-from rospy import _log
+from kame.client import clock, errors, log, process, services, timer, topics
 from std_srvs.srv import Empty
 from turtlesim.msg import Pose
 
@@ -56,7 +55,7 @@ class SquareDriver:
         self.goal.x = math.cos(p.theta) * 2 + p.x
         self.goal.y = math.sin(p.theta) * 2 + p.y
         self.goal.theta = p.theta
-        _log.emit(_log.INFO, "New goal [%f %f, %f]", (self.goal.x, self.goal.y, self.goal.theta))
+        log.emit(log.INFO, "New goal [%f %f, %f]", (self.goal.x, self.goal.y, self.goal.theta))
 
     def tick(self) -> tuple[float, float] | None:
         if self.pose is None:
@@ -77,7 +76,7 @@ class SquareDriver:
             return 0.0, 0.4
         if not self._stopped():
             return 0.0, 0.0
-        _log.emit(_log.INFO, "Reached goal", ())
+        log.emit(log.INFO, "Reached goal", ())
         if self.state is State.STOP_FORWARD:
             self.state = State.TURN
             self.goal.x, self.goal.y = self.pose.x, self.pose.y
@@ -85,7 +84,7 @@ class SquareDriver:
             if theta >= PI:
                 theta -= 2 * PI
             self.goal.theta = theta
-            _log.emit(_log.INFO, "New goal [%f %f, %f]", (self.goal.x, self.goal.y, self.goal.theta))
+            log.emit(log.INFO, "New goal [%f %f, %f]", (self.goal.x, self.goal.y, self.goal.theta))
         else:
             self.state = State.FORWARD
             self._goal_ahead()
@@ -93,20 +92,20 @@ class SquareDriver:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    _log.use_roscpp_console()  # a C++ program in ROS
-    rospy.init_node("draw_square", argv=list(sys.argv if argv is None else argv))
+    log.use_roscpp_console()  # a C++ program in ROS
+    process.init_node("draw_square", argv=list(sys.argv if argv is None else argv))
     driver = SquareDriver()
 
     def on_pose(pose: Pose) -> None:
         driver.pose = pose
 
-    rospy.Subscriber("turtle1/pose", Pose, on_pose, queue_size=1)
-    publisher = rospy.Publisher("turtle1/cmd_vel", Twist, queue_size=1)
-    reset = rospy.ServiceProxy("reset", Empty)
+    topics.Subscriber("turtle1/pose", Pose, on_pose, queue_size=1)
+    publisher = topics.Publisher("turtle1/cmd_vel", Twist, queue_size=1)
+    reset = services.ServiceProxy("reset", Empty)
     try:
-        rospy.wait_for_service("reset", timeout=5.0)  # kame: a launch may start us before turtlesim
+        services.wait_for_service("reset", timeout=5.0)  # kame: a launch may start us before turtlesim
         reset()
-    except (rospy.ROSException, rospy.ServiceException):
+    except (errors.ROSException, services.ServiceException):
         pass
 
     def on_timer(_event: Any) -> None:
@@ -116,8 +115,8 @@ def main(argv: Sequence[str] | None = None) -> int:
             twist.linear.x, twist.angular.z = command
             publisher.publish(twist)
 
-    rospy.Timer(rospy.Duration(0.016), on_timer)
-    rospy.spin()
+    timer.Timer(clock.Duration(0.016), on_timer)
+    process.spin()
     return 0
 
 

@@ -11,18 +11,17 @@ from __future__ import annotations
 import sys
 from collections.abc import Sequence
 
-import rospy
 from geometry_msgs.msg import Twist
-from rospy import _log
+from kame.client import core, log, process, topics
 from turtlesim.msg import Pose
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    _log.use_roscpp_console()  # a C++ program in ROS
-    rospy.init_node("turtle_mimic", argv=list(sys.argv if argv is None else argv))
-    source = rospy.remap_name("input")
-    target = rospy.remap_name("output")
-    publisher = rospy.Publisher(f"{target}/cmd_vel", Twist, queue_size=1)
+    log.use_roscpp_console()  # a C++ program in ROS
+    process.init_node("turtle_mimic", argv=list(sys.argv if argv is None else argv))
+    source = core.remap_name("input")
+    target = core.remap_name("output")
+    publisher = topics.Publisher(f"{target}/cmd_vel", Twist, queue_size=1)
 
     def on_pose(pose: Pose) -> None:
         twist = Twist()
@@ -30,8 +29,8 @@ def main(argv: Sequence[str] | None = None) -> int:
         twist.linear.x = pose.linear_velocity
         publisher.publish(twist)
 
-    rospy.Subscriber(f"{source}/pose", Pose, on_pose, queue_size=1)
-    rospy.spin()
+    topics.Subscriber(f"{source}/pose", Pose, on_pose, queue_size=1)
+    process.spin()
     return 0
 
 

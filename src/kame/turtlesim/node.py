@@ -8,7 +8,7 @@ and world steps into ROS traffic, as turtlesim 0.10.2's TurtleFrame and Turtle d
 - node `turtlesim`; services clear, reset, spawn, kill; params ~background_r/g/b (set to
   69/86/255 when absent, read at start and on every clear/reset);
 - per turtle: cmd_vel in, pose and color_sensor out (every 16 ms step), services set_pen,
-  teleport_absolute, teleport_relative, and the rotate_absolute action when kame has actionlib;
+  teleport_absolute, teleport_relative, and the rotate_absolute action;
 - roscpp's log lines; errors are logged and answered as failed calls with no text, as a
   roscpp service returning false is.
 What kame adds: a cmd_vel or request with NaN/infinity is refused (the real turtle would
@@ -33,8 +33,9 @@ from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
-import rospy
 from geometry_msgs.msg import Twist
+from kame.client import core, log, process, topics
+from kame.client.action.simple_action_server import SimpleActionServer
 from kame.net.command import run_command
 from kame.net.feed import ChildFeed
 from kame.turtlesim.canvas import Rgb
@@ -49,7 +50,6 @@ from kame.turtlesim.world import (
     TurtleError,
     World,
 )
-from rospy import _log
 from std_srvs.srv import Empty, EmptyResponse
 from turtlesim.msg import Color
 from turtlesim.msg import Pose as PoseMsg
@@ -72,15 +72,15 @@ _CHANNELS = ("r", "g", "b")
 
 
 def _info(msg: str, *args: Any) -> None:
-    _log.emit(_log.INFO, msg, args)
+    log.emit(log.INFO, msg, args)
 
 
 def _warn(msg: str, *args: Any) -> None:
-    _log.emit(_log.WARN, msg, args)
+    log.emit(log.WARN, msg, args)
 
 
 def _error(msg: str, *args: Any) -> None:
-    _log.emit(_log.ERROR, msg, args)
+    log.emit(log.ERROR, msg, args)
 
 
 def _serialized(msg: Any) -> bytes:
@@ -94,9 +94,9 @@ class _TurtleInterfaces:
 
     def __init__(self, sim: TurtlesimNode, name: str) -> None:
         self.name = name
-        self.pose = rospy.Publisher(f"{name}/pose", PoseMsg, queue_size=1)
-        self.color = rospy.Publisher(f"{name}/color_sensor", Color, queue_size=1)
-        self.cmd_vel = rospy.Subscriber(f"{name}/cmd_vel", Twist, self._on_cmd_vel, queue_size=1)
+        self.pose = topics.Publisher(f"{name}/pose", PoseMsg, queue_size=1)
+        self.color = topics.Publisher(f"{name}/color_sensor", Color, queue_size=1)
+        self.cmd_vel = topics.Subscriber(f"{name}/cmd_vel", Twist, self._on_cmd_vel, queue_size=1)
         self._sim = sim
         self.services = [
             sim.serve(f"{name}/set_pen", SetPen, self._set_pen),
@@ -135,7 +135,7 @@ class _TurtleInterfaces:
         self.pose.unregister()
         self.color.unregister()
         self.cmd_vel.unregister()
-        node = rospy.core.get_node()
+        node = core.get_node()
         for service in self.services:
             if node is not None:
                 node.unadvertise_service(service)
@@ -158,13 +158,13 @@ class TurtlesimNode:
     # ---------------------------------------------------------------- start-up
 
     def start(self) -> None:
-        _info("Starting turtlesim with node name %s", rospy.get_name())
+        _info("Starting turtlesim with node name %s", core.get_name())
         for channel, default in zip(_CHANNELS, (DEFAULT_BACKGROUND.r, DEFAULT_BACKGROUND.g, DEFAULT_BACKGROUND.b),
                                     strict=True):
             key = f"~background_{channel}"
-            if not rospy.has_param(key):
-                rospy.set_param(key, default)
-            self._initial_background[channel] = rospy.get_param(key, default)
+            if not process.has_param(key):
+                process.set_param(key, default)
+            self._initial_background[channel] = process.get_param(key, default)
         self.serve("clear", Empty, self._clear)
         self.serve("reset", Empty, self._reset_service)
         self.serve("spawn", Spawn, self._spawn)
@@ -174,7 +174,7 @@ class TurtlesimNode:
     def serve(self, name: str, service_class: Any, handler: Callable[[Any], Any]) -> str:
         """Advertise a service whose handler's TurtleError is logged and answered as a plain
         failure (roscpp's `return false`)."""
-        resolved = rospy.resolve_name(name)
+        resolved = core.resolve_name(name)
         request_class = service_class._request_class
 
         def handle(data: bytes) -> tuple[bool, bytes | str]:
@@ -188,7 +188,7 @@ class TurtlesimNode:
                 _error("%s", exc)
                 return False, ""
 
-        node = rospy.core.get_node()
+        node = core.get_node()
         assert node is not None
         node.advertise_service(resolved, service_class._type, service_class._md5sum, handle)
         return resolved
@@ -198,8 +198,8 @@ class TurtlesimNode:
     def background(self) -> Rgb:
         values = []
         for channel in _CHANNELS:
-            private = rospy.get_param(f"~background_{channel}", self._initial_background.get(channel))
-            legacy = rospy.get_param(f"background_{channel}", None)
+            private = process.get_param(f"~background_{channel}", self._initial_background.get(channel))
+            legacy = process.get_param(f"background_{channel}", None)
             value = legacy if legacy is not None and private == self._initial_background.get(channel) else private
             try:
                 values.append(int(value) & 0xFF)
@@ -260,15 +260,12 @@ class TurtlesimNode:
     # ---------------------------------------------------------------- rotate_absolute
 
     def rotate_absolute_server(self, name: str) -> Any:
-        """The turtle's rotate_absolute action server, when kame has actionlib; else None."""
-        if importlib.util.find_spec("actionlib") is None:
-            return None
+        """The turtle's rotate_absolute action server (None if it cannot be served)."""
         try:
-            from actionlib import SimpleActionServer
             from turtlesim.msg import RotateAbsoluteAction
 
             server: Any = SimpleActionServer(f"{name}/rotate_absolute", RotateAbsoluteAction, auto_start=False)
-        except Exception as exc:  # an actionlib that cannot serve: turtlesim goes on without the action
+        except Exception as exc:  # a server that cannot start: turtlesim goes on without the action
             _warn("No rotate_absolute action for [%s]: %s", name, exc)
             return None
 
@@ -343,7 +340,7 @@ class TurtlesimNode:
         """Step every UPDATE_PERIOD until shutdown, handing `show` each snapshot that differs from
         the last; a late step is not made up for by a burst."""
         deadline = time.monotonic()
-        while not rospy.is_shutdown():
+        while not core.is_shutdown():
             if show is None:
                 self.tick()
             elif (snapshot := self.frame()) is not None:
@@ -353,7 +350,7 @@ class TurtlesimNode:
             if delay < -0.1:
                 deadline = time.monotonic()
             elif delay > 0:
-                rospy.core.wait_for_shutdown(delay)
+                core.wait_for_shutdown(delay)
 
     def shutdown(self) -> None:
         with self._sync_lock:
@@ -398,7 +395,7 @@ def open_window() -> ChildFeed[Snapshot]:
 
     def ended(status: int) -> None:
         if status == 0:  # the user closed it: turtlesim ends, as ROS's does
-            rospy.signal_shutdown("window closed")
+            core.signal_shutdown("window closed")
             return
         how = f"signal {-status}" if status < 0 else f"status {status}"
         _warn("The window ended (%s): turtlesim continues headless, without a window", how)
@@ -408,9 +405,9 @@ def open_window() -> ChildFeed[Snapshot]:
 
 def main(argv: Sequence[str] | None = None) -> int:
     argv = list(sys.argv if argv is None else argv)
-    args = rospy.myargv(argv)[1:]
-    _log.use_roscpp_console()
-    rospy.init_node(NODE_NAME, argv=argv)
+    args = process.myargv(argv)[1:]
+    log.use_roscpp_console()
+    process.init_node(NODE_NAME, argv=argv)
     sim = TurtlesimNode(World())
     sim.start()
     problem = window_problem(args, os.environ)
@@ -427,7 +424,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         if window is not None:
             window.close()
         sim.shutdown()
-        rospy.signal_shutdown("turtlesim exiting")
+        core.signal_shutdown("turtlesim exiting")
     return 0
 
 

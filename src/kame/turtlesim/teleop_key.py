@@ -19,9 +19,8 @@ import termios
 from collections.abc import Iterator, Sequence
 from typing import Any
 
-import rospy
 from geometry_msgs.msg import Twist
-from rospy import _log
+from kame.client import core, log, process, topics
 
 KEYCODE_UP, KEYCODE_DOWN, KEYCODE_RIGHT, KEYCODE_LEFT, KEYCODE_Q = 0x41, 0x42, 0x43, 0x44, 0x71
 BANNER = """Reading from keyboard
@@ -61,7 +60,7 @@ def twist_for(key: int, scale_linear: float, scale_angular: float) -> Twist | No
 
 
 def _param(name: str, default: float) -> float:
-    value: Any = rospy.get_param(name, default)
+    value: Any = process.get_param(name, default)
     try:
         return float(value)
     except (TypeError, ValueError):
@@ -69,16 +68,16 @@ def _param(name: str, default: float) -> float:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    _log.use_roscpp_console()  # a C++ program in ROS
-    rospy.init_node("teleop_turtle", argv=list(sys.argv if argv is None else argv))
+    log.use_roscpp_console()  # a C++ program in ROS
+    process.init_node("teleop_turtle", argv=list(sys.argv if argv is None else argv))
     scale_angular = _param("scale_angular", 2.0)
     scale_linear = _param("scale_linear", 2.0)
-    publisher = rospy.Publisher("turtle1/cmd_vel", Twist, queue_size=1)
+    publisher = topics.Publisher("turtle1/cmd_vel", Twist, queue_size=1)
     print(BANNER, flush=True)
     fd = sys.stdin.fileno()
     try:
         with raw_terminal(fd):
-            while not rospy.is_shutdown():
+            while not core.is_shutdown():
                 ready, _, _ = select.select([fd], [], [], 0.1)
                 if not ready:
                     continue
@@ -94,7 +93,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     except (KeyboardInterrupt, OSError):
         pass
     finally:
-        rospy.signal_shutdown("teleop quit")
+        core.signal_shutdown("teleop quit")
     return 0
 
 

@@ -1,10 +1,10 @@
-"""rospy's logging calls, typed (the caller reported is actionlib's, as with rospy.logerr)."""
+"""The action layer's log calls (the caller reported is the action code, as with rospy.logerr)."""
 
 from __future__ import annotations
 
 from typing import Any
 
-from rospy import _log
+from kame.client import log as _log
 
 
 def logdebug(msg: str, *args: Any) -> None:

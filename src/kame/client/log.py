@@ -1,4 +1,4 @@
-"""rospy logging: the console lines ROS users know, a log file per node, and /rosout.
+"""Logging of a program's node: the console lines ROS users know, a log file per node, /rosout.
 
 Console: `[INFO] [1795311282.956206]: text` (ROSCONSOLE_FORMAT overrides the template),
 DEBUG and INFO to stdout, WARN and above to stderr, coloured on a tty only. Every record
@@ -17,7 +17,7 @@ import time
 from collections.abc import Callable
 from typing import Any
 
-from rospy import core
+from kame.client import core
 
 DEBUG, INFO, WARN, ERROR, FATAL = 1, 2, 4, 8, 16
 LEVEL_NAMES = {DEBUG: "DEBUG", INFO: "INFO", WARN: "WARN", ERROR: "ERROR", FATAL: "FATAL"}
@@ -79,11 +79,11 @@ def configure_file_logging(node_name: str, log_file: str | None) -> None:
 
 
 def _time_text() -> str:
-    from rospy import rostime
+    from kame.client import clock
 
     wall = f"{time.time():.6f}"
-    if rostime.is_sim_time() and rostime.is_rostime_initialized():
-        return f"{wall}, {rostime.get_time():.6f}"
+    if clock.is_sim_time() and clock.is_rostime_initialized():
+        return f"{wall}, {clock.get_time():.6f}"
     return wall
 
 
@@ -199,8 +199,8 @@ def emit_throttle_identical(period: float, level: int, msg: Any, args: tuple[Any
 
 
 def _now() -> float:
-    from rospy import rostime
+    from kame.client import clock
 
-    if rostime.is_rostime_initialized():
-        return rostime.get_time()
+    if clock.is_rostime_initialized():
+        return clock.get_time()
     return time.time()

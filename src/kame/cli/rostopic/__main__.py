@@ -1,0 +1,5 @@
+import sys
+
+from kame.cli.rostopic import main
+
+sys.exit(main())

@@ -1,0 +1,5 @@
+"""ActionException (actionlib's)."""
+
+
+class ActionException(Exception):
+    pass

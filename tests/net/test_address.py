@@ -1,0 +1,63 @@
+"""The advertised and bound host: rosgraph.network's rules (get_address_override, get_host_name)."""
+
+from __future__ import annotations
+
+import socket
+
+import pytest
+
+from kame import environ
+from kame.net.address import address_override, advertised_host, bind_host, local_address
+from kame.node.config import node_config
+
+
+def test_override_order_special_then_ros_hostname_then_ros_ip() -> None:
+    env = {"ROS_HOSTNAME": "named", "ROS_IP": "10.0.0.9"}
+    assert address_override(env, {"hostname": "arg", "ip": "10.1.1.1"}) == "arg"
+    assert address_override(env, {"ip": "10.1.1.1"}) == "10.1.1.1"
+    assert address_override(env) == "named"
+    assert address_override({"ROS_IP": "10.0.0.9"}) == "10.0.0.9"
+    assert address_override({}) is None
+
+
+def test_an_empty_ros_hostname_hides_ros_ip_and_gives_no_override() -> None:
+    assert address_override({"ROS_HOSTNAME": "", "ROS_IP": "10.0.0.9"}) is None
+
+
+def test_advertised_host_without_override_is_the_host_name_unless_loopback(monkeypatch: pytest.MonkeyPatch) -> None:
+    assert advertised_host("given") == "given"
+    monkeypatch.setattr(socket, "gethostname", lambda: "robot")
+    assert advertised_host(None) == "robot"
+    monkeypatch.setattr(socket, "gethostname", lambda: "localhost")
+    assert advertised_host(None) == local_address()
+
+
+def test_local_address_prefers_the_only_or_first_non_loopback(monkeypatch: pytest.MonkeyPatch) -> None:
+    import kame.net.address as address
+
+    monkeypatch.setattr(address, "local_addresses", lambda: ["127.0.0.1", "192.168.1.5", "10.0.0.1"])
+    assert local_address() == "192.168.1.5"
+    monkeypatch.setattr(address, "local_addresses", lambda: ["127.0.1.1"])
+    assert local_address() == "127.0.1.1"
+    monkeypatch.setattr(address, "local_addresses", lambda: ["127.0.0.1", "127.0.1.1"])
+    assert local_address() == "127.0.0.1"
+
+
+def test_bind_host() -> None:
+    assert bind_host("localhost") == "127.0.0.1"
+    assert bind_host("127.0.0.2") == "127.0.0.2"
+    assert bind_host("robot") == "0.0.0.0"
+    assert bind_host(None) == "0.0.0.0"
+
+
+def test_node_config_from_the_command_line_and_environment() -> None:
+    env = {"ROS_NAMESPACE": "ns", "ROS_MASTER_URI": "http://m:1/", "ROS_IP": "127.0.0.3"}
+    config = node_config("talker", {}, env, {"chatter": "out"})
+    assert (config.name, config.master_uri, config.host, config.bind_host) == (
+        "/ns/talker", "http://m:1/", "127.0.0.3", "127.0.0.3")
+    assert dict(config.remappings) == {"/ns/chatter": "/ns/out"}
+    special = {"name": "other", "ns": "/top", "master": "http://x:2/", "ip": "10.9.9.9"}
+    config = node_config("talker", special, env)
+    assert (config.name, config.master_uri, config.host, config.bind_host) == (
+        "/top/other", "http://x:2/", "10.9.9.9", "0.0.0.0")
+    assert environ.master_uri({}) == environ.DEFAULT_MASTER_URI
