@@ -23,7 +23,7 @@ from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 from kame.net.stream import Receiver, Sender, connect, peer_of, set_keepalive, set_nodelay
-from kame.net.xmlrpc_proxy import XmlRpcProxy
+from kame.net.xmlrpc_client import XmlRpcProxy
 from kame.node.master_proxy import unwrap
 from kame.node.tcpros import HandshakeError, read_header_and_rest, write_header
 from kame.protocol import tcpros
