@@ -23,14 +23,14 @@ import asyncio
 import logging
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
+from typing import NamedTuple
 
-from kame.protocol.http import Refusal, Request, RequestReader, encode_response, new_head_cache
+from kame.protocol.http import Refusal, RequestReader, encode_response, new_head_cache
 
 log = logging.getLogger("kame.net.http")
 
 
-@dataclass(frozen=True)
-class HttpRequest:
+class HttpRequest(NamedTuple):  # a NamedTuple: a frozen dataclass costs a microsecond more per request
     method: str
     path: str
     headers: Mapping[str, str]  # names lower-cased; read-only, shared by requests with equal heads
@@ -123,10 +123,9 @@ class _Connection(asyncio.Protocol):
             request = reader.next_request()
             if request is None:
                 break
-            if type(request) is Refusal:
+            if isinstance(request, Refusal):
                 self._refuse(request.status, request.why)
                 return
-            assert type(request) is Request
             if self.reserved:
                 self._release()
             try:
@@ -142,14 +141,14 @@ class _Connection(asyncio.Protocol):
             served = True
         if self.transport is None:
             return
-        wanted = reader.body_wanted
-        if wanted and not self.reserved and not self.server._reserve(self, wanted):
-            self._refuse(503, f"busy: cannot take {wanted} more bytes now")
-            return
         if served:
             self.server._touch(self)
         # One deadline per batch: a request that arrived whole never needed its own.
         if reader.pending:
+            wanted = reader.body_wanted
+            if wanted and not self.reserved and not self.server._reserve(self, wanted):
+                self._refuse(503, f"busy: cannot take {wanted} more bytes now")
+                return
             if served or not self.receiving:
                 # a request has started arriving: it must be complete within request_timeout
                 self.receiving = True

@@ -143,8 +143,9 @@ class RequestReader:
     @property
     def pending(self) -> int:
         """Bytes of an unfinished request held (0 between requests)."""
-        held = len(self._buf) + (len(self._data) - self._pos if self._data is not None else 0)
-        return held + (1 if self._head is not None else 0)
+        if self._data is None:
+            return len(self._buf) + (self._head is not None)
+        return len(self._buf) + len(self._data) - self._pos + (self._head is not None)
 
     @property
     def body_wanted(self) -> int:
@@ -152,6 +153,8 @@ class RequestReader:
         return self._head.length if self._head is not None else 0
 
     def feed(self, data: bytes | bytearray | memoryview) -> None:
+        if self.refused:
+            return
         if self._data is not None:
             self._buf += memoryview(self._data)[self._pos:]
             self._data = None
@@ -162,13 +165,13 @@ class RequestReader:
 
     def next_request(self) -> Request | Refusal | None:
         """The next complete request, a Refusal, or None when more bytes are needed."""
-        if self.refused:
-            return None
         data: bytes | bytearray
         if self._data is not None:
             data, pos = self._data, self._pos
-        else:
+        elif self._buf:
             data, pos = self._buf, 0
+        else:
+            return None  # nothing held (also after a refusal, which drops what was held)
         head = self._head
         if head is None:
             end = data.find(b"\r\n\r\n", pos)
