@@ -11,8 +11,9 @@
    processes meanwhile (a loaded machine: where recorders that need more CPU than they get
    start dropping).
 
-3. `--play-only`: `rosbag play -i` of a smaller bag (100k small messages, 100 images) to one
-   subscriber: the player's wall and CPU time, best of 3, and what the subscriber got.
+3. `--play-only`: `rosbag play -i` of a smaller bag (by default 100k small messages and 100
+   images) to one subscriber: the player's wall and CPU time, best of 3, and what the
+   subscriber got.
 
 Usage: .venv/bin/python bench/bag_bench.py [--small-count N] [--record-seconds S] [--skip-debian-read] [--busy N]
        .venv/bin/python bench/bag_bench.py --play-only
@@ -197,8 +198,8 @@ def record_run(recorder: list[str], out: Path, seconds: float, env: dict[str, st
 
 def main() -> int:
     ap = argparse.ArgumentParser()
-    ap.add_argument("--small-count", type=int, default=1_000_000)
-    ap.add_argument("--images", type=int, default=1000)
+    ap.add_argument("--small-count", type=int, default=None, help="default 1,000,000 (100,000 with --play-only)")
+    ap.add_argument("--images", type=int, default=None, help="default 1000 (100 with --play-only)")
     ap.add_argument("--record-seconds", type=float, default=10.0)
     ap.add_argument("--skip-debian-read", action="store_true")
     ap.add_argument("--busy", type=int, default=0, help="busy-loop processes running during the record runs")
@@ -207,8 +208,8 @@ def main() -> int:
     args = ap.parse_args()
     compile_kame()
     if args.play_only:
-        return play_only()
-    bag = make_bag(args.small_count, args.images)
+        return play_only(args.small_count or 100_000, args.images or 100)
+    bag = make_bag(args.small_count or 1_000_000, args.images or 1000)
     rows = []
     warm_cache(bag)
     k_info, _ = timed([str(BIN / "rosbag"), "info", str(bag)], 5)
@@ -264,8 +265,8 @@ def main() -> int:
     return 0
 
 
-def play_only() -> int:
-    bag = make_bag(100_000, 100)
+def play_only(small_count: int, images: int) -> int:
+    bag = make_bag(small_count, images)
     sys.path.insert(0, str(REPO))
     from tests.support import free_port, ros_env
 
@@ -285,8 +286,9 @@ def play_only() -> int:
         os.kill(core.pid, signal.SIGINT)
         core.wait(20)
     wall, cpu, n, size = min(runs)
-    print(f"\n| rosbag play -i ({bag.stat().st_size / 2**20:.0f} MiB, 100k small + 100 images) | player wall | "
-          "player CPU | received |\n|---|---|---|---|")
+    size_mib = bag.stat().st_size / 2**20
+    print(f"\n| rosbag play -i ({size_mib:.0f} MiB, {small_count} small + {images} images) | player wall | player CPU "
+          "| received |\n|---|---|---|---|")
     print(f"| kame | {wall:.2f} s | {cpu:.2f} s | {n} msgs, {size / 1e6:.0f} MB |")
     return 0
 
