@@ -142,3 +142,18 @@ def test_response_reader_cases() -> None:
         short.feed_eof()
     with pytest.raises(HttpError, match="before the response"):
         ResponseReader().feed_eof()
+
+
+def test_no_other_module_speaks_http_or_sets_process_wide_socket_defaults() -> None:
+    # kame's servers and clients go through this module; the stdlib's HTTP stacks and
+    # socket.setdefaulttimeout (which changes every socket of the process) are not used in kame.
+    # rostest.get_master keeps returning xmlrpc.client.ServerProxy: that is rostest's API.
+    import re
+    from pathlib import Path
+
+    import kame
+
+    banned = re.compile(r"setdefaulttimeout|^\s*(import|from)\s+(xmlrpc|http)\.(client|server)\b", re.M)
+    root = Path(kame.__file__).parent
+    offenders = [str(path.relative_to(root)) for path in sorted(root.rglob("*.py")) if banned.search(path.read_text())]
+    assert offenders == []
