@@ -181,10 +181,11 @@ class Sender:
             if sent >= 0:
                 self.bytes_sent += sent
                 for part in parts:
-                    view = memoryview(part)
-                    if sent >= len(view):
-                        sent -= len(view)
+                    size = len(part)  # buffers are byte-sized: len is their byte count
+                    if sent >= size:
+                        sent -= size
                         continue
+                    view = memoryview(part)
                     rest.append(keep(view[sent:] if sent else view))
                     sent = 0
                 if rest:
