@@ -295,6 +295,14 @@ def test_service_responses_byte_by_byte() -> None:
     assert [r.ok for r in got] == [True, False, False] * 3
 
 
+def test_service_responses_parsed_in_place_keep_what_follows() -> None:
+    one = t.encode_service_response(True, b"abc")
+    wire = one * 3 + one[:6]
+    reader = t.ServiceResponseReader()
+    assert reader.feed(wire) == [t.ServiceResponse(True, b"abc")] * 3 and reader.pending == 6
+    assert reader.feed(one[6:]) == [t.ServiceResponse(True, b"abc")] and reader.pending == 0
+
+
 def test_service_response_reader_says_how_much_is_missing() -> None:
     reader = t.ServiceResponseReader()
     assert reader.feed(b"\x01\x0a\x00") == [] and reader.missing == 0  # prefix incomplete: unknown

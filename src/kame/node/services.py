@@ -70,7 +70,7 @@ class ServiceServer:
     def _serve(self, sock: socket.socket, accepted: tcpros.ServiceClientAccepted) -> None:
         """Answer requests on this (the accepting) thread; one unless the client is persistent."""
         receiving = _Receiving(sock, spin=SPIN_FOR_ANSWER if accepted.persistent else 0.0)
-        requests = tcpros.FrameReader(MAX_REQUEST, reuse=True)  # each request is copied before the next read
+        requests = tcpros.FrameReader(MAX_REQUEST)
         try:
             while not self.closed:
                 try:
@@ -109,6 +109,7 @@ class _Receiving:
     def __init__(self, sock: socket.socket, spin: float = 0.0) -> None:
         self.sock = sock
         self.spin = spin
+        self._responses = tcpros.ServiceResponseReader(MAX_REQUEST)
 
     def _read(self, read: Callable[[int], _T]) -> _T:
         """read(flags); a call's answer usually comes within tens of microseconds, so with
@@ -125,28 +126,29 @@ class _Receiving:
         return read(0)
 
     def frames(self, reader: tcpros.FrameReader) -> list[memoryview]:
-        """The frames completed by one read (possibly none); ConnectionError at end of stream. A
-        large frame is read straight into its own buffer, which is sized as its bytes arrive
-        beyond 64 MiB: a peer claiming a gigabyte and sending three bytes reserves no gigabyte."""
-        buffer = reader.get_buffer(65536)
-        count = self._read(partial(self.sock.recv_into, buffer, 0))
-        if not count:
+        """The frames completed by one read (possibly none); ConnectionError at end of stream.
+        The reader sizes a frame over 64 MiB as its bytes arrive: a peer claiming a gigabyte
+        and sending three bytes reserves no gigabyte."""
+        chunk = self._read(partial(self.sock.recv, 65536))
+        if not chunk:
             raise ConnectionError("connection closed by the peer")
-        return reader.buffer_updated(count)
+        return reader.feed(chunk)
 
     def response(self) -> tuple[tcpros.ServiceResponse, bool]:
-        """One service response, and whether the stream is clean after it (nothing more came)."""
-        reader = tcpros.ServiceResponseReader(MAX_REQUEST)
+        """One service response, and whether the stream is clean after it (nothing more came:
+        else the connection must not carry another call)."""
+        reader = self._responses
+        size = 65536
         while True:
-            # At most 1 MiB per recv: recv(n) allocates n bytes first, so a peer claiming a
-            # gigabyte and sending three bytes would make us reserve a gigabyte.
-            size = max(65536, min(reader.missing, _RECV_MAX))
             chunk = self._read(partial(self.sock.recv, size))
             if not chunk:
                 raise ConnectionError("connection closed by the peer")
             responses = reader.feed(chunk)
             if responses:
                 return responses[0], len(responses) == 1 and not reader.pending
+            # At most 1 MiB per recv: recv(n) allocates n bytes first, so a peer claiming a
+            # gigabyte and sending three bytes would make us reserve a gigabyte.
+            size = max(65536, min(reader.missing, _RECV_MAX))
 
 
 def parse_rosrpc(uri: str) -> tuple[str, int]:
@@ -176,6 +178,7 @@ class ServiceClient:
         self.headers = headers or {}
         self._sock: socket.socket | None = None
         self._address: tuple[str, int] | None = None
+        self._receiving: _Receiving | None = None
         self._lock = threading.Lock()
 
     def _open(self, timeout: float | None) -> socket.socket:
@@ -217,7 +220,9 @@ class ServiceClient:
                 if sock is None:
                     sock = self._open(timeout)
                 sock.sendall(tcpros.encode_frame(request))
-                response, clean = _Receiving(sock, spin=SPIN_FOR_ANSWER).response()
+                if self._receiving is None or self._receiving.sock is not sock:
+                    self._receiving = _Receiving(sock, spin=SPIN_FOR_ANSWER)
+                response, clean = self._receiving.response()
             except (OSError, HandshakeError) as exc:
                 self._close_socket(sock)
                 raise ServiceError(f"transport error completing service call: {exc}") from exc

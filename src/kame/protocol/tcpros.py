@@ -367,12 +367,18 @@ class ServiceResponseReader:
 
     def feed(self, data: bytes | bytearray | memoryview) -> list[ServiceResponse]:
         buf = self._buf
-        buf += data
+        # The usual case, a whole response in one bytes object, is parsed from it in place.
+        src: bytes | bytearray
+        if buf or type(data) is not bytes:
+            buf += data
+            src = buf
+        else:
+            src = data
         out: list[ServiceResponse] = []
         pos = 0
-        n = len(buf)
+        n = len(src)
         while n - pos >= 5:
-            ok, length = _RESPONSE_PREFIX.unpack_from(buf, pos)
+            ok, length = _RESPONSE_PREFIX.unpack_from(src, pos)
             if ok > 1:
                 raise TcprosError(f"service response ok byte is {ok}, expected 0 or 1: a corrupt stream")
             if length > self.max_frame:
@@ -380,10 +386,14 @@ class ServiceResponseReader:
             end = pos + 5 + length
             if end > n:
                 break
-            out.append(ServiceResponse(ok == 1, bytes(buf[pos + 5 : end])))
+            payload = src[pos + 5 : end]
+            out.append(ServiceResponse(ok == 1, payload if type(payload) is bytes else bytes(payload)))
             pos = end
-        if pos:
-            del buf[:pos]  # O(1) in CPython: bytearray drops a prefix by moving its start
+        if src is buf:
+            if pos:
+                del buf[:pos]  # O(1) in CPython: bytearray drops a prefix by moving its start
+        elif pos < n:
+            buf += memoryview(src)[pos:]
         return out
 
 
