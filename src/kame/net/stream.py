@@ -158,14 +158,17 @@ class Sender:
         """Queue one frame (bytes-like); it goes out now if the socket takes it."""
         self.send_parts((frame,))
 
-    def send_parts(self, parts: Sequence[Buffer]) -> None:
-        """Queue one frame given as one or more buffers (a large message: no joining copy)."""
+    def send_parts(self, parts: Sequence[Buffer], borrowed: bool = False) -> None:
+        """Queue one frame given as one or more buffers (a large message: no joining copy).
+        `borrowed`: the caller reuses the buffers once this returns, so what cannot go out now
+        is copied into the backlog (only that part: the usual case copies nothing)."""
+        keep = _copied if borrowed else memoryview
         with self._lock:
             if self.closed:
                 return
             self.frames_sent += 1
             if self._backlog:
-                self._append([memoryview(p) for p in parts])
+                self._append([keep(p) for p in parts])
                 return
             try:
                 sent = self.sock.send(parts[0]) if len(parts) == 1 else self.sock.sendmsg(parts)
@@ -178,11 +181,12 @@ class Sender:
             if sent >= 0:
                 self.bytes_sent += sent
                 for part in parts:
-                    view = memoryview(part)
-                    if sent >= len(view):
-                        sent -= len(view)
+                    size = len(part)  # buffers are byte-sized: len is their byte count
+                    if sent >= size:
+                        sent -= size
                         continue
-                    rest.append(view[sent:] if sent else view)
+                    view = memoryview(part)
+                    rest.append(keep(view[sent:] if sent else view))
                     sent = 0
                 if rest:
                     self._backlog.append(rest)
@@ -290,6 +294,10 @@ class Sender:
 
 def _ignore(_exc: BaseException | None) -> None:
     return None
+
+
+def _copied(buffer: Buffer) -> memoryview:
+    return memoryview(bytes(buffer))
 
 
 class Consumer(Protocol):

@@ -17,13 +17,12 @@ from __future__ import annotations
 import io
 import itertools
 import logging
-import struct
 import threading
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 from kame.net.stream import Receiver, Sender, connect, peer_of, set_keepalive, set_nodelay, shut_down
-from kame.net.xmlrpc_proxy import XmlRpcProxy
+from kame.net.xmlrpc_client import XmlRpcProxy
 from kame.node.master_proxy import unwrap
 from kame.node.tcpros import HandshakeError, read_header_and_rest, write_header
 from kame.protocol import tcpros
@@ -35,7 +34,6 @@ if TYPE_CHECKING:
 
 log = logging.getLogger("kame.topics")
 
-_LENGTH = struct.Struct("<I")
 SMALL_FRAME = 64 * 1024
 MAX_FRAME = 1 << 30
 READ_SIZE = 256 * 1024  # bytes a subscriber's read asks for when it names no buff_size
@@ -54,10 +52,11 @@ def serialize_frame(msg: Any) -> list[Any]:
     size = 0
     for chunk in chunks:
         size += len(chunk)
-    if size <= SMALL_FRAME:
-        chunks.insert(0, _LENGTH.pack(size))
+    prefix = tcpros.encode_frame_prefix(size)
+    if size <= SMALL_FRAME:  # many small pieces: one joined buffer is cheaper than a long sendmsg
+        chunks.insert(0, prefix)
         return [b"".join(chunks)]
-    return [_LENGTH.pack(size), *chunks]
+    return [prefix, *chunks]
 
 
 def serialize_payload(msg: Any) -> bytes:
@@ -105,15 +104,22 @@ class Publication:
         """The header.seq of the next message with a header published here (1 first, as rospy)."""
         return next(self._seqs)
 
-    def publish_frame(self, frame: list[Any]) -> None:
-        """Send one framed message (from serialize_frame) to every subscriber."""
+    def publish_frame(self, frame: list[Any], borrowed: bool = False) -> None:
+        """Send one framed message (from serialize_frame or tcpros.frame_parts) to every
+        subscriber. `borrowed`: the buffers are reused once this returns, so what has to wait
+        for a slow socket, or be latched, is copied; the rest goes out without a copy."""
         if self.latch:
-            self.latched = frame
+            self.latched = [b"".join(frame)] if borrowed else frame
         for link in self.links:
-            if len(frame) == 1:
+            if len(frame) == 1 and not borrowed:
                 link.sender.send(frame[0])
             else:
-                link.sender.send_parts(frame)
+                link.sender.send_parts(frame, borrowed)
+
+    def publish_payload(self, payload: bytes | memoryview, borrowed: bool = False) -> None:
+        """Send a message serialized elsewhere (a bag's bytes, a relayed frame) as it is: framed
+        by tcpros.frame_parts and written with the payload's own buffer (no copy)."""
+        self.publish_frame(tcpros.frame_parts(payload), borrowed)
 
     @property
     def spec(self) -> tcpros.TopicSpec:
