@@ -200,3 +200,29 @@ def test_a_type_kame_does_not_have_is_read_from_its_publishers_definition(sim: S
         assert "str is not a number" in source.problems()[0]
     finally:
         publisher_node.shutdown("test over")
+
+
+def test_points_are_stamped_with_the_header_stamp_when_there_is_one(sim: Sim, source: PlotSource) -> None:
+    from kame.node.topics import serialize_frame
+
+    publisher_node = start_node("stamped", {"master": sim.uri}, sim.env)
+    try:
+        publication = publisher_node.advertise("/stamped_pose", "geometry_msgs/PoseStamped", PoseStamped._md5sum,
+                                               PoseStamped._full_text)
+        source.add("/stamped_pose/pose/position/x")
+        stamp = Time.from_sec(source.start + 100.0)  # 100 s after the plot began, whenever it arrives
+
+        def publish_until_seen() -> bool:
+            message = PoseStamped()
+            message.header.stamp = stamp
+            message.pose.position.x = 1.5
+            publication.publish_frame(serialize_frame(message))
+            publication.publish_frame(serialize_frame(PoseStamped()))  # stamp zero: its arrival time
+            return set(source.data()["/stamped_pose/pose/position/x"][1]) == {0.0, 1.5}
+
+        wait_until(publish_until_seen, what="stamped and unstamped poses in the plot")
+        t, x = source.data()["/stamped_pose/pose/position/x"]
+        assert np.allclose(t[x == 1.5], 100.0, atol=1e-3)
+        assert np.all((t[x == 0.0] >= 0.0) & (t[x == 0.0] < 60.0))
+    finally:
+        publisher_node.shutdown("test over")

@@ -3,7 +3,9 @@ appended to their series.
 
 A topic's class is kame's (or a ROS_PACKAGE_PATH package's, through the CLI's resolver); a type
 kame does not have is subscribed as any type and built from the definition its publisher sends.
-Points are stamped with their arrival time, in seconds since the plot started. The series are
+A message with a header is stamped with its header's stamp (as rqt_plot does), any other (and a
+header stamped zero) with its arrival time; both in seconds since the plot started, on the wall
+clock header stamps use. The series are
 shared between the subscriber threads and the window under one lock; the window takes copies.
 """
 
@@ -36,7 +38,7 @@ STAGE_LIMIT = 65_536  # values staged per series before they are folded in witho
 
 class PlotSource:
     def __init__(self, node: Node, history: float = DEFAULT_HISTORY,
-                 clock: Callable[[], float] = time.monotonic) -> None:
+                 clock: Callable[[], float] = time.time) -> None:
         self.node = node
         self.history = history
         self.clock = clock
@@ -118,7 +120,8 @@ class PlotSource:
                 for name in self._by_topic.get(topic, []):
                     self.errors[name] = f"cannot read {topic}'s messages: {exc}"
             return
-        messages = []
+        messages: list[tuple[float, Any]] = []  # (time since start, message)
+        stamped = bool(getattr(cls, "_has_header", False))
         for frame in frames:
             msg = cls()
             try:
@@ -128,23 +131,32 @@ class PlotSource:
                     for name in self._by_topic.get(topic, []):
                         self.errors[name] = f"a message on {topic} does not deserialize: {exc}"
                 continue
-            messages.append(msg)
+            messages.append((self._time_of(msg) if stamped else now, msg))
         with self._lock:
             for name in self._by_topic.get(topic, []):
                 spec = self.specs[name]
                 values = []
-                for msg in messages:
+                stamps = []
+                for stamp, msg in messages:
                     try:
                         values.append(as_number(spec.path.evaluate(msg)))
                     except (FieldPathError, TypeError) as exc:
                         self.errors[name] = str(exc)
+                        continue
+                    stamps.append(stamp)
                 if values:
                     times, staged = self._staged.setdefault(name, ([], []))
                     staged += values
-                    times += [now] * len(values)
+                    times += stamps
                     if len(staged) > STAGE_LIMIT:
                         self._fold(name)
                     self.errors.pop(name, None)
+
+    def _time_of(self, msg: Any) -> float:
+        stamp = msg.header.stamp
+        if stamp.secs == 0 and stamp.nsecs == 0:  # never stamped: when it came is all there is
+            return self.clock() - self.start
+        return float(stamp.secs + stamp.nsecs * 1e-9 - self.start)
 
     def _fold(self, name: str) -> None:
         times, values = self._staged.pop(name, ([], []))
