@@ -70,6 +70,7 @@ LAYERS: dict[str, int] = {
     "kame.rqt.graph_window": 4,  # Qt
     "kame.rqt.graph_main": 4,
     "kame.rqt.ros_node": 4,  # the tools' node
+    "kame.rqt.master_wait": 4,  # a thread asking the master until it answers
     "kame.rqt.console_source": 4,
     "kame.rqt.console_window": 4,
     "kame.rqt.console_main": 4,

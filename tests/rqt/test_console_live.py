@@ -243,3 +243,28 @@ def test_a_roscpp_nodes_level_set_from_rqt_logger_level_and_its_link_in_the_grap
         graph.close()
         levels.close()
         talker.stop()
+
+
+def test_the_console_waits_for_a_master_that_starts_later(qtbot, tmp_path: Path) -> None:  # type: ignore[no-untyped-def]
+    from kame.rqt.console_window import ConsoleWindow
+    from tests.support import free_port, ros_env
+
+    port = free_port()
+    uri = f"http://127.0.0.1:{port}/"
+    env = ros_env(tmp_path, uri)
+    node = start_node("console", {"master": uri}, env)
+    window = ConsoleWindow(LogView())
+    qtbot.addWidget(window)
+    started: list[Proc] = []
+    try:
+        window.listen(node)
+        assert window.status.text() == f"waiting for the master at {uri}"
+        with qtbot.waitSignal(window.listening, timeout=20_000):
+            started.append(Proc([str(BIN / "rosmaster"), "--core", "-p", str(port)], env))
+        assert "/rosout_agg" in node.subscriptions and "messages shown" in window.status.text()
+        assert window.take is not None
+    finally:
+        window.close()
+        node.shutdown("test over")
+        for proc in started:
+            proc.stop()
