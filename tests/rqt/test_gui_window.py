@@ -1,0 +1,117 @@
+"""The rqt window on a live turtlesim: the Plugins menu, docks of every tool (several of one),
+closing a dock closes its plugin, and the perspective brings plugins, settings and docks back.
+Offscreen here; rqt_window_child runs the same window offscreen and on a private Xvfb."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+from collections.abc import Iterator
+from pathlib import Path
+
+import pytest
+
+from kame.rqt.perspective import loads
+from tests.turtlesim.sim import Sim, turtlesim
+
+
+@pytest.fixture(scope="module")
+def sim(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Sim]:
+    with turtlesim(tmp_path_factory.mktemp("rqt_gui")) as (live, _node):
+        yield live
+
+
+def test_plugins_dock_close_and_come_back(sim: Sim, qtbot, tmp_path: Path) -> None:  # type: ignore[no-untyped-def]
+    from kame.rqt.gui_window import RqtWindow
+    from kame.rqt.plugins import PluginContext
+
+    path = tmp_path / "rqt_gui.json"
+    context = PluginContext(sim.uri)
+    window = RqtWindow(context, path)
+    qtbot.addWidget(window)
+    window.show()
+    groups = {a.text(): [x.text() for x in a.menu().actions()] for a in window.plugin_menu.actions()}
+    assert groups["Introspection"] == ["Node Graph"] and groups["Logging"] == ["Console", "Logger Level"]
+    window.plugin_actions["rqt_plot"].trigger()  # Plugins > Visualization > Plot
+    window.add_plugin("rqt_plot", settings={"series": ["/turtle1/pose/x"]})
+    for name in ("Console", "rqt_graph", "rqt_logger_level"):
+        window.add_plugin(name)
+    assert sorted(window.docks) == ["rqt_console#1", "rqt_graph#1", "rqt_logger_level#1", "rqt_plot#1", "rqt_plot#2"]
+    assert window.docks["rqt_plot#2"].windowTitle() == "Plot (2)"
+    second = window.docks["rqt_plot#2"].handle.widget
+    qtbot.waitUntil(lambda: second.curves["/turtle1/pose/x"].xData is not None, timeout=10_000)  # type: ignore[attr-defined]
+    console = window.docks["rqt_console#1"].handle.widget
+    qtbot.waitUntil(lambda: console.take is not None, timeout=10_000)  # type: ignore[attr-defined]
+
+    first = window.docks["rqt_plot#1"]
+    node = first.handle.widget.source.node  # type: ignore[attr-defined]
+    assert node.name.startswith("/rqt_gui_plot_1_") and not node.is_shutdown
+    first.close()
+    assert "rqt_plot#1" not in window.docks and node.is_shutdown
+    assert window.add_plugin("rqt_plot").docked.key == "rqt_plot#1"  # the freed number again
+
+    window.docks["rqt_console#1"].setFloating(True)
+    window.close()
+    saved = loads(path.read_text())
+    assert [d.key for d in saved.plugins] == ["rqt_plot#2", "rqt_console#1", "rqt_graph#1", "rqt_logger_level#1",
+                                              "rqt_plot#1"]
+    assert dict(saved.plugins[0].settings) == {"series": ["/turtle1/pose/x"]}
+
+    again = RqtWindow(context, path)
+    qtbot.addWidget(again)
+    assert again.load_perspective() == []
+    again.show()
+    assert sorted(again.docks) == sorted(d.key for d in saved.plugins)
+    assert list(again.docks["rqt_plot#2"].handle.widget.curves) == ["/turtle1/pose/x"]  # type: ignore[attr-defined]
+    assert again.docks["rqt_console#1"].isFloating() and not again.docks["rqt_graph#1"].isFloating()
+    assert saved.geometry and saved.state  # the window's size comes back: rqt_window_child, on a screen it fits
+    again.close()
+
+
+def test_the_rqt_command_lists_and_refuses(sim: Sim) -> None:
+    from tests.turtlesim.sim import BIN
+
+    listed = subprocess.run([str(BIN / "rqt"), "--list-plugins"], capture_output=True, text=True, timeout=60)
+    assert listed.returncode == 0 and "rqt_plot/Plot  (Visualization > Plot)" in listed.stdout
+    bad = subprocess.run([str(BIN / "rqt"), "--standalone", "rqt_bogus"], capture_output=True, text=True, timeout=60)
+    assert bad.returncode == 2 and "no plugin named 'rqt_bogus'" in bad.stderr
+
+
+@pytest.fixture(params=["offscreen", "xvfb"])
+def qt_env(request: pytest.FixtureRequest, sim: Sim) -> Iterator[tuple[dict[str, str], str | None]]:
+    """The sim's environment with Qt drawing offscreen, or on a private Xvfb (and its display)."""
+    from tests.turtlesim.xserver import xvfb
+
+    env = {k: v for k, v in sim.env.items() if k not in ("DISPLAY", "WAYLAND_DISPLAY", "QT_QPA_PLATFORM")}
+    if request.param == "offscreen":
+        yield dict(env, QT_QPA_PLATFORM="offscreen"), None
+        return
+    with xvfb() as display:
+        yield dict(env, DISPLAY=display), display
+
+
+def test_the_window_in_its_own_process_on_each_display(sim: Sim, qt_env: tuple[dict[str, str], str | None],
+                                                       tmp_path: Path) -> None:
+    from tests.support import REPO, Proc
+    from tests.turtlesim.xserver import find_window
+
+    env, display = qt_env
+    path = tmp_path / "rqt_gui.json"
+    child = Proc([sys.executable, "-m", "tests.rqt.rqt_window_child", sim.uri, str(path)], env, cwd=REPO,
+                 stdin=subprocess.PIPE)
+    try:
+        shown = child.wait_line("shown", timeout=60)
+        assert "700x500" in shown and "/turtlesim" in shown, shown
+        if display is not None:
+            assert "xcb" in shown
+            window = find_window(display, "Default - rqt")
+            assert window is not None and window.viewable and (window.width, window.height) == (700, 500)
+        assert child.popen.stdin is not None
+        child.popen.stdin.write("\n")
+        child.popen.stdin.flush()
+        again = child.wait_line("again", timeout=60)
+        assert again.split() == ["again", "700x500", "docks", "rqt_console#1,rqt_graph#1", "problems", "[]"], again
+        assert child.popen.wait(30) == 0
+    finally:
+        _, err = child.stop()
+    assert "Traceback" not in err, err
