@@ -31,12 +31,19 @@ def test_plugins_dock_close_and_come_back(sim: Sim, qtbot, tmp_path: Path) -> No
     qtbot.addWidget(window)
     window.show()
     groups = {a.text(): [x.text() for x in a.menu().actions()] for a in window.plugin_menu.actions()}
-    assert groups["Introspection"] == ["Node Graph"] and groups["Logging"] == ["Console", "Logger Level"]
+    assert groups == {"Introspection": ["Node Graph"], "Logging": ["Console", "Logger Level"],
+                      "Services": ["Service Caller"], "Topics": ["Message Publisher", "Topic Monitor"],
+                      "Visualization": ["Image View", "Plot"]}
     window.plugin_actions["rqt_plot"].trigger()  # Plugins > Visualization > Plot
     window.add_plugin("rqt_plot", settings={"series": ["/turtle1/pose/x"]})
     for name in ("Console", "rqt_graph", "rqt_logger_level"):
         window.add_plugin(name)
     assert sorted(window.docks) == ["rqt_console#1", "rqt_graph#1", "rqt_logger_level#1", "rqt_plot#1", "rqt_plot#2"]
+    window.add_plugin("rqt_topic", settings={"watched": ["/turtle1/pose"]})
+    window.add_plugin("rqt_publisher", settings={"publishers": [
+        {"topic": "/turtle1/cmd_vel", "type": "geometry_msgs/Twist", "rate": 5.0, "expressions": {"linear/x": "1.0"}}]})
+    for name in ("Service Caller", "Image View"):
+        window.add_plugin(name)
     assert window.docks["rqt_plot#2"].windowTitle() == "Plot (2)"
     second = window.docks["rqt_plot#2"].handle.widget
     qtbot.waitUntil(lambda: second.curves["/turtle1/pose/x"].xData is not None, timeout=10_000)  # type: ignore[attr-defined]
@@ -54,8 +61,15 @@ def test_plugins_dock_close_and_come_back(sim: Sim, qtbot, tmp_path: Path) -> No
     window.close()
     saved = loads(path.read_text())
     assert [d.key for d in saved.plugins] == ["rqt_plot#2", "rqt_console#1", "rqt_graph#1", "rqt_logger_level#1",
-                                              "rqt_plot#1"]
-    assert dict(saved.plugins[0].settings) == {"series": ["/turtle1/pose/x"]}
+                                              "rqt_topic#1", "rqt_publisher#1", "rqt_service_caller#1",
+                                              "rqt_image_view#1", "rqt_plot#1"]
+    settings = {d.key: dict(d.settings) for d in saved.plugins}
+    assert settings["rqt_plot#2"] == {"series": ["/turtle1/pose/x"]}
+    assert settings["rqt_topic#1"] == {"watched": ["/turtle1/pose"]}
+    assert settings["rqt_publisher#1"] == {"publishers": [{"topic": "/turtle1/cmd_vel", "type": "geometry_msgs/Twist",
+                                                           "rate": 5.0, "expressions": {
+                                                               "linear/x": "1.0", "linear/y": "", "linear/z": "",
+                                                               "angular/x": "", "angular/y": "", "angular/z": ""}}]}
 
     again = RqtWindow(context, path)
     qtbot.addWidget(again)
@@ -63,6 +77,8 @@ def test_plugins_dock_close_and_come_back(sim: Sim, qtbot, tmp_path: Path) -> No
     again.show()
     assert sorted(again.docks) == sorted(d.key for d in saved.plugins)
     assert list(again.docks["rqt_plot#2"].handle.widget.curves) == ["/turtle1/pose/x"]  # type: ignore[attr-defined]
+    assert again.docks["rqt_topic#1"].handle.widget.monitor.watched() == ["/turtle1/pose"]  # type: ignore[attr-defined]
+    assert list(again.docks["rqt_publisher#1"].handle.widget.rows) == ["/turtle1/cmd_vel"]  # type: ignore[attr-defined]
     assert again.docks["rqt_console#1"].isFloating() and not again.docks["rqt_graph#1"].isFloating()
     assert saved.geometry and saved.state  # the window's size comes back: rqt_window_child, on a screen it fits
     again.close()

@@ -44,6 +44,10 @@ PLUGINS = (
     PluginInfo("rqt_console", "Logging", "Console", "rqt_console/Console"),
     PluginInfo("rqt_logger_level", "Logging", "Logger Level", "rqt_logger_level/LoggerLevel"),
     PluginInfo("rqt_plot", "Visualization", "Plot", "rqt_plot/Plot"),
+    PluginInfo("rqt_image_view", "Visualization", "Image View", "rqt_image_view/ImageView"),
+    PluginInfo("rqt_topic", "Topics", "Topic Monitor", "rqt_topic/TopicPlugin"),
+    PluginInfo("rqt_publisher", "Topics", "Message Publisher", "rqt_publisher/Publisher"),
+    PluginInfo("rqt_service_caller", "Services", "Service Caller", "rqt_service_caller/ServiceCaller"),
 )
 
 

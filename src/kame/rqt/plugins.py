@@ -95,12 +95,81 @@ def _logger_level(context: PluginContext, instance: int, settings: Mapping[str, 
     return PluginHandle(window, [levels.close, window.close_worker])
 
 
+def _topic(context: PluginContext, instance: int, settings: Mapping[str, Any]) -> PluginHandle:
+    from kame.rqt.ros_node import start_node
+    from kame.rqt.topic_source import TopicMonitor
+    from kame.rqt.topic_window import TopicWindow
+
+    node = start_node(f"gui_topic_{instance}", _node_special(context))
+    monitor = TopicMonitor(node)
+    window = TopicWindow(monitor)
+    window.refresh_topics()
+    for topic in settings.get("watched", []):
+        if topic in window.items:
+            window.set_watched(str(topic), True)
+    return PluginHandle(window, [lambda: node.shutdown("topic monitor closed"), monitor.close],
+                        lambda: {"watched": monitor.watched()})
+
+
+def _publisher(context: PluginContext, instance: int, settings: Mapping[str, Any]) -> PluginHandle:
+    from kame.rqt.publisher_source import MessagePublisher
+    from kame.rqt.publisher_window import EXPRESSION, PublisherWindow
+    from kame.rqt.ros_node import start_node
+
+    node = start_node(f"gui_publisher_{instance}", _node_special(context))
+    publisher = MessagePublisher(node)
+    window = PublisherWindow(publisher)
+    window.refresh_topics()
+    for kept in settings.get("publishers", []):  # restored unticked: nothing is sent until the user says
+        window.add_publisher(str(kept.get("topic", "")), str(kept.get("type", "")), float(kept.get("rate", 1.0)),
+                             {str(k): str(v) for k, v in dict(kept.get("expressions", {})).items()})
+
+    def settings_now() -> dict[str, Any]:
+        return {"publishers": [{"topic": row.topic, "type": window.publisher.classes[row.topic]._type,
+                                "rate": float(row.item.text(EXPRESSION) or 0), "expressions": row.expressions()}
+                               for row in window.rows.values()]}
+
+    return PluginHandle(window, [lambda: node.shutdown("publisher closed"), publisher.close], settings_now)
+
+
+def _service_caller(context: PluginContext, instance: int, settings: Mapping[str, Any]) -> PluginHandle:
+    from kame.rqt.ros_node import start_node
+    from kame.rqt.service_source import ServiceCaller
+    from kame.rqt.service_window import ServiceWindow
+
+    node = start_node(f"gui_service_caller_{instance}", _node_special(context))
+    window = ServiceWindow(ServiceCaller(node))
+    window.refresh_services()
+    return PluginHandle(window, [lambda: node.shutdown("service caller closed"), window.close_worker])
+
+
+def _image_view(context: PluginContext, instance: int, settings: Mapping[str, Any]) -> PluginHandle:
+    from kame.rqt.image_source import ImageSource
+    from kame.rqt.image_window import ImageWindow
+    from kame.rqt.ros_node import start_node
+
+    node = start_node(f"gui_image_view_{instance}", _node_special(context))
+    holder: list[ImageWindow] = []
+    source = ImageSource(node, lambda: holder[0].frame_ready.emit())
+    window = ImageWindow(source)
+    holder.append(window)
+    window.refresh_topics()
+    if settings.get("topic"):
+        window.choose(str(settings["topic"]))
+    return PluginHandle(window, [lambda: node.shutdown("image view closed"), source.stop],
+                        lambda: {"topic": source.topic})
+
+
 Factory = Callable[[PluginContext, int, Mapping[str, Any]], PluginHandle]
 FACTORIES: dict[str, Factory] = {
     "rqt_graph": _graph,
     "rqt_plot": _plot,
     "rqt_console": _console,
     "rqt_logger_level": _logger_level,
+    "rqt_topic": _topic,
+    "rqt_publisher": _publisher,
+    "rqt_service_caller": _service_caller,
+    "rqt_image_view": _image_view,
 }
 
 
