@@ -91,6 +91,11 @@ def test_the_rqt_command_lists_and_refuses(sim: Sim) -> None:
     assert listed.returncode == 0 and "rqt_plot/Plot  (Visualization > Plot)" in listed.stdout
     bad = subprocess.run([str(BIN / "rqt"), "--standalone", "rqt_bogus"], capture_output=True, text=True, timeout=60)
     assert bad.returncode == 2 and "no plugin named 'rqt_bogus'" in bad.stderr
+    for command in (["rqt_topic", "--help"], ["rqt_image_view", "--help"], ["rosrun", "rqt_gui", "rqt_gui", "--help"],
+                    ["rosrun", "rqt_service_caller", "rqt_service_caller", "--help"]):
+        helped = subprocess.run([str(BIN / command[0]), *command[1:]], capture_output=True, text=True, timeout=60,
+                                env=sim.env)
+        assert helped.returncode == 0 and "--standalone" in helped.stdout, (command, helped.stderr)
 
 
 @pytest.fixture(params=["offscreen", "xvfb"])

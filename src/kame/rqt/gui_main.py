@@ -6,7 +6,8 @@
 The Plugins menu opens Node Graph, Plot, Console, Logger Level (and so on) as docks, as many
 of each as wanted. The plugins, their docks and the window come back next time (the
 perspective: <ROS_HOME>/kame/rqt_gui.json unless --perspective-file says). --standalone shows
-one plugin alone and remembers nothing. Also `rosrun rqt_gui rqt_gui`.
+one plugin alone and remembers nothing. Also `rosrun rqt_gui rqt_gui`; rqt_topic, rqt_publisher,
+rqt_service_caller and rqt_image_view [TOPIC] are their plugins standalone, as in ROS.
 """
 
 from __future__ import annotations
@@ -28,6 +29,7 @@ def parser() -> argparse.ArgumentParser:
     p.add_argument("--clear-config", action="store_true", help="start from an empty window (forget the perspective)")
     p.add_argument("-s", "--standalone", metavar="PLUGIN", help="show only this plugin, remembering nothing")
     p.add_argument("--list-plugins", action="store_true", help="list the plugins and exit")
+    p.add_argument("--image-topic", help=argparse.SUPPRESS)  # rqt_image_view's TOPIC
     return p
 
 
@@ -58,7 +60,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     if standalone is not None:
         window = RqtWindow(context, None)
         window.menuBar().hide()
-        window.add_plugin(standalone.id)
+        window.add_plugin(standalone.id, settings={"topic": args.image_topic} if args.image_topic else None)
         window.setWindowTitle(dock_title(standalone, 1))
     else:
         path = args.perspective_file or perspective_path(os.environ, Path.home())
@@ -69,6 +71,30 @@ def main(argv: Sequence[str] | None = None) -> int:
             print(f"rqt: {problem}", file=sys.stderr)
     window.show()
     return int(app.exec())
+
+
+def _standalone(plugin: str, argv: Sequence[str] | None) -> int:
+    return main(["--standalone", plugin, *(sys.argv[1:] if argv is None else argv)])
+
+
+def topic_main(argv: Sequence[str] | None = None) -> int:
+    return _standalone("rqt_topic", argv)
+
+
+def publisher_main(argv: Sequence[str] | None = None) -> int:
+    return _standalone("rqt_publisher", argv)
+
+
+def service_caller_main(argv: Sequence[str] | None = None) -> int:
+    return _standalone("rqt_service_caller", argv)
+
+
+def image_view_main(argv: Sequence[str] | None = None) -> int:
+    """rqt_image_view [TOPIC]: the image topic to show at once."""
+    args = list(sys.argv[1:] if argv is None else argv)
+    topics = [a for a in args if a.startswith("/") and ":=" not in a]
+    rest = [a for a in args if a not in topics]
+    return _standalone("rqt_image_view", rest + (["--image-topic", topics[0]] if topics else []))
 
 
 if __name__ == "__main__":
