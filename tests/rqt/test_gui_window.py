@@ -136,3 +136,25 @@ def test_the_window_in_its_own_process_on_each_display(sim: Sim, qt_env: tuple[d
     finally:
         _, err = child.stop()
     assert "Traceback" not in err, err
+
+
+def test_every_plugin_opens_and_closes_without_a_master(qtbot, tmp_path: Path) -> None:  # type: ignore[no-untyped-def]
+    from kame.rqt.gui_window import RqtWindow
+    from kame.rqt.perspective import PLUGINS
+    from kame.rqt.plugins import PluginContext
+    from tests.support import free_port
+
+    window = RqtWindow(PluginContext(f"http://127.0.0.1:{free_port()}/"), tmp_path / "p.json")
+    qtbot.addWidget(window)
+    window.show()
+    for info in PLUGINS:
+        window.add_plugin(info.id)
+    assert len(window.docks) == len(PLUGINS)
+    console = window.docks["rqt_console#1"].handle.widget
+    assert console.status.text().startswith("waiting for the master at")  # type: ignore[attr-defined]
+    topics = window.docks["rqt_topic#1"].handle.widget
+    assert topics.status.text().startswith("cannot list topics")  # type: ignore[attr-defined]
+    logger = window.docks["rqt_logger_level#1"].handle.widget
+    qtbot.waitUntil(lambda: "cannot reach the master" in logger.status.text(), timeout=10_000)  # type: ignore[attr-defined]
+    window.close()
+    assert window.docks == {} and loads((tmp_path / "p.json").read_text()).plugins
