@@ -86,6 +86,9 @@ def test_message_publisher_sends_expressions_with_the_counter(sim: Sim, node: No
             values = list(got)
         # the listener may connect after the first few: what it gets still counts up by one i a message
         assert values[:3] == [values[0], values[0] + 10, values[0] + 20] and values[0] % 10 == 0
+        row.item.setText(2, "20")  # the rate, edited in its cell
+        row.item.setText(0, "/renamed")  # the topic cannot be
+        assert (row.rate, row.item.text(0)) == (20.0, "/counter")
         sent = row.counter
         window.set_field("/counter", "data", "undefined_name")
         assert not window.publish_once("/counter") and "NameError" in window.status.text()

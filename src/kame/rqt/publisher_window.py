@@ -143,9 +143,13 @@ class PublisherWindow(QWidget):
     def _item_changed(self, item: QTreeWidgetItem, column: int) -> None:
         if item.parent() is not None:
             return
-        row = self.rows.get(item.text(0))
+        row = next((r for r in self.rows.values() if r.item is item), None)
         if row is None:
             return
+        if column == 0 and item.text(0) != row.topic:  # only the rate is edited here
+            self.tree.blockSignals(True)
+            item.setText(0, row.topic)
+            self.tree.blockSignals(False)
         if column == EXPRESSION:
             try:
                 row.rate = max(0.0, float(item.text(EXPRESSION)))
