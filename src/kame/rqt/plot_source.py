@@ -5,7 +5,8 @@ A topic's class is kame's (or a ROS_PACKAGE_PATH package's, through the CLI's re
 kame does not have is subscribed as any type and built from the definition its publisher sends.
 A message with a header is stamped with its header's stamp (as rqt_plot does), any other (and a
 header stamped zero) with its arrival time; both in seconds since the plot started, on the wall
-clock header stamps use. The series are
+clock header stamps use. A series keeps its points in time order: a message stamped before the
+topic's previous one is left out, and the window says so. The series are
 shared between the subscriber threads and the window under one lock; the window takes copies.
 """
 
@@ -52,6 +53,7 @@ class PlotSource:
         # values the subscribers brought since the window last looked: plain lists, because a
         # numpy append per message costs more than the message; folded into the series on demand
         self._staged: dict[str, tuple[list[float], list[float]]] = {}
+        self._latest: dict[str, float] = {}  # topic -> the time of its newest point
 
     def topic_types(self) -> list[tuple[str, str]]:
         return [(str(t), str(ty)) for t, ty in self.node.master.call("getTopicTypes")]
@@ -99,6 +101,7 @@ class PlotSource:
             unsubscribe = not names
             if unsubscribe:
                 del self._by_topic[spec.topic]
+                self._latest.pop(spec.topic, None)
         if unsubscribe:
             self.node.unsubscribe(spec.topic)
             self._classes.pop(spec.topic, None)
@@ -133,6 +136,7 @@ class PlotSource:
                 continue
             messages.append((self._time_of(msg) if stamped else now, msg))
         with self._lock:
+            messages = self._in_time_order(topic, messages)
             for name in self._by_topic.get(topic, []):
                 spec = self.specs[name]
                 values = []
@@ -151,6 +155,21 @@ class PlotSource:
                     if len(staged) > STAGE_LIMIT:
                         self._fold(name)
                     self.errors.pop(name, None)
+
+    def _in_time_order(self, topic: str, messages: list[tuple[float, Any]]) -> list[tuple[float, Any]]:
+        """The messages not stamped before the topic's newest point (a series keeps its times in
+        order); what is left out is said in the topic's series' problems. Under the lock."""
+        latest = self._latest.get(topic, float("-inf"))
+        kept = []
+        for stamp, msg in messages:
+            if stamp < latest:
+                for name in self._by_topic.get(topic, []):
+                    self.errors[name] = f"a message on {topic} stamped before the previous one was left out"
+                continue
+            kept.append((stamp, msg))
+            latest = stamp
+        self._latest[topic] = latest
+        return kept
 
     def _time_of(self, msg: Any) -> float:
         stamp = msg.header.stamp
