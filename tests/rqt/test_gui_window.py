@@ -158,3 +158,28 @@ def test_every_plugin_opens_and_closes_without_a_master(qtbot, tmp_path: Path) -
     qtbot.waitUntil(lambda: "cannot reach the master" in logger.status.text(), timeout=10_000)  # type: ignore[attr-defined]
     window.close()
     assert window.docks == {} and loads((tmp_path / "p.json").read_text()).plugins
+
+
+def test_plugins_ask_again_once_the_master_is_up(qtbot, tmp_path: Path) -> None:  # type: ignore[no-untyped-def]
+    from kame.rqt.gui_window import RqtWindow
+    from kame.rqt.plugins import PluginContext
+    from tests.support import Proc, free_port, ros_env
+    from tests.turtlesim.sim import BIN
+
+    port = free_port()
+    uri = f"http://127.0.0.1:{port}/"
+    window = RqtWindow(PluginContext(uri), None)
+    qtbot.addWidget(window)
+    topics = window.add_plugin("rqt_topic").handle.widget
+    services = window.add_plugin("rqt_service_caller").handle.widget
+    assert topics.status.text().startswith("cannot list topics")  # type: ignore[attr-defined]
+    started: list[Proc] = []
+    try:
+        with qtbot.waitSignal(window.master_up, timeout=20_000):
+            started.append(Proc([str(BIN / "rosmaster"), "--core", "-p", str(port)], ros_env(tmp_path, uri)))
+        assert topics.status.text() == "0 topics"  # type: ignore[attr-defined]
+        qtbot.waitUntil(lambda: services.status.text() == "0 services", timeout=10_000)  # type: ignore[attr-defined]
+    finally:
+        window.close()
+        for proc in started:
+            proc.stop()

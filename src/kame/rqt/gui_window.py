@@ -4,12 +4,15 @@ Rules: each plugin instance is a dock (movable, floatable, closable) named by it
 key (`rqt_plot#2`), so Qt's saveState/restoreState put it back where it was. Closing a dock
 closes its plugin (its node, threads and timers) at once. The perspective (plugins, settings,
 dock state, window geometry) is written when the window closes and read when it opens; a
-standalone window (`rqt --standalone`) shows one plugin and keeps no perspective.
+standalone window (`rqt --standalone`) shows one plugin and keeps no perspective. The window
+waits for the master (kame.rqt.master_wait, its thread joined on close) and, once it answers,
+has every plugin ask again what it could not ask without it.
 """
 
 from __future__ import annotations
 
 import base64
+import os
 import sys
 from pathlib import Path
 
@@ -17,6 +20,7 @@ from PySide6.QtCore import QByteArray, Qt, Signal
 from PySide6.QtGui import QAction, QCloseEvent
 from PySide6.QtWidgets import QDockWidget, QFrame, QMainWindow, QScrollArea, QWidget
 
+from kame.rqt.master_wait import MasterWaiter
 from kame.rqt.perspective import (
     PLUGINS,
     DockedPlugin,
@@ -61,6 +65,8 @@ class PluginDock(QDockWidget):
 
 
 class RqtWindow(QMainWindow):
+    master_up = Signal()
+
     def __init__(self, context: PluginContext, perspective_file: Path | None = None,
                  plugins: tuple[PluginInfo, ...] = PLUGINS) -> None:
         super().__init__()
@@ -87,6 +93,21 @@ class RqtWindow(QMainWindow):
         perspectives = self.menuBar().addMenu("P&erspectives")
         perspectives.addAction("Close all plugins").triggered.connect(self.close_all)
         self.resize(1200, 800)
+        self.master_up.connect(self._master_is_up)
+        self._waiter: MasterWaiter | None = MasterWaiter(context.master_uri, f"/rqt_gui_{os.getpid()}",
+                                                         self.master_up.emit)
+
+    def _master_is_up(self) -> None:
+        if self._waiter is None:
+            return  # closed meanwhile
+        self._stop_waiting()
+        for dock in list(self.docks.values()):
+            dock.handle.master_up()
+
+    def _stop_waiting(self) -> None:
+        if self._waiter is not None:
+            self._waiter.stop()
+            self._waiter = None
 
     # ---------------------------------------------------------------- plugins
 
@@ -155,6 +176,7 @@ class RqtWindow(QMainWindow):
         self.perspective_file.write_text(dumps(self.perspective()))
 
     def closeEvent(self, event: QCloseEvent) -> None:
+        self._stop_waiting()
         try:
             self.save_perspective()
         except OSError as exc:  # the plugins still close; the next run starts from the old perspective

@@ -4,7 +4,9 @@ with all it owns.
 Rules: every instance owns its node (`/rqt_gui_<tool>_<n>_<pid>`: two instances never share a
 subscription, and rqt_graph hides `/rqt*` as rqt's own), sources and threads; `close()` closes
 the widget (its own closeEvent stops its timers and joins its workers), then what was made for
-it, newest first. `settings()` is what the perspective keeps of it.
+it, newest first. `settings()` is what the perspective keeps of it. `master_up()` is called
+when the master answers after the window began without one: the plugin asks again what it
+could not ask (topic lists, its restored settings).
 """
 
 from __future__ import annotations
@@ -27,11 +29,17 @@ class PluginContext:
 
 class PluginHandle:
     def __init__(self, widget: QWidget, closers: list[Callable[[], None]],
-                 settings: Callable[[], dict[str, Any]] | None = None) -> None:
+                 settings: Callable[[], dict[str, Any]] | None = None,
+                 on_master_up: Callable[[], None] | None = None) -> None:
         self.widget = widget
         self._closers = closers
         self._settings = settings
+        self._on_master_up = on_master_up
         self.closed = False
+
+    def master_up(self) -> None:
+        if self._on_master_up is not None and not self.closed:
+            self._on_master_up()
 
     def settings(self) -> dict[str, Any]:
         return self._settings() if self._settings is not None else {}
@@ -56,7 +64,7 @@ def _graph(context: PluginContext, instance: int, settings: Mapping[str, Any]) -
     source = GraphSource(context.master_uri, caller_id=f"/rqt_gui_graph_{instance}_{os.getpid()}")
     window = GraphWindow(source.fetch)
     window.refresh()
-    return PluginHandle(window, [source.close])
+    return PluginHandle(window, [source.close], on_master_up=window.refresh)
 
 
 def _plot(context: PluginContext, instance: int, settings: Mapping[str, Any]) -> PluginHandle:
@@ -67,11 +75,16 @@ def _plot(context: PluginContext, instance: int, settings: Mapping[str, Any]) ->
     node = start_node(f"gui_plot_{instance}", _node_special(context))
     source = PlotSource(node)
     window = PlotWindow(source)
-    for name in settings.get("series", []):
-        window.add_series(str(name))
-    window.refresh_completions()
+
+    def ask() -> None:
+        for name in settings.get("series", []):
+            if name not in window.curves:
+                window.add_series(str(name))
+        window.refresh_completions()
+
+    ask()
     return PluginHandle(window, [lambda: node.shutdown("plot closed"), source.close],
-                        lambda: {"series": list(window.curves)})
+                        lambda: {"series": list(window.curves)}, ask)
 
 
 def _console(context: PluginContext, instance: int, settings: Mapping[str, Any]) -> PluginHandle:
@@ -92,7 +105,7 @@ def _logger_level(context: PluginContext, instance: int, settings: Mapping[str, 
     levels = LoggerLevels(context.master_uri, f"/rqt_gui_logger_level_{instance}_{os.getpid()}")
     window = LoggerWindow(levels)
     window.refresh()
-    return PluginHandle(window, [levels.close, window.close_worker])
+    return PluginHandle(window, [levels.close, window.close_worker], on_master_up=window.refresh)
 
 
 def _topic(context: PluginContext, instance: int, settings: Mapping[str, Any]) -> PluginHandle:
@@ -103,12 +116,16 @@ def _topic(context: PluginContext, instance: int, settings: Mapping[str, Any]) -
     node = start_node(f"gui_topic_{instance}", _node_special(context))
     monitor = TopicMonitor(node)
     window = TopicWindow(monitor)
-    window.refresh_topics()
-    for topic in settings.get("watched", []):
-        if topic in window.items:
-            window.set_watched(str(topic), True)
+
+    def ask() -> None:
+        window.refresh_topics()
+        for topic in settings.get("watched", []):
+            if topic in window.items and topic not in monitor.watched():
+                window.set_watched(str(topic), True)
+
+    ask()
     return PluginHandle(window, [lambda: node.shutdown("topic monitor closed"), monitor.close],
-                        lambda: {"watched": monitor.watched()})
+                        lambda: {"watched": monitor.watched()}, ask)
 
 
 def _publisher(context: PluginContext, instance: int, settings: Mapping[str, Any]) -> PluginHandle:
@@ -129,7 +146,8 @@ def _publisher(context: PluginContext, instance: int, settings: Mapping[str, Any
                                 "rate": float(row.item.text(EXPRESSION) or 0), "expressions": row.expressions()}
                                for row in window.rows.values()]}
 
-    return PluginHandle(window, [lambda: node.shutdown("publisher closed"), publisher.close], settings_now)
+    return PluginHandle(window, [lambda: node.shutdown("publisher closed"), publisher.close], settings_now,
+                        window.refresh_topics)
 
 
 def _service_caller(context: PluginContext, instance: int, settings: Mapping[str, Any]) -> PluginHandle:
@@ -140,7 +158,8 @@ def _service_caller(context: PluginContext, instance: int, settings: Mapping[str
     node = start_node(f"gui_service_caller_{instance}", _node_special(context))
     window = ServiceWindow(ServiceCaller(node))
     window.refresh_services()
-    return PluginHandle(window, [lambda: node.shutdown("service caller closed"), window.close_worker])
+    return PluginHandle(window, [lambda: node.shutdown("service caller closed"), window.close_worker],
+                        on_master_up=window.refresh_services)
 
 
 def _image_view(context: PluginContext, instance: int, settings: Mapping[str, Any]) -> PluginHandle:
@@ -153,11 +172,15 @@ def _image_view(context: PluginContext, instance: int, settings: Mapping[str, An
     source = ImageSource(node, lambda: holder[0].frame_ready.emit())
     window = ImageWindow(source)
     holder.append(window)
-    window.refresh_topics()
-    if settings.get("topic"):
-        window.choose(str(settings["topic"]))
+
+    def ask() -> None:
+        window.refresh_topics()
+        if settings.get("topic") and not source.topic:
+            window.choose(str(settings["topic"]))
+
+    ask()
     return PluginHandle(window, [lambda: node.shutdown("image view closed"), source.stop],
-                        lambda: {"topic": source.topic})
+                        lambda: {"topic": source.topic}, ask)
 
 
 Factory = Callable[[PluginContext, int, Mapping[str, Any]], PluginHandle]
