@@ -23,6 +23,7 @@ from typing import Any
 
 import yaml
 
+from kame import param_yaml
 from kame.cli._tool import Master, ToolError, run, script_resolve_name, strip_remappings
 from kame.msg.catalog import MsgCatalog
 from kame.msg.describe import describe_srv, load_srv
@@ -154,8 +155,8 @@ def yaml_args(texts: Sequence[str]) -> list[Any]:
     values: list[Any] = []
     for text in texts:
         try:
-            values.append(yaml.safe_load(text if text != "" else "''"))
-        except yaml.YAMLError as exc:
+            values.append(param_yaml.safe_load(text if text != "" else "''"))
+        except (yaml.YAMLError, param_yaml.ParamValueError) as exc:
             raise ToolError(f"Invalid YAML in argument [{text}]: {' '.join(str(exc).split())}", STATUS) from None
     return values
 

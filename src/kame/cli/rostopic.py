@@ -34,7 +34,7 @@ from urllib.parse import urlparse
 
 import yaml
 
-from kame import names
+from kame import names, param_yaml
 from kame.bag.errors import BagError
 from kame.msg.echo import as_field_value, csv_header, csv_row, field_filter, to_yaml, transform
 from kame.msg.errors import MessageError
@@ -953,8 +953,11 @@ def _yaml_documents_from_file(path: str) -> list[Any]:
         raise RostopicError(f"file does not exist: {path}")
     try:
         with open(path) as f:
-            return list(yaml.safe_load_all(f))
-    except yaml.YAMLError as exc:
+            documents = list(yaml.load_all(f, Loader=param_yaml.BoundedLoader))
+        for document in documents:
+            param_yaml.check_shape(document)
+        return documents
+    except (yaml.YAMLError, param_yaml.ParamValueError) as exc:
         raise RostopicError(f"invalid YAML in file: {exc}") from None
     except OSError as exc:
         raise RostopicError(f"cannot read {path}: {exc.strerror}") from None
@@ -974,8 +977,8 @@ def _yaml_documents_from_stdin() -> Iterator[Any]:
             buff += line
             continue
         try:
-            loaded = yaml.safe_load(buff.rstrip())
-        except yaml.YAMLError as exc:
+            loaded = param_yaml.safe_load(buff.rstrip())
+        except (yaml.YAMLError, param_yaml.ParamValueError) as exc:
             sys.stderr.write(f"Invalid YAML: {exc}\n")
             loaded = None
         buff = ""
@@ -1022,7 +1025,7 @@ def cmd_pub(args: list[str]) -> None:
     pub_args: list[Any] = []
     try:
         for arg in rest[2:]:
-            pub_args.append(yaml.safe_load(arg))
+            pub_args.append(param_yaml.safe_load(arg))
     except Exception as exc:
         parser.error(f"Argument error: {exc}")
 
