@@ -25,7 +25,6 @@ from kame.master.notifications import ParamUpdate
 from kame.names import SEP, canonicalize, is_global, is_private, ns_join
 from kame.protocol.xmlrpc import Value
 
-
 #: Deepest the tree may be (key segments plus nesting of the value): XML-RPC readers bound
 #: nesting (kame's at 256 elements, about 80 levels), and the whole tree must go out as one value.
 MAX_TREE_DEPTH = 64
@@ -39,16 +38,14 @@ def unstorable(key: str, value: Value) -> str | None:
     pending: list[tuple[Value, int]] = [(value, len(_segments(key)))]
     while pending:
         item, depth = pending.pop()
-        t = type(item)
-        if t is int:
-            if not _MIN_INT <= item <= _MAX_INT:  # type: ignore[operator]
-                return (f"cannot set parameter [{key}]: {item} does not fit a 32-bit signed integer "
-                        "(int exceeds XML-RPC limits)")
-        elif t is dict or t is list:
+        if type(item) is int and not _MIN_INT <= item <= _MAX_INT:
+            return (f"cannot set parameter [{key}]: {item!r} does not fit a 32-bit signed integer "
+                    "(int exceeds XML-RPC limits)")
+        if isinstance(item, (dict, list)):
             if depth >= MAX_TREE_DEPTH:
                 return (f"cannot set parameter [{key}]: the parameter tree would nest more than "
                         f"{MAX_TREE_DEPTH} levels deep")
-            children = item.values() if t is dict else item  # type: ignore[union-attr]
+            children = item.values() if isinstance(item, dict) else item
             pending.extend((child, depth + 1) for child in children)
     return None
 
