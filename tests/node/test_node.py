@@ -384,6 +384,20 @@ def test_a_flood_of_bad_connections_is_a_few_log_lines(make_node: Any, caplog: p
     assert event.wait(5) and got == ["ok"]
 
 
+def test_a_malformed_header_gets_an_error_header_naming_the_problem(make_node: Any) -> None:
+    # A field without '=' used to close the connection without a word to the peer.
+    talker = make_node("/told")
+    talker.advertise("/told_topic", *STRING)
+    body = b"".join(struct.pack("<I", len(f)) + f for f in (b"topic=/told_topic", b"callerid=/x", b"no_equals"))
+    with socket.create_connection(("127.0.0.1", talker.tcpros_port), timeout=5) as sock:
+        sock.sendall(struct.pack("<I", len(body)) + body)
+        reply = b""
+        while chunk := sock.recv(65536):
+            reply += chunk
+    fields = tcpros.decode_header(reply)
+    assert fields == {"error": "malformed connection header: field without '=': b'no_equals'"}
+
+
 def test_a_consumer_failure_that_ends_a_link_is_logged(make_node: Any, caplog: pytest.LogCaptureFixture) -> None:
     # An exception from a subscription's consumer (other than the transport's own errors) ended
     # the link to that publisher without a word: the subscription just went quiet.

@@ -11,6 +11,7 @@ could wait on the network (connecting to new publishers) runs on threads of its 
 
 from __future__ import annotations
 
+import contextlib
 import itertools
 import logging
 import os
@@ -26,7 +27,7 @@ from kame.net.stream import Flusher, Listener, peer_of
 from kame.net.workers import WorkerPool
 from kame.node.master_proxy import MasterError, MasterProxy
 from kame.node.services import ServiceClient, ServiceHandler, ServiceServer
-from kame.node.tcpros import ClosedBeforeHeader, HandshakeError, read_header, write_header
+from kame.node.tcpros import ClosedBeforeHeader, HandshakeError, MalformedHeader, read_header, write_header
 from kame.node.topics import Callback, Publication, SubscriberLink, Subscription
 from kame.protocol import tcpros
 from kame.protocol.xmlrpc import Fault, MalformedError, decode_request, encode_fault, encode_response
@@ -182,6 +183,12 @@ class Node:
             header = read_header(sock, HANDSHAKE_TIMEOUT)
             sock.settimeout(None)
         except ClosedBeforeHeader:
+            sock.close()
+            return
+        except MalformedHeader as exc:
+            self._bad_attempts.warning("bad TCPROS connection attempt from %s: %s", peer_of(sock), exc)
+            with contextlib.suppress(OSError):  # tell the peer why, as for any refused connection
+                write_header(sock, tcpros.error_header_fields(str(exc)))
             sock.close()
             return
         except (OSError, HandshakeError) as exc:
