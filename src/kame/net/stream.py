@@ -301,17 +301,29 @@ class Consumer(Protocol):
 
     def buffer_updated(self, nbytes: int) -> None: ...
 
+    @property
+    def mid_frame(self) -> bool:
+        """Part of a message has arrived and the rest has not (a stall here is the peer's)."""
+        ...
+
+
+class Stalled(Exception):
+    """The peer stopped sending in the middle of a message."""
+
 
 class Receiver:
     """A thread that reads a socket into a Consumer until the stream ends.
 
     `on_end(exc)` is called once: with None when the peer closed the stream, with the error
     when it broke (or the consumer raised), and not at all when we closed it ourselves.
+    With `stall_timeout`, a peer that sends no byte for that long while the consumer is in the
+    middle of a message ends the stream with Stalled (idle between messages is fine).
     """
 
     def __init__(self, sock: socket.socket, consumer: Consumer, on_end: Callable[[BaseException | None], None],
-                 name: str, chunk_size: int = 256 * 1024) -> None:
+                 name: str, chunk_size: int = 256 * 1024, stall_timeout: float | None = None) -> None:
         self.sock = sock
+        self._stall_timeout = stall_timeout
         self._consumer = consumer
         self._on_end = on_end
         self._chunk_size = chunk_size
@@ -326,9 +338,17 @@ class Receiver:
         recv_into = self.sock.recv_into
         chunk_size = self._chunk_size
         error: BaseException | None = None
+        stall = self._stall_timeout
         try:
+            if stall is not None:
+                self.sock.settimeout(stall)
             while not self._closing:
-                n = recv_into(consumer.get_buffer(chunk_size))
+                try:
+                    n = recv_into(consumer.get_buffer(chunk_size))
+                except TimeoutError:
+                    if stall is not None and consumer.mid_frame:
+                        raise Stalled(f"no byte for {stall:g} s in the middle of a message") from None
+                    continue
                 if n == 0:
                     break
                 consumer.buffer_updated(n)

@@ -128,11 +128,14 @@ class Node:
         self._best_effort("unregisterPublisher", topic, self.uri)
 
     def subscribe(self, topic: str, type: str, md5sum: str, definition: str, deliver: Callback,
-                  queue_size: int | None = None, tcp_nodelay: bool = False) -> Subscription:
+                  queue_size: int | None = None, tcp_nodelay: bool = False,
+                  max_frame: int | None = None) -> Subscription:
+        """`max_frame`: the largest message accepted (default: the type's size when it has no
+        variable-length fields, else 1 GiB); a larger one drops that publisher's connection."""
         with self._lock:
             if topic in self.subscriptions:
                 raise ValueError(f"already subscribed to {topic}")
-            sub = Subscription(self, topic, type, md5sum, definition, queue_size, tcp_nodelay, deliver)
+            sub = Subscription(self, topic, type, md5sum, definition, queue_size, tcp_nodelay, deliver, max_frame)
             self.subscriptions[topic] = sub
         publishers = self.master.call("registerSubscriber", topic, type, self.uri)
         sub.set_publishers([str(uri) for uri in publishers])

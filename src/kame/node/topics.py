@@ -9,6 +9,11 @@ Subscribing connects to each publisher the master names (requestTopic, then a TC
 handshake), reads frames on one thread per publisher and runs the callbacks there, in
 order, one subscription's callbacks never concurrently. When a publisher goes away but is
 still registered, the link is retried with a growing delay.
+
+What a publisher can make a subscriber hold is bounded: a frame longer than the message type
+can be (its size, for a type without variable-length fields; else `max_frame`, 1 GiB by
+default) and a frame that stops arriving half-way (no byte for STALL_TIMEOUT) both drop the
+connection with one error line, without a retry (the peer would do the same again).
 """
 
 from __future__ import annotations
@@ -22,6 +27,7 @@ import time
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
+from kame.msg.size import fixed_size
 from kame.net.stream import Receiver, Sender, connect, peer_of, set_keepalive, set_nodelay
 from kame.net.xmlrpc_proxy import XmlRpcProxy
 from kame.node.master_proxy import unwrap
@@ -36,6 +42,8 @@ log = logging.getLogger("kame.topics")
 _LENGTH = struct.Struct("<I")
 SMALL_FRAME = 64 * 1024
 MAX_FRAME = 1 << 30
+#: Seconds a publisher may leave a frame half-sent before the connection is dropped.
+STALL_TIMEOUT = 30.0
 
 
 class _Chunks(list[Any]):
@@ -250,9 +258,10 @@ class PublisherLink:
         if self.closed:
             sock.close()
             return
-        consumer = _Frames(self._deliver, trailing, sub.queue_size)
+        consumer = _Frames(self._deliver, trailing, sub.queue_size, sub.max_frame)
         self.sock = sock
-        self.receiver = Receiver(sock, consumer, self._ended, name=f"kame-sub{sub.topic}")
+        self.receiver = Receiver(sock, consumer, self._ended, name=f"kame-sub{sub.topic}",
+                                 stall_timeout=sub.stall_timeout)
         self.connected = True
         self.receiver.start()
 
@@ -269,6 +278,8 @@ class PublisherLink:
             # that ends without a word is a subscription that stops for no visible reason.
             detail = str(exc) if isinstance(exc, tcpros.TcprosError) else f"{type(exc).__name__}: {exc}"
             log.error("dropping the connection to %s on %s: %s", self.callerid, self.subscription.topic, detail)
+            if self.sock is not None:
+                self.sock.close()  # the peer learns it was dropped; nothing more is read
             return
         if exc is not None:
             log.warning("connection to %s on %s broke: %s", self.callerid or self.publisher_uri,
@@ -302,8 +313,9 @@ class _Frames:
     falls behind still keeps only the newest queue_size of every read, as rospy does.
     """
 
-    def __init__(self, deliver: Callable[[list[memoryview]], None], trailing: bytes, queue_size: int | None) -> None:
-        self._reader = tcpros.FrameReader(MAX_FRAME, reuse=True)  # deliver copies what it keeps
+    def __init__(self, deliver: Callable[[list[memoryview]], None], trailing: bytes, queue_size: int | None,
+                 max_frame: int = MAX_FRAME) -> None:
+        self._reader = tcpros.FrameReader(max_frame, reuse=True)  # deliver copies what it keeps
         self._deliver = deliver
         self._trailing = trailing
         self._queue_size = queue_size
@@ -319,6 +331,10 @@ class _Frames:
             sizehint = max(4096, min(sizehint, int(self._queue_size * (self._mean_frame + 4))))
         return self._reader.get_buffer(sizehint)
 
+    @property
+    def mid_frame(self) -> bool:
+        return self._reader.pending > 0
+
     def buffer_updated(self, nbytes: int) -> None:
         frames = self._reader.buffer_updated(nbytes)
         if frames:
@@ -328,8 +344,13 @@ class _Frames:
 
 class Subscription:
     def __init__(self, node: Node, topic: str, type: str, md5sum: str, definition: str, queue_size: int | None,
-                 tcp_nodelay: bool, deliver_frames: Callback) -> None:
+                 tcp_nodelay: bool, deliver_frames: Callback, max_frame: int | None = None) -> None:
         self.node = node
+        if max_frame is None:
+            exact = fixed_size(type, definition) if "*" not in (type, md5sum) else None
+            max_frame = MAX_FRAME if exact is None else exact
+        self.max_frame = max_frame
+        self.stall_timeout = STALL_TIMEOUT
         self.topic = topic
         self.type = type
         self.md5sum = md5sum
