@@ -7,6 +7,13 @@ Rules (roslaunch's nodeprocess and pmon, with its console wording):
 - A child that exits is reported (`[name] process has finished cleanly` in bold, or red
   `process has died [pid, exit code, cmd]`). A respawning child starts again after its
   respawn_delay (`[name] restarting process`); a required one ends the whole launch.
+- A respawning child that dies young (within YOUNG seconds of its start) twice in a row waits
+  longer before each further start: BACKOFF_START, doubled per young death up to BACKOFF_CAP
+  (or its respawn_delay, if longer), said once per step (`[name] died 0.1 s after it started,
+  3 times in a row: restarting in 1 s`); a child that lived longer starts the count afresh.
+  roslaunch restarts a node that crashes at start as fast as it can, forever.
+- On Linux a child is started with PR_SET_PDEATHSIG: if roslaunch is killed outright
+  (SIGKILL, a crash), its children get SIGTERM instead of living on as orphans.
 - When every non-core child is gone and nothing will respawn, the monitor ends (unless told to
   keep going, as roslaunch does when it started the master).
 - Shutdown stops the children in reverse start order, then the core processes (rosout, master);
@@ -18,6 +25,7 @@ from __future__ import annotations
 
 import asyncio
 import contextlib
+import ctypes
 import errno
 import logging
 import os
@@ -31,6 +39,36 @@ from kame.launch.plan import ProcessSpec
 
 log = logging.getLogger("kame.launch")
 BOLD, RED, RESET = "\033[1m", "\033[31m", "\033[0m"
+YOUNG = 5.0  # seconds: a child that dies sooner than this after its start died young
+BACKOFF_START = 0.5
+BACKOFF_CAP = 30.0
+_PR_SET_PDEATHSIG = 1
+
+
+def _libc_prctl() -> Callable[..., int] | None:
+    if not sys.platform.startswith("linux"):
+        return None
+    try:
+        return ctypes.CDLL(None, use_errno=True).prctl
+    except (OSError, AttributeError):
+        return None
+
+
+_prctl = _libc_prctl()  # looked up here: a forked child should only call it
+
+
+def _die_with(parent: int) -> Callable[[], None] | None:
+    """A preexec function that makes the child get SIGTERM when `parent` dies (Linux), or None."""
+    prctl = _prctl
+    if prctl is None:
+        return None
+
+    def preexec() -> None:
+        prctl(_PR_SET_PDEATHSIG, signal.SIGTERM)
+        if os.getppid() != parent:  # the parent died between fork and prctl
+            os.kill(os.getpid(), signal.SIGTERM)
+
+    return preexec
 
 
 def _write(stream: IO[str], text: str) -> None:
@@ -70,6 +108,26 @@ class Child:
         self.exit_code: int | None = None
         self.stopping = False
         self.gone = False  # exited for good and was not required: pmon unregisters it, shutdown skips it
+        self.started_at = 0.0
+        self.young_deaths = 0  # in a row
+        self.backoff = 0.0  # the last delay said
+
+    def respawn_delay(self, now: float) -> float:
+        """How long to wait before starting again, the child having just exited at `now`."""
+        lived = now - self.started_at
+        self.young_deaths = self.young_deaths + 1 if lived < YOUNG else 0
+        delay = self.spec.node.respawn_delay
+        if self.young_deaths < 2:
+            self.backoff = 0.0
+            return delay
+        backoff = min(BACKOFF_CAP, BACKOFF_START * 2.0 ** (self.young_deaths - 2))
+        if backoff <= delay:
+            return delay
+        if backoff != self.backoff:
+            self.backoff = backoff
+            say_error(f"[{self.name}] died {lived:.1f} s after it started, {self.young_deaths} times in a row: "
+                      f"restarting in {backoff:g} s")
+        return backoff
 
     @property
     def name(self) -> str:
@@ -83,7 +141,8 @@ class Child:
         os.makedirs(self.spec.cwd, exist_ok=True)
         try:
             self.proc = await asyncio.create_subprocess_exec(
-                *self.spec.argv, env=dict(self.spec.env), cwd=self.spec.cwd, stdout=out, start_new_session=True)
+                *self.spec.argv, env=dict(self.spec.env), cwd=self.spec.cwd, stdout=out, start_new_session=True,
+                preexec_fn=_die_with(os.getpid()))
         except OSError as exc:
             self.pid, self.exit_code = -1, None
             if exc.errno == errno.ENOEXEC:
@@ -99,6 +158,7 @@ class Child:
             if out is not None:
                 out.close()
         self.starts += 1
+        self.started_at = asyncio.get_running_loop().time()
         self.exit_code = None
         self.pid = self.proc.pid
         say_bold(f"process[{self.name}]: started with pid [{self.pid}]")
@@ -196,7 +256,7 @@ class Monitor:
                 child.gone = True
                 self._check_all_dead()
                 return
-            await asyncio.sleep(child.spec.node.respawn_delay)
+            await asyncio.sleep(child.respawn_delay(asyncio.get_running_loop().time()))
             if child.stopping or self.done.is_set():
                 return
             say(f"[{child.name}] restarting process")
