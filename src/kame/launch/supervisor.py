@@ -25,7 +25,6 @@ from __future__ import annotations
 
 import asyncio
 import contextlib
-import ctypes
 import errno
 import logging
 import os
@@ -36,39 +35,13 @@ from pathlib import Path
 from typing import IO
 
 from kame.launch.plan import ProcessSpec
+from kame.net.process import die_with_parent
 
 log = logging.getLogger("kame.launch")
 BOLD, RED, RESET = "\033[1m", "\033[31m", "\033[0m"
 YOUNG = 5.0  # seconds: a child that dies sooner than this after its start died young
 BACKOFF_START = 0.5
 BACKOFF_CAP = 30.0
-_PR_SET_PDEATHSIG = 1
-
-
-def _libc_prctl() -> Callable[..., int] | None:
-    if not sys.platform.startswith("linux"):
-        return None
-    try:
-        return ctypes.CDLL(None, use_errno=True).prctl
-    except (OSError, AttributeError):
-        return None
-
-
-_prctl = _libc_prctl()  # looked up here: a forked child should only call it
-
-
-def _die_with(parent: int) -> Callable[[], None] | None:
-    """A preexec function that makes the child get SIGTERM when `parent` dies (Linux), or None."""
-    prctl = _prctl
-    if prctl is None:
-        return None
-
-    def preexec() -> None:
-        prctl(_PR_SET_PDEATHSIG, signal.SIGTERM)
-        if os.getppid() != parent:  # the parent died between fork and prctl
-            os.kill(os.getpid(), signal.SIGTERM)
-
-    return preexec
 
 
 def _write(stream: IO[str], text: str) -> None:
@@ -142,7 +115,7 @@ class Child:
         try:
             self.proc = await asyncio.create_subprocess_exec(
                 *self.spec.argv, env=dict(self.spec.env), cwd=self.spec.cwd, stdout=out, start_new_session=True,
-                preexec_fn=_die_with(os.getpid()))
+                preexec_fn=die_with_parent())
         except OSError as exc:
             self.pid, self.exit_code = -1, None
             if exc.errno == errno.ENOEXEC:

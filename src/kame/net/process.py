@@ -7,19 +7,53 @@ Rules:
   `respawn_delay`, as roslaunch does for `respawn="true"`; the owner hears of each start.
 - Its stdout goes to a file opened for appending, so a respawn continues the same log;
   stderr stays the parent's.
+- On Linux it gets SIGTERM when its parent dies (PR_SET_PDEATHSIG, `die_with_parent`), so a
+  supervisor killed outright leaves no orphan.
 """
 
 from __future__ import annotations
 
 import asyncio
 import contextlib
+import ctypes
 import logging
 import os
 import signal
+import sys
 from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
 
 log = logging.getLogger("kame.net.process")
+_PR_SET_PDEATHSIG = 1
+
+
+def _libc_prctl() -> Callable[..., int] | None:
+    if not sys.platform.startswith("linux"):
+        return None
+    try:
+        return ctypes.CDLL(None, use_errno=True).prctl
+    except (OSError, AttributeError):
+        return None
+
+
+_prctl = _libc_prctl()  # looked up here: a forked child should only call it
+
+
+def die_with_parent() -> Callable[[], None] | None:
+    """A preexec_fn that has the child get SIGTERM when we (this process) die: Linux only, else
+    None. The signal is tied to the forking thread, so fork from one that lives as long as we do
+    (an event loop's)."""
+    prctl = _prctl
+    if prctl is None:
+        return None
+    parent = os.getpid()
+
+    def preexec() -> None:
+        prctl(_PR_SET_PDEATHSIG, signal.SIGTERM)
+        if os.getppid() != parent:  # we died between the fork and the prctl
+            os.kill(os.getpid(), signal.SIGTERM)
+
+    return preexec
 
 
 class SupervisedProcess:
@@ -63,7 +97,7 @@ class SupervisedProcess:
             out = open(self.stdout, "ab")  # the child holds it; our copy closes right after the start
         try:
             self._proc = await asyncio.create_subprocess_exec(
-                *self.args, env=self.env, stdin=asyncio.subprocess.DEVNULL, stdout=out)
+                *self.args, env=self.env, stdin=asyncio.subprocess.DEVNULL, stdout=out, preexec_fn=die_with_parent())
         finally:
             if out is not None:
                 out.close()
