@@ -154,8 +154,9 @@ def load_all(text: str) -> list[Any]:
 
 
 def safe_load(text: str) -> Any:
-    """PyYAML's safe_load, refusing (ParamValueError) values that nest too deeply, contain
-    themselves or expand through aliases past MAX_ALIAS_EXPANSION (command-line arguments)."""
+    """PyYAML's safe_load (yaml.YAMLError for text that is not YAML), refusing with
+    ParamValueError values that nest too deeply, contain themselves or expand through aliases
+    past MAX_ALIAS_EXPANSION: for command-line arguments, whose tools word YAML errors their way."""
     try:
         value = yaml.load(text, Loader=BoundedLoader)
     except RecursionError:

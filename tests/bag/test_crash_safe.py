@@ -118,3 +118,4 @@ def test_a_disk_too_full_for_the_open_chunk_keeps_the_closed_ones(tmp_path: Path
     path, written = _fill_disk(tmp_path, monkeypatch, room_after=2_000, chunk_threshold=40_000)
     texts = _texts(path)
     assert 1000 < len(texts) < written and texts == [f"message {i:05d}" for i in range(len(texts))]
+

@@ -331,8 +331,7 @@ class BagReader:
             return None
         if seen != info.counts or any(e[2] >= data_len for e in out):
             return None
-        if len(seen) > 1:
-            out.sort()
+        out.sort()  # linear when in order already; one connection's messages may be written out of time order
         return out
 
     def _walk_entries(self, data: bytes | memoryview, info: ChunkInfo) -> list[tuple[int, int, int, int]]:
@@ -374,7 +373,8 @@ class BagReader:
                   if info.end >= lo and info.start <= hi
                   and (wanted is None or any(c in wanted for c in info.counts))]
         chunks.sort(key=lambda info: (info.start, info.pos))
-        sequential = all(a.end <= b.start for a, b in itertools.pairwise(chunks))
+        # strictly: chunks meeting at one timestamp are merged, so that the tie keeps file order
+        sequential = all(a.end < b.start for a, b in itertools.pairwise(chunks))
         if sequential:
             for info in chunks:
                 yield from self._chunk_messages(self._load_chunk(info, wanted), conns, lo, hi)
