@@ -119,3 +119,22 @@ def test_a_disk_too_full_for_the_open_chunk_keeps_the_closed_ones(tmp_path: Path
     texts = _texts(path)
     assert 1000 < len(texts) < written and texts == [f"message {i:05d}" for i in range(len(texts))]
 
+
+
+@pytest.mark.parametrize("compression", ["lz4", "bz2"])
+def test_a_compressed_bag_loses_nothing_handed_over_before_a_kill(tmp_path: Path, compression: str) -> None:
+    # A compressed chunk cannot be streamed: write_pending closes it instead.
+    path = tmp_path / "c.bag"
+    writer = BagWriter(path, "w", compression)
+    conn = writer.add_connection("/t", HEADER)
+    for i in range(300):
+        writer.write(conn, 100, i, _string(f"message {i:05d}"))
+        if i % 100 == 99:
+            writer.write_pending()
+    killed = tmp_path / "killed.bag"
+    shutil.copyfile(path, killed)
+    writer.close()
+    reindex_file(str(killed), str(tmp_path / "fixed.bag"))
+    assert _texts(tmp_path / "fixed.bag") == [f"message {i:05d}" for i in range(300)]
+    with BagReader(tmp_path / "fixed.bag") as reader:
+        assert {h.compression for h in reader.chunk_headers()} == {compression}
