@@ -222,10 +222,16 @@ def test_a_publisher_that_stalls_mid_frame_is_dropped(make_node: Any, caplog: py
     assert len(lines) == 1 and "no byte for 0.3 s in the middle of a message" in lines[0]
 
 
-def test_a_slow_subscriber_loses_its_oldest_and_slows_no_one(make_node: Any) -> None:
-    # One subscriber takes a second per message, another keeps up: the publisher (queue_size 5)
-    # keeps at most 5 frames for the slow one, dropping the oldest, and the fast one gets all.
-    pub = make_node("/burst_pub").advertise("/burst", *STRING, queue_size=5)
+@pytest.mark.parametrize("queue_size", [5, 0])
+def test_a_slow_subscriber_loses_its_oldest_and_slows_no_one(make_node: Any, monkeypatch: pytest.MonkeyPatch,
+                                                            queue_size: int) -> None:
+    # One subscriber takes a second per message, another keeps up: the publisher keeps at most
+    # queue_size frames for the slow one (without a queue_size: UNQUEUED_BACKLOG bytes, here
+    # 2 MB; it used to keep them all), dropping the oldest, and the fast one gets everything.
+    from kame.node import topics
+
+    monkeypatch.setattr(topics, "UNQUEUED_BACKLOG", 2 << 20)
+    pub = make_node("/burst_pub").advertise("/burst", *STRING, queue_size=queue_size)
     fast: list[str] = []
     fast_done = threading.Event()
     slow_calls = [0]
@@ -246,12 +252,16 @@ def test_a_slow_subscriber_loses_its_oldest_and_slows_no_one(make_node: Any) -> 
     backlogs = []
     for i in range(100):  # 20 MB: far more than the slow subscriber's socket buffers hold
         pub.publish_frame(serialize_frame(String(f"{i:08d}" + "x" * 200_000)))
-        backlogs.append(max(len(link.sender._backlog) for link in pub.links))
+        backlogs.append((max(len(link.sender._backlog) for link in pub.links),
+                         max(link.sender._backlog_bytes for link in pub.links)))
         time.sleep(0.005)
     assert fast_done.wait(20)
     release.set()
     assert fast == [f"{i:08d}" for i in range(100)]
-    assert max(backlogs) <= 5
+    if queue_size:
+        assert max(frames for frames, _ in backlogs) <= queue_size
+    else:
+        assert max(size for _, size in backlogs) <= (2 << 20) + 200_100
     slow_link = next(link for link in pub.links if link.callerid == "/slow_sub")
     assert slow_link.sender.dropped > 0 and slow_calls[0] < 20
 

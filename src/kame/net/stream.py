@@ -5,9 +5,11 @@ Rules:
   `Sender.send` writes straight to the (non-blocking) socket. Only what the kernel will not
   take now waits in a per-connection backlog, which one flusher thread per owner drains as
   the socket becomes writable, many frames per system call.
-- A backlog holds at most `max_frames` frames; when full, the oldest whole frame that has not
-  started going out is dropped (a publisher's queue_size). One slow reader therefore costs
-  its own connection frames, never the sender's time or other connections.
+- A backlog holds at most `max_frames` frames (a publisher's queue_size) and, with
+  `max_bytes`, at most that many bytes (a publisher without a queue_size: its frames are
+  otherwise unbounded); when full, the oldest whole frame that has not started going out is
+  dropped. One slow reader therefore costs its own connection frames, never the sender's
+  time, memory beyond that bound, or other connections.
 - Receiving is one thread per connection, blocking in recv_into a buffer its consumer hands
   out; the consumer may parse and act on many frames per read.
 - Every thread has an owner that stops it: `close()` shuts the socket down, which wakes the
@@ -137,11 +139,13 @@ class Sender:
     """The sending side of one connection: direct writes, a bounded backlog, drop-oldest."""
 
     def __init__(self, sock: socket.socket, flusher: Flusher, max_frames: int,
-                 on_broken: Callable[[BaseException | None], None]) -> None:
+                 on_broken: Callable[[BaseException | None], None], max_bytes: int | None = None) -> None:
         sock.setblocking(False)
         self.sock = sock
         self.closed = False
         self.max_frames = max(1, max_frames)
+        self.max_bytes = max_bytes
+        self._backlog_bytes = 0
         self.dropped = 0
         self.bytes_sent = 0
         self.frames_sent = 0
@@ -186,6 +190,7 @@ class Sender:
                     sent = 0
                 if rest:
                     self._backlog.append(rest)
+                    self._backlog_bytes += sum(len(view) for view in rest)
                     self._head_started = len(rest) < len(parts) or len(rest[0]) < len(parts[0])
         if sent < 0:
             self._report_failure()
@@ -213,14 +218,18 @@ class Sender:
     def _append(self, frame: list[memoryview]) -> None:
         backlog = self._backlog
         backlog.append(frame)
-        while len(backlog) > self.max_frames:
+        self._backlog_bytes += sum(len(view) for view in frame)
+        max_bytes = self.max_bytes
+        while len(backlog) > self.max_frames or (max_bytes is not None and self._backlog_bytes > max_bytes
+                                                 and len(backlog) > 1 + self._head_started):
             # The head may be partly on the wire: keep it, drop the next oldest.
             if self._head_started:
                 head = backlog.popleft()
-                backlog.popleft()
+                dropped = backlog.popleft()
                 backlog.appendleft(head)
             else:
-                backlog.popleft()
+                dropped = backlog.popleft()
+            self._backlog_bytes -= sum(len(view) for view in dropped)
             self.dropped += 1
 
     def flush(self) -> bool:
@@ -249,6 +258,7 @@ class Sender:
                     self._fail(exc)
                     return True
                 self.bytes_sent += sent
+                self._backlog_bytes -= sent
                 while sent and backlog:
                     head = backlog[0]
                     while head and sent >= len(head[0]):
@@ -271,6 +281,7 @@ class Sender:
             return
         self.closed = True
         self._backlog.clear()
+        self._backlog_bytes = 0
         self._failure = (exc,)
 
     def _report_failure(self) -> None:
@@ -284,6 +295,7 @@ class Sender:
         with self._lock:
             self.closed = True
             self._backlog.clear()
+            self._backlog_bytes = 0
         self._on_broken = _ignore
         self._flusher.forget(self)
 

@@ -42,6 +42,8 @@ log = logging.getLogger("kame.topics")
 _LENGTH = struct.Struct("<I")
 SMALL_FRAME = 64 * 1024
 MAX_FRAME = 1 << 30
+#: Bytes a publisher without a queue_size keeps for one subscriber that does not keep up.
+UNQUEUED_BACKLOG = 256 << 20
 #: Seconds a publisher may leave a frame half-sent before the connection is dropped.
 STALL_TIMEOUT = 30.0
 
@@ -128,7 +130,10 @@ class Publication:
             if link_box:
                 self._drop(link_box[0])
 
-        sender = Sender(sock, self.node.flusher, self.queue_size or 1_000_000, broken)
+        if self.queue_size:
+            sender = Sender(sock, self.node.flusher, self.queue_size, broken)
+        else:  # no queue_size: any number of frames, within UNQUEUED_BACKLOG bytes
+            sender = Sender(sock, self.node.flusher, 1 << 62, broken, max_bytes=UNQUEUED_BACKLOG)
         link = SubscriberLink(self.node.next_connection_id(), accepted.callerid, sender, peer)
         link_box.append(link)
         with self._lock:
