@@ -219,12 +219,12 @@ def _stdin_documents() -> Iterator[Any]:
     for line in sys.stdin:
         if line.strip() == "---":
             if buff:
-                yield yaml.safe_load("".join(buff))
+                yield param_yaml.safe_load("".join(buff))
             buff = []
         else:
             buff.append(line)
     if "".join(buff).strip():
-        yield yaml.safe_load("".join(buff))
+        yield param_yaml.safe_load("".join(buff))
 
 
 def _wait_for_service(t: Tool, service: str) -> None:
@@ -380,7 +380,7 @@ def cmd_call(argv: list[str]) -> None:
             for document in _stdin_documents():
                 if document:
                     call(t, service, cls, document if isinstance(document, list) else [document], options.verbose)
-        except yaml.YAMLError as exc:
+        except (yaml.YAMLError, param_yaml.ParamValueError) as exc:
             raise ToolError(f"Invalid YAML: {' '.join(str(exc).split())}", STATUS) from None
 
 
