@@ -75,7 +75,10 @@ def test_parameter_values_round_trip_through_their_dump(value: Any) -> None:
 def test_aliases_are_refused_exactly_when_they_expand_too_far(levels: int, refs: int) -> None:
     lines = ["l0: &l0 [" + ", ".join(["x"] * refs) + "]"]
     lines += [f"l{n}: &l{n} [{', '.join([f'*l{n - 1}'] * refs)}]" for n in range(1, levels)]
-    expanded = 1 + sum(refs ** k for k in range(1, levels + 1))  # the root mapping and what it holds
+    sizes = [1 + refs]  # each line's list once expanded: itself and what it holds
+    for _ in range(1, levels):
+        sizes.append(1 + refs * sizes[-1])
+    expanded = 1 + sum(sizes)  # and the root mapping
     written = 1 + levels + refs  # the root, each line's list, the first line's values
     try:
         param_yaml.load_all("\n".join(lines))
