@@ -293,6 +293,9 @@ def _walk(reader: _Reader, cls: type[Message], prefix: str) -> None:
         count = 1
         if is_array:
             count = reader.count(path) if length is None else length
+            element = cls._slot_classes.get(name) if base not in _SIZES and base != "string" else None
+            if element is not None and not element.__slots__:
+                continue  # elements of no data (std_msgs/Empty): nothing to walk, whatever the count
         for index in range(count):
             item_path = f"{path}[{index}]" if is_array else path
             if base == "string":
