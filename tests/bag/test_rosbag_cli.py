@@ -15,7 +15,7 @@ from pathlib import Path
 import pytest
 
 import rosbag
-from tests.support import Proc, free_port, ros_env, wait_for_master
+from tests.support import SYSTEM_PYTHON, Proc, free_port, have_debian_ros, ros_env, wait_for_master
 
 BIN = Path(sys.executable).parent
 
@@ -148,6 +148,29 @@ def test_a_recorder_killed_by_sigkill_keeps_all_but_its_last_second(core: dict[s
     kept = len(due & recorded)
     print(f"kept {kept} of {len(due)} messages published more than 1 s before the kill")
     assert len(due) > 400 and kept >= 0.99 * len(due), (kept, len(due))
+
+
+@pytest.mark.skipif(not have_debian_ros(), reason="Debian's ROS 1 is not installed")
+def test_reindex_recovers_the_torn_chunk_of_a_killed_cpp_recorder(core: dict[str, str], tmp_path: Path) -> None:
+    # ROS's C++ recorder streams its open chunk under a zero-size header too; Debian's reindex
+    # drops that chunk (0 messages here), kame's keeps its whole records, and Debian reads the result.
+    talker = _talker(core, "/fast", "200")
+    debian_env = {"PATH": "/usr/bin:/bin", "ROS_MASTER_URI": core["ROS_MASTER_URI"], "ROS_HOME": str(tmp_path)}
+    try:
+        rec = Proc(["/usr/lib/rosbag/record", "-O", "cpp", "/fast"], debian_env, cwd=tmp_path)
+        wait_for_bytes(tmp_path / "cpp.bag.active", 20_000)
+        os.kill(rec.pid, signal.SIGKILL)
+        rec.stop()
+    finally:
+        talker.stop()
+    res = _run(core, "reindex", "cpp.bag.active", cwd=tmp_path)
+    assert res.returncode == 0, res.stderr
+    with rosbag.Bag(tmp_path / "cpp.bag.active") as bag:
+        kept = bag.get_message_count("/fast")
+    assert kept > 100
+    info = subprocess.run([SYSTEM_PYTHON, "/usr/bin/rosbag", "info", "cpp.bag.active"], env=debian_env, cwd=tmp_path,
+                          capture_output=True, text=True, timeout=60)
+    assert f"messages:    {kept}" in info.stdout, info.stderr
 
 
 def test_filter_compress_decompress(core: dict[str, str], tmp_path: Path) -> None:
