@@ -7,9 +7,9 @@ Rules (roslaunch's nodeprocess and pmon, with its console wording):
 - A child that exits is reported (`[name] process has finished cleanly` in bold, or red
   `process has died [pid, exit code, cmd]`). A respawning child starts again after its
   respawn_delay (`[name] restarting process`); a required one ends the whole launch.
-- A respawning child that dies young (within YOUNG seconds of its start) twice in a row waits
-  longer before each further start: BACKOFF_START, doubled per young death up to BACKOFF_CAP
-  (or its respawn_delay, if longer), said once per step (`[name] died 0.1 s after it started,
+- A respawning child that dies young (within 5 s of its start) twice in a row waits longer
+  before each further start: 0.5 s, doubled per young death up to 30 s (or its respawn_delay,
+  if longer; kame.net.process.RespawnBackoff), said once per step (`[name] died 0.1 s after it started,
   3 times in a row: restarting in 1 s`); a child that lived longer starts the count afresh.
   roslaunch restarts a node that crashes at start as fast as it can, forever.
 - On Linux a child is started with PR_SET_PDEATHSIG: if roslaunch is killed outright
@@ -35,13 +35,10 @@ from pathlib import Path
 from typing import IO
 
 from kame.launch.plan import ProcessSpec
-from kame.net.process import die_with_parent
+from kame.net.process import RespawnBackoff, die_with_parent
 
 log = logging.getLogger("kame.launch")
 BOLD, RED, RESET = "\033[1m", "\033[31m", "\033[0m"
-YOUNG = 5.0  # seconds: a child that dies sooner than this after its start died young
-BACKOFF_START = 0.5
-BACKOFF_CAP = 30.0
 
 
 def _write(stream: IO[str], text: str) -> None:
@@ -82,25 +79,16 @@ class Child:
         self.stopping = False
         self.gone = False  # exited for good and was not required: pmon unregisters it, shutdown skips it
         self.started_at = 0.0
-        self.young_deaths = 0  # in a row
-        self.backoff = 0.0  # the last delay said
+        self.backoff = RespawnBackoff()
 
     def respawn_delay(self, now: float) -> float:
         """How long to wait before starting again, the child having just exited at `now`."""
         lived = now - self.started_at
-        self.young_deaths = self.young_deaths + 1 if lived < YOUNG else 0
-        delay = self.spec.node.respawn_delay
-        if self.young_deaths < 2:
-            self.backoff = 0.0
-            return delay
-        backoff = min(BACKOFF_CAP, BACKOFF_START * 2.0 ** (self.young_deaths - 2))
-        if backoff <= delay:
-            return delay
-        if backoff != self.backoff:
-            self.backoff = backoff
-            say_error(f"[{self.name}] died {lived:.1f} s after it started, {self.young_deaths} times in a row: "
-                      f"restarting in {backoff:g} s")
-        return backoff
+        delay, news = self.backoff.delay(lived, self.spec.node.respawn_delay)
+        if news:
+            say_error(f"[{self.name}] died {lived:.1f} s after it started, {self.backoff.young_deaths} times "
+                      f"in a row: restarting in {delay:g} s")
+        return delay
 
     @property
     def name(self) -> str:
