@@ -4,6 +4,7 @@ Every process is started through tests.support.Proc and stopped by its PID."""
 
 from __future__ import annotations
 
+import contextlib
 import os
 import signal
 import subprocess
@@ -171,6 +172,47 @@ def test_reindex_recovers_the_torn_chunk_of_a_killed_cpp_recorder(core: dict[str
     info = subprocess.run([SYSTEM_PYTHON, "/usr/bin/rosbag", "info", "cpp.bag.active"], env=debian_env, cwd=tmp_path,
                           capture_output=True, text=True, timeout=60)
     assert f"messages:    {kept}" in info.stdout, info.stderr
+
+
+@contextlib.contextmanager
+def _tmpfs(path: Path, options: str) -> Iterator[Path]:
+    """A small tmpfs at `path` (the test is skipped where we may not mount one: not root)."""
+    path.mkdir()
+    if os.geteuid() != 0 or subprocess.run(["mount", "-t", "tmpfs", "-o", options, "tmpfs", str(path)],
+                                           capture_output=True).returncode != 0:
+        pytest.skip("cannot mount a tmpfs here")
+    try:
+        yield path
+    finally:
+        subprocess.run(["umount", str(path)], check=True)
+
+
+def test_a_full_disk_or_a_read_only_one_ends_the_recording_with_a_readable_bag(core: dict[str, str],
+                                                                               tmp_path: Path) -> None:
+    talker = Proc([str(BIN / "rostopic"), "pub", "-r", "50", "/big", "std_msgs/String", "data: " + "x" * 20000], core)
+    try:
+        with _tmpfs(tmp_path / "full", "size=400k") as full:
+            res = _run(core, "record", "-O", str(full / "f.bag"), "/big", cwd=tmp_path)
+            assert res.returncode == 1
+            assert f"Error writing: cannot write {full}/f.bag.active: No space left on device" in res.stderr
+            with rosbag.Bag(full / "f.bag") as bag:  # closed with what reached the disk
+                assert bag.get_message_count("/big") >= 5
+        with _tmpfs(tmp_path / "split", "size=400k") as full:
+            split = _run(core, "record", "-O", str(full / "s.bag"), "--split", "--size", "0.1", "/big", cwd=tmp_path)
+            assert split.returncode == 1 and "No space left on device" in split.stderr
+            parts = sorted(full.glob("s_*.bag"))
+            assert len(parts) >= 2 and not list(full.glob("*.active"))
+            counts = []
+            for part in parts:  # each closed, the last with what fitted (maybe nothing)
+                with rosbag.Bag(part) as bag:
+                    counts.append(bag.get_message_count("/big"))
+            assert all(n >= 1 for n in counts[:-1])
+        with _tmpfs(tmp_path / "ro", "ro,size=100k") as read_only:
+            res = _run(core, "record", "-O", str(read_only / "r.bag"), "/big", cwd=tmp_path)
+            assert res.returncode == 1
+            assert f"Error writing: Error opening file: {read_only}/r.bag.active" in res.stderr
+    finally:
+        talker.stop()
 
 
 def test_filter_compress_decompress(core: dict[str, str], tmp_path: Path) -> None:

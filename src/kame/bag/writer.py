@@ -283,8 +283,10 @@ class BagWriter:
 
     def _write_index(self) -> None:
         index_pos = self._pos
+        # the connections with messages in the chunks (after a failed write, not all that were written)
+        present = {conn_id for info in self.chunk_infos for conn_id in info.counts}
         tail = [records.connection_record(c.id, c.topic, c.header) for c in self.connections.values()
-                if c.id in self._written]
+                if c.id in present]
         n_conns = len(tail)
         tail += [records.chunk_info_record(info) for info in self.chunk_infos]
         self._write(tail)
