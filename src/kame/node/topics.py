@@ -10,6 +10,11 @@ handshake), reads frames on one thread per publisher and runs the callbacks ther
 order, one subscription's callbacks never concurrently. When a publisher goes away but is
 still registered, the link is retried with a growing delay, waiting on an event that
 closing the link (and so the node's shutdown) sets: no retry outlives its subscription.
+
+What a publisher can make a subscriber hold is bounded: a frame longer than the message type
+can be (its size, for a type without variable-length fields; else `max_frame`, 1 GiB by
+default) and a frame that stops arriving half-way (no byte for STALL_TIMEOUT) both drop the
+connection with one error line, without a retry (the peer would do the same again).
 """
 
 from __future__ import annotations
@@ -21,6 +26,7 @@ import threading
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
+from kame.msg.size import fixed_size
 from kame.net.stream import Receiver, Sender, connect, peer_of, set_keepalive, set_nodelay, shut_down
 from kame.net.xmlrpc_client import XmlRpcProxy
 from kame.node.master_proxy import unwrap
@@ -37,6 +43,10 @@ log = logging.getLogger("kame.topics")
 SMALL_FRAME = 64 * 1024
 MAX_FRAME = 1 << 30
 READ_SIZE = 256 * 1024  # bytes a subscriber's read asks for when it names no buff_size
+#: Bytes a publisher without a queue_size keeps for one subscriber that does not keep up.
+UNQUEUED_BACKLOG = 256 << 20
+#: Seconds a publisher may leave a frame half-sent before the connection is dropped.
+STALL_TIMEOUT = 30.0
 
 
 class _Chunks(list[Any]):
@@ -137,7 +147,10 @@ class Publication:
             if link_box:
                 self._drop(link_box[0])
 
-        sender = Sender(sock, self.node.flusher, self.queue_size or 1_000_000, broken)
+        if self.queue_size:
+            sender = Sender(sock, self.node.flusher, self.queue_size, broken)
+        else:  # no queue_size: any number of frames, within UNQUEUED_BACKLOG bytes
+            sender = Sender(sock, self.node.flusher, 1 << 62, broken, max_bytes=UNQUEUED_BACKLOG)
         link = SubscriberLink(self.node.next_connection_id(), accepted.callerid, sender, peer)
         link_box.append(link)
         with self._lock:
@@ -272,13 +285,13 @@ class PublisherLink:
         self.header = header
         self.callerid = header.get("callerid", "")
         self.latching = reply.latching
-        consumer = _Frames(self._deliver, trailing, sub.queue_size)
+        consumer = _Frames(self._deliver, trailing, sub.queue_size, sub.max_frame)
         with self._lock:  # close() either sees the receiver, or we see that it was closed
             if self.closed:
                 sock.close()
                 return
             self.receiver = Receiver(sock, consumer, self._ended, name=f"kame-sub{sub.topic}",
-                                     chunk_size=sub.buff_size)
+                                     chunk_size=sub.buff_size, stall_timeout=sub.stall_timeout)
             self.connected = True
             self.receiver.start()
 
@@ -295,6 +308,8 @@ class PublisherLink:
             # that ends without a word is a subscription that stops for no visible reason.
             detail = str(exc) if isinstance(exc, tcpros.TcprosError) else f"{type(exc).__name__}: {exc}"
             log.error("dropping the connection to %s on %s: %s", self.callerid, self.subscription.topic, detail)
+            if self.sock is not None:
+                self.sock.close()  # the peer learns it was dropped; nothing more is read
             return
         if exc is not None:
             log.warning("connection to %s on %s broke: %s", self.callerid or self.publisher_uri,
@@ -332,8 +347,9 @@ class _Frames:
     falls behind still keeps only the newest queue_size of every read, as rospy does.
     """
 
-    def __init__(self, deliver: Callable[[list[memoryview]], None], trailing: bytes, queue_size: int | None) -> None:
-        self._reader = tcpros.FrameReader(MAX_FRAME, reuse=True)  # deliver copies what it keeps
+    def __init__(self, deliver: Callable[[list[memoryview]], None], trailing: bytes, queue_size: int | None,
+                 max_frame: int = MAX_FRAME) -> None:
+        self._reader = tcpros.FrameReader(max_frame, reuse=True)  # deliver copies what it keeps
         self._deliver = deliver
         self._trailing = trailing
         self._queue_size = queue_size
@@ -348,6 +364,10 @@ class _Frames:
         if self._queue_size:
             sizehint = max(4096, min(sizehint, int(self._queue_size * (self._mean_frame + 4))))
         return self._reader.get_buffer(sizehint)
+
+    @property
+    def mid_frame(self) -> bool:
+        return self._reader.pending > 0
 
     def buffer_updated(self, nbytes: int) -> None:
         frames = self._reader.buffer_updated(nbytes)
@@ -368,8 +388,14 @@ class Subscription:
     """
 
     def __init__(self, node: Node, topic: str, type: str, md5sum: str, definition: str, queue_size: int | None,
-                 tcp_nodelay: bool, deliver_frames: Callback, buff_size: int | None = None) -> None:
+                 tcp_nodelay: bool, deliver_frames: Callback, buff_size: int | None = None,
+                 max_frame: int | None = None) -> None:
         self.node = node
+        if max_frame is None:
+            exact = fixed_size(type, definition) if "*" not in (type, md5sum) else None
+            max_frame = MAX_FRAME if exact is None else exact
+        self.max_frame = max_frame
+        self.stall_timeout = STALL_TIMEOUT
         self.topic = topic
         self.type = type
         self.md5sum = md5sum
