@@ -152,6 +152,29 @@ def test_the_laser_sees_the_walls_where_the_map_says(x: float, y: float, theta: 
         assert walls.is_wall(*end), (angle, distance)
 
 
+def test_rays_among_scattered_walls_stop_at_the_first_wall_cell() -> None:
+    rng = np.random.default_rng(5)
+    cells = np.where(rng.random((80, 120)) < 0.03, 100, 0).astype(np.int8)
+    cells[20:60, 40:80] = 0  # an open hall, where rays leap
+    cells[39, 10:110] = 100  # a long wall along a row
+    walls = Walls(Grid(cells, RES, (-2.0, -1.0, 0.0)))
+    # none on a diagonal through grid corners: there either neighbouring cell is a right answer
+    origins = [(0.01, 1.02), (1.0, 0.5), (2.5, 0.3), (-1.7, 2.6), (0.512, 0.95 - 1e-9)]
+    angles = np.concatenate([np.linspace(-math.pi, math.pi, 61), [0.0, math.pi / 2, math.pi, -math.pi / 2]])
+    for x, y in origins:
+        if walls.is_wall(*walls.cell_of(x, y)):
+            continue
+        ranges = walls.cast(np.full(angles.shape, x), np.full(angles.shape, y), angles, 8.0)
+        for angle, distance in zip(angles, ranges, strict=True):
+            if not np.isfinite(distance):  # left the map or beyond 8 m: every cell on the way is open
+                assert not any(walls.is_wall(*c) for c in _cells_along(walls, x, y, angle, 8.0)), (x, y, angle)
+                continue
+            before = _cells_along(walls, x, y, angle, distance - 1e-6)
+            assert not any(walls.is_wall(*cell) for cell in before), (x, y, angle, distance)
+            end = walls.cell_of(x + (distance + 1e-6) * math.cos(angle), y + (distance + 1e-6) * math.sin(angle))
+            assert walls.is_wall(*end), (x, y, angle, distance)
+
+
 def test_the_laser_sees_other_robots_its_limits_and_noise() -> None:
     laser = LaserModel(beams=3, angle_min=-0.1, angle_max=0.1, range_min=0.45, range_max=1.5)
     world = World(Walls(room(pillar=False)), laser=laser)
