@@ -31,7 +31,7 @@ def test_cmd_vel_drives_the_robot_and_every_topic_flows(tmp_path: Path) -> None:
     with master(tmp_path) as sim:
         node = sim.start("stage_ros", "stageros", PLAYGROUND, "_initial_pose_x:=3.5", "_initial_pose_y:=-1.0",
                          wait="Simulating [robot_0]")
-        scan = echo(sim, "/scan")
+        scan = echo(sim, "/base_scan")
         assert scan["header"]["frame_id"] == "base_scan" and len(scan["ranges"]) == 640
         ahead = scan["ranges"][320]
         assert ahead == pytest.approx(4.9 - 3.5, abs=0.06)  # the room's east wall, 0.1 m thick at x = 5
@@ -80,7 +80,7 @@ def test_several_robots_have_namespaces(tmp_path: Path) -> None:
         wait_until(lambda: echo(sim, "/r2/base_pose_ground_truth")["pose"]["pose"]["position"]["y"] > 1.7,
                    timeout=20, what="r2 to move")
         assert x_of(sim, "/r1/base_pose_ground_truth") == 0.0
-        assert echo(sim, "/r2/scan")["header"]["frame_id"] == "r2/base_scan"
+        assert echo(sim, "/r2/base_scan")["header"]["frame_id"] == "r2/base_scan"
 
 
 @pytest.mark.parametrize(("args", "error"), [

@@ -49,6 +49,8 @@ def test_turtlebot_world_and_keyboard_teleop(tmp_path: Path) -> None:
         world.wait_line("Simulating [robot_0]", timeout=30)
         assert sim.run("rosparam", "get", "/use_sim_time").stdout.strip() == "true"
         assert "turtlebot" in sim.run("rosparam", "get", "/robot_description").stdout
+        scan = echo(sim, "/scan")  # stageros's base_scan, remapped as turtlebot_stage does
+        assert len(scan["ranges"]) == 640 and scan["header"]["frame_id"] == "base_scan"
 
         sock = str(tmp_path / "tmux.sock")
 

@@ -69,6 +69,9 @@ def test_a_wall_stops_the_robot_and_the_bumper_says_so() -> None:
     assert state.stalled and state.linear == 0.0
     wall_x = -1.0 + 99 * RES
     assert wall_x - 0.177 - 0.02 < state.pose.x < wall_x - 0.177
+    for _ in range(100):  # the command times out: at rest against the wall, the bumper stays pressed
+        world.step(0.01)
+    assert world.robot("bot").stalled
     drive(world, "bot", -0.2, 0.0, 0.5)
     assert not world.robot("bot").stalled and world.robot("bot").pose.x < state.pose.x
 

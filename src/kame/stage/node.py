@@ -8,7 +8,8 @@ one robot, under robot_<i>/ or the given names for several, as stageros names th
        seconds of simulated time without a new one; ~extra_cmd_vel_topics listens on more names
        (turtlebot_gazebo: mobile_base/commands/velocity, cmd_vel_mux/input/teleop ...);
   out: odom (nav_msgs/Odometry, drifting), base_pose_ground_truth (nav_msgs/Odometry, the truth
-       in the map frame), scan (sensor_msgs/LaserScan at the laser's rate), bumper (std_msgs/Bool,
+       in the map frame), base_scan (sensor_msgs/LaserScan at the laser's rate; stageros's name,
+       turtlebot_world.launch remaps it to scan), bumper (std_msgs/Bool,
        latched, on each change: true while a wall or robot stops it);
 and for all: /tf (tf2_msgs/TFMessage: odom -> base_footprint -> base_link -> base_scan per
 robot), /clock (rosgraph_msgs/Clock, every step; set /use_sim_time to follow it).
@@ -137,7 +138,7 @@ class _RobotInterfaces:
         self._sim = sim
         self.odom = runtime.Publisher(_prefixed(namespace, "odom"), Odometry, queue_size=10)
         self.truth = runtime.Publisher(_prefixed(namespace, "base_pose_ground_truth"), Odometry, queue_size=10)
-        self.scan = runtime.Publisher(_prefixed(namespace, "scan"), LaserScan, queue_size=10)
+        self.scan = runtime.Publisher(_prefixed(namespace, "base_scan"), LaserScan, queue_size=10)
         self.bumper = runtime.Publisher(_prefixed(namespace, "bumper"), Bool, queue_size=10, latch=True)
         self.bumper.publish(Bool(False))
         self.stalled = False

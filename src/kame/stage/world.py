@@ -356,16 +356,17 @@ class World:
             robot.linear = _toward(robot.linear, want_linear, model.linear_acceleration * dt)
             robot.angular = _toward(robot.angular, want_angular, model.angular_acceleration * dt)
             distance, turn = robot.linear * dt, robot.angular * dt
+            if not (distance or turn):
+                continue  # at rest: a robot stopped by a wall stays stalled until it drives away
             moved = _advance(robot.pose, distance, turn)
-            if (distance or turn) and self._blocked(robot.name, moved.x, moved.y) is not None:
+            if self._blocked(robot.name, moved.x, moved.y) is not None:
                 robot.linear = robot.angular = 0.0
                 robot.stalled = True
                 continue
             robot.stalled = False
             robot.pose = moved
-            if distance or turn:
-                slip = self._rng.normal(0.0, 1.0, 2) * (self.odometry.linear, self.odometry.angular)
-                robot.odom = _advance(robot.odom, distance * (1 + float(slip[0])), turn * (1 + float(slip[1])))
+            slip = self._rng.normal(0.0, 1.0, 2) * (self.odometry.linear, self.odometry.angular)
+            robot.odom = _advance(robot.odom, distance * (1 + float(slip[0])), turn * (1 + float(slip[1])))
         self.time += dt
         return [self._state(r) for r in self._robots.values()]
 
