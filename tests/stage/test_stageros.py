@@ -6,6 +6,7 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from tests.stage.sim import echo
@@ -94,7 +95,21 @@ def test_bad_starts_say_why(tmp_path: Path, args: tuple[str, ...], error: str) -
         assert result.returncode == 1 and error in result.stderr and "Traceback" not in result.stderr, result.stderr
 
 
-def test_a_stage_world_file_is_not_read_yet(tmp_path: Path) -> None:
-    with master(tmp_path) as sim:
-        result = sim.run("rosrun", "stage_ros", "stageros", "willow.world", check=False)
-        assert result.returncode == 1 and "Stage .world files are not read by kame's stageros yet" in result.stderr
+def test_a_stage_world_file(tmp_path: Path) -> None:
+    from PIL import Image
+
+    from tests.stage.test_worldfile import MAZE_WORLD, TURTLEBOT_INC
+
+    (tmp_path / "turtlebot.inc").write_text(TURTLEBOT_INC)
+    (tmp_path / "maze.world").write_text(MAZE_WORLD)
+    Image.fromarray(np.full((20, 40), 255, dtype=np.uint8), "L").save(tmp_path / "maze.png")
+    (tmp_path / "gazebo.world").write_text('<?xml version="1.0"?>\n<sdf version="1.4"></sdf>\n')
+    with master(tmp_path / "home") as sim:
+        sim.start("stage_ros", "stageros", str(tmp_path / "maze.world"), wait="Simulating [robot_0], [robot_1]")
+        pose = echo(sim, "/robot_1/base_pose_ground_truth")["pose"]["pose"]
+        assert (pose["position"]["x"], pose["position"]["y"]) == (0.5, 1.5)
+        assert pose["orientation"]["z"] == pytest.approx(-math.sin(math.pi / 4))
+        scan = echo(sim, "/robot_0/base_scan")  # facing +y from (1, 0.5): the boundary at y = 1.95
+        assert scan["ranges"][320] == pytest.approx(1.95 - 0.5, abs=0.01)
+        result = sim.run("rosrun", "stage_ros", "stageros", str(tmp_path / "gazebo.world"), check=False)
+        assert result.returncode == 1 and "is a Gazebo (SDF) world" in result.stderr

@@ -1,8 +1,9 @@
 """stageros: the ROS face of kame's 2-D world (kame.stage.world), standing in for Stage and Gazebo.
 
-    rosrun stage_ros stageros [-g] [-u] [--stand-in-for gazebo] map.yaml [remappings]
+    rosrun stage_ros stageros [-g] [-u] [--stand-in-for gazebo] map.yaml|stage.world [remappings]
 
-The world is a map_server map (its occupied cells are walls). Per robot (topics unprefixed for
+The world is a map_server map (its occupied cells are walls) or a Stage .world file (its
+floorplan bitmap, boxes and robots: kame.stage.worldfile). Per robot (topics unprefixed for
 one robot, under robot_<i>/ or the given names for several, as stageros names them):
   in:  cmd_vel (geometry_msgs/Twist; linear.x, angular.z), dropped after ~base_watchdog_timeout
        seconds of simulated time without a new one; ~extra_cmd_vel_topics listens on more names
@@ -24,6 +25,7 @@ Bad input (no map, a robot in a wall, a NaN command) is an error line, never a t
 from __future__ import annotations
 
 import math
+import os
 import sys
 import threading
 import time
@@ -33,10 +35,12 @@ from typing import Any
 
 from kame.stage import runtime
 from kame.stage.map_server import read_map
-from kame.stage.mapfile import MapError
+from kame.stage.mapfile import Grid, MapError, decode_image
 from kame.stage.world import LaserModel, OdometryModel, Pose, RobotState, Walls, World, WorldError
+from kame.stage.worldfile import WorldFileError, rasterise
+from kame.stage.worldfile import parse as parse_world_file
 
-USAGE = "Usage: stageros [-g] [-u] [--stand-in-for gazebo] <map.yaml>"
+USAGE = "Usage: stageros [-g] [-u] [--stand-in-for gazebo] <map.yaml | world.world>"
 BASE_LINK_HEIGHT = 0.0102  # base_footprint -> base_link, as turtlebot_description's Kobuki
 LASER_HEIGHT = 0.287  # base_link -> base_scan: the Kinect's height on a TurtleBot 2
 
@@ -62,9 +66,6 @@ def parse_args(args: Sequence[str]) -> Options:
         del rest[i:i + 2]
     if len(rest) != 1:
         raise SetupError(USAGE)
-    if rest[0].endswith(".world"):
-        raise SetupError(f"{rest[0]}: Stage .world files are not read by kame's stageros yet; "
-                         "give it a map_server map (map.yaml) instead")
     return Options(rest[0], stand_in)
 
 
@@ -75,9 +76,15 @@ def _number(name: str, default: float) -> float:
     return float(value)
 
 
-def robot_placements() -> list[tuple[str, float, float, float]]:
-    """(namespace, x, y, yaw) of each robot: ~robots when set, else one robot at ~initial_pose_*."""
+Placement = tuple[str, float, float, float]  # namespace, x, y, yaw
+
+
+def robot_placements(from_world: Sequence[Placement] = ()) -> list[Placement]:
+    """Each robot's namespace and pose: ~robots when set, else the world file's robots, else one
+    robot at ~initial_pose_*."""
     robots = runtime.get_param("~robots", None)
+    if robots is None and from_world:
+        return list(from_world)
     if robots is None:
         return [("", _number("~initial_pose_x", 0.0), _number("~initial_pose_y", 0.0),
                  _number("~initial_pose_a", 0.0))]
@@ -95,8 +102,41 @@ def robot_placements() -> list[tuple[str, float, float, float]]:
     return placements
 
 
-def make_world(map_path: str) -> World:
-    grid = read_map(map_path)
+def read_stage_world(path: str) -> tuple[Grid, list[Placement]]:
+    """The grid and robots of a Stage .world file (includes and bitmaps beside it); robots are
+    unprefixed when alone, else robot_0, robot_1... as stageros names them."""
+    folder = os.path.dirname(path)
+
+    def read(name: str) -> str:
+        with open(os.path.join(folder, name), encoding="utf-8") as f:
+            return f.read()
+
+    try:
+        text = read(os.path.basename(path))
+    except (OSError, UnicodeDecodeError) as exc:
+        raise SetupError(f"cannot open the world file {path}: {exc}") from None
+    spec = parse_world_file(text, path, read)
+    bitmaps = {}
+    for plan in spec.floorplans:
+        image = os.path.join(folder, plan.bitmap)
+        try:
+            with open(image, "rb") as f:
+                data = f.read()
+        except OSError as exc:
+            raise MapError(f'Failed to open image file "{image}": {exc.strerror or exc}') from None
+        bitmaps[plan.bitmap], _ = decode_image(data, image)
+    robots = spec.robots
+    return rasterise(spec, bitmaps), [("" if len(robots) == 1 else f"robot_{i}", *robot.pose)
+                                      for i, robot in enumerate(robots)]
+
+
+def make_world(map_path: str) -> tuple[World, list[Placement]]:
+    """The world of a map_server map or a Stage .world file, and the robots the file places."""
+    placements: list[Placement] = []
+    if map_path.endswith(".world"):
+        grid, placements = read_stage_world(map_path)
+    else:
+        grid = read_map(map_path)
     laser = LaserModel(
         beams=int(_number("~laser_beams", LaserModel.beams)),
         angle_min=_number("~laser_angle_min", LaserModel.angle_min),
@@ -107,8 +147,9 @@ def make_world(map_path: str) -> World:
         noise=_number("~laser_noise", LaserModel.noise))
     odometry = OdometryModel(_number("~odom_drift_linear", OdometryModel.linear),
                              _number("~odom_drift_angular", OdometryModel.angular))
-    return World(Walls(grid), laser=laser, odometry=odometry,
-                 command_timeout=_number("~base_watchdog_timeout", 0.5), seed=int(_number("~seed", 0)))
+    world = World(Walls(grid), laser=laser, odometry=odometry,
+                  command_timeout=_number("~base_watchdog_timeout", 0.5), seed=int(_number("~seed", 0)))
+    return world, placements
 
 
 def _stamp(seconds: float) -> Any:
@@ -306,7 +347,7 @@ def main(argv: Sequence[str] | None = None) -> int:
             runtime.info("This is kame's 2-D world (stageros) standing in for %s: a flat world from %s, "
                          "with odometry, a laser scanner and walls, and no 3-D physics.",
                          options.stand_in_for.capitalize(), options.map_path)
-        world = make_world(options.map_path)
+        world, from_file = make_world(options.map_path)
         extra = runtime.get_param("~extra_cmd_vel_topics", [])
         if not isinstance(extra, list) or not all(isinstance(t, str) for t in extra):
             raise SetupError("parameter ~extra_cmd_vel_topics must be a list of topic names")
@@ -315,8 +356,8 @@ def main(argv: Sequence[str] | None = None) -> int:
                   str(runtime.get_param("~laser_frame_id", "base_scan")))
         sim = Simulator(world, _number("~step", 0.01), _number("~odom_rate", 50.0),
                         _number("~real_time_factor", 1.0), extra, frames)
-        sim.start(robot_placements(), bool(runtime.get_param("~publish_clock", True)))
-    except (MapError, WorldError, SetupError) as exc:
+        sim.start(robot_placements(from_file), bool(runtime.get_param("~publish_clock", True)))
+    except (MapError, WorldError, WorldFileError, SetupError) as exc:
         runtime.error("%s", exc)
         runtime.signal_shutdown("cannot start")
         return 1
