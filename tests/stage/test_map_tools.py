@@ -79,3 +79,25 @@ def test_the_shipped_worlds_load_and_start_the_robot_in_the_open() -> None:
         world = World(Walls(grid), laser=LaserModel(beams=36, angle_min=-3.1, angle_max=3.1))
         world.spawn("bot", 0.0, 0.0, 0.0)
         assert np.isfinite(world.scans()["bot"]).all(), name  # walled in: every beam meets a wall
+
+
+def test_without_the_sim_extra_the_programs_say_what_to_install(tmp_path: Path) -> None:
+    fake = tmp_path / "no_numpy" / "numpy"
+    fake.mkdir(parents=True)
+    (fake / "__init__.py").write_text("raise ModuleNotFoundError(\"No module named 'numpy'\", name='numpy')\n")
+    with master(tmp_path / "home") as sim:
+        env = {**sim.env, "PYTHONPATH": str(fake.parent)}
+        for package, program in (("map_server", "map_server"), ("map_server", "map_saver"), ("stage_ros", "stageros")):
+            result = sim.run("rosrun", package, program, "x.yaml", check=False, env=env)
+            assert result.returncode == 1, result.stderr
+            assert f"{program} needs numpy and Pillow, kame's 'sim' extra (pip install 'kame[sim]')" in result.stderr
+            assert "Traceback" not in result.stderr
+
+
+def test_a_16_bit_map(tmp_path: Path) -> None:
+    grey = np.array([[0, 65535, 30000]], dtype=np.uint16)
+    Image.fromarray(grey).save(tmp_path / "deep.png")
+    description = parse_description("image: deep.png\nresolution: 0.1\norigin: [0, 0, 0]\nnegate: 0\n"
+                                    "occupied_thresh: 0.65\nfree_thresh: 0.196\n")
+    grid = load(description, (tmp_path / "deep.png").read_bytes(), "deep.png")
+    assert grid.cells.tolist() == [[100, 0, -1]]

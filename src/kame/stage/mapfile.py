@@ -118,11 +118,9 @@ def decode_image(data: bytes, name: str) -> tuple[np.ndarray, np.ndarray | None]
         with Image.open(io.BytesIO(data)) as image:
             image.load()
             has_alpha = image.mode in ("RGBA", "LA", "PA") or "transparency" in image.info
-            if image.mode in ("I", "I;16", "F"):  # 16-bit or float greys: scaled to 8 bits as SDL would
+            if image.mode in ("I", "I;16", "F"):  # 16-bit greys: 65535 is white
                 grey = np.asarray(image.convert("F"), dtype=np.float64)
-                top = float(grey.max()) or 1.0
-                values = np.clip(grey * (255.0 / max(top, 255.0)), 0, 255).astype(np.uint8)
-                return values, None
+                return np.clip(grey * (255.0 / 65535.0), 0, 255).astype(np.uint8), None
             if image.mode in ("1", "L", "LA"):
                 rgba = np.asarray(image.convert("LA"), dtype=np.int32)[:, :, [0, 0, 0, 1]]
                 average = rgba[:, :, 0]
