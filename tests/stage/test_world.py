@@ -86,17 +86,24 @@ def test_robots_collide_with_each_other() -> None:
 
 
 def test_odometry_drifts_from_the_truth_reproducibly() -> None:
-    def odom(seed: int) -> tuple[float, float, float]:
-        world = World(Walls(room(pillar=False)), odometry=OdometryModel(0.05, 0.05), seed=seed)
-        world.spawn("bot", 0.0, 0.0, 0.0)
-        drive(world, "bot", 0.3, 0.5, 4.0)
+    def straight(seed: int) -> tuple[float, float, float]:
+        world = World(Walls(room(pillar=False)), odometry=OdometryModel(0.02, 0.03), seed=seed)
+        world.spawn("bot", -0.5, 0.0, 0.0)
+        drive(world, "bot", 0.5, 0.0, 4.0)
         state = world.robot("bot")
-        truth_from_start = math.hypot(state.pose.x - 0.0, state.pose.y - 0.0)
-        return truth_from_start, math.hypot(state.odom.x, state.odom.y), state.odom.theta
+        assert state.pose.y == 0.0 and state.pose.theta == 0.0
+        return state.pose.x + 0.5, state.odom.x, state.odom.theta
 
-    truth, believed, theta = odom(1)
-    assert believed != truth and abs(believed - truth) < 0.2 * truth
-    assert odom(1) == (truth, believed, theta) and odom(2) != (truth, believed, theta)
+    truth, believed, heading = straight(1)
+    assert truth == pytest.approx(0.125 + 0.5 * 3.5, abs=0.01)  # half a second of acceleration, then cruising
+    assert believed != truth and abs(believed - truth) < 0.1 * truth
+    assert heading != 0.0 and abs(heading) < 0.5  # unequal wheels: straight driving curves in odometry
+    assert straight(1) == (truth, believed, heading) and straight(2)[1:] != (believed, heading)
+    exact = World(Walls(room(pillar=False)), odometry=OdometryModel(0.0, 0.0))
+    exact.spawn("bot", 0.0, 0.0, 0.0)
+    drive(exact, "bot", 0.3, 0.5, 4.0)
+    state = exact.robot("bot")
+    assert state.odom.x == pytest.approx(state.pose.x) and state.odom.theta == pytest.approx(state.pose.theta)
 
 
 @pytest.mark.parametrize(("x", "y", "why"), [

@@ -8,7 +8,7 @@ robot whose next step would overlap a wall or another robot stays where it is, s
 `stalled` (its bumper) until a step moves it again.
 Sensors: a planar laser per robot (rays cast against the grid cell by cell, all beams of all
 robots at once with numpy; other robots are circles), with Gaussian noise; wheel odometry that
-integrates each step's true motion with a relative error drawn per step (the drift). Randomness
+integrates each step's true motion through the robot's miscalibrated wheels (the drift). Randomness
 comes from one seeded generator, so a world replays exactly.
 Bad requests (a robot inside a wall, a NaN speed, an unknown name) raise WorldError, saying why.
 """
@@ -76,15 +76,22 @@ class LaserModel:
 
 @dataclass(frozen=True)
 class OdometryModel:
-    """Wheel odometry's drift: each step's distance and turn are off by a relative error drawn
-    from N(0, linear) and N(0, angular)."""
+    """Wheel odometry's drift, as miscalibration: each robot's left and right wheels measure
+    their travel with relative errors drawn once from N(0, linear) (so straight driving curves
+    in odometry, and distances are off), its turns with one drawn from N(0, angular); the
+    odometry integrates the true motion through them. Independent errors per step would average
+    away within a second; a miscalibrated robot drifts as real ones do, in proportion to the way
+    it has gone."""
 
-    linear: float = 0.02
-    angular: float = 0.03
+    linear: float = 0.01
+    angular: float = 0.02
+    wheel_separation: float = 0.23  # Kobuki's, metres
 
     def __post_init__(self) -> None:
         if not (self.linear >= 0 and self.angular >= 0):
             raise WorldError(f"odometry drift must be at least 0 (got {self.linear}, {self.angular})")
+        if not self.wheel_separation > 0:
+            raise WorldError(f"the wheel separation must be above 0, not {self.wheel_separation}")
 
 
 @dataclass(frozen=True)
@@ -104,6 +111,7 @@ class Robot:
     command: tuple[float, float] = (0.0, 0.0)
     command_time: float = -math.inf
     stalled: bool = False
+    odometry_errors: tuple[float, float, float] = (0.0, 0.0, 0.0)  # left wheel, right wheel, turns
 
 
 @dataclass(frozen=True)
@@ -317,7 +325,10 @@ class World:
         if reason is not None:
             raise WorldError(f"cannot place [{name}] at ({x:.3f}, {y:.3f}): {reason}")
         theta = math.atan2(math.sin(theta), math.cos(theta))
-        robot = Robot(name, Pose(float(x), float(y), theta), Pose(0.0, 0.0, 0.0))
+        left, right, turns = self._rng.normal(0.0, 1.0, 3) * (self.odometry.linear, self.odometry.linear,
+                                                                self.odometry.angular)
+        robot = Robot(name, Pose(float(x), float(y), theta), Pose(0.0, 0.0, 0.0),
+                      odometry_errors=(float(left), float(right), float(turns)))
         self._robots[name] = robot
         return self._state(robot)
 
@@ -365,10 +376,17 @@ class World:
                 continue
             robot.stalled = False
             robot.pose = moved
-            slip = self._rng.normal(0.0, 1.0, 2) * (self.odometry.linear, self.odometry.angular)
-            robot.odom = _advance(robot.odom, distance * (1 + float(slip[0])), turn * (1 + float(slip[1])))
+            robot.odom = self._odometry_step(robot, distance, turn)
         self.time += dt
         return [self._state(r) for r in self._robots.values()]
+
+    def _odometry_step(self, robot: Robot, distance: float, turn: float) -> Pose:
+        """The odometry after a true motion, as the robot's miscalibrated wheels measure it."""
+        half = turn * self.odometry.wheel_separation / 2
+        left_error, right_error, turn_error = robot.odometry_errors
+        left, right = (distance - half) * (1 + left_error), (distance + half) * (1 + right_error)
+        measured_turn = (right - left) / self.odometry.wheel_separation * (1 + turn_error)
+        return _advance(robot.odom, (left + right) / 2, measured_turn)
 
     # ---------------------------------------------------------------- the laser
 
