@@ -1,4 +1,4 @@
-"""A live kame master for the simulator tests, and readers of one message of a topic."""
+"""One message of a topic, read with kame's rostopic, for the simulator tests."""
 
 from __future__ import annotations
 

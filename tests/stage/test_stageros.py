@@ -88,6 +88,7 @@ def test_several_robots_have_namespaces(tmp_path: Path) -> None:
     ((PLAYGROUND, "_initial_pose_x:=4.95"), "cannot place [robot_0] at (4.950, 0.000): inside a wall"),
     (("nowhere.yaml",), "Map_server could not open nowhere.yaml."),
     ((PLAYGROUND, "_laser_range_max:=-1"), "the laser's range must satisfy"),
+    ((PLAYGROUND, "_robots:=[{name: 'not a name'}]"), "'not a name' is not a legal ROS name"),
 ])
 def test_bad_starts_say_why(tmp_path: Path, args: tuple[str, ...], error: str) -> None:
     with master(tmp_path) as sim:

@@ -85,16 +85,17 @@ def main(argv: Sequence[str] | None = None) -> int:
             received.append(msg)
             got.set()
 
+    runtime.on_shutdown(got.set)  # Ctrl-C while waiting
     runtime.info("Waiting for the map")
     subscriber = runtime.Subscriber("map", OccupancyGrid, on_map, queue_size=1)
     try:
-        while not got.wait(0.1):
-            if runtime.is_shutdown():
-                return 1
+        got.wait()
     except KeyboardInterrupt:
         return 1
     finally:
         subscriber.unregister()
+    if not received:
+        return 1
     msg = received[0]
     runtime.info("Received a %d X %d map @ %.3f m/pix", msg.info.width, msg.info.height, msg.info.resolution)
     status = 0

@@ -33,6 +33,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
+from kame.names import is_legal_base_name
 from kame.stage import runtime
 from kame.stage.map_server import read_map
 from kame.stage.mapfile import Grid, MapError, decode_image
@@ -98,7 +99,10 @@ def robot_placements(from_world: Sequence[Placement] = ()) -> list[Placement]:
         if not all(isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) for v in values):
             raise SetupError(f"~robots[{i}]: x, y and a must be finite numbers")
         x, y, yaw = (float(v) for v in values)
-        placements.append((str(entry.get("name", f"robot_{i}")), x, y, yaw))
+        name = str(entry.get("name", f"robot_{i}"))
+        if not is_legal_base_name(name):
+            raise SetupError(f"~robots[{i}]: {name!r} is not a legal ROS name for a robot's namespace")
+        placements.append((name, x, y, yaw))
     return placements
 
 

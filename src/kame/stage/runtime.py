@@ -20,6 +20,7 @@ Time = rospy.Time
 get_param = rospy.get_param
 has_param = rospy.has_param
 is_shutdown = rospy.is_shutdown
+on_shutdown = rospy.on_shutdown
 signal_shutdown = rospy.signal_shutdown
 resolve_name = rospy.resolve_name
 
