@@ -46,6 +46,7 @@ LAYERS: dict[str, int] = {
     "kame.master": 1,
     "kame.launch": 1,
     "kame.turtlesim": 1,  # the world: no ROS, no GUI, no clock
+    "kame.stage": 1,  # the 2-D robot world and map_server's map files: no ROS, no clock
     # L2 I/O
     "kame.net": 2,
     "kame.bag.reader": 2,  # bag file I/O
@@ -94,6 +95,11 @@ LAYERS: dict[str, int] = {
     "kame.rqt.plot_source": 4,
     "kame.rqt.plot_window": 4,
     "kame.rqt.plot_main": 4,
+    "kame.stage.runtime": 4,  # the simulator's and map tools' one way to the ROS runtime
+    "kame.stage.node": 4,
+    "kame.stage.map_server": 4,
+    "kame.stage.map_saver": 4,
+    "kame.stage.teleop": 4,
     # L5 the compatibility packages: thin facades over kame, which never imports them
     **{facade: 5 for facade in FACADES},
     # L6 the ROS programs kame ships (tutorial scripts): user code, free to import anything
