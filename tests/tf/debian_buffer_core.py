@@ -52,6 +52,8 @@ for op, *args in script["ops"]:
             value = core.all_frames_as_string()
         elif op == "yaml":
             value = core.all_frames_as_yaml()
+        elif op == "dot":
+            value = core._allFramesAsDot(*[rospy.Time.from_sec(a) for a in args])
         elif op == "clear":
             value = core.clear()
         results.append(["ok", value])

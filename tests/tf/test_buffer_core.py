@@ -70,6 +70,8 @@ SCRIPT: list[list[Any]] = [
     ["common", "base", "b"],
     ["string"],
     ["yaml"],
+    ["dot"],
+    ["dot", 12.5],
     ["set", "world", "base", 3 * S, [9.0, 9.0, 9.0], IDENTITY, "/again", False],
     ["set", "world", "base", 15 * S, [5.0, 0.0, 0.0], IDENTITY, "/mover", False],
     ["set", "world", "base", 4 * S, [9.0, 9.0, 9.0], IDENTITY, "/late", False],
@@ -88,6 +90,7 @@ SCRIPT: list[list[Any]] = [
     ["set", "a", "c", 1 * S, [0.0, 0.0, 0.0], IDENTITY, "/loop", False],
     ["lookup", "world", "c", 1 * S],
     ["string"],
+    ["dot", 3.0],
 ]
 
 
@@ -114,6 +117,8 @@ def replay(core: BufferCore, script: list[list[Any]]) -> tuple[list[list[Any]], 
                 value = core.all_frames_as_string()
             elif op == "yaml":
                 value = core.all_frames_as_yaml()
+            elif op == "dot":
+                value = core.all_frames_as_dot(*args)
             elif op == "clear":
                 core.clear()
             results.append(["ok", value])

@@ -370,6 +370,38 @@ class BufferCore:
             out.append(f"  buffer_length: {latest - oldest:.3f}\n")
         return "".join(out)
 
+    def all_frames_as_dot(self, current_time: float = 0.0) -> str:
+        """The tree in graphviz's dot language, as tf2's allFramesAsDot (view_frames draws it)."""
+        out = ["digraph G {\n"]
+        if len(self._names) == 1:
+            out.append('"no tf data recieved"')
+        for number in range(1, len(self._names)):
+            cache = self._caches[number]
+            item = cache.get(0) if cache is not None else None
+            if cache is None or not isinstance(item, Stored):
+                continue
+            latest, oldest = cache.latest()[0] / 1e9, cache.oldest_stamp() / 1e9
+            rate = len(cache) / max(latest - oldest, 0.0001)
+            age = f"( {current_time - latest:.3f} sec old)" if current_time > 0 else ""
+            out.append(f'"{self._names[item.parent]}" -> "{self._names[number]}"[label="'
+                       f"Broadcaster: {self.authority.get(number, 'no recorded authority')}\\n"
+                       f"Average rate: {rate:.3f} Hz\\n"
+                       f"Most recent transform: {latest:.3f} {age}\\n"
+                       f'Buffer length: {latest - oldest:.3f} sec\\n"];\n')
+        legend = ' subgraph cluster_legend { style=bold; color=black; label ="view_frames Result";\n'
+        recorded = f'"Recorded at time: {current_time:.3f}"[ shape=plaintext ] ;\n ' if current_time > 0 else ""
+        for number in range(1, len(self._names)):
+            cache = self._caches[number]
+            if cache is None:
+                if current_time > 0:
+                    out.append(f'edge [style=invis];\n{legend}{recorded}}}->"{self._names[number]}";\n')
+                continue
+            item = cache.get(0)
+            if not isinstance(item, Stored):
+                out.append(f'edge [style=invis];\n{legend}{recorded}}}->"{self._names[number]}";\n')
+        out.append("}")
+        return "".join(out)
+
     def chain(self, target: str, source: str, time: int = 0) -> list[str]:
         """The frames between source and target, both included (tf's `chain`)."""
         up_from = {}
