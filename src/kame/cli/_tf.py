@@ -1,0 +1,45 @@
+"""What kame's tf programs share (static_transform_publisher, tf_echo, tf2_echo, view_frames,
+tf_monitor): a node named as roscpp names an anonymous node, roscpp-style console lines, and a
+Buffer fed by /tf and /tf_static."""
+
+from __future__ import annotations
+
+import sys
+import time
+from collections.abc import Sequence
+
+from kame import names
+from kame.cli._node import ToolNode
+from kame.tf_ros.buffer import Buffer
+from kame.tf_ros.node_io import TransformListener
+
+RED, YELLOW, RESET = "\033[31m", "\033[33m", "\033[0m"
+
+
+def console(level: str, text: str) -> None:
+    """One roscpp console line: INFO on stdout, the rest on stderr in colour."""
+    if level == "INFO":
+        print(f"[ INFO] [{time.time():.9f}]: {text}", flush=True)
+        return
+    colour = RED if level in ("ERROR", "FATAL") else YELLOW
+    sys.stderr.write(f"{colour}[{level:>5}] [{time.time():.9f}]: {text}{RESET}\n")
+    sys.stderr.flush()
+
+
+def start_node(argv: Sequence[str], default_name: str, anonymous: bool = True) -> tuple[ToolNode, list[str]]:
+    """The program's node (not yet talking to the master) and its own arguments."""
+    ros = names.parse_args(argv)
+    special = dict(ros.special)
+    if anonymous and "name" not in special:
+        special["name"] = f"{default_name}_{time.time_ns()}"  # roscpp's AnonymousName
+    return ToolNode(special, default_name, ros.remappings), ros.argv
+
+
+def listening_buffer(tool: ToolNode) -> tuple[Buffer, TransformListener]:
+    buffer = Buffer(warn=lambda text: console("WARN", text))
+    return buffer, TransformListener(tool.node, buffer, now=time.time_ns)
+
+
+def wall_seconds_text(ns: int) -> str:
+    """ros::Time's `<<`: seconds.nanoseconds, nine digits."""
+    return f"{ns // 1_000_000_000}.{ns % 1_000_000_000:09d}"

@@ -1,0 +1,81 @@
+"""kame's tf tools as a user runs them, side by side with Debian's: static_transform_publisher
+(tf2_ros's once-latched form and tf's periodic form), tf_echo and tf2_tools' echo.py. Every
+process is stopped by its PID."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from ..support import SYSTEM_PYTHON, kame_command
+from .test_live import DEBIAN_STATIC, DEBIAN_TF_ECHO, Graph, debian, graph  # noqa: F401 -- the fixture
+
+DEBIAN_TF_STATIC = "/usr/lib/tf/static_transform_publisher"
+
+
+def kame_tool(module: str, function: str, *args: str) -> list[str]:
+    return [sys.executable, "-c", f"import sys; from {module} import {function}; sys.exit({function}())", *args]
+
+
+STATIC_TF2 = kame_tool("kame.cli.static_transform_publisher", "main_tf2")
+STATIC_TF = kame_tool("kame.cli.static_transform_publisher", "main_tf")
+TF_ECHO = kame_command("kame.cli.tf_echo")
+TF2_ECHO = kame_tool("kame.cli.tf_echo", "main_tf2")
+
+
+def echoed(proc_out: list[str], count: int = 2) -> list[str]:
+    """The first `count` echoes without their 'At time' lines."""
+    blocks = "".join(proc_out).split("At time ")[1:]
+    return ["\n".join(block.splitlines()[1:]) for block in blocks[:count]]
+
+
+@debian
+@pytest.mark.parametrize(("ours", "theirs", "args"), [
+    (STATIC_TF2, [DEBIAN_STATIC], ["1", "2"]),
+    (STATIC_TF, [DEBIAN_TF_STATIC], ["1", "2", "3"]),
+    (TF_ECHO, [DEBIAN_TF_ECHO], ["only_one"]),
+], ids=["tf2_static", "tf_static", "tf_echo"])
+def test_usage_is_debians(graph: Graph, ours: list[str], theirs: list[str], args: list[str]) -> None:
+    mine = subprocess.run([*ours, *args], env=graph.env, capture_output=True, text=True, timeout=30)
+    real = subprocess.run([*theirs, *args], env=graph.env, capture_output=True, text=True, timeout=30)
+    assert (mine.stdout, mine.returncode) == (real.stdout, real.returncode)
+
+
+@debian
+def test_tf_echo_prints_what_debians_prints(graph: Graph) -> None:
+    # kame's and Debian's publishers, each form, in one tree: world -> base -> arm -> hand
+    graph.start([*STATIC_TF2, "1", "2", "3", "0.1", "0.2", "0.3", "world", "base"])
+    graph.start([*STATIC_TF, "0", "0", "0.5", "0", "0", "0.3826834", "0.9238795", "base", "arm", "50"])
+    graph.start([DEBIAN_STATIC, "0.25", "0", "0", "0", "0", "0", "1", "arm", "hand"])
+    ours = graph.start([*TF_ECHO, "world", "hand", "5"])
+    theirs = graph.start([DEBIAN_TF_ECHO, "world", "hand", "5"])
+    for proc in (ours, theirs):
+        proc.wait_line("- Translation", timeout=20)
+    ours.wait_line("in RPY (degree)")
+    theirs.wait_line("in RPY (degree)")
+    assert echoed(ours.out, 1) == echoed(theirs.out, 1)
+    assert echoed(ours.out, 1)[0].startswith("- Translation: [")
+    static_only = graph.start([*TF_ECHO, "base", "world"])
+    static_only.wait_line("At time 0.000")
+
+
+@debian
+def test_echo_py_and_missing_frames(graph: Graph) -> None:
+    graph.start([*STATIC_TF2, "1", "0", "0", "0", "0", "0", "1", "map", "odom"])
+    echo = graph.start([*TF2_ECHO, "map", "odom", "-r", "5", "-l", "50"])
+    echo.wait_line("- Translation: [1.000, 0.000, 0.000]")
+    missing = graph.start([*TF_ECHO, "map", "ghost"])
+    missing.wait_line('Exception thrown:"ghost" passed to lookupTransform argument source_frame does not exist. ')
+    missing.wait_line("Frame odom exists with parent map.")
+
+
+def test_the_programs_are_in_their_packages() -> None:
+    share = Path(__file__).resolve().parents[2] / "src" / "kame" / "share"
+    for program in ("tf2_ros/nodes/static_transform_publisher", "tf/nodes/static_transform_publisher",
+                    "tf/nodes/tf_echo", "tf2_tools/scripts/echo.py"):
+        path = share / program
+        assert path.stat().st_mode & 0o111, program
+        assert subprocess.run([SYSTEM_PYTHON, "-m", "py_compile", str(path)]).returncode == 0
