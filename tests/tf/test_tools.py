@@ -11,7 +11,7 @@ from pathlib import Path
 import pytest
 
 from ..support import SYSTEM_PYTHON, kame_command
-from .test_live import DEBIAN_STATIC, DEBIAN_TF_ECHO, Graph, debian, graph  # noqa: F401 -- the fixture
+from .graph import DEBIAN_STATIC, DEBIAN_TF_ECHO, Graph, debian
 
 DEBIAN_TF_STATIC = "/usr/lib/tf/static_transform_publisher"
 
