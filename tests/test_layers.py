@@ -41,6 +41,7 @@ LAYERS: dict[str, int] = {
     "kame.tf": 1,  # transformations and the tf2 buffer core: no clock, no threads
     "kame.tf_ros": 3,  # the Buffer that waits, /tf listener and broadcasters on a Node
     "kame.share": 4,  # programs shipped in ROS packages (scripts/*.py)
+    "kame.turtle_tf": 4,  # the turtle_tf demo programs
     "kame.turtlesim": 1,  # the world: no ROS, no GUI, no clock
     "kame.turtlesim.gui": 4,  # Qt; knows only the world
     "kame.turtlesim.node": 4,

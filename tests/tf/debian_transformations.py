@@ -8,6 +8,7 @@ import json
 import sys
 
 import numpy
+
 from tf import transformations
 
 
