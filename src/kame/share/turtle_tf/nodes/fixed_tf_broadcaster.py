@@ -1,4 +1,7 @@
 #!/usr/bin/env python
+# ruff: noqa
+# mypy: ignore-errors
+# fixed_tf_broadcaster.py: the tf tutorials' program, as users copy it (the linters leave it alone).
 import rospy
 import tf
 

@@ -1,4 +1,7 @@
 #!/usr/bin/env python
+# ruff: noqa
+# mypy: ignore-errors
+# dynamic_tf2_broadcaster.py: the tf tutorials' program, as users copy it (the linters leave it alone).
 import rospy
 import math
 import tf2_ros

@@ -1,4 +1,7 @@
 #!/usr/bin/env python
+# ruff: noqa
+# mypy: ignore-errors
+# turtle_tf2_listener.py: the tf tutorials' program, as users copy it (the linters leave it alone).
 import rospy
 
 import math
