@@ -10,7 +10,7 @@ from pathlib import Path
 
 import pytest
 
-from ..support import SYSTEM_PYTHON, kame_command
+from ..support import SYSTEM_PYTHON, Proc, kame_command
 from .graph import DEBIAN_STATIC, DEBIAN_TF_ECHO, Graph, debian
 
 DEBIAN_TF_STATIC = "/usr/lib/tf/static_transform_publisher"
@@ -79,3 +79,32 @@ def test_the_programs_are_in_their_packages() -> None:
         path = share / program
         assert path.stat().st_mode & 0o111, program
         assert subprocess.run([SYSTEM_PYTHON, "-m", "py_compile", str(path)]).returncode == 0
+
+
+def pdf_is_well_formed(data: bytes) -> bool:
+    """Header, trailer, and every xref offset pointing at its object."""
+    if not data.startswith(b"%PDF-1.4\n") or not data.rstrip().endswith(b"%%EOF"):
+        return False
+    start = int(data.rsplit(b"startxref\n", 1)[1].split()[0])
+    rows = data[start:].split(b"\n")
+    count = int(rows[1].split()[1])
+    offsets = [int(row.split()[0]) for row in rows[3:2 + count]]
+    return all(data[offset:].startswith(b"%d 0 obj" % number) for number, offset in enumerate(offsets, start=1))
+
+
+@pytest.mark.parametrize(("function", "first_line"), [("main_tf", "digraph G {"), ("main_tf2", "digraph G {")])
+def test_view_frames_writes_gv_and_pdf(graph: Graph, tmp_path: Path, function: str, first_line: str) -> None:
+    graph.start([*STATIC_TF2, "1", "0", "0", "0", "0", "0", "world", "base"])
+    graph.start([*STATIC_TF, "0", "1", "0", "0", "0", "0", "base", "(camera)", "100"])
+    here = tmp_path / "out"
+    here.mkdir()
+    proc = Proc(kame_tool("kame.cli.view_frames", function), graph.env, cwd=here)
+    graph.procs.append(proc)
+    graph.finish(proc, timeout=40)
+    dot = (here / "frames.gv").read_text()
+    assert dot.splitlines()[0] == first_line
+    assert '"world" -> "base"' in dot and '"base" -> "(camera)"' in dot
+    assert "view_frames Result" in dot
+    pdf = (here / "frames.pdf").read_bytes()
+    assert pdf_is_well_formed(pdf)
+    assert b"(\\(camera\\)) Tj" in pdf and b"(world) Tj" in pdf  # names drawn, PDF-escaped
