@@ -75,7 +75,9 @@ def test_echo_py_and_missing_frames(graph: Graph) -> None:
 def test_the_programs_are_in_their_packages() -> None:
     share = Path(__file__).resolve().parents[2] / "src" / "kame" / "share"
     for program in ("tf2_ros/nodes/static_transform_publisher", "tf/nodes/static_transform_publisher",
-                    "tf/nodes/tf_echo", "tf2_tools/scripts/echo.py"):
+                    "tf/nodes/tf_echo", "tf/nodes/tf_monitor", "tf/nodes/view_frames", "tf2_tools/scripts/echo.py",
+                    "tf2_tools/scripts/view_frames.py", "turtle_tf/nodes/turtle_tf_broadcaster",
+                    "turtle_tf/nodes/turtle_tf_listener"):
         path = share / program
         assert path.stat().st_mode & 0o111, program
         assert subprocess.run([SYSTEM_PYTHON, "-m", "py_compile", str(path)]).returncode == 0
@@ -108,3 +110,13 @@ def test_view_frames_writes_gv_and_pdf(graph: Graph, tmp_path: Path, function: s
     pdf = (here / "frames.pdf").read_bytes()
     assert pdf_is_well_formed(pdf)
     assert b"(\\(camera\\)) Tj" in pdf and b"(world) Tj" in pdf  # names drawn, PDF-escaped
+
+
+def test_tf_monitor_reports_frames_broadcasters_and_a_chain(graph: Graph) -> None:
+    graph.start([*STATIC_TF2, "1", "0", "0", "0", "0", "0", "world", "base", "__name:=fixed"])
+    graph.start([*STATIC_TF, "0", "1", "0", "0", "0", "0", "base", "camera", "100", "__name:=moving"])
+    monitor = graph.start(kame_command("kame.cli.tf_monitor", "world", "camera"))
+    monitor.wait_line("Chain is: world -> base -> camera", timeout=20)
+    monitor.wait_line("Frame: base published by /fixed(static) Average Delay: 0 Max Delay: 0")
+    broadcaster = monitor.wait_line("Node: /moving ")
+    assert " Hz, Average Delay: -0.0" in broadcaster  # stamped a period (0.1 s) ahead

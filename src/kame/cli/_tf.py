@@ -6,7 +6,8 @@ from __future__ import annotations
 
 import sys
 import time
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
+from typing import Any
 
 from kame import names
 from kame.cli._node import ToolNode
@@ -35,9 +36,11 @@ def start_node(argv: Sequence[str], default_name: str, anonymous: bool = True) -
     return ToolNode(special, default_name, ros.remappings), ros.argv
 
 
-def listening_buffer(tool: ToolNode) -> tuple[Buffer, TransformListener]:
+def listening_buffer(tool: ToolNode, on_message: Callable[[Any, str, bool], None] | None = None,
+                     ) -> tuple[Buffer, TransformListener]:
+    """A Buffer fed from /tf and /tf_static; `on_message` also sees each message."""
     buffer = Buffer(warn=lambda text: console("WARN", text))
-    return buffer, TransformListener(tool.node, buffer, now=time.time_ns)
+    return buffer, TransformListener(tool.node, buffer, now=time.time_ns, on_message=on_message)
 
 
 def wall_seconds_text(ns: int) -> str:

@@ -29,10 +29,13 @@ class TransformListener:
     """Subscribes `node` to /tf and /tf_static and feeds `buffer`; `now` is the node's ROS time
     in ns (a jump back clears the buffer)."""
 
-    def __init__(self, node: Node, buffer: Buffer, now: Callable[[], int] | None = None) -> None:
+    def __init__(self, node: Node, buffer: Buffer, now: Callable[[], int] | None = None,
+                 on_message: Callable[[Any, str, bool], None] | None = None) -> None:
+        """`on_message(msg, authority, is_static)` sees each TFMessage too (tf_monitor's statistics)."""
         self.node = node
         self.buffer = buffer
         self._now = now
+        self._on_message = on_message
         message = _tf_message()
         self._message = message
         for topic, is_static in ((TF_TOPIC, False), (TF_STATIC_TOPIC, True)):
@@ -49,6 +52,8 @@ class TransformListener:
                     self.buffer.warn(f"cannot deserialize a tf2_msgs/TFMessage from {authority}: {exc}")
                     continue
                 self.buffer.receive(msg.transforms, authority, is_static, self._now() if self._now else 0)
+                if self._on_message is not None:
+                    self._on_message(msg, authority, is_static)
         return deliver
 
     def unregister(self) -> None:
