@@ -11,6 +11,7 @@ from kame.tf.errors import (
 )
 
 from .buffer import Buffer
+from .buffer_client import BufferClient
 from .buffer_interface import (
     BufferInterface,
     ConvertRegistration,
@@ -25,8 +26,8 @@ from .transform_broadcaster import TransformBroadcaster
 from .transform_listener import TransformListener
 
 __all__ = [
-    "Buffer", "BufferInterface", "ConnectivityException", "ConvertRegistration", "ExtrapolationException",
-    "InvalidArgumentException", "LookupException", "NotImplementedException", "Stamped", "StaticTransformBroadcaster",
-    "TimeoutException", "TransformBroadcaster", "TransformException", "TransformListener", "TransformRegistration",
-    "TypeException", "convert",
+    "Buffer", "BufferClient", "BufferInterface", "ConnectivityException", "ConvertRegistration",
+    "ExtrapolationException", "InvalidArgumentException", "LookupException", "NotImplementedException", "Stamped",
+    "StaticTransformBroadcaster", "TimeoutException", "TransformBroadcaster", "TransformException",
+    "TransformListener", "TransformRegistration", "TypeException", "convert",
 ]

@@ -5,6 +5,9 @@ process is stopped by its PID."""
 
 from __future__ import annotations
 
+import sys
+from pathlib import Path
+
 from .graph import DEBIAN_STATIC, DEBIAN_TF_ECHO, Graph, debian
 
 TF2_BROADCASTER = """
@@ -158,3 +161,45 @@ def test_kame_broadcasters_feed_debian_listener_and_tf_echo(graph: Graph) -> Non
     assert lines[0].endswith("world laser")
     echo = graph.start([DEBIAN_TF_ECHO, "base", "camera"])
     echo.wait_line("- Translation: [0.500, 0.000, 0.000]", timeout=20)
+
+
+BUFFER_CLIENT = """
+    import rospy, tf2_ros
+    rospy.init_node('asker')
+    client = tf2_ros.BufferClient('tf2_buffer_server')
+    print(client.wait_for_server(rospy.Duration(20)), flush=True)
+    t = client.lookup_transform('world', 'base', rospy.Time(0), rospy.Duration(10)).transform.translation
+    print('base', t.x, t.y, t.z, flush=True)
+    for target, source in (('world', 'nowhere'), ('world', '')):
+        try:
+            client.lookup_transform(target, source, rospy.Time(0), rospy.Duration(0.3))
+        except tf2_ros.TransformException as e:
+            print(type(e).__name__, e, flush=True)
+    print(client.can_transform('world', 'base', rospy.Time(0)), flush=True)
+"""
+BUFFER_SERVER = str(Path(__file__).resolve().parents[2] / "src/kame/share/tf2_ros/nodes/buffer_server")
+DEBIAN_BUFFER_SERVER = "/usr/lib/tf2_ros/buffer_server"
+EXPECTED_ANSWERS = [
+    "True", "base 0.0 0.0 0.5",
+    'LookupException "nowhere" passed to lookupTransform argument source_frame does not exist. ',
+    "InvalidArgumentException Invalid argument passed to lookupTransform argument source_frame in tf2 frame_ids "
+    "cannot be empty", "True",
+]
+
+
+def test_buffer_client_and_server(graph: Graph) -> None:
+    graph.start([sys.executable, "-m", "kame.cli.rosrun", "tf2_ros", "static_transform_publisher",
+                 "0", "0", "0.5", "0", "0", "0", "world", "base"])
+    graph.start([sys.executable, BUFFER_SERVER])
+    assert graph.finish(graph.kame(BUFFER_CLIENT)).splitlines() == EXPECTED_ANSWERS
+
+
+@debian
+def test_buffer_client_and_server_with_debian(graph: Graph) -> None:
+    graph.start([DEBIAN_STATIC, "0", "0", "0.5", "0", "0", "0", "world", "base"])
+    graph.start([DEBIAN_BUFFER_SERVER])
+    assert graph.finish(graph.kame(BUFFER_CLIENT)).splitlines() == EXPECTED_ANSWERS
+    graph.procs.pop().stop()
+    graph.procs.pop().stop()
+    graph.start([sys.executable, BUFFER_SERVER])
+    assert graph.finish(graph.real(BUFFER_CLIENT)).splitlines() == EXPECTED_ANSWERS

@@ -83,18 +83,35 @@ class Buffer:
 
     # ------------------------------------------------------------------ waiting
 
-    def _wait(self, ready: Callable[[], tuple[bool, str]], timeout: Any) -> tuple[bool, str]:
-        """ready() under the lock, re-checked each time a transform arrives, until it is True or
-        `timeout` (a Duration, or seconds) passes."""
+    def _wait(self, ready: Callable[[], tuple[bool, str]], timeout: Any,
+              cancelled: threading.Event | None = None) -> tuple[bool, str]:
+        """ready() under the lock, re-checked each time a transform arrives, until it is True,
+        `timeout` (a Duration, or seconds) passes, or `cancelled` is set (see wake())."""
         seconds = to_nsec(timeout) / 1e9 if timeout is not None else 0.0
         deadline = wallclock.monotonic() + seconds
         with self._changed:
             while True:
                 result = ready()
                 remaining = deadline - wallclock.monotonic()
-                if result[0] or remaining <= 0:
+                if result[0] or remaining <= 0 or (cancelled is not None and cancelled.is_set()):
                     return result
                 self._changed.wait(remaining)
+
+    def wake(self) -> None:
+        """Wake every waiting call to re-check (one whose `cancelled` event is set returns)."""
+        with self._changed:
+            self._changed.notify_all()
+
+    def wait_for(self, target_frame: str, source_frame: str, time: Any, timeout: Any,
+                 cancelled: threading.Event, target_time: Any = None, fixed_frame: str = "") -> bool:
+        """Wait as can_transform(_full) does, but give up early once `cancelled` is set and wake()
+        is called (a server shutting down)."""
+        stamp = to_nsec(time)
+        if fixed_frame:
+            target_stamp = to_nsec(target_time)
+            return self._wait(lambda: self._core.can_transform_full(target_frame, target_stamp, source_frame, stamp,
+                                                                    fixed_frame), timeout, cancelled)[0]
+        return self._wait(lambda: self._core.can_transform(target_frame, source_frame, stamp), timeout, cancelled)[0]
 
     # ------------------------------------------------------------------ lookups
 
