@@ -35,9 +35,10 @@ CHASE = """
 """
 
 
-@pytest.mark.parametrize("package", ["turtle_tf2", "turtle_tf"])
-def test_turtle2_chases_turtle1(graph: Graph, package: str) -> None:
-    graph.start(kame_command("kame.cli.roslaunch", package, f"{package}_demo.launch"))
+@pytest.mark.parametrize("launch", ["turtle_tf2_demo.launch", "turtle_tf_demo.launch", "turtle_tf2_demo_cpp.launch",
+                                    "turtle_tf_demo_cpp.launch"])
+def test_turtle2_chases_turtle1(graph: Graph, launch: str) -> None:
+    graph.start(kame_command("kame.cli.roslaunch", launch.split("_demo")[0], launch))
     out = graph.finish(graph.kame(CHASE), timeout=120)
     assert out.splitlines() == ["reached 5.544445 5.544445 True", "reached 9.0 2.0 True"]
 

@@ -1,11 +1,14 @@
-"""turtle_tf_broadcaster and turtle_tf_listener, as turtle_tf's C++ programs behave.
+"""turtle_tf's and turtle_tf2's C++ demo programs (turtle_tf_broadcaster, turtle_tf_listener,
+turtle_tf2_broadcaster, turtle_tf2_listener); on the wire tf and tf2 are the same.
 
-`turtle_tf_broadcaster /turtle1`: each turtlesim/Pose on `/turtle1/pose` becomes the transform
-world -> /turtle1 (x, y, 0; yaw theta) stamped now.
-`turtle_tf_listener`: waits for `spawn`, calls it with the request's defaults (turtlesim names the
+`*_broadcaster /turtle1` (or the `~turtle` parameter, as the launch files set it): each
+turtlesim/Pose on `turtle1/pose` becomes the transform world -> turtle1 (x, y, 0; yaw theta)
+stamped now.
+`*_listener`: waits for `spawn`, calls it with the request's defaults (turtlesim names the
 turtle `turtle2`), then ten times a second steers turtle2 toward turtle1 with the tutorial's
 gains: angular.z = 4 atan2(y, x), linear.x = 0.5 sqrt(x^2 + y^2), (x, y) being turtle1 in
-turtle2's frame. A failed lookup is logged and retried a second later, as the C++ node does.
+turtle2's frame. A failed lookup is logged and, a second later, a zero command sent, as the
+C++ programs do.
 """
 
 from __future__ import annotations
@@ -24,20 +27,28 @@ from kame.tf.transformations import quaternion_from_euler
 from kame.tf_ros.node_io import TransformBroadcaster
 
 
-def broadcaster_main(argv: Sequence[str] | None = None) -> int:
+def tf2_broadcaster_main(argv: Sequence[str] | None = None) -> int:
+    return broadcaster_main(argv, "my_tf2_broadcaster")
+
+
+def tf2_listener_main(argv: Sequence[str] | None = None) -> int:
+    return listener_main(argv, "my_tf2_listener")
+
+
+def broadcaster_main(argv: Sequence[str] | None = None, name: str = "my_tf_broadcaster") -> int:
     from geometry_msgs.msg import TransformStamped
     from kame.rostime import Time
     from turtlesim.msg import Pose
 
-    tool, args = start_node(sys.argv[1:] if argv is None else argv, "my_tf_broadcaster", anonymous=False)
+    tool, args = start_node(sys.argv[1:] if argv is None else argv, name, anonymous=False)
     try:
-        if len(args) != 1:
-            console("ERROR", "need turtle name as argument")
-            return 255
-        turtle = args[0]
         if not tool.wait_for_master():
             return 0
         node = tool.node
+        turtle = args[0] if len(args) == 1 else _private_param(tool, "turtle")
+        if not turtle:
+            console("ERROR", "need turtle name as argument")
+            return 255
         broadcaster = TransformBroadcaster(node)
 
         def on_pose(frames: list[memoryview], header: dict[str, str]) -> None:
@@ -66,11 +77,11 @@ def steering(x: float, y: float) -> tuple[float, float]:
     return 0.5 * math.sqrt(x ** 2 + y ** 2), 4.0 * math.atan2(y, x)
 
 
-def listener_main(argv: Sequence[str] | None = None) -> int:
+def listener_main(argv: Sequence[str] | None = None, name: str = "my_tf_listener") -> int:
     from geometry_msgs.msg import Twist
     from turtlesim.srv import Spawn, SpawnRequest, SpawnResponse
 
-    tool, _ = start_node(sys.argv[1:] if argv is None else argv, "my_tf_listener", anonymous=False)
+    tool, _ = start_node(sys.argv[1:] if argv is None else argv, name, anonymous=False)
     node = tool.node
     try:
         if not tool.wait_for_master():
@@ -88,19 +99,28 @@ def listener_main(argv: Sequence[str] | None = None) -> int:
                                      queue_size=10)
         buffer, _ = listening_buffer(tool)
         while not tool.stop.is_set():
+            x = y = 0.0
             try:
                 found = buffer.lookup_transform("turtle2", "turtle1", 0).transform.translation
+                x, y = found.x, found.y
             except errors.TransformException as exc:
                 console("ERROR", str(exc))
-                tool.stop.wait(1.0)
-                continue
+                if tool.stop.wait(1.0):
+                    break
             twist = Twist()
-            twist.linear.x, twist.angular.z = steering(found.x, found.y)
+            twist.linear.x, twist.angular.z = steering(x, y)
             publication.publish_frame(serialize_frame(twist))
             tool.stop.wait(0.1)
         return 0
     finally:
         node.shutdown("turtle_tf_listener exiting")
+
+
+def _private_param(tool: ToolNode, name: str) -> str:
+    try:
+        return str(tool.node.master.call("getParam", tool.node.resolve("~" + name)))
+    except Exception:
+        return ""
 
 
 def _service_ready(tool: ToolNode, name: str) -> bool:
