@@ -53,12 +53,12 @@ class _Walk:
 
     def accumulate(self, item: Stored, from_source: bool) -> None:
         if from_source:
-            self.source_translation = rotation.add(rotation.rotate(item.rotation, self.source_translation),
-                                                   item.translation)
+            self.source_translation = rotation.transform_point(item.rotation, item.translation,
+                                                               self.source_translation)
             self.source_rotation = rotation.multiply(item.rotation, self.source_rotation)
         else:
-            self.target_translation = rotation.add(rotation.rotate(item.rotation, self.target_translation),
-                                                   item.translation)
+            self.target_translation = rotation.transform_point(item.rotation, item.translation,
+                                                               self.target_translation)
             self.target_rotation = rotation.multiply(item.rotation, self.target_rotation)
 
     def result(self) -> tuple[Vector, Quaternion]:

@@ -54,8 +54,10 @@ def lerp(a: Vector, b: Vector, ratio: float) -> Vector:
 
 def slerp(a: Quaternion, b: Quaternion, t: float) -> Quaternion:
     """tf2::slerp: the short way round; nearly equal quaternions give a."""
-    magnitude = math.sqrt(sum(c * c for c in a) * sum(c * c for c in b))
-    product = sum(x * y for x, y in zip(a, b, strict=True)) / magnitude
+    ax, ay, az, aw = a
+    bx, by, bz, bw = b
+    magnitude = math.sqrt((ax * ax + ay * ay + az * az + aw * aw) * (bx * bx + by * by + bz * bz + bw * bw))
+    product = (ax * bx + ay * by + az * bz + aw * bw) / magnitude
     if abs(product) >= 1.0:
         return a
     sign = -1.0 if product < 0 else 1.0
@@ -63,8 +65,19 @@ def slerp(a: Quaternion, b: Quaternion, t: float) -> Quaternion:
     s1 = math.sin(sign * t * theta)
     d = 1.0 / math.sin(theta)
     s0 = math.sin((1.0 - t) * theta)
-    return ((a[0] * s0 + b[0] * s1) * d, (a[1] * s0 + b[1] * s1) * d,
-            (a[2] * s0 + b[2] * s1) * d, (a[3] * s0 + b[3] * s1) * d)
+    return ((ax * s0 + bx * s1) * d, (ay * s0 + by * s1) * d, (az * s0 + bz * s1) * d, (aw * s0 + bw * s1) * d)
+
+
+def transform_point(q: Quaternion, translation: Vector, v: Vector) -> Vector:
+    """q v q* + translation: a point moved by a rigid transform (rotate and add, in one call)."""
+    qx, qy, qz, qw = q
+    vx, vy, vz = v
+    tx = 2.0 * (qy * vz - qz * vy)
+    ty = 2.0 * (qz * vx - qx * vz)
+    tz = 2.0 * (qx * vy - qy * vx)
+    return (vx + qw * tx + qy * tz - qz * ty + translation[0],
+            vy + qw * ty + qz * tx - qx * tz + translation[1],
+            vz + qw * tz + qx * ty - qy * tx + translation[2])
 
 
 def norm_squared(q: Quaternion) -> float:
