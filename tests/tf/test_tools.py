@@ -120,3 +120,18 @@ def test_tf_monitor_reports_frames_broadcasters_and_a_chain(graph: Graph) -> Non
     monitor.wait_line("Frame: base published by /fixed(static) Average Delay: 0 Max Delay: 0")
     broadcaster = monitor.wait_line("Node: /moving ")
     assert " Hz, Average Delay: -0.0" in broadcaster  # stamped a period (0.1 s) ahead
+
+
+def test_static_publishers_in_a_launch_file(graph: Graph, tmp_path: Path) -> None:
+    """The way launch files use them: tf's with its period, tf2_ros's with yaw pitch roll."""
+    launch = tmp_path / "frames.launch"
+    launch.write_text("""<launch>
+  <node pkg="tf" type="static_transform_publisher" name="map_to_odom" args="1 0 0 0 0 0 map odom 100"/>
+  <node pkg="tf2_ros" type="static_transform_publisher" name="odom_to_laser"
+        args="0 2 0 1.5707963267948966 0 0 odom laser"/>
+</launch>
+""")
+    graph.start(kame_command("kame.cli.roslaunch", str(launch)))
+    echo = graph.start([*TF_ECHO, "map", "laser", "5"])
+    echo.wait_line("- Translation: [1.000, 2.000, 0.000]", timeout=30)
+    echo.wait_line("            in RPY (degree) [0.000, -0.000, 90.000]")
