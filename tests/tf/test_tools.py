@@ -10,7 +10,7 @@ from pathlib import Path
 
 import pytest
 
-from ..support import Proc, kame_command
+from ..support import SYSTEM_PYTHON, Proc, kame_command
 from .graph import DEBIAN_STATIC, DEBIAN_TF_ECHO, Graph, debian
 
 DEBIAN_TF_STATIC = "/usr/lib/tf/static_transform_publisher"
@@ -65,8 +65,13 @@ def test_tf_echo_prints_what_debians_prints(graph: Graph) -> None:
 @debian
 def test_echo_py_and_missing_frames(graph: Graph) -> None:
     graph.start([*STATIC_TF2, "1", "0", "0", "0", "0", "0", "1", "map", "odom"])
-    echo = graph.start([*TF2_ECHO, "map", "odom", "-r", "5", "-l", "50"])
-    echo.wait_line("- Translation: [1.000, 0.000, 0.000]")
+    graph.start([*STATIC_TF, "0", "0", "0", "0.3", "0.2", "0.1", "odom", "base", "100"])
+    echo = graph.start([*TF2_ECHO, "map", "base", "-r", "5", "-l", "50"])
+    real = graph.start([SYSTEM_PYTHON, "/usr/lib/tf2_tools/echo.py", "map", "base", "-r", "5", "-l", "50"])
+    for proc in (echo, real):
+        proc.wait_line("- Translation: [1.000, 0.000, 0.000]", timeout=20)
+        proc.wait_line("in RPY (degree)")
+    assert echoed(echo.out, 1) == echoed(real.out, 1)
     missing = graph.start([*TF_ECHO, "map", "ghost"])
     missing.wait_line('Exception thrown:"ghost" passed to lookupTransform argument source_frame does not exist. ')
     missing.wait_line("Frame odom exists with parent map.")
