@@ -66,7 +66,8 @@ def test_tf_echo_prints_what_debians_prints(graph: Graph) -> None:
 def test_echo_py_and_missing_frames(graph: Graph) -> None:
     graph.start([*STATIC_TF2, "1", "0", "0", "0", "0", "0", "1", "map", "odom"])
     graph.start([*STATIC_TF, "0", "0", "0", "0.3", "0.2", "0.1", "odom", "base", "100"])
-    echo = graph.start([*TF2_ECHO, "map", "base", "-r", "5", "-l", "50"])
+    # two nodes named /echo would shut each other down, as ROS does: ours gets another name
+    echo = graph.start([*TF2_ECHO, "map", "base", "-r", "5", "-l", "50", "__name:=kame_echo"])
     real = graph.start([SYSTEM_PYTHON, "/usr/lib/tf2_tools/echo.py", "map", "base", "-r", "5", "-l", "50"])
     for proc in (echo, real):
         proc.wait_line("- Translation: [1.000, 0.000, 0.000]", timeout=20)
