@@ -141,3 +141,12 @@ def test_static_publishers_in_a_launch_file(graph: Graph, tmp_path: Path) -> Non
     echo = graph.start([*TF_ECHO, "map", "laser", "5"])
     echo.wait_line("- Translation: [1.000, 2.000, 0.000]", timeout=30)
     echo.wait_line("            in RPY (degree) [0.000, -0.000, 90.000]")
+
+
+def test_tf_echo_private_parameters(graph: Graph) -> None:
+    graph.start([*STATIC_TF2, "1", "2", "3", "0", "0", "0", "map", "odom"])
+    echo = graph.start([*TF_ECHO, "map", "odom", "_precision:=1", "_rate:=10"])
+    echo.wait_line("- Translation: [1.0, 2.0, 3.0]", timeout=20)
+    bad = subprocess.run([*TF_ECHO, "map", "odom", "_precision:=0"], env=graph.env, capture_output=True, text=True,
+                         timeout=30)
+    assert (bad.returncode, bad.stderr) == (255, "Precision must be > 0\n")

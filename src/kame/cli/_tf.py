@@ -27,13 +27,41 @@ def console(level: str, text: str) -> None:
     sys.stderr.flush()
 
 
-def start_node(argv: Sequence[str], default_name: str, anonymous: bool = True) -> tuple[ToolNode, list[str]]:
+class TfTool(ToolNode):
+    """A ToolNode that, once the master answers, sets its `_name:=value` arguments as private
+    parameters, typed as roscpp types them (int, double, bool, else string)."""
+
+    def __init__(self, special: dict[str, str], default_name: str, remappings: dict[str, str],
+                 params: dict[str, str]) -> None:
+        super().__init__(special, default_name, remappings)
+        self.params = params
+
+    def wait_for_master(self) -> bool:
+        if not super().wait_for_master():
+            return False
+        for key, text in self.params.items():
+            self.node.master.call("setParam", self.node.resolve(key), roscpp_value(text))
+        return True
+
+
+def roscpp_value(text: str) -> Any:
+    for kind in (int, float):
+        try:
+            return kind(text)
+        except ValueError:
+            pass
+    if text.lower() in ("true", "false"):
+        return text.lower() == "true"
+    return text
+
+
+def start_node(argv: Sequence[str], default_name: str, anonymous: bool = True) -> tuple[TfTool, list[str]]:
     """The program's node (not yet talking to the master) and its own arguments."""
     ros = names.parse_args(argv)
     special = dict(ros.special)
     if anonymous and "name" not in special:
         special["name"] = f"{default_name}_{time.time_ns()}"  # roscpp's AnonymousName
-    return ToolNode(special, default_name, ros.remappings), ros.argv
+    return TfTool(special, default_name, dict(ros.remappings), dict(ros.params)), ros.argv
 
 
 def listening_buffer(tool: ToolNode, on_message: Callable[[Any, str, bool], None] | None = None,

@@ -10,6 +10,7 @@ import sys
 import time
 from collections.abc import Sequence
 
+from kame.cli._node import ToolNode
 from kame.cli._tf import console, listening_buffer, start_node, wall_seconds_text
 from kame.tf import errors, rotation
 from kame.tf.buffer_core import strip_slash
@@ -45,16 +46,19 @@ def main(argv: Sequence[str] | None = None) -> int:
         if len(args) not in (2, 3):
             print(TF_ECHO_USAGE, end="", flush=True)
             return 255
-        rate = float(args[2]) if len(args) == 3 else 1.0
+        if not tool.wait_for_master():
+            return 0
+        rate = _number(args[2]) if len(args) == 3 else _param(tool, "rate", 1.0)
         if rate <= 0.0:
             sys.stderr.write("Echo rate must be > 0.0\n")
             return 255
-        if not tool.wait_for_master():
-            return 0
+        precision = int(_param(tool, "precision", 3))
+        if precision < 1:
+            sys.stderr.write("Precision must be > 0\n")
+            return 255
         buffer, _ = listening_buffer(tool)
         source, target = strip_slash(args[0]), strip_slash(args[1])
         buffer.can_transform(source, target, 0, 1.0)  # up to a second for the first data
-        precision = 3
         while not tool.stop.is_set():
             try:
                 found = buffer.lookup_transform(source, target, 0)
@@ -76,6 +80,23 @@ def main(argv: Sequence[str] | None = None) -> int:
         return 0
     finally:
         tool.node.shutdown("tf_echo exiting")
+
+
+def _number(text: str) -> float:
+    """atof: what does not parse is 0."""
+    try:
+        return float(text)
+    except ValueError:
+        return 0.0
+
+
+def _param(tool: ToolNode, name: str, default: float) -> float:
+    """A private parameter (`_rate:=5`, or set in a launch file), else the default."""
+    try:
+        value = tool.node.master.call("getParam", tool.node.resolve("~" + name))
+    except Exception:
+        return default
+    return float(value) if isinstance(value, (int, float)) and not isinstance(value, bool) else default
 
 
 def _positive(kind: type[float] | type[int]) -> argparse._ActionType:
