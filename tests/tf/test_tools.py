@@ -150,3 +150,21 @@ def test_tf_echo_private_parameters(graph: Graph) -> None:
     bad = subprocess.run([*TF_ECHO, "map", "odom", "_precision:=0"], env=graph.env, capture_output=True, text=True,
                          timeout=30)
     assert (bad.returncode, bad.stderr) == (255, "Precision must be > 0\n")
+
+
+def test_sim_time_stamps_from_clock(graph: Graph) -> None:
+    """With /use_sim_time (a bag played with --clock), tf's periodic publisher stamps with /clock."""
+    subprocess.run([sys.executable, "-m", "kame.cli.rosparam", "set", "/use_sim_time", "true"], env=graph.env,
+                   check=True, timeout=30)
+    graph.kame("""
+        import rospy
+        from rosgraph_msgs.msg import Clock
+        rospy.init_node('clock', disable_rostime=True)
+        pub = rospy.Publisher('/clock', Clock, queue_size=1)
+        while not rospy.is_shutdown():
+            pub.publish(Clock(clock=rospy.Time(100)))
+            rospy.sleep(0.05)
+    """)
+    graph.start([*STATIC_TF, "1", "0", "0", "0", "0", "0", "map", "odom", "100"])
+    echo = graph.start([*TF_ECHO, "map", "odom", "5"])
+    echo.wait_line("At time 100.100", timeout=30)

@@ -29,19 +29,41 @@ def console(level: str, text: str) -> None:
 
 class TfTool(ToolNode):
     """A ToolNode that, once the master answers, sets its `_name:=value` arguments as private
-    parameters, typed as roscpp types them (int, double, bool, else string)."""
+    parameters, typed as roscpp types them (int, double, bool, else string), and keeps ROS
+    time: the wall clock, or /clock when /use_sim_time is true (a bag played with --clock)."""
 
     def __init__(self, special: dict[str, str], default_name: str, remappings: dict[str, str],
                  params: dict[str, str]) -> None:
         super().__init__(special, default_name, remappings)
         self.params = params
+        self._sim_time: int | None = None  # ns; None: the wall clock
 
     def wait_for_master(self) -> bool:
         if not super().wait_for_master():
             return False
         for key, text in self.params.items():
             self.node.master.call("setParam", self.node.resolve(key), roscpp_value(text))
+        if self._use_sim_time():
+            self._sim_time = 0
+            from rosgraph_msgs.msg import Clock
+
+            def on_clock(frames: list[memoryview], header: dict[str, str]) -> None:
+                clock = Clock._from_buffer(frames[-1]).clock
+                self._sim_time = int(clock.secs) * 1_000_000_000 + int(clock.nsecs)
+
+            self.node.subscribe(self.node.resolve("/clock"), Clock._type, Clock._md5sum, Clock._full_text,
+                                on_clock, queue_size=1)
         return True
+
+    def _use_sim_time(self) -> bool:
+        try:
+            return self.node.master.call("getParam", "/use_sim_time") is True
+        except Exception:  # not set
+            return False
+
+    def now_ns(self) -> int:
+        """ROS time in ns (0 under sim time until the first /clock, as roscpp)."""
+        return time.time_ns() if self._sim_time is None else self._sim_time
 
 
 def roscpp_value(text: str) -> Any:
@@ -64,11 +86,11 @@ def start_node(argv: Sequence[str], default_name: str, anonymous: bool = True) -
     return TfTool(special, default_name, dict(ros.remappings), dict(ros.params)), ros.argv
 
 
-def listening_buffer(tool: ToolNode, on_message: Callable[[Any, str, bool], None] | None = None,
+def listening_buffer(tool: TfTool, on_message: Callable[[Any, str, bool], None] | None = None,
                      ) -> tuple[Buffer, TransformListener]:
     """A Buffer fed from /tf and /tf_static; `on_message` also sees each message."""
     buffer = Buffer(warn=lambda text: console("WARN", text))
-    return buffer, TransformListener(tool.node, buffer, now=time.time_ns, on_message=on_message)
+    return buffer, TransformListener(tool.node, buffer, now=tool.now_ns, on_message=on_message)
 
 
 def wall_seconds_text(ns: int) -> str:

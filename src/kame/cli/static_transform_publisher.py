@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import math
 import sys
-import time
 from collections.abc import Sequence
 from typing import Any
 
@@ -117,7 +116,7 @@ def main_tf2(argv: Sequence[str] | None = None) -> int:
             console("FATAL", f"target_frame and source frame are the same ({parent}, {child}) this cannot work")
             return 1
         StaticTransformBroadcaster(tool.node).send_transform(
-            _transform(parent, child, time.time_ns(), translation, quaternion))
+            _transform(parent, child, tool.now_ns(), translation, quaternion))
         console("INFO", f"Spinning until killed publishing {parent} to {child}")
         tool.stop.wait()
         return 0
@@ -147,7 +146,7 @@ def main_tf(argv: Sequence[str] | None = None) -> int:
         broadcaster = TransformBroadcaster(tool.node)
         ahead = round(period * 1e9) if math.isfinite(period) and period > 0 else 0
         while True:
-            broadcaster.send_transform(_transform(parent, child, time.time_ns() + ahead, translation, quaternion))
+            broadcaster.send_transform(_transform(parent, child, tool.now_ns() + ahead, translation, quaternion))
             if tool.stop.wait(ahead / 1e9 if ahead else 0.0) or tool.stop.is_set():
                 return 0
     finally:

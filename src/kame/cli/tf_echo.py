@@ -7,7 +7,6 @@ from __future__ import annotations
 import argparse
 import math
 import sys
-import time
 from collections.abc import Sequence
 
 from kame.cli._node import ToolNode
@@ -74,7 +73,7 @@ def main(argv: Sequence[str] | None = None) -> int:
                       f"            in RPY (degree) [{_triple([a * 180.0 / math.pi for a in angles], precision)}]",
                       flush=True)
             except errors.TransformException as exc:
-                print(f"Failure at {wall_seconds_text(time.time_ns())}\nException thrown:{exc}\n"
+                print(f"Failure at {wall_seconds_text(tool.now_ns())}\nException thrown:{exc}\n"
                       f"The current list of frames is:\n{buffer.all_frames_as_string()}", flush=True)
             tool.stop.wait(1.0 / rate)
         return 0
@@ -130,7 +129,7 @@ def main_tf2(argv: Sequence[str] | None = None) -> int:
             count += 1
             if options.limit and count > options.limit:
                 return 0
-            now = time.time_ns()
+            now = tool.now_ns()
             if options.time:
                 lookup = round(options.time * 1e9)
             elif options.offset:

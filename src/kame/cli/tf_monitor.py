@@ -8,7 +8,6 @@ from __future__ import annotations
 
 import sys
 import threading
-import time
 from collections import deque
 from collections.abc import Sequence
 from typing import Any
@@ -77,7 +76,7 @@ def main(argv: Sequence[str] | None = None) -> int:
             return 0
         statistics = Statistics()
         buffer, _ = listening_buffer(
-            tool, on_message=lambda msg, who, static: statistics.record(msg, who, static, time.time()))
+            tool, on_message=lambda msg, who, static: statistics.record(msg, who, static, tool.now_ns() / 1e9))
         chain: list[str] = []
         if args:
             source, target = strip_slash(args[0]), strip_slash(args[1])
@@ -92,7 +91,7 @@ def main(argv: Sequence[str] | None = None) -> int:
             if chain:  # the chain's delay is sampled each round, reported every REPORT_ROUNDS
                 try:
                     stamp = buffer.lookup_transform(chain[0], chain[-1], 0).header.stamp
-                    delay = time.time() - to_nsec(stamp) / 1e9
+                    delay = (tool.now_ns() - to_nsec(stamp)) / 1e9
                     average = 0.01 * delay + 0.99 * average
                     maximum = max(maximum, delay)
                 except errors.TransformException:

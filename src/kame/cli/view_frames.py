@@ -33,7 +33,7 @@ def _listen(argv: Sequence[str] | None, name: str) -> tuple[dict[str, Any], str]
             console("INFO", "Listening to tf data during 5 seconds...")
         if tool.stop.wait(LISTEN_SECONDS):
             return None
-        now = time.time()
+        now = tool.now_ns() / 1e9
         data = yaml.safe_load(buffer.all_frames_as_yaml()) or {}
         return (data if isinstance(data, dict) else {}), buffer.all_frames_as_dot(now)
     finally:

@@ -15,7 +15,6 @@ from __future__ import annotations
 
 import math
 import sys
-import time
 from collections.abc import Sequence
 
 from kame.cli._node import ToolNode
@@ -55,7 +54,7 @@ def broadcaster_main(argv: Sequence[str] | None = None, name: str = "my_tf_broad
             for frame in frames:
                 pose = Pose._from_buffer(frame)
                 t = TransformStamped()
-                now = time.time_ns()
+                now = tool.now_ns()
                 t.header.stamp = Time(now // 1_000_000_000, now % 1_000_000_000)
                 t.header.frame_id, t.child_frame_id = "world", turtle
                 t.transform.translation.x, t.transform.translation.y = pose.x, pose.y
