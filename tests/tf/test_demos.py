@@ -38,9 +38,13 @@ CHASE = """
 @pytest.mark.parametrize("launch", ["turtle_tf2_demo.launch", "turtle_tf_demo.launch", "turtle_tf2_demo_cpp.launch",
                                     "turtle_tf_demo_cpp.launch"])
 def test_turtle2_chases_turtle1(graph: Graph, launch: str) -> None:
-    graph.start(kame_command("kame.cli.roslaunch", launch.split("_demo")[0], launch))
+    roslaunch = graph.start(kame_command("kame.cli.roslaunch", launch.split("_demo")[0], launch))
     out = graph.finish(graph.kame(CHASE), timeout=120)
     assert out.splitlines() == ["reached 5.544445 5.544445 True", "reached 9.0 2.0 True"]
+    # Ctrl-C ends the launch: every node stops on its SIGINT (none left for roslaunch to escalate)
+    graph.procs.remove(roslaunch)
+    _, err = roslaunch.stop(timeout=30)
+    assert roslaunch.popen.returncode == 0 and "escalating" not in err, err
 
 
 @pytest.mark.parametrize(("script", "radius", "fixed"), [
