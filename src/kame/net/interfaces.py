@@ -63,3 +63,8 @@ def resolve(host: str, family: int = socket.AF_UNSPEC) -> list[str] | None:
 
 def hostname() -> str:
     return socket.gethostname()
+
+
+def resolve_host(host: str, ipv6: bool = False) -> list[str] | None:
+    """The addresses `host` resolves to (IPv4 only unless `ipv6`), or None if it does not."""
+    return resolve(host, socket.AF_UNSPEC if ipv6 else socket.AF_INET)
