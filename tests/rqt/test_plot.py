@@ -236,5 +236,14 @@ def test_points_are_stamped_with_the_header_stamp_when_there_is_one(sim: Sim, so
         assert "stamped before the previous one" in source.problems()[0]
         t, x = source.data()[series]
         assert 2.5 not in x and np.all(np.diff(t) >= 0)
+        # one batch with a message in order and one out of it: the good one is kept, the
+        # problem still said (it was cleared by the good one's arrival)
+        header = {"type": "geometry_msgs/PoseStamped", "message_definition": PoseStamped._full_text}
+        batch = [memoryview(b"".join(bytes(p) for p in pose(x, after))[4:]) for x, after in ((3.5, 200.0), (4.5, 150.0))]
+        with source._lock:
+            source.errors.clear()
+        source._deliver("/stamped_pose", batch, header)
+        assert "stamped before the previous one" in source.problems()[0]
+        assert 3.5 in source.data()[series][1]
     finally:
         publisher_node.shutdown("test over")

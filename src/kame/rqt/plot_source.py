@@ -136,7 +136,7 @@ class PlotSource:
                 continue
             messages.append((self._time_of(msg) if stamped else now, msg))
         with self._lock:
-            messages = self._in_time_order(topic, messages)
+            messages, left_out = self._in_time_order(topic, messages)
             for name in self._by_topic.get(topic, []):
                 spec = self.specs[name]
                 values = []
@@ -155,21 +155,23 @@ class PlotSource:
                     if len(staged) > STAGE_LIMIT:
                         self._fold(name)
                     self.errors.pop(name, None)
+                if left_out:  # after the pop: a batch with good messages too still says it
+                    self.errors[name] = f"a message on {topic} stamped before the previous one was left out"
 
-    def _in_time_order(self, topic: str, messages: list[tuple[float, Any]]) -> list[tuple[float, Any]]:
+    def _in_time_order(self, topic: str, messages: list[tuple[float, Any]]) -> tuple[list[tuple[float, Any]], bool]:
         """The messages not stamped before the topic's newest point (a series keeps its times in
-        order); what is left out is said in the topic's series' problems. Under the lock."""
+        order), and whether any was left out. Under the lock."""
         latest = self._latest.get(topic, float("-inf"))
         kept = []
+        left_out = False
         for stamp, msg in messages:
             if stamp < latest:
-                for name in self._by_topic.get(topic, []):
-                    self.errors[name] = f"a message on {topic} stamped before the previous one was left out"
+                left_out = True
                 continue
             kept.append((stamp, msg))
             latest = stamp
         self._latest[topic] = latest
-        return kept
+        return kept, left_out
 
     def _time_of(self, msg: Any) -> float:
         stamp = msg.header.stamp
