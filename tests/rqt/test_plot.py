@@ -239,7 +239,8 @@ def test_points_are_stamped_with_the_header_stamp_when_there_is_one(sim: Sim, so
         # one batch with a message in order and one out of it: the good one is kept, the
         # problem still said (it was cleared by the good one's arrival)
         header = {"type": "geometry_msgs/PoseStamped", "message_definition": PoseStamped._full_text}
-        batch = [memoryview(b"".join(bytes(p) for p in pose(x, after))[4:]) for x, after in ((3.5, 200.0), (4.5, 150.0))]
+        batch = [memoryview(b"".join(bytes(part) for part in pose(x, after))[4:])  # without the length
+                 for x, after in ((3.5, 200.0), (4.5, 150.0))]
         with source._lock:
             source.errors.clear()
         source._deliver("/stamped_pose", batch, header)
