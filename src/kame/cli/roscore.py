@@ -27,7 +27,7 @@ from urllib.parse import urlsplit
 from kame.cli.rosmaster import DEFAULT_PORT, flush_periodically, log_dir, ros_home, serve, setup_file_logging
 from kame.launch.server import LaunchServer, ProcessState
 from kame.master.server import NOTIFY_TIMEOUT, MasterServer
-from kame.net.address import address_override, advertised_host, bind_host
+from kame.net.address import host_addresses
 from kame.net.process import SupervisedProcess
 
 ROS_VERSION = "1.15.15"
@@ -147,7 +147,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     port = options.port
     local_uri = f"http://localhost:{port}/"
     # what roslaunch calls the master in its refusal: the advertised host (ROS_HOSTNAME, ROS_IP or hostname)
-    named_uri = f"http://{advertised_host(address_override(env))}:{port}/"
+    host = host_addresses(env)
+    named_uri = f"http://{host.advertised}:{port}/"
 
     existing = _running_master(local_uri)
     run_id = str(uuid.uuid1())
@@ -167,8 +168,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         return [ProcessState("master", 1, True),
                 *(ProcessState(p.name, p.starts, p.running, args=p.args, respawn=p.respawn) for p in core_nodes)]
 
-    override = address_override(env)
-    launch_server = LaunchServer(bind_host(override), advertised_host(override), processes)
+    launch_server = LaunchServer(host.bind, host.advertised, processes)
     launch_server.start()
     _summary(launch_server.uri)
 

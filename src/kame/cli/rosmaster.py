@@ -20,7 +20,7 @@ from pathlib import Path
 
 from kame import names
 from kame.master.server import NOTIFY_TIMEOUT, MasterServer
-from kame.net.address import address_override, advertised_host, bind_host
+from kame.net.address import host_addresses
 
 DEFAULT_PORT = 11311
 LOG_FORMAT = "[%(name)s][%(levelname)s] %(asctime)s: %(message)s"
@@ -124,8 +124,8 @@ async def serve(port: int, notify_timeout: float,
     """Run a master on `port` until SIGINT/SIGTERM or a shutdown call; returns the exit status.
 
     `on_stopping` runs before the master closes, so what roscore started can still unregister."""
-    override = address_override(os.environ)
-    server = MasterServer(bind_host(override), port, advertised_host(override), notify_timeout=notify_timeout)
+    host = host_addresses(os.environ)
+    server = MasterServer(host.bind, port, host.advertised, notify_timeout=notify_timeout)
     try:
         uri = await server.start()
     except OSError as e:

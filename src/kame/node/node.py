@@ -25,6 +25,7 @@ from typing import TYPE_CHECKING, Any, NamedTuple
 
 from kame import names
 from kame.arity import accepts
+from kame.net.address import bind_host
 from kame.net.rpc_server import RpcServer
 from kame.net.stream import Flusher, Listener, peer_of, shut_down
 from kame.net.workers import WorkerPool
@@ -75,8 +76,7 @@ class Node:
         # told the caller and message of a shutdown call before the shutdown starts (rospy prints them)
         self.on_shutdown_call: Callable[[str, str], None] | None = None
         self._shutdown_hooks: list[Callable[[str], None]] = []
-        bind = config.bind_host or ("" if config.host not in ("localhost",) and not config.host.startswith("127.")
-                                    else config.host)
+        bind = config.bind_host or bind_host(config.host)
         self._threads: set[threading.Thread] = set()
         self._handshaking: set[socket.socket] = set()  # accepted sockets whose header is still to come
         self.flusher = Flusher(name="kame-flusher")
