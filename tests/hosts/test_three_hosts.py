@@ -1,0 +1,165 @@
+"""ROS across machines: three hosts (network namespaces on a private bridge, tests/support/netns.py)
+named robot, laptop and tablet in each other's hosts files, every program told its own name by
+ROS_HOSTNAME, as a lab sets them up. The master runs on robot; the programs on laptop and tablet
+talk through it and to each other, kame with kame and with Debian's rospy and roscpp.
+
+Needs root (skips without it). One set of hosts and one master serve the whole module; every
+process is stopped by its PID and every namespace is deleted at the end.
+"""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+import time
+from collections.abc import Iterator
+from pathlib import Path
+
+import pytest
+import yaml
+
+from ..support import SYSTEM_PYTHON, Proc, have_debian_ros, ros_env
+from ..support.netns import Host, Lan
+from ..support.roscpp import build_peers, roscpp_flags
+
+pytestmark = pytest.mark.skipif(Lan.unavailable() is not None, reason=Lan.unavailable() or "")
+
+BIN = Path(sys.executable).parent
+TUTORIALS = Path(__file__).parents[1] / "interop" / "tutorials"
+MASTER_URI = "http://robot:11311/"
+debian = pytest.mark.skipif(not have_debian_ros(), reason="Debian's ROS 1 (rospy, ros* tools) is not installed")
+
+
+class Hosts:
+    """The three hosts and the master on robot; `start` and `run` put a program on one host."""
+
+    def __init__(self, home: Path) -> None:
+        self.home = home
+        self.lan = Lan(["robot", "laptop", "tablet"])
+        self.procs: list[Proc] = []
+        try:
+            self.master = self.start("robot", [str(BIN / "rosmaster"), "--core", "-p", "11311"])
+            self.run("tablet", [str(BIN / "rosparam"), "set", "/hosts_up", "1"], timeout=20, retry=True)
+        except BaseException:
+            self.close()
+            raise
+
+    def env(self, host: str) -> dict[str, str]:
+        env = ros_env(self.home / host, MASTER_URI)
+        env["ROS_HOSTNAME"] = host
+        env.pop("DISPLAY", None)
+        return env
+
+    def host(self, name: str) -> Host:
+        return self.lan[name]
+
+    def start(self, host: str, args: list[str]) -> Proc:
+        proc = Proc(self.lan[host].command(args), self.env(host), cwd=self.home)
+        self.procs.append(proc)
+        return proc
+
+    def run(self, host: str, args: list[str], timeout: float = 20.0, retry: bool = False) -> str:
+        """`args` run to the end on `host`; with `retry`, again (for at most `timeout`) while they fail."""
+        deadline = time.monotonic() + timeout
+        while True:
+            result = subprocess.run(self.lan[host].command(args), env=self.env(host), capture_output=True,
+                                    text=True, timeout=timeout, cwd=self.home)
+            if result.returncode == 0:
+                return result.stdout
+            if not retry or time.monotonic() > deadline:
+                raise AssertionError(f"{args} on {host} failed ({result.returncode}):\n"
+                                     f"{result.stdout}\n{result.stderr}")
+            time.sleep(0.1)
+
+    def stop(self, proc: Proc) -> tuple[str, str]:
+        self.procs.remove(proc)
+        return proc.stop()
+
+    def close(self) -> None:
+        for proc in reversed(self.procs):
+            proc.stop()
+        self.procs.clear()
+        self.lan.close()
+
+
+@pytest.fixture(scope="module")
+def hosts(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Hosts]:
+    h = Hosts(tmp_path_factory.mktemp("hosts"))
+    try:
+        yield h
+    finally:
+        h.close()
+
+
+@pytest.fixture
+def cleanup(hosts: Hosts) -> Iterator[Hosts]:
+    """Stops what a test started on the hosts, keeping the module's master."""
+    before = list(hosts.procs)
+    try:
+        yield hosts
+    finally:
+        for proc in [p for p in hosts.procs if p not in before]:
+            hosts.stop(proc)
+
+
+def pose_x(hosts: Hosts, host: str) -> float:
+    out = hosts.run(host, [str(BIN / "rostopic"), "echo", "-n", "1", "/turtle1/pose"])
+    return float(yaml.safe_load(out.split("---")[0])["x"])
+
+
+def test_turtlesim_on_laptop_driven_and_watched_from_tablet(cleanup: Hosts) -> None:
+    hosts = cleanup
+    sim = hosts.start("laptop", [str(BIN / "rosrun"), "turtlesim", "turtlesim_node", "--headless"])
+    sim.wait_line("runs without a window")
+    start = pose_x(hosts, "tablet")
+    hosts.start("tablet", [str(BIN / "rostopic"), "pub", "-r", "20", "/turtle1/cmd_vel", "geometry_msgs/Twist",
+                           "{linear: {x: 2.0}}"])
+    deadline = time.monotonic() + 20
+    while pose_x(hosts, "tablet") < start + 1.0:
+        assert time.monotonic() < deadline, "the turtle on laptop never moved"
+    # a service across hosts: robot asks laptop's turtlesim for a second turtle
+    spawned = hosts.run("robot", [str(BIN / "rosservice"), "call", "/spawn", "1.0", "1.0", "0.0", "t2"])
+    assert yaml.safe_load(spawned) == {"name": "t2"}
+    nodes = hosts.run("robot", [str(BIN / "rosnode"), "list"]).split()
+    assert "/turtlesim" in nodes
+    uri = hosts.run("robot", [str(BIN / "rosnode"), "info", "/turtlesim"])
+    assert "contacting node http://laptop:" in uri
+
+
+@debian
+def test_kame_talker_heard_by_rospy_and_roscpp_on_another_host_and_back(cleanup: Hosts) -> None:
+    hosts = cleanup
+    flags = roscpp_flags()
+    hosts.start("laptop", [sys.executable, str(TUTORIALS / "talker.py")])
+    rospy_listener = hosts.start("tablet", [SYSTEM_PYTHON, str(TUTORIALS / "listener.py")])
+    assert "I heard hello world" in rospy_listener.wait_line("I heard hello world", timeout=20)
+    if flags is not None:
+        cpp_listener = hosts.start("tablet", [str(build_peers(flags)["listener"])])
+        cpp_listener.wait_line("I heard: [hello world ", timeout=20)
+    # the reverse: Debian's rospy talker on tablet, kame's listener on laptop
+    hosts.start("tablet", [SYSTEM_PYTHON, str(TUTORIALS / "talker.py"), "chatter:=from_tablet"])
+    kame_listener = hosts.start("laptop", [sys.executable, str(TUTORIALS / "listener.py"), "chatter:=from_tablet"])
+    kame_listener.wait_line("I heard hello world", timeout=20)
+
+
+def test_action_server_on_laptop_client_on_tablet(cleanup: Hosts) -> None:
+    hosts = cleanup
+    hosts.start("laptop", [str(BIN / "rosrun"), "actionlib_tutorials", "fibonacci_server.py"])
+    out = hosts.run("tablet", [str(BIN / "rosrun"), "actionlib_tutorials", "fibonacci_client.py"], timeout=30)
+    assert "Result: 0, 1, 1, 2, 3, 5, 8" in out
+
+
+def test_rosbag_on_robot_records_topics_published_on_laptop_and_tablet(cleanup: Hosts) -> None:
+    hosts = cleanup
+    bag = hosts.home / "two_hosts.bag"
+    hosts.start("laptop", [str(BIN / "rostopic"), "pub", "-r", "20", "/from_laptop", "std_msgs/String", "laptop"])
+    hosts.start("tablet", [str(BIN / "rostopic"), "pub", "-r", "20", "/from_tablet", "std_msgs/Int32", "7"])
+    record = hosts.start("robot", [str(BIN / "rosbag"), "record", "-O", str(bag), "/from_laptop", "/from_tablet"])
+    # rostopic echo on robot proves both publishers are reachable from there before recording is judged
+    for topic in ("/from_laptop", "/from_tablet"):
+        hosts.run("robot", [str(BIN / "rostopic"), "echo", "-n", "3", topic])
+    hosts.run("robot", [str(BIN / "rostopic"), "echo", "-n", "5", "/from_tablet"])
+    hosts.stop(record)
+    info = hosts.run("robot", [str(BIN / "rosbag"), "info", "-y", "-k", "topics", str(bag)])
+    counts = {t["topic"]: t["messages"] for t in yaml.safe_load(info)}
+    assert counts.get("/from_laptop", 0) > 0 and counts.get("/from_tablet", 0) > 0, info
