@@ -100,3 +100,22 @@ def test_node_config_from_the_command_line_and_environment() -> None:
     assert (config.name, config.master_uri, config.host, config.bind_host) == (
         "/top/other", "http://x:2/", "10.9.9.9", "0.0.0.0")
     assert environ.master_uri({}) == environ.DEFAULT_MASTER_URI
+
+
+def test_unreachable_reason_names_what_a_wrong_advertised_address_causes() -> None:
+    import errno
+
+    from kame.net.address import DOES_NOT_RESOLVE, unreachable_reason
+
+    def wrapped(cause: BaseException) -> OSError:
+        try:
+            raise OSError("requestTopic: failed") from cause
+        except OSError as exc:
+            return exc
+
+    assert unreachable_reason(wrapped(socket.gaierror(-2, "Name or service not known"))) == DOES_NOT_RESOLVE
+    assert unreachable_reason(ConnectionRefusedError()) == "the connection was refused"
+    assert unreachable_reason(wrapped(TimeoutError())) == "it did not answer"
+    assert unreachable_reason(OSError(errno.EHOSTUNREACH, "No route to host")) == "there is no route to it"
+    assert unreachable_reason(ValueError("bad header")) is None
+    assert unreachable_reason(ConnectionResetError()) is None

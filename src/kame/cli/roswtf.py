@@ -29,6 +29,7 @@ from kame.cli._tool import DEFAULT_MASTER_URI, run
 from kame.msg.catalog import SHARE_DIR, MsgCatalog, Package, find_packages, package_path_roots
 from kame.msg.errors import MessageError
 from kame.net import interfaces
+from kame.net.address import DOES_NOT_RESOLVE, NO_ROUTE, unreachable_reason
 from kame.net.xmlrpc_proxy import XmlRpcProxy
 from kame.node.master_proxy import MasterError, MasterProxy
 from kame.node.services import probe_service
@@ -172,6 +173,13 @@ def _ping_failure(node: str, uri: str, exc: BaseException) -> str:
     return f"connection to [{node}] failed"
 
 
+def _unusable(exc: BaseException) -> str | None:
+    """Why a node's advertised address is no good from here, when that is why it did not answer
+    (a refusal or a time-out is as likely a node that died or hangs: the ping error says those)."""
+    reason = unreachable_reason(exc)
+    return reason if reason in (DOES_NOT_RESOLVE, NO_ROUTE) else None
+
+
 def _pairs(value: object) -> list[tuple[str, str]]:
     if not isinstance(value, list):
         return []
@@ -187,7 +195,7 @@ def _ask_node(node: str, uri: str | None, uri_nodes: Mapping[str, str]) -> tuple
         try:
             proxy.call("getPid")
         except (OSError, XmlRpcError) as exc:
-            return _wtf.NodeFacts(uri, reachable=False), _ping_failure(node, uri, exc)
+            return _wtf.NodeFacts(uri, reachable=False, unusable_address=_unusable(exc)), _ping_failure(node, uri, exc)
         except MasterError:
             pass  # it answered
         try:
@@ -379,7 +387,7 @@ def _main(argv: list[str]) -> int:
     for complaint in complaints:
         print(complaint, file=sys.stderr)
     sys.stderr.flush()
-    _wtf.check_graph(graph, online)
+    _wtf.check_graph(graph, online, _wtf.master_is_remote(env))
     print("... done running graph rules")
     _wtf.check_launches(gather_launches(uri), online)
     out.write(f"\nOnline checks summary:\n\n{_wtf.format_report(online)}")

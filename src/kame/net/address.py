@@ -14,6 +14,7 @@
 
 from __future__ import annotations
 
+import errno
 import logging
 import socket
 import sys
@@ -126,3 +127,25 @@ def is_this_host(address: str) -> bool:
         return address in {a[4][0] for a in socket.getaddrinfo(socket.gethostname(), None)}
     except OSError:
         return False
+
+
+DOES_NOT_RESOLVE = "its name does not resolve on this machine"
+NO_ROUTE = "there is no route to it"
+_UNREACHABLE_ERRNOS = {errno.EHOSTUNREACH, errno.ENETUNREACH, errno.EHOSTDOWN, errno.ENETDOWN}
+
+
+def unreachable_reason(exc: BaseException) -> str | None:
+    """What about reaching an address went wrong, for the errors that a wrong advertised address
+    causes (its name does not resolve, nothing answers, no route, refused); None for the rest."""
+    seen: BaseException | None = exc
+    while seen is not None:
+        if isinstance(seen, socket.gaierror):
+            return DOES_NOT_RESOLVE
+        if isinstance(seen, ConnectionRefusedError):
+            return "the connection was refused"
+        if isinstance(seen, (TimeoutError, socket.timeout)):
+            return "it did not answer"
+        if isinstance(seen, OSError) and seen.errno in _UNREACHABLE_ERRNOS:
+            return NO_ROUTE
+        seen = seen.__cause__ or seen.__context__
+    return None

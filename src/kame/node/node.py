@@ -33,6 +33,7 @@ from kame.node.master_proxy import MasterError, MasterProxy
 from kame.node.services import ServiceClient, ServiceHandler, ServiceServer
 from kame.node.tcpros import ClosedBeforeHeader, HandshakeError, read_header, write_header
 from kame.node.topics import Callback, Publication, SubscriberLink, Subscription
+from kame.node.unreachable import ReportedOnce
 from kame.protocol import tcpros
 from kame.protocol.xmlrpc import Fault, MalformedError, decode_request, encode_fault, encode_response
 
@@ -82,6 +83,7 @@ class Node:
         self.flusher = Flusher(name="kame-flusher")
         self.workers = WorkerPool("kame-handshake")
         self._bad_attempts = _Throttled(log)
+        self.unreachable_reported = ReportedOnce()  # publishers whose address we said we cannot use
         self.listener = Listener(bind, config.tcpros_port, self._accept, name="kame-tcpros")
         self.rpc = RpcServer(bind, config.xmlrpc_port, self._rpc, name="kame-xmlrpc")
         self.uri = f"http://{_uri_host(config.host)}:{self.rpc.port}/"
