@@ -53,8 +53,8 @@ class Hosts:
     def host(self, name: str) -> Host:
         return self.lan[name]
 
-    def start(self, host: str, args: list[str]) -> Proc:
-        proc = Proc(self.lan[host].command(args), self.env(host), cwd=self.home)
+    def start(self, host: str, args: list[str], **env: str) -> Proc:
+        proc = Proc(self.lan[host].command(args), {**self.env(host), **env}, cwd=self.home)
         self.procs.append(proc)
         return proc
 
@@ -163,3 +163,28 @@ def test_rosbag_on_robot_records_topics_published_on_laptop_and_tablet(cleanup: 
     info = hosts.run("robot", [str(BIN / "rosbag"), "info", "-y", "-k", "topics", str(bag)])
     counts = {t["topic"]: t["messages"] for t in yaml.safe_load(info)}
     assert counts.get("/from_laptop", 0) > 0 and counts.get("/from_tablet", 0) > 0, info
+
+
+def wait_stderr(proc: Proc, text: str, timeout: float = 20.0) -> list[str]:
+    """Every stderr line of `proc` containing `text`, once there is one."""
+    deadline = time.monotonic() + timeout
+    while not (found := [line for line in proc.err if text in line]):
+        assert time.monotonic() < deadline and proc.popen.poll() is None, f"no {text!r} in {''.join(proc.err)}"
+        time.sleep(0.05)
+    return found
+
+
+def test_a_misnamed_publisher_is_one_warning_at_the_subscriber_and_a_roswtf_error(cleanup: Hosts) -> None:
+    hosts = cleanup
+    hosts.start("laptop", [str(BIN / "rostopic"), "pub", "-r", "10", "/misnamed", "std_msgs/String", "lost",
+                           "__name:=misnamed_talker"], ROS_HOSTNAME="laptop-misnamed")
+    listener = hosts.start("tablet", [sys.executable, str(TUTORIALS / "listener.py"), "chatter:=/misnamed"])
+    # the topic is there, as in the classic failure, but nothing flows: the one line says why
+    assert "/misnamed" in hosts.run("tablet", [str(BIN / "rostopic"), "list"]).split()
+    [warning] = wait_stderr(listener, "cannot reach publisher /misnamed_talker of /misnamed at http://laptop-misnamed:")
+    assert "its name does not resolve on this machine" in warning and "ROS_HOSTNAME" in warning
+    wtf = hosts.run("tablet", [str(BIN / "roswtf")], timeout=60)
+    assert "/misnamed_talker advertises [laptop-misnamed:" in wtf, wtf
+    _, err = hosts.stop(listener)
+    assert err.count("cannot reach publisher") == 1, err
+    assert "I heard" not in "".join(listener.out)
