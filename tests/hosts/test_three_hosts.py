@@ -180,7 +180,9 @@ def test_a_misnamed_publisher_is_one_warning_at_the_subscriber_and_a_roswtf_erro
                            "__name:=misnamed_talker"], ROS_HOSTNAME="laptop-misnamed")
     listener = hosts.start("tablet", [sys.executable, str(TUTORIALS / "listener.py"), "chatter:=/misnamed"])
     # the topic is there, as in the classic failure, but nothing flows: the one line says why
-    assert "/misnamed" in hosts.run("tablet", [str(BIN / "rostopic"), "list"]).split()
+    deadline = time.monotonic() + 20
+    while "/misnamed" not in hosts.run("tablet", [str(BIN / "rostopic"), "list"]).split():
+        assert time.monotonic() < deadline, "the misnamed publisher never registered"
     [warning] = wait_stderr(listener, "cannot reach publisher /misnamed_talker of /misnamed at http://laptop-misnamed:")
     assert "its name does not resolve on this machine" in warning and "ROS_HOSTNAME" in warning
     wtf = hosts.run("tablet", [str(BIN / "roswtf")], timeout=60)
