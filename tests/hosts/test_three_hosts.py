@@ -58,11 +58,11 @@ class Hosts:
         self.procs.append(proc)
         return proc
 
-    def run(self, host: str, args: list[str], timeout: float = 20.0, retry: bool = False) -> str:
+    def run(self, host: str, args: list[str], timeout: float = 20.0, retry: bool = False, **env: str) -> str:
         """`args` run to the end on `host`; with `retry`, again (for at most `timeout`) while they fail."""
         deadline = time.monotonic() + timeout
         while True:
-            result = subprocess.run(self.lan[host].command(args), env=self.env(host), capture_output=True,
+            result = subprocess.run(self.lan[host].command(args), env={**self.env(host), **env}, capture_output=True,
                                     text=True, timeout=timeout, cwd=self.home)
             if result.returncode == 0:
                 return result.stdout
@@ -190,3 +190,54 @@ def test_a_misnamed_publisher_is_one_warning_at_the_subscriber_and_a_roswtf_erro
     _, err = hosts.stop(listener)
     assert err.count("cannot reach publisher") == 1, err
     assert "I heard" not in "".join(listener.out)
+
+
+PROBE = """
+import socket, sys, xmlrpc.client
+master, node_uri, tcpros_port = sys.argv[1], sys.argv[2], int(sys.argv[3])
+
+def closed(host, port, data):
+    # whether the server closed our connection without a word
+    with socket.create_connection((host, port), timeout=5) as sock:
+        try:
+            sock.sendall(data)
+            return sock.recv(100) == b""
+        except ConnectionResetError:
+            return True
+
+call = xmlrpc.client.dumps(("/outsider",), "getPid").encode()
+post = b"POST / HTTP/1.1\\r\\nContent-Length: %d\\r\\n\\r\\n%s" % (len(call), call)
+node_host, node_port = node_uri.split("//")[1].rstrip("/").split(":")
+print("master", closed("robot", int(master), post))
+print("xmlrpc", closed(node_host, int(node_port), post))
+print("tcpros", closed(node_host, tcpros_port, b"\\x04\\x00\\x00\\x00abcd"))
+"""
+
+
+def test_an_allowlist_refuses_an_outside_host_at_every_port_and_serves_the_listed(cleanup: Hosts) -> None:
+    hosts = cleanup
+    guarded = {"ROS_MASTER_URI": "http://robot:11312/", "KAME_ALLOWED_PEERS": "robot laptop"}
+    master = hosts.start("robot", [str(BIN / "rosmaster"), "--core", "-p", "11312", "--allowed-peers",
+                                   "laptop"], ROS_MASTER_URI="http://robot:11312/")
+    hosts.run("laptop", [str(BIN / "rosparam"), "set", "/guarded_up", "1"], retry=True, **guarded)
+    talker = [str(BIN / "rostopic"), "pub", "-r", "10", "/guarded", "std_msgs/String", "inside", "__name:=guarded"]
+    guarded_talker = hosts.start("laptop", talker, **guarded)
+    # laptop is on the list: kame and Debian's rospy there work as ever
+    listener = hosts.start("laptop", [SYSTEM_PYTHON if have_debian_ros() else sys.executable,
+                                      str(TUTORIALS / "listener.py"), "chatter:=/guarded"], **guarded)
+    listener.wait_line("I heard inside", timeout=20)
+    # what tablet would be told, asked from robot (this machine, so always allowed)
+    node_uri = hosts.run("robot", [sys.executable, "-c", (
+        "import sys, xmlrpc.client as x; m = x.ServerProxy('http://robot:11312/'); uri = m.lookupNode('/p', "
+        "'/guarded')[2]; print(uri, x.ServerProxy(uri).requestTopic('/p', '/guarded', [['TCPROS']])[2][2])")],
+        retry=True).split()
+    refused = hosts.run("tablet", [sys.executable, "-c", PROBE, "11312", node_uri[0], node_uri[1]])
+    assert refused.split() == ["master", "True", "xmlrpc", "True", "tcpros", "True"], refused
+    hosts.stop(master)
+    master_log = (hosts.home / "robot" / "log" / "master.log").read_text()
+    assert master_log.count("refused a connection to the master from 10.231.0.3: it is not in "
+                            "KAME_ALLOWED_PEERS [laptop]") == 1, master_log
+    _, talker_err = hosts.stop(guarded_talker)
+    for server in ("kame-xmlrpc", "kame-tcpros"):
+        assert talker_err.count(f"refused a connection to the {server} from 10.231.0.3: it is not in "
+                                "KAME_ALLOWED_PEERS [robot laptop]") == 1, talker_err

@@ -27,6 +27,7 @@ from urllib.parse import urlsplit
 from kame.cli.rosmaster import DEFAULT_PORT, flush_periodically, log_dir, ros_home, serve, setup_file_logging
 from kame.launch.server import LaunchServer, ProcessState
 from kame.master.server import NOTIFY_TIMEOUT, MasterServer
+from kame.net import peers
 from kame.net.address import host_addresses
 from kame.net.process import SupervisedProcess
 
@@ -142,7 +143,14 @@ def main(argv: Sequence[str] | None = None) -> int:
                         help="accepted for compatibility (notifications are concurrent per node)")
     parser.add_argument("-t", "--timeout", type=float, default=NOTIFY_TIMEOUT, metavar="TIMEOUT",
                         help="timeout of each notification to a node, in seconds")
+    parser.add_argument("--allowed-peers", metavar="PEERS", default=None,
+                        help="only these addresses, networks (10.0.0.0/24) and host names, and this machine, may "
+                             "connect to the master and to the nodes started here (sets KAME_ALLOWED_PEERS)")
     options = parser.parse_args(sys.argv[1:] if argv is None else argv)
+    try:
+        peers.setup(options.allowed_peers)
+    except ValueError as exc:
+        parser.error(str(exc))
     env = os.environ
     port = options.port
     local_uri = f"http://localhost:{port}/"

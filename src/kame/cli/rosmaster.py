@@ -20,6 +20,7 @@ from pathlib import Path
 
 from kame import names
 from kame.master.server import NOTIFY_TIMEOUT, MasterServer
+from kame.net import peers
 from kame.net.address import host_addresses
 
 DEFAULT_PORT = 11311
@@ -165,9 +166,16 @@ def parse_args(argv: Sequence[str]) -> tuple[argparse.Namespace, dict[str, str]]
                         help="timeout of each notification to a node, in seconds")
     parser.add_argument("--master-logger-level", choices=sorted(_LEVELS), default=None,
                         help="set the master's logger level")
+    parser.add_argument("--allowed-peers", metavar="PEERS", default=None,
+                        help="only these addresses, networks (10.0.0.0/24) and host names, and this machine, may "
+                             "connect to the master and to the nodes started here (sets KAME_ALLOWED_PEERS)")
     options = parser.parse_args(ros.argv)
     if ros.remappings or ros.params:
         parser.error(f"unrecognized arg: {next(iter({**ros.remappings, **ros.params}))}")
+    try:
+        peers.setup(options.allowed_peers)
+    except ValueError as exc:
+        parser.error(str(exc))
     return options, ros.special
 
 

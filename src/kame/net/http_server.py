@@ -26,6 +26,8 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from types import MappingProxyType
 
+from kame.net import peers
+
 log = logging.getLogger("kame.net.http")
 
 _REASONS = {
@@ -98,6 +100,9 @@ class _Connection(asyncio.Protocol):
         self.transport = transport
         peer = transport.get_extra_info("peername")
         self.peer = f"{peer[0]}:{peer[1]}" if isinstance(peer, tuple) else str(peer)
+        if not peers.admit(peer, "master"):
+            transport.close()
+            return
         if not self.server._admit(self):
             log.warning("refusing connection from %s: too many connections", self.peer)
             transport.abort()
