@@ -241,3 +241,9 @@ def test_an_allowlist_refuses_an_outside_host_at_every_port_and_serves_the_liste
     for server in ("kame-xmlrpc", "kame-tcpros"):
         assert talker_err.count(f"refused a connection to the {server} from 10.231.0.3: it is not in "
                                 "KAME_ALLOWED_PEERS [robot laptop]") == 1, talker_err
+
+
+def test_roswtf_says_when_the_master_on_another_host_cannot_be_reached(hosts: Hosts) -> None:
+    out = hosts.run("tablet", [str(BIN / "roswtf")], timeout=60, ROS_MASTER_URI="http://robot:11399/")
+    assert "ROS Master does not appear to be running." in out
+    assert "The master's machine cannot be reached from here: the connection was refused." in out, out

@@ -2,10 +2,15 @@
 
 from __future__ import annotations
 
+import subprocess
+from pathlib import Path
+
 import pytest
 
 from kame.net import peers
 from kame.net.peers import parse
+
+from ..support import free_port, kame_command, ros_env
 
 
 def test_addresses_networks_and_host_names() -> None:
@@ -57,3 +62,11 @@ def test_a_malformed_list_in_effect_refuses_everyone_but_this_machine(caplog: py
     finally:
         peers.configure(None)
 
+
+
+@pytest.mark.parametrize("program", ["kame.cli.rosmaster", "kame.cli.roscore"])
+def test_roscore_refuses_a_malformed_allowed_peers_option(program: str, tmp_path: Path) -> None:
+    result = subprocess.run(kame_command(program, "-p", str(free_port()), "--allowed-peers", "10.0.0.0/33"),
+                            env=ros_env(tmp_path), capture_output=True, text=True, timeout=30)
+    assert result.returncode == 2, result
+    assert "KAME_ALLOWED_PEERS: [10.0.0.0/33] is not a network" in result.stderr

@@ -307,16 +307,17 @@ def gather_launches(master_uri: str) -> list[tuple[Sequence[Sequence[object]], S
     return listings
 
 
-def _master_online(uri: str) -> bool:
+def _master_offline(uri: str) -> BaseException | None:
+    """None when the master answers, else what calling it raised."""
     try:
         proxy = MasterProxy(uri, ID, timeout=TIMEOUT)
-    except ValueError:
-        return False
+    except ValueError as exc:
+        return exc
     try:
         proxy.call("getPid")
-        return True
-    except (OSError, XmlRpcError, MasterError):
-        return False
+        return None
+    except (OSError, XmlRpcError, MasterError) as exc:
+        return exc
     finally:
         proxy.close()
 
@@ -368,9 +369,14 @@ def _main(argv: list[str]) -> int:
     out.flush()
 
     uri = env.master_uri
-    if options.offline or not uri or _wtf.invalid_url(uri) or not _master_online(uri):
+    offline = None if options.offline or not uri or _wtf.invalid_url(uri) else _master_offline(uri)
+    if options.offline or not uri or _wtf.invalid_url(uri) or offline is not None:
         print(f"\nROS Master does not appear to be running.\nOnline graph checks will not be run.\n"
               f"ROS_MASTER_URI is [{uri}]")
+        reason = unreachable_reason(offline) if offline is not None else None
+        if reason and (_wtf.master_is_remote(env) or reason == DOES_NOT_RESOLVE):
+            # kame's addition: with the master on another machine, "not running" may be the network
+            print(f"The master's machine cannot be reached from here: {reason}.")
         return 0
     print("Beginning tests of your ROS graph. These may take a while...")
     print("analyzing graph...", flush=True)
