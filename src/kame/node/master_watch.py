@@ -2,10 +2,15 @@
 
 ROS 1 nodes register once: after `roscore` restarts, running nodes are unknown to the new
 master, so `rosnode list` misses them and new subscribers never find their publishers. A node
-here asks the master's getPid every WATCH_INTERVAL seconds; when the PID changes, or the master
-answers again after failing to, the node registers everything again: the parameters it set,
-its parameter subscriptions, services, publications and subscriptions (each subscription takes
-the new master's publisher list, as from a publisherUpdate).
+here asks the master every WATCH_INTERVAL seconds who it is (lookupNode of its own name); when
+the master answers that it does not know the node although the node has registered something,
+the master is a new one, and the node registers everything again: the parameters it set, its
+parameter subscriptions, services, publications and subscriptions (each subscription takes the
+new master's publisher list, as from a publisherUpdate).
+
+Asking about the node itself, rather than comparing the master's PID, also sees a master
+restarted under the same PID (PID 1 in a container), and a slow answer is never taken for a
+restart. A node that registered nothing has nothing to restore.
 """
 
 from __future__ import annotations
@@ -15,6 +20,7 @@ import threading
 from collections.abc import Callable
 
 from kame.node.master_proxy import MasterError, MasterProxy
+from kame.protocol.xmlrpc import XmlRpcError
 
 log = logging.getLogger("kame.node")
 
@@ -24,41 +30,47 @@ WATCH_INTERVAL = 0.5  # s: with the master's own start-up, nodes are back within
 class MasterWatch:
     """Owned by a Node: `run` is its thread's target, `close` ends it at once."""
 
-    def __init__(self, master_uri: str, caller_id: str, register_again: Callable[[], None],
-                 interval: float = WATCH_INTERVAL) -> None:
+    def __init__(self, master_uri: str, name: str, registered: Callable[[], bool],
+                 register_again: Callable[[], None], interval: float = WATCH_INTERVAL) -> None:
         # its own connection: a check waiting on a master that went away holds up no other call
-        self._master = MasterProxy(master_uri, caller_id)
+        self._master = MasterProxy(master_uri, name)
+        self._name = name
+        self._registered = registered
         self._register_again = register_again
         self._interval = interval
         self._closing = threading.Event()
-        self.pid: int | None = None  # the master's, when it last answered
-        self._lost = False  # the last call failed
+        self._answering = True
 
     def run(self) -> None:
         try:
-            while not self._closing.is_set():
+            while not self._closing.wait(self._interval):
                 self.check()
-                self._closing.wait(self._interval)
         finally:
             self._master.close()
 
     def check(self) -> None:
-        try:
-            pid = int(self._master.call("getPid", timeout=self._interval * 2))
-        except (OSError, MasterError, ValueError, TypeError):
-            if not self._lost:
-                log.debug("the master at %s does not answer", self._master.uri)
-            self._lost = True
+        if not self._registered():
             return
-        came_back = self._lost or (self.pid is not None and pid != self.pid)
-        self.pid, self._lost = pid, False
-        if came_back and not self._closing.is_set():
-            log.info("the master at %s is back (pid %d): registering again", self._master.uri, pid)
-            try:
-                self._register_again()
-            except (OSError, MasterError) as exc:
-                log.warning("registering again with the master at %s failed: %s", self._master.uri, exc)
-                self._lost = True  # try again at the next check
+        try:
+            self._master.call("lookupNode", self._name, timeout=self._interval * 2)
+            self._answering = True
+            return
+        except MasterError:
+            pass  # a master that does not know us
+        except (OSError, XmlRpcError) as exc:
+            if self._answering:
+                log.debug("the master at %s does not answer: %s", self._master.uri, exc)
+            self._answering = False
+            return
+        self._answering = True
+        if self._closing.is_set():
+            return
+        log.info("the master at %s does not know %s (it restarted): registering again", self._master.uri,
+                 self._name)
+        try:
+            self._register_again()
+        except (OSError, MasterError) as exc:
+            log.warning("registering again with the master at %s failed: %s", self._master.uri, exc)
 
     def close(self) -> None:
         self._closing.set()

@@ -91,7 +91,8 @@ class Node:
         self.uri = f"http://{_uri_host(config.host)}:{self.rpc.port}/"
         self.tcpros_port = self.listener.port
         self.rpc.start()
-        self.master_watch = MasterWatch(config.master_uri, config.name, self.register_again)
+        self.master_watch = MasterWatch(config.master_uri, config.name, self._has_registrations,
+                                        self.register_again)
         self.spawn(self.master_watch.run, "kame-master-watch")
 
     # ------------------------------------------------------------------ utilities
@@ -330,6 +331,9 @@ class Node:
         with self._lock:
             self.params_set = {k: v for k, v in self.params_set.items()
                                if not (k == key or k.startswith(key.rstrip("/") + "/"))}
+
+    def _has_registrations(self) -> bool:
+        return bool(self.publications or self.subscriptions or self.services)
 
     def register_again(self) -> None:
         """Everything this node has told the master, told again (a restarted master knows nothing)."""
