@@ -1,5 +1,5 @@
 """A restarted master (beyond ROS 1): running nodes notice and register again, so a turtlesim
-started before `rosmaster` restarts is listed again, keeps its parameters, and moves for a
+started before the master restarts (as `roscore`) is listed again, keeps its parameters, and moves for a
 teleop started after the restart (its subscription, which only the new master can tell the
 new publisher about) while a new `rostopic echo` sees its pose (its publication)."""
 
@@ -19,7 +19,7 @@ def test_a_restarted_master_gets_turtlesim_back_and_the_turtle_moves(tmp_path: P
         assert sim.run("rosparam", "get", "/turtlesim/background_b").stdout.strip() == "255"
         old_master = sim.procs.pop(0)
         old_master.stop()
-        new_master = Proc([str(BIN / "rosmaster"), "--core", "-p", str(urlsplit(sim.uri).port)], sim.env)
+        new_master = Proc([str(BIN / "roscore"), "-p", str(urlsplit(sim.uri).port)], sim.env)
         sim.procs.insert(0, new_master)
         wait_for_master(sim.uri, proc=new_master)
         restarted = time.monotonic()
