@@ -12,8 +12,12 @@
   writer drops what it has written from the page cache behind itself (drop_behind) and
   takes large messages by reference (owned), with no copy into the chunk.
 - Ctrl-C (or SIGTERM) stops subscribing, drains the queue, closes the bag and renames
-  `name.bag.active` to `name.bag`. A killed recorder leaves complete chunks and no index:
-  `rosbag reindex` repairs it.
+  `name.bag.active` to `name.bag`. What arrives is handed to the kernel at least every
+  FLUSH_INTERVAL (the open chunk is streamed), so a killed recorder loses at most that much:
+  `rosbag reindex name.bag.active` indexes everything else, the torn last chunk included.
+- A write that fails (a full disk) ends the recording with one error line; the bag is closed
+  with what reached the disk (and renamed) when there is room for its index, else left as
+  `.active` for `rosbag reindex`.
 - -a, -e and --node find topics by asking the master once a second.
 """
 
@@ -51,6 +55,9 @@ def log_warn(text: str) -> None:
 def log_error(text: str) -> None:
     sys.stderr.write(f"\033[31m[ERROR] [{time.time():.9f}]: {text}\033[0m\n")
     sys.stderr.flush()
+
+
+FLUSH_INTERVAL = 0.5  # seconds: at most this much is lost when the recorder is killed
 
 
 class RecordingFailed(Exception):
@@ -259,13 +266,14 @@ class Recorder:
     def _write_until_stopped(self) -> None:
         writer, path = self._open()
         conns: dict[tuple[str, str], int] = {}
-        opened = time.monotonic()
+        opened = flushed = time.monotonic()
         written: list[str] = [path]
         try:
             while True:
                 with self.cond:
                     while not self.queue and not self.stop.is_set():
-                        self.cond.wait(0.25)
+                        if not self.cond.wait(max(flushed + FLUSH_INTERVAL - time.monotonic(), 0.01)):
+                            break
                     if not self.queue and self.stop.is_set():
                         break
                     batch = list(self.queue)
@@ -280,6 +288,12 @@ class Recorder:
                         writer.write(conn_id, secs, nsecs, data, owned=True)
                     except OSError as exc:
                         raise RecordingFailed(f"cannot write {path}.active: {exc.strerror or exc}") from exc
+                if time.monotonic() - flushed >= FLUSH_INTERVAL:
+                    try:
+                        writer.write_pending()
+                    except OSError as exc:
+                        raise RecordingFailed(f"cannot write {path}.active: {exc.strerror or exc}") from exc
+                    flushed = time.monotonic()
                 if self.options.split and ((self.max_size and writer.size >= self.max_size)
                                            or (self.max_duration and time.monotonic() - opened >= self.max_duration)):
                     self._close(writer, path)

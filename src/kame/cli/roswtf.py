@@ -30,7 +30,7 @@ from kame.msg.catalog import SHARE_DIR, MsgCatalog, Package, find_packages, pack
 from kame.msg.errors import MessageError
 from kame.net import interfaces
 from kame.net.address import DOES_NOT_RESOLVE, NO_ROUTE, unreachable_reason
-from kame.net.xmlrpc_proxy import XmlRpcProxy
+from kame.net.xmlrpc_client import XmlRpcProxy
 from kame.node.master_proxy import MasterError, MasterProxy
 from kame.node.services import probe_service
 from kame.protocol.xmlrpc import XmlRpcError

@@ -15,6 +15,7 @@ so after shutdown no thread of the node is left running.
 
 from __future__ import annotations
 
+import contextlib
 import itertools
 import logging
 import os
@@ -32,7 +33,7 @@ from kame.net.workers import WorkerPool
 from kame.node.master_proxy import MasterError, MasterProxy
 from kame.node.master_watch import MasterWatch
 from kame.node.services import ServiceClient, ServiceHandler, ServiceServer
-from kame.node.tcpros import ClosedBeforeHeader, HandshakeError, read_header, write_header
+from kame.node.tcpros import ClosedBeforeHeader, HandshakeError, MalformedHeader, read_header, write_header
 from kame.node.topics import Callback, Publication, SubscriberLink, Subscription
 from kame.node.unreachable import ReportedOnce
 from kame.protocol import tcpros
@@ -154,12 +155,15 @@ class Node:
 
     def subscribe(self, topic: str, type: str, md5sum: str, definition: str, deliver: Callback,
                   queue_size: int | None = None, tcp_nodelay: bool = False,
-                  buff_size: int | None = None) -> Subscription:
-        """Subscribe to `topic` (already resolved); see Subscription for tcp_nodelay and buff_size."""
+                  buff_size: int | None = None, max_frame: int | None = None) -> Subscription:
+        """Subscribe to `topic` (already resolved); see Subscription for tcp_nodelay and buff_size.
+        `max_frame`: the largest message accepted (default: the type's size when it has no
+        variable-length fields, else 1 GiB); a larger one drops that publisher's connection."""
         with self._lock:
             if topic in self.subscriptions:
                 raise ValueError(f"already subscribed to {topic}")
-            sub = Subscription(self, topic, type, md5sum, definition, queue_size, tcp_nodelay, deliver, buff_size)
+            sub = Subscription(self, topic, type, md5sum, definition, queue_size, tcp_nodelay, deliver, buff_size,
+                               max_frame)
             self.subscriptions[topic] = sub
         publishers = self.master.call("registerSubscriber", topic, type, self.uri)
         sub.set_publishers([str(uri) for uri in publishers])
@@ -215,6 +219,12 @@ class Node:
             header = read_header(sock, HANDSHAKE_TIMEOUT)
             sock.settimeout(None)
         except ClosedBeforeHeader:
+            sock.close()
+            return
+        except MalformedHeader as exc:
+            self._bad_attempts.warning("bad TCPROS connection attempt from %s: %s", peer_of(sock), exc)
+            with contextlib.suppress(OSError):  # tell the peer why, as for any refused connection
+                write_header(sock, tcpros.error_header_fields(str(exc)))
             sock.close()
             return
         except (OSError, HandshakeError) as exc:
