@@ -192,3 +192,52 @@ def test_roslaunch_rules_over_list_processes_answers() -> None:
     quiet = Report()
     _wtf.check_launches([([["master", 1]], [])], quiet)
     assert quiet.warnings == [] and quiet.errors == []
+
+
+REMOTE = "http://robot:11311/"
+ROBOT = {"robot": ["10.0.0.9"], "box": ["10.0.0.5"], "localhost": ["127.0.0.1"]}
+
+
+@pytest.mark.parametrize(("variables", "addresses", "advertised"), [
+    ({"ROS_HOSTNAME": "localhost"}, ROBOT, "[localhost], which means [127.0.0.1]"),
+    ({"ROS_IP": "127.0.0.1"}, ROBOT, "[127.0.0.1], which means [127.0.0.1]"),
+    ({}, {**ROBOT, "box": ["127.0.1.1"]}, "[box], which means [127.0.1.1]"),  # Debian's hosts file
+])
+def test_advertising_loopback_with_the_master_on_another_machine_is_an_error(
+        variables: dict[str, str], addresses: dict[str, list[str]], advertised: str) -> None:
+    report = env_report({"ROS_PACKAGE_PATH": "/ws", **variables}, REMOTE, addresses=addresses)
+    found = [e for e in report.errors if e.startswith("Nodes on other machines cannot reach this one: ")]
+    assert len(found) == 1 and advertised in found[0] and "Set ROS_IP" in found[0], report.errors
+
+
+@pytest.mark.parametrize(("variables", "master_uri", "addresses"), [
+    ({"ROS_HOSTNAME": "localhost"}, URI, ROBOT),  # everything on this machine: loopback is right
+    ({"ROS_HOSTNAME": "box"}, REMOTE, ROBOT),
+    ({"ROS_IP": "10.0.0.5"}, REMOTE, ROBOT),
+    ({"ROS_HOSTNAME": "localhost"}, REMOTE, {"box": ["10.0.0.5"]}),  # the master's host is unknown: another rule
+])
+def test_no_loopback_error_when_it_is_right_or_not_the_problem(
+        variables: dict[str, str], master_uri: str, addresses: dict[str, list[str]]) -> None:
+    report = env_report({"ROS_PACKAGE_PATH": "/ws", **variables}, master_uri, addresses=addresses)
+    assert not [e for e in report.errors if e.startswith("Nodes on other machines")], report.errors
+
+
+def test_nodes_advertising_an_unusable_address_are_an_error_naming_the_fix() -> None:
+    graph = Graph({"/chatter": ["/talker", "/local", "/fine"]}, {}, {}, {
+        "/talker": NodeFacts("http://laptop.wrong:4100/", reachable=False,
+                             unusable_address="its name does not resolve on this machine"),
+        "/local": NodeFacts("http://127.0.0.1:4200/", reachable=False),
+        "/fine": NodeFacts("http://laptop:4300/"),
+    })
+    title = "The following nodes advertise an address this machine cannot use"
+    report = Report()
+    _wtf.check_graph(graph, report, master_remote=True)
+    [error] = [e for e in report.errors if e.startswith(title)]
+    assert "ROS_IP" in error and "ROS_HOSTNAME" in error
+    assert error.splitlines()[1:] == [
+        " * /local advertises [127.0.0.1:4200]: a loopback address, which only its own machine can use",
+        " * /talker advertises [laptop.wrong:4100]: its name does not resolve on this machine"]
+    report = Report()
+    _wtf.check_graph(graph, report)  # the master on this machine: loopback URIs are fine
+    [error] = [e for e in report.errors if e.startswith(title)]
+    assert "/local" not in error

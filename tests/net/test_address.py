@@ -7,7 +7,7 @@ import socket
 import pytest
 
 from kame import environ
-from kame.net.address import address_override, advertised_host, bind_host, local_address
+from kame.net.address import address_override, advertised_host, bind_host, host_addresses, local_address
 from kame.node.config import node_config
 
 
@@ -35,19 +35,58 @@ def test_advertised_host_without_override_is_the_host_name_unless_loopback(monke
 def test_local_address_prefers_the_only_or_first_non_loopback(monkeypatch: pytest.MonkeyPatch) -> None:
     import kame.net.address as address
 
-    monkeypatch.setattr(address, "local_addresses", lambda: ["127.0.0.1", "192.168.1.5", "10.0.0.1"])
+    monkeypatch.setattr(address, "local_addresses", lambda ipv6=False: ["127.0.0.1", "192.168.1.5", "10.0.0.1"])
     assert local_address() == "192.168.1.5"
-    monkeypatch.setattr(address, "local_addresses", lambda: ["127.0.1.1"])
+    monkeypatch.setattr(address, "local_addresses", lambda ipv6=False: ["127.0.1.1"])
     assert local_address() == "127.0.1.1"
-    monkeypatch.setattr(address, "local_addresses", lambda: ["127.0.0.1", "127.0.1.1"])
+    monkeypatch.setattr(address, "local_addresses", lambda ipv6=False: ["127.0.0.1", "127.0.1.1"])
     assert local_address() == "127.0.0.1"
 
 
 def test_bind_host() -> None:
     assert bind_host("localhost") == "127.0.0.1"
     assert bind_host("127.0.0.2") == "127.0.0.2"
+    assert bind_host("::1") == "127.0.0.1"
     assert bind_host("robot") == "0.0.0.0"
     assert bind_host(None) == "0.0.0.0"
+
+
+def test_ros_ipv6_binds_the_ipv6_wildcard_or_loopback() -> None:
+    assert host_addresses({"ROS_IPV6": "on", "ROS_HOSTNAME": "robot"}) == ("robot", "::")
+    assert host_addresses({"ROS_IPV6": "on", "ROS_IP": "127.0.0.1"}) == ("127.0.0.1", "::1")
+    assert host_addresses({"ROS_IPV6": "yes", "ROS_HOSTNAME": "robot"}) == ("robot", "0.0.0.0")  # only 'on' counts
+
+
+def test_local_address_with_ipv6_falls_back_to_the_ipv6_loopback(monkeypatch: pytest.MonkeyPatch) -> None:
+    import kame.net.address as address
+
+    monkeypatch.setattr(address, "local_addresses", lambda ipv6=False: ["::1", "127.0.0.1"] if ipv6 else ["127.0.0.1"])
+    assert local_address(ipv6=True) == "::1"
+
+
+@pytest.mark.parametrize(("env", "warning"), [
+    ({"ROS_HOSTNAME": ""}, "invalid ROS_HOSTNAME (an empty string)"),
+    ({"ROS_HOSTNAME": "http://robot:11311"}, "invalid ROS_HOSTNAME (protocol and port should not be included)"),
+    ({"ROS_HOSTNAME": "http://robot"}, "invalid ROS_HOSTNAME (protocol should not be included)"),
+    # Python's urlparse reads 'robot:1234' as the scheme 'robot', so rosgraph says 'protocol' there
+    ({"ROS_HOSTNAME": "robot:1234"}, "invalid ROS_HOSTNAME (protocol should not be included)"),
+    ({"ROS_HOSTNAME": "10.0.0.1:1234"}, "invalid ROS_HOSTNAME (port should not be included)"),
+    ({"ROS_IP": ""}, "invalid ROS_IP (an empty string)"),
+    ({"ROS_IP": "http://10.0.0.1"}, "invalid ROS_IP (protocol should not be included)"),
+    ({"ROS_IP": "10.0.0.1:80"}, "invalid ROS_IP (port should not be included)"),
+    ({"ROS_IP": "robot"}, "invalid ROS_IP (must be a valid IPv4 or IPv6 address)"),
+])
+def test_malformed_ros_hostname_and_ros_ip_warn_as_rosgraph_and_are_still_used(
+        env: dict[str, str], warning: str, capsys: pytest.CaptureFixture[str]) -> None:
+    value = next(iter(env.values()))
+    assert address_override(env) == (value or None)
+    assert capsys.readouterr().err == warning + "\n"
+
+
+def test_well_formed_values_do_not_warn(capsys: pytest.CaptureFixture[str]) -> None:
+    for env in ({"ROS_HOSTNAME": "robot.lab"}, {"ROS_IP": "10.0.0.1"}, {"ROS_IP": "fe80::1"}):
+        address_override(env)
+    assert capsys.readouterr().err == ""
 
 
 def test_node_config_from_the_command_line_and_environment() -> None:
@@ -61,3 +100,22 @@ def test_node_config_from_the_command_line_and_environment() -> None:
     assert (config.name, config.master_uri, config.host, config.bind_host) == (
         "/top/other", "http://x:2/", "10.9.9.9", "0.0.0.0")
     assert environ.master_uri({}) == environ.DEFAULT_MASTER_URI
+
+
+def test_unreachable_reason_names_what_a_wrong_advertised_address_causes() -> None:
+    import errno
+
+    from kame.net.address import DOES_NOT_RESOLVE, unreachable_reason
+
+    def wrapped(cause: BaseException) -> OSError:
+        try:
+            raise OSError("requestTopic: failed") from cause
+        except OSError as exc:
+            return exc
+
+    assert unreachable_reason(wrapped(socket.gaierror(-2, "Name or service not known"))) == DOES_NOT_RESOLVE
+    assert unreachable_reason(ConnectionRefusedError()) == "the connection was refused"
+    assert unreachable_reason(wrapped(TimeoutError())) == "it did not answer"
+    assert unreachable_reason(OSError(errno.EHOSTUNREACH, "No route to host")) == "there is no route to it"
+    assert unreachable_reason(ValueError("bad header")) is None
+    assert unreachable_reason(ConnectionResetError()) is None

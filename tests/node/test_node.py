@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import io
+import logging
 import socket
 import struct
 import threading
@@ -18,6 +19,8 @@ from kame.node.services import ServiceError
 from kame.node.topics import serialize_frame
 from kame.protocol import tcpros
 from std_msgs.msg import String
+
+from ..support import free_port
 
 STRING = ("std_msgs/String", String._md5sum, String._full_text)
 
@@ -532,3 +535,27 @@ def test_header_seq_numbers_are_unique_across_publishing_threads(make_node: Any)
         thread.join()
     numbers = sorted(n for into in taken for n in into)
     assert numbers == list(range(1, 20001))
+
+
+def test_a_publisher_at_an_unusable_address_is_one_warning_naming_it_and_the_fix(
+        make_node: Any, master_uri: str, caplog: pytest.LogCaptureFixture) -> None:
+    caplog.set_level(logging.DEBUG, logger="kame.topics")
+    dead_port = free_port()  # nothing listens: what a node advertising a wrong address looks like from here
+    ghost_uri = f"http://127.0.0.1:{dead_port}/"
+    master = xmlrpc.client.ServerProxy(master_uri)
+    assert master.registerPublisher("/ghost", "/unreachable", "std_msgs/String", ghost_uri)[0] == 1
+    try:
+        listener = make_node("/listener")
+        collect(listener, "/unreachable")
+
+        def attempts() -> int:
+            return sum("connecting to" in r.getMessage() and "failed" in r.getMessage() for r in caplog.records)
+
+        assert wait_until(lambda: attempts() >= 5, timeout=10), caplog.text
+        warnings = [r.getMessage() for r in caplog.records if r.levelno == logging.WARNING]
+        assert len(warnings) == 1, warnings
+        assert warnings[0].startswith(f"cannot reach publisher /ghost of /unreachable at {ghost_uri}: "
+                                      "the connection was refused."), warnings[0]
+        assert "ROS_IP" in warnings[0] and "ROS_HOSTNAME" in warnings[0]
+    finally:
+        master.unregisterPublisher("/ghost", "/unreachable", ghost_uri)

@@ -226,10 +226,44 @@ def check_environment(env: Environment, report: Report) -> None:
     report.error(f"ROS_MASTER_URI [{uri}] is not a valid URL: ", bad_url)
 
 
+def is_loopback(address: str) -> bool:
+    return address == "localhost" or address.startswith("127.") or address == "::1"
+
+
+def master_is_remote(env: Environment) -> bool:
+    """Whether ROS_MASTER_URI names another machine: its host resolves, and to none of ours."""
+    host = master_host(env.master_uri)
+    resolved = env.addresses.get(host) if host else None
+    return bool(resolved) and not any(is_loopback(a) or a in env.local_addresses for a in resolved or ())
+
+
+def _advertised_loopback(env: Environment) -> str | None:
+    """kame's own addition: this machine's nodes advertise a name or address that means loopback
+    (ROS_HOSTNAME=localhost, ROS_IP=127.0.0.1, a host name mapped to 127.0.1.1) while the master
+    is on another machine, so that nodes there cannot reach the nodes here."""
+    if not master_is_remote(env):
+        return None
+    v = env.variables
+    advertised = v.get("ROS_HOSTNAME") or ("ROS_HOSTNAME" not in v and v.get("ROS_IP")) or None
+    if advertised is None:
+        if is_loopback(env.hostname):
+            return None  # rosgraph then advertises an interface's address instead
+        advertised = env.hostname
+    resolved = list(env.addresses.get(advertised) or ([advertised] if is_loopback(advertised) else []))
+    if not resolved or not all(is_loopback(a) for a in resolved):
+        return None
+    usable = [a for a in env.local_addresses if not is_loopback(a)]
+    return (f"this machine's nodes advertise [{advertised}], which means [{','.join(resolved)}] (loopback), but "
+            f"the master [{master_host(env.master_uri)}] is on another machine: nodes there cannot connect to "
+            f"nodes here. Set ROS_IP to this machine's address (one of {usable}) or ROS_HOSTNAME to a name "
+            f"that the other machines resolve to it.")
+
+
 def check_network(env: Environment, report: Report) -> None:
     report.warn("ROS_HOSTNAME may be incorrect: ", _ros_hostname(env))
     report.warn("ROS_IP may be incorrect: ", _ros_ip(env))
     report.error("Local network configuration is invalid: ", _local_hostname(env))
+    report.error("Nodes on other machines cannot reach this one: ", _advertised_loopback(env))
 
 
 # ------------------------------------------------------------------ packages
@@ -283,6 +317,9 @@ class NodeFacts:
     error: str | None = None
     publications: Sequence[tuple[str, str]] | None = None
     subscriptions: Sequence[tuple[str, str]] | None = None
+    # why its advertised address is unusable from here (it does not resolve, no route), when
+    # that is why it did not answer
+    unusable_address: str | None = None
 
 
 @dataclass(frozen=True)
@@ -370,6 +407,21 @@ def unreachable_nodes(graph: Graph) -> list[str]:
     return [n for n in graph.node_names if n in graph.nodes and not graph.nodes[n].reachable]
 
 
+def unusable_addresses(graph: Graph, master_remote: bool = False) -> list[str]:
+    """Nodes whose URI this machine cannot use; with the master on another machine, a loopback
+    URI too (it means the machine of whoever connects, not the node's)."""
+    out = []
+    for node, facts in sorted(graph.nodes.items()):
+        if not facts.uri:
+            continue
+        reason = facts.unusable_address
+        if reason is None and master_remote and is_loopback(urlsplit(facts.uri).hostname or ""):
+            reason = "a loopback address, which only its own machine can use"
+        if reason:
+            out.append(f"{node} advertises [{urlsplit(facts.uri).netloc}]: {reason}")
+    return out
+
+
 def sim_time_without_clock(graph: Graph) -> bool:
     return graph.use_sim_time and not ({"/time", "/clock"} & set(graph.publishers))
 
@@ -411,7 +463,7 @@ def stale_registrations(graph: Graph) -> list[str]:
     return out
 
 
-def check_graph(graph: Graph, report: Report) -> None:
+def check_graph(graph: Graph, report: Report, master_remote: bool = False) -> None:
     # what gathering each node found, in the order the real tool's threads report it
     for node in graph.node_names:
         facts = graph.nodes.get(node)
@@ -431,6 +483,9 @@ def check_graph(graph: Graph, report: Report) -> None:
                 "(stale, or another node of the same name):", stale_registrations(graph))
     report.error("/use_sim_time is set but no publisher of /clock is present", sim_time_without_clock(graph))
     report.error("Could not contact the following nodes:", unreachable_nodes(graph))
+    report.error("The following nodes advertise an address this machine cannot use (start each with ROS_IP "
+                 "set to its machine's IP address, or ROS_HOSTNAME set to a name that resolves to it here):",
+                 unusable_addresses(graph, master_remote))
     report.error("The following nodes should be connected but aren't:", missing_links(graph))
     report.error("Errors connecting to the following services:", service_failures(graph))
     report.error("The following topics have nodes that disagree on the message type:", type_mismatches(graph))

@@ -26,7 +26,8 @@ from urllib.parse import urlsplit
 from kame.cli.rosmaster import DEFAULT_PORT, flush_periodically, log_dir, ros_home, serve, setup_file_logging
 from kame.launch.server import LaunchServer, ProcessState
 from kame.master.server import NOTIFY_TIMEOUT, MasterServer
-from kame.net.address import address_override, advertised_host, bind_host
+from kame.net import peers
+from kame.net.address import host_addresses
 from kame.net.process import SupervisedProcess
 from kame.net.xmlrpc_client import XmlRpcProxy
 from kame.protocol.xmlrpc import XmlRpcError
@@ -141,12 +142,20 @@ def main(argv: Sequence[str] | None = None) -> int:
                         help="accepted for compatibility (notifications are concurrent per node)")
     parser.add_argument("-t", "--timeout", type=float, default=NOTIFY_TIMEOUT, metavar="TIMEOUT",
                         help="timeout of each notification to a node, in seconds")
+    parser.add_argument("--allowed-peers", metavar="PEERS", default=None,
+                        help="only these addresses, networks (10.0.0.0/24) and host names, and this machine, may "
+                             "connect to the master and to the nodes started here (sets KAME_ALLOWED_PEERS)")
     options = parser.parse_args(sys.argv[1:] if argv is None else argv)
+    try:
+        peers.setup(options.allowed_peers)
+    except ValueError as exc:
+        parser.error(str(exc))
     env = os.environ
     port = options.port
     local_uri = f"http://localhost:{port}/"
     # what roslaunch calls the master in its refusal: the advertised host (ROS_HOSTNAME, ROS_IP or hostname)
-    named_uri = f"http://{advertised_host(address_override(env))}:{port}/"
+    host = host_addresses(env)
+    named_uri = f"http://{host.advertised}:{port}/"
 
     existing = _running_master(local_uri)
     run_id = str(uuid.uuid1())
@@ -171,8 +180,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         return [ProcessState("master", 1, True),
                 *(ProcessState(p.name, p.starts, p.running, args=p.args, respawn=p.respawn) for p in core_nodes)]
 
-    override = address_override(env)
-    launch_server = LaunchServer(bind_host(override), advertised_host(override), processes)
+    launch_server = LaunchServer(host.bind, host.advertised, processes)
     launch_server.start()
     _summary(launch_server.uri)
 

@@ -36,7 +36,7 @@ from kame.launch.model import LaunchConfig, Node
 from kame.launch.runner import LaunchRun, RunOptions, core_params, master_answers, ros_home_of, run_dir_of
 from kame.launch.server import LaunchServer
 from kame.launch.supervisor import say, say_bold, say_error
-from kame.net.address import address_override, advertised_host, bind_host
+from kame.net.address import host_addresses
 from kame.node.master_proxy import MasterError, MasterProxy
 
 LOGGER = "kame.launch"
@@ -347,8 +347,8 @@ def _launch(options: argparse.Namespace, files: list[str], argv: list[str]) -> i
             run.check()
         except LaunchError as exc:
             return _fail(exc.describe())
-        override = address_override(env)
-        run.server = server = LaunchServer(bind_host(override), advertised_host(override), run.process_states)
+        host = host_addresses(env)
+        run.server = server = LaunchServer(host.bind, host.advertised, run.process_states)
         server.start()
         say_bold(f"started roslaunch server {server.uri}")
         for line in config.messages:

@@ -20,7 +20,8 @@ from pathlib import Path
 
 from kame import names
 from kame.master.server import NOTIFY_TIMEOUT, MasterServer
-from kame.net.address import address_override, advertised_host, bind_host
+from kame.net import peers
+from kame.net.address import host_addresses
 
 DEFAULT_PORT = 11311
 LOG_FORMAT = "[%(name)s][%(levelname)s] %(asctime)s: %(message)s"
@@ -124,8 +125,8 @@ async def serve(port: int, notify_timeout: float,
     """Run a master on `port` until SIGINT/SIGTERM or a shutdown call; returns the exit status.
 
     `on_stopping` runs before the master closes, so what roscore started can still unregister."""
-    override = address_override(os.environ)
-    server = MasterServer(bind_host(override), port, advertised_host(override), notify_timeout=notify_timeout)
+    host = host_addresses(os.environ)
+    server = MasterServer(host.bind, port, host.advertised, notify_timeout=notify_timeout)
     try:
         uri = await server.start()
     except OSError as e:
@@ -165,9 +166,16 @@ def parse_args(argv: Sequence[str]) -> tuple[argparse.Namespace, dict[str, str]]
                         help="timeout of each notification to a node, in seconds")
     parser.add_argument("--master-logger-level", choices=sorted(_LEVELS), default=None,
                         help="set the master's logger level")
+    parser.add_argument("--allowed-peers", metavar="PEERS", default=None,
+                        help="only these addresses, networks (10.0.0.0/24) and host names, and this machine, may "
+                             "connect to the master and to the nodes started here (sets KAME_ALLOWED_PEERS)")
     options = parser.parse_args(ros.argv)
     if ros.remappings or ros.params:
         parser.error(f"unrecognized arg: {next(iter({**ros.remappings, **ros.params}))}")
+    try:
+        peers.setup(options.allowed_peers)
+    except ValueError as exc:
+        parser.error(str(exc))
     return options, ros.special
 
 

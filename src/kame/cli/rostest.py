@@ -50,7 +50,7 @@ from kame.launch.model import LaunchConfig, Node
 from kame.launch.runner import CALLER, LaunchRun, RunOptions, ros_home_of, run_dir_of
 from kame.launch.supervisor import say
 from kame.master.server import MasterServer
-from kame.net.address import address_override, advertised_host, bind_host
+from kame.net.address import host_addresses
 from kame.node.master_proxy import MasterError, MasterProxy
 
 log = logging.getLogger("kame.rostest")
@@ -88,8 +88,8 @@ class PrivateMaster:
         self.thread.start()
 
         async def start() -> str:
-            override = address_override(self.env)
-            self.server = MasterServer(bind_host(override), 0, advertised_host(override))
+            host = host_addresses(self.env)
+            self.server = MasterServer(host.bind, 0, host.advertised)
             return await self.server.start()
 
         return asyncio.run_coroutine_threadsafe(start(), self.loop).result(10)

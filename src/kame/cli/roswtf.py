@@ -29,6 +29,7 @@ from kame.cli._tool import DEFAULT_MASTER_URI, run
 from kame.msg.catalog import SHARE_DIR, MsgCatalog, Package, find_packages, package_path_roots
 from kame.msg.errors import MessageError
 from kame.net import interfaces
+from kame.net.address import DOES_NOT_RESOLVE, NO_ROUTE, unreachable_reason
 from kame.net.xmlrpc_client import XmlRpcProxy
 from kame.node.master_proxy import MasterError, MasterProxy
 from kame.node.services import probe_service
@@ -172,6 +173,13 @@ def _ping_failure(node: str, uri: str, exc: BaseException) -> str:
     return f"connection to [{node}] failed"
 
 
+def _unusable(exc: BaseException) -> str | None:
+    """Why a node's advertised address is no good from here, when that is why it did not answer
+    (a refusal or a time-out is as likely a node that died or hangs: the ping error says those)."""
+    reason = unreachable_reason(exc)
+    return reason if reason in (DOES_NOT_RESOLVE, NO_ROUTE) else None
+
+
 def _pairs(value: object) -> list[tuple[str, str]]:
     if not isinstance(value, list):
         return []
@@ -187,7 +195,7 @@ def _ask_node(node: str, uri: str | None, uri_nodes: Mapping[str, str]) -> tuple
         try:
             proxy.call("getPid")
         except (OSError, XmlRpcError) as exc:
-            return _wtf.NodeFacts(uri, reachable=False), _ping_failure(node, uri, exc)
+            return _wtf.NodeFacts(uri, reachable=False, unusable_address=_unusable(exc)), _ping_failure(node, uri, exc)
         except MasterError:
             pass  # it answered
         try:
@@ -299,16 +307,17 @@ def gather_launches(master_uri: str) -> list[tuple[Sequence[Sequence[object]], S
     return listings
 
 
-def _master_online(uri: str) -> bool:
+def _master_offline(uri: str) -> BaseException | None:
+    """None when the master answers, else what calling it raised."""
     try:
         proxy = MasterProxy(uri, ID, timeout=TIMEOUT)
-    except ValueError:
-        return False
+    except ValueError as exc:
+        return exc
     try:
         proxy.call("getPid")
-        return True
-    except (OSError, XmlRpcError, MasterError):
-        return False
+        return None
+    except (OSError, XmlRpcError, MasterError) as exc:
+        return exc
     finally:
         proxy.close()
 
@@ -360,9 +369,14 @@ def _main(argv: list[str]) -> int:
     out.flush()
 
     uri = env.master_uri
-    if options.offline or not uri or _wtf.invalid_url(uri) or not _master_online(uri):
+    offline = None if options.offline or not uri or _wtf.invalid_url(uri) else _master_offline(uri)
+    if options.offline or not uri or _wtf.invalid_url(uri) or offline is not None:
         print(f"\nROS Master does not appear to be running.\nOnline graph checks will not be run.\n"
               f"ROS_MASTER_URI is [{uri}]")
+        reason = unreachable_reason(offline) if offline is not None else None
+        if reason and (_wtf.master_is_remote(env) or reason == DOES_NOT_RESOLVE):
+            # kame's addition: with the master on another machine, "not running" may be the network
+            print(f"The master's machine cannot be reached from here: {reason}.")
         return 0
     print("Beginning tests of your ROS graph. These may take a while...")
     print("analyzing graph...", flush=True)
@@ -379,7 +393,7 @@ def _main(argv: list[str]) -> int:
     for complaint in complaints:
         print(complaint, file=sys.stderr)
     sys.stderr.flush()
-    _wtf.check_graph(graph, online)
+    _wtf.check_graph(graph, online, _wtf.master_is_remote(env))
     print("... done running graph rules")
     _wtf.check_launches(gather_launches(uri), online)
     out.write(f"\nOnline checks summary:\n\n{_wtf.format_report(online)}")

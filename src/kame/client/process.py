@@ -195,11 +195,15 @@ def spin() -> None:
         core.signal_shutdown("keyboard interrupt")
 
 
-def _master() -> Any:
+def _node() -> Any:
     node = core.get_node()
     if node is None:
         raise ROSInitException("client code must call rospy.init_node() first")
-    return node.master
+    return node
+
+
+def _master() -> Any:
+    return _node().master
 
 
 # ------------------------------------------------------------------ parameters
@@ -231,7 +235,7 @@ def get_param_cached(param_name: str, default: Any = _unspecified) -> Any:
 def set_param(param_name: str, param_value: Any) -> None:
     if param_value is None:
         raise ROSException("cannot set a parameter to None")
-    _master().call("setParam", core.resolve_name(param_name), param_value)
+    _node().set_param(core.resolve_name(param_name), param_value)
 
 
 def has_param(param_name: str) -> bool:
@@ -240,7 +244,7 @@ def has_param(param_name: str) -> bool:
 
 def delete_param(param_name: str) -> None:
     try:
-        _master().call("deleteParam", core.resolve_name(param_name))
+        _node().delete_param(core.resolve_name(param_name))
     except MasterError:
         raise KeyError(param_name) from None
 

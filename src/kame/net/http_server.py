@@ -25,6 +25,7 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from typing import NamedTuple
 
+from kame.net import peers
 from kame.protocol.http import Refusal, RequestReader, encode_response, new_head_cache
 
 log = logging.getLogger("kame.net.http")
@@ -83,6 +84,9 @@ class _Connection(asyncio.Protocol):
         self.transport = transport
         peer = transport.get_extra_info("peername")
         self.peer = f"{peer[0]}:{peer[1]}" if isinstance(peer, tuple) else str(peer)
+        if not peers.admit(peer, "master"):
+            transport.close()
+            return
         if not self.server._admit(self):
             log.warning("refusing connection from %s: too many connections", self.peer)
             transport.abort()

@@ -18,6 +18,7 @@ import threading
 import time
 from collections.abc import Callable
 
+from kame.net import peers
 from kame.net.stream import AcceptStarvation, peer_of
 from kame.protocol.http import Refusal, Request, RequestReader, encode_response
 
@@ -89,6 +90,9 @@ class RpcServer:
                 starved.failed(exc)
                 continue
             starved.ok()
+            if not peers.admit(addr, self._name):
+                conn.close()
+                continue
             with self._lock:
                 quietest = None
                 if len(self._connections) >= MAX_CONNECTIONS:

@@ -29,6 +29,8 @@ import time
 from collections.abc import Callable, Sequence
 from typing import Any, Protocol
 
+from kame.net import peers
+
 log = logging.getLogger("kame.net.stream")
 
 Buffer = bytes | bytearray | memoryview
@@ -414,6 +416,9 @@ class Listener:
                 starved.failed(exc)
                 continue
             starved.ok()
+            if not peers.admit(addr, self._thread.name):
+                conn.close()
+                continue
             try:
                 self._on_accept(conn, addr)
             except Exception:

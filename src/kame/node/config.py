@@ -10,7 +10,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 
 from kame import environ, names
-from kame.net.address import address_override, advertised_host, bind_host
+from kame.net.address import host_addresses
 from kame.node.node import NodeConfig
 
 
@@ -19,7 +19,7 @@ def node_config(name: str, special: Mapping[str, str], env: Mapping[str, str],
                 tcpros_port: int = 0) -> NodeConfig:
     """`name` is the node's base name when there is no `__name:=`."""
     caller_id = names.canonicalize(environ.namespace(env, special) + special.get("name", name))
-    override = address_override(env, special)
+    host = host_addresses(env, special)
     resolved = names.resolve_remappings(remappings, caller_id) if remappings else {}
-    return NodeConfig(caller_id, environ.master_uri(env, special), advertised_host(override), bind_host(override),
+    return NodeConfig(caller_id, environ.master_uri(env, special), host.advertised, host.bind,
                       remappings=tuple(resolved.items()), xmlrpc_port=xmlrpc_port, tcpros_port=tcpros_port)

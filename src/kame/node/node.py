@@ -26,13 +26,16 @@ from typing import TYPE_CHECKING, Any, NamedTuple
 
 from kame import names
 from kame.arity import accepts
+from kame.net.address import bind_host
 from kame.net.rpc_server import RpcServer
 from kame.net.stream import Flusher, Listener, peer_of, shut_down
 from kame.net.workers import WorkerPool
 from kame.node.master_proxy import MasterError, MasterProxy
+from kame.node.master_watch import MasterWatch
 from kame.node.services import ServiceClient, ServiceHandler, ServiceServer
 from kame.node.tcpros import ClosedBeforeHeader, HandshakeError, MalformedHeader, read_header, write_header
 from kame.node.topics import Callback, Publication, SubscriberLink, Subscription
+from kame.node.unreachable import ReportedOnce
 from kame.protocol import tcpros
 from kame.protocol.xmlrpc import Fault, MalformedError, decode_request, encode_fault, encode_response
 
@@ -69,6 +72,7 @@ class Node:
         self.subscriptions: dict[str, Subscription] = {}
         self.services: dict[str, ServiceServer] = {}
         self.param_cache: dict[str, Any] = {}
+        self.params_set: dict[str, Any] = {}  # what this node set, for a restarted master
         # keys whose subscribeParam is on its way: the latest paramUpdate for each, if any came
         self._param_pending: dict[str, Any] = {}
         self.on_param_update: list[Callable[[str, Any], None]] = []
@@ -76,18 +80,21 @@ class Node:
         # told the caller and message of a shutdown call before the shutdown starts (rospy prints them)
         self.on_shutdown_call: Callable[[str, str], None] | None = None
         self._shutdown_hooks: list[Callable[[str], None]] = []
-        bind = config.bind_host or ("" if config.host not in ("localhost",) and not config.host.startswith("127.")
-                                    else config.host)
+        bind = config.bind_host or bind_host(config.host)
         self._threads: set[threading.Thread] = set()
         self._handshaking: set[socket.socket] = set()  # accepted sockets whose header is still to come
         self.flusher = Flusher(name="kame-flusher")
         self.workers = WorkerPool("kame-handshake")
         self._bad_attempts = _Throttled(log)
+        self.unreachable_reported = ReportedOnce()  # publishers whose address we said we cannot use
         self.listener = Listener(bind, config.tcpros_port, self._accept, name="kame-tcpros")
         self.rpc = RpcServer(bind, config.xmlrpc_port, self._rpc, name="kame-xmlrpc")
         self.uri = f"http://{_uri_host(config.host)}:{self.rpc.port}/"
         self.tcpros_port = self.listener.port
         self.rpc.start()
+        self.master_watch = MasterWatch(config.master_uri, config.name, self._has_registrations,
+                                        self.register_again)
+        self.spawn(self.master_watch.run, "kame-master-watch")
 
     # ------------------------------------------------------------------ utilities
 
@@ -321,6 +328,43 @@ class Node:
                         ["TCPROS", self.config.host, self.tcpros_port]]
         return [0, "no supported protocol implementations", []]
 
+    def set_param(self, key: str, value: Any) -> None:
+        """setParam, remembered so that a restarted master gets it again (`key` resolved)."""
+        self.master.call("setParam", key, value)
+        with self._lock:
+            self.params_set = {k: v for k, v in self.params_set.items()
+                               if not (k == key or k.startswith(key.rstrip("/") + "/"))}
+            self.params_set[key] = value
+
+    def delete_param(self, key: str) -> None:
+        self.master.call("deleteParam", key)
+        with self._lock:
+            self.params_set = {k: v for k, v in self.params_set.items()
+                               if not (k == key or k.startswith(key.rstrip("/") + "/"))}
+
+    def _has_registrations(self) -> bool:
+        return bool(self.publications or self.subscriptions or self.services)
+
+    def register_again(self) -> None:
+        """Everything this node has told the master, told again (a restarted master knows nothing)."""
+        with self._lock:
+            params = list(self.params_set.items())
+            watched = list(self.param_cache)
+            services = list(self.services)
+            publications = [(p.topic, p.type) for p in self.publications.values()]
+            subscriptions = [(s.topic, s.type) for s in self.subscriptions.values()]
+        for key, value in params:
+            self.master.call("setParam", key, value)
+        for key in watched:
+            self.master.call("subscribeParam", self.uri, key)
+        for name in services:
+            self.master.call("registerService", name, self.service_uri, self.uri)
+        for topic, type in publications:
+            self.master.call("registerPublisher", topic, type, self.uri)
+        for topic, type in subscriptions:
+            publishers = self.master.call("registerSubscriber", topic, type, self.uri)
+            self._publisher_update("/master", topic, publishers)
+
     def _publisher_update(self, caller_id: str, topic: str, publishers: list[Any]) -> list[Any]:
         sub = self.subscriptions.get(topic)
         if sub is not None:
@@ -391,6 +435,7 @@ class Node:
                 return
             self.is_shutdown = True
             self.shutdown_reason = reason
+        self.master_watch.close()
         for hook in list(self._shutdown_hooks):
             try:
                 hook(reason)

@@ -27,10 +27,12 @@ from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 from kame.msg.size import fixed_size
+from kame.net.address import DOES_NOT_RESOLVE, unreachable_reason
 from kame.net.stream import Receiver, Sender, connect, peer_of, set_keepalive, set_nodelay, shut_down
 from kame.net.xmlrpc_client import XmlRpcProxy
 from kame.node.master_proxy import unwrap
 from kame.node.tcpros import HandshakeError, read_header_and_rest, write_header
+from kame.node.unreachable import unreachable_message
 from kame.protocol import tcpros
 
 if TYPE_CHECKING:
@@ -204,10 +206,15 @@ Callback = Callable[[list[memoryview], dict[str, str]], None]
 class PublisherLink:
     """Our connection to one publisher of a subscribed topic."""
 
-    def __init__(self, subscription: Subscription, publisher_uri: str, connection_id: int) -> None:
+    def __init__(self, subscription: Subscription, publisher_uri: str, connection_id: int,
+                 reconnecting: bool = False) -> None:
         self.subscription = subscription
         self.publisher_uri = publisher_uri
         self.connection_id = connection_id
+        # a publisher we were connected to and lost is no news: only a first connection's
+        # failures say that the publisher's advertised address is unusable from here
+        self._may_report = not reconnecting
+        self._target = publisher_uri  # what _connect is trying to reach: its URI, then host:port
         self.callerid = ""
         self.header: dict[str, str] = {}
         self.receiver: Receiver | None = None
@@ -225,6 +232,7 @@ class PublisherLink:
     def run(self) -> None:
         """Connect, retrying while the publisher stays registered (runs on its own thread)."""
         delay = 0.1
+        failures = 0
         while not self.closed and not self.subscription.node.is_shutdown:
             try:
                 self._connect()
@@ -232,7 +240,9 @@ class PublisherLink:
             except (OSError, HandshakeError, ValueError) as exc:
                 if self.closed:
                     return
+                failures += 1
                 log.debug("connecting to %s for %s failed: %s", self.publisher_uri, self.subscription.topic, exc)
+                self._report_unreachable(exc, failures)
             except _Refused as exc:
                 # A publisher on its way out (rospy answers "node shutting down") is no fault:
                 # the master's next publisherUpdate drops it.
@@ -244,9 +254,36 @@ class PublisherLink:
                 return
             delay = min(delay * 2, 2.0)
 
+    def _report_unreachable(self, exc: BaseException, failures: int) -> None:
+        """One warning per publisher when its advertised address fails us: at once when its name
+        does not resolve, else from the third failure on (a publisher that just exited also
+        refuses, and the master's update then drops it)."""
+        reason = unreachable_reason(exc)
+        if not self._may_report or reason is None:
+            return
+        if failures < 3 and reason != DOES_NOT_RESOLVE:
+            return
+        self._may_report = False
+        node = self.subscription.node
+        if node.unreachable_reported.first(self.publisher_uri):
+            log.warning(unreachable_message(self._publisher_name(), self.subscription.topic, self._target, reason))
+
+    def _publisher_name(self) -> str | None:
+        """The node the master lists at our publisher's URI, if it says."""
+        node, topic = self.subscription.node, self.subscription.topic
+        try:
+            publishers = dict(node.master.call("getSystemState")[0]).get(topic, [])
+            for name in publishers:
+                if node.master.call("lookupNode", name) == self.publisher_uri:
+                    return str(name)
+        except Exception:  # any failure: the warning names the URI anyway
+            log.debug("could not name the publisher at %s", self.publisher_uri, exc_info=True)
+        return None
+
     def _connect(self) -> None:
         sub = self.subscription
         node = sub.node
+        self._target = self.publisher_uri
         proxy = XmlRpcProxy(self.publisher_uri, timeout=5.0)
         try:
             answer = unwrap(proxy.call("requestTopic", node.name, sub.topic, [["TCPROS"]]), "requestTopic")
@@ -257,6 +294,7 @@ class PublisherLink:
         if not isinstance(answer, list) or len(answer) < 3 or answer[0] != "TCPROS":
             raise _Refused(f"unsupported protocol parameters {answer!r}")
         host, port = str(answer[1]), int(answer[2])
+        self._target = f"{host}:{port} (its TCPROS address)"
         sock = connect(host, port, timeout=5.0)
         with self._lock:  # from here close() ends the handshake too
             if self.closed:
@@ -449,7 +487,7 @@ class Subscription:
         with self._lock:
             if self.closed or self.links.get(old.publisher_uri) is not old:
                 return
-            link = PublisherLink(self, old.publisher_uri, self.node.next_connection_id())
+            link = PublisherLink(self, old.publisher_uri, self.node.next_connection_id(), reconnecting=True)
             self.links[old.publisher_uri] = link
         self.node.spawn(link.run, f"kame-reconnect{self.topic}")
 

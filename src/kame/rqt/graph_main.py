@@ -18,11 +18,9 @@ import sys
 from collections.abc import Sequence
 from pathlib import Path
 
-from kame import names
+from kame import environ, names
 from kame.rqt.graph_model import MODE_BY_OPTION, GraphOptions, build_scene
 from kame.rqt.graph_source import NODE_TIMEOUT, GraphSource
-
-DEFAULT_MASTER_URI = "http://localhost:11311/"
 
 
 def parser() -> argparse.ArgumentParser:
@@ -50,7 +48,7 @@ def main(argv: Sequence[str] | None = None) -> int:
                            hide_leaf_topics=not args.show_leaf_topics, hide_unreachable=args.hide_unreachable,
                            node_filter=args.node_filter, topic_filter=args.topic_filter,
                            group_actions=args.group_actions)
-    master_uri = ros.special.get("master") or os.environ.get("ROS_MASTER_URI") or DEFAULT_MASTER_URI
+    master_uri = environ.master_uri(os.environ, ros.special)
     source = GraphSource(master_uri, node_timeout=args.timeout)
     try:
         if args.output is not None:

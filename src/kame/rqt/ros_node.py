@@ -7,19 +7,17 @@ from __future__ import annotations
 import os
 from collections.abc import Mapping
 
-from kame.net.address import address_override, advertised_host, bind_host
+from kame import environ
+from kame.net.address import host_addresses
 from kame.node.node import Node, NodeConfig
-
-DEFAULT_MASTER_URI = "http://localhost:11311/"
 
 
 def master_uri(special: Mapping[str, str], env: Mapping[str, str] | None = None) -> str:
-    env = os.environ if env is None else env
-    return special.get("master") or env.get("ROS_MASTER_URI") or DEFAULT_MASTER_URI
+    return environ.master_uri(os.environ if env is None else env, special)
 
 
 def start_node(tool: str, special: Mapping[str, str], env: Mapping[str, str] | None = None) -> Node:
     env = os.environ if env is None else env
-    override = address_override(env, special)
+    host = host_addresses(env, special)
     name = f"/rqt_{tool}_{os.getpid()}"
-    return Node(NodeConfig(name, master_uri(special, env), advertised_host(override), bind_host(override)))
+    return Node(NodeConfig(name, master_uri(special, env), host.advertised, host.bind))
