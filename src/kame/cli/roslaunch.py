@@ -17,7 +17,6 @@ import logging
 import os
 import random
 import signal
-import socket
 import subprocess
 import sys
 import time
@@ -36,6 +35,7 @@ from kame.launch.model import LaunchConfig, Node
 from kame.launch.runner import LaunchRun, RunOptions, core_params, master_answers, ros_home_of, run_dir_of
 from kame.launch.server import LaunchServer
 from kame.launch.supervisor import say, say_bold, say_error
+from kame.net import interfaces
 from kame.net.address import address_override, advertised_host, bind_host
 from kame.node.master_proxy import MasterError, MasterProxy
 
@@ -48,7 +48,7 @@ log = logging.getLogger(LOGGER)
 
 def anonymous_name(name: str) -> str:
     """rosgraph's anonymous_name: name_<host>_<pid>_<random>, made a legal ROS name."""
-    text = f"{name}_{socket.gethostname()}_{os.getpid()}_{random.randint(0, sys.maxsize)}"
+    text = f"{name}_{interfaces.hostname()}_{os.getpid()}_{random.randint(0, sys.maxsize)}"
     return text.replace(".", "_").replace("-", "_").replace(":", "_")
 
 
@@ -324,7 +324,7 @@ def _launch(options: argparse.Namespace, files: list[str], argv: list[str]) -> i
         Path(options.pid_fn).write_text(f"{os.getpid()}")
     run_id = get_or_generate_uuid(options.run_id, options.wait_for_master)
     run_dir = run_dir_of(env, run_id)
-    own_log = run_dir / f"roslaunch-{socket.gethostname()}-{os.getpid()}.log"
+    own_log = run_dir / f"roslaunch-{interfaces.hostname()}-{os.getpid()}.log"
     handler = setup_file_logging(own_log, LOGGER)
     try:
         say(f"... logging to {own_log}")
