@@ -27,7 +27,6 @@ import re
 import sys
 import threading
 import time
-from collections.abc import Callable
 from typing import Any
 
 from kame import names
@@ -131,6 +130,10 @@ class BagNamer:
             base = f"{base}_{self.index}"
         self.index += 1
         return base + ".bag"
+
+
+# -a, -e and --node: a new topic sends no event, so the master is asked again once a second, as rosbag does
+MASTER_POLL_PERIOD = 1.0
 
 
 class Recorder:
@@ -256,6 +259,18 @@ class Recorder:
         finally:
             self.finished.set()
 
+    def stop_writing(self) -> None:
+        """Ends the writer's wait: it writes what is queued, closes the bag and returns."""
+        self.stop.set()
+        with self.cond:
+            self.cond.notify_all()
+
+    def _duration_up(self, opened: float) -> bool:
+        return bool(self.max_duration) and time.monotonic() - opened >= self.max_duration
+
+    def _until_duration_up(self, opened: float) -> float | None:
+        return max(opened + self.max_duration - time.monotonic(), 0.0) if self.max_duration else None
+
     def _write_until_stopped(self) -> None:
         writer, path = self._open()
         conns: dict[tuple[str, str], int] = {}
@@ -264,8 +279,10 @@ class Recorder:
         try:
             while True:
                 with self.cond:
-                    while not self.queue and not self.stop.is_set():
-                        self.cond.wait(0.25)
+                    # woken by a message or by stop_writing; with --duration also when it is up,
+                    # so an idle bag is split or closed on time, as rosbag's checkDuration does
+                    while not self.queue and not self.stop.is_set() and not self._duration_up(opened):
+                        self.cond.wait(self._until_duration_up(opened))
                     if not self.queue and self.stop.is_set():
                         break
                     batch = list(self.queue)
@@ -280,8 +297,7 @@ class Recorder:
                         writer.write(conn_id, secs, nsecs, data, owned=True)
                     except OSError as exc:
                         raise RecordingFailed(f"cannot write {path}.active: {exc.strerror or exc}") from exc
-                if self.options.split and ((self.max_size and writer.size >= self.max_size)
-                                           or (self.max_duration and time.monotonic() - opened >= self.max_duration)):
+                if self.options.split and ((self.max_size and writer.size >= self.max_size) or self._duration_up(opened)):
                     self._close(writer, path)
                     if self.options.max_splits and len(written) >= self.options.max_splits:
                         old = written.pop(0)
@@ -291,7 +307,7 @@ class Recorder:
                     written.append(path)
                     conns = {}
                     opened = time.monotonic()
-                elif not self.options.split and self.max_duration and time.monotonic() - opened >= self.max_duration:
+                elif not self.options.split and self._duration_up(opened):
                     self.stop.set()
         except BaseException:
             with contextlib.suppress(RecordingFailed):  # keep what reached the disk, if it lets us
@@ -329,13 +345,14 @@ def main(argv: list[str]) -> int:
             for topic in topics:
                 recorder.subscribe(topic)
         writer_thread.start()
-        poll: Callable[[], None] = recorder.poll_master
-        while not stop.is_set():
-            if auto:
-                poll()
-            stop.wait(1.0 if auto else 0.5)
+        if auto:
+            while not stop.is_set():
+                recorder.poll_master()
+                stop.wait(MASTER_POLL_PERIOD)
+        else:
+            stop.wait()  # set by Ctrl-C/SIGTERM, a shutdown request, -l reached, --duration or a write error
     finally:
-        stop.set()
+        recorder.stop_writing()
         node.shutdown("rosbag record exiting")
         if writer_thread.is_alive():
             writer_thread.join()
