@@ -2,8 +2,10 @@
 
 from __future__ import annotations
 
+import contextlib
 import threading
 import time as _time
+from collections.abc import Iterator
 from typing import Any
 
 from kame import rostime as _values
@@ -31,12 +33,30 @@ _sim_lock = threading.Condition()
 _initialized = False
 
 
+_wakers: set[threading.Event] = set()  # events set at every change of simulated time (woken_at_change)
+
+
 def set_sim_time(value: _values.Time | None) -> None:
     """Switch to simulated time (a value) or back to the wall clock (None); wakes sleepers."""
     global _sim_time
     with _sim_lock:
         _sim_time = value
         _sim_lock.notify_all()
+        for waker in _wakers:
+            waker.set()
+
+
+@contextlib.contextmanager
+def woken_at_change(event: threading.Event) -> Iterator[None]:
+    """Within the block, every change of simulated time (a /clock message, the switch to or from
+    it) sets `event`: a wait for "this, or a ROS-time deadline" is one wait on `event`."""
+    with _sim_lock:
+        _wakers.add(event)
+    try:
+        yield
+    finally:
+        with _sim_lock:
+            _wakers.discard(event)
 
 
 def is_sim_time() -> bool:
