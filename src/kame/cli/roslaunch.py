@@ -19,7 +19,6 @@ import random
 import signal
 import subprocess
 import sys
-import time
 import uuid
 from collections.abc import Mapping, Sequence
 from pathlib import Path
@@ -38,6 +37,7 @@ from kame.launch.supervisor import say, say_bold, say_error
 from kame.net import interfaces
 from kame.net.address import address_override, advertised_host, bind_host
 from kame.node.master_proxy import MasterError, MasterProxy
+from kame.node.remote_poll import poll_remote
 
 LOGGER = "kame.launch"
 log = logging.getLogger(LOGGER)
@@ -175,16 +175,21 @@ def get_or_generate_uuid(run_id: str | None, wait_for_master: bool, env: Mapping
         return run_id
     env = os.environ if env is None else env
     uri = environ.master_uri(env, default=environ.SETUP_MASTER_URI)
-    while True:
+
+    def master_run_id() -> str | None:
         proxy = MasterProxy(uri, "/roslaunch", timeout=2.0)
         try:
             return str(proxy.call("getParam", "/run_id"))
         except (OSError, MasterError, ValueError):
-            if not wait_for_master:
-                return str(uuid.uuid1())
-            time.sleep(0.1)
+            return None
         finally:
             proxy.close()
+
+    if not wait_for_master:
+        return master_run_id() or str(uuid.uuid1())
+    found = poll_remote(master_run_id)  # Ctrl-C ends it
+    assert found is not None  # poll_remote gives up only when stopped, and nothing stops this wait
+    return found
 
 
 def _arg_lines(decls: Sequence[ArgDecl]) -> list[str]:
@@ -317,8 +322,7 @@ def _launch(options: argparse.Namespace, files: list[str], argv: list[str]) -> i
         uri = environ.master_uri(env, default=environ.SETUP_MASTER_URI)
         if not master_answers(uri):
             say("roscore/master is not yet running, will wait for it to start")
-            while not master_answers(uri):
-                time.sleep(0.1)
+            poll_remote(lambda: master_answers(uri) or None)  # Ctrl-C ends it
         say("master has started, initiating launch")
     if options.pid_fn:
         Path(options.pid_fn).write_text(f"{os.getpid()}")
