@@ -29,7 +29,7 @@ class Time(_values.Time):
 
 
 _sim_time: _values.Time | None = None
-_sim_lock = threading.Condition()
+_sim_lock = threading.Lock()
 _initialized = False
 
 
@@ -41,7 +41,6 @@ def set_sim_time(value: _values.Time | None) -> None:
     global _sim_time
     with _sim_lock:
         _sim_time = value
-        _sim_lock.notify_all()
         for waker in _wakers:
             waker.set()
 
@@ -61,11 +60,6 @@ def woken_at_change(event: threading.Event) -> Iterator[None]:
 
 def is_sim_time() -> bool:
     return _sim_time is not None
-
-
-def wait_for_sim_change(timeout: float) -> None:
-    with _sim_lock:
-        _sim_lock.wait(timeout)
 
 
 def set_rostime_initialized(value: bool) -> None:
