@@ -101,16 +101,6 @@ class Publication:
         self.closed = False
         self._lock = threading.Lock()
 
-    def add_connect_callback(self, callback: Callable[[SubscriberLink], None]) -> None:
-        """Called with each subscriber that connects from now on. The lists are replaced, never
-        changed in place: a connection running the callbacks meanwhile sees the old list whole."""
-        with self._lock:
-            self.on_connect = [*self.on_connect, callback]
-
-    def remove_connect_callback(self, callback: Callable[[SubscriberLink], None]) -> None:
-        with self._lock:
-            self.on_connect = [c for c in self.on_connect if c is not callback]
-
     def next_seq(self) -> int:
         """The header.seq of the next message with a header published here (1 first, as rospy)."""
         return next(self._seqs)
@@ -158,6 +148,16 @@ class Publication:
                 sender.send_parts(latched)
         for callback in self.on_connect:
             callback(link)
+
+    def add_connect_callback(self, callback: Callable[[SubscriberLink], None]) -> None:
+        """Called with each subscriber that connects from now on. The lists are replaced, never
+        changed in place: a connection running the callbacks meanwhile sees the old list whole."""
+        with self._lock:
+            self.on_connect = [*self.on_connect, callback]
+
+    def remove_connect_callback(self, callback: Callable[[SubscriberLink], None]) -> None:
+        with self._lock:
+            self.on_connect = [c for c in self.on_connect if c is not callback]
 
     def _drop(self, link: SubscriberLink) -> None:
         with self._lock:
