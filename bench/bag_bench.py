@@ -11,7 +11,12 @@
    processes meanwhile (a loaded machine: where recorders that need more CPU than they get
    start dropping).
 
+3. `--play-only`: `rosbag play -i` of a smaller bag (by default 100k small messages and 100
+   images) to one subscriber: the player's wall and CPU time, best of 3, and what the
+   subscriber got.
+
 Usage: .venv/bin/python bench/bag_bench.py [--small-count N] [--record-seconds S] [--skip-debian-read] [--busy N]
+       .venv/bin/python bench/bag_bench.py --play-only
 """
 
 from __future__ import annotations
@@ -59,6 +64,47 @@ while time.monotonic() - start < seconds:
 time.sleep(2.0)
 print(n_small, n_img, flush=True)
 """
+
+
+SINK = r"""
+import sys, rospy
+rospy.init_node('bag_bench_sink', disable_signals=True)
+got = [0, 0]
+def count(m):
+    got[0] += 1
+    got[1] += len(m._buff)
+rospy.Subscriber('/small', rospy.AnyMsg, count, queue_size=1000000)
+rospy.Subscriber('/camera/image', rospy.AnyMsg, count, queue_size=1000)
+print('ready', flush=True)
+sys.stdin.read()
+print(got[0], got[1], flush=True)
+"""
+
+
+def play_run(bag: Path, env: dict[str, str]) -> tuple[float, float, int, int]:
+    """`rosbag play -i` of `bag` to one subscriber: (player wall s, player CPU s, messages and
+    bytes the subscriber got)."""
+    sink = subprocess.Popen([sys.executable, "-c", SINK], env=env, stdin=subprocess.PIPE, stdout=subprocess.PIPE,
+                            text=True)
+    try:
+        assert sink.stdout is not None and sink.stdin is not None
+        sink.stdout.readline()
+        t0 = time.perf_counter()
+        player = subprocess.Popen([str(BIN / "rosbag"), "play", "-i", "-q", "-d", "1", str(bag)], env=env,
+                                  stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        _, status, usage = os.wait4(player.pid, 0)
+        wall = time.perf_counter() - t0 - 1.0  # less the -d 1 wait after advertising
+        player.returncode = os.waitstatus_to_exitcode(status)
+        if player.returncode != 0:
+            raise RuntimeError(f"rosbag play exited with {player.returncode}")
+        time.sleep(1.0)  # what is still in flight reaches the subscriber
+        sink.stdin.close()
+        n, size = (int(x) for x in sink.stdout.readline().split())
+        return wall, usage.ru_utime + usage.ru_stime, n, size
+    finally:
+        if sink.poll() is None:
+            os.kill(sink.pid, signal.SIGKILL)
+        sink.wait()
 
 
 def cache_dir() -> Path:
@@ -152,14 +198,18 @@ def record_run(recorder: list[str], out: Path, seconds: float, env: dict[str, st
 
 def main() -> int:
     ap = argparse.ArgumentParser()
-    ap.add_argument("--small-count", type=int, default=1_000_000)
-    ap.add_argument("--images", type=int, default=1000)
+    ap.add_argument("--small-count", type=int, default=None, help="default 1,000,000 (100,000 with --play-only)")
+    ap.add_argument("--images", type=int, default=None, help="default 1000 (100 with --play-only)")
     ap.add_argument("--record-seconds", type=float, default=10.0)
     ap.add_argument("--skip-debian-read", action="store_true")
     ap.add_argument("--busy", type=int, default=0, help="busy-loop processes running during the record runs")
+    ap.add_argument("--play-only", action="store_true",
+                    help="only `rosbag play -i` of a 100k small + 100 image bag to one subscriber, best of 3")
     args = ap.parse_args()
     compile_kame()
-    bag = make_bag(args.small_count, args.images)
+    if args.play_only:
+        return play_only(args.small_count or 100_000, args.images or 100)
+    bag = make_bag(args.small_count or 1_000_000, args.images or 1000)
     rows = []
     warm_cache(bag)
     k_info, _ = timed([str(BIN / "rosbag"), "info", str(bag)], 5)
@@ -212,6 +262,34 @@ def main() -> int:
     print("|---|---|---|")
     for name, ns, gs, ni, gi in rec_rows:
         print(f"| {name} | {gs}/{ns} | {gi}/{ni} |")
+    return 0
+
+
+def play_only(small_count: int, images: int) -> int:
+    bag = make_bag(small_count, images)
+    sys.path.insert(0, str(REPO))
+    from tests.support import free_port, ros_env
+
+    port = free_port()
+    env = ros_env(cache_dir() / "home", f"http://127.0.0.1:{port}/")
+    core = subprocess.Popen([str(BIN / "roscore"), "-p", str(port)], env=env, stdout=subprocess.DEVNULL,
+                            stderr=subprocess.DEVNULL)
+    runs = []
+    try:
+        time.sleep(2.0)
+        for _ in range(3):
+            warm_cache(bag)
+            runs.append(play_run(bag, env))
+            print("play: %.2f s wall, %.2f s CPU, %d msgs / %.0f MB received" % (
+                runs[-1][0], runs[-1][1], runs[-1][2], runs[-1][3] / 1e6), flush=True)
+    finally:
+        os.kill(core.pid, signal.SIGINT)
+        core.wait(20)
+    wall, cpu, n, size = min(runs)
+    size_mib = bag.stat().st_size / 2**20
+    print(f"\n| rosbag play -i ({size_mib:.0f} MiB, {small_count} small + {images} images) | player wall | player CPU "
+          "| received |\n|---|---|---|---|")
+    print(f"| kame | {wall:.2f} s | {cpu:.2f} s | {n} msgs, {size / 1e6:.0f} MB |")
     return 0
 
 

@@ -52,7 +52,7 @@ def test_accepts_reads_the_signature(function: Any, count: int, expected: bool) 
 
 
 def test_a_hook_raising_type_error_inside_is_called_once_and_logged(caplog: pytest.LogCaptureFixture) -> None:
-    from rospy.core import _call_hook
+    from kame.client.core import _call_hook
 
     calls: list[tuple[Any, ...]] = []
 
@@ -68,7 +68,7 @@ def test_a_hook_raising_type_error_inside_is_called_once_and_logged(caplog: pyte
 
 
 def test_a_hook_without_arguments_gets_none() -> None:
-    from rospy.core import _call_hook
+    from kame.client.core import _call_hook
 
     done = threading.Event()
     _call_hook(done.set, "bye")

@@ -73,6 +73,18 @@ LAYERS: dict[str, int] = {
     "kame.rqt.graph_window": 4,  # Qt
     "kame.rqt.graph_main": 4,
     "kame.rqt.ros_node": 4,  # the tools' node
+    "kame.rqt.master_wait": 4,  # a thread asking the master until it answers
+    "kame.rqt.topic_source": 4,
+    "kame.rqt.topic_window": 4,
+    "kame.rqt.publisher_source": 4,
+    "kame.rqt.publisher_window": 4,
+    "kame.rqt.service_source": 4,
+    "kame.rqt.service_window": 4,
+    "kame.rqt.image_source": 4,
+    "kame.rqt.image_window": 4,
+    "kame.rqt.plugins": 4,  # the rqt window's plugins: each tool's window and what it talks through
+    "kame.rqt.gui_window": 4,
+    "kame.rqt.gui_main": 4,
     "kame.rqt.console_source": 4,
     "kame.rqt.console_window": 4,
     "kame.rqt.console_main": 4,
@@ -109,7 +121,6 @@ KNOWN_VIOLATIONS: frozenset[tuple[str, str, str]] = frozenset({
     ("socket", "kame.node.tcpros", "socket"),
     # tools talking to a master or a port directly (port probes, XML-RPC clients of their own)
     ("socket", "kame.cli.roscore", "socket"),
-    ("socket", "kame.cli.roscore", "xmlrpc.client"),
 })
 
 

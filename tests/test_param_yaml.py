@@ -90,3 +90,34 @@ def test_values_that_contain_themselves_or_nest_too_deep_are_refused() -> None:
         nested = [nested]
     assert param_yaml.load_all("a: &x [1]\nb: *x\nc: " + "[" * 49 + "]" * 49) == [{"a": [1], "b": [1], "c": nested}]
     param_yaml.check("/c", {"c": nested})
+
+
+def _alias_bomb(levels: int = 9, refs: int = 9, merge: bool = False) -> str:
+    """`levels` lines, each referring `refs` times to the one before: refs**levels values once
+    expanded, from a few hundred bytes (a "billion laughs")."""
+    if merge:
+        lines = ["l0: &l0 {" + ", ".join(f"k{i}: {i}" for i in range(refs)) + "}"]
+        lines += [f"l{n}: &l{n} {{<<: [{', '.join([f'*l{n - 1}'] * refs)}]}}" for n in range(1, levels)]
+    else:
+        lines = ["l0: &l0 [" + ", ".join(['"lol"'] * refs) + "]"]
+        lines += [f"l{n}: &l{n} [{', '.join([f'*l{n - 1}'] * refs)}]" for n in range(1, levels)]
+    return "\n".join(lines) + "\n"
+
+
+def test_an_alias_bomb_is_refused_when_loaded() -> None:
+    # It used to hang the shape check (and every later walk) for good: 9**9 leaves.
+    with pytest.raises(ParamValueError, match=r"YAML aliases expand this value to \d+ values"):
+        param_yaml.load_all(_alias_bomb())
+    with pytest.raises(ParamValueError, match="YAML aliases expand"):
+        param_yaml.load("{" + _alias_bomb().strip().replace("\n", ", ") + "}")  # one argument
+    with pytest.raises(ParamValueError, match="YAML aliases expand"):
+        param_yaml.safe_load(_alias_bomb())
+    with pytest.raises(ParamValueError, match="YAML aliases expand"):
+        param_yaml.check("/bomb", param_yaml.BoundedLoader(_alias_bomb()).get_single_data())
+    # moderate sharing is fine: 4 levels of 9 (6,561 values)
+    assert len(param_yaml.load_all(_alias_bomb(levels=4))[0]["l3"]) == 9
+
+
+def test_nested_merge_keys_stay_linear() -> None:
+    value = param_yaml.load_all(_alias_bomb(merge=True))[0]
+    assert value["l8"] == {f"k{i}": i for i in range(9)}

@@ -10,6 +10,11 @@ Rules (ros1-user-behaviour spec §7, as the rosparam library behaves):
 - Values nest at most MAX_NESTING containers deep (the master's XML-RPC reader refuses much
   deeper ones) and never contain themselves (a YAML alias to an enclosing node): both are
   refused with a clear error, as YAML nested too deeply for the parser is.
+- Aliases are shared, not copied, when YAML is loaded; every later walk (checks, XML-RPC,
+  setting leaf by leaf) expands them. A value whose aliases add more than MAX_ALIAS_EXPANSION
+  values once expanded (nine levels of nine references: 387 million) is refused when loaded;
+  the checks walk each shared container once, so they take time linear in the text. Merge
+  keys (`<<: *a`) keep one entry per key as they are merged, so nested merges stay linear too.
 - A dict is set leaf by leaf (it merges into an existing namespace); an empty dict sets nothing.
 - Output is PyYAML block style with sorted keys, the way `rosparam get/dump` print it.
 Pure: text and values in, values and text out.
@@ -33,6 +38,8 @@ MAX_INT = 2**31 - 1
 MIN_INT = -(2**31)
 #: Deepest nesting of lists and dicts a parameter value may have.
 MAX_NESTING = 50
+#: How many values YAML aliases may add to a value once it is expanded.
+MAX_ALIAS_EXPANSION = 100_000
 
 
 class ParamValueError(ValueError):
@@ -84,7 +91,24 @@ def degrees(text: str) -> float:
         raise ParamValueError(f"invalid degree value: {text}") from None
 
 
-class ParamLoader(yaml.SafeLoader):
+class BoundedLoader(yaml.SafeLoader):
+    """SafeLoader whose merge keys keep one entry per key (the last, which is the one that
+    counts): merging a mapping that merges others then costs its keys, not their product.
+    Recent PyYAML releases do this themselves; older ones that our pin allows copy every
+    merged pair, which nested merges make exponential."""
+
+    def flatten_mapping(self, node: yaml.MappingNode) -> None:
+        super().flatten_mapping(node)
+        last: dict[tuple[str, str], int] = {}
+        for i, (key, _) in enumerate(node.value):
+            if isinstance(key, yaml.ScalarNode):
+                last[(key.tag, key.value)] = i
+        if len(last) < len(node.value):
+            node.value = [pair for i, pair in enumerate(node.value)
+                          if not isinstance(pair[0], yaml.ScalarNode) or last[(pair[0].tag, pair[0].value)] == i]
+
+
+class ParamLoader(BoundedLoader):
     """SafeLoader plus rosparam's angle tags and their `deg(...)`/`rad(...)` shorthands."""
 
 
@@ -129,6 +153,18 @@ def load_all(text: str) -> list[Any]:
     return documents
 
 
+def safe_load(text: str) -> Any:
+    """PyYAML's safe_load (yaml.YAMLError for text that is not YAML), refusing with
+    ParamValueError values that nest too deeply, contain themselves or expand through aliases
+    past MAX_ALIAS_EXPANSION: for command-line arguments, whose tools word YAML errors their way."""
+    try:
+        value = yaml.load(text, Loader=BoundedLoader)
+    except RecursionError:
+        raise ParamValueError(_TOO_DEEP) from None
+    check_shape(value)
+    return value
+
+
 def _one_line(exc: yaml.YAMLError) -> str:
     return " ".join(str(exc).split())
 
@@ -138,31 +174,68 @@ _SELF = "a value cannot contain itself (a YAML alias refers to a node that enclo
 
 
 def check_shape(value: Any) -> None:
-    """Raise ParamValueError if `value` contains itself or nests deeper than MAX_NESTING (what
-    every walk over it, and the XML-RPC encoding, would otherwise fail on with RecursionError)."""
-    problem = _shape_problem(value, 0, set())
+    """Raise ParamValueError if `value` contains itself, nests deeper than MAX_NESTING or expands
+    through shared (aliased) containers past MAX_ALIAS_EXPANSION values: what every walk over
+    it, and the XML-RPC encoding, would otherwise fail on with RecursionError or never finish."""
+    problem = _shape_problem(value)
     if problem:
         raise ParamValueError(problem)
 
 
-def _shape_problem(value: Any, depth: int, enclosing: set[int]) -> str | None:
-    if isinstance(value, dict):
-        items: Any = value.values()
-    elif isinstance(value, (list, tuple)):
-        items = value
-    else:
-        return None
-    if id(value) in enclosing:
-        return _SELF
-    if depth >= MAX_NESTING:
-        return f"values nested more than {MAX_NESTING} levels deep cannot be stored"
-    enclosing.add(id(value))
-    for item in items:
-        problem = _shape_problem(item, depth + 1, enclosing)
-        if problem:
-            return problem
-    enclosing.discard(id(value))
+def _shape_problem(value: Any) -> str | None:
+    shape = _Shape()
+    try:
+        expanded, _ = shape.measure(value, 0)
+    except _ShapeError as exc:
+        return str(exc)
+    if expanded - shape.distinct > MAX_ALIAS_EXPANSION:
+        return (f"YAML aliases expand this value to {expanded} values, more than "
+                f"{MAX_ALIAS_EXPANSION} beyond the {shape.distinct} written")
     return None
+
+
+class _ShapeError(Exception):
+    pass
+
+
+class _Shape:
+    """One walk over the distinct containers of a value (a shared one is measured once)."""
+
+    def __init__(self) -> None:
+        self.measured: dict[int, tuple[int, int]] = {}  # id -> (values once expanded, height)
+        self.enclosing: set[int] = set()
+        self.distinct = 0
+
+    def measure(self, value: Any, depth: int) -> tuple[int, int]:
+        if isinstance(value, dict):
+            items: Any = value.values()
+        elif isinstance(value, (list, tuple)):
+            items = value
+        else:
+            self.distinct += 1
+            return 1, 0
+        key = id(value)
+        known = self.measured.get(key)
+        if known is None:
+            if key in self.enclosing:
+                raise _ShapeError(_SELF)
+            if depth >= MAX_NESTING:
+                raise _ShapeError(_NESTED)
+            self.enclosing.add(key)
+            self.distinct += 1
+            size, height = 1, 0
+            for item in items:
+                item_size, item_height = self.measure(item, depth + 1)
+                size += item_size
+                height = max(height, item_height + 1)
+            self.enclosing.discard(key)
+            known = self.measured[key] = (size, height)
+        elif depth + known[1] >= MAX_NESTING:
+            raise _ShapeError(_NESTED)
+        return known
+
+
+_NESTED = f"values nested more than {MAX_NESTING} levels deep cannot be stored"
 
 
 # ------------------------------------------------------------------ what the server can hold
@@ -170,12 +243,13 @@ def _shape_problem(value: Any, depth: int, enclosing: set[int]) -> str | None:
 
 def check(name: str, value: Any) -> None:
     """Raise ParamValueError if `value` (to be stored at `name`) cannot go to the parameter server."""
-    problem = _shape_problem(value, 0, set()) or _problem(value)
+    problem = _shape_problem(value) or _problem(value, set())
     if problem:
         raise ParamValueError(f"cannot set parameter [{name}]: {problem}")
 
 
-def _problem(value: Any) -> str | None:
+def _problem(value: Any, checked: set[int]) -> str | None:
+    """What the parameter server cannot hold in `value` (each shared container looked at once)."""
     if isinstance(value, bool) or isinstance(value, (float, str, bytes)):
         return None
     if isinstance(value, int):
@@ -186,9 +260,13 @@ def _problem(value: Any) -> str | None:
         return "the parameter server cannot hold null (~ or null); quote it to store a string"
     if isinstance(value, (datetime.date, datetime.datetime)):
         return f"the parameter server cannot hold a date ({value}); quote it to store a string"
+    if isinstance(value, (list, tuple, dict)):
+        if id(value) in checked:
+            return None
+        checked.add(id(value))
     if isinstance(value, (list, tuple)):
         for item in value:
-            problem = _problem(item)
+            problem = _problem(item, checked)
             if problem:
                 return problem
         return None
@@ -196,7 +274,7 @@ def _problem(value: Any) -> str | None:
         for key, item in value.items():
             if not isinstance(key, str):
                 return f"YAML dictionaries must have string keys, not {key!r}"
-            problem = _problem(item)
+            problem = _problem(item, checked)
             if problem:
                 return problem
         return None

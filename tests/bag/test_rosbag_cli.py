@@ -4,6 +4,7 @@ Every process is started through tests.support.Proc and stopped by its PID."""
 
 from __future__ import annotations
 
+import contextlib
 import os
 import signal
 import subprocess
@@ -15,7 +16,7 @@ from pathlib import Path
 import pytest
 
 import rosbag
-from tests.support import Proc, free_port, ros_env, wait_for_master
+from tests.support import SYSTEM_PYTHON, Proc, free_port, have_debian_ros, ros_env, wait_for_master
 
 BIN = Path(sys.executable).parent
 
@@ -104,6 +105,116 @@ def test_ctrl_c_closes_and_kill_is_repaired_by_reindex(core: dict[str, str], tmp
         assert bag.get_message_count() > 100
 
 
+STEADY_TALKER = """
+import sys, time, rospy
+from std_msgs.msg import String
+rospy.init_node("steady", anonymous=True)
+pub = rospy.Publisher("/steady", String, queue_size=1000)
+rate = rospy.Rate(200)
+seq = 0
+while not rospy.is_shutdown():
+    now = time.time()
+    pub.publish(String(data=f"{seq:08d} {now:.6f}".ljust(96)))  # 100 bytes serialized
+    print(seq, now, flush=True)
+    seq += 1
+    rate.sleep()
+"""
+
+
+def test_a_recorder_killed_by_sigkill_keeps_all_but_its_last_second(core: dict[str, str], tmp_path: Path) -> None:
+    """200 Hz of 100-byte messages, SIGKILL after 4 s: reindex finds >= 99% of what was published
+    more than a second before the kill (rosbag's recorder keeps its open chunk, 768 kB, in memory)."""
+    talker = Proc([sys.executable, "-c", STEADY_TALKER], core)
+    try:
+        talker.wait_line(" ")
+        rec = Proc([str(BIN / "rosbag"), "record", "-O", "steady", "/steady"], core, cwd=tmp_path)
+        rec.wait_line("Recording to")
+        start = len(talker.out)
+        deadline = time.monotonic() + 30
+        while len(talker.out) < start + 800:  # 4 s of messages published while recording
+            assert time.monotonic() < deadline, "the talker stopped publishing"
+            time.sleep(0.05)
+        os.kill(rec.pid, signal.SIGKILL)
+        killed_at = time.time()
+        rec.stop()
+    finally:
+        published_lines, _ = talker.stop()
+    res = _run(core, "reindex", "steady.bag.active", cwd=tmp_path)
+    assert res.returncode == 0, res.stderr
+    with rosbag.Bag(tmp_path / "steady.bag.active") as bag:
+        recorded = {int(m.message.data.split()[0]) for m in bag.read_messages()}
+    assert recorded, "nothing recovered"
+    published = [line.split() for line in published_lines.splitlines()]
+    due = {int(seq) for seq, stamp in published if int(seq) >= min(recorded) and float(stamp) < killed_at - 1.0}
+    kept = len(due & recorded)
+    print(f"kept {kept} of {len(due)} messages published more than 1 s before the kill")
+    assert len(due) > 400 and kept >= 0.99 * len(due), (kept, len(due))
+
+
+@pytest.mark.skipif(not have_debian_ros(), reason="Debian's ROS 1 is not installed")
+def test_reindex_recovers_the_torn_chunk_of_a_killed_cpp_recorder(core: dict[str, str], tmp_path: Path) -> None:
+    # ROS's C++ recorder streams its open chunk under a zero-size header too; Debian's reindex
+    # drops that chunk (0 messages here), kame's keeps its whole records, and Debian reads the result.
+    talker = _talker(core, "/fast", "200")
+    debian_env = {"PATH": "/usr/bin:/bin", "ROS_MASTER_URI": core["ROS_MASTER_URI"], "ROS_HOME": str(tmp_path)}
+    try:
+        rec = Proc(["/usr/lib/rosbag/record", "-O", "cpp", "/fast"], debian_env, cwd=tmp_path)
+        wait_for_bytes(tmp_path / "cpp.bag.active", 20_000)
+        os.kill(rec.pid, signal.SIGKILL)
+        rec.stop()
+    finally:
+        talker.stop()
+    res = _run(core, "reindex", "cpp.bag.active", cwd=tmp_path)
+    assert res.returncode == 0, res.stderr
+    with rosbag.Bag(tmp_path / "cpp.bag.active") as bag:
+        kept = bag.get_message_count("/fast")
+    assert kept > 100
+    info = subprocess.run([SYSTEM_PYTHON, "/usr/bin/rosbag", "info", "cpp.bag.active"], env=debian_env, cwd=tmp_path,
+                          capture_output=True, text=True, timeout=60)
+    assert f"messages:    {kept}" in info.stdout, info.stderr
+
+
+@contextlib.contextmanager
+def _tmpfs(path: Path, options: str) -> Iterator[Path]:
+    """A small tmpfs at `path` (the test is skipped where we may not mount one: not root)."""
+    path.mkdir()
+    if os.geteuid() != 0 or subprocess.run(["mount", "-t", "tmpfs", "-o", options, "tmpfs", str(path)],
+                                           capture_output=True).returncode != 0:
+        pytest.skip("cannot mount a tmpfs here")
+    try:
+        yield path
+    finally:
+        subprocess.run(["umount", str(path)], check=True)
+
+
+def test_a_full_disk_or_a_read_only_one_ends_the_recording_with_a_readable_bag(core: dict[str, str],
+                                                                               tmp_path: Path) -> None:
+    talker = Proc([str(BIN / "rostopic"), "pub", "-r", "50", "/big", "std_msgs/String", "data: " + "x" * 20000], core)
+    try:
+        with _tmpfs(tmp_path / "full", "size=400k") as full:
+            res = _run(core, "record", "-O", str(full / "f.bag"), "/big", cwd=tmp_path)
+            assert res.returncode == 1
+            assert f"Error writing: cannot write {full}/f.bag.active: No space left on device" in res.stderr
+            with rosbag.Bag(full / "f.bag") as bag:  # closed with what reached the disk
+                assert bag.get_message_count("/big") >= 5
+        with _tmpfs(tmp_path / "split", "size=400k") as full:
+            split = _run(core, "record", "-O", str(full / "s.bag"), "--split", "--size", "0.1", "/big", cwd=tmp_path)
+            assert split.returncode == 1 and "No space left on device" in split.stderr
+            parts = sorted(full.glob("s_*.bag"))
+            assert len(parts) >= 2 and not list(full.glob("*.active"))
+            counts = []
+            for part in parts:  # each closed, the last with what fitted (maybe nothing)
+                with rosbag.Bag(part) as bag:
+                    counts.append(bag.get_message_count("/big"))
+            assert all(n >= 1 for n in counts[:-1])
+        with _tmpfs(tmp_path / "ro", "ro,size=100k") as read_only:
+            res = _run(core, "record", "-O", str(read_only / "r.bag"), "/big", cwd=tmp_path)
+            assert res.returncode == 1
+            assert f"Error writing: Error opening file: {read_only}/r.bag.active" in res.stderr
+    finally:
+        talker.stop()
+
+
 def test_filter_compress_decompress(core: dict[str, str], tmp_path: Path) -> None:
     from rospy import Time
     from std_msgs.msg import String
@@ -168,6 +279,8 @@ def test_record_into_a_missing_folder_or_onto_a_full_disk_says_so_and_ends(core:
     assert full.returncode == 1
     assert "Error writing: cannot write f.bag.active: File too large" in full.stderr
     assert "Traceback" not in full.stderr
+    with rosbag.Bag(tmp_path / "f.bag") as bag:  # ended with what reached the disk
+        assert bag.get_message_count("/big") >= 1
 
 
 def test_record_with_a_duration_ends_on_time_with_no_messages(core: dict[str, str], tmp_path: Path) -> None:

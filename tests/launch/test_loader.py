@@ -279,3 +279,16 @@ def test_a_long_include_chain_is_a_launch_error(tmp_path: Path) -> None:
     files = {f"d{i}.launch": f'<launch><include file="{tmp_path}/d{i + 1}.launch"/></launch>' for i in range(20)}
     files["d20.launch"] = "<launch>" + "<group>" * 50 + '<param name="p" value="1"/>' + "</group>" * 50 + "</launch>"
     assert params(load(tmp_path, f'<launch><include file="{tmp_path}/d0.launch"/></launch>', **files)) == {"/p": 1}
+
+
+def test_a_yaml_alias_bomb_is_refused_not_expanded(tmp_path: Path) -> None:
+    # Nine levels of nine references (387 million values once expanded) used to hang roslaunch.
+    lines = ["l0: &l0 [" + ", ".join(["lol"] * 9) + "]"]
+    lines += [f"l{n}: &l{n} [{', '.join([f'*l{n - 1}'] * 9)}]" for n in range(1, 9)]
+    bomb = "\n".join(lines) + "\n"
+    with pytest.raises(LaunchError, match=r"bomb.yaml contains invalid YAML:\nYAML aliases expand this value"):
+        load(tmp_path, f'<launch><rosparam command="load" file="{tmp_path}/bomb.yaml"/></launch>',
+             **{"bomb.yaml": bomb})
+    flow = ("{" + bomb.strip().replace("\n", ", ") + "}").replace("&", "&amp;")
+    with pytest.raises(LaunchError, match="YAML aliases expand this value"):
+        load(tmp_path, f'<launch><param name="p" type="yaml" value="{flow}"/></launch>')

@@ -6,6 +6,7 @@ from __future__ import annotations
 import json
 import os
 import re
+import signal
 import subprocess
 import sys
 import time
@@ -100,6 +101,14 @@ FILES = {
     "launch/stubborn.launch": """<launch>
   <node name="stubborn" pkg="demo" type="recorder.py">
     <env name="RECORD_DIR" value="$(env RECORD_DIR)"/><env name="STUBBORN" value="1"/>
+  </node>
+</launch>""",
+    "launch/lone.launch": """<launch>
+  <node name="lone" pkg="demo" type="recorder.py"><env name="RECORD_DIR" value="$(env RECORD_DIR)"/></node>
+</launch>""",
+    "launch/crashy.launch": """<launch>
+  <node name="crashy" pkg="demo" type="recorder.py" respawn="true">
+    <env name="RECORD_DIR" value="$(env RECORD_DIR)"/><env name="LIFETIME" value="0"/><env name="EXIT_CODE" value="1"/>
   </node>
 </launch>""",
     "launch/bad.launch": """<launch>
@@ -250,6 +259,42 @@ def test_ctrl_c_escalates_and_leaves_no_orphan(workspace: Path) -> None:
     assert gone(stubborn["pid"])
     assert gone(int(stubborn["env"]["GRANDCHILD"]))
     assert all(gone(pid) for pid in started_pids(out).values())
+
+
+def test_a_node_that_crashes_at_start_is_restarted_ever_more_slowly(workspace: Path) -> None:
+    # It used to be restarted every 0.06 s for as long as the launch ran.
+    env = launch_env(workspace, free_port())
+    proc = Proc(kame_command("kame.cli.roslaunch", "demo", "crashy.launch"), env)
+    try:
+        wait_for(lambda: "restarting in 2 s" in "".join(proc.err), timeout=30)
+        runs = (workspace / "records" / "crashy.runs").read_text().count("\n")
+    finally:
+        _, err = proc.stop(timeout=10)
+    # started, died, restarted at once; then 0.5 s, 1 s, 2 s between starts, each step said once
+    assert runs == 4
+    for step in ("0.5", "1", "2"):
+        assert err.count(f"times in a row: restarting in {step} s") == 1, err
+    assert "[crashy-2] died 0." in err and "2 times in a row: restarting in 0.5 s" in err
+
+
+def test_children_die_with_a_roslaunch_killed_outright(workspace: Path) -> None:
+    # SIGKILL on roslaunch used to leave its master, rosout and nodes running as orphans.
+    env = launch_env(workspace, free_port())
+    proc = Proc(kame_command("kame.cli.roslaunch", "demo", "lone.launch"), env)
+    pids: dict[str, int] = {}
+    try:
+        lone = record(workspace, "lone")
+        pids = started_pids("".join(proc.out))
+        os.kill(proc.pid, signal.SIGKILL)
+        proc.popen.wait(10)
+        for pid in pids.values():
+            wait_for(lambda pid=pid: gone(pid))  # type: ignore[misc]
+    finally:
+        proc.stop()
+        for pid in pids.values():  # had they outlived it, the test must not leave them behind
+            if not gone(pid):
+                os.kill(pid, signal.SIGKILL)
+    assert set(pids) == {"master", "rosout-1", "lone-2"} and pids["lone-2"] == lone["pid"]
 
 
 def test_load_error_starts_nothing(workspace: Path) -> None:

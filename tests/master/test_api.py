@@ -306,3 +306,19 @@ def test_random_calls_match_rosmaster(seed: int) -> None:
         return rng.choice(choices)
 
     _run_both([gen() for _ in range(1500)])
+
+
+def test_set_param_refuses_what_get_param_could_not_send_back() -> None:
+    # A 64-bit integer used to be stored, after which getParam('/') faulted for everyone.
+    m = master()
+    assert call(m, "setParam", "/n", "/big", 2**32) == [
+        -1, "cannot set parameter [/big]: 4294967296 does not fit a 32-bit signed integer "
+            "(int exceeds XML-RPC limits)", 0]
+    assert call(m, "setParam", "/n", "/ns", {"ok": 1, "deep": [[-2**31 - 1]]})[0] == -1
+    deep: Any = 1
+    for _ in range(70):
+        deep = [deep]
+    assert "nest more than 64 levels" in call(m, "setParam", "/n", "/deep", deep)[1]
+    assert call(m, "setParam", "/n", "/fine", [2**31 - 1, -2**31, {"x": [1.5]}])[0] == 1
+    code, _, tree = call(m, "getParam", "/n", "/")
+    assert code == 1 and tree == {"fine": [2**31 - 1, -2**31, {"x": [1.5]}]}

@@ -54,3 +54,18 @@ def test_generated_packages_are_up_to_date() -> None:
     # The message packages in src/ are generated files; this fails when a definition or
     # the generator changed and `kame-genmsg` was not rerun.
     assert genmsg.main(["--check"]) == 0
+
+
+def test_arrays_of_empty_messages_work_and_a_huge_count_is_refused() -> None:
+    # A peer's definition with std_msgs/Empty[] did not compile (an empty loop in the serializer),
+    # and a 4-byte message claiming 4 billion such elements made the deserializer build them all.
+    from kame.msg import DeserializationError
+
+    separator = "=" * 80
+    classes = generate_dynamic("x/Empties", f"std_msgs/Empty[] e\n{separator}\nMSG: std_msgs/Empty\n")
+    cls, empty = classes["x/Empties"], classes["std_msgs/Empty"]
+    buff = io.BytesIO()
+    cls(e=[empty(), empty()]).serialize(buff)
+    assert buff.getvalue() == b"\x02\x00\x00\x00" and len(cls().deserialize(buff.getvalue()).e) == 2
+    with pytest.raises(DeserializationError, match="an array of 4294967295 elements that carry nothing"):
+        cls().deserialize(b"\xff\xff\xff\xff")

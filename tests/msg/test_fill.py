@@ -103,3 +103,17 @@ def test_wrong_primitive_types_are_left_to_the_type_check_which_names_the_field(
     msg = filled(Int32, "hello")
     assert find_type_problem(msg) == "field data must be an integer type (int32), got str 'hello'"
     assert Duration(1) == Duration(1)  # Duration fields share the time rules
+
+
+@pytest.mark.parametrize("value", [-1, -0.5, float("nan"), float("inf")])
+def test_a_time_that_cannot_be_is_a_fill_error(value: float) -> None:
+    # Found by tests/fuzz: a negative stamp was a TypeError traceback out of rostopic pub.
+    with pytest.raises(FillError, match=r"Field \[stamp\] cannot be"):
+        fill_message_args(Header(), [0, value, "frame"])
+
+
+def test_a_time_filled_with_non_numbers_is_a_type_problem_not_a_crash() -> None:
+    # Found by tests/fuzz: find_type_problem compared None with 0 (TypeError out of rostopic pub).
+    msg = Header()
+    fill_message_args(msg, [0, [None, None], "frame"])
+    assert find_type_problem(msg) == "field stamp time value must be integer seconds and nanoseconds: None, None"

@@ -49,6 +49,23 @@ def test_every_shipped_message_round_trips(type_name: str) -> None:
         assert pickle.loads(pickle.dumps(msg)) == msg
 
 
+def test_fixed_size_is_the_size_of_every_message_of_a_fixed_size_type() -> None:
+    # A subscriber refuses frames longer than this: it must be exact, and None when sizes vary.
+    from kame.msg.size import fixed_size
+
+    fixed = 0
+    for type_name in ALL_MESSAGE_TYPES:
+        cls = message_class(type_name)
+        size = fixed_size(type_name, cls._full_text)
+        sizes = {len(serialize(cls())), len(serialize(filled(cls)))}
+        if size is None:  # an empty definition says nothing (a caller without one passes "")
+            assert not cls._full_text or any(word in cls._full_text for word in ("string", "[]")), type_name
+        else:
+            fixed += 1
+            assert sizes == {size}, type_name
+    assert fixed > 20
+
+
 @pytest.mark.parametrize("type_name", ALL_SERVICE_TYPES)
 def test_every_shipped_service_round_trips(type_name: str) -> None:
     package, short = type_name.split("/")

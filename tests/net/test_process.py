@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import asyncio
+import itertools
 import os
 import signal
 import sys
@@ -77,3 +78,34 @@ def test_no_respawn_without_asking(tmp_path: Path) -> None:
 
     asyncio.run(scenario())
     assert len(starts) == 1
+
+
+def test_respawn_backoff_doubles_for_young_deaths_and_resets_after_a_long_life() -> None:
+    from kame.net.process import RespawnBackoff
+
+    backoff = RespawnBackoff()
+    delays = [backoff.delay(0.1, 0.0) for _ in range(10)]
+    assert delays == [(0.0, False), (0.5, True), (1.0, True), (2.0, True), (4.0, True), (8.0, True),
+                      (16.0, True), (30.0, True), (30.0, False), (30.0, False)]  # each step said once
+    assert backoff.delay(60.0, 0.0) == (0.0, False)  # a long life: afresh
+    assert backoff.delay(0.1, 0.0) == (0.0, False) and backoff.delay(0.1, 0.0) == (0.5, True)
+    slow = RespawnBackoff()
+    assert [slow.delay(0.1, 3.0) for _ in range(5)] == [(3.0, False), (3.0, False), (3.0, False), (3.0, False),
+                                                        (4.0, True)]  # a longer respawn_delay wins
+
+
+def test_a_child_that_crashes_at_start_is_restarted_ever_more_slowly(tmp_path: Path) -> None:
+    starts: list[float] = []
+
+    async def scenario() -> None:
+        child = SupervisedProcess("crashy", [sys.executable, "-c", "raise SystemExit(1)"], respawn=True,
+                                  on_start=lambda pid, again: starts.append(time.monotonic()))
+        await child.start()
+        try:
+            await wait_for(lambda: len(starts) == 4, timeout=30)
+        finally:
+            await child.stop()
+
+    asyncio.run(scenario())
+    gaps = [b - a for a, b in itertools.pairwise(starts)]
+    assert gaps[1] >= 0.5 and gaps[2] >= 1.0  # it used to be restarted as fast as it died

@@ -44,6 +44,28 @@ def test_direct_send_and_parts() -> None:
         b.close()
 
 
+def test_a_borrowed_buffer_is_copied_only_when_it_has_to_wait() -> None:
+    # A relay (rosout) sends straight from its receive buffer and reuses it at once: what the
+    # socket does not take now must be a copy, or the reused buffer would go out instead.
+    flusher = Flusher()
+    a, b = socket.socketpair()
+    a.setsockopt(socket.SOL_SOCKET, socket.SO_SNDBUF, 4096)
+    try:
+        sender = Sender(a, flusher, 100, lambda exc: None)
+        scratch = bytearray(50_000)
+        sent = []
+        for i in range(5):
+            scratch[:] = bytes([65 + i]) * len(scratch)
+            sender.send_parts([b"%d" % i, memoryview(scratch)], borrowed=True)
+            sent.append(b"%d" % i + bytes(scratch))
+        scratch[:] = b"z" * len(scratch)
+        assert read_all(b, 5 * 50_001) == b"".join(sent)
+    finally:
+        flusher.close()
+        a.close()
+        b.close()
+
+
 def test_a_full_socket_keeps_only_the_newest_frames_and_never_blocks() -> None:
     flusher = Flusher()
     a, b = socket.socketpair()

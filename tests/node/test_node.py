@@ -155,6 +155,117 @@ def test_a_garbage_publisher_is_dropped_and_the_node_carries_on(make_node: Any, 
     assert event.wait(5) and after == ["fine"]
 
 
+def _fake_publisher(make_node: Any, name: str, topic: str, spec: tuple[str, str, str],
+                    send: Any) -> tuple[socket.socket, threading.Event]:
+    """A publisher whose requestTopic is a real node's but whose TCPROS stream is `send(conn)`;
+    the event is set once we (the subscriber) hang up on it."""
+    server = socket.socket()
+    server.bind(("127.0.0.1", 0))
+    server.listen(1)
+    fake = make_node(name)
+    fake.advertise(topic, *spec)
+    fake.tcpros_port = server.getsockname()[1]
+    dropped = threading.Event()
+
+    def serve() -> None:
+        conn, _ = server.accept()
+        with conn:
+            conn.recv(65536)
+            conn.sendall(tcpros.encode_header(tcpros.publisher_reply_fields(
+                callerid=name, topic=topic, spec=tcpros.TopicSpec(*spec))))
+            send(conn)
+            conn.settimeout(30)
+            if conn.recv(1) == b"":
+                dropped.set()
+
+    threading.Thread(target=serve, daemon=True).start()
+    return server, dropped
+
+
+def test_a_frame_longer_than_a_fixed_size_type_drops_the_publisher(make_node: Any,
+                                                                    caplog: pytest.LogCaptureFixture) -> None:
+    # A Twist is 48 bytes, always: a 1 GiB frame announced on it used to be buffered as it came.
+    import logging
+
+    from geometry_msgs.msg import Twist
+
+    twist = ("geometry_msgs/Twist", Twist._md5sum, Twist._full_text)
+    server, dropped = _fake_publisher(make_node, "/big_twister", "/twist", twist,
+                                      lambda conn: conn.sendall(struct.pack("<I", (1 << 30) - 1) + b"\0" * 64))
+    listener = make_node("/twist_listener")
+    got: list[memoryview] = []
+    with caplog.at_level(logging.ERROR, logger="kame.topics"):
+        listener.subscribe("/twist", *twist, lambda frames, header: got.extend(frames))
+        assert dropped.wait(10)
+    server.close()
+    assert got == []
+    assert listener.subscriptions["/twist"].max_frame == 48
+    assert [r.getMessage() for r in caplog.records if "frame of 1073741823 bytes refused (limit 48)" in r.getMessage()]
+
+
+def test_a_publisher_that_stalls_mid_frame_is_dropped(make_node: Any, caplog: pytest.LogCaptureFixture,
+                                                       monkeypatch: pytest.MonkeyPatch) -> None:
+    import logging
+
+    from kame.node import topics
+
+    monkeypatch.setattr(topics, "STALL_TIMEOUT", 0.3)
+    server, dropped = _fake_publisher(make_node, "/trickler", "/trickled", STRING,
+                                      lambda conn: conn.sendall(struct.pack("<I", 1000) + b"x" * 10))
+    listener = make_node("/trickle_listener")
+    with caplog.at_level(logging.ERROR, logger="kame.topics"):
+        got, _ = collect(listener, "/trickled")
+        assert dropped.wait(10)
+    server.close()
+    assert got == []
+    lines = [r.getMessage() for r in caplog.records if "/trickled" in r.getMessage()]
+    assert len(lines) == 1 and "no byte for 0.3 s in the middle of a message" in lines[0]
+
+
+@pytest.mark.parametrize("queue_size", [5, 0])
+def test_a_slow_subscriber_loses_its_oldest_and_slows_no_one(make_node: Any, monkeypatch: pytest.MonkeyPatch,
+                                                            queue_size: int) -> None:
+    # One subscriber takes a second per message, another keeps up: the publisher keeps at most
+    # queue_size frames for the slow one (without a queue_size: UNQUEUED_BACKLOG bytes, here
+    # 2 MB; it used to keep them all), dropping the oldest, and the fast one gets everything.
+    from kame.node import topics
+
+    monkeypatch.setattr(topics, "UNQUEUED_BACKLOG", 2 << 20)
+    pub = make_node("/burst_pub").advertise("/burst", *STRING, queue_size=queue_size)
+    fast: list[str] = []
+    fast_done = threading.Event()
+    slow_calls = [0]
+    release = threading.Event()
+
+    def on_fast(frames: list[memoryview], header: dict[str, str]) -> None:
+        fast.extend(String().deserialize(frame).data[:8] for frame in frames)
+        if len(fast) >= 100:
+            fast_done.set()
+
+    def on_slow(frames: list[memoryview], header: dict[str, str]) -> None:
+        slow_calls[0] += 1
+        release.wait(1.0)  # a second per message, until the test is over
+
+    make_node("/fast_sub").subscribe("/burst", *STRING, on_fast)
+    make_node("/slow_sub").subscribe("/burst", *STRING, on_slow, queue_size=1)
+    assert wait_until(lambda: len(pub.links) == 2)
+    backlogs = []
+    for i in range(100):  # 20 MB: far more than the slow subscriber's socket buffers hold
+        pub.publish_frame(serialize_frame(String(f"{i:08d}" + "x" * 200_000)))
+        backlogs.append((max(len(link.sender._backlog) for link in pub.links),
+                         max(link.sender._backlog_bytes for link in pub.links)))
+        time.sleep(0.005)
+    assert fast_done.wait(20)
+    release.set()
+    assert fast == [f"{i:08d}" for i in range(100)]
+    if queue_size:
+        assert max(frames for frames, _ in backlogs) <= queue_size
+    else:
+        assert max(size for _, size in backlogs) <= (2 << 20) + 200_100
+    slow_link = next(link for link in pub.links if link.callerid == "/slow_sub")
+    assert slow_link.sender.dropped > 0 and slow_calls[0] < 20
+
+
 def test_service_calls_persistent_and_not(make_node: Any) -> None:
     from std_srvs.srv import SetBool, SetBoolRequest, SetBoolResponse
 
@@ -320,7 +431,7 @@ def test_a_refused_service_response_closes_the_persistent_connection(make_node: 
     try:
         client = make_node("/fake_client").service_client("/fake_srv", "x/Y", "*", persistent=True)
         assert client.call(b"1") == b"good"
-        with pytest.raises(ServiceError, match="too large"):
+        with pytest.raises(ServiceError, match="bytes refused"):
             client.call(b"2")
         assert client.call(b"3") == b"good"
         assert len(connections) == 2
@@ -382,6 +493,20 @@ def test_a_flood_of_bad_connections_is_a_few_log_lines(make_node: Any, caplog: p
     assert wait_until(lambda: len(pub.links) == 1)
     pub.publish_frame(serialize_frame(String("ok")))
     assert event.wait(5) and got == ["ok"]
+
+
+def test_a_malformed_header_gets_an_error_header_naming_the_problem(make_node: Any) -> None:
+    # A field without '=' used to close the connection without a word to the peer.
+    talker = make_node("/told")
+    talker.advertise("/told_topic", *STRING)
+    body = b"".join(struct.pack("<I", len(f)) + f for f in (b"topic=/told_topic", b"callerid=/x", b"no_equals"))
+    with socket.create_connection(("127.0.0.1", talker.tcpros_port), timeout=5) as sock:
+        sock.sendall(struct.pack("<I", len(body)) + body)
+        reply = b""
+        while chunk := sock.recv(65536):
+            reply += chunk
+    fields = tcpros.decode_header(reply)
+    assert fields == {"error": "malformed connection header: field without '=': b'no_equals'"}
 
 
 def test_a_consumer_failure_that_ends_a_link_is_logged(make_node: Any, caplog: pytest.LogCaptureFixture) -> None:

@@ -161,6 +161,13 @@ def test_frame_vectors_encode_and_decode() -> None:
     assert all(f.readonly for f in frames)
 
 
+def test_frame_parts_send_the_payload_itself() -> None:
+    payload = memoryview(b"..\x05\x00\x00\x00hello..")[2:-2]
+    prefix, body = t.frame_parts(payload)
+    assert body is payload  # no copy: the caller's buffer goes to sendmsg as it is
+    assert prefix + bytes(body) == _frame_bytes("topic message frame")
+
+
 def _stream(count: int, seed: int) -> tuple[bytes, list[bytes]]:
     rng = random.Random(seed)
     payloads = [bytes(rng.getrandbits(8) for _ in range(rng.choice([0, 1, 3, 4, 5, 17, 300, 5000])))
@@ -286,6 +293,21 @@ def test_service_responses_byte_by_byte() -> None:
     for i in range(len(wire)):
         got += reader.feed(wire[i : i + 1])
     assert [r.ok for r in got] == [True, False, False] * 3
+
+
+def test_service_responses_parsed_in_place_keep_what_follows() -> None:
+    one = t.encode_service_response(True, b"abc")
+    wire = one * 3 + one[:6]
+    reader = t.ServiceResponseReader()
+    assert reader.feed(wire) == [t.ServiceResponse(True, b"abc")] * 3 and reader.pending == 6
+    assert reader.feed(one[6:]) == [t.ServiceResponse(True, b"abc")] and reader.pending == 0
+
+
+def test_service_response_reader_says_how_much_is_missing() -> None:
+    reader = t.ServiceResponseReader()
+    assert reader.feed(b"\x01\x0a\x00") == [] and reader.missing == 0  # prefix incomplete: unknown
+    assert reader.feed(b"\x00\x00abc") == [] and reader.missing == 7
+    assert reader.feed(b"defghij") == [t.ServiceResponse(True, b"abcdefghij")] and reader.missing == 0
 
 
 def test_service_response_errors() -> None:

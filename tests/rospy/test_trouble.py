@@ -220,3 +220,20 @@ def test_an_undeserializable_message_is_skipped_and_the_connection_kept(tmp_path
         liar.shutdown("test over")
         server.close()
         master.stop()
+
+
+def test_a_private_parameter_argument_that_is_an_alias_bomb_is_refused(tmp_path: Path) -> None:
+    # `_p:=...` was loaded with plain yaml.safe_load and sent: 9 levels of 9 aliases never finished.
+    port = free_port()
+    master = start_master(tmp_path, port)
+    try:
+        levels = ["l0: &l0 [" + ", ".join(["x"] * 9) + "]"]
+        levels += [f"l{n}: &l{n} [{', '.join([f'*l{n - 1}'] * 9)}]" for n in range(1, 9)]
+        bomb = "{" + ", ".join(levels) + "}"
+        proc = Proc([sys.executable, "-c", "import rospy; rospy.init_node('bombed')", f"_p:={bomb}"],
+                    ros_env(tmp_path, f"http://127.0.0.1:{port}/"))
+        assert proc.popen.wait(30) != 0
+        _, err = proc.stop()
+        assert "YAML aliases expand this value to" in err
+    finally:
+        master.stop()

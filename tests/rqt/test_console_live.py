@@ -3,6 +3,7 @@ filters, logger levels of kame's turtlesim and of a real (Debian) rospy node."""
 
 from __future__ import annotations
 
+import socket
 import subprocess
 from collections.abc import Iterator
 from pathlib import Path
@@ -110,16 +111,20 @@ def test_logger_levels_of_kames_turtlesim_through_the_window(sim: Sim, qtbot) ->
         assert {"/rosout", "/turtlesim"} <= set(levels.nodes())
         window = LoggerWindow(levels)
         qtbot.addWidget(window)
-        window.refresh()
+        with qtbot.waitSignal(window.idle, timeout=10_000):
+            window.refresh()
         nodes = [window.node_list.item(i).text() for i in range(window.node_list.count())]
-        window.node_list.setCurrentRow(nodes.index("/turtlesim"))
+        with qtbot.waitSignal(window.idle, timeout=10_000):
+            window.node_list.setCurrentRow(nodes.index("/turtlesim"))
         loggers = [window.logger_list.item(i).text() for i in range(window.logger_list.count())]
         assert "rosout" in loggers
         window.logger_list.setCurrentRow(loggers.index("rosout"))
         assert window.level_list.currentItem().text() == "Info"
-        window.choose_level("debug")
+        with qtbot.waitSignal(window.idle, timeout=10_000):
+            window.choose_level("debug")
         assert dict(levels.loggers("/turtlesim"))["rosout"] == "debug"
         assert window.level_list.currentItem().text() == "Debug"
+        assert window.status.text() == "/turtlesim: rosout set to debug"
         levels.set_level("/turtlesim", "rosout", "info")
         with pytest.raises(LoggerError):
             levels.set_level("/turtlesim", "rosout", "loud")
@@ -127,6 +132,38 @@ def test_logger_levels_of_kames_turtlesim_through_the_window(sim: Sim, qtbot) ->
             levels.loggers("/nobody")
     finally:
         levels.close()
+
+
+def test_a_hung_node_does_not_freeze_the_logger_window(sim: Sim, qtbot) -> None:  # type: ignore[no-untyped-def]
+    from kame.node.master_proxy import MasterProxy
+    from kame.rqt.logger_window import LoggerWindow
+
+    hung = socket.socket()  # accepts connections (the backlog) and never answers
+    hung.bind(("127.0.0.1", 0))
+    hung.listen(8)
+    master_proxy = MasterProxy(sim.uri, "/hung")
+    service_uri = f"rosrpc://127.0.0.1:{hung.getsockname()[1]}"
+    for service in ("/hung/get_loggers", "/hung/set_logger_level"):
+        master_proxy.call("registerService", service, service_uri, "http://127.0.0.1:1/")
+    levels = LoggerLevels(sim.uri, "/rqt_logger_level_hung_test", timeout=1.0)
+    window = LoggerWindow(levels)
+    try:
+        qtbot.addWidget(window)
+        with qtbot.waitSignal(window.idle, timeout=10_000):
+            window.refresh()
+        nodes = [window.node_list.item(i).text() for i in range(window.node_list.count())]
+        with qtbot.waitSignal(window.idle, timeout=10_000):
+            window.node_list.setCurrentRow(nodes.index("/hung"))
+            # back on the window's thread while the call waits: the window still answers
+            assert window.busy() and window.status.text() == "waiting for /hung's loggers..."
+        assert "/hung/get_loggers" in window.status.text() and window.logger_list.count() == 0
+    finally:
+        window.close_worker()
+        levels.close()
+        for service in ("/hung/get_loggers", "/hung/set_logger_level"):
+            master_proxy.call("unregisterService", service, service_uri)
+        master_proxy.close()
+        hung.close()
 
 
 @pytest.mark.skipif(not have_debian_ros(), reason="Debian's rospy is not installed")
@@ -206,3 +243,28 @@ def test_a_roscpp_nodes_level_set_from_rqt_logger_level_and_its_link_in_the_grap
         graph.close()
         levels.close()
         talker.stop()
+
+
+def test_the_console_waits_for_a_master_that_starts_later(qtbot, tmp_path: Path) -> None:  # type: ignore[no-untyped-def]
+    from kame.rqt.console_window import ConsoleWindow
+    from tests.support import free_port, ros_env
+
+    port = free_port()
+    uri = f"http://127.0.0.1:{port}/"
+    env = ros_env(tmp_path, uri)
+    node = start_node("console", {"master": uri}, env)
+    window = ConsoleWindow(LogView())
+    qtbot.addWidget(window)
+    started: list[Proc] = []
+    try:
+        window.listen(node)
+        assert window.status.text() == f"waiting for the master at {uri}"
+        with qtbot.waitSignal(window.listening, timeout=20_000):
+            started.append(Proc([str(BIN / "rosmaster"), "--core", "-p", str(port)], env))
+        assert "/rosout_agg" in node.subscriptions and "messages shown" in window.status.text()
+        assert window.take is not None
+    finally:
+        window.close()
+        node.shutdown("test over")
+        for proc in started:
+            proc.stop()

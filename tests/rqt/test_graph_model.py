@@ -147,3 +147,23 @@ def test_svg_and_dot_name_every_shape() -> None:
     assert '"n:/teleop_turtle" -> "t:/turtle1/cmd_vel";' in dot and "subgraph cluster_0" in dot
     labelled = to_dot(build_scene(snapshot(), GraphOptions()))
     assert '"n:/teleop_turtle" -> "n:/turtlesim" [label="/turtle1/cmd_vel"];' in labelled
+
+
+def test_group_actions_draws_an_actions_five_topics_as_one_box() -> None:
+    action = "/turtle1/rotate_absolute"
+    client_side, server_side = ("goal", "cancel"), ("status", "feedback", "result")
+    state = [
+        [[f"{action}/{t}", ["/teleop"]] for t in client_side] + [[f"{action}/{t}", ["/turtlesim"]] for t in server_side]
+        + [["/turtle1/pose", ["/turtlesim"]], ["/half/goal", ["/teleop"]]],
+        [[f"{action}/{t}", ["/turtlesim"]] for t in client_side] + [[f"{action}/{t}", ["/teleop"]] for t in server_side]
+        + [["/turtle1/pose", ["/teleop"]], ["/half/goal", ["/turtlesim"]]],
+        [],
+    ]
+    snap = snapshot_from(state, {}, {})
+    plain = build_scene(snap, GraphOptions(mode=Mode.NODES_TOPICS_ALL))
+    assert f"{action}/feedback" in plain.names(Kind.TOPIC)
+    grouped = build_scene(snap, GraphOptions(mode=Mode.NODES_TOPICS_ALL, group_actions=True))
+    box = f"{action}/action_topics"
+    assert grouped.names(Kind.TOPIC) == ["/half/goal", "/turtle1/pose", box]  # /half is not a whole action
+    assert {e for e in grouped.edge_names() if box in e} == {
+        ("/teleop", box, ""), ("/turtlesim", box, ""), (box, "/teleop", ""), (box, "/turtlesim", "")}

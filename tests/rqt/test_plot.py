@@ -200,3 +200,41 @@ def test_a_type_kame_does_not_have_is_read_from_its_publishers_definition(sim: S
         assert "str is not a number" in source.problems()[0]
     finally:
         publisher_node.shutdown("test over")
+
+
+def test_points_are_stamped_with_the_header_stamp_when_there_is_one(sim: Sim, source: PlotSource) -> None:
+    from kame.node.topics import serialize_frame
+
+    publisher_node = start_node("stamped", {"master": sim.uri}, sim.env)
+    series = "/stamped_pose/pose/position/x"
+    try:
+        publication = publisher_node.advertise("/stamped_pose", "geometry_msgs/PoseStamped", PoseStamped._md5sum,
+                                               PoseStamped._full_text)
+        source.add(series)
+
+        def pose(x: float, seconds_after_start: float | None) -> list[object]:
+            message = PoseStamped()
+            message.pose.position.x = x
+            if seconds_after_start is not None:
+                message.header.stamp = Time.from_sec(source.start + seconds_after_start)
+            return serialize_frame(message)
+
+        def publish_until_seen(frame: list[object], value: float) -> bool:
+            publication.publish_frame(frame)
+            return value in source.data()[series][1]
+
+        # stamp zero: its arrival time
+        wait_until(lambda: publish_until_seen(pose(1.0, None), 1.0), what="an unstamped pose")
+        t, x = source.data()[series]
+        assert np.all((t >= 0.0) & (t < 60.0))
+        # stamped 100 s after the plot began, whenever it arrives
+        wait_until(lambda: publish_until_seen(pose(1.5, 100.0), 1.5), what="a stamped pose")
+        t, x = source.data()[series]
+        assert np.allclose(t[x == 1.5], 100.0, atol=1e-3)
+        publication.publish_frame(pose(2.5, 50.0))  # before the last: left out, and said
+        wait_until(lambda: bool(source.problems()), what="the out-of-order message's problem")
+        assert "stamped before the previous one" in source.problems()[0]
+        t, x = source.data()[series]
+        assert 2.5 not in x and np.all(np.diff(t) >= 0)
+    finally:
+        publisher_node.shutdown("test over")

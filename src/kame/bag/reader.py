@@ -11,7 +11,10 @@ Rules:
   a lying bag yields a BagError naming the offset, never a read outside the file or a hang.
 - A bag without a usable index (not closed: index_pos=0, or a broken tail) raises
   BagUnindexedError unless opened with `allow_unindexed`, which rebuilds the index in memory
-  by walking the chunks and stops at the first broken one (`reindex_end` says where).
+  by walking the chunks and stops at the first broken one (`reindex_end` says where). An
+  uncompressed chunk torn by a killed recorder (its header still has the zero sizes it was
+  streamed with, or its data runs past the end of the file) keeps every whole message record
+  it holds; `torn` then says where it is and how much of it is good, for reindex to seal it.
 - Messages come out in time order (ties in file order); chunks that overlap in time are
   merged, others are read one after another.
 """
@@ -72,6 +75,7 @@ class BagReader:
             self._chunk_ends: dict[int, int] = {}
             self.indexed = True
             self.reindex_end: int | None = None  # after a rebuild: where the good data ends
+            self.torn: ChunkHeader | None = None  # after a rebuild: the torn last chunk, its good part
             self._open(allow_unindexed)
         except BaseException:
             os.close(self._fd)
@@ -175,6 +179,8 @@ class BagReader:
             if next_pos is None:  # the index section (a closed bag's tail)
                 break
             pos = good_end = next_pos
+            if self.torn is not None:
+                break
         self.reindex_end = good_end
         self.index_pos = good_end
         self._chunk_ends = {}
@@ -182,9 +188,9 @@ class BagReader:
         for p, nxt in zip(ordered, [*ordered[1:], good_end], strict=False):
             self._chunk_ends[p] = nxt
 
-    def _record_head(self, pos: int) -> records.Record:
+    def _record_head(self, pos: int, whole: bool = True) -> records.Record:
         """The record at file offset `pos`, its header parsed, its data not read (positions are
-        absolute); the data must lie inside the file."""
+        absolute); the data must lie inside the file, if `whole`."""
         if pos + 8 > self.size:
             raise BagFormatError(f"truncated record at offset {pos}")
         head = self._read(pos, min(self.size - pos, 4096))
@@ -199,7 +205,7 @@ class BagReader:
             raise BagFormatError(f"bad record header at offset {pos}: {exc}") from exc
         (data_len,) = records.unpack_u32(head, 4 + header_len)
         data_pos = pos + 8 + header_len
-        if data_pos + data_len > self.size:
+        if whole and data_pos + data_len > self.size:
             raise BagFormatError(f"record at offset {pos} claims {data_len} data bytes, but only "
                                  f"{self.size - data_pos} remain in the file")
         return records.Record(pos, fields, data_pos, data_len)
@@ -207,31 +213,46 @@ class BagReader:
     def _reindex_chunk(self, pos: int) -> int | None:
         """Index the chunk at `pos` and skip the index data records after it; return where the
         next chunk starts, or None when `pos` holds no chunk."""
-        head = self._record_head(pos)
+        head = self._record_head(pos, whole=False)
         if head.op != records.OP_CHUNK:
             return None
         chunk = records.parse_chunk_header(head)
-        if chunk.compressed_size == 0:
+        torn = chunk.compression == "none" and (chunk.compressed_size == 0 or head.end > self.size)
+        if chunk.compressed_size == 0 and not torn:
             raise BagFormatError(f"unterminated chunk at {pos}")
+        if head.end > self.size and not torn:
+            raise BagFormatError(f"chunk at offset {pos} claims {head.data_len} data bytes, but only "
+                                 f"{self.size - head.data_pos} remain in the file")
         chunk = ChunkHeader(pos, chunk.compression, chunk.uncompressed_size, chunk.data_pos - pos,
                             chunk.compressed_size)
-        payload = self._read(pos + chunk.data_pos, chunk.compressed_size)
-        data = decompress(chunk.compression, payload, chunk.uncompressed_size, f" at offset {pos}")
+        if torn:
+            data: bytes | memoryview = self._read(head.data_pos, self.size - head.data_pos)
+        else:
+            payload = self._read(pos + chunk.data_pos, chunk.compressed_size)
+            data = decompress(chunk.compression, payload, chunk.uncompressed_size, f" at offset {pos}")
         entries: list[tuple[int, int, int, int]] = []
         new_conns: list[Connection] = []
-        for record in records.walk_records(data):
+        good = 0
+        for record in _whole_records(data) if torn else records.walk_records(data):
             op = record.op
             if op == records.OP_CONNECTION:
                 new_conns.append(records.parse_connection(record, data))
             elif op == records.OP_MSG_DATA:
                 conn_id, t = records.message_header(record)
                 entries.append((t[0], t[1], record.pos, conn_id))
+            good = record.end
+        if torn:
+            chunk = ChunkHeader(pos, "none", good, chunk.data_pos, good)
+            self.torn = chunk
         for conn in new_conns:
             self.connections.setdefault(conn.id, conn)
         known = self.connections
         entries = [e for e in entries if e[3] in known]
+        if torn and not entries:  # nothing to keep: the good data ends before it
+            self.torn = None
+            return None
         next_pos = pos + chunk.data_pos + chunk.compressed_size
-        while next_pos + 8 <= self.size:  # skip the index data records that follow the chunk
+        while not torn and next_pos + 8 <= self.size:  # skip the index data records that follow the chunk
             try:
                 record = self._record_head(next_pos)
             except BagFormatError:
@@ -252,6 +273,12 @@ class BagReader:
 
     # ------------------------------------------------------------------ chunks
 
+    def chunk_entries(self, pos: int) -> list[tuple[int, int, int, int]]:
+        """The (secs, nsecs, offset, connection) of every message of the chunk at `pos`, in
+        time order."""
+        info = next(i for i in self.chunk_infos if i.pos == pos)
+        return self._reindexed.get(pos) or self._load_chunk(info, None).entries
+
     def chunk_header(self, info: ChunkInfo) -> ChunkHeader:
         header = self._chunk_headers.get(info.pos)
         if header is None:
@@ -269,11 +296,15 @@ class BagReader:
         where = f" at offset {info.pos}"
         end = self._chunk_ends.get(info.pos, self.size)
         blob = self._read(info.pos, end - info.pos)
-        record = records.read_record(blob, 0, base=info.pos)
-        chunk = records.parse_chunk_header(record)
-        # a view, not a slice: an uncompressed chunk's messages are then copied once, not twice
-        data = decompress(chunk.compression, memoryview(blob)[record.data_pos:record.end], chunk.uncompressed_size,
-                          where)
+        data: bytes | memoryview
+        if self.torn is not None and self.torn.pos == info.pos:
+            data = memoryview(blob)[self.torn.data_pos:self.torn.data_pos + self.torn.compressed_size]
+        else:
+            record = records.read_record(blob, 0, base=info.pos)
+            chunk = records.parse_chunk_header(record)
+            # a view, not a slice: an uncompressed chunk's messages are then copied once, not twice
+            data = decompress(chunk.compression, memoryview(blob)[record.data_pos:record.end],
+                              chunk.uncompressed_size, where)
         entries = self._reindexed.get(info.pos)
         if entries is None:
             entries = self._index_entries(blob, record.end, info, len(data))
@@ -300,8 +331,7 @@ class BagReader:
             return None
         if seen != info.counts or any(e[2] >= data_len for e in out):
             return None
-        if len(seen) > 1:
-            out.sort()
+        out.sort()  # linear when in order already; one connection's messages may be written out of time order
         return out
 
     def _walk_entries(self, data: bytes | memoryview, info: ChunkInfo) -> list[tuple[int, int, int, int]]:
@@ -343,7 +373,8 @@ class BagReader:
                   if info.end >= lo and info.start <= hi
                   and (wanted is None or any(c in wanted for c in info.counts))]
         chunks.sort(key=lambda info: (info.start, info.pos))
-        sequential = all(a.end <= b.start for a, b in itertools.pairwise(chunks))
+        # strictly: chunks meeting at one timestamp are merged, so that the tie keeps file order
+        sequential = all(a.end < b.start for a, b in itertools.pairwise(chunks))
         if sequential:
             for info in chunks:
                 yield from self._chunk_messages(self._load_chunk(info, wanted), conns, lo, hi)
@@ -427,3 +458,20 @@ class BagReader:
     @property
     def end_time(self) -> Time | None:
         return max((info.end for info in self.chunk_infos), default=None)
+
+
+def _whole_records(data: bytes | memoryview) -> Iterator[records.Record]:
+    """The records of a torn chunk up to the first that is cut short or is not a message or a
+    connection (what follows a torn chunk is not its data)."""
+    pos = 0
+    while pos < len(data):
+        try:
+            record = records.read_record(data, pos)
+            if record.op not in (records.OP_MSG_DATA, records.OP_CONNECTION):
+                return
+            if record.op == records.OP_MSG_DATA:
+                records.message_header(record)
+        except BagFormatError:
+            return
+        yield record
+        pos = record.end

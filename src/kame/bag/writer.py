@@ -1,10 +1,18 @@
 """Writing bag 2.0 files: chunks, connections, index data, chunk info, the padded header.
 
 Rules:
-- A chunk is built in memory and written whole (header, payload, its index data records) in
-  one writev once its uncompressed size passes the threshold (768 KB by default, rosbag's), so
-  a killed recorder leaves only complete chunks behind and `rosbag reindex` loses nothing it
-  had written.
+- An uncompressed chunk is streamed, as ROS's C++ recorder does: its header goes out with
+  zero sizes, its records follow in batches (every _STREAM_BATCH bytes, and whenever
+  `write_pending` is called: the recorder calls it twice a second), and when the chunk passes
+  the threshold (768 KB by default, rosbag's) its header is patched in place and its index
+  data records are written after it. A killed recorder leaves every record it had handed to
+  the kernel: `rosbag reindex` keeps the complete messages of the torn last chunk too.
+- A compressed chunk can only be written whole (header, payload, index data records, one
+  writev); `write_pending` closes it early, so a killed recorder loses at most what arrived
+  since the last call.
+- A write that fails (a full disk, a file size limit) is undone (the file is cut back to the
+  last whole batch) and raised; `close` then ends the bag with what is on disk, dropping the
+  open chunk if even the index does not fit, so the bag stays readable.
 - A connection record goes into the chunk just before the connection's first message, and
   all connection records are written again after the last chunk, at index_pos, followed by
   one chunk info record per chunk. The bag header is written with zeros first and patched
@@ -21,8 +29,10 @@ Rules:
 
 from __future__ import annotations
 
+import contextlib
 import errno
 import os
+import struct
 import time
 from collections.abc import Mapping, Sequence
 from typing import BinaryIO
@@ -40,6 +50,7 @@ _DROP_WINDOW = 8 << 20
 _SLOW_ADVICE = 0.1  # seconds: the disk is not keeping up
 _BACKOFF = 256 << 20
 _IOV_MAX = 512  # buffers per writev (Linux allows 1024)
+_STREAM_BATCH = 64 * 1024  # an open uncompressed chunk goes to disk in batches of about this size
 
 
 class BagWriter:
@@ -56,9 +67,12 @@ class BagWriter:
         self.connections: dict[int, Connection] = {}
         self.chunk_infos: list[ChunkInfo] = []
         self._written: set[int] = set()  # connections whose record is already in a chunk
-        self._parts: list[bytes | bytearray | memoryview] = []  # the chunk's data before _chunk
+        self._parts: list[bytes | bytearray | memoryview] = []  # the chunk's pending data before _chunk
         self._chunk = bytearray()
-        self._chunk_len = 0  # bytes in _parts and _chunk
+        self._chunk_len = 0  # the open chunk's data bytes, on disk and pending
+        self._pending_len = 0  # bytes in _parts and _chunk (not yet written)
+        self._chunk_pos: int | None = None  # where the open chunk's header lies, once streamed
+        self._broken: OSError | None = None  # the write that failed; nothing more is written
         self._chunk_index: dict[int, bytearray] = {}
         self._chunk_counts: dict[int, int] = {}
         self._chunk_start: tuple[int, int] | None = None
@@ -84,6 +98,8 @@ class BagWriter:
             self.connections = dict(reader.connections)
             self.chunk_infos = list(reader.chunk_infos)
             index_pos = reader.index_pos
+            torn = reader.torn
+            torn_entries = reader.chunk_entries(torn.pos) if torn is not None else []
         self._written = set(self.connections)
         self._file = open(self.path, "r+b", buffering=0)
         self._file.seek(len(records.MAGIC))
@@ -91,6 +107,14 @@ class BagWriter:
         self._file.truncate(index_pos)
         self._file.seek(index_pos)
         self._pos = index_pos
+        if torn is not None:  # a killed recorder's last chunk: its real sizes and index data
+            _pwrite_all(self._file, records.chunk_header_bytes("none", torn.uncompressed_size,
+                                                               torn.compressed_size), torn.pos)
+            by_conn: dict[int, list[bytes]] = {}
+            for secs, nsecs, offset, conn_id in torn_entries:
+                by_conn.setdefault(conn_id, []).append(records.pack_index_entry(secs, nsecs, offset))
+            self._write([records.index_data_record(conn_id, b"".join(entries), len(entries))
+                         for conn_id, entries in by_conn.items()])
 
     # ------------------------------------------------------------------ writing
 
@@ -114,6 +138,7 @@ class BagWriter:
             record = records.connection_record(conn_id, conn.topic, conn.header)
             chunk += record
             self._chunk_len += len(record)
+            self._pending_len += len(record)
             self._written.add(conn_id)
         offset = self._chunk_len
         prefix = records.message_data_prefix(conn_id, secs, nsecs, len(data))
@@ -124,6 +149,7 @@ class BagWriter:
         else:
             chunk += data
         self._chunk_len += len(prefix) + len(data)
+        self._pending_len += len(prefix) + len(data)
         index = self._chunk_index.get(conn_id)
         if index is None:
             index = self._chunk_index[conn_id] = bytearray()
@@ -139,33 +165,82 @@ class BagWriter:
             self._chunk_start = t
         if self._chunk_len > self.chunk_threshold:
             self.flush_chunk()
+        elif self._pending_len >= _STREAM_BATCH and self.compression == "none":
+            self._stream()
+
+    def write_pending(self) -> None:
+        """Hand everything written so far to the kernel, so that it survives our death: the
+        open chunk's records (uncompressed), or the open chunk, closed (compressed)."""
+        if self.compression == "none":
+            if self._chunk_start is not None:
+                self._stream()
+        else:
+            self.flush_chunk()
+
+    def _stream(self) -> None:
+        """Write the open chunk's pending records (after its zero-size header, the first time)."""
+        buffers = self._take_pending()
+        if self._chunk_pos is None:
+            start = self._pos
+            self._write([records.chunk_header_bytes("none", 0, 0), *buffers])
+            self._chunk_pos = start
+        else:
+            self._write(buffers)
+
+    def _take_pending(self) -> list[bytes | bytearray | memoryview]:
+        buffers = [*self._parts, self._chunk]
+        self._parts = []
+        self._chunk = bytearray()
+        self._pending_len = 0
+        return buffers
 
     def flush_chunk(self) -> None:
         """Write the current chunk (if it holds anything) and its index data."""
         if self._chunk_start is None:  # empty, or connection records only: kept for the next message
             return
-        data = [*self._parts, self._chunk]
+        if self._broken is not None:
+            raise self._broken
         size = self._chunk_len
-        if self.compression == "none":
-            payload_size = size
-        else:
-            payload = compress(self.compression, data[0] if len(data) == 1 else b"".join(data))
-            data = [payload]
-            payload_size = len(payload)
-        pos = self._pos
-        head = records.chunk_header_bytes(self.compression, size, payload_size)
         tail = b"".join(records.index_data_record(conn_id, bytes(entries), self._chunk_counts[conn_id])
                         for conn_id, entries in self._chunk_index.items())
-        self._pos += _write_all(self._file, [head, *data, tail])
-        self.chunk_infos.append(ChunkInfo(pos, self._chunk_start, self._chunk_end, dict(self._chunk_counts)))
-        self._parts = []
-        self._chunk = bytearray()
+        info = ChunkInfo(self._pos if self._chunk_pos is None else self._chunk_pos, self._chunk_start,
+                         self._chunk_end, dict(self._chunk_counts))
+        if self._chunk_pos is not None:  # streamed: the rest, the real sizes, then the index data
+            self._write(self._take_pending())
+            _pwrite_all(self._file, records.chunk_header_bytes("none", size, size), self._chunk_pos)
+            self._write([tail])
+        else:
+            data = self._take_pending()
+            if self.compression == "none":
+                payload_size = size
+            else:
+                payload = compress(self.compression, data[0] if len(data) == 1 else b"".join(data))
+                data = [payload]
+                payload_size = len(payload)
+            head = records.chunk_header_bytes(self.compression, size, payload_size)
+            self._write([head, *data, tail])
+        self.chunk_infos.append(info)
+        self._chunk_pos = None
         self._chunk_len = 0
         self._chunk_index = {}
         self._chunk_counts = {}
         self._chunk_start = None
         if self._drop_behind and self._pos - self._advised >= _DROP_WINDOW:
             self._drop_written()
+
+    def _write(self, buffers: Sequence[bytes | bytearray | memoryview]) -> None:
+        """Append the buffers at _pos; a failed write is cut off again, so the file ends with
+        whole batches only, and leaves the writer broken (it writes nothing more but its end)."""
+        if self._broken is not None:
+            raise self._broken
+        try:
+            self._pos += _write_all(self._file, buffers)
+        except OSError as exc:
+            self._broken = exc
+            with contextlib.suppress(OSError):
+                self._file.truncate(self._pos)
+                self._file.seek(self._pos)
+            raise
 
     def _drop_written(self) -> None:
         """Ask the kernel to write back what we wrote since the last call and to forget what it
@@ -189,8 +264,8 @@ class BagWriter:
 
     @property
     def size(self) -> int:
-        """Bytes written so far, plus the open chunk."""
-        return self._pos + self._chunk_len
+        """Bytes written so far, plus the open chunk's pending bytes."""
+        return self._pos + self._pending_len
 
     def close(self) -> None:
         """Write the last chunk, the index (connections and chunk infos) and patch the header."""
@@ -198,17 +273,73 @@ class BagWriter:
             return
         self.closed = True
         try:
-            self.flush_chunk()
-            index_pos = self._pos
-            tail = [records.connection_record(c.id, c.topic, c.header) for c in self.connections.values()
-                    if c.id in self._written]
-            n_conns = len(tail)
-            tail += [records.chunk_info_record(info) for info in self.chunk_infos]
-            _write_all(self._file, tail)
-            self._file.seek(len(records.MAGIC))
-            _write_all(self._file, [records.file_header_record(index_pos, n_conns, len(self.chunk_infos))])
+            if self._broken is None:
+                self.flush_chunk()
+                self._write_index()
+            else:
+                self._end_broken()
         finally:
             self._file.close()
+
+    def _write_index(self) -> None:
+        index_pos = self._pos
+        # the connections with messages in the chunks (after a failed write, not all that were written)
+        present = {conn_id for info in self.chunk_infos for conn_id in info.counts}
+        tail = [records.connection_record(c.id, c.topic, c.header) for c in self.connections.values()
+                if c.id in present]
+        n_conns = len(tail)
+        tail += [records.chunk_info_record(info) for info in self.chunk_infos]
+        self._write(tail)
+        _pwrite_all(self._file, records.file_header_record(index_pos, n_conns, len(self.chunk_infos)),
+                    len(records.MAGIC))
+
+    def _end_broken(self) -> None:
+        """After a failed write (already raised to the writer's caller): close the streamed
+        chunk with the records that reached the disk and write the index; if even that does
+        not fit, drop the open chunk (its space is what the index needs) and try once more.
+        Raises the failure again only when the bag is left without an index."""
+        failure = self._broken
+        assert failure is not None
+        self._broken = None
+        self._take_pending()
+        chunk_pos = self._chunk_pos
+        try:
+            if chunk_pos is not None:
+                self._seal_streamed(chunk_pos)
+            self._write_index()
+            return
+        except OSError:
+            if chunk_pos is None:
+                raise failure from None
+        self._broken = None
+        self.chunk_infos = [info for info in self.chunk_infos if info.pos != chunk_pos]
+        self._pos = chunk_pos
+        try:
+            self._file.truncate(chunk_pos)
+            self._file.seek(chunk_pos)
+            self._write_index()
+        except OSError:
+            raise failure from None  # whole chunks and no index: `rosbag reindex` reads it
+
+    def _seal_streamed(self, chunk_pos: int) -> None:
+        """Close the open streamed chunk with the records on disk (they end at _pos: writes
+        are whole batches of whole records), as `flush_chunk` would have."""
+        size = self._pos - chunk_pos - len(records.chunk_header_bytes("none", 0, 0))
+        kept = {conn_id: [e for e in struct.iter_unpack("<III", packed) if e[2] < size]
+                for conn_id, packed in self._chunk_index.items()}
+        kept = {conn_id: entries for conn_id, entries in kept.items() if entries}
+        self._chunk_pos = None
+        if not kept:
+            self._file.truncate(chunk_pos)
+            self._file.seek(chunk_pos)
+            self._pos = chunk_pos
+            return
+        times = [(s, n) for entries in kept.values() for s, n, _ in entries]
+        _pwrite_all(self._file, records.chunk_header_bytes("none", size, size), chunk_pos)
+        self._write([records.index_data_record(conn_id, b"".join(records.pack_index_entry(*e) for e in entries),
+                                               len(entries)) for conn_id, entries in kept.items()])
+        self.chunk_infos.append(ChunkInfo(chunk_pos, min(times), max(times),
+                                          {conn_id: len(entries) for conn_id, entries in kept.items()}))
 
     def __enter__(self) -> BagWriter:
         return self
@@ -241,3 +372,13 @@ def _write_all(file: BinaryIO, buffers: Sequence[bytes | bytearray | memoryview]
             if done <= 0:
                 raise OSError(errno.EIO, f"writing {file.name!r}: no progress")
     return total
+
+
+def _pwrite_all(file: BinaryIO, data: bytes, pos: int) -> None:
+    """Overwrite bytes already in the file (a header patch: no new blocks, so no ENOSPC)."""
+    view = memoryview(data)
+    while view:
+        done = os.pwrite(file.fileno(), view, pos)
+        if done <= 0:
+            raise OSError(errno.EIO, f"writing {file.name!r}: no progress")
+        view, pos = view[done:], pos + done

@@ -16,7 +16,6 @@ from __future__ import annotations
 import heapq
 import os
 import select
-import struct
 import sys
 import threading
 import time
@@ -25,12 +24,10 @@ from typing import Any
 
 from kame import names
 from kame.bag.errors import BagError
-from kame.bag.reader import BagReader, RawMessage
+from kame.bag.reader import BagReader, MessageView
 from kame.cli._node import ToolNode
 from kame.cli._options import OptionParser
 from kame.node.topics import Publication, serialize_payload
-
-_LEN = struct.Struct("<I")
 
 
 def _log(level: str, text: str, color: str = "0") -> None:
@@ -103,14 +100,15 @@ class Keyboard:
 
 
 def _merged(readers: list[BagReader], topics: list[str], start: tuple[int, int] | None,
-            end: tuple[int, int] | None) -> Iterator[RawMessage]:
+            end: tuple[int, int] | None) -> Iterator[MessageView]:
+    """The messages to play in time order, their data as views of the bag's chunks (no copies)."""
     streams = []
     for reader in readers:
         conns = reader.connections_for(topics) if topics else None
-        streams.append(reader.messages(conns, start, end))
+        streams.append(reader.message_views(conns, start, end))
     if len(streams) == 1:
         return streams[0]
-    return heapq.merge(*streams, key=lambda m: m.time)
+    return heapq.merge(*streams, key=lambda m: (m[1], m[2]))
 
 
 def _ns(t: tuple[int, int]) -> int:
@@ -160,8 +158,7 @@ class Player:
         from kame.client.clock import Time
         from rosgraph_msgs.msg import Clock
 
-        payload = serialize_payload(Clock(clock=Time(*divmod(bag_ns, 1_000_000_000))))
-        self.clock.publish_frame([_LEN.pack(len(payload)) + payload])
+        self.clock.publish_payload(serialize_payload(Clock(clock=Time(*divmod(bag_ns, 1_000_000_000)))))
 
     def status(self, bag_ns: int, force: bool = False) -> None:
         if self.options.quiet:
@@ -223,10 +220,10 @@ class Player:
         self.view_end = self.selected_end(end_ns)
         wall0 = time.monotonic()
         start_ns = prev_ns = -1
-        for m in _merged(self.readers, opts.topics, start_t, end_t):
+        for conn, secs, nsecs, data, _, _ in _merged(self.readers, opts.topics, start_t, end_t):
             if self.stop.is_set():
                 return
-            t_ns = _ns(m.time)
+            t_ns = secs * 1_000_000_000 + nsecs
             if start_ns < 0:  # timing counts from the first message played, as rosbag's view begin
                 start_ns = prev_ns = self.view_start = t_ns
                 wall0 = time.monotonic()
@@ -236,14 +233,14 @@ class Player:
                 target = wall0 + (t_ns - start_ns) / 1e9 / opts.rate
                 shifted, _step = self.wait_until(target, t_ns, prev_ns)
                 wall0 += shifted - target
-            pub = self.pubs.get(m.conn.topic)
+            pub = self.pubs.get(conn.topic)
             if pub is not None:
-                pub.publish_frame([_LEN.pack(len(m.data)) + m.data])
+                pub.publish_payload(data)  # a view of the bag's chunk (immutable bytes): sent with no copy
             if self.clock is not None:
                 self.publish_clock(t_ns)
             prev_ns = t_ns
             self.status(t_ns)
-            if opts.pause_topics and m.conn.topic in opts.pause_topics:
+            if opts.pause_topics and conn.topic in opts.pause_topics:
                 self.paused = True
 
     def run(self) -> None:

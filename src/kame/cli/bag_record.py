@@ -12,8 +12,12 @@
   writer drops what it has written from the page cache behind itself (drop_behind) and
   takes large messages by reference (owned), with no copy into the chunk.
 - Ctrl-C (or SIGTERM) stops subscribing, drains the queue, closes the bag and renames
-  `name.bag.active` to `name.bag`. A killed recorder leaves complete chunks and no index:
-  `rosbag reindex` repairs it.
+  `name.bag.active` to `name.bag`. What arrives is handed to the kernel at least every
+  FLUSH_INTERVAL (the open chunk is streamed), so a killed recorder loses at most that much:
+  `rosbag reindex name.bag.active` indexes everything else, the torn last chunk included.
+- A write that fails (a full disk) ends the recording with one error line; the bag is closed
+  with what reached the disk (and renamed) when there is room for its index, else left as
+  `.active` for `rosbag reindex`.
 - -a, -e and --node find topics by asking the master once a second.
 """
 
@@ -50,6 +54,9 @@ def log_warn(text: str) -> None:
 def log_error(text: str) -> None:
     sys.stderr.write(f"\033[31m[ERROR] [{time.time():.9f}]: {text}\033[0m\n")
     sys.stderr.flush()
+
+
+FLUSH_INTERVAL = 0.5  # seconds: at most this much is lost when the recorder is killed
 
 
 class RecordingFailed(Exception):
@@ -268,21 +275,28 @@ class Recorder:
     def _duration_up(self, opened: float) -> bool:
         return bool(self.max_duration) and time.monotonic() - opened >= self.max_duration
 
-    def _until_duration_up(self, opened: float) -> float | None:
-        return max(opened + self.max_duration - time.monotonic(), 0.0) if self.max_duration else None
+    def _wait_limit(self, opened: float, flushed: float | None) -> float | None:
+        """How long the writer may wait for a message: until the unflushed chunk is due (when
+        `flushed` is given) or the duration is up, whichever is first; None: no limit."""
+        due = [t for t in (flushed + FLUSH_INTERVAL if flushed is not None else None,
+                           opened + self.max_duration if self.max_duration else None) if t is not None]
+        return max(min(due) - time.monotonic(), 0.0) if due else None
 
     def _write_until_stopped(self) -> None:
         writer, path = self._open()
         conns: dict[tuple[str, str], int] = {}
-        opened = time.monotonic()
+        opened = flushed = time.monotonic()
+        unflushed = False
         written: list[str] = [path]
         try:
             while True:
                 with self.cond:
-                    # woken by a message or by stop_writing; with --duration also when it is up,
-                    # so an idle bag is split or closed on time, as rosbag's checkDuration does
+                    # woken by a message or by stop_writing, or when the open chunk is due on
+                    # disk (FLUSH_INTERVAL after something was written) or --duration is up, so an
+                    # idle bag is split or closed on time, as rosbag's checkDuration does
                     while not self.queue and not self.stop.is_set() and not self._duration_up(opened):
-                        self.cond.wait(self._until_duration_up(opened))
+                        if not self.cond.wait(self._wait_limit(opened, flushed if unflushed else None)):
+                            break
                     if not self.queue and self.stop.is_set():
                         break
                     batch = list(self.queue)
@@ -297,6 +311,14 @@ class Recorder:
                         writer.write(conn_id, secs, nsecs, data, owned=True)
                     except OSError as exc:
                         raise RecordingFailed(f"cannot write {path}.active: {exc.strerror or exc}") from exc
+                unflushed = unflushed or bool(batch)
+                if unflushed and time.monotonic() - flushed >= FLUSH_INTERVAL:
+                    try:
+                        writer.write_pending()
+                    except OSError as exc:
+                        raise RecordingFailed(f"cannot write {path}.active: {exc.strerror or exc}") from exc
+                    flushed = time.monotonic()
+                    unflushed = False
                 if self.options.split and ((self.max_size and writer.size >= self.max_size) or self._duration_up(opened)):
                     self._close(writer, path)
                     if self.options.max_splits and len(written) >= self.options.max_splits:

@@ -19,7 +19,6 @@ import os
 import socket
 import sys
 import uuid
-import xmlrpc.client
 from collections.abc import Sequence
 from pathlib import Path
 from urllib.parse import urlsplit
@@ -29,6 +28,8 @@ from kame.launch.server import LaunchServer, ProcessState
 from kame.master.server import NOTIFY_TIMEOUT, MasterServer
 from kame.net.address import address_override, advertised_host, bind_host
 from kame.net.process import SupervisedProcess
+from kame.net.xmlrpc_client import XmlRpcProxy
+from kame.protocol.xmlrpc import XmlRpcError
 
 ROS_VERSION = "1.15.15"
 ROS_DISTRO = "noetic"
@@ -46,17 +47,15 @@ def _bold(text: str) -> None:
     print(f"{BOLD}{text}{RESET}", flush=True)
 
 
-def _running_master(uri: str) -> xmlrpc.client.ServerProxy | None:
-    """A proxy to the master answering at `uri`, or None if nothing answers."""
-    proxy = xmlrpc.client.ServerProxy(uri)
-    old = socket.getdefaulttimeout()
-    socket.setdefaulttimeout(2.0)
+def _running_master(uri: str) -> XmlRpcProxy | None:
+    """A proxy to the master answering at `uri` (each call bounded by 2 s), or None if nothing
+    answers."""
+    proxy = XmlRpcProxy(uri, timeout=2.0)
     try:
-        proxy.getPid("/roscore")
-    except (OSError, xmlrpc.client.Error):
+        proxy.call("getPid", "/roscore")
+    except (OSError, XmlRpcError):
+        proxy.close()
         return None
-    finally:
-        socket.setdefaulttimeout(old)
     return proxy
 
 
@@ -152,9 +151,14 @@ def main(argv: Sequence[str] | None = None) -> int:
     existing = _running_master(local_uri)
     run_id = str(uuid.uuid1())
     if existing is not None:
-        code, _, value = existing.getParam("/roscore", "/run_id")  # type: ignore[misc, str-unpack]
-        if code == 1 and isinstance(value, str):
-            run_id = value  # a second roscore logs under the running master's run_id
+        try:
+            answer = existing.call("getParam", "/roscore", "/run_id")
+        except (OSError, XmlRpcError):
+            answer = None
+        finally:
+            existing.close()
+        if isinstance(answer, list) and len(answer) == 3 and answer[0] == 1 and isinstance(answer[2], str):
+            run_id = answer[2]  # a second roscore logs under the running master's run_id
     logs = log_dir(env)
     run_dir = logs / run_id
     own_log = run_dir / f"roslaunch-{socket.gethostname()}-{os.getpid()}.log"

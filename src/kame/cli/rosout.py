@@ -33,7 +33,7 @@ from kame import names
 from kame.cli._node import ToolNode
 from kame.node.master_proxy import MasterError
 from kame.node.node import Node
-from kame.node.topics import SMALL_FRAME, Publication, serialize_payload
+from kame.node.topics import Publication, serialize_payload
 
 LOGGER = "kame.rosout"  # not __name__, which is __main__ under python -m
 log = logging.getLogger(LOGGER)
@@ -251,8 +251,8 @@ class Rosout:
                 self.dropped += 1
                 log.error("dropping a message from %s on /rosout: %s", header.get("callerid", "?"), exc)
                 continue
-            prefix = _U32.pack(len(frame))
-            self.agg.publish_frame([prefix + frame] if len(frame) <= SMALL_FRAME else [prefix, frame])
+            # the subscription reuses its receive buffer after this call: borrowed
+            self.agg.publish_payload(frame, borrowed=True)
             if self.file is not None:
                 lines.append(format_line(record, omit))
         if lines and self.file is not None:

@@ -21,6 +21,7 @@ from typing import Any
 
 import yaml
 
+from kame import param_yaml
 from kame.cli._options import OptionParser
 from kame.cli._tool import Master, ToolError, run, script_resolve_name, strip_remappings
 from kame.msg import lookup
@@ -148,8 +149,8 @@ def yaml_args(texts: Sequence[str]) -> list[Any]:
     values: list[Any] = []
     for text in texts:
         try:
-            values.append(yaml.safe_load(text if text != "" else "''"))
-        except yaml.YAMLError as exc:
+            values.append(param_yaml.safe_load(text if text != "" else "''"))
+        except (yaml.YAMLError, param_yaml.ParamValueError) as exc:
             raise ToolError(f"Invalid YAML in argument [{text}]: {' '.join(str(exc).split())}", STATUS) from None
     return values
 
@@ -212,12 +213,12 @@ def _stdin_documents() -> Iterator[Any]:
     for line in sys.stdin:
         if line.strip() == "---":
             if buff:
-                yield yaml.safe_load("".join(buff))
+                yield param_yaml.safe_load("".join(buff))
             buff = []
         else:
             buff.append(line)
     if "".join(buff).strip():
-        yield yaml.safe_load("".join(buff))
+        yield param_yaml.safe_load("".join(buff))
 
 
 def _wait_for_service(t: Tool, service: str) -> None:
@@ -381,7 +382,7 @@ def cmd_call(argv: list[str]) -> None:
             for document in _stdin_documents():
                 if document:
                     call(t, service, cls, document if isinstance(document, list) else [document], options.verbose)
-        except yaml.YAMLError as exc:
+        except (yaml.YAMLError, param_yaml.ParamValueError) as exc:
             raise ToolError(f"Invalid YAML: {' '.join(str(exc).split())}", STATUS) from None
 
 

@@ -28,7 +28,7 @@ from kame.cli._tool import DEFAULT_MASTER_URI, run
 from kame.msg.catalog import SHARE_DIR, MsgCatalog, Package, find_packages, package_path_roots
 from kame.msg.errors import MessageError
 from kame.net import interfaces
-from kame.net.xmlrpc_proxy import XmlRpcProxy
+from kame.net.xmlrpc_client import XmlRpcProxy
 from kame.node.master_proxy import MasterError, MasterProxy
 from kame.node.services import probe_service
 from kame.protocol.xmlrpc import XmlRpcError

@@ -117,10 +117,10 @@ def init_node(name: str, argv: list[str] | None = None, anonymous: bool = False,
     _log.route_runtime_logs()
     _wait_for_master(node, master_uri)
     if ros_args.params:
-        import yaml
+        from kame import param_yaml
 
-        for key, text in ros_args.params.items():
-            set_param(key, yaml.safe_load(text) if text else "")
+        for key, text in ros_args.params.items():  # bounded: an alias bomb is refused, not expanded
+            set_param(key, param_yaml.safe_load(text) if text else "")
     core.run_deferred()
     if not disable_rosout:
         _start_rosout(node)

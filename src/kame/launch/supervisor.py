@@ -7,6 +7,13 @@ Rules (roslaunch's nodeprocess and pmon, with its console wording):
 - A child that exits is reported (`[name] process has finished cleanly` in bold, or red
   `process has died [pid, exit code, cmd]`). A respawning child starts again after its
   respawn_delay (`[name] restarting process`); a required one ends the whole launch.
+- A respawning child that dies young (within 5 s of its start) twice in a row waits longer
+  before each further start: 0.5 s, doubled per young death up to 30 s (or its respawn_delay,
+  if longer; kame.net.process.RespawnBackoff), said once per step (`[name] died 0.1 s after it started,
+  3 times in a row: restarting in 1 s`); a child that lived longer starts the count afresh.
+  roslaunch restarts a node that crashes at start as fast as it can, forever.
+- On Linux a child is started with PR_SET_PDEATHSIG: if roslaunch is killed outright
+  (SIGKILL, a crash), its children get SIGTERM instead of living on as orphans.
 - When every non-core child is gone and nothing will respawn, the monitor ends (unless told to
   keep going, as roslaunch does when it started the master).
 - Shutdown stops the children in reverse start order, then the core processes (rosout, master);
@@ -28,6 +35,7 @@ from pathlib import Path
 from typing import IO
 
 from kame.launch.plan import ProcessSpec
+from kame.net.process import RespawnBackoff, die_with_parent
 
 log = logging.getLogger("kame.launch")
 BOLD, RED, RESET = "\033[1m", "\033[31m", "\033[0m"
@@ -70,6 +78,17 @@ class Child:
         self.exit_code: int | None = None
         self.stopping = False
         self.gone = False  # exited for good and was not required: pmon unregisters it, shutdown skips it
+        self.started_at = 0.0
+        self.backoff = RespawnBackoff()
+
+    def respawn_delay(self, now: float) -> float:
+        """How long to wait before starting again, the child having just exited at `now`."""
+        lived = now - self.started_at
+        delay, news = self.backoff.delay(lived, self.spec.node.respawn_delay)
+        if news:
+            say_error(f"[{self.name}] died {lived:.1f} s after it started, {self.backoff.young_deaths} times "
+                      f"in a row: restarting in {delay:g} s")
+        return delay
 
     @property
     def name(self) -> str:
@@ -83,7 +102,8 @@ class Child:
         os.makedirs(self.spec.cwd, exist_ok=True)
         try:
             self.proc = await asyncio.create_subprocess_exec(
-                *self.spec.argv, env=dict(self.spec.env), cwd=self.spec.cwd, stdout=out, start_new_session=True)
+                *self.spec.argv, env=dict(self.spec.env), cwd=self.spec.cwd, stdout=out, start_new_session=True,
+                preexec_fn=die_with_parent())
         except OSError as exc:
             self.pid, self.exit_code = -1, None
             if exc.errno == errno.ENOEXEC:
@@ -99,6 +119,7 @@ class Child:
             if out is not None:
                 out.close()
         self.starts += 1
+        self.started_at = asyncio.get_running_loop().time()
         self.exit_code = None
         self.pid = self.proc.pid
         say_bold(f"process[{self.name}]: started with pid [{self.pid}]")
@@ -196,7 +217,7 @@ class Monitor:
                 child.gone = True
                 self._check_all_dead()
                 return
-            await asyncio.sleep(child.spec.node.respawn_delay)
+            await asyncio.sleep(child.respawn_delay(asyncio.get_running_loop().time()))
             if child.stopping or self.done.is_set():
                 return
             say(f"[{child.name}] restarting process")

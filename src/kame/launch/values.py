@@ -14,6 +14,8 @@ from typing import Any
 
 import yaml
 
+from kame import param_yaml
+
 
 def convert_value(value: str, type_: str) -> Any:
     kind = type_.lower()
@@ -43,8 +45,8 @@ def convert_value(value: str, type_: str) -> Any:
         raise ValueError(f"{text} is not a '{type_}' type")
     if kind == "yaml":
         try:
-            return yaml.safe_load(value)
-        except yaml.YAMLError as exc:
+            return param_yaml.safe_load(value)
+        except (yaml.YAMLError, param_yaml.ParamValueError) as exc:
             raise ValueError(str(exc)) from exc
     raise ValueError(f"Unknown type '{type_}'")
 

@@ -22,7 +22,7 @@ from dataclasses import dataclass
 
 from kame import names
 from kame.master.notifications import Notification
-from kame.master.param_tree import ParamTree, param_updates, subscription_key
+from kame.master.param_tree import ParamTree, param_updates, subscription_key, unstorable
 from kame.master.registry import Registry
 from kame.protocol.xmlrpc import Fault, Value
 
@@ -259,6 +259,9 @@ class MasterApi:
 
     def setParam(self, caller_id: str, key: str, value: Value) -> Reply:
         key = names.resolve(key, caller_id)
+        problem = unstorable(key, value)
+        if problem:
+            return -1, problem, 0
         self.params.set(key, value)
         self._outbox.extend(param_updates(self.registry.param_subscribers, key, value, caller_id))
         return 1, f"parameter {key} set", 0

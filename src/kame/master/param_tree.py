@@ -7,6 +7,9 @@ Rules (ros1-interop spec §4; rosmaster 1.15.15 paramserver.py):
 - Keys arrive resolved (global, canonical). Empty path segments are ignored on lookup.
 - getParamNames lists leaves only, so an empty dict has no name although hasParam sees it.
 - searchParam starts in the caller's *private* namespace and matches on the key's first segment.
+- Whatever is stored can be sent back: setParam refuses (unstorable) integers outside XML-RPC's
+  32-bit range and a tree deeper than MAX_TREE_DEPTH (key segments plus value nesting), which
+  the XML-RPC encoder or a reader would fault on, so getParam('/') always answers.
 - Subscriptions are stored under `<key>/`. On a change, a subscriber at or above the changed key
   gets the new value under the changed key; subscribers below a dict that was set get their new
   sub-value, or `{}` if their key vanished; a deletion is reported as `{}`. Only setParam skips
@@ -21,6 +24,30 @@ from typing import Any
 from kame.master.notifications import ParamUpdate
 from kame.names import SEP, canonicalize, is_global, is_private, ns_join
 from kame.protocol.xmlrpc import Value
+
+#: Deepest the tree may be (key segments plus nesting of the value): XML-RPC readers bound
+#: nesting (kame's at 256 elements, about 80 levels), and the whole tree must go out as one value.
+MAX_TREE_DEPTH = 64
+_MIN_INT = -(2**31)
+_MAX_INT = 2**31 - 1
+
+
+def unstorable(key: str, value: Value) -> str | None:
+    """Why `value` cannot be stored at `key` (a reply to getParam would fault), or None.
+    Iterative: a hostile value cannot exhaust the stack here."""
+    pending: list[tuple[Value, int]] = [(value, len(_segments(key)))]
+    while pending:
+        item, depth = pending.pop()
+        if type(item) is int and not _MIN_INT <= item <= _MAX_INT:
+            return (f"cannot set parameter [{key}]: {item!r} does not fit a 32-bit signed integer "
+                    "(int exceeds XML-RPC limits)")
+        if isinstance(item, (dict, list)):
+            if depth >= MAX_TREE_DEPTH:
+                return (f"cannot set parameter [{key}]: the parameter tree would nest more than "
+                        f"{MAX_TREE_DEPTH} levels deep")
+            children = item.values() if isinstance(item, dict) else item
+            pending.extend((child, depth + 1) for child in children)
+    return None
 
 
 def _segments(key: str) -> list[str]:

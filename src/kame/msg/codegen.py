@@ -161,8 +161,11 @@ class _Serializer:
         e = code.var("e")
         code.emit(f"for {e} in {x}:")
         code.depth += 1
+        emitted = len(code.lines)
         self.one(base, base, False, None, e)
         self.flush()
+        if len(code.lines) == emitted:  # elements without fields (std_msgs/Empty[]): nothing to write
+            code.emit("pass")
         code.depth -= 1
 
 
@@ -289,6 +292,12 @@ class _Deserializer:
             return
         # arrays of messages, strings, times: a loop; elements are always new objects
         self.materialize()
+        if length is None and base not in ("string", "time", "duration") and _carries_nothing(self.lookup(base),
+                                                                                             self.lookup):
+            # Each element is zero bytes, so no read can run past the data: the count alone
+            # would have 4 bytes make us build four billion objects.
+            code.emit(f"if _n > {MAX_EMPTY_ELEMENTS}: raise ValueError("
+                      f"'an array of %d elements that carry nothing (at most {MAX_EMPTY_ELEMENTS})' % _n)")
         items = code.var("l")
         code.emit(f"{items} = []")
         code.emit(f"for _ in range({count}):")
@@ -307,6 +316,17 @@ class _Deserializer:
         self.flush()
         if self.sliced:
             self.code.emit("if _end > len(_buf): raise _Truncated")
+
+
+#: Most elements of a message type with no data (std_msgs/Empty) one array may hold.
+MAX_EMPTY_ELEMENTS = 1 << 16
+
+
+def _carries_nothing(spec: MsgSpec, lookup: Lookup) -> bool:
+    """Whether every message of `spec` serializes to zero bytes."""
+    return all((f.is_array and f.array_len == 0)
+               or (f.is_message and not f.is_array and _carries_nothing(lookup(f.base_type), lookup))
+               for f in spec.fields)
 
 
 def _has_numeric_arrays(spec: MsgSpec, lookup: Lookup) -> bool:

@@ -120,10 +120,13 @@ def _compound_value(current: Message | TVal, value: Any, keys: Mapping[str, Any]
     if isinstance(current, TVal):
         if isinstance(value, bool):
             raise FillError(f"Field [{path}] is a time value and cannot be {value!r}")
-        if isinstance(value, int):
-            return type(current).from_nsec(value)
-        if isinstance(value, float):
-            return type(current).from_sec(value)
+        try:
+            if isinstance(value, int):
+                return type(current).from_nsec(value)
+            if isinstance(value, float):
+                return type(current).from_sec(value)
+        except (TypeError, ValueError, OverflowError) as exc:  # negative times, nan, inf
+            raise FillError(f"Field [{path}] cannot be {value!r}: {exc}") from None
     _fill(current, value, keys, path + ".")
     return current
 

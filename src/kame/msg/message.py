@@ -219,12 +219,16 @@ def _type_problem(path: str, type_name: str, value: Any) -> str | None:
     if base == "time":
         if not isinstance(value, Time):
             return f"field {path} must be of type Time, got {type(value).__name__}"
+        if not _both_ints(value):
+            return f"field {path} time value must be integer seconds and nanoseconds: {value.secs!r}, {value.nsecs!r}"
         if value.secs < 0 or value.secs >= 2**32 or not 0 <= value.nsecs < 2**32:
             return f"field {path} time value out of range: {value.secs}.{value.nsecs:09d}"
         return None
     if base == "duration":
         if not isinstance(value, Duration):
             return f"field {path} must be of type Duration, got {type(value).__name__}"
+        if not _both_ints(value):
+            return f"field {path} duration must be integer seconds and nanoseconds: {value.secs!r}, {value.nsecs!r}"
         if not -(2**31) <= value.secs < 2**31:
             return f"field {path} duration out of range: {value.secs}s"
         return None
@@ -233,6 +237,10 @@ def _type_problem(path: str, type_name: str, value: Any) -> str | None:
     if value._type != base:
         return f"field {path} must be of type {base}, got {value._type}"
     return find_type_problem(value, path + ".")
+
+
+def _both_ints(value: Time | Duration) -> bool:
+    return all(isinstance(v, int) and not isinstance(v, bool) for v in (value.secs, value.nsecs))
 
 
 def find_type_problem(msg: Message, prefix: str = "") -> str | None:
@@ -285,6 +293,9 @@ def _walk(reader: _Reader, cls: type[Message], prefix: str) -> None:
         count = 1
         if is_array:
             count = reader.count(path) if length is None else length
+            element = cls._slot_classes.get(name) if base not in _SIZES and base != "string" else None
+            if element is not None and not element.__slots__:
+                continue  # elements of no data (std_msgs/Empty): nothing to walk, whatever the count
         for index in range(count):
             item_path = f"{path}[{index}]" if is_array else path
             if base == "string":

@@ -1,21 +1,20 @@
-"""A small asyncio HTTP/1.1 server for request/response protocols such as XML-RPC.
+"""A small asyncio HTTP/1.1 server for request/response protocols such as XML-RPC: the I/O around
+kame.protocol.http's request reader.
 
 Rules:
 - One asyncio.Protocol per connection parses requests straight from data_received and calls a
   synchronous handler inline on the event loop: no task, no thread hop per request. The handler
   must be quick and must not block (the master's handlers are pure in-memory code).
-- Keep-alive as HTTP/1.1 says (1.0 only with `Connection: keep-alive`); pipelined requests are
-  answered in order. Bodies need Content-Length (chunked requests get 411, as XML-RPC clients
-  never send them).
+- HTTP itself (keep-alive, pipelining, Content-Length, 411/413/431/...) is kame.protocol.http's.
 - Everything a client can make us hold is bounded: header bytes, body bytes (413 and close
   without reading the body), total bytes being received across connections (503), the number of
   connections (the longest-idle connection is closed to make room, else the new one is), the time
   a connection may stay silent, and the time a started request may take to arrive. A client
   that stops reading its responses is paused, not buffered for.
 - Refusals are logged at WARNING with the peer address; the server keeps serving everyone else.
-- Per request, the usual case costs little: a request that arrives in one segment is parsed from
-  it without copying into the buffer, a request head seen before (a client repeats its own) is
-  looked up instead of parsed, and the deadline is set once per batch of data, not per request.
+- Per request, the usual case costs little: the reader parses a request that arrives in one
+  segment in place and looks up heads seen before in a cache shared by the server's connections,
+  and the deadline is set once per batch of data, not per request.
 """
 
 from __future__ import annotations
@@ -23,20 +22,15 @@ from __future__ import annotations
 import asyncio
 import logging
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass, field
-from types import MappingProxyType
+from dataclasses import dataclass
+from typing import NamedTuple
+
+from kame.protocol.http import Refusal, RequestReader, encode_response, new_head_cache
 
 log = logging.getLogger("kame.net.http")
 
-_REASONS = {
-    200: "OK", 400: "Bad Request", 404: "Not Found", 408: "Request Timeout", 411: "Length Required",
-    413: "Payload Too Large", 431: "Request Header Fields Too Large", 500: "Internal Server Error",
-    501: "Not Implemented", 503: "Service Unavailable", 505: "HTTP Version Not Supported",
-}
 
-
-@dataclass(frozen=True)
-class HttpRequest:
+class HttpRequest(NamedTuple):  # a NamedTuple: a frozen dataclass costs a microsecond more per request
     method: str
     path: str
     headers: Mapping[str, str]  # names lower-cased; read-only, shared by requests with equal heads
@@ -64,12 +58,6 @@ class ServerLimits:
     request_timeout: float = 30.0  # a request must arrive completely within this once started
 
 
-# A parsed request head: method, path, version, headers, Content-Length, keep-alive.
-_Head = tuple[str, str, str, Mapping[str, str], int, bool]
-_HEAD_CACHE_SIZE = 256  # distinct heads remembered per server (a client repeats its own)
-_HEAD_CACHE_MAX_BYTES = 1024  # longer heads are parsed every time, so the cache stays small
-
-
 @dataclass
 class _Budget:
     receiving: int = 0
@@ -78,12 +66,9 @@ class _Budget:
 @dataclass(eq=False)
 class _Connection(asyncio.Protocol):
     server: HttpServer
+    reader: RequestReader
     transport: asyncio.Transport | None = None
     peer: str = "?"
-    buf: bytearray = field(default_factory=bytearray)
-    # the request being received: its head, once parsed, and its Content-Length
-    head: _Head | None = None
-    need: int = 0
     receiving: bool = False  # the deadline set is the current request's request_timeout
     reserved: int = 0  # bytes of the shared receive budget this connection holds
     deadline: float = 0.0
@@ -113,13 +98,8 @@ class _Connection(asyncio.Protocol):
         self.transport = None
 
     def data_received(self, data: bytes) -> None:
-        if self.buf:
-            self.buf += data
-            self._process(self.buf)
-        else:
-            # The usual case, a whole request in one segment, is parsed from `data` itself:
-            # only an incomplete rest is copied into `buf`.
-            self._process(data)
+        self.reader.feed(data)
+        self._process()
 
     def pause_writing(self) -> None:
         # The client does not read its responses: stop reading its requests until it does.
@@ -131,130 +111,56 @@ class _Connection(asyncio.Protocol):
         self.paused = False
         if self.transport is not None:
             self.transport.resume_reading()
-            self._process(self.buf)
+            self._process()
 
     # ---------------------------------------------------------------------------- requests
 
-    def _process(self, data: bytes | bytearray) -> None:
-        """Serve the complete requests in `data` (which is either `buf` or, with `buf` empty,
-        what just arrived), keep the rest in `buf`, and set the connection's deadline."""
-        limits = self.server.limits
-        pos = 0
+    def _process(self) -> None:
+        """Serve the complete requests received, then set the connection's deadline."""
+        reader = self.reader
         served = False
         while self.transport is not None and not self.paused:
-            if self.head is None:
-                end = data.find(b"\r\n\r\n", pos)
-                if end < 0:
-                    if len(data) - pos > limits.max_header:
-                        self._refuse(431, "request head too large")
-                        return
-                    break
-                if end - pos > limits.max_header:
-                    self._refuse(431, "request head too large")
-                    return
-                if not self._start_request(bytes(data[pos:end])):
-                    return
-                pos = end + 4
-            need = self.need
-            if len(data) - pos < need:
+            request = reader.next_request()
+            if request is None:
                 break
-            body = data[pos : pos + need]
-            pos += need
-            head = self.head
-            assert head is not None
-            method, path, version, headers, _, keep_alive = head
-            self.head = None
+            if isinstance(request, Refusal):
+                self._refuse(request.status, request.why)
+                return
             if self.reserved:
                 self._release()
             try:
                 response = self.server.handler(
-                    HttpRequest(method, path, headers, body if type(body) is bytes else bytes(body), self.peer))
+                    HttpRequest(request.method, request.path, request.headers, request.body, self.peer))
             except Exception:
-                log.exception("handler failed for %s %s from %s", method, path, self.peer)
+                log.exception("handler failed for %s %s from %s", request.method, request.path, self.peer)
                 response = HttpResponse(500, b"", "text/plain")
-            self._send(response, version, keep_alive)
-            if not keep_alive:
+            self._send(response, request.version, request.keep_alive)
+            if not request.keep_alive:
                 return
             self.served += 1
             served = True
-        if data is self.buf:
-            del self.buf[:pos]
-        elif pos < len(data):
-            self.buf += memoryview(data)[pos:]
         if self.transport is None:
             return
         if served:
             self.server._touch(self)
         # One deadline per batch: a request that arrived whole never needed its own.
-        if self.buf or self.head is not None:
+        if reader.pending:
+            wanted = reader.body_wanted
+            if wanted and not self.reserved and not self.server._reserve(self, wanted):
+                self._refuse(503, f"busy: cannot take {wanted} more bytes now")
+                return
             if served or not self.receiving:
                 # a request has started arriving: it must be complete within request_timeout
                 self.receiving = True
-                self._arm(limits.request_timeout)
+                self._arm(self.server.limits.request_timeout)
         elif served:
             self.receiving = False
-            self._arm(limits.idle_timeout)
-
-    def _start_request(self, raw: bytes) -> bool:
-        """Take a request head (cached by its bytes: a client repeats the same head)."""
-        heads = self.server._heads
-        head = heads.get(raw)
-        if head is None:
-            head = self._parse_head(raw)
-            if head is None:
-                return False
-            if len(raw) <= _HEAD_CACHE_MAX_BYTES:
-                if len(heads) >= _HEAD_CACHE_SIZE:
-                    heads.clear()
-                heads[raw] = head
-        length = head[4]
-        if length and not self.server._reserve(self, length):
-            self._refuse(503, f"busy: cannot take {length} more bytes now")
-            return False
-        self.head = head
-        self.need = length
-        return True
-
-    def _parse_head(self, raw: bytes) -> _Head | None:
-        lines = raw.decode("latin-1").split("\r\n")
-        parts = lines[0].split(" ")
-        if len(parts) != 3 or not parts[2].startswith("HTTP/"):
-            self._refuse(400, f"bad request line {lines[0][:80]!r}")
-            return None
-        method, path, version = parts
-        if version not in ("HTTP/1.1", "HTTP/1.0"):
-            self._refuse(505, f"unsupported {version[:20]!r}")
-            return None
-        headers: dict[str, str] = {}
-        for line in lines[1:]:
-            name, sep, value = line.partition(":")
-            if not sep:
-                self._refuse(400, "bad header line")
-                return None
-            headers[name.strip().lower()] = value.strip()
-        if "chunked" in headers.get("transfer-encoding", "").lower():
-            self._refuse(411, "chunked request body")
-            return None
-        try:
-            length = int(headers.get("content-length", "0"))
-        except ValueError:
-            length = -1
-        if length < 0:
-            self._refuse(400, "bad Content-Length")
-            return None
-        if length > self.server.limits.max_body:
-            self._refuse(413, f"body of {length} bytes")
-            return None
-        return method, path, version, MappingProxyType(headers), length, _keep_alive(version, headers)
+            self._arm(self.server.limits.idle_timeout)
 
     def _send(self, response: HttpResponse, version: str, keep_alive: bool) -> None:
         assert self.transport is not None
-        key = (version, response.status, response.content_type, keep_alive)
-        head = _RESPONSE_HEADS.get(key)
-        if head is None:
-            head = _RESPONSE_HEADS[key] = _response_head(*key)
-        body = response.body
-        self.transport.write(head[0] + b"%d" % len(body) + head[1] + body)
+        self.transport.write(encode_response(response.status, response.body, response.content_type, version,
+                                             keep_alive))
         if not keep_alive:
             self.transport.close()
 
@@ -262,8 +168,6 @@ class _Connection(asyncio.Protocol):
         log.warning("refusing request from %s: %s (%d)", self.peer, why, status)
         if self.transport is not None:
             self._send(HttpResponse(status, b"", "text/plain"), "HTTP/1.1", keep_alive=False)
-        self.buf.clear()
-        self.head = None
         self.receiving = False
 
     # ---------------------------------------------------------------------------- timing and budget
@@ -286,7 +190,7 @@ class _Connection(asyncio.Protocol):
         if now < self.deadline:
             self.timer = self.server.loop.call_at(self.deadline, self._check_deadline)
             return
-        if self.buf or self.head is not None:
+        if self.reader.pending:
             self._refuse(408, "request not completed in time")
         else:
             log.info("closing idle connection from %s", self.peer)
@@ -298,24 +202,7 @@ class _Connection(asyncio.Protocol):
 
     @property
     def idle(self) -> bool:
-        return not self.buf and self.head is None
-
-
-def _response_head(version: str, status: int, content_type: str, keep_alive: bool) -> tuple[bytes, bytes]:
-    """The response head's bytes before and after the Content-length value."""
-    before = f"{version} {status} {_REASONS.get(status, 'Unknown')}\r\nContent-type: {content_type}\r\nContent-length: "
-    after = "\r\n" if keep_alive else "\r\nConnection: close\r\n"
-    return before.encode("latin-1"), (after + "\r\n").encode("latin-1")
-
-
-_RESPONSE_HEADS: dict[tuple[str, int, str, bool], tuple[bytes, bytes]] = {}
-
-
-def _keep_alive(version: str, headers: dict[str, str]) -> bool:
-    connection = headers.get("connection", "").lower()
-    if version == "HTTP/1.1":
-        return "close" not in connection
-    return "keep-alive" in connection
+        return not self.reader.pending
 
 
 class HttpServer:
@@ -327,7 +214,7 @@ class HttpServer:
         self.port = port
         self.limits = limits or ServerLimits()
         self._budget = _Budget()
-        self._heads: dict[bytes, _Head] = {}
+        self._heads = new_head_cache()
         self._connections: dict[_Connection, None] = {}  # least recently active first
         self._evicted = 0  # connections closed to make room since the last warning about it
         self._evict_logged = float("-inf")
@@ -343,7 +230,8 @@ class HttpServer:
         """Bind and listen; returns the bound port (useful with port 0)."""
         self._loop = asyncio.get_running_loop()
         self._server = await self._loop.create_server(
-            lambda: _Connection(self), self.host, self.port, reuse_address=True, backlog=1024)
+            lambda: _Connection(self, RequestReader(self.limits.max_header, self.limits.max_body, self._heads)),
+            self.host, self.port, reuse_address=True, backlog=1024)
         sock = self._server.sockets[0]
         self.port = int(sock.getsockname()[1])
         return self.port

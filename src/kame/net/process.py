@@ -7,19 +7,85 @@ Rules:
   `respawn_delay`, as roslaunch does for `respawn="true"`; the owner hears of each start.
 - Its stdout goes to a file opened for appending, so a respawn continues the same log;
   stderr stays the parent's.
+- A respawning child that dies young, again and again, is restarted ever more slowly
+  (`RespawnBackoff`, shared with the launch supervisor): a program that crashes at start
+  must not be restarted as fast as it can, for good.
+- On Linux it gets SIGTERM when its parent dies (PR_SET_PDEATHSIG, `die_with_parent`), so a
+  supervisor killed outright leaves no orphan.
 """
 
 from __future__ import annotations
 
 import asyncio
 import contextlib
+import ctypes
 import logging
 import os
 import signal
+import sys
 from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
 
 log = logging.getLogger("kame.net.process")
+_PR_SET_PDEATHSIG = 1
+
+
+def _libc_prctl() -> Callable[..., int] | None:
+    if not sys.platform.startswith("linux"):
+        return None
+    try:
+        return ctypes.CDLL(None, use_errno=True).prctl
+    except (OSError, AttributeError):
+        return None
+
+
+_prctl = _libc_prctl()  # looked up here: a forked child should only call it
+
+
+class RespawnBackoff:
+    """How long a respawning child waits before its next start.
+
+    A child that dies within YOUNG seconds of its start died young; from the second young
+    death in a row on, it waits START, doubled per further one, up to CAP (or the configured
+    delay if that is longer). A child that lived longer starts the count afresh."""
+
+    YOUNG = 5.0
+    START = 0.5
+    CAP = 30.0
+
+    def __init__(self) -> None:
+        self.young_deaths = 0  # in a row
+        self.backoff = 0.0  # the last backoff returned as news
+
+    def delay(self, lived: float, configured: float) -> tuple[float, bool]:
+        """(seconds to wait, whether that is a new backoff step worth saying once)."""
+        self.young_deaths = self.young_deaths + 1 if lived < self.YOUNG else 0
+        if self.young_deaths < 2:
+            self.backoff = 0.0
+            return configured, False
+        backoff = min(self.CAP, self.START * 2.0 ** (self.young_deaths - 2))
+        if backoff <= configured:
+            return configured, False
+        news = backoff != self.backoff
+        self.backoff = backoff
+        return backoff, news
+
+
+def die_with_parent() -> Callable[[], None] | None:
+    """A preexec_fn that has the child get SIGTERM when we (this process) die: Linux only, else
+    None. The signal is tied to the forking thread, so fork from one that lives as long as we do
+    (an event loop's)."""
+    prctl = _prctl
+    if prctl is None:
+        return None
+    parent = os.getpid()
+
+    def preexec() -> None:
+        prctl(_PR_SET_PDEATHSIG, signal.SIGTERM)
+        if os.getppid() != parent:  # we died between the fork and the prctl
+            os.kill(os.getpid(), signal.SIGTERM)
+
+    return preexec
 
 
 class SupervisedProcess:
@@ -38,6 +104,8 @@ class SupervisedProcess:
         self.on_start = on_start
         self.on_exit = on_exit
         self.starts = 0
+        self._backoff = RespawnBackoff()
+        self._started_at = 0.0
         self._proc: asyncio.subprocess.Process | None = None
         self._watcher: asyncio.Task[None] | None = None
         self._stopping = False
@@ -63,12 +131,13 @@ class SupervisedProcess:
             out = open(self.stdout, "ab")  # the child holds it; our copy closes right after the start
         try:
             self._proc = await asyncio.create_subprocess_exec(
-                *self.args, env=self.env, stdin=asyncio.subprocess.DEVNULL, stdout=out)
+                *self.args, env=self.env, stdin=asyncio.subprocess.DEVNULL, stdout=out, preexec_fn=die_with_parent())
         finally:
             if out is not None:
                 out.close()
         restarted = self.starts > 0
         self.starts += 1
+        self._started_at = asyncio.get_running_loop().time()
         log.info("started %s with pid %d", self.name, self._proc.pid)
         if self.on_start is not None:
             self.on_start(self._proc.pid, restarted)
@@ -86,7 +155,12 @@ class SupervisedProcess:
                 self.on_exit(proc.pid, code)
             if not self.respawn:
                 return
-            await asyncio.sleep(self.respawn_delay)
+            lived = asyncio.get_running_loop().time() - self._started_at
+            delay, news = self._backoff.delay(lived, self.respawn_delay)
+            if news:
+                log.warning("%s died %.1f s after it started, %d times in a row: restarting in %g s", self.name,
+                            lived, self._backoff.young_deaths, delay)
+            await asyncio.sleep(delay)
             if self._stopping:
                 return
             try:

@@ -3,6 +3,7 @@
 A node gets few calls (requestTopic, publisherUpdate, getBusInfo, ...), so one thread per
 connection is plenty, and it keeps asyncio out of every node's start-up. The listening
 socket is bound in the constructor, so its port can be advertised before serving starts.
+HTTP is kame.protocol.http's; this module is the sockets and threads around it.
 Bounded like the master's server: header and body sizes, idle time, the time a started
 request may take to arrive, and the number of connections; at that limit the connection that has
 been quiet longest is closed to make room, so clients that connect and stall can never lock the
@@ -18,6 +19,7 @@ import time
 from collections.abc import Callable
 
 from kame.net.stream import AcceptStarvation, peer_of
+from kame.protocol.http import Refusal, Request, RequestReader, encode_response
 
 log = logging.getLogger("kame.net.rpc")
 
@@ -115,7 +117,7 @@ class RpcServer:
 
     def _serve(self, conn: socket.socket) -> None:
         conn.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
-        buf = bytearray()
+        reader = RequestReader(MAX_HEAD, MAX_BODY)
 
         def touch() -> None:
             with self._lock:
@@ -124,22 +126,23 @@ class RpcServer:
 
         try:
             while not self._closing:
-                request = _read_request(conn, buf, touch)
+                request = _read_request(conn, reader, touch)
                 if request is None:
                     return
-                body, keep_alive, status = request
-                if status != 200:
-                    conn.sendall(_response(status, b"", False))
+                if isinstance(request, Refusal):
+                    log.warning("refusing XML-RPC request from %s: %s (%d)", peer_of(conn), request.why,
+                                request.status)
+                    conn.sendall(encode_response(request.status, b"", "text/plain", keep_alive=False))
                     return
                 try:
-                    answer = self._handler(body)
+                    answer = self._handler(request.body)
                 except Exception:
                     log.exception("XML-RPC handler failed")
-                    conn.sendall(_response(500, b"", False))
+                    conn.sendall(encode_response(500, b"", "text/plain", keep_alive=False))
                     return
-                conn.sendall(_response(200, answer, keep_alive))
+                conn.sendall(encode_response(200, answer, "text/xml", request.version, request.keep_alive))
                 touch()
-                if not keep_alive:
+                if not request.keep_alive:
                     return
         except OSError:
             return
@@ -149,78 +152,31 @@ class RpcServer:
             conn.close()
 
 
-_REASONS = {200: "OK", 400: "Bad Request", 411: "Length Required", 413: "Payload Too Large",
-            431: "Request Header Fields Too Large", 500: "Internal Server Error"}
-
-
-def _response(status: int, body: bytes, keep_alive: bool) -> bytes:
-    head = (
-        f"HTTP/1.1 {status} {_REASONS.get(status, 'Error')}\r\nServer: kame\r\nContent-Type: text/xml\r\n"
-        f"Content-Length: {len(body)}\r\nConnection: {'keep-alive' if keep_alive else 'close'}\r\n\r\n"
-    )
-    return head.encode("latin-1") + body
-
-
-def _recv(conn: socket.socket, size: int, deadline: float | None) -> bytes:
-    """recv, waiting at most IDLE_TIMEOUT, or until `deadline` once a request has started."""
-    if deadline is not None:
-        remaining = deadline - time.monotonic()
-        if remaining <= 0:
-            raise TimeoutError("request not received in time")
-        conn.settimeout(min(IDLE_TIMEOUT, remaining))
-    return conn.recv(size)
-
-
-def _read_request(conn: socket.socket, buf: bytearray,
-                  touch: Callable[[], None] = lambda: None) -> tuple[bytes, bool, int] | None:
-    """One request from `buf` + the socket: (body, keep_alive, status); None at a clean end.
-    Raises OSError (TimeoutError) when the peer goes quiet or a request takes too long."""
-    deadline = time.monotonic() + REQUEST_TIMEOUT if buf else None
-    conn.settimeout(IDLE_TIMEOUT)
+def _read_request(conn: socket.socket, reader: RequestReader,
+                  touch: Callable[[], None] = lambda: None) -> Request | Refusal | None:
+    """The next request (or refusal) from the reader and the socket; None at a clean end.
+    Raises OSError (TimeoutError) when the peer goes quiet or a request takes too long: a
+    connection may idle IDLE_TIMEOUT between requests, a started request must arrive whole
+    within REQUEST_TIMEOUT."""
+    deadline = time.monotonic() + REQUEST_TIMEOUT if reader.pending else None
     while True:
-        end = buf.find(b"\r\n\r\n")
-        if end >= 0:
-            break
-        if len(buf) > MAX_HEAD:
-            return b"", False, 431
-        chunk = _recv(conn, 65536, deadline)
+        request = reader.next_request()
+        if request is not None:
+            # the answer is sent with the whole idle timeout, not what the request left
+            conn.settimeout(IDLE_TIMEOUT)
+            return request
+        if deadline is None:
+            conn.settimeout(IDLE_TIMEOUT)
+        else:
+            remaining = deadline - time.monotonic()
+            if remaining <= 0:
+                raise TimeoutError("request not received in time")
+            conn.settimeout(min(IDLE_TIMEOUT, remaining))
+        # At most 1 MiB per recv: recv(n) allocates n bytes first.
+        chunk = conn.recv(max(65536, min(reader.body_wanted, 1 << 20)))
         if not chunk:
             return None
         if deadline is None:
             deadline = time.monotonic() + REQUEST_TIMEOUT
         touch()
-        buf += chunk
-    lines = bytes(buf[:end]).decode("latin-1").split("\r\n")
-    del buf[: end + 4]
-    request_line = lines[0].split()
-    if len(request_line) != 3:
-        return b"", False, 400
-    keep_alive = request_line[2] == "HTTP/1.1"
-    length: int | None = None
-    for line in lines[1:]:
-        name, _, value = line.partition(":")
-        name = name.strip().lower()
-        value = value.strip()
-        if name == "content-length":
-            try:
-                length = int(value)
-            except ValueError:
-                return b"", False, 400
-        elif name == "connection":
-            keep_alive = value.lower() == "keep-alive" or (keep_alive and value.lower() != "close")
-        elif name == "transfer-encoding":
-            return b"", False, 411
-    if length is None:
-        return b"", False, 411
-    if length > MAX_BODY or length < 0:
-        return b"", False, 413
-    while len(buf) < length:
-        chunk = _recv(conn, min(1 << 20, length - len(buf)), deadline)
-        if not chunk:
-            return None
-        touch()
-        buf += chunk
-    body = bytes(buf[:length])
-    del buf[:length]
-    conn.settimeout(IDLE_TIMEOUT)  # the answer is sent with the whole idle timeout, not what the request left
-    return body, keep_alive, 200
+        reader.feed(chunk)

@@ -5,9 +5,11 @@ Rules:
   `Sender.send` writes straight to the (non-blocking) socket. Only what the kernel will not
   take now waits in a per-connection backlog, which one flusher thread per owner drains as
   the socket becomes writable, many frames per system call.
-- A backlog holds at most `max_frames` frames; when full, the oldest whole frame that has not
-  started going out is dropped (a publisher's queue_size). One slow reader therefore costs
-  its own connection frames, never the sender's time or other connections.
+- A backlog holds at most `max_frames` frames (a publisher's queue_size) and, with
+  `max_bytes`, at most that many bytes (a publisher without a queue_size: its frames are
+  otherwise unbounded); when full, the oldest whole frame that has not started going out is
+  dropped. One slow reader therefore costs its own connection frames, never the sender's
+  time, memory beyond that bound, or other connections.
 - Receiving is one thread per connection, blocking in recv_into a buffer its consumer hands
   out; the consumer may parse and act on many frames per read.
 - Every thread has an owner that stops it: `close()` shuts the socket down, which wakes the
@@ -137,11 +139,13 @@ class Sender:
     """The sending side of one connection: direct writes, a bounded backlog, drop-oldest."""
 
     def __init__(self, sock: socket.socket, flusher: Flusher, max_frames: int,
-                 on_broken: Callable[[BaseException | None], None]) -> None:
+                 on_broken: Callable[[BaseException | None], None], max_bytes: int | None = None) -> None:
         sock.setblocking(False)
         self.sock = sock
         self.closed = False
         self.max_frames = max(1, max_frames)
+        self.max_bytes = max_bytes
+        self._backlog_bytes = 0
         self.dropped = 0
         self.bytes_sent = 0
         self.frames_sent = 0
@@ -158,14 +162,17 @@ class Sender:
         """Queue one frame (bytes-like); it goes out now if the socket takes it."""
         self.send_parts((frame,))
 
-    def send_parts(self, parts: Sequence[Buffer]) -> None:
-        """Queue one frame given as one or more buffers (a large message: no joining copy)."""
+    def send_parts(self, parts: Sequence[Buffer], borrowed: bool = False) -> None:
+        """Queue one frame given as one or more buffers (a large message: no joining copy).
+        `borrowed`: the caller reuses the buffers once this returns, so what cannot go out now
+        is copied into the backlog (only that part: the usual case copies nothing)."""
+        keep = _copied if borrowed else memoryview
         with self._lock:
             if self.closed:
                 return
             self.frames_sent += 1
             if self._backlog:
-                self._append([memoryview(p) for p in parts])
+                self._append([keep(p) for p in parts])
                 return
             try:
                 sent = self.sock.send(parts[0]) if len(parts) == 1 else self.sock.sendmsg(parts)
@@ -178,14 +185,16 @@ class Sender:
             if sent >= 0:
                 self.bytes_sent += sent
                 for part in parts:
-                    view = memoryview(part)
-                    if sent >= len(view):
-                        sent -= len(view)
+                    size = len(part)  # buffers are byte-sized: len is their byte count
+                    if sent >= size:
+                        sent -= size
                         continue
-                    rest.append(view[sent:] if sent else view)
+                    view = memoryview(part)
+                    rest.append(keep(view[sent:] if sent else view))
                     sent = 0
                 if rest:
                     self._backlog.append(rest)
+                    self._backlog_bytes += sum(len(view) for view in rest)
                     self._head_started = len(rest) < len(parts) or len(rest[0]) < len(parts[0])
         if sent < 0:
             self._report_failure()
@@ -213,14 +222,18 @@ class Sender:
     def _append(self, frame: list[memoryview]) -> None:
         backlog = self._backlog
         backlog.append(frame)
-        while len(backlog) > self.max_frames:
+        self._backlog_bytes += sum(len(view) for view in frame)
+        max_bytes = self.max_bytes
+        while len(backlog) > self.max_frames or (max_bytes is not None and self._backlog_bytes > max_bytes
+                                                 and len(backlog) > 1 + self._head_started):
             # The head may be partly on the wire: keep it, drop the next oldest.
             if self._head_started:
                 head = backlog.popleft()
-                backlog.popleft()
+                dropped = backlog.popleft()
                 backlog.appendleft(head)
             else:
-                backlog.popleft()
+                dropped = backlog.popleft()
+            self._backlog_bytes -= sum(len(view) for view in dropped)
             self.dropped += 1
 
     def flush(self) -> bool:
@@ -249,6 +262,7 @@ class Sender:
                     self._fail(exc)
                     return True
                 self.bytes_sent += sent
+                self._backlog_bytes -= sent
                 while sent and backlog:
                     head = backlog[0]
                     while head and sent >= len(head[0]):
@@ -271,6 +285,7 @@ class Sender:
             return
         self.closed = True
         self._backlog.clear()
+        self._backlog_bytes = 0
         self._failure = (exc,)
 
     def _report_failure(self) -> None:
@@ -284,12 +299,17 @@ class Sender:
         with self._lock:
             self.closed = True
             self._backlog.clear()
+            self._backlog_bytes = 0
         self._on_broken = _ignore
         self._flusher.forget(self)
 
 
 def _ignore(_exc: BaseException | None) -> None:
     return None
+
+
+def _copied(buffer: Buffer) -> memoryview:
+    return memoryview(bytes(buffer))
 
 
 class Consumer(Protocol):
@@ -301,17 +321,29 @@ class Consumer(Protocol):
 
     def buffer_updated(self, nbytes: int) -> None: ...
 
+    @property
+    def mid_frame(self) -> bool:
+        """Part of a message has arrived and the rest has not (a stall here is the peer's)."""
+        ...
+
+
+class Stalled(Exception):
+    """The peer stopped sending in the middle of a message."""
+
 
 class Receiver:
     """A thread that reads a socket into a Consumer until the stream ends.
 
     `on_end(exc)` is called once: with None when the peer closed the stream, with the error
     when it broke (or the consumer raised), and not at all when we closed it ourselves.
+    With `stall_timeout`, a peer that sends no byte for that long while the consumer is in the
+    middle of a message ends the stream with Stalled (idle between messages is fine).
     """
 
     def __init__(self, sock: socket.socket, consumer: Consumer, on_end: Callable[[BaseException | None], None],
-                 name: str, chunk_size: int = 256 * 1024) -> None:
+                 name: str, chunk_size: int = 256 * 1024, stall_timeout: float | None = None) -> None:
         self.sock = sock
+        self._stall_timeout = stall_timeout
         self._consumer = consumer
         self._on_end = on_end
         self._chunk_size = chunk_size
@@ -326,9 +358,17 @@ class Receiver:
         recv_into = self.sock.recv_into
         chunk_size = self._chunk_size
         error: BaseException | None = None
+        stall = self._stall_timeout
         try:
+            if stall is not None:
+                self.sock.settimeout(stall)
             while not self._closing:
-                n = recv_into(consumer.get_buffer(chunk_size))
+                try:
+                    n = recv_into(consumer.get_buffer(chunk_size))
+                except TimeoutError:
+                    if stall is not None and consumer.mid_frame:
+                        raise Stalled(f"no byte for {stall:g} s in the middle of a message") from None
+                    continue
                 if n == 0:
                     break
                 consumer.buffer_updated(n)

@@ -1,26 +1,106 @@
-"""Asynchronous XML-RPC calls over HTTP/1.1, one connection per call, bounded in time and size.
+"""XML-RPC calls over HTTP/1.1: the sockets around kame.protocol.http's request writer and
+response reader, for every kame caller (nodes, the master's notifications, the CLI tools).
 
-Made for notifications to peers that may be slow, dead or hostile: the whole call (connect,
-send, receive) has one deadline, the response size is capped, and every failure surfaces as an
-exception for the caller to log; nothing here retries.
+- `XmlRpcProxy` (blocking): a node's calls to the master and to other nodes, and the tools'.
+  The calling thread waits for the answer. One kept-alive connection per proxy (rospy opens
+  one per call), serialised by a lock, reopened once when a server closed an idle connection
+  under us. Every wait is bounded by the call's timeout, set on the proxy's own socket: nothing
+  here touches process-wide socket defaults.
+- `call` / `post` (asyncio): notifications to peers that may be slow, dead or hostile. One
+  connection per call; the whole call (connect, send, receive) has one deadline, the response
+  size is capped, and every failure surfaces as an exception for the caller to log; nothing
+  retries.
 """
 
 from __future__ import annotations
 
 import asyncio
+import socket
+import threading
 from urllib.parse import urlsplit
 
-from kame.protocol.xmlrpc import Value, decode_response, encode_request
+from kame.protocol.http import HttpError, ResponseReader, encode_request
+from kame.protocol.xmlrpc import Value, decode_response
+from kame.protocol.xmlrpc import encode_request as encode_call
 
-MAX_RESPONSE = 32 * 1024 * 1024
+__all__ = ["HttpError", "XmlRpcProxy", "XmlRpcTransportError", "call", "post"]
+
+MAX_RESPONSE = 64 * 1024 * 1024
+MAX_NOTIFICATION_RESPONSE = 32 * 1024 * 1024
 MAX_HEAD = 64 * 1024
 
 
-class HttpError(Exception):
-    """The peer answered with something other than a complete HTTP 200 response."""
+class XmlRpcTransportError(OSError):
+    """The call could not be made or its answer was not a complete HTTP 200 response."""
 
 
-async def post(uri: str, body: bytes, timeout: float, max_response: int = MAX_RESPONSE) -> bytes:
+def _split(uri: str) -> tuple[str, int, str]:
+    parts = urlsplit(uri)
+    if parts.scheme != "http" or not parts.hostname:
+        raise HttpError(f"not an http URI: {uri!r}")
+    return parts.hostname, parts.port or 80, parts.path or "/"
+
+
+class XmlRpcProxy:
+    def __init__(self, uri: str, timeout: float = 10.0) -> None:
+        try:
+            self.host, self.port, self.path = _split(uri)
+        except HttpError as exc:
+            raise ValueError(str(exc)) from None
+        self.uri = uri
+        self.timeout = timeout
+        self._sock: socket.socket | None = None
+        self._lock = threading.Lock()
+
+    def call(self, method: str, *params: object, timeout: float | None = None) -> Value:
+        """Call `method`; raises XmlRpcTransportError (OSError), or the codec's Fault/MalformedError."""
+        request = encode_request(self.host, self.port, self.path, encode_call(method, params))
+        with self._lock:
+            for attempt in (0, 1):
+                reused = self._sock is not None
+                try:
+                    sock = self._sock or self._connect(timeout)
+                    sock.settimeout(timeout if timeout is not None else self.timeout)
+                    sock.sendall(request)
+                    data = self._read_response(sock)
+                    break
+                except (OSError, HttpError) as exc:
+                    self._drop()
+                    if not (reused and attempt == 0):
+                        raise XmlRpcTransportError(f"{self.uri}: {exc}") from exc
+        return decode_response(data)
+
+    def close(self) -> None:
+        with self._lock:
+            self._drop()
+
+    def _connect(self, timeout: float | None) -> socket.socket:
+        sock = socket.create_connection((self.host, self.port), timeout=timeout or self.timeout)
+        sock.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
+        self._sock = sock
+        return sock
+
+    def _drop(self) -> None:
+        if self._sock is not None:
+            try:
+                self._sock.close()
+            except OSError:
+                pass
+            self._sock = None
+
+    def _read_response(self, sock: socket.socket) -> bytes:
+        reader = ResponseReader(MAX_HEAD, MAX_RESPONSE)
+        while True:
+            chunk = sock.recv(65536)
+            body = reader.feed(chunk) if chunk else reader.feed_eof()
+            if body is not None:
+                break
+        if not reader.keep_alive:
+            self._drop()
+        return body
+
+
+async def post(uri: str, body: bytes, timeout: float, max_response: int = MAX_NOTIFICATION_RESPONSE) -> bytes:
     """POST an XML-RPC body to `uri` and return the response body. Raises OSError, TimeoutError
     or HttpError."""
     return await asyncio.wait_for(_post(uri, body, max_response), timeout)
@@ -28,53 +108,20 @@ async def post(uri: str, body: bytes, timeout: float, max_response: int = MAX_RE
 
 async def call(uri: str, method: str, params: list[Value], timeout: float) -> Value:
     """One XML-RPC call. Raises what `post` raises, and the codec's Fault or MalformedError."""
-    return decode_response(await post(uri, encode_request(method, params), timeout))
+    return decode_response(await post(uri, encode_call(method, params), timeout))
 
 
 async def _post(uri: str, body: bytes, max_response: int) -> bytes:
-    parts = urlsplit(uri)
-    if parts.scheme != "http" or not parts.hostname:
-        raise HttpError(f"not an http URI: {uri!r}")
-    host, port = parts.hostname, parts.port or 80
+    host, port, path = _split(uri)
     reader, writer = await asyncio.open_connection(host, port, limit=MAX_HEAD)
     try:
-        writer.write(
-            f"POST {parts.path or '/'} HTTP/1.1\r\nHost: {host}:{port}\r\nContent-Type: text/xml\r\n"
-            f"Content-Length: {len(body)}\r\nConnection: close\r\n\r\n".encode("latin-1") + body
-        )
+        writer.write(encode_request(host, port, path, body, keep_alive=False))
         await writer.drain()
-        try:
-            head = await reader.readuntil(b"\r\n\r\n")
-        except (asyncio.IncompleteReadError, asyncio.LimitOverrunError) as e:
-            raise HttpError("bad or missing response head") from e
-        lines = head.decode("latin-1").split("\r\n")
-        status = lines[0].split(" ", 2)
-        if len(status) < 2 or status[1] != "200":
-            raise HttpError(f"HTTP status {lines[0][:80]!r}")
-        length = None
-        for line in lines[1:]:
-            name, _, value = line.partition(":")
-            if name.strip().lower() == "content-length":
-                try:
-                    length = int(value.strip())
-                except ValueError as e:
-                    raise HttpError("bad Content-Length") from e
-        if length is None:
-            return await _read_to_end(reader, max_response)  # HTTP/1.0 style: body ends at close
-        if length > max_response:
-            raise HttpError(f"response of {length} bytes is too large")
-        try:
-            return await reader.readexactly(length)
-        except asyncio.IncompleteReadError as e:
-            raise HttpError("response body cut short") from e
+        response = ResponseReader(MAX_HEAD, max_response)
+        while True:
+            chunk = await reader.read(65536)
+            answer = response.feed(chunk) if chunk else response.feed_eof()
+            if answer is not None:
+                return answer
     finally:
         writer.close()
-
-
-async def _read_to_end(reader: asyncio.StreamReader, max_response: int) -> bytes:
-    data = bytearray()
-    while chunk := await reader.read(65536):
-        data += chunk
-        if len(data) > max_response:
-            raise HttpError("response too large")
-    return bytes(data)

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from kame.net.xmlrpc_proxy import XmlRpcProxy
+from kame.net.xmlrpc_client import XmlRpcProxy
 
 SUCCESS = 1
 

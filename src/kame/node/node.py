@@ -15,6 +15,7 @@ so after shutdown no thread of the node is left running.
 
 from __future__ import annotations
 
+import contextlib
 import itertools
 import logging
 import os
@@ -30,7 +31,7 @@ from kame.net.stream import Flusher, Listener, peer_of, shut_down
 from kame.net.workers import WorkerPool
 from kame.node.master_proxy import MasterError, MasterProxy
 from kame.node.services import ServiceClient, ServiceHandler, ServiceServer
-from kame.node.tcpros import ClosedBeforeHeader, HandshakeError, read_header, write_header
+from kame.node.tcpros import ClosedBeforeHeader, HandshakeError, MalformedHeader, read_header, write_header
 from kame.node.topics import Callback, Publication, SubscriberLink, Subscription
 from kame.protocol import tcpros
 from kame.protocol.xmlrpc import Fault, MalformedError, decode_request, encode_fault, encode_response
@@ -147,12 +148,15 @@ class Node:
 
     def subscribe(self, topic: str, type: str, md5sum: str, definition: str, deliver: Callback,
                   queue_size: int | None = None, tcp_nodelay: bool = False,
-                  buff_size: int | None = None) -> Subscription:
-        """Subscribe to `topic` (already resolved); see Subscription for tcp_nodelay and buff_size."""
+                  buff_size: int | None = None, max_frame: int | None = None) -> Subscription:
+        """Subscribe to `topic` (already resolved); see Subscription for tcp_nodelay and buff_size.
+        `max_frame`: the largest message accepted (default: the type's size when it has no
+        variable-length fields, else 1 GiB); a larger one drops that publisher's connection."""
         with self._lock:
             if topic in self.subscriptions:
                 raise ValueError(f"already subscribed to {topic}")
-            sub = Subscription(self, topic, type, md5sum, definition, queue_size, tcp_nodelay, deliver, buff_size)
+            sub = Subscription(self, topic, type, md5sum, definition, queue_size, tcp_nodelay, deliver, buff_size,
+                               max_frame)
             self.subscriptions[topic] = sub
         publishers = self.master.call("registerSubscriber", topic, type, self.uri)
         sub.set_publishers([str(uri) for uri in publishers])
@@ -208,6 +212,12 @@ class Node:
             header = read_header(sock, HANDSHAKE_TIMEOUT)
             sock.settimeout(None)
         except ClosedBeforeHeader:
+            sock.close()
+            return
+        except MalformedHeader as exc:
+            self._bad_attempts.warning("bad TCPROS connection attempt from %s: %s", peer_of(sock), exc)
+            with contextlib.suppress(OSError):  # tell the peer why, as for any refused connection
+                write_header(sock, tcpros.error_header_fields(str(exc)))
             sock.close()
             return
         except (OSError, HandshakeError) as exc:

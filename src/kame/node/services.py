@@ -10,11 +10,11 @@ from __future__ import annotations
 
 import logging
 import socket
-import struct
 import threading
 import time
 from collections.abc import Callable
-from typing import TYPE_CHECKING
+from functools import partial
+from typing import TYPE_CHECKING, TypeVar
 
 from kame.net.stream import connect, set_nodelay
 from kame.node.master_proxy import MasterProxy
@@ -25,8 +25,8 @@ if TYPE_CHECKING:
     from kame.node.node import Node
 
 log = logging.getLogger("kame.services")
+_T = TypeVar("_T")
 
-_LENGTH = struct.Struct("<I")
 MAX_REQUEST = 1 << 30
 _RECV_MAX = 1 << 20
 SPIN_FOR_ANSWER = 200e-6  # seconds a caller (or a persistent server) polls before it blocks
@@ -69,21 +69,22 @@ class ServiceServer:
 
     def _serve(self, sock: socket.socket, accepted: tcpros.ServiceClientAccepted) -> None:
         """Answer requests on this (the accepting) thread; one unless the client is persistent."""
-        reader = _Reader(sock, spin=SPIN_FOR_ANSWER if accepted.persistent else 0.0)
+        receiving = _Receiving(sock, spin=SPIN_FOR_ANSWER if accepted.persistent else 0.0)
+        requests = tcpros.FrameReader(MAX_REQUEST)
         try:
             while not self.closed:
                 try:
-                    (size,) = _LENGTH.unpack(reader.read(4))
+                    frames = receiving.frames(requests)
+                except tcpros.TcprosError as exc:
+                    log.error("%s: request from %s refused: %s", self.name, accepted.callerid, exc)
+                    return
                 except (OSError, ConnectionError):
                     return
-                if size > MAX_REQUEST:
-                    log.error("%s: request of %d bytes from %s refused", self.name, size, accepted.callerid)
-                    return
-                request = reader.read(size) if size else b""
-                ok, payload = self.handler(request)
-                sock.sendall(tcpros.encode_service_response(ok, payload))
-                if not accepted.persistent:
-                    return
+                for frame in frames:
+                    ok, payload = self.handler(bytes(frame))
+                    sock.sendall(tcpros.encode_service_response(ok, payload))
+                    if not accepted.persistent:
+                        return
         except OSError:
             return
         finally:
@@ -102,39 +103,52 @@ class ServiceServer:
                 pass
 
 
-class _Reader:
-    """Exact-size reads from a socket through one buffer: a small request or response is
-    usually one recv, not one per field."""
+class _Receiving:
+    """Reads a socket into kame.protocol.tcpros's incremental readers."""
 
     def __init__(self, sock: socket.socket, spin: float = 0.0) -> None:
         self.sock = sock
-        self.buf = bytearray()
         self.spin = spin
+        self._responses = tcpros.ServiceResponseReader(MAX_REQUEST)
 
-    def _recv(self, size: int) -> bytes:
-        # A call's answer usually comes within tens of microseconds; polling for that long
-        # first saves the sleep and wake-up of a blocking read (half of a persistent call).
+    def _read(self, read: Callable[[int], _T]) -> _T:
+        """read(flags); a call's answer usually comes within tens of microseconds, so with
+        `spin` it is polled for that long first: that saves the sleep and wake-up of a blocking
+        read (half of a persistent call)."""
         if self.spin:
             deadline = time.perf_counter() + self.spin
             while True:
                 try:
-                    return self.sock.recv(size, socket.MSG_DONTWAIT)
+                    return read(socket.MSG_DONTWAIT)
                 except BlockingIOError:
                     if time.perf_counter() >= deadline:
                         break
-        return self.sock.recv(size)
+        return read(0)
 
-    def read(self, size: int) -> bytes:
-        while len(self.buf) < size:
-            # At most 1 MiB per recv: recv(n) allocates n bytes first, so a peer claiming a
-            # gigabyte and sending three bytes made us reserve a gigabyte per connection.
-            chunk = self._recv(max(65536, min(size - len(self.buf), _RECV_MAX)))
+    def frames(self, reader: tcpros.FrameReader) -> list[memoryview]:
+        """The frames completed by one read (possibly none); ConnectionError at end of stream.
+        The reader sizes a frame over 64 MiB as its bytes arrive: a peer claiming a gigabyte
+        and sending three bytes reserves no gigabyte."""
+        chunk = self._read(partial(self.sock.recv, 65536))
+        if not chunk:
+            raise ConnectionError("connection closed by the peer")
+        return reader.feed(chunk)
+
+    def response(self) -> tuple[tcpros.ServiceResponse, bool]:
+        """One service response, and whether the stream is clean after it (nothing more came:
+        else the connection must not carry another call)."""
+        reader = self._responses
+        size = 65536
+        while True:
+            chunk = self._read(partial(self.sock.recv, size))
             if not chunk:
                 raise ConnectionError("connection closed by the peer")
-            self.buf += chunk
-        data = bytes(self.buf[:size])
-        del self.buf[:size]
-        return data
+            responses = reader.feed(chunk)
+            if responses:
+                return responses[0], len(responses) == 1 and not reader.pending
+            # At most 1 MiB per recv: recv(n) allocates n bytes first, so a peer claiming a
+            # gigabyte and sending three bytes would make us reserve a gigabyte.
+            size = max(65536, min(reader.missing, _RECV_MAX))
 
 
 def parse_rosrpc(uri: str) -> tuple[str, int]:
@@ -145,15 +159,6 @@ def parse_rosrpc(uri: str) -> tuple[str, int]:
         return host.strip("[]"), int(port)
     except ValueError:
         raise ServiceError(f"invalid service URI [{uri}]") from None
-
-
-def _read_response(reader: _Reader) -> tuple[bool, bytes]:
-    head = reader.read(5)
-    ok = head[0] != 0
-    (size,) = _LENGTH.unpack_from(head, 1)
-    if size > MAX_REQUEST:
-        raise ServiceError(f"response of {size} bytes is too large")
-    return ok, reader.read(size) if size else b""
 
 
 class ServiceClient:
@@ -173,7 +178,7 @@ class ServiceClient:
         self.headers = headers or {}
         self._sock: socket.socket | None = None
         self._address: tuple[str, int] | None = None
-        self._reader: _Reader | None = None
+        self._receiving: _Receiving | None = None
         self._lock = threading.Lock()
 
     def _open(self, timeout: float | None) -> socket.socket:
@@ -214,25 +219,27 @@ class ServiceClient:
             try:
                 if sock is None:
                     sock = self._open(timeout)
-                sock.sendall(_LENGTH.pack(len(request)) + request)
-                if self._reader is None or self._reader.sock is not sock:
-                    self._reader = _Reader(sock, spin=SPIN_FOR_ANSWER)
-                ok, payload = _read_response(self._reader)
+                sock.sendall(tcpros.encode_frame(request))
+                if self._receiving is None or self._receiving.sock is not sock:
+                    self._receiving = _Receiving(sock, spin=SPIN_FOR_ANSWER)
+                response, clean = self._receiving.response()
             except (OSError, HandshakeError) as exc:
                 self._close_socket(sock)
                 raise ServiceError(f"transport error completing service call: {exc}") from exc
-            except ServiceError:
+            except tcpros.TcprosError as exc:
                 # a refused response leaves the stream mid-frame: never read the next answer from it
                 self._close_socket(sock)
+                raise ServiceError(f"service [{self.name}] sent a bad response: {exc}") from exc
+            except ServiceError:
+                self._close_socket(sock)
                 raise
-            if self.persistent:
+            if self.persistent and clean:
                 self._sock = sock
             else:
                 self._close_socket(sock)
-        if not ok:
-            raise ServiceError(f"service [{self.name}] responded with an error: "
-                               f"{payload.decode('utf-8', 'replace')}")
-        return payload
+        if not response.ok:
+            raise ServiceError(f"service [{self.name}] responded with an error: {response.error_text}")
+        return response.payload
 
     def _close_socket(self, sock: socket.socket | None) -> None:
         if sock is not None:

@@ -18,6 +18,11 @@ class HandshakeError(Exception):
     """The peer's header was missing, malformed or refused the connection."""
 
 
+class MalformedHeader(HandshakeError):
+    """The peer's header arrived but cannot be read (a field without '=', a lying length, too
+    large): the peer is told why in an error header before we close."""
+
+
 class ClosedBeforeHeader(HandshakeError):
     """The peer closed the connection without sending a byte (a port probe, not a bad peer)."""
 
@@ -35,11 +40,11 @@ def read_header(sock: socket.socket, timeout: float | None = None) -> dict[str, 
         first += recv_exactly(sock, 4 - len(first), deadline)
     (size,) = _LENGTH.unpack(first)
     if size > MAX_HEADER:
-        raise HandshakeError(f"connection header of {size} bytes is too large")
+        raise MalformedHeader(f"connection header of {size} bytes is too large (limit {MAX_HEADER})")
     try:
         return decode_header_fields(recv_exactly(sock, size, deadline))
     except TcprosError as exc:
-        raise HandshakeError(str(exc)) from exc
+        raise MalformedHeader(str(exc)) from exc
 
 
 def read_header_and_rest(sock: socket.socket, timeout: float | None = None) -> tuple[dict[str, str], bytes]:

@@ -10,6 +10,11 @@ handshake), reads frames on one thread per publisher and runs the callbacks ther
 order, one subscription's callbacks never concurrently. When a publisher goes away but is
 still registered, the link is retried with a growing delay, waiting on an event that
 closing the link (and so the node's shutdown) sets: no retry outlives its subscription.
+
+What a publisher can make a subscriber hold is bounded: a frame longer than the message type
+can be (its size, for a type without variable-length fields; else `max_frame`, 1 GiB by
+default) and a frame that stops arriving half-way (no byte for STALL_TIMEOUT) both drop the
+connection with one error line, without a retry (the peer would do the same again).
 """
 
 from __future__ import annotations
@@ -17,13 +22,13 @@ from __future__ import annotations
 import io
 import itertools
 import logging
-import struct
 import threading
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
+from kame.msg.size import fixed_size
 from kame.net.stream import Receiver, Sender, connect, peer_of, set_keepalive, set_nodelay, shut_down
-from kame.net.xmlrpc_proxy import XmlRpcProxy
+from kame.net.xmlrpc_client import XmlRpcProxy
 from kame.node.master_proxy import unwrap
 from kame.node.tcpros import HandshakeError, read_header_and_rest, write_header
 from kame.protocol import tcpros
@@ -35,10 +40,13 @@ if TYPE_CHECKING:
 
 log = logging.getLogger("kame.topics")
 
-_LENGTH = struct.Struct("<I")
 SMALL_FRAME = 64 * 1024
 MAX_FRAME = 1 << 30
 READ_SIZE = 256 * 1024  # bytes a subscriber's read asks for when it names no buff_size
+#: Bytes a publisher without a queue_size keeps for one subscriber that does not keep up.
+UNQUEUED_BACKLOG = 256 << 20
+#: Seconds a publisher may leave a frame half-sent before the connection is dropped.
+STALL_TIMEOUT = 30.0
 
 
 class _Chunks(list[Any]):
@@ -54,10 +62,11 @@ def serialize_frame(msg: Any) -> list[Any]:
     size = 0
     for chunk in chunks:
         size += len(chunk)
-    if size <= SMALL_FRAME:
-        chunks.insert(0, _LENGTH.pack(size))
+    prefix = tcpros.encode_frame_prefix(size)
+    if size <= SMALL_FRAME:  # many small pieces: one joined buffer is cheaper than a long sendmsg
+        chunks.insert(0, prefix)
         return [b"".join(chunks)]
-    return [_LENGTH.pack(size), *chunks]
+    return [prefix, *chunks]
 
 
 def serialize_payload(msg: Any) -> bytes:
@@ -105,15 +114,22 @@ class Publication:
         """The header.seq of the next message with a header published here (1 first, as rospy)."""
         return next(self._seqs)
 
-    def publish_frame(self, frame: list[Any]) -> None:
-        """Send one framed message (from serialize_frame) to every subscriber."""
+    def publish_frame(self, frame: list[Any], borrowed: bool = False) -> None:
+        """Send one framed message (from serialize_frame or tcpros.frame_parts) to every
+        subscriber. `borrowed`: the buffers are reused once this returns, so what has to wait
+        for a slow socket, or be latched, is copied; the rest goes out without a copy."""
         if self.latch:
-            self.latched = frame
+            self.latched = [b"".join(frame)] if borrowed else frame
         for link in self.links:
-            if len(frame) == 1:
+            if len(frame) == 1 and not borrowed:
                 link.sender.send(frame[0])
             else:
-                link.sender.send_parts(frame)
+                link.sender.send_parts(frame, borrowed)
+
+    def publish_payload(self, payload: bytes | memoryview, borrowed: bool = False) -> None:
+        """Send a message serialized elsewhere (a bag's bytes, a relayed frame) as it is: framed
+        by tcpros.frame_parts and written with the payload's own buffer (no copy)."""
+        self.publish_frame(tcpros.frame_parts(payload), borrowed)
 
     @property
     def spec(self) -> tcpros.TopicSpec:
@@ -131,7 +147,10 @@ class Publication:
             if link_box:
                 self._drop(link_box[0])
 
-        sender = Sender(sock, self.node.flusher, self.queue_size or 1_000_000, broken)
+        if self.queue_size:
+            sender = Sender(sock, self.node.flusher, self.queue_size, broken)
+        else:  # no queue_size: any number of frames, within UNQUEUED_BACKLOG bytes
+            sender = Sender(sock, self.node.flusher, 1 << 62, broken, max_bytes=UNQUEUED_BACKLOG)
         link = SubscriberLink(self.node.next_connection_id(), accepted.callerid, sender, peer)
         link_box.append(link)
         with self._lock:
@@ -276,13 +295,13 @@ class PublisherLink:
         self.header = header
         self.callerid = header.get("callerid", "")
         self.latching = reply.latching
-        consumer = _Frames(self._deliver, trailing, sub.queue_size)
+        consumer = _Frames(self._deliver, trailing, sub.queue_size, sub.max_frame)
         with self._lock:  # close() either sees the receiver, or we see that it was closed
             if self.closed:
                 sock.close()
                 return
             self.receiver = Receiver(sock, consumer, self._ended, name=f"kame-sub{sub.topic}",
-                                     chunk_size=sub.buff_size)
+                                     chunk_size=sub.buff_size, stall_timeout=sub.stall_timeout)
             self.connected = True
             self.receiver.start()
         for callback in sub.on_connect:
@@ -301,6 +320,8 @@ class PublisherLink:
             # that ends without a word is a subscription that stops for no visible reason.
             detail = str(exc) if isinstance(exc, tcpros.TcprosError) else f"{type(exc).__name__}: {exc}"
             log.error("dropping the connection to %s on %s: %s", self.callerid, self.subscription.topic, detail)
+            if self.sock is not None:
+                self.sock.close()  # the peer learns it was dropped; nothing more is read
             return
         if exc is not None:
             log.warning("connection to %s on %s broke: %s", self.callerid or self.publisher_uri,
@@ -338,8 +359,9 @@ class _Frames:
     falls behind still keeps only the newest queue_size of every read, as rospy does.
     """
 
-    def __init__(self, deliver: Callable[[list[memoryview]], None], trailing: bytes, queue_size: int | None) -> None:
-        self._reader = tcpros.FrameReader(MAX_FRAME, reuse=True)  # deliver copies what it keeps
+    def __init__(self, deliver: Callable[[list[memoryview]], None], trailing: bytes, queue_size: int | None,
+                 max_frame: int = MAX_FRAME) -> None:
+        self._reader = tcpros.FrameReader(max_frame, reuse=True)  # deliver copies what it keeps
         self._deliver = deliver
         self._trailing = trailing
         self._queue_size = queue_size
@@ -354,6 +376,10 @@ class _Frames:
         if self._queue_size:
             sizehint = max(4096, min(sizehint, int(self._queue_size * (self._mean_frame + 4))))
         return self._reader.get_buffer(sizehint)
+
+    @property
+    def mid_frame(self) -> bool:
+        return self._reader.pending > 0
 
     def buffer_updated(self, nbytes: int) -> None:
         frames = self._reader.buffer_updated(nbytes)
@@ -374,8 +400,14 @@ class Subscription:
     """
 
     def __init__(self, node: Node, topic: str, type: str, md5sum: str, definition: str, queue_size: int | None,
-                 tcp_nodelay: bool, deliver_frames: Callback, buff_size: int | None = None) -> None:
+                 tcp_nodelay: bool, deliver_frames: Callback, buff_size: int | None = None,
+                 max_frame: int | None = None) -> None:
         self.node = node
+        if max_frame is None:
+            exact = fixed_size(type, definition) if "*" not in (type, md5sum) else None
+            max_frame = MAX_FRAME if exact is None else exact
+        self.max_frame = max_frame
+        self.stall_timeout = STALL_TIMEOUT
         self.topic = topic
         self.type = type
         self.md5sum = md5sum

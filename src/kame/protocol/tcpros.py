@@ -57,6 +57,7 @@ __all__ = [
     "encode_header_fields",
     "encode_service_response",
     "error_header_fields",
+    "frame_parts",
     "publisher_reply_fields",
     "service_client_header_fields",
     "service_probe_header_fields",
@@ -101,6 +102,13 @@ def encode_frame_prefix(length: int) -> bytes:
 def encode_frame(payload: bytes | bytearray | memoryview) -> bytes:
     """`uint32 length` + payload: a topic message or a service request on the wire."""
     return encode_frame_prefix(len(payload) if not isinstance(payload, memoryview) else payload.nbytes) + payload
+
+
+def frame_parts(payload: bytes | bytearray | memoryview) -> list[bytes | bytearray | memoryview]:
+    """A frame as buffers for one scatter write (sendmsg): the length prefix, then the payload
+    itself, not copied. What a publisher sends for a payload it did not serialize (bag play,
+    rosout's relay)."""
+    return [encode_frame_prefix(len(payload) if not isinstance(payload, memoryview) else payload.nbytes), payload]
 
 
 def encode_service_response(ok: bool, payload: bytes | bytearray | memoryview | str) -> bytes:
@@ -347,14 +355,30 @@ class ServiceResponseReader:
         """Bytes of an incomplete response held."""
         return len(self._buf)
 
+    @property
+    def missing(self) -> int:
+        """Bytes still to come for the response under way, once its prefix is here (else 0): how
+        much a reader may ask the socket for."""
+        buf = self._buf
+        if len(buf) < 5:
+            return 0
+        length: int = _RESPONSE_PREFIX.unpack_from(buf, 0)[1]
+        return max(0, 5 + length - len(buf))
+
     def feed(self, data: bytes | bytearray | memoryview) -> list[ServiceResponse]:
         buf = self._buf
-        buf += data
+        # The usual case, a whole response in one bytes object, is parsed from it in place.
+        src: bytes | bytearray
+        if buf or type(data) is not bytes:
+            buf += data
+            src = buf
+        else:
+            src = data
         out: list[ServiceResponse] = []
         pos = 0
-        n = len(buf)
+        n = len(src)
         while n - pos >= 5:
-            ok, length = _RESPONSE_PREFIX.unpack_from(buf, pos)
+            ok, length = _RESPONSE_PREFIX.unpack_from(src, pos)
             if ok > 1:
                 raise TcprosError(f"service response ok byte is {ok}, expected 0 or 1: a corrupt stream")
             if length > self.max_frame:
@@ -362,10 +386,14 @@ class ServiceResponseReader:
             end = pos + 5 + length
             if end > n:
                 break
-            out.append(ServiceResponse(ok == 1, bytes(buf[pos + 5 : end])))
+            payload = src[pos + 5 : end]
+            out.append(ServiceResponse(ok == 1, payload if type(payload) is bytes else bytes(payload)))
             pos = end
-        if pos:
-            del buf[:pos]  # O(1) in CPython: bytearray drops a prefix by moving its start
+        if src is buf:
+            if pos:
+                del buf[:pos]  # O(1) in CPython: bytearray drops a prefix by moving its start
+        elif pos < n:
+            buf += memoryview(src)[pos:]
         return out
 
 

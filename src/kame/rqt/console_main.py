@@ -2,8 +2,8 @@
 
     rqt_console [--capacity N] [--topic /rosout_agg] [__master:=URI] [__ip:=...]
 
-The tool runs as node /rqt_console_<pid>. Messages are kept up to the capacity (20,000 unless
-set; the oldest go first).
+The tool runs as node /rqt_console_<pid>, and waits for the master when it is not up yet.
+Messages are kept up to the capacity (20,000 unless set; the oldest go first).
 """
 
 from __future__ import annotations
@@ -30,8 +30,6 @@ def main(argv: Sequence[str] | None = None) -> int:
     except ImportError as exc:
         print(f"rqt_console needs PySide6 (pip install 'kame[gui]'): {exc}", file=sys.stderr)
         return 1
-    from kame.node.master_proxy import MasterError
-    from kame.rqt.console_source import LogFeed
     from kame.rqt.ros_node import start_node
 
     signal.signal(signal.SIGINT, signal.SIG_DFL)  # Qt's loop never lets a Python handler run
@@ -39,15 +37,11 @@ def main(argv: Sequence[str] | None = None) -> int:
     window = ConsoleWindow(LogView(args.capacity))
     node = start_node("console", ros.special)
     try:
-        try:
-            feed = LogFeed(node, window.messages_ready.emit, args.topic, args.capacity)
-        except (OSError, MasterError) as exc:
-            print(f"rqt_console: cannot reach the master at {node.config.master_uri}: {exc}", file=sys.stderr)
-            return 1
-        window.take = feed.take
+        window.listen(node, args.topic)  # waits for the master first when there is none yet
         window.show()
         return int(app.exec())
     finally:
+        window.stop_waiting()
         node.shutdown("rqt_console exiting")
 
 

@@ -5,6 +5,8 @@ back as a console_model.Change, which becomes one row insertion/removal per batc
 messages arrive through `messages_ready` (a queued signal the feed's thread emits when its
 pending list stops being empty) and are taken in one go, at most UPDATES_PER_SECOND times a
 second, so a flood costs a few table updates a second, not one per message.
+`listen()` subscribes the window's node to the log topic, first waiting for the master (the
+status line says so) when it is not up yet, as rqt does.
 """
 
 from __future__ import annotations
@@ -33,6 +35,8 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
+from kame.node.master_proxy import MasterError
+from kame.node.node import Node
 from kame.rqt.console_model import (
     COLUMNS,
     DEBUG,
@@ -49,6 +53,8 @@ from kame.rqt.console_model import (
     dump,
     load,
 )
+from kame.rqt.console_source import TOPIC, LogFeed
+from kame.rqt.master_wait import MasterWaiter
 
 SEVERITY_COLOURS = {DEBUG: QColor("#707070"), WARN: QColor("#b35f00"), ERROR: QColor("#c00000"),
                     FATAL: QColor("#800080")}
@@ -132,6 +138,8 @@ class RuleEditor(QWidget):
 
 class ConsoleWindow(QWidget):
     messages_ready = Signal()
+    master_up = Signal()
+    listening = Signal()  # subscribed to the log topic
 
     def __init__(self, view: LogView, take: Callable[[], list[LogEntry]] | None = None) -> None:
         super().__init__()
@@ -192,6 +200,11 @@ class ConsoleWindow(QWidget):
 
         self._last_take = 0.0
         self._take_pending = False
+        self.connection = ""  # what the status line says about the master while there is none
+        self._node: Node | None = None
+        self._topic = TOPIC
+        self._waiter: MasterWaiter | None = None
+        self.master_up.connect(self._subscribe)
         self.messages_ready.connect(self.take_messages)
         self.pause_button.toggled.connect(self.set_paused)
         self.clear_button.clicked.connect(self.clear)
@@ -204,6 +217,38 @@ class ConsoleWindow(QWidget):
         self.exclude.changed.connect(self.update_filters)
         self.highlight.changed.connect(self.update_filters)
         self._show_status()
+
+    def listen(self, node: Node, topic: str = TOPIC) -> None:
+        """Show `topic`'s messages, once the node's master answers."""
+        self._node, self._topic = node, topic
+        self._wait_for_master()
+
+    def _wait_for_master(self) -> None:
+        assert self._node is not None
+        self.stop_waiting()
+        self.connection = f"waiting for the master at {self._node.config.master_uri}"
+        self._show_status()
+        self._waiter = MasterWaiter(self._node.config.master_uri, self._node.name, self.master_up.emit)
+
+    def _subscribe(self) -> None:
+        if self._node is None or self._waiter is None:
+            return  # closed meanwhile
+        self.stop_waiting()
+        try:
+            feed = LogFeed(self._node, self.messages_ready.emit, self._topic, self.view.capacity)
+        except (OSError, MasterError):  # gone again between its answer and ours
+            self._node.unsubscribe(self._topic)  # the node keeps a subscription the master did not take
+            self._wait_for_master()
+            return
+        self.take = feed.take
+        self.connection = ""
+        self._show_status()
+        self.listening.emit()
+
+    def stop_waiting(self) -> None:
+        if self._waiter is not None:
+            self._waiter.stop()
+            self._waiter = None
 
     def take_messages(self) -> None:
         """Take what arrived, at most UPDATES_PER_SECOND times a second: what comes meanwhile waits
@@ -234,7 +279,7 @@ class ConsoleWindow(QWidget):
         self._show_status()
 
     def _show_status(self) -> None:
-        text = f"{len(self.view)} of {self.view.stored_count} messages shown"
+        text = self.connection or f"{len(self.view)} of {self.view.stored_count} messages shown"
         if self.view.paused:
             text += " (paused)"
         if self.view.matcher.errors:
@@ -280,6 +325,8 @@ class ConsoleWindow(QWidget):
                 self.status.setText(str(exc))
 
     def closeEvent(self, event: QCloseEvent) -> None:
+        self.stop_waiting()
+        self._node = None
         self.take = None
         super().closeEvent(event)
 

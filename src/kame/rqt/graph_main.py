@@ -1,7 +1,7 @@
 """rqt_graph: the ROS computation graph in a window, or once into a file.
 
     rqt_graph [--mode nodes|active|all] [--node-filter F] [--topic-filter F] [--show-debug]
-              [--show-dead-sinks] [--show-leaf-topics] [--hide-unreachable] [--no-groups]
+              [--show-dead-sinks] [--show-leaf-topics] [--hide-unreachable] [--no-groups] [--group-actions]
               [--output FILE.svg|.dot|.png]
 
 With --output there is no window: the graph is asked once, laid out and written (SVG and dot
@@ -36,6 +36,7 @@ def parser() -> argparse.ArgumentParser:
     p.add_argument("--show-leaf-topics", action="store_true", help="show topics only one node uses")
     p.add_argument("--hide-unreachable", action="store_true", help="hide nodes that do not answer")
     p.add_argument("--no-groups", action="store_true", help="do not group by namespace")
+    p.add_argument("--group-actions", action="store_true", help="draw each action's five topics as one box")
     p.add_argument("--timeout", type=float, default=NODE_TIMEOUT, help="seconds to wait for each node")
     p.add_argument("-o", "--output", type=Path, help="write the graph to this file (.svg, .dot, .png) and exit")
     return p
@@ -47,7 +48,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     options = GraphOptions(mode=MODE_BY_OPTION[args.mode], group_namespaces=not args.no_groups,
                            hide_debug=not args.show_debug, hide_dead_sinks=not args.show_dead_sinks,
                            hide_leaf_topics=not args.show_leaf_topics, hide_unreachable=args.hide_unreachable,
-                           node_filter=args.node_filter, topic_filter=args.topic_filter)
+                           node_filter=args.node_filter, topic_filter=args.topic_filter,
+                           group_actions=args.group_actions)
     master_uri = ros.special.get("master") or os.environ.get("ROS_MASTER_URI") or DEFAULT_MASTER_URI
     source = GraphSource(master_uri, node_timeout=args.timeout)
     try:

@@ -15,6 +15,9 @@ Rules, as rqt_graph (and rosgraph.impl.graph) build their dot graph:
 - A filter is a comma-separated list of regular expressions searched in the name; one
   starting with `-` excludes what it matches. No include pattern means everything.
 - Grouping puts each node and topic in a cluster named after its namespace (`/turtle1`).
+- Grouping actions (rqt_graph's "Group: Actions", in the topic modes) draws the five topics of
+  an action (`ns/goal`, `cancel`, `status`, `feedback`, `result`, all five shown) as one box,
+  `ns/action_topics`, joined to every node that uses any of them.
 """
 
 from __future__ import annotations
@@ -120,6 +123,7 @@ class GraphOptions:
     hide_unreachable: bool = False
     node_filter: str = ""
     topic_filter: str = ""
+    group_actions: bool = False
 
 
 @dataclass(frozen=True)
@@ -239,6 +243,8 @@ def build_scene(snapshot: GraphSnapshot, options: GraphOptions) -> Scene:
         else:
             pubs = _pairs((t, n) for t, ns in snapshot.publishers.items() for n in ns if n in kept and keep_topic(t))
             subs = _pairs((t, n) for t, ns in snapshot.subscribers.items() for n in ns if n in kept and keep_topic(t))
+        if options.group_actions:
+            pubs, subs = _group_actions(pubs, set(pubs) | set(subs)), _group_actions(subs, set(pubs) | set(subs))
         for topic in sorted(set(pubs) | set(subs)):
             publishers, subscribers = pubs.get(topic, []), subs.get(topic, [])
             if options.hide_dead_sinks and not subscribers:
@@ -257,6 +263,22 @@ def _pairs(items: Iterable[tuple[str, str]]) -> dict[str, list[str]]:
     for key, value in items:
         found.setdefault(key, set()).add(value)
     return {key: sorted(values) for key, values in found.items()}
+
+
+ACTION_TOPICS = ("goal", "cancel", "status", "feedback", "result")
+ACTION_BOX = "action_topics"
+
+
+def _group_actions(users: dict[str, list[str]], topics: set[str]) -> dict[str, list[str]]:
+    """`users` (topic -> nodes) with each complete action's five topics merged into `ns/action_topics`."""
+    actions = {ns for ns in (t.rsplit("/", 1)[0] for t in topics if "/" in t.strip("/"))
+               if all(f"{ns}/{part}" in topics for part in ACTION_TOPICS)}
+    merged: dict[str, set[str]] = {}
+    for topic, nodes in users.items():
+        namespace, _, last = topic.rpartition("/")
+        key = f"{namespace}/{ACTION_BOX}" if namespace in actions and last in ACTION_TOPICS else topic
+        merged.setdefault(key, set()).update(nodes)
+    return {topic: sorted(nodes) for topic, nodes in merged.items()}
 
 
 def _groups(vertices: Iterable[Vertex]) -> list[Group]:

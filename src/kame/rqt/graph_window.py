@@ -246,6 +246,8 @@ class GraphWindow(QWidget):
         self.save_button = QPushButton("Save...")
         self.group_box = QCheckBox("Group namespaces")
         self.group_box.setChecked(options.group_namespaces)
+        self.actions_box = QCheckBox("Group actions")
+        self.actions_box.setChecked(options.group_actions)
         self.debug_box = QCheckBox("Hide debug")
         self.debug_box.setChecked(options.hide_debug)
         self.dead_box = QCheckBox("Hide dead sinks")
@@ -266,8 +268,8 @@ class GraphWindow(QWidget):
                        self.auto_period, self.fit_button, self.save_button):
             first.addWidget(widget)
         second = QHBoxLayout()
-        for widget in (self.group_box, self.debug_box, self.dead_box, self.leaf_box, self.unreachable_box,
-                       self.highlight_box):
+        for widget in (self.group_box, self.actions_box, self.debug_box, self.dead_box, self.leaf_box,
+                       self.unreachable_box, self.highlight_box):
             second.addWidget(widget)
         second.addStretch(1)
         second.addWidget(self.status)
@@ -288,7 +290,8 @@ class GraphWindow(QWidget):
         self.mode_box.currentIndexChanged.connect(self.redraw)
         for line in (self.node_filter, self.topic_filter):
             line.editingFinished.connect(self.redraw)
-        for box in (self.group_box, self.debug_box, self.dead_box, self.leaf_box, self.unreachable_box):
+        for box in (self.group_box, self.actions_box, self.debug_box, self.dead_box, self.leaf_box,
+                    self.unreachable_box):
             box.toggled.connect(self.redraw)
         self.highlight_box.toggled.connect(self._highlight_toggled)
 
@@ -297,7 +300,8 @@ class GraphWindow(QWidget):
                             hide_debug=self.debug_box.isChecked(), hide_dead_sinks=self.dead_box.isChecked(),
                             hide_leaf_topics=self.leaf_box.isChecked(),
                             hide_unreachable=self.unreachable_box.isChecked(),
-                            node_filter=self.node_filter.text(), topic_filter=self.topic_filter.text())
+                            node_filter=self.node_filter.text(), topic_filter=self.topic_filter.text(),
+                            group_actions=self.actions_box.isChecked())
 
     # ---------------------------------------------------------------- refreshing
 

@@ -34,12 +34,13 @@ def main(argv: Sequence[str] | None = None) -> int:
     signal.signal(signal.SIGINT, signal.SIG_DFL)  # Qt's loop never lets a Python handler run
     app = application("rqt_logger_level")
     levels = LoggerLevels(master_uri(ros.special), f"/rqt_logger_level_{os.getpid()}")
+    window = LoggerWindow(levels)
     try:
-        window = LoggerWindow(levels)
         window.show()
         window.refresh()
         return int(app.exec())
     finally:
+        window.close_worker()
         levels.close()
 
 

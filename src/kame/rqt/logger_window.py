@@ -1,9 +1,21 @@
 """rqt_logger_level's window (PySide6): nodes, their loggers, and the five levels, as rqt's plugin
-lays them out. Choosing a level sets it at once (set_logger_level) and reads the loggers back."""
+lays them out. Choosing a level sets it at once (set_logger_level) and reads the loggers back.
+
+Rules: every call to a node runs on the window's one worker thread, never on the window's
+thread, so a hung node costs a "waiting" status line, not a frozen window. The worker hands
+each answer back through `answered` (a queued signal); an answer about a node or logger that
+is no longer chosen is dropped. `close_worker()` (closing the window calls it) joins the
+worker: at most one call's timeout.
+"""
 
 from __future__ import annotations
 
-from PySide6.QtCore import Qt
+from collections.abc import Callable
+from concurrent.futures import ThreadPoolExecutor
+from typing import Any
+
+from PySide6.QtCore import Qt, Signal
+from PySide6.QtGui import QCloseEvent
 from PySide6.QtWidgets import QHBoxLayout, QLabel, QListWidget, QListWidgetItem, QPushButton, QVBoxLayout, QWidget
 
 from kame.rqt.logger_source import LEVELS, LoggerError, LoggerLevels
@@ -17,6 +29,9 @@ def _column(title: str, widget: QWidget) -> QVBoxLayout:
 
 
 class LoggerWindow(QWidget):
+    answered = Signal(object)  # (what to do with the answer, the answer or the LoggerError)
+    idle = Signal()  # every call asked so far has been answered
+
     def __init__(self, levels: LoggerLevels) -> None:
         super().__init__()
         self.setWindowTitle("rqt_logger_level")
@@ -29,6 +44,9 @@ class LoggerWindow(QWidget):
         self.refresh_button = QPushButton("Refresh")
         self.status = QLabel("")
         self._loggers: dict[str, str] = {}
+        self._worker: ThreadPoolExecutor | None = ThreadPoolExecutor(max_workers=1,
+                                                                     thread_name_prefix="rqt-logger-level")
+        self._asked = 0
         lists = QHBoxLayout()
         lists.addLayout(_column("Nodes", self.node_list), 2)
         lists.addLayout(_column("Loggers", self.logger_list), 2)
@@ -40,37 +58,93 @@ class LoggerWindow(QWidget):
         bottom.addWidget(self.status, 1)
         layout.addLayout(bottom)
         self.resize(760, 420)
+        self.answered.connect(self._on_answer)
         self.refresh_button.clicked.connect(self.refresh)
         self.node_list.currentTextChanged.connect(self.show_loggers)
         self.logger_list.currentTextChanged.connect(self._show_level)
         self.level_list.itemClicked.connect(lambda item: self.choose_level(item.text().lower()))
 
+    # ---------------------------------------------------------------- the worker
+
+    def _ask(self, what: str, call: Callable[[], Any], then: Callable[[Any], None]) -> None:
+        """Run `call` on the worker; `then(answer)` runs on the window's thread when it is back."""
+        if self._worker is None:
+            return
+        self._asked += 1
+        self.status.setText(f"waiting for {what}...")
+
+        def job() -> None:
+            try:
+                answer = call()
+            except LoggerError as exc:
+                answer = exc
+            self.answered.emit((then, answer))
+
+        self._worker.submit(job)
+
+    def _on_answer(self, pair: tuple[Callable[[Any], None], Any]) -> None:
+        then, answer = pair
+        self._asked -= 1
+        if isinstance(answer, LoggerError):
+            self.status.setText(str(answer))
+        else:
+            then(answer)
+        if self._asked == 0:
+            self.idle.emit()
+
+    def busy(self) -> bool:
+        return self._asked > 0
+
+    def close_worker(self) -> None:
+        if self._worker is not None:
+            self._worker.shutdown(wait=True, cancel_futures=True)
+            self._worker = None
+
+    def closeEvent(self, event: QCloseEvent) -> None:
+        self.close_worker()
+        super().closeEvent(event)
+
+    # ---------------------------------------------------------------- what the user does
+
     def refresh(self) -> None:
+        self._ask("the master", self.levels.nodes, self._show_nodes)
+
+    def _show_nodes(self, nodes: list[str]) -> None:
         current = self.node_list.currentItem()
         keep = current.text() if current is not None else ""
+        self.node_list.blockSignals(True)  # the same node stays chosen: no need to ask it again
         self.node_list.clear()
-        try:
-            nodes = self.levels.nodes()
-        except LoggerError as exc:
-            self.status.setText(str(exc))
-            return
         self.node_list.addItems(nodes)
-        self.status.setText(f"{len(nodes)} nodes with logger services")
         if keep in nodes:
             self.node_list.setCurrentRow(nodes.index(keep))
+        self.node_list.blockSignals(False)
+        self.status.setText(f"{len(nodes)} nodes with logger services")
+        if keep and keep not in nodes:
+            self.show_loggers("")
 
-    def show_loggers(self, node: str) -> None:
+    def _chosen(self, widget: QListWidget) -> str:
+        item = widget.currentItem()
+        return item.text() if item is not None else ""
+
+    def show_loggers(self, node: str, select: str = "", message: str = "") -> None:
         self.logger_list.clear()
         self.level_list.clearSelection()
         self._loggers = {}
         if not node:
             return
-        try:
-            self._loggers = dict(self.levels.loggers(node))
-        except LoggerError as exc:
-            self.status.setText(str(exc))
-            return
-        self.logger_list.addItems(sorted(self._loggers))
+
+        def show(loggers: list[tuple[str, str]]) -> None:
+            if self._chosen(self.node_list) != node:
+                return  # the user has moved on
+            self._loggers = dict(loggers)
+            self.logger_list.clear()
+            self.logger_list.addItems(sorted(self._loggers))
+            self.status.setText(message or f"{node}: {len(self._loggers)} loggers")
+            matches = self.logger_list.findItems(select, Qt.MatchFlag.MatchExactly) if select else []
+            if matches:
+                self.logger_list.setCurrentItem(matches[0])
+
+        self._ask(f"{node}'s loggers", lambda: self.levels.loggers(node), show)
 
     def _show_level(self, logger: str) -> None:
         level = self._loggers.get(logger)
@@ -80,18 +154,15 @@ class LoggerWindow(QWidget):
             self.level_list.clearSelection()
 
     def choose_level(self, level: str) -> None:
-        node, logger = self.node_list.currentItem(), self.logger_list.currentItem()
-        if node is None or logger is None:
+        node, logger = self._chosen(self.node_list), self._chosen(self.logger_list)
+        if not node or not logger:
             self.status.setText("choose a node and a logger first")
             return
-        try:
-            self.levels.set_level(node.text(), logger.text(), level)
-        except LoggerError as exc:
-            self.status.setText(str(exc))
-            return
-        self.status.setText(f"{node.text()}: {logger.text()} set to {level}")
-        name = logger.text()
-        self.show_loggers(node.text())
-        matches = self.logger_list.findItems(name, Qt.MatchFlag.MatchExactly)
-        if matches:
-            self.logger_list.setCurrentItem(matches[0])
+
+        def done(_: None) -> None:
+            message = f"{node}: {logger} set to {level}"
+            self.status.setText(message)
+            if self._chosen(self.node_list) == node:
+                self.show_loggers(node, select=logger, message=message)
+
+        self._ask(f"{node} to set {logger}", lambda: self.levels.set_level(node, logger, level), done)

@@ -3,7 +3,10 @@ appended to their series.
 
 A topic's class is kame's (or a ROS_PACKAGE_PATH package's, through the CLI's resolver); a type
 kame does not have is subscribed as any type and built from the definition its publisher sends.
-Points are stamped with their arrival time, in seconds since the plot started. The series are
+A message with a header is stamped with its header's stamp (as rqt_plot does), any other (and a
+header stamped zero) with its arrival time; both in seconds since the plot started, on the wall
+clock header stamps use. A series keeps its points in time order: a message stamped before the
+topic's previous one is left out, and the window says so. The series are
 shared between the subscriber threads and the window under one lock; the window takes copies.
 """
 
@@ -36,7 +39,7 @@ STAGE_LIMIT = 65_536  # values staged per series before they are folded in witho
 
 class PlotSource:
     def __init__(self, node: Node, history: float = DEFAULT_HISTORY,
-                 clock: Callable[[], float] = time.monotonic) -> None:
+                 clock: Callable[[], float] = time.time) -> None:
         self.node = node
         self.history = history
         self.clock = clock
@@ -50,6 +53,7 @@ class PlotSource:
         # values the subscribers brought since the window last looked: plain lists, because a
         # numpy append per message costs more than the message; folded into the series on demand
         self._staged: dict[str, tuple[list[float], list[float]]] = {}
+        self._latest: dict[str, float] = {}  # topic -> the time of its newest point
 
     def topic_types(self) -> list[tuple[str, str]]:
         return [(str(t), str(ty)) for t, ty in self.node.master.call("getTopicTypes")]
@@ -97,6 +101,7 @@ class PlotSource:
             unsubscribe = not names
             if unsubscribe:
                 del self._by_topic[spec.topic]
+                self._latest.pop(spec.topic, None)
         if unsubscribe:
             self.node.unsubscribe(spec.topic)
             self._classes.pop(spec.topic, None)
@@ -118,7 +123,8 @@ class PlotSource:
                 for name in self._by_topic.get(topic, []):
                     self.errors[name] = f"cannot read {topic}'s messages: {exc}"
             return
-        messages = []
+        messages: list[tuple[float, Any]] = []  # (time since start, message)
+        stamped = bool(getattr(cls, "_has_header", False))
         for frame in frames:
             msg = cls()
             try:
@@ -128,23 +134,48 @@ class PlotSource:
                     for name in self._by_topic.get(topic, []):
                         self.errors[name] = f"a message on {topic} does not deserialize: {exc}"
                 continue
-            messages.append(msg)
+            messages.append((self._time_of(msg) if stamped else now, msg))
         with self._lock:
+            messages = self._in_time_order(topic, messages)
             for name in self._by_topic.get(topic, []):
                 spec = self.specs[name]
                 values = []
-                for msg in messages:
+                stamps = []
+                for stamp, msg in messages:
                     try:
                         values.append(as_number(spec.path.evaluate(msg)))
                     except (FieldPathError, TypeError) as exc:
                         self.errors[name] = str(exc)
+                        continue
+                    stamps.append(stamp)
                 if values:
                     times, staged = self._staged.setdefault(name, ([], []))
                     staged += values
-                    times += [now] * len(values)
+                    times += stamps
                     if len(staged) > STAGE_LIMIT:
                         self._fold(name)
                     self.errors.pop(name, None)
+
+    def _in_time_order(self, topic: str, messages: list[tuple[float, Any]]) -> list[tuple[float, Any]]:
+        """The messages not stamped before the topic's newest point (a series keeps its times in
+        order); what is left out is said in the topic's series' problems. Under the lock."""
+        latest = self._latest.get(topic, float("-inf"))
+        kept = []
+        for stamp, msg in messages:
+            if stamp < latest:
+                for name in self._by_topic.get(topic, []):
+                    self.errors[name] = f"a message on {topic} stamped before the previous one was left out"
+                continue
+            kept.append((stamp, msg))
+            latest = stamp
+        self._latest[topic] = latest
+        return kept
+
+    def _time_of(self, msg: Any) -> float:
+        stamp = msg.header.stamp
+        if stamp.secs == 0 and stamp.nsecs == 0:  # never stamped: when it came is all there is
+            return self.clock() - self.start
+        return float(stamp.secs + stamp.nsecs * 1e-9 - self.start)
 
     def _fold(self, name: str) -> None:
         times, values = self._staged.pop(name, ([], []))

@@ -12,6 +12,7 @@ from typing import Any
 
 import yaml
 
+from kame import param_yaml
 from kame.msg.fill import FillError, fill_message_args, printable_message_args
 from kame.msg.message import Message, find_type_problem
 from kame.rostime import Time
@@ -129,8 +130,11 @@ def _yaml_documents_from_file(path: str) -> list[Any]:
         raise RostopicError(f"file does not exist: {path}")
     try:
         with open(path) as f:
-            return list(yaml.safe_load_all(f))
-    except yaml.YAMLError as exc:
+            documents = list(yaml.load_all(f, Loader=param_yaml.BoundedLoader))
+        for document in documents:
+            param_yaml.check_shape(document)
+        return documents
+    except (yaml.YAMLError, param_yaml.ParamValueError) as exc:
         raise RostopicError(f"invalid YAML in file: {exc}") from None
     except OSError as exc:
         raise RostopicError(f"cannot read {path}: {exc.strerror}") from None
@@ -150,8 +154,8 @@ def _yaml_documents_from_stdin() -> Iterator[Any]:
             buff += line
             continue
         try:
-            loaded = yaml.safe_load(buff.rstrip())
-        except yaml.YAMLError as exc:
+            loaded = param_yaml.safe_load(buff.rstrip())
+        except (yaml.YAMLError, param_yaml.ParamValueError) as exc:
             sys.stderr.write(f"Invalid YAML: {exc}\n")
             loaded = None
         buff = ""
@@ -199,7 +203,7 @@ def cmd_pub(args: list[str]) -> None:
     pub_args: list[Any] = []
     try:
         for arg in rest[2:]:
-            pub_args.append(yaml.safe_load(arg))
+            pub_args.append(param_yaml.safe_load(arg))
     except Exception as exc:
         parser.error(f"Argument error: {exc}")
 
