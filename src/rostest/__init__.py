@@ -16,7 +16,7 @@ from typing import Any
 
 from kame import environ, names
 from kame.cli import _junit
-from kame.net.xmlrpc_proxy import XmlRpcProxy
+from kame.net.xmlrpc_client import XmlRpcProxy
 
 XML_OUTPUT_FLAG = _junit.XML_OUTPUT_FLAG
 _GLOBAL_CALLER_ID = "/script"
