@@ -1,6 +1,7 @@
 """kame's own programs stand on kame: no module of src/kame (but the example packages in
-kame/share, which are users' programs) imports the compatibility packages rospy, rosbag,
-actionlib, roslaunch or genpy, which are names over kame for users' scripts."""
+kame/share, which are users' programs) imports the compatibility packages (rospy, rosbag,
+actionlib, roslaunch, genpy, roslib, rosgraph, rospkg, the tools as modules, ...), which are names over
+kame for users' scripts."""
 
 from __future__ import annotations
 
@@ -8,7 +9,9 @@ import ast
 from pathlib import Path
 
 KAME = Path(__file__).resolve().parents[1] / "src" / "kame"
-FACADES = {"rospy", "rosbag", "actionlib", "roslaunch", "genpy"}
+FACADES = {"rospy", "rosbag", "actionlib", "roslaunch", "genpy", "roslib", "rosgraph", "rospkg", "message_filters",
+           "cv_bridge", "rostopic", "rosservice", "rosnode", "rosparam", "rosmsg", "rosmaster",
+           "tf", "tf2_ros", "tf2_geometry_msgs", "tf_conversions"}
 
 
 def facade_imports(path: Path) -> list[str]:

@@ -1,4 +1,4 @@
-"""roslib.message: message and service classes looked up by type name ('std_msgs/String')."""
+"""roslib.message: the message base class, str() formatting, and classes by type name."""
 
 from __future__ import annotations
 
@@ -6,8 +6,10 @@ from typing import Any
 
 from kame.msg import lookup
 from kame.msg.errors import DeserializationError, MessageError, SerializationError
+from kame.msg.message import Message, strify_message
 
-__all__ = ["DeserializationError", "SerializationError", "get_message_class", "get_service_class"]
+__all__ = ["DeserializationError", "Message", "SerializationError", "get_message_class", "get_service_class",
+           "strify_message"]
 
 
 def get_message_class(message_type: str, reload_on_error: bool = False) -> Any:

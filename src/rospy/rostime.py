@@ -18,6 +18,12 @@ __all__ = [
     "get_time",
     "is_rostime_initialized",
     "is_sim_time",
+    "is_wallclock",
     "set_rostime_initialized",
     "wallsleep",
 ]
+
+
+def is_wallclock() -> bool:
+    """True unless ROS time comes from /clock (upstream's name for `not is_sim_time()`)."""
+    return not is_sim_time()

@@ -8,46 +8,16 @@ import socket
 import threading
 import time
 import xmlrpc.client
-from collections.abc import Iterator
-from pathlib import Path
 from typing import Any
 
 import pytest
 
-from kame.node.node import Node, NodeConfig
 from kame.node.topics import serialize_frame
 from std_msgs.msg import String
 
-from ..support import Proc, free_port, kame_command, ros_env, wait_for_master
+from ..support import free_port
 
 STRING = ("std_msgs/String", String._md5sum, String._full_text)
-
-
-@pytest.fixture(scope="module")
-def master_uri(tmp_path_factory: pytest.TempPathFactory) -> Iterator[str]:
-    home = tmp_path_factory.mktemp("master")
-    port = free_port()
-    uri = f"http://127.0.0.1:{port}/"
-    proc = Proc(kame_command("kame.cli.rosmaster", "--core", "-p", str(port)), ros_env(Path(home), uri))
-    try:
-        wait_for_master(uri, proc=proc)
-        yield uri
-    finally:
-        proc.stop()
-
-
-@pytest.fixture
-def make_node(master_uri: str) -> Iterator[Any]:
-    nodes: list[Node] = []
-
-    def make(name: str) -> Node:
-        node = Node(NodeConfig(name, master_uri, "127.0.0.1"))
-        nodes.append(node)
-        return node
-
-    yield make
-    for node in nodes:
-        node.shutdown("test over")
 
 
 def wait_until(condition: Any, timeout: float = 10.0) -> bool:

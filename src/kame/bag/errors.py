@@ -12,7 +12,14 @@ __all__ = ["BagCompressionError", "BagError", "BagFormatError", "BagUnindexedErr
 
 
 class BagError(Exception):
-    """Any problem with a bag file."""
+    """Any problem with a bag file; `value` is its text, as rosbag's ROSBagException has it."""
+
+    def __init__(self, value: object = None) -> None:
+        super().__init__(value)
+        self.value = value
+
+    def __str__(self) -> str:
+        return str(self.value)
 
 
 class BagFormatError(BagError):

@@ -26,6 +26,7 @@ import itertools
 import os
 import struct
 from collections.abc import Callable, Iterable, Iterator
+from typing import BinaryIO
 
 from kame.bag import records
 from kame.bag.compression import decompress
@@ -63,9 +64,15 @@ class _ChunkEntries:
 
 
 class BagReader:
-    def __init__(self, path: str | os.PathLike[str], allow_unindexed: bool = False) -> None:
-        self.path = os.fspath(path)
-        self._fd = os.open(self.path, os.O_RDONLY)
+    def __init__(self, path: str | os.PathLike[str] | BinaryIO, allow_unindexed: bool = False) -> None:
+        """`path` may also be an open binary file (anything with a fileno()): it is read through
+        a duplicate of its descriptor, so the caller's file stays the caller's to close."""
+        if isinstance(path, (str, os.PathLike)):
+            self.path = os.fspath(path)
+            self._fd = os.open(self.path, os.O_RDONLY)
+        else:
+            self.path = str(getattr(path, "name", "<stream>"))
+            self._fd = os.dup(path.fileno())
         try:
             self.size = os.fstat(self._fd).st_size
             self.connections: dict[int, Connection] = {}

@@ -12,8 +12,9 @@ import io
 import itertools
 import os
 import statistics
+import time
 from collections.abc import Callable, Iterator
-from typing import Any
+from typing import Any, BinaryIO
 
 from kame.bag.compression import COMPRESSIONS
 from kame.bag.errors import BagError, BagFormatError, BagUnindexedError
@@ -88,7 +89,7 @@ def _to_time(value: Any) -> tuple[int, int] | None:
 class Bag:
     """A ROS bag opened for reading ('r'), writing ('w') or appending ('a')."""
 
-    def __init__(self, f: str | os.PathLike[str], mode: str = "r", compression: str = Compression.NONE,
+    def __init__(self, f: str | os.PathLike[str] | BinaryIO, mode: str = "r", compression: str = Compression.NONE,
                  chunk_threshold: int = DEFAULT_CHUNK_THRESHOLD, allow_unindexed: bool = False,
                  options: dict[str, Any] | None = None, skip_index: bool = False) -> None:
         if options:
@@ -97,7 +98,14 @@ class Bag:
         if compression not in COMPRESSIONS:
             raise ValueError(f"compression must be one of: {', '.join(COMPRESSIONS)}")
         if mode not in ("r", "w", "a"):
-            raise ValueError(f"mode {mode!r} is invalid; must be 'r', 'w' or 'a'")
+            raise ValueError(f'mode "{mode}" is invalid')
+        if not f:
+            raise ValueError("filename (or stream) is invalid")
+        if not isinstance(f, (str, os.PathLike)):  # an open file: read through it (rosbag's streams)
+            if mode != "r":
+                raise ValueError("kame's Bag writes to a file name, not a stream")
+            self._init_from(f, compression, chunk_threshold, allow_unindexed)
+            return
         self._filename = os.fspath(f)
         self._mode = mode
         self._compression = compression
@@ -121,6 +129,15 @@ class Bag:
                 for conn in self._writer.connections.values():
                     self._topic_conns.setdefault(conn.topic, conn.id)
 
+    def _init_from(self, stream: BinaryIO, compression: str, chunk_threshold: int, allow_unindexed: bool) -> None:
+        self._filename = str(getattr(stream, "name", ""))
+        self._mode = "r"
+        self._compression = compression
+        self._chunk_threshold = chunk_threshold
+        self._writer = None
+        self._topic_conns = {}
+        self._reader = BagReader(stream, allow_unindexed=allow_unindexed)
+
     # ------------------------------------------------------------------ properties
 
     @property
@@ -137,9 +154,13 @@ class Bag:
 
     @property
     def size(self) -> int:
+        """The file's size in bytes; ValueError once the bag is closed, as rosbag."""
+        if self._closed:
+            raise ValueError("I/O operation on closed bag")
         if self._writer is not None:
             return self._writer.size
-        return os.path.getsize(self._filename)
+        assert self._reader is not None
+        return self._reader.size
 
     @property
     def compression(self) -> str:
@@ -171,6 +192,8 @@ class Bag:
             raise ValueError("I/O operation on closed bag")
         return self._reader
 
+    _closed = False
+
     # ------------------------------------------------------------------ context
 
     def __enter__(self) -> Bag:
@@ -183,6 +206,7 @@ class Bag:
         return self.read_messages()
 
     def close(self) -> None:
+        self._closed = True
         if self._writer is not None:
             self._writer.close()
         if self._reader is not None:
@@ -197,6 +221,8 @@ class Bag:
     def read_messages(self, topics: Any = None, start_time: Any = None, end_time: Any = None,
                       connection_filter: Callable[..., bool] | None = None, raw: bool = False,
                       return_connection_header: bool = False) -> Iterator[Any]:
+        if self._closed:  # the index stays readable after close (counts, times); the data does not
+            raise ValueError("I/O operation on closed bag")
         reader = self._read_side()
         conn_filter: Callable[[Connection], bool] | None = None
         if connection_filter is not None:
@@ -305,13 +331,13 @@ class Bag:
               connection_header: dict[str, str] | None = None) -> None:
         writer = self._writer
         if writer is None or writer.closed:
-            raise ValueError("bag not open for writing")
+            raise io.UnsupportedOperation("write")  # what rosbag's read-only file raises
         if not topic:
             raise ValueError("topic is invalid")
         if msg is None:
             raise ValueError("msg is invalid")
-        if t is None:
-                t = Time.now()
+        if t is None:  # wall time, as rosbag stamps it (no node or ROS clock needed)
+            t = Time.from_sec(time.time())
         secs, nsecs = _to_time(t) or (0, 0)
         if raw:
             if len(msg) == 5:

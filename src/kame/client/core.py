@@ -210,3 +210,8 @@ def _at_exit() -> None:
 
 
 atexit.register(_at_exit)
+
+
+def get_remappings() -> dict[str, str]:
+    """The node's name remappings, both sides resolved (empty before init_node)."""
+    return dict(_remappings)

@@ -15,7 +15,7 @@ from __future__ import annotations
 import keyword
 import struct
 from collections.abc import Callable, Iterable
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 from kame.msg.spec import MsgSpec, SrvSpec
 
@@ -370,17 +370,32 @@ def _flat_defaults(spec: MsgSpec, lookup: Lookup, code: _Code, obj: str) -> None
             code.emit(f"{t}.secs = {t}.nsecs = 0")
 
 
-def _check_field_names(spec: MsgSpec) -> None:
-    for f in spec.fields:
-        if keyword.iskeyword(f.name):
-            raise ValueError(f"{spec.full_name}: field name '{f.name}' is a Python keyword")
+def python_name(name: str) -> str:
+    """A field's or constant's attribute name: a Python keyword (or `self`) gets a trailing
+    underscore, as genpy names it (a field `from` is `msg.from_`)."""
+    return name + "_" if keyword.iskeyword(name) or name == "self" else name
+
+
+def python_safe(spec: MsgSpec) -> MsgSpec:
+    """The spec with its field and constant names as the Python class has them (python_name).
+    Only the class's attribute names change: md5sums and definitions come from the original."""
+    if all(python_name(f.name) == f.name for f in spec.fields) and \
+            all(python_name(c.name) == c.name for c in spec.constants):
+        return spec
+    return replace(spec, fields=tuple(replace(f, name=python_name(f.name)) for f in spec.fields),
+                   constants=tuple(replace(c, name=python_name(c.name)) for c in spec.constants))
 
 
 def generate_class(
     spec: MsgSpec, lookup: Lookup, md5sum: str, full_text: str, structs: _Structs, class_name: str | None = None
 ) -> str:
     """Source of one message class; it refers to other message classes by type_ref() names."""
-    _check_field_names(spec)
+    spec = python_safe(spec)
+
+    def safe_lookup(type_name: str) -> MsgSpec:
+        return python_safe(base_lookup(type_name))
+
+    base_lookup, lookup = lookup, safe_lookup
     name = class_name or spec.short_name
     out: list[str] = [f"class {name}(_Message):"]
     out.append(f"    __slots__ = {tuple(spec.names)!r}")

@@ -47,12 +47,13 @@ class Message:
         if exc is not None:
             raise SerializationError(str(exc))
 
-    # Generated classes define these; the base class has no fields to write or read.
+    # Generated classes define these; the base class has no fields, so it writes and reads
+    # nothing (genpy's base Message does the same).
     def serialize(self, buff: Any) -> None:
-        raise TypeError(f"{type(self).__name__} has no generated serializer: use a generated message class")
+        return None
 
     def deserialize(self, data: Any) -> Message:
-        raise TypeError(f"{type(self).__name__} has no generated deserializer: use a generated message class")
+        return self
 
     def __getstate__(self) -> list[Any]:
         return [getattr(self, name) for name in self.__slots__]

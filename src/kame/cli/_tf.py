@@ -1,0 +1,105 @@
+"""What kame's tf programs share (static_transform_publisher, tf_echo, tf2_echo, view_frames,
+tf_monitor): a node named as roscpp names an anonymous node, roscpp-style console lines, and a
+Buffer fed by /tf and /tf_static."""
+
+from __future__ import annotations
+
+import sys
+import time
+from collections.abc import Callable, Sequence
+from typing import Any
+
+from kame import names
+from kame.cli._node import ToolNode
+from kame.tf_ros.buffer import Buffer
+from kame.tf_ros.node_io import TransformListener
+
+RED, YELLOW, RESET = "\033[31m", "\033[33m", "\033[0m"
+
+
+def console(level: str, text: str) -> None:
+    """One roscpp console line: INFO on stdout, the rest on stderr in colour."""
+    if level == "INFO":
+        print(f"[ INFO] [{time.time():.9f}]: {text}", flush=True)
+        return
+    colour = RED if level in ("ERROR", "FATAL") else YELLOW
+    sys.stderr.write(f"{colour}[{level:>5}] [{time.time():.9f}]: {text}{RESET}\n")
+    sys.stderr.flush()
+
+
+class TfTool(ToolNode):
+    """A ToolNode that, once the master answers, sets its `_name:=value` arguments as private
+    parameters, typed as roscpp types them (int, double, bool, else string), and keeps ROS
+    time: the wall clock, or /clock when /use_sim_time is true (a bag played with --clock)."""
+
+    def __init__(self, special: dict[str, str], default_name: str, remappings: dict[str, str],
+                 params: dict[str, str]) -> None:
+        super().__init__(special, default_name, remappings)
+        self.params = params
+        self._sim_time: int | None = None  # ns; None: the wall clock
+
+    def wait_for_master(self) -> bool:
+        if not super().wait_for_master():
+            return False
+        for key, text in self.params.items():
+            self.node.master.call("setParam", self.node.resolve(key), roscpp_value(text))
+        if self._use_sim_time():
+            self._sim_time = 0
+            from rosgraph_msgs.msg import Clock
+
+            def on_clock(frames: list[memoryview], header: dict[str, str]) -> None:
+                clock = Clock._from_buffer(frames[-1]).clock
+                self._sim_time = int(clock.secs) * 1_000_000_000 + int(clock.nsecs)
+
+            self.node.subscribe(self.node.resolve("/clock"), Clock._type, Clock._md5sum, Clock._full_text,
+                                on_clock, queue_size=1)
+        return True
+
+    def _use_sim_time(self) -> bool:
+        try:
+            return self.node.master.call("getParam", "/use_sim_time") is True
+        except Exception:  # not set
+            return False
+
+    def spin(self) -> None:
+        """Until Ctrl-C, SIGTERM or a shutdown request. The wait wakes twice a second because
+        the OS may hand a signal to any thread: only the main thread runs Python's handler,
+        and a main thread blocked with no timeout would never see it (rospy.spin does the same)."""
+        while not self.stop.wait(0.5):
+            pass
+
+    def now_ns(self) -> int:
+        """ROS time in ns (0 under sim time until the first /clock, as roscpp)."""
+        return time.time_ns() if self._sim_time is None else self._sim_time
+
+
+def roscpp_value(text: str) -> Any:
+    for kind in (int, float):
+        try:
+            return kind(text)
+        except ValueError:
+            pass
+    if text.lower() in ("true", "false"):
+        return text.lower() == "true"
+    return text
+
+
+def start_node(argv: Sequence[str], default_name: str, anonymous: bool = True) -> tuple[TfTool, list[str]]:
+    """The program's node (not yet talking to the master) and its own arguments."""
+    ros = names.parse_args(argv)
+    special = dict(ros.special)
+    if anonymous and "name" not in special:
+        special["name"] = f"{default_name}_{time.time_ns()}"  # roscpp's AnonymousName
+    return TfTool(special, default_name, dict(ros.remappings), dict(ros.params)), ros.argv
+
+
+def listening_buffer(tool: TfTool, on_message: Callable[[Any, str, bool], None] | None = None,
+                     ) -> tuple[Buffer, TransformListener]:
+    """A Buffer fed from /tf and /tf_static; `on_message` also sees each message."""
+    buffer = Buffer(warn=lambda text: console("WARN", text))
+    return buffer, TransformListener(tool.node, buffer, now=tool.now_ns, on_message=on_message)
+
+
+def wall_seconds_text(ns: int) -> str:
+    """ros::Time's `<<`: seconds.nanoseconds, nine digits."""
+    return f"{ns // 1_000_000_000}.{ns % 1_000_000_000:09d}"

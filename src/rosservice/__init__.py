@@ -1,0 +1,120 @@
+"""rosservice as a library: service types, providers and calls, as ROS code calls them
+(`rosservice.get_service_type('/add_two_ints')`). The `rosservice` command is
+kame.cli.rosservice; this module shares its probes and argument filling.
+
+Unlike upstream's call_service, which calls rospy.init_node('rosservice', anonymous=True) (and
+so fails in a program that already is a node), kame's calls the service under this process's
+node name if it has one, without registering a node otherwise.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Iterator, Sequence
+from contextlib import contextmanager
+from typing import Any
+
+from kame.cli._tool import ToolError
+from kame.cli.rosservice import ID, Tool, _srv_text, arg_summary, load_service_class
+from kame.client import clock, core
+from kame.client.errors import ROSSerializationException
+from kame.client.services import ServiceException, ServiceProxy
+from kame.msg.fill import FillError, fill_message_args, printable_message_args
+from kame.rostime import Time
+
+__all__ = ["ROSServiceException", "ROSServiceIOException", "call_service", "get_service_class_by_name",
+           "get_service_list", "get_service_node", "get_service_type", "get_service_uri"]
+
+
+class ROSServiceException(Exception):
+    """Base of rosservice's errors."""
+
+
+class ROSServiceIOException(ROSServiceException):
+    """The master or the service could not be reached."""
+
+
+@contextmanager
+def _tool() -> Iterator[Tool]:
+    try:
+        t = Tool(ID)
+    except ToolError as exc:
+        raise ROSServiceIOException(str(exc)) from None
+    try:
+        yield t
+    except ToolError as exc:
+        raise ROSServiceIOException(str(exc)) from None
+    finally:
+        t.close()
+
+
+def get_service_type(service_name: str) -> str | None:
+    """The type of the service (`pkg/Srv`), asked of the service itself; None when the master
+    does not know it; ROSServiceIOException when it cannot be reached."""
+    with _tool() as t:
+        return t.type(service_name)
+
+
+def get_service_class_by_name(service_name: str) -> Any:
+    """The class of the service's type; ROSServiceException when it is unknown or cannot load."""
+    with _tool() as t:
+        service_type = t.type(service_name)
+    if not service_type:
+        raise ROSServiceException(f"Service [{service_name}] is not available.")
+    service_class = load_service_class(service_type)
+    if service_class is None:
+        package = service_type.partition("/")[0]
+        raise ROSServiceException(f"Unable to load type [{service_type}].\nHave you typed 'make' in [{package}]?")
+    return service_class
+
+
+def get_service_list(node: str | None = None, namespace: str | None = None) -> list[str]:
+    """The services the master knows, sorted; only those of `node` / under `namespace` if given."""
+    with _tool() as t:
+        services = t.services(namespace)
+    return sorted(name for name, providers in services if node is None or node in providers)
+
+
+def get_service_node(service_name: str) -> str | None:
+    """The node providing the service, or None."""
+    with _tool() as t:
+        return t.provider(service_name)
+
+
+def get_service_uri(service_name: str) -> str | None:
+    """The service's rosrpc:// URI, or None."""
+    with _tool() as t:
+        return t.uri(service_name)
+
+
+def call_service(service_name: str, service_args: Sequence[Any], service_class: Any = None) -> tuple[Any, Any]:
+    """Call the service with a request filled from `service_args` (as `rosservice call` fills
+    it: positional values or one dict; `now`/`auto` stamps); returns (request, response)."""
+    if service_class is None:
+        service_class = get_service_class_by_name(service_name)
+    request = service_class._request_class()
+    now = clock.get_rostime() if core.is_initialized() else Time.from_sec(time.time())
+    keys: dict[str, Any] = {"now": now}
+    try:
+        from std_msgs.msg import Header
+
+        keys["auto"] = Header(stamp=now)
+    except ImportError:
+        pass
+    try:
+        fill_message_args(request, list(service_args), keys)
+    except FillError as exc:
+        raise ROSServiceException(
+            f"Incompatible arguments to call service:\n{exc}\nProvided arguments are:\n"
+            f"{arg_summary(list(service_args))}\n\nService arguments are: [{printable_message_args(request)}]"
+        ) from None
+    proxy = ServiceProxy(service_name, service_class)
+    try:
+        return request, proxy(request)
+    except ServiceException as exc:
+        raise ROSServiceException(str(exc)) from None
+    except ROSSerializationException as exc:
+        raise ROSServiceException("Unable to send request. One of the fields has an incorrect type:\n"
+                                  f"  {exc}\n\nsrv file:\n{_srv_text(service_class._type)}") from None
+    finally:
+        proxy.close()

@@ -1,0 +1,188 @@
+"""rostopic as a library: topic types and classes, and the hz and bw statistics, as ROS code
+calls them (`rostopic.get_topic_type('/chatter')`). The `rostopic` command is kame.cli.rostopic;
+this module shares its master queries and statistics.
+"""
+
+from __future__ import annotations
+
+import sys
+import threading
+import time
+from collections.abc import Callable, Iterator, Sequence
+from contextlib import contextmanager
+from typing import Any
+
+from kame.cli.rostopic import _common
+from kame.cli.rostopic.info import info_text
+from kame.cli.topic_stats import BandwidthStats, RateStats, format_rate, format_rate_table
+from kame.client import clock, core
+from kame.msg import lookup
+from kame.msg.errors import MessageError
+from kame.msg.fieldpath import FieldPath, FieldPathError
+from kame.rostime import Time
+
+__all__ = ["ROSTopicBandwidth", "ROSTopicException", "ROSTopicHz", "ROSTopicIOException", "get_info_text",
+           "get_topic_class", "get_topic_type", "msgevalgen"]
+
+
+class ROSTopicException(Exception):
+    """Base of rostopic's errors."""
+
+
+class ROSTopicIOException(ROSTopicException):
+    """The master (or a node) could not be reached."""
+
+
+def _evaluator(path: FieldPath | None) -> Callable[[Any], Any] | None:
+    if path is None:
+        return None
+
+    def msgeval(msg: Any) -> Any:
+        try:
+            return path.evaluate(msg)
+        except FieldPathError as exc:
+            raise ROSTopicException(str(exc)) from None
+
+    return msgeval
+
+
+def msgevalgen(pattern: str) -> Callable[[Any], Any] | None:
+    """A function picking the field `pattern` (`/pose/x`, `/ranges[0:3]`) out of a message, or
+    None when the pattern names no field."""
+    from kame.msg.fieldpath import parse_field_path
+
+    try:
+        return _evaluator(parse_field_path(pattern))
+    except FieldPathError as exc:
+        raise ROSTopicException(str(exc)) from None
+
+
+@contextmanager
+def _master_session() -> Iterator[None]:
+    """The command's master queries, their errors as rostopic's exceptions; the connection is
+    dropped after, so each call reads ROS_MASTER_URI afresh as upstream's do."""
+    try:
+        yield
+    except _common.MasterUnreachable:
+        raise ROSTopicIOException("Unable to communicate with master!") from None
+    except _common.RostopicError as exc:
+        raise ROSTopicException(str(exc)) from None
+    finally:
+        _common.close_master()
+
+
+def _find(topic: str) -> tuple[str, str, FieldPath | None] | None:
+    with _master_session():
+        return _common.find_topic(topic)
+
+
+def get_topic_type(topic: str, blocking: bool = False) -> tuple[str | None, str | None, Callable[[Any], Any] | None]:
+    """(type, the published topic, a function picking the named field or None) for `topic`,
+    which may name a field inside a topic (`/turtle1/pose/x`); (None, None, None) when nothing
+    publishes it, or, `blocking`, waits until something does (or shutdown)."""
+    found = _find(topic)
+    if found is None and blocking:
+        sys.stderr.write(f"WARNING: topic [{topic}] does not appear to be published yet\n")
+        while found is None and not core.is_shutdown():
+            time.sleep(0.1)  # rostopic's own poll of the master; nothing tells us of a new publisher
+            found = _find(topic)
+    if found is None:
+        return None, None, None
+    topic_type, real_topic, path = found
+    return topic_type, real_topic, _evaluator(path)
+
+
+def get_topic_class(topic: str, blocking: bool = False) -> tuple[Any, str | None, Callable[[Any], Any] | None]:
+    """(message class, the published topic, field function) for `topic`; (None, None, None)
+    when nothing publishes it; ROSTopicException when its type cannot be loaded."""
+    topic_type, real_topic, msg_eval = get_topic_type(topic, blocking=blocking)
+    if topic_type is None:
+        return None, None, None
+    try:
+        msg_class = lookup.message_class(topic_type)
+    except MessageError:
+        msg_class = None
+    if msg_class is None:
+        raise ROSTopicException(f"Cannot load message class for [{topic_type}]. Are your messages built?")
+    return msg_class, real_topic, msg_eval
+
+
+def get_info_text(topic: str) -> str:
+    """What `rostopic info` prints for `topic`."""
+    with _master_session():
+        return info_text(topic)
+
+
+class ROSTopicHz:
+    """The publishing rate of topics, fed by a subscription callback (`callback_hz`)."""
+
+    def __init__(self, window_size: int, filter_expr: Callable[[Any], bool] | None = None,
+                 use_wtime: bool = False) -> None:
+        self.lock = threading.Lock()
+        self.filter_expr = filter_expr
+        self.use_wtime = use_wtime
+        self.window_size = 50000 if window_size < 0 else window_size
+        self._stats: dict[str | None, RateStats] = {}
+
+    def _topic(self, topic: str | None) -> RateStats:
+        if topic not in self._stats:
+            self._stats[topic] = RateStats(self.window_size)
+        return self._stats[topic]
+
+    def callback_hz(self, m: Any, topic: str | None = None) -> None:
+        """Count a message of `topic` (None: the only topic) arriving now (ROS time, or wall time)."""
+        if self.filter_expr is not None and not self.filter_expr(m):
+            return
+        with self.lock:
+            stamp = Time.from_sec(time.time()) if self.use_wtime else clock.get_rostime()
+            now = stamp.to_sec()  # wall time too goes through a Time (nanoseconds), as upstream
+            notice = self._topic(topic).add(now)
+        if notice:
+            print(notice)
+
+    def get_hz(self, topic: str | None = None) -> tuple[float, float, float, float, int] | None:
+        """(rate, min interval, max interval, std dev, window) since the last call; None when
+        nothing new arrived."""
+        with self.lock:
+            summary = self._topic(topic).summary()
+        if summary is None:
+            return None
+        return summary.rate, summary.min, summary.max, summary.std_dev, summary.window
+
+    def print_hz(self, topics: Sequence[str | None] = (None,)) -> None:
+        """The rate report (a table for several topics; each row with its own window, where
+        upstream repeats the first topic's)."""
+        with self.lock:
+            summaries = [(topic, self._topic(topic).summary()) for topic in topics]
+        if len(summaries) == 1:
+            print(format_rate(summaries[0][1]))
+        else:
+            print(format_rate_table([(str(topic), summary) for topic, summary in summaries]))
+
+
+class ROSTopicBandwidth:
+    """The bandwidth of a topic, fed raw messages (rospy.AnyMsg) by a subscription callback."""
+
+    def __init__(self, window_size: int = 100) -> None:
+        self.lock = threading.Lock()
+        self.window_size = window_size or 100
+        self._stats = BandwidthStats(self.window_size)
+
+    @property
+    def times(self) -> list[float]:
+        return list(self._stats.times)
+
+    @property
+    def sizes(self) -> list[int]:
+        return list(self._stats.sizes)
+
+    def callback(self, data: Any) -> None:
+        with self.lock:
+            self._stats.add(time.time(), len(data._buff))
+
+    def print_bw(self) -> None:
+        """`average: 1.27KB/s` and its details; nothing before two messages arrived."""
+        with self.lock:
+            report = self._stats.report(time.time())
+        if report is not None:
+            print(report)

@@ -1,0 +1,198 @@
+"""rostopic, rosservice, rosnode, rosparam and rosmsg as modules: against a live kame node, and
+against Debian's real modules where they run (the same calls, the same answers)."""
+
+from __future__ import annotations
+
+import random
+import sys
+from collections.abc import Iterator
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+import rosgraph
+import rosmsg
+import rosnode
+import rosparam
+import rosservice
+import rostopic
+
+from ..support import Proc, free_port, kame_command, ros_env, wait_for_master
+from . import debian
+from .stats_driver import run as run_stats
+
+NODE = Path(__file__).with_name("tools_node.py")
+STATS = Path(__file__).with_name("stats_driver.py")
+
+
+@pytest.fixture(scope="module")
+def graph(tmp_path_factory: pytest.TempPathFactory) -> Iterator[dict[str, str]]:
+    port = free_port()
+    uri = f"http://127.0.0.1:{port}/"
+    env = ros_env(Path(tmp_path_factory.mktemp("tools")), uri)
+    master = Proc(kame_command("kame.cli.rosmaster", "--core", "-p", str(port)), env)
+    node = None
+    try:
+        wait_for_master(uri, proc=master)
+        node = Proc([sys.executable, str(NODE)], env)
+        node.wait_line("ready")
+        yield env
+    finally:
+        if node is not None:
+            node.stop()
+        master.stop()
+
+
+@pytest.fixture
+def on_graph(graph: dict[str, str], monkeypatch: pytest.MonkeyPatch) -> dict[str, str]:
+    monkeypatch.setenv("ROS_MASTER_URI", graph["ROS_MASTER_URI"])
+    monkeypatch.delenv("ROS_NAMESPACE", raising=False)
+    monkeypatch.setattr("sys.argv", ["test"])
+    return graph
+
+
+def test_rostopic_types_and_classes(on_graph: dict[str, str]) -> None:
+    from geometry_msgs.msg import PoseStamped
+
+    assert rostopic.get_topic_type("/chatter") == ("std_msgs/String", "/chatter", None)
+    topic_type, real_topic, msg_eval = rostopic.get_topic_type("/pose/pose/position/x")
+    assert (topic_type, real_topic) == ("geometry_msgs/PoseStamped", "/pose")
+    msg = PoseStamped()
+    msg.pose.position.x = 2.5
+    assert msg_eval is not None and msg_eval(msg) == 2.5
+    assert rostopic.get_topic_class("/pose")[:2] == (PoseStamped, "/pose")
+    assert rostopic.get_topic_type("/nothing") == (None, None, None)
+    assert rostopic.get_topic_class("/nothing") == (None, None, None)
+    assert "Publishers: \n * /tools_node (" in rostopic.get_info_text("/chatter")
+    with pytest.raises(rostopic.ROSTopicException, match="Unknown topic /nothing"):
+        rostopic.get_info_text("/nothing")
+
+
+def test_rostopic_without_master_raises_io_exception(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setenv("ROS_MASTER_URI", f"http://127.0.0.1:{free_port()}/")
+    with pytest.raises(rostopic.ROSTopicIOException):
+        rostopic.get_topic_type("/chatter")
+    with pytest.raises(rosnode.ROSNodeIOException):
+        rosnode.get_node_names()
+
+
+def test_rosservice_type_call_and_listing(on_graph: dict[str, str]) -> None:
+    from rospy_tutorials.srv import AddTwoInts
+
+    assert rosservice.get_service_type("/add_two_ints") == "rospy_tutorials/AddTwoInts"
+    assert rosservice.get_service_type("/nothing") is None
+    assert rosservice.get_service_class_by_name("/add_two_ints") is AddTwoInts
+    assert "/add_two_ints" in rosservice.get_service_list()
+    assert rosservice.get_service_list(node="/tools_node") == ["/add_two_ints", "/tools_node/get_loggers",
+                                                                "/tools_node/set_logger_level"]
+    assert rosservice.get_service_node("/add_two_ints") == "/tools_node"
+    assert str(rosservice.get_service_uri("/add_two_ints")).startswith("rosrpc://")
+    request, response = rosservice.call_service("/add_two_ints", [3, 4])
+    assert (request.a, request.b, response.sum) == (3, 4, 7)
+    _, response = rosservice.call_service("/add_two_ints", [{"a": 10, "b": -2}], service_class=AddTwoInts)
+    assert response.sum == 8
+    with pytest.raises(rosservice.ROSServiceException, match="Incompatible arguments to call service"):
+        rosservice.call_service("/add_two_ints", [1, 2, 3])
+    with pytest.raises(rosservice.ROSServiceException, match=r"Service \[/nothing\] is not available"):
+        rosservice.call_service("/nothing", [])
+
+
+def test_rosnode_names_ping_and_kill(on_graph: dict[str, str], capsys: Any) -> None:
+    assert "/tools_node" in rosnode.get_node_names()
+    assert rosnode.get_node_names("/other") == []
+    assert rosnode.rosnode_ping("/tools_node", max_count=1)
+    assert not rosnode.rosnode_ping("/ghost", max_count=1)
+    assert "cannot ping [/ghost]: unknown node" in capsys.readouterr().err
+    assert rosnode.kill_nodes(["/ghost"]) == ([], ["/ghost"])
+    assert rosnode.get_api_uri(None, "/tools_node") is not None
+
+
+def test_rosparam_load_upload_get_set(on_graph: dict[str, str], tmp_path: Path) -> None:
+    path = tmp_path / "params.yaml"
+    path.write_text("a: 1\nangle: !degrees 180\nnested: {b: [1, 2], c: text}\n---\n_ns: sub\nd: true\n")
+    documents = rosparam.load_file(str(path), default_namespace="/cfg")
+    assert documents[1] == ({"d": True}, "/cfg/sub")
+    for values, ns in documents:
+        rosparam.upload_params(ns, values)
+    assert rosparam.get_param("/cfg/nested") == {"b": [1, 2], "c": "text"}
+    assert rosparam.get_param("/cfg/angle") == pytest.approx(3.14159265)
+    assert rosparam.get_param("/cfg/sub/d") is True
+    rosparam.set_param("/cfg/nested", "{e: 2.5}")
+    assert rosparam.get_param("/cfg/nested") == {"b": [1, 2], "c": "text", "e": 2.5}  # merged
+    assert "/cfg/sub/d" in rosparam.list_params("/cfg")
+    rosparam.delete_param("/cfg/sub")
+    with pytest.raises(rosgraph.MasterError):
+        rosparam.get_param("/cfg/sub/d")
+    with pytest.raises(rosparam.RosParamException, match="does not exist"):
+        rosparam.load_file(str(tmp_path / "missing.yaml"))
+    with pytest.raises(rosparam.RosParamException, match="global / can only be set to a dictionary"):
+        rosparam.upload_params("/", 3)
+
+
+def test_rosmsg_texts() -> None:
+    assert rosmsg.get_msg_text("geometry_msgs/Point") == "float64 x\nfloat64 y\nfloat64 z\n"
+    assert rosmsg.get_srv_text("std_srvs/SetBool") == "bool data\n---\nbool success\nstring message\n"
+    with pytest.raises(rosmsg.ROSMsgException, match=r"Unable to load msg \[nope/Nope\]"):
+        rosmsg.get_msg_text("nope/Nope")
+
+
+def stats_request() -> dict[str, Any]:
+    rng = random.Random(7)
+    hz_cases = []
+    for window in (-1, 3, 10):
+        at, arrivals = 100.0, []
+        for _ in range(60):
+            at += rng.choice([0.01, 0.02, 0.1, 0.5])
+            arrivals.append([rng.choice(["/a", "/b"]), round(at, 3)])
+        arrivals.insert(30, ["/a", 0.0])  # a clock reset
+        arrivals.insert(40, ["/b", 50.0])  # time going back: starts over
+        for topics in (["/a"], ["/a", "/b"]):
+            hz_cases.append({"window": window, "arrivals": arrivals, "topics": topics})
+    bw_cases = []
+    for window in (0, 4, 100):
+        at, arrivals = 10.0, []
+        for _ in range(40):
+            at += rng.choice([0.001, 0.01, 0.3])
+            arrivals.append([round(at, 3), rng.choice([10, 900, 5000, 2_000_000])])
+        bw_cases.append({"window": window, "arrivals": arrivals})
+    return {"hz": hz_cases, "bw": bw_cases}
+
+
+@pytest.mark.skipif(not debian.has("rostopic"), reason="Debian's rostopic is not installed")
+def test_hz_and_bw_report_as_debians_rostopic() -> None:
+    request = stats_request()
+    theirs = debian.run(STATS, request)
+    original = rostopic.time  # type: ignore[attr-defined]
+    try:
+        ours = run_stats(request)
+    finally:
+        rostopic.time = original  # type: ignore[attr-defined]
+    assert "average rate" in theirs[0][1] and "average: " in theirs[-1]
+    assert ours == theirs
+
+
+@pytest.mark.skipif(not debian.has("rostopic", "rosservice", "rosnode"), reason="Debian's ROS tools are not installed")
+def test_debians_modules_see_the_kame_graph_as_kames_do(on_graph: dict[str, str], tmp_path: Path) -> None:
+    script = tmp_path / "ask.py"
+    script.write_text(
+        "import json, sys, rostopic, rosservice, rosnode\n"
+        "t = rostopic.get_topic_type('/pose/pose/position')\n"
+        "print(json.dumps([t[0], t[1], rostopic.get_topic_type('/chatter')[:2],"
+        " rosservice.get_service_type('/add_two_ints'), rosservice.get_service_node('/add_two_ints'),"
+        " '/tools_node' in rosnode.get_node_names()]))\n")
+    theirs = _run_with_env(script, on_graph)
+    t = rostopic.get_topic_type("/pose/pose/position")
+    ours = [t[0], t[1], list(rostopic.get_topic_type("/chatter")[:2]), rosservice.get_service_type("/add_two_ints"),
+            rosservice.get_service_node("/add_two_ints"), "/tools_node" in rosnode.get_node_names()]
+    assert ours == theirs
+
+
+def _run_with_env(script: Path, env: dict[str, str]) -> Any:
+    import json
+    import subprocess
+
+    result = subprocess.run([str(debian.SYSTEM_PYTHON), str(script)], capture_output=True, text=True, timeout=60,
+                            env=env)
+    assert result.returncode == 0, result.stderr
+    return json.loads(result.stdout)

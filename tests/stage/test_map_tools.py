@@ -1,0 +1,103 @@
+"""map_server and map_saver as a course uses them: serve a map, save it, get the same image back;
+a bad map is an error line and status 255, never a traceback."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+from PIL import Image
+
+from kame.stage.mapfile import load, parse_description
+from kame.stage.world import LaserModel, Walls, World
+from tests.turtlesim.sim import master
+
+SHIPPED = Path(__file__).resolve().parents[2] / "src" / "kame" / "share" / "turtlebot_gazebo" / "worlds"
+
+
+def _write_map(folder: Path) -> np.ndarray:
+    pixels = np.full((40, 60), 254, dtype=np.uint8)
+    pixels[0, :] = pixels[-1, :] = pixels[:, 0] = pixels[:, -1] = 0
+    pixels[10:15, 20:45] = 0
+    pixels[30:38, 2:10] = 205
+    Image.fromarray(pixels, "L").save(folder / "room.pgm")
+    (folder / "room.yaml").write_text("image: room.pgm\nresolution: 0.050000\norigin: [-1.5, -1.0, 0.0]\n"
+                                      "negate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n")
+    return pixels
+
+
+def test_map_saver_reproduces_the_served_map(tmp_path: Path) -> None:
+    pixels = _write_map(tmp_path)
+    with master(tmp_path / "home") as sim:
+        server = sim.start("map_server", "map_server", str(tmp_path / "room.yaml"), wait="Read a 60 X 40 map")
+        assert f'Loading map from image "{tmp_path}/room.pgm"' in "".join(server.out)
+        assert "@ 0.05 m/cell" in "".join(server.out)
+        info = sim.echo("/map_metadata")
+        assert (info["width"], info["height"], info["resolution"]) == (60, 40, pytest.approx(0.05))
+        assert info["origin"]["position"]["x"] == -1.5
+        saved = sim.run("rosrun", "map_server", "map_saver", "-f", str(tmp_path / "copy"))
+        out = saved.stdout
+        for line in ("Waiting for the map", "Received a 60 X 40 map @ 0.050 m/pix",
+                     f"Writing map occupancy data to {tmp_path}/copy.pgm",
+                     f"Writing map occupancy data to {tmp_path}/copy.yaml", "Done"):
+            assert line in out, out
+        again = np.asarray(Image.open(tmp_path / "copy.pgm"))
+        assert again.tolist() == pixels.tolist()
+        assert (tmp_path / "copy.yaml").read_text() == (
+            f"image: {tmp_path}/copy.pgm\nresolution: 0.050000\norigin: [-1.500000, -1.000000, 0.000000]\n"
+            "negate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n\n")
+        call = sim.run("rosservice", "call", "/static_map").stdout
+        assert "width: 60" in call and "height: 40" in call
+
+
+def test_bad_maps_are_errors_not_crashes(tmp_path: Path) -> None:
+    _write_map(tmp_path)
+    (tmp_path / "missing.yaml").write_text((tmp_path / "room.yaml").read_text().replace("room.pgm", "gone.pgm"))
+    (tmp_path / "thresholds.yaml").write_text(
+        (tmp_path / "room.yaml").read_text().replace("free_thresh: 0.196", "free_thresh: 0.8"))
+    with master(tmp_path / "home") as sim:
+        for name, text in (("missing.yaml", 'Failed to open image file "'),
+                           ("thresholds.yaml", "must be below its occupied_thresh"),
+                           ("nothing.yaml", "Map_server could not open")):
+            result = sim.run("rosrun", "map_server", "map_server", str(tmp_path / name), check=False)
+            assert result.returncode == 255, (name, result.stdout, result.stderr)
+            assert text in result.stderr and "Traceback" not in result.stderr, result.stderr
+        usage = sim.run("rosrun", "map_server", "map_server", check=False)
+        assert usage.returncode == 255 and "USAGE: map_server <map.yaml>" in usage.stderr
+        saver = sim.run("rosrun", "map_server", "map_saver", "--occ", "10", "--free", "50", check=False)
+        assert saver.returncode == 1 and "must be below --occ" in saver.stderr
+
+
+def test_the_shipped_worlds_load_and_start_the_robot_in_the_open() -> None:
+    names = sorted(p.stem for p in SHIPPED.glob("*.yaml"))
+    assert names == ["maze", "office", "playground"]
+    for name in names:
+        description = parse_description((SHIPPED / f"{name}.yaml").read_text())
+        image = description.image_path(str(SHIPPED / f"{name}.yaml"))
+        grid = load(description, Path(image).read_bytes(), image)
+        world = World(Walls(grid), laser=LaserModel(beams=36, angle_min=-3.1, angle_max=3.1))
+        world.spawn("bot", 0.0, 0.0, 0.0)
+        assert np.isfinite(world.scans()["bot"]).all(), name  # walled in: every beam meets a wall
+
+
+def test_without_the_sim_extra_the_programs_say_what_to_install(tmp_path: Path) -> None:
+    fake = tmp_path / "no_numpy" / "numpy"
+    fake.mkdir(parents=True)
+    (fake / "__init__.py").write_text("raise ModuleNotFoundError(\"No module named 'numpy'\", name='numpy')\n")
+    with master(tmp_path / "home") as sim:
+        env = {**sim.env, "PYTHONPATH": str(fake.parent)}
+        for package, program in (("map_server", "map_server"), ("map_server", "map_saver"), ("stage_ros", "stageros")):
+            result = sim.run("rosrun", package, program, "x.yaml", check=False, env=env)
+            assert result.returncode == 1, result.stderr
+            assert f"{program} needs numpy and Pillow, kame's 'sim' extra (pip install 'kame[sim]')" in result.stderr
+            assert "Traceback" not in result.stderr
+
+
+def test_a_16_bit_map(tmp_path: Path) -> None:
+    grey = np.array([[0, 65535, 30000]], dtype=np.uint16)
+    Image.fromarray(grey).save(tmp_path / "deep.png")
+    description = parse_description("image: deep.png\nresolution: 0.1\norigin: [0, 0, 0]\nnegate: 0\n"
+                                    "occupied_thresh: 0.65\nfree_thresh: 0.196\n")
+    grid = load(description, (tmp_path / "deep.png").read_bytes(), "deep.png")
+    assert grid.cells.tolist() == [[100, 0, -1]]

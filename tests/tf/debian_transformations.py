@@ -1,0 +1,32 @@
+"""Run under Debian's /usr/bin/python3: evaluates a JSON batch of tf.transformations calls.
+
+stdin: [[function, args, kwargs], ...]; stdout: [result or {"error": type name}, ...], where
+numpy arrays become nested lists and tuples lists.
+"""
+
+import json
+import sys
+
+import numpy
+
+from tf import transformations
+
+
+def plain(value):
+    if isinstance(value, numpy.ndarray):
+        return value.tolist()
+    if isinstance(value, (tuple, list)):
+        return [plain(v) for v in value]
+    if isinstance(value, (numpy.floating, numpy.integer, numpy.bool_)):
+        return value.item()
+    return value
+
+
+def call(name, args, kwargs):
+    try:
+        return plain(getattr(transformations, name)(*args, **kwargs))
+    except Exception as exc:  # the type is compared
+        return {"error": type(exc).__name__}
+
+
+json.dump([call(*item) for item in json.load(sys.stdin)], sys.stdout)

@@ -1,0 +1,61 @@
+"""The running graph the tf tests use: a kame master, programs started and stopped by PID, and
+whether Debian's tf2 is here to talk to."""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+import textwrap
+from pathlib import Path
+
+import pytest
+
+from ..support import SYSTEM_PYTHON, Proc, free_port, have_debian_ros, kame_command, ros_env, wait_for_master
+
+DEBIAN_STATIC = "/usr/lib/tf2_ros/static_transform_publisher"
+DEBIAN_TF_ECHO = "/usr/lib/tf/tf_echo"
+
+
+def have_debian_tf2() -> bool:
+    return have_debian_ros() and os.path.exists(DEBIAN_STATIC) and subprocess.run(
+        [SYSTEM_PYTHON, "-c", "import tf2_ros, tf"], capture_output=True).returncode == 0
+
+
+debian = pytest.mark.skipif(not have_debian_tf2(), reason="Debian's tf2_ros/tf are not installed")
+
+
+class Graph:
+    def __init__(self, home: Path) -> None:
+        self.port = free_port()
+        self.uri = f"http://127.0.0.1:{self.port}/"
+        self.env = ros_env(home, self.uri)
+        self.master = Proc(kame_command("kame.cli.rosmaster", "--core", "-p", str(self.port)), self.env)
+        self.procs: list[Proc] = []
+        wait_for_master(self.uri, proc=self.master)
+
+    def start(self, args: list[str]) -> Proc:
+        proc = Proc(args, self.env)
+        self.procs.append(proc)
+        return proc
+
+    def kame(self, code: str, *args: str) -> Proc:
+        return self.start([sys.executable, "-c", textwrap.dedent(code), *args])
+
+    def real(self, code: str, *args: str) -> Proc:
+        return self.start([SYSTEM_PYTHON, "-c", textwrap.dedent(code), *args])
+
+    def finish(self, proc: Proc, timeout: float = 30) -> str:
+        """Wait for a program that ends by itself; its stdout (it must exit 0)."""
+        try:
+            proc.popen.wait(timeout)
+        except subprocess.TimeoutExpired:
+            pass
+        out, err = proc.stop()
+        assert proc.popen.returncode == 0, f"exit {proc.popen.returncode}\n{out}\n{err}"
+        return out
+
+    def stop(self) -> None:
+        for proc in reversed(self.procs):
+            proc.stop()
+        self.master.stop()

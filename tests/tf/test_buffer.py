@@ -1,0 +1,88 @@
+"""kame.tf_ros.Buffer: waits that wake when the transform arrives, timeouts, tf2's warnings
+(the repeated-stamp one rate-limited), a clock jumping back, bad input never raising out of
+the listener path."""
+
+from __future__ import annotations
+
+import math
+import threading
+import time
+
+import pytest
+
+from geometry_msgs.msg import TransformStamped
+from kame.rostime import Duration, Time
+from kame.tf import errors
+from kame.tf_ros.buffer import Buffer
+
+
+def transform(parent: str, child: str, secs: float, x: float = 0.0,
+              q: tuple[float, ...] = (0, 0, 0, 1)) -> TransformStamped:
+    t = TransformStamped()
+    t.header.frame_id, t.child_frame_id = parent, child
+    t.header.stamp = Time.from_sec(secs)
+    t.transform.translation.x = x
+    t.transform.rotation.x, t.transform.rotation.y, t.transform.rotation.z, t.transform.rotation.w = q
+    return t
+
+
+def test_a_waiting_lookup_wakes_when_the_transform_arrives() -> None:
+    buffer = Buffer()
+    got: list[float] = []
+    waiting = threading.Event()
+
+    def look() -> None:
+        waiting.set()
+        got.append(buffer.lookup_transform("map", "robot", Time(), Duration(30)).transform.translation.x)
+
+    thread = threading.Thread(target=look)
+    thread.start()
+    waiting.wait()
+    buffer.set_transform(transform("map", "robot", 1.0, x=3.0), "/test")
+    thread.join(30)
+    assert got == [3.0]
+
+
+def test_a_wait_ends_at_its_timeout_with_the_reason() -> None:
+    buffer = Buffer()
+    buffer.set_transform(transform("map", "robot", 1.0), "/test")
+    ok, why = buffer.can_transform("map", "robot", Time(5), Duration(0.05), return_debug_tuple=True)
+    assert not ok and why.startswith("Lookup would require extrapolation at time 5.000000000")
+    with pytest.raises(errors.TimeoutException, match="ghost does not exist"):
+        buffer.wait_for_transform("map", "ghost", Time(), 0.05)
+    with pytest.raises(errors.LookupException):
+        buffer.lookup_transform("map", "ghost", Time(), Duration(0.05))
+
+
+def test_bad_transforms_are_refused_with_tf2s_warnings() -> None:
+    warnings: list[str] = []
+    buffer = Buffer(warn=warnings.append)
+    buffer.receive([transform("map", "a", 1.0, x=math.nan), transform("map", "b", 1.0, q=(0, 0, 0, 3)),
+                    transform("map", "map", 1.0), transform("", "c", 1.0), transform("/map", "/d", 1.0)], "/bad",
+                   is_static=False)
+    assert [w.split(":")[0] for w in warnings] == ["TF_NAN_INPUT", "TF_DENORMALIZED_QUATERNION", "TF_SELF_TRANSFORM",
+                                                   "TF_NO_FRAME_ID"]
+    assert buffer.frames() == ["d", "map"]  # a leading slash is stripped on the way in
+    with pytest.raises(errors.InvalidArgumentException, match="cannot start with a '/'"):
+        buffer.lookup_transform("/map", "d", Time())
+
+
+def test_repeated_stamps_warn_once_per_interval() -> None:
+    warnings: list[str] = []
+    buffer = Buffer(warn=warnings.append)
+    for _ in range(50):
+        buffer.set_transform(transform("map", "robot", 1.0), "/again")
+    assert len(warnings) == 1
+    assert warnings[0] == ("TF_REPEATED_DATA ignoring data with redundant timestamp for frame robot at time "
+                           "1.000000 according to authority /again")
+
+
+def test_a_clock_that_jumps_back_clears_all_but_static_data() -> None:
+    warnings: list[str] = []
+    buffer = Buffer(warn=warnings.append)
+    now = time.time_ns()
+    buffer.receive([transform("map", "odom", 100.0)], "/s", is_static=True, now=now)
+    buffer.receive([transform("odom", "robot", 100.0)], "/d", is_static=False, now=now)
+    buffer.receive([transform("odom", "robot", 1.0)], "/d", is_static=False, now=now - 50 * 10**9)
+    assert warnings == ["Detected jump back in time of 50s. Clearing TF buffer."]
+    assert buffer.lookup_transform("map", "robot", Time()).header.stamp == Time(1)
