@@ -134,11 +134,6 @@ KNOWN_VIOLATIONS: frozenset[tuple[str, str, str]] = frozenset({
     ("socket", "kame.node.tcpros", "socket"),
     # tools talking to a master or a port directly (port probes, XML-RPC clients of their own)
     ("socket", "kame.cli.roscore", "socket"),
-    ("socket", "kame.cli.roslaunch", "socket"),
-    ("socket", "kame.cli.rosnode", "socket"),
-    ("socket", "kame.cli.rostest", "socket"),
-    ("socket", "kame.cli.roswtf", "socket"),
-    ("socket", "rostest", "xmlrpc.client"),
 })
 
 

@@ -12,7 +12,7 @@ import sys
 from collections.abc import Mapping
 from urllib.parse import urlparse
 
-from kame.net.interfaces import hostname, local_addresses, resolve_host
+from kame.net.interfaces import hostname, local_addresses, resolve
 from kame.protocol.header import TcprosError, decode_header_fields, encode_header
 
 from .rosenv import ROS_HOSTNAME, ROS_IP, ROS_IPV6
@@ -84,7 +84,7 @@ def get_local_addresses() -> list[str]:
 
 def is_local_address(hostname: str) -> bool:
     """True when `hostname` resolves to a loopback address or one of this machine's."""
-    found = resolve_host(hostname, use_ipv6())
+    found = resolve(hostname, use_ipv6())
     if found is None:
         return False
     local = {"localhost", *get_local_addresses()}

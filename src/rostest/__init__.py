@@ -11,12 +11,12 @@ import os
 import sys
 import unittest
 import warnings
-import xmlrpc.client
 from collections.abc import Sequence
 from typing import Any
 
 from kame import environ, names
 from kame.cli import _junit
+from kame.net.xmlrpc_client import XmlRpcProxy
 
 XML_OUTPUT_FLAG = _junit.XML_OUTPUT_FLAG
 _GLOBAL_CALLER_ID = "/script"
@@ -26,9 +26,26 @@ def _master_uri() -> str:
     return environ.master_uri(os.environ, names.parse_args(sys.argv).special, default=environ.SETUP_MASTER_URI)
 
 
-def get_master() -> xmlrpc.client.ServerProxy:
+class MasterHandle:
+    """What rostest's get_master gave (an xmlrpc.client.ServerProxy): `master.method(*args)` calls
+    the master's `method` and returns its whole answer, over kame's XML-RPC client."""
+
+    def __init__(self, uri: str) -> None:
+        self._proxy = XmlRpcProxy(uri)
+
+    def __getattr__(self, method: str) -> Any:
+        if method.startswith("_"):
+            raise AttributeError(method)
+
+        def call(*args: object) -> Any:
+            return self._proxy.call(method, *args)
+
+        return call
+
+
+def get_master() -> MasterHandle:
     """An XML-RPC handle to the master."""
-    return xmlrpc.client.ServerProxy(_master_uri())
+    return MasterHandle(_master_uri())
 
 
 def _system_state() -> list[list[list[Any]]]:

@@ -281,3 +281,13 @@ def test_record_into_a_missing_folder_or_onto_a_full_disk_says_so_and_ends(core:
     assert "Traceback" not in full.stderr
     with rosbag.Bag(tmp_path / "f.bag") as bag:  # ended with what reached the disk
         assert bag.get_message_count("/big") >= 1
+
+
+def test_record_with_a_duration_ends_on_time_with_no_messages(core: dict[str, str], tmp_path: Path) -> None:
+    # The writer waits on its queue until the duration is up, not for a message that never comes
+    # (rosbag's recorder checks the duration while idle too).
+    res = _run(core, "record", "-O", "idle", "--duration=1", "/nobody_publishes", cwd=tmp_path)
+    assert res.returncode == 0, res.stderr
+    with rosbag.Bag(tmp_path / "idle.bag") as bag:
+        assert bag.get_message_count() == 0
+    assert not (tmp_path / "idle.bag.active").exists()

@@ -1,5 +1,6 @@
 """`rostopic echo` without -n waits on an event, not a poll: Ctrl-C and a shutdown request
-(rosnode kill's slave API call) both end it, cleanly."""
+(rosnode kill's slave API call) both end it, cleanly, and a shutdown request ends its wait for
+a topic nobody publishes yet."""
 
 from __future__ import annotations
 
@@ -71,3 +72,30 @@ def test_echo_ends_when_asked(master: tuple[str, dict[str, str]], how: str) -> N
         node.shutdown("test over")
     assert "Traceback" not in err, err
     assert out.startswith('data: "hello"\n---\n')
+
+
+def _rostopic_node(master_uri: str) -> str:
+    """The name of the (one) rostopic node up, found by its /rosout publication."""
+    proxy = xmlrpc.client.ServerProxy(master_uri)
+    deadline = time.monotonic() + 20
+    while time.monotonic() < deadline:
+        for name, publishers in proxy.getSystemState("/test")[2][0]:
+            found = [p for p in publishers if p.startswith("/rostopic_")]
+            if name == "/rosout" and found:
+                return str(found[0])
+        time.sleep(0.05)
+    raise AssertionError("no rostopic node publishes /rosout")
+
+
+def test_a_shutdown_request_ends_the_wait_for_a_topic_nobody_publishes(master: tuple[str, dict[str, str]]) -> None:
+    uri, env = master
+    echo = Proc([str(BIN / "rostopic"), "echo", "/nobody_publishes_this"], env)
+    try:
+        code, _, node_uri = xmlrpc.client.ServerProxy(uri).lookupNode("/test", _rostopic_node(uri))
+        assert code == 1
+        xmlrpc.client.ServerProxy(node_uri).shutdown("/test", "asked to stop")
+        assert echo.popen.wait(20) == 0
+    finally:
+        _, err = echo.stop()
+    assert "Traceback" not in err, err
+    assert "WARNING: topic [/nobody_publishes_this] does not appear to be published yet" in err

@@ -380,3 +380,22 @@ def test_a_file_not_found_is_said_once(workspace: Path, args: list[str]) -> None
     # as Debian's roslaunch: the red RLException and the traceback line, and no bare copy of the text
     assert result.stderr == (f"\033[31mRLException: {text}\033[0m\n"
                              "\033[31mThe traceback for the exception was written to the log file\033[0m\n")
+
+
+def test_wait_waits_for_a_master_started_later(workspace: Path) -> None:
+    port = free_port()
+    env = launch_env(workspace, port)
+    proc = Proc(kame_command("kame.cli.roslaunch", "--wait", "demo", "stubborn.launch"), env)
+    try:
+        proc.wait_line("roscore/master is not yet running, will wait for it to start")
+        # roscore, not a bare master: --wait then waits for the /run_id that roscore sets, as roslaunch does
+        master = Proc(kame_command("kame.cli.roscore", "-p", str(port)), env)
+        try:
+            proc.wait_line("master has started, initiating launch", timeout=20)
+            proc.wait_line("process[stubborn-1]", timeout=20)
+        finally:
+            out, _ = proc.stop(timeout=25)
+            master.stop()
+    finally:
+        proc.stop()
+    assert "auto-starting" not in out

@@ -36,6 +36,9 @@ class ChatterCase(unittest.TestCase):
         msg = rospy.wait_for_message("/chatter", String, timeout=10)
         self.assertTrue(msg.data.startswith("hello world"))
         self.assertTrue(rostest.is_publisher("/chatter", "/talker"))
+        code, _, state = rostest.get_master().getSystemState("/pass_test")
+        self.assertEqual(code, 1)
+        self.assertIn(["/chatter", ["/talker"]], state[0])
 
 if __name__ == "__main__":
     rospy.init_node("pass_test")

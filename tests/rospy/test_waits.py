@@ -100,3 +100,48 @@ def test_an_action_servers_execute_thread_is_joined_at_shutdown(env: dict[str, s
         print('threads left:', sorted(t.name for t in threading.enumerate() if t is not threading.main_thread()))
     """)
     assert out.splitlines() == ["result [7]", "threads left: []"]
+
+
+def test_wait_for_server_and_sleep_end_on_simulated_time_and_at_shutdown(env: dict[str, str]) -> None:
+    # No server ever comes. A wait of 5 s on simulated time (no /clock yet: time 0) ends when
+    # /clock passes its deadline, published in one step to 110 s, however little wall time went
+    # by; rospy.sleep on simulated time ends with the /clock message that passes its end; a wait
+    # with no timeout ends with the shutdown, and a sleep after it raises at once.
+    out = run(env, """
+        import os
+        import threading
+        import xmlrpc.client
+        import actionlib
+        import rospy
+        from actionlib_tutorials.msg import FibonacciAction
+        from rosgraph_msgs.msg import Clock
+        master = xmlrpc.client.ServerProxy(os.environ['ROS_MASTER_URI'])
+        master.setParam('/test', '/use_sim_time', True)  # read by init_node; taken away again below
+        rospy.init_node('server_waiter')
+        master.deleteParam('/test', '/use_sim_time')
+        clock = rospy.Publisher('/clock', Clock, queue_size=1, latch=True)
+        client = actionlib.SimpleActionClient('nobody', FibonacciAction)
+        waiting = threading.Event()
+        def tick_later():
+            waiting.wait()
+            clock.publish(Clock(clock=rospy.Time(110)))
+        ticker = threading.Thread(target=tick_later)
+        ticker.start()
+        waiting.set()
+        print('timed wait:', client.wait_for_server(rospy.Duration(5)), rospy.get_rostime().secs)
+        ticker.join()
+        ticker = threading.Timer(0.5, clock.publish, (Clock(clock=rospy.Time(130)),))  # sleeping by then
+        ticker.start()
+        rospy.sleep(rospy.Duration(15))  # on simulated time: until /clock passes 125
+        print('slept until', rospy.get_rostime().secs)
+        ticker.join()
+        stopper = threading.Timer(0.2, rospy.signal_shutdown, ('enough',))
+        stopper.start()
+        print('endless wait:', client.wait_for_server())
+        stopper.join()
+        try:
+            rospy.sleep(rospy.Duration(15))  # already shut down: at once
+        except rospy.ROSInterruptException:
+            print('sleep interrupted')
+    """)
+    assert out.splitlines() == ["timed wait: False 110", "slept until 130", "endless wait: False", "sleep interrupted"]

@@ -1,19 +1,25 @@
 """What the node-running tools (rosbag record/play, rosout) share: their node, named from the
 command line's special arguments as rospy names a node, and a stop event set by Ctrl-C,
-SIGTERM or a master's shutdown request."""
+SIGTERM or a master's shutdown request.
+
+A tool waits for "this happened, or we were stopped" in one wait (wait_until): whatever makes
+its condition true calls notify(), and stopping notifies too, so no wait polls."""
 
 from __future__ import annotations
 
 import os
 import signal
 import threading
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from typing import Any
 
 from kame import environ
 from kame.node.config import node_config
 from kame.node.master_proxy import MasterError
 from kame.node.node import Node
+
+# A master that is not up yet sends no event: it is asked again five times a second.
+MASTER_POLL_PERIOD = 0.2
 
 
 class ToolNode:
@@ -26,14 +32,31 @@ class ToolNode:
         self.namespace = environ.namespace(os.environ, special)
         self.caller_id = config.name
         self.stop = threading.Event()
+        # reentrant: the signal handler notifies from the main thread, which may be waiting on it
+        self._changed = threading.Condition(threading.RLock())
 
         def on_signal(signum: int, frame: Any) -> None:
-            self.stop.set()
+            self.request_stop()
 
         signal.signal(signal.SIGINT, on_signal)
         signal.signal(signal.SIGTERM, on_signal)
         self.node = Node(config)
-        self.node.on_shutdown_request = lambda reason: self.stop.set()
+        self.node.on_shutdown_request = lambda reason: self.request_stop()
+
+    def request_stop(self) -> None:
+        self.stop.set()
+        self.notify()
+
+    def notify(self) -> None:
+        """Something a wait_until condition reads has changed."""
+        with self._changed:
+            self._changed.notify_all()
+
+    def wait_until(self, ready: Callable[[], bool]) -> bool:
+        """Until ready() (True) or the tool is stopped (False); what makes ready() true calls notify()."""
+        with self._changed:
+            self._changed.wait_for(lambda: self.stop.is_set() or ready())
+        return not self.stop.is_set()
 
     def wait_for_master(self) -> bool:
         """Until the master answers (True), or the tool is stopped first (False)."""
@@ -42,5 +65,5 @@ class ToolNode:
                 self.node.master.call("getPid", timeout=2.0)
                 return True
             except (OSError, MasterError):
-                if self.stop.wait(0.2):
+                if self.stop.wait(MASTER_POLL_PERIOD):
                     return False

@@ -27,7 +27,6 @@ from kame.bag.errors import BagError
 from kame.bag.reader import BagReader, MessageView
 from kame.cli._node import ToolNode
 from kame.cli._options import OptionParser
-from kame.node.node import Node
 from kame.node.topics import Publication, serialize_payload
 
 
@@ -67,7 +66,8 @@ def parser() -> OptionParser:
 class Keyboard:
     """Single keys from a terminal on stdin (cbreak mode), restored on close."""
 
-    def __init__(self) -> None:
+    def __init__(self, stop: threading.Event) -> None:
+        self.stop = stop  # without a terminal, read() is a wait that stopping ends at once
         self.fd = -1
         self.saved: Any = None
         try:
@@ -84,7 +84,7 @@ class Keyboard:
     def read(self, timeout: float) -> str | None:
         if self.fd < 0:
             if timeout > 0:
-                time.sleep(timeout)
+                self.stop.wait(timeout)
             return None
         ready, _, _ = select.select([self.fd], [], [], max(timeout, 0))
         if not ready:
@@ -116,15 +116,16 @@ def _ns(t: tuple[int, int]) -> int:
 
 
 class Player:
-    def __init__(self, node: Node, options: Any, readers: list[BagReader], stop: threading.Event) -> None:
-        self.node = node
+    def __init__(self, tool: ToolNode, options: Any, readers: list[BagReader]) -> None:
+        self.tool = tool
+        self.node = tool.node
         self.options = options
         self.readers = readers
-        self.stop = stop
+        self.stop = tool.stop
         self.pubs: dict[str, Publication] = {}
         self.paused = bool(options.pause)
         self.clock: Publication | None = None
-        self.keyboard = Keyboard()
+        self.keyboard = Keyboard(self.stop)
         starts = [r.start_time for r in readers if r.start_time is not None]
         ends = [r.end_time for r in readers if r.end_time is not None]
         self.bag_start = _ns(min(starts)) if starts else 0
@@ -143,7 +144,8 @@ class Player:
                     continue
                 latch = conn.header.get("latching", "0") == "1"
                 self.pubs[conn.topic] = self.node.advertise(topic, conn.datatype, conn.md5sum, conn.msg_def, latch=latch,
-                                                            queue_size=self.options.queue)
+                                                            queue_size=self.options.queue,
+                                                            on_connect=lambda link: self.tool.notify())
         if self.options.clock:
             from rosgraph_msgs.msg import Clock
 
@@ -250,8 +252,7 @@ class Player:
             sys.stdout.write(" done.\n\nHit space to toggle paused, or 's' to step.\n")
             sys.stdout.flush()
             if self.options.wait_for_subscribers:
-                while not self.stop.is_set() and any(not p.links for p in self.pubs.values()):
-                    self.stop.wait(0.1)
+                self.tool.wait_until(lambda: all(p.links for p in self.pubs.values()))
             while not self.stop.is_set():
                 self.play_once()
                 if not self.options.loop:
@@ -259,8 +260,7 @@ class Player:
             if not self.options.quiet:
                 sys.stdout.write("\n")
             if self.options.keep_alive:
-                while not self.stop.wait(0.5):
-                    pass
+                self.stop.wait()
             if not self.stop.is_set():
                 sys.stdout.write("Done.\n")
             sys.stdout.flush()
@@ -287,11 +287,11 @@ def main(argv: list[str]) -> int:
             _log("FATAL", f"Error opening file: {path}" if isinstance(exc, OSError) else str(exc), "31")
             return 1
     tool = ToolNode(ros.special, f"play_{int(time.time() * 1000)}")
-    node, stop = tool.node, tool.stop
+    node = tool.node
     try:
         if not tool.wait_for_master():
             return 0
-        Player(node, options, readers, stop).run()
+        Player(tool, options, readers).run()
     except BagError as exc:  # damage past the index, found while playing: rosbag's player says it and ends
         sys.stdout.write("\n")
         _log("FATAL", str(exc), "31")

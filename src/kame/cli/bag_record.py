@@ -31,7 +31,6 @@ import re
 import sys
 import threading
 import time
-from collections.abc import Callable
 from typing import Any
 
 from kame import names
@@ -138,6 +137,10 @@ class BagNamer:
             base = f"{base}_{self.index}"
         self.index += 1
         return base + ".bag"
+
+
+# -a, -e and --node: a new topic sends no event, so the master is asked again once a second, as rosbag does
+MASTER_POLL_PERIOD = 1.0
 
 
 class Recorder:
@@ -263,16 +266,36 @@ class Recorder:
         finally:
             self.finished.set()
 
+    def stop_writing(self) -> None:
+        """Ends the writer's wait: it writes what is queued, closes the bag and returns."""
+        self.stop.set()
+        with self.cond:
+            self.cond.notify_all()
+
+    def _duration_up(self, opened: float) -> bool:
+        return bool(self.max_duration) and time.monotonic() - opened >= self.max_duration
+
+    def _wait_limit(self, opened: float, flushed: float | None) -> float | None:
+        """How long the writer may wait for a message: until the unflushed chunk is due (when
+        `flushed` is given) or the duration is up, whichever is first; None: no limit."""
+        due = [t for t in (flushed + FLUSH_INTERVAL if flushed is not None else None,
+                           opened + self.max_duration if self.max_duration else None) if t is not None]
+        return max(min(due) - time.monotonic(), 0.0) if due else None
+
     def _write_until_stopped(self) -> None:
         writer, path = self._open()
         conns: dict[tuple[str, str], int] = {}
         opened = flushed = time.monotonic()
+        unflushed = False
         written: list[str] = [path]
         try:
             while True:
                 with self.cond:
-                    while not self.queue and not self.stop.is_set():
-                        if not self.cond.wait(max(flushed + FLUSH_INTERVAL - time.monotonic(), 0.01)):
+                    # woken by a message or by stop_writing, or when the open chunk is due on
+                    # disk (FLUSH_INTERVAL after something was written) or --duration is up, so an
+                    # idle bag is split or closed on time, as rosbag's checkDuration does
+                    while not self.queue and not self.stop.is_set() and not self._duration_up(opened):
+                        if not self.cond.wait(self._wait_limit(opened, flushed if unflushed else None)):
                             break
                     if not self.queue and self.stop.is_set():
                         break
@@ -288,14 +311,15 @@ class Recorder:
                         writer.write(conn_id, secs, nsecs, data, owned=True)
                     except OSError as exc:
                         raise RecordingFailed(f"cannot write {path}.active: {exc.strerror or exc}") from exc
-                if time.monotonic() - flushed >= FLUSH_INTERVAL:
+                unflushed = unflushed or bool(batch)
+                if unflushed and time.monotonic() - flushed >= FLUSH_INTERVAL:
                     try:
                         writer.write_pending()
                     except OSError as exc:
                         raise RecordingFailed(f"cannot write {path}.active: {exc.strerror or exc}") from exc
                     flushed = time.monotonic()
-                if self.options.split and ((self.max_size and writer.size >= self.max_size)
-                                           or (self.max_duration and time.monotonic() - opened >= self.max_duration)):
+                    unflushed = False
+                if self.options.split and ((self.max_size and writer.size >= self.max_size) or self._duration_up(opened)):
                     self._close(writer, path)
                     if self.options.max_splits and len(written) >= self.options.max_splits:
                         old = written.pop(0)
@@ -305,7 +329,7 @@ class Recorder:
                     written.append(path)
                     conns = {}
                     opened = time.monotonic()
-                elif not self.options.split and self.max_duration and time.monotonic() - opened >= self.max_duration:
+                elif not self.options.split and self._duration_up(opened):
                     self.stop.set()
         except BaseException:
             with contextlib.suppress(RecordingFailed):  # keep what reached the disk, if it lets us
@@ -343,13 +367,14 @@ def main(argv: list[str]) -> int:
             for topic in topics:
                 recorder.subscribe(topic)
         writer_thread.start()
-        poll: Callable[[], None] = recorder.poll_master
-        while not stop.is_set():
-            if auto:
-                poll()
-            stop.wait(1.0 if auto else 0.5)
+        if auto:
+            while not stop.is_set():
+                recorder.poll_master()
+                stop.wait(MASTER_POLL_PERIOD)
+        else:
+            stop.wait()  # set by Ctrl-C/SIGTERM, a shutdown request, -l reached, --duration or a write error
     finally:
-        stop.set()
+        recorder.stop_writing()
         node.shutdown("rosbag record exiting")
         if writer_thread.is_alive():
             writer_thread.join()

@@ -17,10 +17,8 @@ import logging
 import os
 import random
 import signal
-import socket
 import subprocess
 import sys
-import time
 import uuid
 from collections.abc import Mapping, Sequence
 from pathlib import Path
@@ -36,8 +34,10 @@ from kame.launch.model import LaunchConfig, Node
 from kame.launch.runner import LaunchRun, RunOptions, core_params, master_answers, ros_home_of, run_dir_of
 from kame.launch.server import LaunchServer
 from kame.launch.supervisor import say, say_bold, say_error
+from kame.net import interfaces
 from kame.net.address import host_addresses
 from kame.node.master_proxy import MasterError, MasterProxy
+from kame.node.remote_poll import poll_remote
 
 LOGGER = "kame.launch"
 log = logging.getLogger(LOGGER)
@@ -48,7 +48,7 @@ log = logging.getLogger(LOGGER)
 
 def anonymous_name(name: str) -> str:
     """rosgraph's anonymous_name: name_<host>_<pid>_<random>, made a legal ROS name."""
-    text = f"{name}_{socket.gethostname()}_{os.getpid()}_{random.randint(0, sys.maxsize)}"
+    text = f"{name}_{interfaces.hostname()}_{os.getpid()}_{random.randint(0, sys.maxsize)}"
     return text.replace(".", "_").replace("-", "_").replace(":", "_")
 
 
@@ -175,16 +175,21 @@ def get_or_generate_uuid(run_id: str | None, wait_for_master: bool, env: Mapping
         return run_id
     env = os.environ if env is None else env
     uri = environ.master_uri(env, default=environ.SETUP_MASTER_URI)
-    while True:
+
+    def master_run_id() -> str | None:
         proxy = MasterProxy(uri, "/roslaunch", timeout=2.0)
         try:
             return str(proxy.call("getParam", "/run_id"))
         except (OSError, MasterError, ValueError):
-            if not wait_for_master:
-                return str(uuid.uuid1())
-            time.sleep(0.1)
+            return None
         finally:
             proxy.close()
+
+    if not wait_for_master:
+        return master_run_id() or str(uuid.uuid1())
+    found = poll_remote(master_run_id)  # Ctrl-C ends it
+    assert found is not None  # poll_remote gives up only when stopped, and nothing stops this wait
+    return found
 
 
 def _arg_lines(decls: Sequence[ArgDecl]) -> list[str]:
@@ -317,14 +322,13 @@ def _launch(options: argparse.Namespace, files: list[str], argv: list[str]) -> i
         uri = environ.master_uri(env, default=environ.SETUP_MASTER_URI)
         if not master_answers(uri):
             say("roscore/master is not yet running, will wait for it to start")
-            while not master_answers(uri):
-                time.sleep(0.1)
+            poll_remote(lambda: master_answers(uri) or None)  # Ctrl-C ends it
         say("master has started, initiating launch")
     if options.pid_fn:
         Path(options.pid_fn).write_text(f"{os.getpid()}")
     run_id = get_or_generate_uuid(options.run_id, options.wait_for_master)
     run_dir = run_dir_of(env, run_id)
-    own_log = run_dir / f"roslaunch-{socket.gethostname()}-{os.getpid()}.log"
+    own_log = run_dir / f"roslaunch-{interfaces.hostname()}-{os.getpid()}.log"
     handler = setup_file_logging(own_log, LOGGER)
     try:
         say(f"... logging to {own_log}")

@@ -11,7 +11,6 @@ from __future__ import annotations
 
 import errno
 import os
-import socket
 import sys
 import time
 from collections.abc import Sequence
@@ -20,6 +19,7 @@ from urllib.parse import urlsplit
 from kame.cli import _nodeinfo
 from kame.cli._options import OptionParser
 from kame.cli._tool import Master, ToolError, node_names, run, script_resolve_name
+from kame.net import interfaces
 from kame.node.master_proxy import MasterError, MasterProxy
 from kame.protocol.xmlrpc import XmlRpcError
 
@@ -105,7 +105,7 @@ def ping(graph: Graph, node: str, max_count: int | None = None, verbose: bool = 
                 cause = _cause(exc)
                 if isinstance(cause, TimeoutError):
                     print(f"connection to [{node}] timed out", file=sys.stderr)
-                elif isinstance(cause, socket.gaierror):
+                elif isinstance(cause, interfaces.UnknownHostError):
                     print(f"ERROR: Unknown host [{urlsplit(uri).hostname}] for node [{node}]", file=sys.stderr)
                 elif isinstance(cause, ConnectionRefusedError) or getattr(cause, "errno", None) == errno.ECONNREFUSED:
                     new_uri = graph.uri(node, skip_cache=True)
@@ -212,7 +212,10 @@ def cmd_info(argv: list[str]) -> None:
 
 
 def _addresses(host: str) -> list[str]:
-    return [str(a[4][0]) for a in socket.getaddrinfo(host, 0, 0, 0, socket.SOL_TCP)]
+    found = interfaces.resolve(host)
+    if found is None:
+        raise OSError(f"cannot resolve {host}")
+    return found
 
 
 def cmd_machine(argv: list[str]) -> None:

@@ -31,6 +31,7 @@ from kame.msg.errors import MessageError, SerializationError
 from kame.msg.fill import FillError, fill_message_args, printable_message_args
 from kame.msg.message import find_type_problem
 from kame.node.master_proxy import MasterError
+from kame.node.remote_poll import poll_remote
 from kame.node.services import ServiceClient, ServiceError, probe_service
 from kame.node.tcpros import HandshakeError
 from kame.rostime import Time
@@ -222,12 +223,15 @@ def _stdin_documents() -> Iterator[Any]:
 
 def _wait_for_service(t: Tool, service: str) -> None:
     t.master.call("getPid")
-    while True:
+
+    def answers() -> bool | None:
         try:
             t.probe(service, timeout=2.0)
-            return
+            return True
         except (OSError, MasterError, ServiceError, HandshakeError, ValueError):
-            time.sleep(0.1)
+            return None
+
+    poll_remote(answers)  # until it answers; Ctrl-C ends it
 
 
 # ------------------------------------------------------------------ commands

@@ -31,7 +31,6 @@ import dataclasses
 import logging
 import os
 import signal
-import socket
 import subprocess
 import sys
 import threading
@@ -50,6 +49,7 @@ from kame.launch.model import LaunchConfig, Node
 from kame.launch.runner import CALLER, LaunchRun, RunOptions, ros_home_of, run_dir_of
 from kame.launch.supervisor import say
 from kame.master.server import MasterServer
+from kame.net import interfaces
 from kame.net.address import host_addresses
 from kame.node.master_proxy import MasterError, MasterProxy
 
@@ -398,7 +398,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     except LaunchError as exc:
         print(str(exc), file=sys.stderr)
         return 1
-    logfile = log_dir(env) / f"rostest-{socket.gethostname()}-{os.getpid()}.log"
+    logfile = log_dir(env) / f"rostest-{interfaces.hostname()}-{os.getpid()}.log"
     handler = setup_file_logging(logfile, "kame")
     try:
         print(f"... logging to {logfile}", flush=True)

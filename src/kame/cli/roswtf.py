@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import errno
 import os
-import socket
 import sys
 import xml.etree.ElementTree as ElementTree
 from collections.abc import Callable, Mapping, Sequence
@@ -62,14 +61,13 @@ def _path_facts(path: str) -> _wtf.PathFacts:
 def gather_environment(variables: Mapping[str, str]) -> _wtf.Environment:
     master_uri = variables.get("ROS_MASTER_URI", DEFAULT_MASTER_URI)
     ipv6 = variables.get("ROS_IPV6") == "on"
-    family = socket.AF_UNSPEC if ipv6 else socket.AF_INET
     hostname = interfaces.hostname()
     hosts = _wtf.hosts_to_resolve(variables, master_uri, hostname)
     return _wtf.Environment(
         variables=variables,
         master_uri=master_uri,
         paths={p: _path_facts(p) for p in _wtf.paths_to_inspect(variables)},
-        addresses={h: interfaces.resolve(h, family) for h in hosts},
+        addresses={h: interfaces.resolve(h, ipv6) for h in hosts},
         hostname=hostname,
         local_addresses=interfaces.local_addresses(ipv6),
     )
@@ -166,7 +164,7 @@ def _ping_failure(node: str, uri: str, exc: BaseException) -> str:
     cause = _cause(exc)
     if isinstance(cause, TimeoutError):
         return f"connection to [{node}] timed out"
-    if isinstance(cause, socket.gaierror):
+    if isinstance(cause, interfaces.UnknownHostError):
         return f"ERROR: Unknown host [{urlsplit(uri).hostname}] for node [{node}]"
     if isinstance(cause, ConnectionRefusedError) or getattr(cause, "errno", None) == errno.ECONNREFUSED:
         return f"ERROR: connection refused to [{uri}]"

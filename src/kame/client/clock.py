@@ -2,8 +2,10 @@
 
 from __future__ import annotations
 
+import contextlib
 import threading
 import time as _time
+from collections.abc import Iterator
 from typing import Any
 
 from kame import rostime as _values
@@ -27,8 +29,11 @@ class Time(_values.Time):
 
 
 _sim_time: _values.Time | None = None
-_sim_lock = threading.Condition()
+_sim_lock = threading.Lock()
 _initialized = False
+
+
+_wakers: set[threading.Event] = set()  # events set at every change of simulated time (woken_at_change)
 
 
 def set_sim_time(value: _values.Time | None) -> None:
@@ -36,16 +41,25 @@ def set_sim_time(value: _values.Time | None) -> None:
     global _sim_time
     with _sim_lock:
         _sim_time = value
-        _sim_lock.notify_all()
+        for waker in _wakers:
+            waker.set()
+
+
+@contextlib.contextmanager
+def woken_at_change(event: threading.Event) -> Iterator[None]:
+    """Within the block, every change of simulated time (a /clock message, the switch to or from
+    it) sets `event`: a wait for "this, or a ROS-time deadline" is one wait on `event`."""
+    with _sim_lock:
+        _wakers.add(event)
+    try:
+        yield
+    finally:
+        with _sim_lock:
+            _wakers.discard(event)
 
 
 def is_sim_time() -> bool:
     return _sim_time is not None
-
-
-def wait_for_sim_change(timeout: float) -> None:
-    with _sim_lock:
-        _sim_lock.wait(timeout)
 
 
 def set_rostime_initialized(value: bool) -> None:

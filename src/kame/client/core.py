@@ -193,9 +193,6 @@ def signal_shutdown(reason: str) -> None:
         _shutdown.set()
         for waker in _wakers:
             waker.set()
-    from kame.client import clock
-
-    clock.set_sim_time(clock._sim_time)  # wake sleepers waiting on simulated time
     with _hooks_lock:
         hooks, _shutdown_hooks[:] = list(_shutdown_hooks), []
     for hook in hooks:

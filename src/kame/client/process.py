@@ -34,6 +34,11 @@ def _print_shutdown_call(caller_id: str, msg: str) -> None:
     print(f"shutdown request: {msg}" if msg else "shutdown requst", flush=True)  # sic: rospy's typo
 
 
+# A master that is not up yet sends no event: init_node asks again five times a second, and
+# shutdown (Ctrl-C) ends the wait at once.
+MASTER_POLL_PERIOD = 0.2
+
+
 def _wait_for_master(node: Node, master_uri: str) -> None:
     warned = False
     while not core.is_shutdown():
@@ -46,7 +51,7 @@ def _wait_for_master(node: Node, master_uri: str) -> None:
                           "master may not be running yet. Will keep trying.", (master_uri,),
                           caller=("client.py", 0, "init_node", None))
                 warned = True
-            core.wait_for_shutdown(0.2)
+            core.wait_for_shutdown(MASTER_POLL_PERIOD)
     raise ROSInitException("init_node interrupted before it could complete")
 
 

@@ -157,6 +157,11 @@ class ServiceProxy:
             self._client.close()
 
 
+# A service not yet advertised sends no event: wait_for_service asks again every 20 ms (a
+# server that comes up is used that soon), and shutdown ends the wait at once.
+SERVICE_POLL_PERIOD = 0.02
+
+
 def wait_for_service(service: str, timeout: float | None = None) -> None:
     """Block until `service` answers a probe; ROSException on timeout, ROSInterruptException at shutdown."""
     master, caller_id = _master_and_caller()
@@ -172,5 +177,5 @@ def wait_for_service(service: str, timeout: float | None = None) -> None:
             pass
         if deadline is not None and time.monotonic() >= deadline:
             raise ROSException(f"timeout exceeded while waiting for service {resolved}")
-        core.wait_for_shutdown(0.02)
+        core.wait_for_shutdown(SERVICE_POLL_PERIOD)
     raise ROSInterruptException("rospy shutdown")

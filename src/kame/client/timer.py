@@ -25,13 +25,16 @@ def sleep(duration: Any) -> None:
         return
     start = clock.get_rostime()
     target = start + clock.Duration.from_sec(seconds)
-    while not core.is_shutdown():
-        now = clock.get_rostime()
-        if now >= target:
-            return
-        if now < start:
-            raise ROSTimeMovedBackwardsException(0)
-        clock.wait_for_sim_change(0.1)
+    ticked = threading.Event()  # by each /clock message, and by shutdown; cleared before looking
+    with core.woken_at_shutdown(ticked), clock.woken_at_change(ticked):
+        while not core.is_shutdown():
+            ticked.clear()
+            now = clock.get_rostime()
+            if now >= target:
+                return
+            if now < start:
+                raise ROSTimeMovedBackwardsException(0)
+            ticked.wait()
     raise ROSInterruptException("ROS shutdown request")
 
 

@@ -108,7 +108,7 @@ class Publisher(Topic):
         if joined and self.tcp_nodelay:  # as rospy: for the topic's connections from now on
             self.impl.tcp_nodelay = True
         if joined and connected is not None and disconnected is not None:
-            self.impl.on_connect.append(connected)
+            self.impl.add_connect_callback(connected)
             self.impl.on_disconnect.append(disconnected)
 
     def _listener_callbacks(self, listener: SubscribeListener) -> tuple[Callable[[SubscriberLink], None],

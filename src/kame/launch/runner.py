@@ -26,6 +26,7 @@ from kame.launch.server import LaunchServer, ProcessState
 from kame.launch.supervisor import Child, Monitor, say, say_bold, say_error
 from kame.net.address import is_this_host
 from kame.node.master_proxy import MasterError, MasterProxy
+from kame.node.remote_poll import REMOTE_POLL_PERIOD
 from kame.param_yaml import ParamValueError, check
 
 CALLER = "/roslaunch"
@@ -157,10 +158,19 @@ class LaunchRun:
             raise LaunchError("ERROR: unable to auto-start master process")
         self.started_master = True
         deadline = time.monotonic() + MASTER_START_TIMEOUT
-        while not master_answers(uri, 0.5):
-            if time.monotonic() > deadline or (child.proc is not None and child.proc.returncode is not None):
-                raise LaunchError(f"ERROR: could not contact master [{uri}]")
-            await asyncio.sleep(0.05)
+        exited = asyncio.ensure_future(child.proc.wait()) if child.proc is not None else None
+        try:
+            while not master_answers(uri, 0.5):
+                if time.monotonic() > deadline or (exited is not None and exited.done()):
+                    raise LaunchError(f"ERROR: could not contact master [{uri}]")
+                # a master coming up sends no event: asked again, but a master that dies ends the wait at once
+                if exited is not None:
+                    await asyncio.wait([exited], timeout=REMOTE_POLL_PERIOD)
+                else:
+                    await asyncio.sleep(REMOTE_POLL_PERIOD)
+        finally:
+            if exited is not None:
+                exited.cancel()
         self._announce(uri)
 
     def _announce(self, uri: str) -> None:

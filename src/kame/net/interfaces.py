@@ -3,13 +3,17 @@
 - Local addresses are the IPv4 address of every interface (SIOCGIFADDR), and with
   `ipv6` also the IPv6 ones of /proc/net/if_inet6; where those are not available (not Linux),
   what the machine's own host name resolves to.
-- `resolve` gives a name's addresses, or None when it does not resolve.
+- `resolve` gives a name's addresses (IPv4 only unless `ipv6`), or None when it does not resolve.
+- UnknownHostError is what a connection to a name that does not resolve fails with, so tools
+  can say "unknown host" without importing socket.
 """
 
 from __future__ import annotations
 
 import socket
 import struct
+
+UnknownHostError = socket.gaierror
 
 _SIOCGIFADDR = 0x8915
 _IF_INET6 = "/proc/net/if_inet6"
@@ -48,12 +52,12 @@ def local_addresses(ipv6: bool = False) -> list[str]:
     try:
         v4 = _ipv4_addresses()
     except (ImportError, OSError, AttributeError):
-        family = socket.AF_UNSPEC if ipv6 else socket.AF_INET
-        return resolve(socket.gethostname(), family) or []
+        return resolve(socket.gethostname(), ipv6) or []
     return [*_ipv6_addresses(), *v4] if ipv6 else v4
 
 
-def resolve(host: str, family: int = socket.AF_UNSPEC) -> list[str] | None:
+def resolve(host: str, ipv6: bool = True) -> list[str] | None:
+    family = socket.AF_UNSPEC if ipv6 else socket.AF_INET
     try:
         infos = socket.getaddrinfo(host, 0, family, 0, socket.SOL_TCP)
     except (OSError, UnicodeError):
@@ -63,8 +67,3 @@ def resolve(host: str, family: int = socket.AF_UNSPEC) -> list[str] | None:
 
 def hostname() -> str:
     return socket.gethostname()
-
-
-def resolve_host(host: str, ipv6: bool = False) -> list[str] | None:
-    """The addresses `host` resolves to (IPv4 only unless `ipv6`), or None if it does not."""
-    return resolve(host, socket.AF_UNSPEC if ipv6 else socket.AF_INET)

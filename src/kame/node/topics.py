@@ -170,6 +170,16 @@ class Publication:
         for callback in self.on_connect:
             callback(link)
 
+    def add_connect_callback(self, callback: Callable[[SubscriberLink], None]) -> None:
+        """Called with each subscriber that connects from now on. The lists are replaced, never
+        changed in place: a connection running the callbacks meanwhile sees the old list whole."""
+        with self._lock:
+            self.on_connect = [*self.on_connect, callback]
+
+    def remove_connect_callback(self, callback: Callable[[SubscriberLink], None]) -> None:
+        with self._lock:
+            self.on_connect = [c for c in self.on_connect if c is not callback]
+
     def _drop(self, link: SubscriberLink) -> None:
         with self._lock:
             if link not in self.links:
@@ -332,6 +342,8 @@ class PublisherLink:
                                      chunk_size=sub.buff_size, stall_timeout=sub.stall_timeout)
             self.connected = True
             self.receiver.start()
+        for callback in sub.on_connect:
+            callback(self)
 
     def _deliver(self, frames: list[memoryview]) -> None:
         for frame in frames:
@@ -443,9 +455,19 @@ class Subscription:
         self.buff_size = buff_size or READ_SIZE
         self.deliver_frames = deliver_frames
         self.links: dict[str, PublisherLink] = {}
+        # called with each publisher link once its handshake is done (replaced, never changed in place)
+        self.on_connect: list[Callable[[PublisherLink], None]] = []
         self.closed = False
         self._lock = threading.Lock()
         self.callback_lock = threading.Lock()
+
+    def add_connect_callback(self, callback: Callable[[PublisherLink], None]) -> None:
+        with self._lock:
+            self.on_connect = [*self.on_connect, callback]
+
+    def remove_connect_callback(self, callback: Callable[[PublisherLink], None]) -> None:
+        with self._lock:
+            self.on_connect = [c for c in self.on_connect if c is not callback]
 
     def deliver(self, frames: list[memoryview], header: dict[str, str], link: PublisherLink | None = None) -> None:
         if self.queue_size and len(frames) > self.queue_size:

@@ -7,7 +7,7 @@ from __future__ import annotations
 import contextlib
 import os
 import sys
-import time
+import threading
 from collections.abc import Callable, Iterator
 from typing import Any
 
@@ -20,6 +20,7 @@ from kame.msg.errors import MessageError
 from kame.msg.fieldpath import FieldPath, FieldPathError, has_field, parse_field_path
 from kame.msg.message import Message
 from kame.node.master_proxy import MasterError, MasterProxy
+from kame.node.remote_poll import poll_remote
 from kame.protocol.xmlrpc import Fault, MalformedError
 
 NAME = "rostopic"
@@ -187,18 +188,19 @@ def find_topic(topic: str) -> tuple[str, str, FieldPath | None] | None:
     return ty, t, path
 
 
-def wait_for_topic(topic: str, shutdown: Callable[[], bool]) -> tuple[str, str, FieldPath | None] | None:
+def wait_for_topic(topic: str, stoppable: bool = False) -> tuple[str, str, FieldPath | None] | None:
+    """The topic's type, name and field path once the master lists it; None if the node shut
+    down first (`stoppable`: the node is up). Without a node, Ctrl-C ends the wait."""
     found = find_topic(topic)
     if found is not None:
         return found
     sys.stderr.write(f"WARNING: topic [{topic}] does not appear to be published yet\n")
     sys.stderr.flush()
-    while not shutdown():
-        time.sleep(0.1)
-        found = find_topic(topic)
-        if found is not None:
-            return found
-    return None
+    if not stoppable:
+        return poll_remote(lambda: find_topic(topic))
+    from kame.client import core
+
+    return poll_remote(lambda: find_topic(topic), core.wait_for_shutdown)
 
 
 def init_node(disable_rosout: bool = False, disable_rostime: bool = False) -> None:
@@ -213,12 +215,12 @@ def is_shutdown() -> bool:
     return core.is_shutdown()
 
 
-def wait_shutdown(seconds: float) -> bool:
-    """Sleep `seconds` of wall time, waking at shutdown; True once shut down."""
+def wait_shutdown(seconds: float | None) -> bool:
+    """Sleep `seconds` of wall time (None: until shutdown), waking at shutdown; True once shut down."""
     from kame.client import core
 
     if core.get_node() is None:
-        time.sleep(seconds)
+        threading.Event().wait(seconds)  # Ctrl-C ends it
         return False
     return core.wait_for_shutdown(seconds)
 

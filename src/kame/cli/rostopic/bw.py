@@ -35,7 +35,7 @@ def cmd_bw(args: list[str]) -> None:
     topic = script_resolve_name(rest[0])
 
     check_master()
-    found = wait_for_topic(topic, lambda: False)
+    found = wait_for_topic(topic)
     if found is None:
         return
     init_node(disable_rostime=True)

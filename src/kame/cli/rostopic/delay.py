@@ -32,7 +32,7 @@ def cmd_delay(args: list[str]) -> None:
     parsed = parser.parse_args(args)
     topic = script_resolve_name(parsed.topic)
 
-    found = wait_for_topic(topic, lambda: False)
+    found = wait_for_topic(topic)
     if found is None:
         return
     init_node()

@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import sys
 import threading
-import time
 from collections.abc import Callable
 from typing import Any
 
@@ -20,16 +19,17 @@ from ._common import (
     check_master,
     filter_function,
     init_node,
-    is_shutdown,
     load_message_class,
     open_bag,
     option_parser,
     script_resolve_name,
     use_sim_time,
     wait_for_topic,
-    wait_shutdown,
     write,
 )
+
+# On simulated time, a quiet topic may mean nobody publishes /clock: said after this long (s).
+SIM_TIME_FIRST_MESSAGE_WAIT = 2.0
 
 
 def _bag_echo(path: str, topic: str, all_topics: bool, count: int | None, filter_fn: Callable[[Any, str], bool] | None,
@@ -95,6 +95,7 @@ class Echo:
         self.field_filter = field_filter(nostr, noarr) if plot else None
         self.first = True
         self.done = threading.Event()
+        self.heard = threading.Event()  # a message was printed, or the echo is done
         self.failure: str | None = None
 
     def callback(self, raw: Any) -> None:
@@ -107,6 +108,8 @@ class Echo:
         except (RostopicError, MessageError) as exc:
             self.failure = str(exc)
             self.done.set()
+        if self.count or self.done.is_set():
+            self.heard.set()
 
     def _handle(self, raw: Any) -> None:
         msg = self.decoder(raw)
@@ -201,7 +204,7 @@ def cmd_echo(args: list[str]) -> None:
 
     check_master()
     init_node()
-    found = wait_for_topic(topic, is_shutdown)
+    found = wait_for_topic(topic, stoppable=True)
     if found is None:
         return
     topic_type, real_topic, path = found
@@ -220,16 +223,16 @@ def cmd_echo(args: list[str]) -> None:
     from kame.client.topics import Subscriber
 
     Subscriber(real_topic, decoder.subscribe_class, echo.callback)
+    from kame.client import core
+
     if sim_time:
-        deadline = time.monotonic() + 2.0
-        while time.monotonic() < deadline and echo.count == 0 and not echo.done.is_set():
-            if wait_shutdown(0.1):
-                return
+        with core.woken_at_shutdown(echo.heard):
+            echo.heard.wait(SIM_TIME_FIRST_MESSAGE_WAIT)
+        if core.is_shutdown():
+            return
         if echo.count == 0 and not echo.done.is_set():
             sys.stderr.write("WARNING: no messages received and simulated time is active.\n"
                              "Is /clock being published?\n")
-    from kame.client import core
-
     core.on_shutdown(echo.done.set)  # Ctrl-C or rosnode kill ends the wait at once
     echo.done.wait()
     if echo.failure:

@@ -15,7 +15,6 @@ from ._common import (
     check_master,
     filter_function,
     init_node,
-    is_shutdown,
     load_message_class,
     option_parser,
     script_resolve_name,
@@ -60,7 +59,7 @@ def cmd_hz(args: list[str]) -> None:
         return float(clock.get_rostime().to_sec())
 
     for topic in topics:
-        found = wait_for_topic(topic, is_shutdown)
+        found = wait_for_topic(topic, stoppable=True)
         if found is None:
             return
         topic_type, real_topic, _ = found

@@ -5,6 +5,7 @@ from __future__ import annotations
 import os
 import select
 import sys
+import threading
 import time
 from collections.abc import Iterator
 from typing import Any
@@ -87,8 +88,7 @@ class Publishing:
             print(text, flush=True)
             self.publish(msg)
             if not once:
-                while not wait_shutdown(1.0):
-                    pass
+                wait_shutdown(None)
             return
         from kame.client import errors, timer
         r = timer.Rate(rate)
@@ -104,10 +104,25 @@ class Publishing:
                 break
 
     def wait_for_subscriber(self, timeout: float) -> None:
-        deadline = time.monotonic() + timeout
-        while self.pub.get_num_connections() == 0 and time.monotonic() < deadline:
-            if wait_shutdown(0.01):
-                return
+        """Until a subscriber connects, `timeout` seconds pass or the node shuts down."""
+        from kame.client import core
+
+        connected = threading.Event()
+        impl = self.pub.impl
+        if impl is None:
+            return
+
+        def callback(link: Any) -> None:
+            connected.set()
+
+        impl.add_connect_callback(callback)
+        try:
+            with core.woken_at_shutdown(connected):
+                if impl.links:
+                    return
+                connected.wait(timeout)
+        finally:
+            impl.remove_connect_callback(callback)
 
 
 def _yaml_documents_from_file(path: str) -> list[Any]:
@@ -210,10 +225,7 @@ def cmd_pub(args: list[str]) -> None:
     if not from_input:
         publishing.publish_message(pub_args, rate, options.once, options.substitute_keywords)
         if options.once:
-            deadline = time.monotonic() + ONCE_DELAY
-            while time.monotonic() < deadline:
-                if wait_shutdown(min(0.2, max(deadline - time.monotonic(), 0.0))):
-                    break
+            wait_shutdown(ONCE_DELAY)
         return
     if rate is None and not options.latch and not options.once:
         rate = 10.0

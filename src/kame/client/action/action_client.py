@@ -258,7 +258,8 @@ class ActionClient:
         self.ActionSpec = ActionSpec
         self.ActionGoal, self.ActionResult, self.ActionFeedback, _, _ = action_types(ActionSpec)
         self.last_status_msg: GoalStatusArray | None = None
-        self._changed = threading.Condition()
+        self._wakers: set[threading.Event] = set()  # of the wait_for_server calls under way
+        self._wakers_lock = threading.Lock()
         self._watch: timer.Timer | None = None
         self._server_missing = 0
         base = core.remap_name(ns)
@@ -315,16 +316,41 @@ class ActionClient:
                 and _subscribed_from(self.result_sub, server) and _subscribed_from(self.feedback_sub, server))
 
     def wait_for_server(self, timeout: Any = None) -> bool:
-        """Block until the server is connected; a zero (or no) timeout waits for ever."""
+        """Block until the server is connected; a zero (or no) timeout waits for ever.
+
+        One wait on an event that everything the answer depends on sets: a status message, a
+        connection made on one of the four other topics, shutdown, and (for a deadline on
+        simulated time) each /clock tick. The event is cleared before looking, so nothing that
+        happens while we look is missed."""
         seconds = 0.0 if timeout is None else (timeout.to_sec() if hasattr(timeout, "to_sec") else float(timeout))
         deadline = clock.get_rostime() + clock.Duration.from_sec(seconds)
-        while not core.is_shutdown():
-            if self._server_ready():
-                return True
-            if seconds > 0 and clock.get_rostime() >= deadline:
-                return False
-            with self._changed:  # a status wakes us; connections are checked every 10 ms
-                self._changed.wait(0.01)
+        woken = threading.Event()
+
+        def wake(link: Any = None) -> None:
+            woken.set()
+
+        connecting = [t.impl for t in (self.pub_goal, self.pub_cancel, self.result_sub, self.feedback_sub)
+                      if t.impl is not None]
+        for impl in connecting:
+            impl.add_connect_callback(wake)
+        with self._wakers_lock:
+            self._wakers.add(woken)
+        try:
+            with core.woken_at_shutdown(woken), clock.woken_at_change(woken):
+                while not core.is_shutdown():
+                    woken.clear()
+                    if self._server_ready():
+                        return True
+                    left = (deadline - clock.get_rostime()).to_sec()
+                    if seconds > 0 and left <= 0:
+                        return False
+                    # on simulated time the deadline comes with a /clock tick, which wakes us
+                    woken.wait(left if seconds > 0 and not clock.is_sim_time() else None)
+        finally:
+            with self._wakers_lock:
+                self._wakers.discard(woken)
+            for impl in connecting:
+                impl.remove_connect_callback(wake)
         return False
 
     # ------------------------------------------------------------------ in
@@ -332,8 +358,9 @@ class ActionClient:
     def _status_cb(self, msg: GoalStatusArray) -> None:
         self.last_status_msg = msg
         self._server_missing = 0
-        with self._changed:
-            self._changed.notify_all()
+        with self._wakers_lock:
+            for waker in self._wakers:
+                waker.set()
         if self._watch is None:
             self._watch = timer.Timer(clock.Duration.from_sec(self.WATCH_PERIOD), self._check_server)
         self.manager.update_statuses(msg)
