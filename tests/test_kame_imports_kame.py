@@ -1,6 +1,7 @@
 """kame's own programs stand on kame: no module of src/kame (but the example packages in
 kame/share, which are users' programs) imports the compatibility packages rospy, rosbag,
-actionlib, roslaunch or genpy, which are names over kame for users' scripts."""
+actionlib, roslaunch, genpy or the tf ones (tf, tf2_ros, tf2_geometry_msgs, tf_conversions), which
+are names over kame for users' scripts."""
 
 from __future__ import annotations
 
@@ -8,7 +9,7 @@ import ast
 from pathlib import Path
 
 KAME = Path(__file__).resolve().parents[1] / "src" / "kame"
-FACADES = {"rospy", "rosbag", "actionlib", "roslaunch", "genpy"}
+FACADES = {"rospy", "rosbag", "actionlib", "roslaunch", "genpy", "tf", "tf2_ros", "tf2_geometry_msgs", "tf_conversions"}
 
 
 def facade_imports(path: Path) -> list[str]:
