@@ -1,6 +1,6 @@
 """kame's own programs stand on kame: no module of src/kame (but the example packages in
 kame/share, which are users' programs) imports the compatibility packages (rospy, rosbag,
-actionlib, roslaunch, genpy, roslib, rosgraph, rospkg, the tools as modules, ...), which are names over
+actionlib, roslaunch, genpy, roslib, rosgraph, rospkg, the tools as modules, the tf ones, ...), which are names over
 kame for users' scripts."""
 
 from __future__ import annotations

@@ -61,13 +61,6 @@ class TfTool(ToolNode):
         except Exception:  # not set
             return False
 
-    def spin(self) -> None:
-        """Until Ctrl-C, SIGTERM or a shutdown request. The wait wakes twice a second because
-        the OS may hand a signal to any thread: only the main thread runs Python's handler,
-        and a main thread blocked with no timeout would never see it (rospy.spin does the same)."""
-        while not self.stop.wait(0.5):
-            pass
-
     def now_ns(self) -> int:
         """ROS time in ns (0 under sim time until the first /clock, as roscpp)."""
         return time.time_ns() if self._sim_time is None else self._sim_time

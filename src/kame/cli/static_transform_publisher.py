@@ -118,7 +118,7 @@ def main_tf2(argv: Sequence[str] | None = None) -> int:
         StaticTransformBroadcaster(tool.node).send_transform(
             _transform(parent, child, tool.now_ns(), translation, quaternion))
         console("INFO", f"Spinning until killed publishing {parent} to {child}")
-        tool.spin()
+        tool.stop.wait()
         return 0
     finally:
         tool.node.shutdown("static_transform_publisher exiting")

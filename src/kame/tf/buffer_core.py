@@ -43,23 +43,13 @@ class Transform(NamedTuple):
 
 
 class _Walk:
-    """Accumulates the transforms from two frames up to their common ancestor (tf2's TransformAccum)."""
+    """The transforms from two frames up to their common ancestor, accumulated (tf2's TransformAccum)."""
 
     def __init__(self) -> None:
         self.source_rotation = rotation.IDENTITY
         self.source_translation = rotation.ZERO
         self.target_rotation = rotation.IDENTITY
         self.target_translation = rotation.ZERO
-
-    def accumulate(self, item: Stored, from_source: bool) -> None:
-        if from_source:
-            self.source_translation = rotation.transform_point(item.rotation, item.translation,
-                                                               self.source_translation)
-            self.source_rotation = rotation.multiply(item.rotation, self.source_rotation)
-        else:
-            self.target_translation = rotation.transform_point(item.rotation, item.translation,
-                                                               self.target_translation)
-            self.target_rotation = rotation.multiply(item.rotation, self.target_rotation)
 
     def result(self) -> tuple[Vector, Quaternion]:
         """source in target: (inverse of target-to-top) * (source-to-top)."""
@@ -234,45 +224,49 @@ class BufferCore:
         except ConnectivityException as exc:
             raise TransformException(str(exc)) from None  # tf2_py raises the base class here
 
-    def _get(self, frame: int, time: int) -> Stored | str | None:
-        """frame's transform to its parent at `time`; None when the frame has no cache (a root)."""
-        cache = self._caches[frame]
-        return cache.get(time) if cache is not None else None
-
     def _walk(self, target: int, source: int, time: int) -> tuple[_Walk, int]:
         """Both frames' transforms up to their common ancestor at `time` (0: the latest common
         time), as tf2's walkToTopParent; raises what a lookup raises."""
         if time == 0:
             time = self._latest_common_time(target, source)
         walk = _Walk()
+        caches = self._caches
+        chain = rotation.chain
+        translation, quaternion = rotation.ZERO, rotation.IDENTITY
         frame, top, extrapolation, extrapolated = source, source, "", False
         for _ in range(MAX_GRAPH_DEPTH + 1):
-            item = self._get(frame, time)
-            if item is None:  # a root
+            cache = caches[frame]
+            if cache is None:  # a root
                 top = frame
                 break
+            item = cache.get(time)
             if isinstance(item, str):
                 top, extrapolation, extrapolated = frame, item, True
                 break
             if frame == target:  # target is an ancestor of source
+                walk.source_translation, walk.source_rotation = translation, quaternion
                 return walk, time
-            walk.accumulate(item, from_source=True)
+            translation, quaternion = chain(item.rotation, item.translation, quaternion, translation)
             top, frame = frame, item.parent
         else:
             raise ConnectivityException(_LOOP + "\n" + self.all_frames_as_string())
+        walk.source_translation, walk.source_rotation = translation, quaternion
+        translation, quaternion = rotation.ZERO, rotation.IDENTITY
         frame = target
         for _ in range(MAX_GRAPH_DEPTH + 1):
             if frame == top:
                 break
-            item = self._get(frame, time)
-            if item is None:
+            cache = caches[frame]
+            if cache is None:
                 break
+            item = cache.get(time)
             if isinstance(item, str):
                 raise ExtrapolationException(self._when(item, source, target))
             if frame == source:  # source is an ancestor of target
                 walk.source_rotation, walk.source_translation = rotation.IDENTITY, rotation.ZERO
+                walk.target_translation, walk.target_rotation = translation, quaternion
                 return walk, time
-            walk.accumulate(item, from_source=False)
+            translation, quaternion = chain(item.rotation, item.translation, quaternion, translation)
             frame = item.parent
         else:
             raise ConnectivityException(_LOOP + "\n" + self.all_frames_as_string())
@@ -280,6 +274,7 @@ class BufferCore:
             if extrapolated:
                 raise ExtrapolationException(self._when(extrapolation, source, target))
             raise ConnectivityException(self._unconnected(target, source))
+        walk.target_translation, walk.target_rotation = translation, quaternion
         return walk, time
 
     def _when(self, error: str, source: int, target: int) -> str:

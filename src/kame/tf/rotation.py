@@ -80,6 +80,24 @@ def transform_point(q: Quaternion, translation: Vector, v: Vector) -> Vector:
             vz + qw * tz + qx * ty - qy * tx + translation[2])
 
 
+def chain(q: Quaternion, translation: Vector, inner_q: Quaternion, inner_t: Vector) -> tuple[Vector, Quaternion]:
+    """(q, translation) applied after (inner_q, inner_t): transform_point and multiply fused into
+    one call, the same arithmetic in the same order (a lookup does this once per link)."""
+    qx, qy, qz, qw = q
+    vx, vy, vz = inner_t
+    tx = 2.0 * (qy * vz - qz * vy)
+    ty = 2.0 * (qz * vx - qx * vz)
+    tz = 2.0 * (qx * vy - qy * vx)
+    bx, by, bz, bw = inner_q
+    return ((vx + qw * tx + qy * tz - qz * ty + translation[0],
+             vy + qw * ty + qz * tx - qx * tz + translation[1],
+             vz + qw * tz + qx * ty - qy * tx + translation[2]),
+            (qw * bx + qx * bw + qy * bz - qz * by,
+             qw * by + qy * bw + qz * bx - qx * bz,
+             qw * bz + qz * bw + qx * by - qy * bx,
+             qw * bw - qx * bx - qy * by - qz * bz))
+
+
 def norm_squared(q: Quaternion) -> float:
     return q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]
 

@@ -65,7 +65,7 @@ def broadcaster_main(argv: Sequence[str] | None = None, name: str = "my_tf_broad
 
         node.subscribe(node.resolve(f"{turtle}/pose"), Pose._type, Pose._md5sum, Pose._full_text, on_pose,
                        queue_size=10)
-        tool.spin()
+        tool.stop.wait()
         return 0
     finally:
         tool.node.shutdown("turtle_tf_broadcaster exiting")
