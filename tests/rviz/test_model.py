@@ -140,7 +140,7 @@ def test_pose_path_odometry_posearray_point() -> None:
     assert all_vertices(build(displays.Path(), path))[:, 0].tolist() == [1, 2, 2, 3]
     odometry = displays.Odometry()
     moves = [Odometry() for _ in range(3)]
-    for x, message in zip((0.0, 0.01, 1.0), moves):
+    for x, message in zip((0.0, 0.01, 1.0), moves, strict=True):
         message.header.frame_id = "map"
         message.pose.pose.position.x = x
         message.pose.pose.orientation.w = 1.0
