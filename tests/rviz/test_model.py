@@ -263,3 +263,12 @@ def test_an_rviz_file_loads_and_saves_back_what_it_had() -> None:
     assert again.camera.pitch == 0.6 and again.fixed_frame == "odom"
     with pytest.raises(ValueError):
         config.parse("- just a list")
+
+
+@pytest.mark.parametrize("kind", ["rviz/Orbit", TOP_DOWN])
+def test_a_click_finds_the_ground_point_the_camera_projects_there(kind: str) -> None:
+    camera = Camera(kind=kind, focal_point=np.array([2.0, -1.0, 0.0]), scale=50.0)
+    ground = np.array([[3.0, 0.5, 0.0]])
+    pixel = camera.project(ground, 800, 600)[0]
+    hit = camera.ground_point(pixel[0], pixel[1], 800, 600)
+    assert hit is not None and hit == pytest.approx(ground[0], abs=1e-6)

@@ -113,3 +113,19 @@ class Camera:
         with np.errstate(divide="ignore", invalid="ignore"):
             ndc = np.where(w > 0, clip[:, :3] / w, np.nan)
         return np.column_stack([(ndc[:, 0] + 1) * width / 2, (1 - ndc[:, 1]) * height / 2])
+
+    def ground_point(self, x: float, y: float, width: int, height: int) -> np.ndarray | None:
+        """Where the ray through pixel (x, y) meets the fixed frame's z = 0 plane (the tools'
+        click), or None when it does not (looking away from the ground)."""
+        inverse = np.linalg.inv(self.projection_matrix(width, height) @ self.view_matrix())
+        ndc_x, ndc_y = 2 * x / max(1, width) - 1, 1 - 2 * y / max(1, height)
+        near, far = (inverse @ np.array([ndc_x, ndc_y, depth, 1.0]) for depth in (-1.0, 1.0))
+        near, far = near[:3] / near[3], far[:3] / far[3]
+        direction = far - near
+        if abs(direction[2]) < 1e-12:
+            return None
+        t = -near[2] / direction[2]
+        if t < 0:
+            return None
+        hit: np.ndarray = near + t * direction
+        return hit
