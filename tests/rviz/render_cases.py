@@ -48,6 +48,7 @@ class Case:
     make: Callable[[], tuple[Display, list[Any]]]
     probe: tuple[float, float, float]  # a fixed-frame point the display covers
     color: tuple[int, int, int]  # what the pixel there must be (within a tolerance)
+    offset: tuple[int, int] = (0, 0)  # pixels from the probe's: text is drawn up and right of its point
 
 
 def _scan() -> tuple[Display, list[Any]]:
@@ -87,6 +88,14 @@ def _marker(kind: int, **extra: Any) -> Marker:
 
 def _marker_case(kind: int, **extra: Any) -> Callable[[], tuple[Display, list[Any]]]:
     return lambda: (markers.Marker(), [_marker(kind, **extra)])
+
+
+def _text_over_a_cube() -> tuple[Display, list[Any]]:
+    """Text is drawn over the scene, never hidden by what is nearer the camera."""
+    text = _marker(markers.TEXT, text="MMMM")
+    text.color.r = text.color.g = 1.0
+    cube = _marker(markers.CUBE, pose=Pose(position=Point(1, -2, 1), orientation=IDENTITY))
+    return markers.MarkerArray(), [MarkerArray(markers=[cube, text])]
 
 
 def _marker_array() -> tuple[Display, list[Any]]:
@@ -152,6 +161,7 @@ CASES = [
     Case("Marker triangle list", _marker_case(markers.TRIANGLES, points=[Point(-0.5, -0.5, 0), Point(0.5, -0.5, 0),
                                                                          Point(0, 0.5, 0)]),
          (1.0, -2.0, 0.0), (0, 0, 255)),
+    Case("Marker text", _text_over_a_cube, (1.0, -2.0, 0.0), (255, 255, 255), (6, -8)),
     Case("MarkerArray", _marker_array, (-1.6, 2.0, 0.0), (0, 0, 255)),
     Case("Pose", _pose, (0.0, 0.5, 0.0), (255, 255, 0)),
     Case("Odometry", _odometry, (2.0, 0.5, 0.0), (255, 0, 255)),

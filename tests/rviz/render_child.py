@@ -1,6 +1,6 @@
 """Renders every case of render_cases in rviz's window (top-down, 50 pixels a metre), reads the
 frame buffer back and prints one line per case: its name, the colour at its probe point's pixel
-(the closest to the expected colour within 2 pixels, as lines and points are thin) and the
+(the closest to the expected colour within 3 pixels, as lines and points are thin) and the
 colour far from all geometry. Run where Qt has OpenGL (a private Xvfb in the tests).
 
     python -m tests.rviz.render_child [SCREENSHOT.png]
@@ -40,10 +40,10 @@ def main() -> int:
         window.draw(0.0, Frames())
         image = view.grabFramebuffer()
         ratio = image.width() / max(1, view.width())
-        x, y = view.camera.project([case.probe], view.width(), view.height())[0] * ratio
+        x, y = (view.camera.project([case.probe], view.width(), view.height())[0] + case.offset) * ratio
         best = None
-        for dx in range(-2, 3):
-            for dy in range(-2, 3):
+        for dx in range(-3, 4):
+            for dy in range(-3, 4):
                 rgb = image.pixelColor(round(float(x)) + dx, round(float(y)) + dy).getRgb()[:3]
                 distance = sum(abs(a - b) for a, b in zip(rgb, case.color, strict=True))
                 if best is None or distance < best[0]:

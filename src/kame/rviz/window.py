@@ -58,24 +58,24 @@ class RenderView(QOpenGLWidget):
 
     # -------------------------------------------------------------- drawing
 
-    def initializeGL(self) -> None:
-        GL.glEnable(GL.GL_DEPTH_TEST)
-        GL.glEnable(GL.GL_BLEND)
-        GL.glBlendFunc(GL.GL_SRC_ALPHA, GL.GL_ONE_MINUS_SRC_ALPHA)
-
     def paintGL(self) -> None:
         ratio = self.devicePixelRatioF()
         width, height = int(self.width() * ratio), int(self.height() * ratio)
         GL.glViewport(0, 0, width, height)
         GL.glClearColor(*self.background)
         GL.glClear(GL.GL_COLOR_BUFFER_BIT | GL.GL_DEPTH_BUFFER_BIT)
-        GL.glEnable(GL.GL_DEPTH_TEST)
+        GL.glEnable(GL.GL_DEPTH_TEST)  # set each frame: the labels' QPainter leaves GL as it likes
+        GL.glEnable(GL.GL_BLEND)  # the frame buffer's alpha stays 1: Qt composes the widget by it
+        GL.glBlendFuncSeparate(GL.GL_SRC_ALPHA, GL.GL_ONE_MINUS_SRC_ALPHA, GL.GL_ONE, GL.GL_ONE_MINUS_SRC_ALPHA)
+        GL.glUseProgram(0)
         GL.glMatrixMode(GL.GL_PROJECTION)
         GL.glLoadMatrixd(self.camera.projection_matrix(width, height).T.astype(np.float64))
         GL.glMatrixMode(GL.GL_MODELVIEW)
         GL.glLoadMatrixd(self.camera.view_matrix().T.astype(np.float64))
+        GL.glDepthMask(GL.GL_FALSE)  # maps lie under what shares their plane (the grid), as in rviz
         for texture in self.scene.textures:
             self._draw_texture(texture.corners, texture.rgba)
+        GL.glDepthMask(GL.GL_TRUE)
         GL.glEnableClientState(GL.GL_VERTEX_ARRAY)
         GL.glEnableClientState(GL.GL_COLOR_ARRAY)
         for batch in self.scene.batches:
@@ -105,16 +105,27 @@ class RenderView(QOpenGLWidget):
             GL.glVertex3f(*corner)
         GL.glEnd()
         GL.glDisable(GL.GL_TEXTURE_2D)
+        GL.glBindTexture(GL.GL_TEXTURE_2D, 0)
         GL.glDeleteTextures([texture])
+        GL.glPixelStorei(GL.GL_UNPACK_ALIGNMENT, 4)  # as Qt's glyph cache expects it
 
     def _draw_labels(self) -> None:
         if not self.scene.labels:
             return
         positions = np.array([label.position for label in self.scene.labels])
         pixels = self.camera.project(positions, self.width(), self.height())
+        GL.glDisable(GL.GL_DEPTH_TEST)  # Qt's paint engine draws text with GL: over the scene, untested,
+        GL.glBlendFunc(GL.GL_ONE, GL.GL_ONE_MINUS_SRC_ALPHA)  # its glyphs' colours premultiplied
+        GL.glColor4f(1, 1, 1, 1)
+        GL.glMatrixMode(GL.GL_PROJECTION)
+        GL.glLoadIdentity()
+        GL.glMatrixMode(GL.GL_MODELVIEW)
+        GL.glLoadIdentity()
         painter = QPainter(self)
         for label, (x, y) in zip(self.scene.labels, pixels, strict=True):
             if math.isfinite(x) and math.isfinite(y):
+                painter.setPen(QColor(0, 0, 0, 160))  # a shadow keeps white names readable on a free map
+                painter.drawText(QPointF(x + 5, y - 3), label.text)
                 painter.setPen(QColor.fromRgbF(*label.color))
                 painter.drawText(QPointF(x + 4, y - 4), label.text)
         painter.end()
@@ -174,6 +185,8 @@ class RvizWindow(QMainWindow):
         self.setCentralWidget(self.view)
         self.tree = QTreeWidget()
         self.tree.setHeaderLabels(["Property", "Value"])
+        self.tree.setColumnWidth(0, 150)
+        self.tree.setMinimumWidth(300)
         self.tree.itemChanged.connect(self._edited)
         self._items: dict[int, QTreeWidgetItem] = {}
         panel = QWidget()
@@ -285,8 +298,13 @@ class RvizWindow(QMainWindow):
         self.tree.clear()
         self._items.clear()
         options = QTreeWidgetItem(self.tree, ["Global Options"])
-        for key, value in (("Fixed Frame", self.config.fixed_frame),
-                           ("Background Color", format_color(self.config.background)),
+        fixed = QTreeWidgetItem(options, ["Fixed Frame", ""])
+        self.fixed_frames = QComboBox()  # tf's frames, refreshed as the tree grows; any name can be typed
+        self.fixed_frames.setEditable(True)
+        self.fixed_frames.addItem(self.config.fixed_frame)
+        self.fixed_frames.currentTextChanged.connect(lambda text: self.set_global("Fixed Frame", text))
+        self.tree.setItemWidget(fixed, 1, self.fixed_frames)
+        for key, value in (("Background Color", format_color(self.config.background)),
                            ("Frame Rate", str(self.config.frame_rate))):
             child = QTreeWidgetItem(options, [key, value])
             child.setFlags(child.flags() | Qt.ItemFlag.ItemIsEditable)
@@ -323,11 +341,19 @@ class RvizWindow(QMainWindow):
             display.reset()
             self._rewatch()
 
+    def _offer_frames(self, names: list[str]) -> None:
+        known = [self.fixed_frames.itemText(i) for i in range(self.fixed_frames.count())]
+        wanted = sorted(set(names) | {self.config.fixed_frame})
+        if known != wanted:
+            self.fixed_frames.blockSignals(True)
+            self.fixed_frames.clear()
+            self.fixed_frames.addItems(wanted)
+            self.fixed_frames.setCurrentText(self.config.fixed_frame)
+            self.fixed_frames.blockSignals(False)
+
     def set_global(self, key: str, value: str) -> None:
-        if key == "Fixed Frame":
+        if key == "Fixed Frame" and value:  # nothing to reset: every frame is placed through tf as it is drawn
             self.config.fixed_frame = value
-            for display in self.config.displays:
-                display.reset()
         elif key == "Background Color":
             self.config.background = self.view.background = parse_color(value, self.config.background)
         elif key == "Frame Rate" and _is_number(value):
@@ -364,6 +390,8 @@ class RvizWindow(QMainWindow):
         """Rebuilds the scene from the displays (`frames`: the tf tree; the source's by default)."""
         if frames is None and self.source is not None:
             frames = self.source.frames(self.config.fixed_frame)
+        if frames is not None:
+            self._offer_frames(frames.names())
         scene = Scene()
         for display in self.config.displays:
             if frames is None:
