@@ -284,6 +284,21 @@ class OccupancyGrid(Display):
     message_types = ("nav_msgs/OccupancyGrid",)
     defaults = {"Topic": "/map", "Alpha": 0.7, "Color Scheme": "map", "Draw Behind": False}
 
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        super().__init__(*args, **kwargs)
+        self._coloured: tuple[Any, str, float, np.ndarray] | None = None  # a map is coloured once, not each frame
+
+    def _rgba(self, grid: Any) -> np.ndarray:
+        scheme, alpha = str(self.options.get("Color Scheme")), self.number("Alpha", 0.7)
+        if self._coloured is not None and self._coloured[:3] == (grid, scheme, alpha):
+            return self._coloured[3]
+        palette = costmap_palette() if scheme == "costmap" else map_palette()
+        cells = np.asarray(grid.data, dtype=np.int8).view(np.uint8).reshape(grid.info.height, grid.info.width)
+        rgba = palette[cells]
+        rgba[..., 3] = (rgba[..., 3] * alpha).astype(np.uint8)
+        self._coloured = (grid, scheme, alpha, rgba)
+        return rgba
+
     def draw(self, scene: Scene, frames: Frames, now: float) -> None:
         grid = self.message
         placed = self.placed(frames, grid.header.frame_id)
@@ -293,10 +308,7 @@ class OccupancyGrid(Display):
         if width * height == 0 or len(grid.data) != width * height:
             self.status = Status(WARN, f"the map's data has {len(grid.data)} cells, not {width}x{height}")
             return
-        palette = costmap_palette() if self.options.get("Color Scheme") == "costmap" else map_palette()
-        cells = np.frombuffer(np.asarray(grid.data, dtype=np.int8).tobytes(), dtype=np.uint8).reshape(height, width)
-        rgba = palette[cells].copy()
-        rgba[..., 3] = (rgba[..., 3] * self.number("Alpha", 0.7)).astype(np.uint8)
+        rgba = self._rgba(grid)
         origin = placed @ pose_matrix(grid.info.origin)
         corners = apply(origin, [[0, 0, 0], [width * resolution, 0, 0], [width * resolution, height * resolution, 0],
                                  [0, height * resolution, 0]])

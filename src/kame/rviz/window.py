@@ -51,6 +51,7 @@ class RenderView(QOpenGLWidget):
         self.scene = Scene()
         self.background = (48 / 255, 48 / 255, 48 / 255, 1.0)
         self.tool = INTERACT
+        self._textures: dict[int, tuple[np.ndarray, int]] = {}  # GL textures by their image's id, kept while drawn
         self._last: QPointF | None = None
         self._pressed_at: np.ndarray | None = None
         self.setMinimumSize(320, 240)
@@ -73,8 +74,12 @@ class RenderView(QOpenGLWidget):
         GL.glMatrixMode(GL.GL_MODELVIEW)
         GL.glLoadMatrixd(self.camera.view_matrix().T.astype(np.float64))
         GL.glDepthMask(GL.GL_FALSE)  # maps lie under what shares their plane (the grid), as in rviz
+        drawn = set()
         for texture in self.scene.textures:
             self._draw_texture(texture.corners, texture.rgba)
+            drawn.add(id(texture.rgba))
+        for gone in set(self._textures) - drawn:
+            GL.glDeleteTextures([self._textures.pop(gone)[1]])
         GL.glDepthMask(GL.GL_TRUE)
         GL.glEnableClientState(GL.GL_VERTEX_ARRAY)
         GL.glEnableClientState(GL.GL_COLOR_ARRAY)
@@ -89,14 +94,20 @@ class RenderView(QOpenGLWidget):
         self._draw_labels()
 
     def _draw_texture(self, corners: np.ndarray, rgba: np.ndarray) -> None:
-        texture = GL.glGenTextures(1)
-        GL.glBindTexture(GL.GL_TEXTURE_2D, texture)
-        GL.glTexParameteri(GL.GL_TEXTURE_2D, GL.GL_TEXTURE_MIN_FILTER, GL.GL_NEAREST)
-        GL.glTexParameteri(GL.GL_TEXTURE_2D, GL.GL_TEXTURE_MAG_FILTER, GL.GL_NEAREST)
-        GL.glPixelStorei(GL.GL_UNPACK_ALIGNMENT, 1)
-        height, width = rgba.shape[:2]
-        GL.glTexImage2D(GL.GL_TEXTURE_2D, 0, GL.GL_RGBA, width, height, 0, GL.GL_RGBA, GL.GL_UNSIGNED_BYTE,
-                        np.ascontiguousarray(rgba))
+        known = self._textures.get(id(rgba))
+        if known is not None and known[0] is rgba:  # the same map as last frame: uploaded once
+            GL.glBindTexture(GL.GL_TEXTURE_2D, known[1])
+        else:
+            texture = GL.glGenTextures(1)
+            self._textures[id(rgba)] = (rgba, texture)
+            GL.glBindTexture(GL.GL_TEXTURE_2D, texture)
+            GL.glTexParameteri(GL.GL_TEXTURE_2D, GL.GL_TEXTURE_MIN_FILTER, GL.GL_NEAREST)
+            GL.glTexParameteri(GL.GL_TEXTURE_2D, GL.GL_TEXTURE_MAG_FILTER, GL.GL_NEAREST)
+            GL.glPixelStorei(GL.GL_UNPACK_ALIGNMENT, 1)
+            height, width = rgba.shape[:2]
+            GL.glTexImage2D(GL.GL_TEXTURE_2D, 0, GL.GL_RGBA, width, height, 0, GL.GL_RGBA, GL.GL_UNSIGNED_BYTE,
+                            np.ascontiguousarray(rgba))
+            GL.glPixelStorei(GL.GL_UNPACK_ALIGNMENT, 4)  # as Qt's glyph cache expects it
         GL.glEnable(GL.GL_TEXTURE_2D)
         GL.glColor4f(1, 1, 1, 1)
         GL.glBegin(GL.GL_QUADS)
@@ -106,8 +117,6 @@ class RenderView(QOpenGLWidget):
         GL.glEnd()
         GL.glDisable(GL.GL_TEXTURE_2D)
         GL.glBindTexture(GL.GL_TEXTURE_2D, 0)
-        GL.glDeleteTextures([texture])
-        GL.glPixelStorei(GL.GL_UNPACK_ALIGNMENT, 4)  # as Qt's glyph cache expects it
 
     def _draw_labels(self) -> None:
         if not self.scene.labels:
