@@ -272,3 +272,21 @@ def test_a_click_finds_the_ground_point_the_camera_projects_there(kind: str) -> 
     pixel = camera.project(ground, 800, 600)[0]
     hit = camera.ground_point(pixel[0], pixel[1], 800, 600)
     assert hit is not None and hit == pytest.approx(ground[0], abs=1e-6)
+
+
+def test_a_display_reuses_its_scene_until_its_message_options_or_transforms_change() -> None:
+    scan = LaserScan(angle_min=0.0, angle_increment=0.1, range_min=0.1, range_max=10.0, ranges=[1.0] * 3)
+    scan.header.frame_id = "laser"
+    display = displays.LaserScan()
+    first = build(display, scan).batches[0]
+    assert build(display).batches[0] is first  # nothing changed: the same arrays
+    TREE.offsets["laser"] = ("odom", (0.0, 3.0, 0.0))
+    try:
+        moved = build(display).batches[0]
+        assert moved is not first and moved.vertices[0] == pytest.approx([2, 3, 0])
+    finally:
+        TREE.offsets["laser"] = ("odom", (0.0, 2.0, 0.0))
+    display.options["Color"] = "0; 0; 255"
+    assert build(display).batches[0].colors[0][:3] == pytest.approx([0, 0, 1])
+    again = build(display, scan).batches[0]
+    assert build(display).batches[0] is again

@@ -53,6 +53,45 @@ def format_color(color: Color) -> str:
     return "; ".join(str(round(c * 255)) for c in color[:3])
 
 
+class RecordingFrames:
+    """Frames that remember every lookup, so a display's last scene can be reused while its
+    message, options and every transform it used are the same."""
+
+    def __init__(self, frames: Frames) -> None:
+        self.frames = frames
+        self.fixed_frame = frames.fixed_frame
+        self.lookups: dict[str, np.ndarray | str] = {}
+        self.tree: list[tuple[str, str | None]] | None = None
+
+    def transform(self, frame_id: str) -> np.ndarray | str:
+        if frame_id not in self.lookups:
+            self.lookups[frame_id] = self.frames.transform(frame_id)
+        return self.lookups[frame_id]
+
+    def names(self) -> list[str]:
+        names = self.frames.names()
+        self.tree = [(name, self.frames.parent(name)) for name in names]
+        return names
+
+    def parent(self, frame_id: str) -> str | None:
+        return self.frames.parent(frame_id)
+
+    def unchanged(self, frames: Frames) -> bool:
+        """Whether `frames` still answer every lookup (and list the same tree) as these did."""
+        if frames.fixed_frame != self.fixed_frame:
+            return False
+        if self.tree is not None and self.tree != [(n, frames.parent(n)) for n in frames.names()]:
+            return False
+        for frame_id, before in self.lookups.items():
+            now = frames.transform(frame_id)
+            if isinstance(before, str) or isinstance(now, str):
+                if before != now:
+                    return False
+            elif isinstance(now, str) or not np.array_equal(before, now):
+                return False
+        return True
+
+
 class Display:
     class_name: ClassVar[str] = ""
     message_types: ClassVar[tuple[str, ...]] = ()  # the first is what a new display subscribes as
@@ -65,6 +104,8 @@ class Display:
         self.options: dict[str, Any] = {**self.defaults, **(options or {})}
         self.status = Status()
         self.message: Any = None
+        self.version = 0  # counts what receive() changed: the cached scene is for one version
+        self._cached: tuple[Any, RecordingFrames, Scene, Status] | None = None
 
     # ------------------------------------------------------------------ options
 
@@ -96,10 +137,16 @@ class Display:
         """New messages, oldest first: a display that needs only the newest keeps the last."""
         for message in messages:
             self.message = message
+            self.version += 1
 
     def reset(self) -> None:
         self.message = None
+        self.version += 1
         self.status = Status()
+
+    def time_dependent(self) -> bool:
+        """Whether the scene changes with `now` alone (markers whose lifetime runs)."""
+        return False
 
     def build(self, scene: Scene, frames: Frames, now: float) -> None:
         if not self.enabled:
@@ -108,8 +155,18 @@ class Display:
         if self.message_types and self.message is None:
             self.status = Status(WARN, f"no messages received on {self.topic or '(no topic)'}")
             return
+        key = (self.version, repr(self.options))
+        cached = self._cached
+        if cached is not None and cached[0] == key and not self.time_dependent() and cached[1].unchanged(frames):
+            scene.extend(cached[2])
+            self.status = cached[3]
+            return
         self.status = Status()
-        self.draw(scene, frames, now)
+        recording = RecordingFrames(frames)
+        own = Scene()
+        self.draw(own, recording, now)
+        self._cached = (key, recording, own, self.status)
+        scene.extend(own)
 
     def draw(self, scene: Scene, frames: Frames, now: float) -> None:
         raise NotImplementedError

@@ -169,6 +169,7 @@ class Odometry(Display):
         keep = max(1, int(self.number("Keep", 100)))
         for message in messages:
             self.message = message
+            self.version += 1
             if self.kept and not self._moved(self.kept[-1], message):
                 continue
             self.kept = [*self.kept, message][-keep:]

@@ -101,8 +101,12 @@ class Marker(Display):
     def receive(self, messages: Any, now: float) -> None:
         for message in messages:
             self.message = message
+            self.version += 1
             for marker in self.unpack(message):
                 self.apply(marker, now)
+
+    def time_dependent(self) -> bool:
+        return any(m.lifetime.secs or m.lifetime.nsecs for m, _ in self.markers.values())
 
     def unpack(self, message: Any) -> list[Any]:
         return [message]

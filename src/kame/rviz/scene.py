@@ -56,6 +56,11 @@ class Scene:
             colors = np.broadcast_to(colors, (len(vertices), 4))
         self.batches.append(Batch(kind, vertices, np.ascontiguousarray(colors, dtype=np.float32), size))
 
+    def extend(self, other: Scene) -> None:
+        self.batches += other.batches
+        self.labels += other.labels
+        self.textures += other.textures
+
     def label(self, position: Any, text: str, color: Color) -> None:
         self.labels.append(Label(np.asarray(position, dtype=float), text, color))
 
@@ -85,8 +90,14 @@ def pose_matrix(pose: Any) -> np.ndarray:
 
 
 def apply(matrix: np.ndarray, points: Any) -> np.ndarray:
+    """`points` (N x 3) moved by the 4x4 `matrix`. Written out per row of the matrix: a BLAS
+    matmul of a tall N x 3 array is many times slower here (thread start-up on a busy machine)."""
     points = np.asarray(points, dtype=float).reshape(-1, 3)
-    result: np.ndarray = points @ matrix[:3, :3].T + matrix[:3, 3]
+    x, y, z = points[:, 0], points[:, 1], points[:, 2]
+    result: np.ndarray = np.empty_like(points)
+    for row in range(3):
+        r = matrix[row]
+        result[:, row] = x * r[0] + y * r[1] + z * r[2] + r[3]
     return result
 
 

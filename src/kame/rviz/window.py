@@ -33,7 +33,7 @@ from PySide6.QtWidgets import (
 from kame.rviz import config as rviz_config
 from kame.rviz.camera import ORBIT, TOP_DOWN, Camera
 from kame.rviz.display import ERROR, OK, Display, Status, format_color, parse_color
-from kame.rviz.scene import Scene
+from kame.rviz.scene import Batch, Scene
 from kame.rviz.source import RvizSource
 
 PRIMITIVES = {"lines": GL.GL_LINES, "points": GL.GL_POINTS, "triangles": GL.GL_TRIANGLES}
@@ -52,6 +52,7 @@ class RenderView(QOpenGLWidget):
         self.background = (48 / 255, 48 / 255, 48 / 255, 1.0)
         self.tool = INTERACT
         self._textures: dict[int, tuple[np.ndarray, int]] = {}  # GL textures by their image's id, kept while drawn
+        self._buffers: dict[int, tuple[Batch, int, int]] = {}  # vertex and colour buffers by their batch's id
         self._last: QPointF | None = None
         self._pressed_at: np.ndarray | None = None
         self.setMinimumSize(320, 240)
@@ -83,15 +84,37 @@ class RenderView(QOpenGLWidget):
         GL.glDepthMask(GL.GL_TRUE)
         GL.glEnableClientState(GL.GL_VERTEX_ARRAY)
         GL.glEnableClientState(GL.GL_COLOR_ARRAY)
+        used = set()
         for batch in self.scene.batches:
             GL.glLineWidth(max(1.0, batch.size))
             GL.glPointSize(max(1.0, batch.size))
-            GL.glVertexPointer(3, GL.GL_FLOAT, 0, np.ascontiguousarray(batch.vertices))
-            GL.glColorPointer(4, GL.GL_FLOAT, 0, np.ascontiguousarray(batch.colors))
+            vertices, colors = self._uploaded(batch)
+            used.add(id(batch))
+            GL.glBindBuffer(GL.GL_ARRAY_BUFFER, vertices)
+            GL.glVertexPointer(3, GL.GL_FLOAT, 0, None)
+            GL.glBindBuffer(GL.GL_ARRAY_BUFFER, colors)
+            GL.glColorPointer(4, GL.GL_FLOAT, 0, None)
             GL.glDrawArrays(PRIMITIVES[batch.kind], 0, len(batch.vertices))
+        GL.glBindBuffer(GL.GL_ARRAY_BUFFER, 0)
+        for gone in set(self._buffers) - used:
+            GL.glDeleteBuffers(2, list(self._buffers.pop(gone)[1:]))
         GL.glDisableClientState(GL.GL_COLOR_ARRAY)
         GL.glDisableClientState(GL.GL_VERTEX_ARRAY)
         self._draw_labels()
+
+    def _uploaded(self, batch: Batch) -> tuple[int, int]:
+        """The batch's vertex and colour buffers on the GPU: a display's unchanged scene is uploaded once."""
+        known = self._buffers.get(id(batch))
+        if known is not None and known[0] is batch:
+            return known[1], known[2]
+        if known is not None:
+            GL.glDeleteBuffers(2, [known[1], known[2]])
+        vertices, colors = (int(b) for b in GL.glGenBuffers(2))
+        for buffer, data in ((vertices, batch.vertices), (colors, batch.colors)):
+            GL.glBindBuffer(GL.GL_ARRAY_BUFFER, buffer)
+            GL.glBufferData(GL.GL_ARRAY_BUFFER, np.ascontiguousarray(data, dtype=np.float32), GL.GL_STATIC_DRAW)
+        self._buffers[id(batch)] = (batch, vertices, colors)
+        return vertices, colors
 
     def _draw_texture(self, corners: np.ndarray, rgba: np.ndarray) -> None:
         known = self._textures.get(id(rgba))
