@@ -165,6 +165,7 @@ class Display:
         recording = RecordingFrames(frames)
         own = Scene()
         self.draw(own, recording, now)
+        own = own.merged()
         self._cached = (key, recording, own, self.status)
         scene.extend(own)
 
