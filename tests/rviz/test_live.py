@@ -132,3 +132,19 @@ def test_the_turtle_tf_demo_frames_move_markers_show_and_a_click_is_published(tm
             assert frames["turtle1"][:2] == pytest.approx((9.0, 2.0), abs=0.01) and moved > 0.5, line
     finally:
         graph.stop()
+
+
+def test_rviz_and_rosrun_rviz_rviz_start_and_refuse_a_bad_config(tmp_path: Path) -> None:
+    import subprocess
+
+    from tests.support import ros_env
+    from tests.turtlesim.sim import BIN
+
+    env = ros_env(tmp_path)
+    for command in ([str(BIN / "rviz"), "--help"], [str(BIN / "rosrun"), "rviz", "rviz", "--help"]):
+        helped = subprocess.run(command, capture_output=True, text=True, timeout=60, env=env)
+        assert helped.returncode == 0 and "--display-config" in helped.stdout, (command, helped.stderr)
+    bad = tmp_path / "bad.rviz"
+    bad.write_text("- not: a mapping\n")
+    refused = subprocess.run([str(BIN / "rviz"), "-d", str(bad)], capture_output=True, text=True, timeout=60, env=env)
+    assert refused.returncode == 1 and "cannot load" in refused.stderr and "a YAML mapping" in refused.stderr
