@@ -147,6 +147,16 @@ def _polygon() -> tuple[Display, list[Any]]:
     return displays.Polygon(options={"Color": "0; 0; 255"}), [polygon]
 
 
+def _robot() -> tuple[Display, list[Any]]:
+    from kame.rviz.robot import RobotModel
+
+    robot = RobotModel()
+    robot.describe('<robot name="r"><link name="laser"><visual><origin xyz="0 1 0"/>'
+                   '<geometry><box size="0.4 0.4 0.4"/></geometry><material name="m"><color rgba="1 0 0 1"/>'
+                   '</material></visual></link></robot>')
+    return robot, []
+
+
 CASES = [
     Case("LaserScan", _scan, (2.0, 1.0, 0.0), (255, 0, 0)),
     Case("PointCloud2", _cloud, (-2.0, -1.0, 0.0), (0, 255, 255)),
@@ -172,5 +182,6 @@ CASES = [
     Case("Axes", lambda: (displays.Axes(options={"Reference Frame": "laser"}), []), (2.0, 0.5, 0.0), (255, 0, 0)),
     Case("Grid", lambda: (displays.Grid(options={"Color": "255; 255; 255", "Alpha": 1}), []), (0.0, 1.5, 0.0),
          (255, 255, 255)),
+    Case("RobotModel", _robot, (1.0, 0.0, 0.0), (255, 0, 0)),  # the laser's y is the map's -x
     Case("TF", lambda: (displays.TF(options={"Show Names": False}), []), (2.0, 0.15, 0.0), (255, 0, 0)),
 ]

@@ -291,3 +291,38 @@ def test_a_display_reuses_its_scene_until_its_message_options_or_transforms_chan
     assert build(display).batches[0].colors[0][:3] == pytest.approx([0, 0, 1])
     again = build(display, scan).batches[0]
     assert build(display).batches[0] is again
+
+
+URDF = """<robot name="r">
+  <material name="blue"><color rgba="0 0 1 1"/></material>
+  <link name="odom"><visual><origin xyz="0 0 0.5" rpy="0 0 1.5707963"/>
+    <geometry><box size="2 1 1"/></geometry><material name="blue"/></visual></link>
+  <link name="laser"><visual><geometry><cylinder radius="0.5" length="0.2"/></geometry></visual>
+    <visual><geometry><mesh filename="package://r/base.dae"/></geometry></visual></link>
+  <link name="wheel"><visual><geometry><sphere radius="0.1"/></geometry></visual></link>
+</robot>"""
+
+
+def test_robot_model_places_the_urdf_visuals_at_their_links() -> None:
+    from kame.rviz.robot import RobotModel
+
+    display = RobotModel()
+    display.describe(URDF)
+    scene = build(display)
+    triangles = scene.batches[0]  # the box's 36 vertices, then the cylinder's (one batch)
+    box = triangles.vertices[:36]
+    # the box turned a quarter about z, lifted 0.5 m, at odom (1, 0, 0): x spans 1 m, y 2 m
+    assert box.min(axis=0) == pytest.approx([0.5, -1, 0], abs=1e-6)
+    assert box.max(axis=0) == pytest.approx([1.5, 1, 1], abs=1e-6)
+    assert triangles.colors[0] == pytest.approx([0, 0, 1, 1])
+    cylinder = triangles.vertices[36:]
+    assert cylinder.min(axis=0) == pytest.approx([0.5, 1.5, -0.1], abs=1e-6)
+    assert triangles.colors[-1] == pytest.approx([0.8, 0.8, 0.8, 1])
+    assert display.status.level == WARN
+    assert "wheel: no transform from wheel to map" in display.status.text and "mesh" in display.status.text
+    display.describe(None)
+    build(display)
+    assert "parameter robot_description is not set" in display.status.text
+    display.describe("<robot><link name='a'>")
+    build(display)
+    assert "not XML" in display.status.text

@@ -28,11 +28,12 @@ from kame.rviz.displays import (
     PoseArray,
 )
 from kame.rviz.markers import Marker, MarkerArray
+from kame.rviz.robot import RobotModel
 from kame.rviz.scene import Color
 
 DISPLAY_CLASSES: dict[str, type[Display]] = {cls.class_name: cls for cls in (
     Grid, Axes, TF, LaserScan, PointCloud2, Odometry, Pose, PoseArray, PointStamped, Path, Polygon, OccupancyGrid,
-    Marker, MarkerArray)}
+    Marker, MarkerArray, RobotModel)}
 COMMON_KEYS = ("Class", "Name", "Enabled")
 
 

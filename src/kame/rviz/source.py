@@ -125,6 +125,15 @@ class RvizSource:
             taken[topic] = decoded
         return taken
 
+    def param(self, name: str) -> str | None:
+        """A parameter's text (the robot description), None when it is not set or not text."""
+        if not name:
+            return None
+        answer = self.node.master.call_raw("getParam", self.node.resolve(name))
+        if not isinstance(answer, list) or len(answer) < 3 or answer[0] != 1 or not isinstance(answer[2], str):
+            return None
+        return answer[2]
+
     def publish(self, topic: str, message: Any) -> None:
         topic = self.node.resolve(topic)
         if topic not in self._publishers:

@@ -33,6 +33,7 @@ from PySide6.QtWidgets import (
 from kame.rviz import config as rviz_config
 from kame.rviz.camera import ORBIT, TOP_DOWN, Camera
 from kame.rviz.display import ERROR, OK, Display, Status, format_color, parse_color
+from kame.rviz.robot import RobotModel
 from kame.rviz.scene import Batch, Scene
 from kame.rviz.source import RvizSource
 
@@ -406,6 +407,9 @@ class RvizWindow(QMainWindow):
                 wanted[self.source.node.resolve(display.topic)] = display
         for topic in self.source.watched() - set(wanted):
             self.source.unwatch(topic)
+        for display in self.config.displays:
+            if isinstance(display, RobotModel):
+                display.describe(self.source.param(str(display.options.get("Robot Description", ""))))
 
     # -------------------------------------------------------------- each frame
 
