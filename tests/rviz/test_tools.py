@@ -15,15 +15,15 @@ import pytest
 pytest.importorskip("OpenGL", reason="rviz draws through PyOpenGL (pip install 'kame[gui]')")
 pytest.importorskip("PySide6")
 
-from geometry_msgs.msg import PointStamped, PoseStamped, PoseWithCovarianceStamped  # noqa: E402
-from PySide6.QtCore import QPoint, Qt  # noqa: E402
-from PySide6.QtTest import QTest  # noqa: E402
+from PySide6.QtCore import QPoint, Qt
+from PySide6.QtTest import QTest
 
-from kame.node.node import Node, NodeConfig  # noqa: E402
-from kame.rviz import config  # noqa: E402
-from kame.rviz.source import RvizSource  # noqa: E402
-from kame.rviz.window import NAV_GOAL, POSE_ESTIMATE, PUBLISH_POINT, RvizWindow  # noqa: E402
-from tests.tf.graph import Graph  # noqa: E402
+from geometry_msgs.msg import PointStamped, PoseStamped, PoseWithCovarianceStamped
+from kame.node.node import Node, NodeConfig
+from kame.rviz import config
+from kame.rviz.source import RvizSource
+from kame.rviz.window import NAV_GOAL, POSE_ESTIMATE, PUBLISH_POINT, RvizWindow
+from tests.tf.graph import Graph
 
 
 def test_mouse_moves_the_camera_and_the_tools_publish(tmp_path: Path, qtbot: Any) -> None:
