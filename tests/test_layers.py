@@ -100,6 +100,10 @@ LAYERS: dict[str, int] = {
     "kame.rqt.plot_source": 4,
     "kame.rqt.plot_window": 4,
     "kame.rqt.plot_main": 4,
+    "kame.rviz": 1,  # rviz's model: camera, scene, displays, .rviz files; no Qt, no ROS I/O
+    "kame.rviz.source": 4,  # the rviz node: subscriptions, the tf Buffer
+    "kame.rviz.window": 4,  # Qt and OpenGL
+    "kame.rviz.main": 4,
     "kame.stage.runtime": 4,  # the simulator's and map tools' one way to the ROS runtime
     "kame.stage.node": 4,
     "kame.stage.map_server": 4,

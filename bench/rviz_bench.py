@@ -1,0 +1,154 @@
+"""rviz's frame cost (issue 18): a 300k-point PointCloud2 at 10 Hz, a 2,000-marker
+MarkerArray, a 2,000x2,000 map, each alone in a 1280x720 view, software-rendered (Mesa on a
+private Xvfb when no DISPLAY is set). A frame is what the window does each turn: decode the
+newest message (when one came), rebuild the scene, draw it and wait for GL to finish
+(repaint + glFinish). Reported: frames per second the window can sustain (1 / mean frame
+time), CPU per frame, and message-to-pixels latency (decode + build + draw of a frame with a
+new message).
+
+    .venv/bin/python bench/rviz_bench.py [--frames 60]
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import shutil
+import signal
+import subprocess
+import sys
+import time
+from collections.abc import Callable
+from typing import Any
+
+import numpy as np
+
+
+def serialized(message: Any) -> bytes:
+    from kame.node.topics import serialize_frame
+
+    return b"".join(bytes(part) for part in serialize_frame(message))[4:]
+
+
+def cloud(points: int) -> Any:
+    from sensor_msgs.msg import PointCloud2, PointField
+
+    rng = np.random.default_rng(1)
+    xyz = rng.uniform(-5, 5, (points, 3)).astype(np.float32)
+    message = PointCloud2(height=1, width=points, point_step=12, row_step=12 * points, data=xyz.tobytes(),
+                          fields=[PointField(name=n, offset=4 * i, datatype=7, count=1) for i, n in enumerate("xyz")])
+    message.header.frame_id = "map"
+    return message
+
+
+def marker_array(count: int) -> Any:
+    from visualization_msgs.msg import Marker, MarkerArray
+
+    markers = []
+    for i in range(count):
+        marker = Marker(ns="bench", id=i, type=(Marker.CUBE, Marker.SPHERE, Marker.ARROW, Marker.CYLINDER)[i % 4])
+        marker.header.frame_id = "map"
+        marker.pose.position.x, marker.pose.position.y = (i % 50) * 0.2 - 5, (i // 50) * 0.2 - 4
+        marker.pose.orientation.w = 1.0
+        marker.scale.x = marker.scale.y = marker.scale.z = 0.1
+        marker.color.g = marker.color.a = 1.0
+        markers.append(marker)
+    return MarkerArray(markers=markers)
+
+
+def grid_map(side: int) -> Any:
+    from nav_msgs.msg import OccupancyGrid
+
+    rng = np.random.default_rng(2)
+    grid = OccupancyGrid(data=tuple(int(v) for v in rng.choice([-1, 0, 100], side * side)))
+    grid.header.frame_id = "map"
+    grid.info.width = grid.info.height = side
+    grid.info.resolution = 0.05
+    grid.info.origin.position.x = grid.info.origin.position.y = -side * 0.025
+    grid.info.origin.orientation.w = 1.0
+    return grid
+
+
+class Frames:
+    fixed_frame = "map"
+
+    def transform(self, frame_id: str) -> np.ndarray | str:
+        return np.eye(4)
+
+    def names(self) -> list[str]:
+        return ["map"]
+
+    def parent(self, frame_id: str) -> str | None:
+        return None
+
+
+def run(name: str, display: Any, cls: type[Any], payload: bytes, new_every: int, frames: int) -> str:
+    from kame.rviz import config
+    from kame.rviz.window import RvizWindow
+    from OpenGL import GL
+    from PySide6.QtWidgets import QApplication
+
+    QApplication.instance() or QApplication(["bench"])
+    window = RvizWindow(config.Config(displays=[display]), None)
+    window.timer.stop()
+    window.view.setFixedSize(1280, 720)
+    window.show()
+    QApplication.processEvents()
+    times, cpus, latencies = [], [], []
+    for frame in range(frames):
+        start, cpu = time.perf_counter(), time.process_time()
+        if frame % new_every == 0:
+            display.receive([cls._from_buffer(memoryview(payload))], 0.0)
+        window.draw(0.0, Frames())
+        window.view.repaint()
+        window.view.makeCurrent()
+        GL.glFinish()
+        elapsed = time.perf_counter() - start
+        times.append(elapsed)
+        cpus.append(time.process_time() - cpu)
+        if frame % new_every == 0:
+            latencies.append(elapsed)
+    window.close()
+    steady = times[1:]  # the first frame uploads the map and warms caches
+    return (f"| {name} | {1 / np.mean(steady):.1f} | {1000 * np.mean(cpus[1:]):.1f} | "
+            f"{1000 * np.median(latencies):.0f} | {1000 * max(latencies):.0f} |")
+
+
+def with_display(main: Callable[[], int]) -> int:
+    if os.environ.get("DISPLAY") or shutil.which("Xvfb") is None:
+        return main()
+    read, write = os.pipe()
+    server = subprocess.Popen(["Xvfb", "-displayfd", str(write), "-screen", "0", "1600x1000x24", "-nolisten", "tcp"],
+                              pass_fds=(write,), stderr=subprocess.DEVNULL)
+    os.close(write)
+    try:
+        with os.fdopen(read) as pipe:
+            os.environ["DISPLAY"] = ":" + pipe.readline().strip()
+        return main()
+    finally:
+        os.kill(server.pid, signal.SIGTERM)
+        server.wait()
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--frames", type=int, default=60)
+    options = parser.parse_args()
+    from kame.rviz import displays, markers
+    from nav_msgs.msg import OccupancyGrid
+    from sensor_msgs.msg import PointCloud2
+    from visualization_msgs.msg import MarkerArray
+
+    print("| scene | frames/s | CPU ms/frame | latency median ms | latency max ms |")
+    print("|---|---|---|---|---|")
+    print(run("PointCloud2 300k points, new every 3rd frame (10 Hz at 30 fps)", displays.PointCloud2(),
+              PointCloud2, serialized(cloud(300_000)), 3, options.frames), flush=True)
+    print(run("MarkerArray 2,000 markers, one message", markers.MarkerArray(), MarkerArray,
+              serialized(marker_array(2000)), options.frames, options.frames), flush=True)
+    print(run("Map 2,000x2,000, one message", displays.OccupancyGrid(), OccupancyGrid,
+              serialized(grid_map(2000)), options.frames, options.frames), flush=True)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(with_display(main))

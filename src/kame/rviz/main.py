@@ -1,0 +1,60 @@
+"""`rviz [-d FILE.rviz] [-f FIXED_FRAME]` (also `rosrun rviz rviz`): the window on a node named
+/rviz_<pid> (rviz's anonymous name), with ROS remappings and __master honoured. Without
+PySide6/PyOpenGL it says which extra to install."""
+
+from __future__ import annotations
+
+import argparse
+import os
+import signal
+import sys
+from collections.abc import Sequence
+
+from kame import names
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    ros = names.parse_args(sys.argv[1:] if argv is None else argv)
+    parser = argparse.ArgumentParser(prog="rviz", description="3-D visualisation of ROS topics and tf")
+    parser.add_argument("-d", "--display-config", default="", help="a .rviz file to load")
+    parser.add_argument("-f", "--fixed-frame", default="", help="the fixed frame (overrides the file's)")
+    options = parser.parse_args(ros.argv)
+    try:
+        from PySide6.QtWidgets import QApplication
+
+        from kame.rviz.window import RvizWindow
+    except ImportError as exc:
+        print(f"rviz needs the gui extra (pip install 'kame[gui]'): {exc}", file=sys.stderr)
+        return 1
+    from kame.net.address import address_override, advertised_host, bind_host
+    from kame.node.node import Node, NodeConfig
+    from kame.rqt.ros_node import master_uri
+    from kame.rviz import config as rviz_config
+    from kame.rviz.source import RvizSource
+
+    try:
+        config = rviz_config.load(options.display_config) if options.display_config else rviz_config.Config()
+    except (OSError, ValueError) as exc:
+        print(f"rviz: cannot load {options.display_config}: {exc}", file=sys.stderr)
+        return 1
+    if not options.display_config:
+        config.displays = [rviz_config.DISPLAY_CLASSES["rviz/Grid"]()]
+    if options.fixed_frame:
+        config.fixed_frame = options.fixed_frame
+    app = QApplication.instance() or QApplication(["rviz"])
+    signal.signal(signal.SIGINT, signal.SIG_DFL)  # Qt's loop never lets a Python handler run
+    override = address_override(os.environ, ros.special)
+    name = f"/rviz_{os.getpid()}"
+    node = Node(NodeConfig(name, master_uri(ros.special), advertised_host(override),
+                           bind_host(override), tuple(names.resolve_remappings(ros.remappings, name).items())))
+    window: RvizWindow | None = None
+    try:
+        source = RvizSource(node, lambda: None)
+        window = RvizWindow(config, source, options.display_config)
+        window.resize(1280, 720)
+        window.show()
+        return int(app.exec())
+    finally:
+        if window is not None and window.source is not None:
+            window.source.close()
+        node.shutdown("rviz closed")

@@ -1,0 +1,183 @@
+"""What the 3-D view draws, in the fixed frame: batches of line segments, points and
+triangles with a colour per vertex (RGBA floats), and text labels. The displays fill a Scene
+each frame; the window only uploads its arrays to OpenGL and paints the labels."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+Color = tuple[float, float, float, float]
+
+
+@dataclass
+class Batch:
+    """One draw call: `kind` is "lines" (vertex pairs), "points" or "triangles" (vertex triples)."""
+    kind: str
+    vertices: np.ndarray  # N x 3 float32, fixed frame
+    colors: np.ndarray  # N x 4 float32
+    size: float = 1.0  # line width or point size in pixels
+
+
+@dataclass
+class Label:
+    position: np.ndarray
+    text: str
+    color: Color
+
+
+@dataclass
+class Texture:
+    """An image laid on a quad (a map): `corners` are the fixed-frame points of pixel row 0's
+    first and last column and then of the last row's last and first column."""
+    corners: np.ndarray  # 4 x 3
+    rgba: np.ndarray  # H x W x 4 uint8, row 0 at corners[0..1]
+
+
+@dataclass
+class Scene:
+    batches: list[Batch] = field(default_factory=list)
+    labels: list[Label] = field(default_factory=list)
+    textures: list[Texture] = field(default_factory=list)
+
+    def texture(self, corners: Any, rgba: np.ndarray) -> None:
+        self.textures.append(Texture(np.asarray(corners, dtype=np.float32).reshape(4, 3), rgba))
+
+    def add(self, kind: str, vertices: Any, colors: Any, size: float = 1.0) -> None:
+        vertices = np.asarray(vertices, dtype=np.float32).reshape(-1, 3)
+        if not len(vertices):
+            return
+        colors = np.asarray(colors, dtype=np.float32)
+        if colors.ndim == 1:
+            colors = np.broadcast_to(colors, (len(vertices), 4))
+        self.batches.append(Batch(kind, vertices, np.ascontiguousarray(colors, dtype=np.float32), size))
+
+    def merged(self) -> Scene:
+        """The same scene with batches of one kind and size joined: one draw call for 2,000 markers."""
+        groups: dict[tuple[str, float], list[Batch]] = {}
+        for batch in self.batches:
+            groups.setdefault((batch.kind, batch.size), []).append(batch)
+        batches = [group[0] if len(group) == 1 else
+                   Batch(kind, np.concatenate([b.vertices for b in group]), np.concatenate([b.colors for b in group]),
+                         size) for (kind, size), group in groups.items()]
+        return Scene(batches, self.labels, self.textures)
+
+    def extend(self, other: Scene) -> None:
+        self.batches += other.batches
+        self.labels += other.labels
+        self.textures += other.textures
+
+    def label(self, position: Any, text: str, color: Color) -> None:
+        self.labels.append(Label(np.asarray(position, dtype=float), text, color))
+
+
+# ------------------------------------------------------------------ poses as matrices
+
+def quaternion_matrix(x: float, y: float, z: float, w: float) -> np.ndarray:
+    norm = math.sqrt(x * x + y * y + z * z + w * w)
+    if norm < 1e-12:  # rviz treats an all-zero quaternion as identity (and warns)
+        return np.eye(3)
+    x, y, z, w = x / norm, y / norm, z / norm, w / norm
+    return np.array([
+        [1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+        [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+        [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)],
+    ])
+
+
+def pose_matrix(pose: Any) -> np.ndarray:
+    """A geometry_msgs/Pose (or Transform: translation/rotation) as a 4x4 matrix."""
+    position = getattr(pose, "position", None) or pose.translation
+    orientation = getattr(pose, "orientation", None) or pose.rotation
+    matrix = np.eye(4)
+    matrix[:3, :3] = quaternion_matrix(orientation.x, orientation.y, orientation.z, orientation.w)
+    matrix[:3, 3] = (position.x, position.y, position.z)
+    return matrix
+
+
+def apply(matrix: np.ndarray, points: Any) -> np.ndarray:
+    """`points` (N x 3) moved by the 4x4 `matrix`. Written out per row of the matrix: a BLAS
+    matmul of a tall N x 3 array is many times slower here (thread start-up on a busy machine)."""
+    points = np.asarray(points, dtype=float).reshape(-1, 3)
+    x, y, z = points[:, 0], points[:, 1], points[:, 2]
+    result: np.ndarray = np.empty_like(points)
+    for row in range(3):
+        r = matrix[row]
+        result[:, row] = x * r[0] + y * r[1] + z * r[2] + r[3]
+    return result
+
+
+# ------------------------------------------------------------------ shapes
+
+def axes_lines(scene: Scene, matrix: np.ndarray, length: float, alpha: float = 1.0, width: float = 3.0) -> None:
+    """rviz's axes: x red, y green, z blue."""
+    ends = apply(matrix, np.array([[0, 0, 0], [length, 0, 0], [0, 0, 0], [0, length, 0], [0, 0, 0], [0, 0, length]]))
+    colors = np.array([[1, 0, 0, alpha]] * 2 + [[0, 1, 0, alpha]] * 2 + [[0, 0, 1, alpha]] * 2)
+    scene.add("lines", ends, colors, width)
+
+
+def arrow_triangles(start: np.ndarray, end: np.ndarray, shaft_diameter: float, head_diameter: float,
+                    head_length: float, sides: int = 8) -> np.ndarray:
+    """An arrow from `start` to `end` as triangles (shaft cylinder and head cone)."""
+    direction = np.asarray(end, float) - np.asarray(start, float)
+    length = float(np.linalg.norm(direction))
+    if length < 1e-9:
+        return np.zeros((0, 3))
+    axis = direction / length
+    head_length = min(head_length, length)
+    helper = np.array([0.0, 0.0, 1.0]) if abs(axis[2]) < 0.9 else np.array([1.0, 0.0, 0.0])
+    u = np.cross(axis, helper)
+    u /= np.linalg.norm(u)
+    v = np.cross(axis, u)
+    angles = np.linspace(0, 2 * math.pi, sides + 1)
+    ring = np.outer(np.cos(angles), u) + np.outer(np.sin(angles), v)
+    shaft_end = np.asarray(start, float) + axis * (length - head_length)
+    triangles: list[np.ndarray] = []
+    for i in range(sides):
+        a0, a1 = ring[i] * shaft_diameter / 2, ring[i + 1] * shaft_diameter / 2
+        triangles += [start + a0, start + a1, shaft_end + a1, start + a0, shaft_end + a1, shaft_end + a0]
+        h0, h1 = ring[i] * head_diameter / 2, ring[i + 1] * head_diameter / 2
+        triangles += [shaft_end + h0, shaft_end + h1, np.asarray(end, float)]
+        triangles += [shaft_end + h0, shaft_end + h1, shaft_end]
+    return np.array(triangles)
+
+
+BOX_FACES = np.array([
+    [0, 1, 2, 0, 2, 3], [4, 6, 5, 4, 7, 6], [0, 4, 5, 0, 5, 1],
+    [1, 5, 6, 1, 6, 2], [2, 6, 7, 2, 7, 3], [3, 7, 4, 3, 4, 0],
+]).reshape(-1)
+
+
+def box_triangles(scale: Sequence[float]) -> np.ndarray:
+    """A box centred on the origin with sides `scale` (x, y, z), as 36 vertices."""
+    hx, hy, hz = (abs(s) / 2 for s in scale)
+    corners = np.array([[-hx, -hy, -hz], [hx, -hy, -hz], [hx, hy, -hz], [-hx, hy, -hz],
+                        [-hx, -hy, hz], [hx, -hy, hz], [hx, hy, hz], [-hx, hy, hz]])
+    faces: np.ndarray = corners[BOX_FACES]
+    return faces
+
+
+def sphere_triangles(scale: Sequence[float], rings: int = 8, segments: int = 12) -> np.ndarray:
+    theta = np.linspace(0, math.pi, rings + 1)
+    phi = np.linspace(0, 2 * math.pi, segments + 1)
+    grid = np.stack([np.outer(np.sin(theta), np.cos(phi)), np.outer(np.sin(theta), np.sin(phi)),
+                     np.outer(np.cos(theta), np.ones_like(phi))], axis=-1) * (np.asarray(scale, float) / 2)
+    a, b, c, d = grid[:-1, :-1], grid[:-1, 1:], grid[1:, 1:], grid[1:, :-1]
+    return np.stack([a, b, c, a, c, d], axis=2).reshape(-1, 3)
+
+
+def cylinder_triangles(scale: Sequence[float], segments: int = 16) -> np.ndarray:
+    """A cylinder along z, as rviz's CYLINDER marker (diameters x, y; height z)."""
+    phi = np.linspace(0, 2 * math.pi, segments + 1)
+    rx, ry, hz = scale[0] / 2, scale[1] / 2, scale[2] / 2
+    ring = np.column_stack([rx * np.cos(phi), ry * np.sin(phi)])
+    triangles: list[list[float]] = []
+    for i in range(segments):
+        (x0, y0), (x1, y1) = ring[i], ring[i + 1]
+        triangles += [[x0, y0, -hz], [x1, y1, -hz], [x1, y1, hz], [x0, y0, -hz], [x1, y1, hz], [x0, y0, hz]]
+        triangles += [[0, 0, hz], [x0, y0, hz], [x1, y1, hz], [0, 0, -hz], [x1, y1, -hz], [x0, y0, -hz]]
+    return np.array(triangles)

@@ -1,0 +1,150 @@
+"""rviz's node: the tf Buffer fed from /tf and /tf_static (kame.tf_ros), one subscription per
+topic the displays show, and the publishers of the tools. Subscriber threads only store bytes:
+the newest message of a topic (latest wins), or for marker topics every message up to a bound,
+and wake the window once (`on_ready`) when nothing was waiting, so a 30 Hz 1 MB cloud costs one
+decode per drawn frame, never a queue the window falls behind on. Messages are decoded in the
+window's turn, when it takes them."""
+
+from __future__ import annotations
+
+import threading
+from collections.abc import Callable
+from typing import Any
+
+import numpy as np
+
+from kame.msg.lookup import message_class
+from kame.node.node import Node
+from kame.node.topics import serialize_frame
+from kame.rviz.scene import pose_matrix
+from kame.tf.errors import TransformException
+from kame.tf_ros.buffer import Buffer
+from kame.tf_ros.node_io import TransformListener
+
+KEPT_PER_TOPIC = 1000  # marker messages waiting for the window; older ones are dropped beyond
+
+
+class TfFrames:
+    """kame.rviz.display.Frames over the Buffer: the newest transform of each frame into the fixed frame."""
+
+    def __init__(self, buffer: Buffer, fixed_frame: str) -> None:
+        self.buffer = buffer
+        self.fixed_frame = fixed_frame
+        self._cache: dict[str, np.ndarray | str] = {}
+
+    def transform(self, frame_id: str) -> np.ndarray | str:
+        frame_id = frame_id.lstrip("/")
+        if frame_id not in self._cache:  # one lookup per frame and drawn frame
+            try:
+                found = self.buffer.lookup_transform(self.fixed_frame, frame_id, 0)
+                self._cache[frame_id] = pose_matrix(found.transform)
+            except TransformException as exc:
+                self._cache[frame_id] = f"no transform from {frame_id or '(empty frame_id)'} to {self.fixed_frame}" \
+                                        f" ({exc})"
+        return self._cache[frame_id]
+
+    def names(self) -> list[str]:
+        return sorted(self.buffer.frames())
+
+    def parent(self, frame_id: str) -> str | None:
+        return self.buffer.parent_of(frame_id)
+
+
+class RvizSource:
+    def __init__(self, node: Node, on_ready: Callable[[], None]) -> None:
+        self.node = node
+        self.on_ready = on_ready
+        self.buffer = Buffer(warn=lambda text: None)  # tf's complaints show as display statuses
+        self.listener = TransformListener(node, self.buffer)
+        self._lock = threading.Lock()
+        self._waiting: dict[str, list[bytes]] = {}
+        self._keep_every: dict[str, bool] = {}
+        self._classes: dict[str, type[Any]] = {}
+        self._publishers: set[str] = set()
+
+    def frames(self, fixed_frame: str) -> TfFrames:
+        return TfFrames(self.buffer, fixed_frame)
+
+    def watch(self, topic: str, type_name: str, keep_every: bool) -> str:
+        """Subscribes to `topic` as `type_name`; an empty string, or why it cannot."""
+        cls = message_class(type_name)
+        if cls is None:
+            return f"unknown message type {type_name}"
+        topic = self.node.resolve(topic)
+        if topic in self._classes:
+            if self._classes[topic]._type == type_name:
+                self._keep_every[topic] = self._keep_every[topic] or keep_every
+                return ""
+            return f"{topic} is already shown as {self._classes[topic]._type}"
+        self._classes[topic] = cls
+        self._keep_every[topic] = keep_every
+        self.node.subscribe(topic, cls._type, cls._md5sum, cls._full_text, self._deliverer(topic), queue_size=None)
+        return ""
+
+    def unwatch(self, topic: str) -> None:
+        topic = self.node.resolve(topic)
+        if self._classes.pop(topic, None) is not None:
+            self.node.unsubscribe(topic)
+        with self._lock:
+            self._waiting.pop(topic, None)
+
+    def watched(self) -> set[str]:
+        return set(self._classes)
+
+    def _deliverer(self, topic: str) -> Callable[[list[memoryview], dict[str, str]], None]:
+        def deliver(frames: list[memoryview], header: dict[str, str]) -> None:
+            if not frames:
+                return
+            with self._lock:
+                was_empty = not any(self._waiting.values())
+                if self._keep_every.get(topic):
+                    kept = self._waiting.setdefault(topic, [])
+                    kept.extend(bytes(frame) for frame in frames)
+                    del kept[:-KEPT_PER_TOPIC]
+                else:
+                    self._waiting[topic] = [bytes(frames[-1])]
+            if was_empty:
+                self.on_ready()
+        return deliver
+
+    def take(self) -> dict[str, list[Any]]:
+        """Every waiting message, decoded, by resolved topic (a bad one is skipped)."""
+        with self._lock:
+            waiting, self._waiting = self._waiting, {}
+        taken: dict[str, list[Any]] = {}
+        for topic, payloads in waiting.items():
+            cls = self._classes.get(topic)
+            if cls is None:
+                continue
+            decoded = []
+            for payload in payloads:
+                try:
+                    decoded.append(cls._from_buffer(memoryview(payload)))
+                except Exception:  # a malformed message is dropped; the display keeps the last good one
+                    continue
+            taken[topic] = decoded
+        return taken
+
+    def param(self, name: str) -> str | None:
+        """A parameter's text (the robot description), None when it is not set or not text."""
+        if not name:
+            return None
+        answer = self.node.master.call_raw("getParam", self.node.resolve(name))
+        if not isinstance(answer, list) or len(answer) < 3 or answer[0] != 1 or not isinstance(answer[2], str):
+            return None
+        return answer[2]
+
+    def publish(self, topic: str, message: Any) -> None:
+        topic = self.node.resolve(topic)
+        if topic not in self._publishers:
+            self.node.advertise(topic, message._type, message._md5sum, message._full_text)
+            self._publishers.add(topic)
+        self.node.publications[topic].publish_frame(serialize_frame(message))
+
+    def close(self) -> None:
+        self.listener.unregister()
+        for topic in list(self._classes):
+            self.unwatch(topic)
+        for topic in self._publishers:
+            self.node.unadvertise(topic)
+        self._publishers.clear()

@@ -1,0 +1,503 @@
+"""rviz's window: the Displays panel (Global Options and each display with its options and
+status), the 3-D view (OpenGL through PyOpenGL in a QOpenGLWidget, drawing the model's Scene),
+the tool bar (Interact, 2D Pose Estimate, 2D Nav Goal, Publish Point) and the view chooser.
+A frame timer at the Frame Rate takes the waiting messages, rebuilds the scene and repaints;
+the displays and the camera are kame.rviz's Qt-free model."""
+
+from __future__ import annotations
+
+import functools
+import math
+import time
+from collections.abc import Callable
+from typing import Any
+
+import numpy as np
+from OpenGL import GL
+from PySide6.QtCore import QPointF, Qt, QTimer, Signal
+from PySide6.QtGui import QAction, QActionGroup, QColor, QMouseEvent, QPainter, QWheelEvent
+from PySide6.QtOpenGLWidgets import QOpenGLWidget
+from PySide6.QtWidgets import (
+    QComboBox,
+    QDockWidget,
+    QFileDialog,
+    QMainWindow,
+    QMenu,
+    QPushButton,
+    QTreeWidget,
+    QTreeWidgetItem,
+    QVBoxLayout,
+    QWidget,
+)
+
+from kame.rviz import config as rviz_config
+from kame.rviz.camera import ORBIT, TOP_DOWN, Camera
+from kame.rviz.display import ERROR, OK, Display, Status, format_color, parse_color
+from kame.rviz.robot import RobotModel
+from kame.rviz.scene import Batch, Scene
+from kame.rviz.source import RvizSource
+
+PRIMITIVES = {"lines": GL.GL_LINES, "points": GL.GL_POINTS, "triangles": GL.GL_TRIANGLES}
+INTERACT, POSE_ESTIMATE, NAV_GOAL, PUBLISH_POINT = "Interact", "2D Pose Estimate", "2D Nav Goal", "Publish Point"
+
+
+class RenderView(QOpenGLWidget):
+    """Draws a Scene through a Camera; the mouse moves the camera as rviz's does, or drives a tool."""
+
+    clicked = Signal(object, object)  # ground point pressed, ground point released (numpy arrays)
+
+    def __init__(self, parent: QWidget | None = None) -> None:
+        super().__init__(parent)
+        self.camera = Camera()
+        self.scene = Scene()
+        self.background = (48 / 255, 48 / 255, 48 / 255, 1.0)
+        self.tool = INTERACT
+        self._textures: dict[int, tuple[np.ndarray, int]] = {}  # GL textures by their image's id, kept while drawn
+        self._buffers: dict[int, tuple[Batch, int, int]] = {}  # vertex and colour buffers by their batch's id
+        self._last: QPointF | None = None
+        self._pressed_at: np.ndarray | None = None
+        self.setMinimumSize(320, 240)
+        self.setFocusPolicy(Qt.FocusPolicy.StrongFocus)
+
+    # -------------------------------------------------------------- drawing
+
+    def paintGL(self) -> None:
+        ratio = self.devicePixelRatioF()
+        width, height = int(self.width() * ratio), int(self.height() * ratio)
+        GL.glViewport(0, 0, width, height)
+        GL.glClearColor(*self.background)
+        GL.glClear(GL.GL_COLOR_BUFFER_BIT | GL.GL_DEPTH_BUFFER_BIT)
+        GL.glEnable(GL.GL_DEPTH_TEST)  # set each frame: the labels' QPainter leaves GL as it likes
+        GL.glEnable(GL.GL_BLEND)  # the frame buffer's alpha stays 1: Qt composes the widget by it
+        GL.glBlendFuncSeparate(GL.GL_SRC_ALPHA, GL.GL_ONE_MINUS_SRC_ALPHA, GL.GL_ONE, GL.GL_ONE_MINUS_SRC_ALPHA)
+        GL.glUseProgram(0)
+        GL.glMatrixMode(GL.GL_PROJECTION)
+        GL.glLoadMatrixd(self.camera.projection_matrix(width, height).T.astype(np.float64))
+        GL.glMatrixMode(GL.GL_MODELVIEW)
+        GL.glLoadMatrixd(self.camera.view_matrix().T.astype(np.float64))
+        GL.glDepthMask(GL.GL_FALSE)  # maps lie under what shares their plane (the grid), as in rviz
+        drawn = set()
+        for texture in self.scene.textures:
+            self._draw_texture(texture.corners, texture.rgba)
+            drawn.add(id(texture.rgba))
+        for gone in set(self._textures) - drawn:
+            GL.glDeleteTextures([self._textures.pop(gone)[1]])
+        GL.glDepthMask(GL.GL_TRUE)
+        GL.glEnableClientState(GL.GL_VERTEX_ARRAY)
+        GL.glEnableClientState(GL.GL_COLOR_ARRAY)
+        used = set()
+        for batch in self.scene.batches:
+            GL.glLineWidth(max(1.0, batch.size))
+            GL.glPointSize(max(1.0, batch.size))
+            vertices, colors = self._uploaded(batch)
+            used.add(id(batch))
+            GL.glBindBuffer(GL.GL_ARRAY_BUFFER, vertices)
+            GL.glVertexPointer(3, GL.GL_FLOAT, 0, None)
+            GL.glBindBuffer(GL.GL_ARRAY_BUFFER, colors)
+            GL.glColorPointer(4, GL.GL_FLOAT, 0, None)
+            GL.glDrawArrays(PRIMITIVES[batch.kind], 0, len(batch.vertices))
+        GL.glBindBuffer(GL.GL_ARRAY_BUFFER, 0)
+        for gone in set(self._buffers) - used:
+            GL.glDeleteBuffers(2, list(self._buffers.pop(gone)[1:]))
+        GL.glDisableClientState(GL.GL_COLOR_ARRAY)
+        GL.glDisableClientState(GL.GL_VERTEX_ARRAY)
+        self._draw_labels()
+
+    def _uploaded(self, batch: Batch) -> tuple[int, int]:
+        """The batch's vertex and colour buffers on the GPU: a display's unchanged scene is uploaded once."""
+        known = self._buffers.get(id(batch))
+        if known is not None and known[0] is batch:
+            return known[1], known[2]
+        if known is not None:
+            GL.glDeleteBuffers(2, [known[1], known[2]])
+        vertices, colors = (int(b) for b in GL.glGenBuffers(2))
+        for buffer, data in ((vertices, batch.vertices), (colors, batch.colors)):
+            GL.glBindBuffer(GL.GL_ARRAY_BUFFER, buffer)
+            GL.glBufferData(GL.GL_ARRAY_BUFFER, np.ascontiguousarray(data, dtype=np.float32), GL.GL_STATIC_DRAW)
+        self._buffers[id(batch)] = (batch, vertices, colors)
+        return vertices, colors
+
+    def _draw_texture(self, corners: np.ndarray, rgba: np.ndarray) -> None:
+        known = self._textures.get(id(rgba))
+        if known is not None and known[0] is rgba:  # the same map as last frame: uploaded once
+            GL.glBindTexture(GL.GL_TEXTURE_2D, known[1])
+        else:
+            texture = GL.glGenTextures(1)
+            self._textures[id(rgba)] = (rgba, texture)
+            GL.glBindTexture(GL.GL_TEXTURE_2D, texture)
+            GL.glTexParameteri(GL.GL_TEXTURE_2D, GL.GL_TEXTURE_MIN_FILTER, GL.GL_NEAREST)
+            GL.glTexParameteri(GL.GL_TEXTURE_2D, GL.GL_TEXTURE_MAG_FILTER, GL.GL_NEAREST)
+            GL.glPixelStorei(GL.GL_UNPACK_ALIGNMENT, 1)
+            height, width = rgba.shape[:2]
+            GL.glTexImage2D(GL.GL_TEXTURE_2D, 0, GL.GL_RGBA, width, height, 0, GL.GL_RGBA, GL.GL_UNSIGNED_BYTE,
+                            np.ascontiguousarray(rgba))
+            GL.glPixelStorei(GL.GL_UNPACK_ALIGNMENT, 4)  # as Qt's glyph cache expects it
+        GL.glEnable(GL.GL_TEXTURE_2D)
+        GL.glColor4f(1, 1, 1, 1)
+        GL.glBegin(GL.GL_QUADS)
+        for (u, v), corner in zip(((0, 0), (1, 0), (1, 1), (0, 1)), corners, strict=True):
+            GL.glTexCoord2f(u, v)
+            GL.glVertex3f(*corner)
+        GL.glEnd()
+        GL.glDisable(GL.GL_TEXTURE_2D)
+        GL.glBindTexture(GL.GL_TEXTURE_2D, 0)
+
+    def _draw_labels(self) -> None:
+        if not self.scene.labels:
+            return
+        positions = np.array([label.position for label in self.scene.labels])
+        pixels = self.camera.project(positions, self.width(), self.height())
+        GL.glDisable(GL.GL_DEPTH_TEST)  # Qt's paint engine draws text with GL: over the scene, untested,
+        GL.glBlendFunc(GL.GL_ONE, GL.GL_ONE_MINUS_SRC_ALPHA)  # its glyphs' colours premultiplied
+        GL.glColor4f(1, 1, 1, 1)
+        GL.glMatrixMode(GL.GL_PROJECTION)
+        GL.glLoadIdentity()
+        GL.glMatrixMode(GL.GL_MODELVIEW)
+        GL.glLoadIdentity()
+        painter = QPainter(self)
+        for label, (x, y) in zip(self.scene.labels, pixels, strict=True):
+            if math.isfinite(x) and math.isfinite(y):
+                painter.setPen(QColor(0, 0, 0, 160))  # a shadow keeps white names readable on a free map
+                painter.drawText(QPointF(x + 5, y - 3), label.text)
+                painter.setPen(QColor.fromRgbF(*label.color))
+                painter.drawText(QPointF(x + 4, y - 4), label.text)
+        painter.end()
+
+    # -------------------------------------------------------------- mouse
+
+    def _ground(self, event: QMouseEvent) -> np.ndarray | None:
+        p = event.position()
+        return self.camera.ground_point(p.x(), p.y(), self.width(), self.height())
+
+    def mousePressEvent(self, event: QMouseEvent) -> None:
+        self._last = event.position()
+        if self.tool != INTERACT and event.button() == Qt.MouseButton.LeftButton:
+            self._pressed_at = self._ground(event)
+
+    def mouseMoveEvent(self, event: QMouseEvent) -> None:
+        if self._last is None or self._pressed_at is not None:
+            return
+        dx, dy = event.position().x() - self._last.x(), event.position().y() - self._last.y()
+        self._last = event.position()
+        buttons = event.buttons()
+        if buttons & Qt.MouseButton.LeftButton and not event.modifiers() & Qt.KeyboardModifier.ShiftModifier:
+            self.camera.rotate(dx, dy)
+        elif buttons & (Qt.MouseButton.MiddleButton | Qt.MouseButton.LeftButton):
+            self.camera.pan(dx, dy, self.height())
+        elif buttons & Qt.MouseButton.RightButton:
+            self.camera.zoom(-dy / 20)
+        self.update()
+
+    def mouseReleaseEvent(self, event: QMouseEvent) -> None:
+        if self._pressed_at is not None:
+            released = self._ground(event)
+            self.clicked.emit(self._pressed_at, released if released is not None else self._pressed_at)
+        self._pressed_at = None
+        self._last = None
+
+    def wheelEvent(self, event: QWheelEvent) -> None:
+        self.camera.zoom(event.angleDelta().y() / 120)
+        self.update()
+
+
+def _yaw_quaternion(yaw: float) -> tuple[float, float, float, float]:
+    return 0.0, 0.0, math.sin(yaw / 2), math.cos(yaw / 2)
+
+
+class RvizWindow(QMainWindow):
+    def __init__(self, config: rviz_config.Config, source: RvizSource | None, config_path: str = "") -> None:
+        super().__init__()
+        self.config = config
+        self.source = source
+        self.config_path = config_path
+        self.setWindowTitle(f"{config_path or 'default.rviz'} - RViz")
+        self.view = RenderView()
+        self.view.camera = config.camera
+        self.view.background = config.background
+        self.view.clicked.connect(self._tool_used)
+        self.setCentralWidget(self.view)
+        self.tree = QTreeWidget()
+        self.tree.setHeaderLabels(["Property", "Value"])
+        self.tree.setColumnWidth(0, 150)
+        self.tree.setMinimumWidth(300)
+        self.tree.itemChanged.connect(self._edited)
+        self._items: dict[int, QTreeWidgetItem] = {}
+        panel = QWidget()
+        layout = QVBoxLayout(panel)
+        layout.addWidget(self.tree)
+        add = QPushButton("Add")
+        menu = QMenu(add)
+        for class_name in rviz_config.DISPLAY_CLASSES:
+            menu.addAction(class_name, functools.partial(self.add_display, class_name))
+        add.setMenu(menu)
+        remove = QPushButton("Remove")
+        remove.clicked.connect(self._remove_selected)
+        layout.addWidget(add)
+        layout.addWidget(remove)
+        dock = QDockWidget("Displays")
+        dock.setObjectName("Displays")
+        dock.setWidget(panel)
+        self.addDockWidget(Qt.DockWidgetArea.LeftDockWidgetArea, dock)
+        self._tools()
+        self._menus()
+        self._topic_errors: dict[int, str] = {}
+        self.rebuild_tree()
+        self.timer = QTimer(self)
+        self.timer.timeout.connect(self.frame)
+        self.timer.start(max(1, 1000 // max(1, config.frame_rate)))
+        self.started = time.monotonic()
+
+    # -------------------------------------------------------------- building
+
+    def _tools(self) -> None:
+        bar = self.addToolBar("Tools")
+        bar.setObjectName("Tools")
+        group = QActionGroup(self)
+        for name in (INTERACT, POSE_ESTIMATE, NAV_GOAL, PUBLISH_POINT):
+            action = QAction(name, self, checkable=True)
+            action.setChecked(name == INTERACT)
+            action.triggered.connect(lambda _checked=False, tool=name: self.set_tool(tool))
+            group.addAction(action)
+            bar.addAction(action)
+        self.views = QComboBox()
+        self.views.addItems([ORBIT, TOP_DOWN])
+        self.views.setCurrentText(self.config.camera.kind)
+        self.views.currentTextChanged.connect(self.set_view)
+        bar.addWidget(self.views)
+
+    def _menus(self) -> None:
+        file_menu = self.menuBar().addMenu("&File")
+        file_menu.addAction("Open Config", self._open)
+        file_menu.addAction("Save Config", self._save)
+        file_menu.addAction("Save Config As", self._save_as)
+        file_menu.addAction("Quit", self.close)
+
+    def _open(self) -> None:
+        path, _ = QFileDialog.getOpenFileName(self, "Open Config", "", "RViz config (*.rviz)")
+        if path:
+            self.load(path)
+
+    def _save(self) -> None:
+        if self.config_path:
+            self.save(self.config_path)
+        else:
+            self._save_as()
+
+    def _save_as(self) -> None:
+        path, _ = QFileDialog.getSaveFileName(self, "Save Config", self.config_path, "RViz config (*.rviz)")
+        if path:
+            self.save(path)
+
+    def load(self, path: str) -> None:
+        self.config = rviz_config.load(path)
+        self.config_path = path
+        self.view.camera, self.view.background = self.config.camera, self.config.background
+        self.views.setCurrentText(self.config.camera.kind)
+        self.timer.setInterval(max(1, 1000 // max(1, self.config.frame_rate)))
+        self.rebuild_tree()
+
+    def save(self, path: str) -> None:
+        self.config.camera = self.view.camera
+        rviz_config.save(self.config, path)
+        self.config_path = path
+        self.setWindowTitle(f"{path} - RViz")
+
+    def set_view(self, kind: str) -> None:
+        self.view.camera.kind = kind
+        self.view.update()
+
+    def set_tool(self, tool: str) -> None:
+        self.view.tool = tool
+
+    def add_display(self, class_name: str) -> Display:
+        display = rviz_config.DISPLAY_CLASSES[class_name]()
+        self.config.displays.append(display)
+        self.rebuild_tree()
+        return display
+
+    def _remove_selected(self) -> None:
+        item = self.tree.currentItem()
+        while item is not None and item.parent() is not None:
+            item = item.parent()
+        index = self.tree.indexOfTopLevelItem(item) - 1 if item is not None else -1
+        if 0 <= index < len(self.config.displays):
+            del self.config.displays[index]
+            self.rebuild_tree()
+
+    # -------------------------------------------------------------- the tree
+
+    def rebuild_tree(self) -> None:
+        self.tree.blockSignals(True)
+        self.tree.clear()
+        self._items.clear()
+        options = QTreeWidgetItem(self.tree, ["Global Options"])
+        fixed = QTreeWidgetItem(options, ["Fixed Frame", ""])
+        self.fixed_frames = QComboBox()  # tf's frames, refreshed as the tree grows; any name can be typed
+        self.fixed_frames.setEditable(True)
+        self.fixed_frames.addItem(self.config.fixed_frame)
+        self.fixed_frames.currentTextChanged.connect(lambda text: self.set_global("Fixed Frame", text))
+        self.tree.setItemWidget(fixed, 1, self.fixed_frames)
+        for key, value in (("Background Color", format_color(self.config.background)),
+                           ("Frame Rate", str(self.config.frame_rate))):
+            child = QTreeWidgetItem(options, [key, value])
+            child.setFlags(child.flags() | Qt.ItemFlag.ItemIsEditable)
+        for display in self.config.displays:
+            item = QTreeWidgetItem(self.tree, [display.name, display.class_name])
+            item.setFlags(item.flags() | Qt.ItemFlag.ItemIsUserCheckable)
+            item.setCheckState(0, Qt.CheckState.Checked if display.enabled else Qt.CheckState.Unchecked)
+            QTreeWidgetItem(item, ["Status", display.status.level])
+            for key, value in display.options.items():
+                if isinstance(value, dict):
+                    continue
+                child = QTreeWidgetItem(item, [key, str(value)])
+                child.setFlags(child.flags() | Qt.ItemFlag.ItemIsEditable)
+            self._items[id(display)] = item
+        self.tree.expandToDepth(0)
+        self.tree.blockSignals(False)
+        self._rewatch()
+
+    def _edited(self, item: QTreeWidgetItem, column: int) -> None:
+        parent = item.parent()
+        if parent is None:
+            index = self.tree.indexOfTopLevelItem(item) - 1
+            if 0 <= index < len(self.config.displays):
+                self.config.displays[index].enabled = item.checkState(0) == Qt.CheckState.Checked
+            return
+        key, value = item.text(0), item.text(1)
+        if parent.text(0) == "Global Options":
+            self.set_global(key, value)
+            return
+        display = self.config.displays[self.tree.indexOfTopLevelItem(parent) - 1]
+        old = display.options.get(key)
+        display.options[key] = type(old)(value) if isinstance(old, (int, float)) and _is_number(value) else value
+        if key == "Topic":
+            display.reset()
+            self._rewatch()
+
+    def _offer_frames(self, names: list[str]) -> None:
+        known = [self.fixed_frames.itemText(i) for i in range(self.fixed_frames.count())]
+        wanted = sorted(set(names) | {self.config.fixed_frame})
+        if known != wanted:
+            self.fixed_frames.blockSignals(True)
+            self.fixed_frames.clear()
+            self.fixed_frames.addItems(wanted)
+            self.fixed_frames.setCurrentText(self.config.fixed_frame)
+            self.fixed_frames.blockSignals(False)
+
+    def set_global(self, key: str, value: str) -> None:
+        if key == "Fixed Frame" and value:  # nothing to reset: every frame is placed through tf as it is drawn
+            self.config.fixed_frame = value
+        elif key == "Background Color":
+            self.config.background = self.view.background = parse_color(value, self.config.background)
+        elif key == "Frame Rate" and _is_number(value):
+            self.config.frame_rate = max(1, int(float(value)))
+            self.timer.setInterval(max(1, 1000 // self.config.frame_rate))
+
+    def _rewatch(self) -> None:
+        """Subscribes to what the displays show, and leaves what none shows any more."""
+        if self.source is None:
+            return
+        self._topic_errors.clear()
+        wanted = {}
+        for display in self.config.displays:
+            if display.message_types and display.topic:
+                problem = self.source.watch(display.topic, display.message_types[0], display.keeps_every_message)
+                if problem:
+                    self._topic_errors[id(display)] = problem
+                wanted[self.source.node.resolve(display.topic)] = display
+        for topic in self.source.watched() - set(wanted):
+            self.source.unwatch(topic)
+        for display in self.config.displays:
+            if isinstance(display, RobotModel):
+                display.describe(self.source.param(str(display.options.get("Robot Description", ""))))
+
+    # -------------------------------------------------------------- each frame
+
+    def frame(self) -> None:
+        now = time.monotonic()
+        if self.source is not None:
+            taken = self.source.take()
+            for display in self.config.displays:
+                if display.topic and display.message_types:
+                    display.receive(taken.get(self.source.node.resolve(display.topic), []), now)
+        self.draw(now)
+
+    def draw(self, now: float, frames: Any = None) -> None:
+        """Rebuilds the scene from the displays (`frames`: the tf tree; the source's by default)."""
+        if frames is None and self.source is not None:
+            frames = self.source.frames(self.config.fixed_frame)
+        if frames is not None:
+            self._offer_frames(frames.names())
+        scene = Scene()
+        for display in self.config.displays:
+            if frames is None:
+                display.status = Status(ERROR, "no tf: rviz has no node")
+                continue
+            try:
+                display.build(scene, frames, now)
+            except Exception as exc:  # a message the display cannot draw must not stop the window
+                display.status = Status(ERROR, f"cannot draw: {exc}")
+            if id(display) in self._topic_errors:
+                display.status = Status(ERROR, self._topic_errors[id(display)])
+            self._show_status(display)
+        self.view.scene = scene
+        self.view.update()
+
+    def _show_status(self, display: Display) -> None:
+        item = self._items.get(id(display))
+        if item is None or item.childCount() == 0:
+            return
+        status = item.child(0)
+        if status is None:
+            return
+        text = display.status.level if display.status.level == OK else f"{display.status.level}: {display.status.text}"
+        if status.text(1) != text:
+            self.tree.blockSignals(True)
+            status.setText(1, text)
+            self.tree.blockSignals(False)
+
+    def frame_names(self) -> list[str]:
+        return self.source.frames(self.config.fixed_frame).names() if self.source is not None else []
+
+    # -------------------------------------------------------------- tools
+
+    def _tool_used(self, pressed: np.ndarray, released: np.ndarray) -> None:
+        publish: Callable[[str, Any], None] | None = self.source.publish if self.source is not None else None
+        if publish is None or self.view.tool == INTERACT:
+            return
+        from geometry_msgs.msg import PointStamped, PoseStamped, PoseWithCovarianceStamped
+
+        yaw = math.atan2(released[1] - pressed[1], released[0] - pressed[0]) if np.linalg.norm(
+            released[:2] - pressed[:2]) > 1e-6 else 0.0
+        if self.view.tool == PUBLISH_POINT:
+            point = PointStamped()
+            point.header.frame_id = self.config.fixed_frame
+            point.point.x, point.point.y, point.point.z = (float(v) for v in released)
+            publish("/clicked_point", point)
+            return
+        pose: Any = PoseWithCovarianceStamped() if self.view.tool == POSE_ESTIMATE else PoseStamped()
+        pose.header.frame_id = self.config.fixed_frame
+        target = pose.pose.pose if self.view.tool == POSE_ESTIMATE else pose.pose
+        target.position.x, target.position.y = float(pressed[0]), float(pressed[1])
+        (target.orientation.x, target.orientation.y, target.orientation.z,
+         target.orientation.w) = _yaw_quaternion(yaw)
+        if self.view.tool == POSE_ESTIMATE:  # rviz's: 0.5 m in x and y, pi/12 in yaw
+            covariance = [0.0] * 36
+            covariance[0] = covariance[7] = 0.25
+            covariance[35] = (math.pi / 12) ** 2
+            pose.pose.covariance = covariance
+            publish("/initialpose", pose)
+        else:
+            publish("/move_base_simple/goal", pose)
+
+    def closeEvent(self, event: Any) -> None:
+        self.timer.stop()
+        super().closeEvent(event)
+
+
+def _is_number(text: str) -> bool:
+    try:
+        float(text)
+    except ValueError:
+        return False
+    return True

@@ -1,0 +1,328 @@
+"""rviz's model without a window: the camera projects where rviz's would, each display puts its
+geometry at the right place in the fixed frame (or says why it cannot), markers come and go as
+rviz's do, and .rviz files load and save."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from geometry_msgs.msg import Point, PointStamped, Pose, PoseArray, PoseStamped, Quaternion
+from kame.rviz import config, displays, markers
+from kame.rviz.camera import TOP_DOWN, Camera
+from kame.rviz.display import OK, WARN
+from kame.rviz.scene import Scene
+from nav_msgs.msg import OccupancyGrid, Odometry, Path
+from sensor_msgs.msg import LaserScan, PointCloud2, PointField
+from visualization_msgs.msg import Marker, MarkerArray
+
+
+class TreeOf:
+    """A tf tree of fixed offsets: frame -> (parent, translation)."""
+
+    def __init__(self, fixed_frame: str, offsets: dict[str, tuple[str, tuple[float, float, float]]]) -> None:
+        self.fixed_frame = fixed_frame
+        self.offsets = offsets
+
+    def transform(self, frame_id: str) -> np.ndarray | str:
+        matrix = np.eye(4)
+        frame = frame_id
+        while frame != self.fixed_frame:
+            if frame not in self.offsets:
+                return f"no transform from {frame_id} to {self.fixed_frame}"
+            parent, translation = self.offsets[frame]
+            step = np.eye(4)
+            step[:3, 3] = translation
+            matrix = step @ matrix
+            frame = parent
+        return matrix
+
+    def names(self) -> list[str]:
+        return [self.fixed_frame, *self.offsets]
+
+    def parent(self, frame_id: str) -> str | None:
+        return self.offsets.get(frame_id, (None, None))[0]
+
+
+TREE = TreeOf("map", {"odom": ("map", (1.0, 0.0, 0.0)), "laser": ("odom", (0.0, 2.0, 0.0))})
+
+
+def build(display, *messages, now=0.0):  # type: ignore[no-untyped-def]
+    scene = Scene()
+    display.receive(list(messages), now)
+    display.build(scene, TREE, now)
+    return scene
+
+
+def all_vertices(scene: Scene) -> np.ndarray:
+    return np.vstack([b.vertices for b in scene.batches])
+
+
+def test_orbit_camera_projects_the_focal_point_to_the_centre_and_turns_with_the_mouse() -> None:
+    camera = Camera(focal_point=np.array([1.0, 2.0, 0.0]))
+    assert camera.project([[1.0, 2.0, 0.0]], 640, 480)[0] == pytest.approx([320, 240])
+    before = camera.project([[2.0, 2.0, 0.0]], 640, 480)[0]
+    camera.rotate(100, 0)
+    assert not np.allclose(camera.project([[2.0, 2.0, 0.0]], 640, 480)[0], before)
+    distance = camera.distance
+    camera.zoom(1)
+    assert camera.distance == pytest.approx(distance * 0.9)
+    camera.pan(50, 0, 480)
+    assert camera.project([[1.0, 2.0, 0.0]], 640, 480)[0][0] == pytest.approx(370, abs=1)
+
+
+def test_top_down_view_has_x_right_and_y_up() -> None:
+    camera = Camera(kind=TOP_DOWN, scale=100.0)
+    centre, east, north = camera.project([[0, 0, 0], [1, 0, 0], [0, 1, 0]], 400, 400)
+    assert centre == pytest.approx([200, 200])
+    assert east == pytest.approx([300, 200])
+    assert north == pytest.approx([200, 100])
+
+
+def test_laser_scan_points_are_placed_through_tf_and_a_missing_frame_is_the_status() -> None:
+    scan = LaserScan(angle_min=0.0, angle_increment=math.pi / 2, range_min=0.1, range_max=10.0,
+                     ranges=[1.0, 2.0, float("inf")])
+    scan.header.frame_id = "laser"
+    display = displays.LaserScan()
+    scene = build(display, scan)
+    assert display.status.level == OK
+    assert all_vertices(scene) == pytest.approx(np.array([[2.0, 2.0, 0.0], [1.0, 4.0, 0.0]]))
+    scan.header.frame_id = "base_laser"
+    build(display, scan)
+    assert display.status.level == WARN and "no transform from base_laser to map" in display.status.text
+
+
+def test_a_display_without_messages_says_so() -> None:
+    display = displays.Path(options={"Topic": "/plan"})
+    build(display)
+    assert display.status.level == WARN and "/plan" in display.status.text
+
+
+def test_pointcloud2_xyz_rgb() -> None:
+    points = np.zeros(2, dtype=[("x", "<f4"), ("y", "<f4"), ("z", "<f4"), ("rgb", "<u4")])
+    points["x"], points["z"] = [1, 2], [0.5, 0.5]
+    points["rgb"] = [0xFF0000, 0x00FF00]
+    fields = [PointField(name=n, offset=o, datatype=d, count=1) for n, o, d in
+              (("x", 0, 7), ("y", 4, 7), ("z", 8, 7), ("rgb", 12, 7))]
+    cloud = PointCloud2(height=1, width=2, fields=fields, is_bigendian=False, point_step=16, row_step=32,
+                        data=points.tobytes(), is_dense=True)
+    cloud.header.frame_id = "odom"
+    scene = build(displays.PointCloud2(), cloud)
+    batch = scene.batches[0]
+    assert batch.vertices == pytest.approx(np.array([[2, 0, 0.5], [3, 0, 0.5]]))
+    assert batch.colors[0][:3] == pytest.approx([1, 0, 0]) and batch.colors[1][:3] == pytest.approx([0, 1, 0])
+
+
+def test_occupancy_grid_is_a_texture_on_its_origin_with_rvizs_map_colours() -> None:
+    grid = OccupancyGrid(data=[0, 100, -1, 50])
+    grid.header.frame_id = "map"
+    grid.info.width, grid.info.height, grid.info.resolution = 2, 2, 0.5
+    grid.info.origin.position.x = -1.0
+    grid.info.origin.orientation.w = 1.0
+    scene = build(displays.OccupancyGrid(options={"Alpha": 1.0}), grid)
+    texture = scene.textures[0]
+    assert texture.corners[0] == pytest.approx([-1, 0, 0]) and texture.corners[2] == pytest.approx([0, 1, 0])
+    assert texture.rgba[0, 0, :3].tolist() == [255, 255, 255] and texture.rgba[0, 1, :3].tolist() == [0, 0, 0]
+    assert texture.rgba[1, 0, :3].tolist() == [0x70, 0x89, 0x86]
+    costmap = build(displays.OccupancyGrid(options={"Color Scheme": "costmap"}), grid).textures[0]
+    assert costmap.rgba[0, 1, :3].tolist() == [255, 0, 255]
+
+
+def test_pose_path_odometry_posearray_point() -> None:
+    pose = PoseStamped(pose=Pose(position=Point(1, 1, 0), orientation=Quaternion(0, 0, 0, 1)))
+    pose.header.frame_id = "map"
+    vertices = all_vertices(build(displays.Pose(), pose))
+    assert vertices[:, 0].max() == pytest.approx(2.3, abs=0.01) and vertices[:, 1].mean() == pytest.approx(1, abs=0.01)
+    path = Path(poses=[PoseStamped(pose=Pose(position=Point(x, 0, 0))) for x in (0, 1, 2)])
+    path.header.frame_id = "odom"
+    assert all_vertices(build(displays.Path(), path))[:, 0].tolist() == [1, 2, 2, 3]
+    odometry = displays.Odometry()
+    moves = [Odometry() for _ in range(3)]
+    for x, message in zip((0.0, 0.01, 1.0), moves, strict=True):
+        message.header.frame_id = "map"
+        message.pose.pose.position.x = x
+        message.pose.pose.orientation.w = 1.0
+    build(odometry, *moves)
+    assert len(odometry.kept) == 2  # the 1 cm move is within the position tolerance
+    array = PoseArray(poses=[Pose(orientation=Quaternion(0, 0, 0, 1))] * 3)
+    array.header.frame_id = "laser"
+    assert len(all_vertices(build(displays.PoseArray(), array))) == 18
+    point = PointStamped(point=Point(0, 0, 1))
+    point.header.frame_id = "laser"
+    assert all_vertices(build(displays.PointStamped(), point)).mean(axis=0) == pytest.approx([1, 2, 1], abs=0.05)
+
+
+def _marker(ns: str, marker_id: int, kind: int, action: int = 0, lifetime: float = 0.0) -> Marker:
+    marker = Marker(ns=ns, id=marker_id, type=kind, action=action)
+    marker.header.frame_id = "odom"
+    marker.pose.orientation.w = 1.0
+    marker.scale.x = marker.scale.y = marker.scale.z = 1.0
+    marker.color.r = marker.color.a = 1.0
+    marker.lifetime.secs = int(lifetime)
+    marker.points = [Point(0, 0, 0), Point(1, 0, 0), Point(1, 1, 0)]
+    marker.text = "hello"
+    return marker
+
+
+def test_every_marker_type_draws_and_markers_are_replaced_deleted_and_expire() -> None:
+    display = markers.MarkerArray()
+    array = MarkerArray(markers=[_marker("shapes", kind, kind) for kind in range(12) if kind != markers.MESH])
+    scene = build(display, array)
+    assert display.status.level == OK
+    assert [label.text for label in scene.labels] == ["hello"]
+    kinds = {b.kind for b in scene.batches}
+    assert kinds == {"triangles", "lines", "points"}
+    assert len(scene.batches) == 3  # one batch a kind: 2,000 markers are one draw call each kind
+    cube = build(markers.Marker(), _marker("one", 1, markers.CUBE)).batches[0].vertices
+    assert cube.min(axis=0) == pytest.approx([0.5, -0.5, -0.5]) and cube.max(axis=0) == pytest.approx([1.5, 0.5, 0.5])
+    build(display, MarkerArray(markers=[_marker("shapes", 1, 1, action=markers.DELETE)]))
+    assert ("shapes", 1) not in display.markers and len(display.markers) == 10
+    build(display, MarkerArray(markers=[_marker("", 0, 0, action=markers.DELETEALL)]))
+    assert display.markers == {}
+    single = markers.Marker()
+    build(single, _marker("brief", 0, markers.SPHERE, lifetime=1.0), now=10.0)
+    assert build(single, now=10.5).batches
+    assert not build(single, now=11.5).batches and single.markers == {}
+
+
+def test_hidden_namespace_and_unknown_frame() -> None:
+    display = markers.Marker(options={"Namespaces": {"hidden": False}})
+    hidden = _marker("hidden", 0, markers.CUBE)
+    lost = _marker("lost", 0, markers.CUBE)
+    lost.header.frame_id = "nowhere"
+    scene = build(display, hidden, lost)
+    assert not scene.batches
+    assert display.status.level == WARN and "lost/0" in display.status.text and "nowhere" in display.status.text
+
+
+def test_tf_display_draws_every_frame_with_its_name_and_parent_arrows() -> None:
+    display = displays.TF()
+    scene = build(display)
+    assert sorted(label.text for label in scene.labels) == ["laser", "map", "odom"]
+    laser = next(label for label in scene.labels if label.text == "laser")
+    assert laser.position == pytest.approx([1, 2, 0])
+    arrows = scene.batches[-1].vertices
+    assert len(arrows) == 4  # odom -> map and laser -> odom
+
+
+RVIZ_FILE = """\
+Panels:
+  - Class: rviz/Displays
+    Name: Displays
+Visualization Manager:
+  Class: ""
+  Displays:
+    - Alpha: 0.5
+      Cell Size: 1
+      Class: rviz/Grid
+      Color: 160; 160; 164
+      Enabled: true
+      Name: Grid
+      Plane Cell Count: 10
+      Reference Frame: <Fixed Frame>
+      Value: true
+    - Class: rviz/LaserScan
+      Color: 0; 255; 0
+      Enabled: true
+      Name: LaserScan
+      Topic: /scan
+      Size (m): 0.05
+    - Class: rviz/Camera
+      Enabled: true
+      Name: Camera
+  Enabled: true
+  Global Options:
+    Background Color: 48; 48; 48
+    Fixed Frame: odom
+    Frame Rate: 30
+  Views:
+    Current:
+      Class: rviz/Orbit
+      Distance: 12.5
+      Focal Point:
+        X: 1
+        Y: 2
+        Z: 0
+      Pitch: 0.6
+      Yaw: 0.3
+    Saved: ~
+"""
+
+
+def test_an_rviz_file_loads_and_saves_back_what_it_had() -> None:
+    loaded = config.parse(RVIZ_FILE)
+    assert loaded.fixed_frame == "odom" and loaded.frame_rate == 30
+    assert [d.class_name for d in loaded.displays] == ["rviz/Grid", "rviz/LaserScan"]
+    assert loaded.displays[1].color()[:3] == (0, 1, 0) and loaded.displays[1].topic == "/scan"
+    assert loaded.camera.distance == 12.5 and loaded.camera.focal_point.tolist() == [1, 2, 0]
+    again = config.parse(config.dump(loaded))
+    assert [d.name for d in again.displays] == ["Grid", "LaserScan"]
+    assert again.displays[1].options["Size (m)"] == 0.05
+    assert [e["Class"] for e in again.unknown_displays] == ["rviz/Camera"]
+    assert again.camera.pitch == 0.6 and again.fixed_frame == "odom"
+    with pytest.raises(ValueError):
+        config.parse("- just a list")
+
+
+@pytest.mark.parametrize("kind", ["rviz/Orbit", TOP_DOWN])
+def test_a_click_finds_the_ground_point_the_camera_projects_there(kind: str) -> None:
+    camera = Camera(kind=kind, focal_point=np.array([2.0, -1.0, 0.0]), scale=50.0)
+    ground = np.array([[3.0, 0.5, 0.0]])
+    pixel = camera.project(ground, 800, 600)[0]
+    hit = camera.ground_point(pixel[0], pixel[1], 800, 600)
+    assert hit is not None and hit == pytest.approx(ground[0], abs=1e-6)
+
+
+def test_a_display_reuses_its_scene_until_its_message_options_or_transforms_change() -> None:
+    scan = LaserScan(angle_min=0.0, angle_increment=0.1, range_min=0.1, range_max=10.0, ranges=[1.0] * 3)
+    scan.header.frame_id = "laser"
+    display = displays.LaserScan()
+    first = build(display, scan).batches[0]
+    assert build(display).batches[0] is first  # nothing changed: the same arrays
+    TREE.offsets["laser"] = ("odom", (0.0, 3.0, 0.0))
+    try:
+        moved = build(display).batches[0]
+        assert moved is not first and moved.vertices[0] == pytest.approx([2, 3, 0])
+    finally:
+        TREE.offsets["laser"] = ("odom", (0.0, 2.0, 0.0))
+    display.options["Color"] = "0; 0; 255"
+    assert build(display).batches[0].colors[0][:3] == pytest.approx([0, 0, 1])
+    again = build(display, scan).batches[0]
+    assert build(display).batches[0] is again
+
+
+URDF = """<robot name="r">
+  <material name="blue"><color rgba="0 0 1 1"/></material>
+  <link name="odom"><visual><origin xyz="0 0 0.5" rpy="0 0 1.5707963"/>
+    <geometry><box size="2 1 1"/></geometry><material name="blue"/></visual></link>
+  <link name="laser"><visual><geometry><cylinder radius="0.5" length="0.2"/></geometry></visual>
+    <visual><geometry><mesh filename="package://r/base.dae"/></geometry></visual></link>
+  <link name="wheel"><visual><geometry><sphere radius="0.1"/></geometry></visual></link>
+</robot>"""
+
+
+def test_robot_model_places_the_urdf_visuals_at_their_links() -> None:
+    from kame.rviz.robot import RobotModel
+
+    display = RobotModel()
+    display.describe(URDF)
+    scene = build(display)
+    triangles = scene.batches[0]  # the box's 36 vertices, then the cylinder's (one batch)
+    box = triangles.vertices[:36]
+    # the box turned a quarter about z, lifted 0.5 m, at odom (1, 0, 0): x spans 1 m, y 2 m
+    assert box.min(axis=0) == pytest.approx([0.5, -1, 0], abs=1e-6)
+    assert box.max(axis=0) == pytest.approx([1.5, 1, 1], abs=1e-6)
+    assert triangles.colors[0] == pytest.approx([0, 0, 1, 1])
+    cylinder = triangles.vertices[36:]
+    assert cylinder.min(axis=0) == pytest.approx([0.5, 1.5, -0.1], abs=1e-6)
+    assert triangles.colors[-1] == pytest.approx([0.8, 0.8, 0.8, 1])
+    assert display.status.level == WARN
+    assert "wheel: no transform from wheel to map" in display.status.text and "mesh" in display.status.text
+    display.describe(None)
+    build(display)
+    assert "parameter robot_description is not set" in display.status.text
+    display.describe("<robot><link name='a'>")
+    build(display)
+    assert "not XML" in display.status.text

@@ -1,0 +1,71 @@
+"""rviz's node on a live master: messages arriving faster than the window draws are coalesced
+(the newest scan wins; marker messages are all kept, in order), each woken once, tf lookups go
+through the Buffer, and the tools' publishers reach a subscriber."""
+
+from __future__ import annotations
+
+import threading
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pytest
+
+from geometry_msgs.msg import TransformStamped
+from kame.node.node import Node, NodeConfig
+from kame.node.topics import serialize_frame
+from kame.rviz.source import RvizSource
+from sensor_msgs.msg import LaserScan
+from tests.tf.graph import Graph
+from visualization_msgs.msg import Marker
+
+
+def test_a_burst_of_scans_is_one_message_and_markers_are_each_kept(tmp_path: Path) -> None:
+    graph = Graph(tmp_path)
+    rviz = Node(NodeConfig("/rviz_source_test", graph.uri, "127.0.0.1", "127.0.0.1"))
+    talker = Node(NodeConfig("/talker", graph.uri, "127.0.0.1", "127.0.0.1"))
+    woken = threading.Event()
+    source = RvizSource(rviz, woken.set)
+    try:
+        assert source.watch("/scan", "sensor_msgs/LaserScan", keep_every=False) == ""
+        assert source.watch("/marker", "visualization_msgs/Marker", keep_every=True) == ""
+        assert "already shown as" in source.watch("/scan", "nav_msgs/Path", keep_every=False)
+        assert "unknown message type" in source.watch("/x", "no_msgs/Nothing", keep_every=False)
+        connected = {"/scan": threading.Event(), "/marker": threading.Event()}
+        scans = talker.advertise("/scan", LaserScan._type, LaserScan._md5sum, LaserScan._full_text,
+                                 on_connect=lambda link: connected["/scan"].set())
+        marks = talker.advertise("/marker", Marker._type, Marker._md5sum, Marker._full_text,
+                                 on_connect=lambda link: connected["/marker"].set())
+        assert all(event.wait(10) for event in connected.values())
+        for i in range(50):
+            scans.publish_frame(serialize_frame(LaserScan(range_max=float(i))))
+        for i in range(5):
+            marks.publish_frame(serialize_frame(Marker(id=i)))
+        taken: dict[str, list[Any]] = {"/scan": [], "/marker": []}
+
+        def complete() -> bool:
+            return len(taken["/marker"]) == 5 and bool(taken["/scan"]) and taken["/scan"][-1].range_max == 49.0
+
+        while not complete():  # the window's turns: woken, it takes what waits
+            assert woken.wait(10), taken
+            woken.clear()
+            for topic, messages in source.take().items():
+                if topic == "/scan":
+                    assert len(messages) <= 1  # latest wins
+                taken[topic] += messages
+        assert [m.id for m in taken["/marker"]] == [0, 1, 2, 3, 4]
+
+        transform = TransformStamped()
+        transform.header.frame_id, transform.child_frame_id = "map", "laser"
+        transform.transform.translation.x = 2.0
+        transform.transform.rotation.w = 1.0
+        source.buffer.set_transform(transform, "test")
+        frames = source.frames("map")
+        assert frames.transform("laser")[:3, 3] == pytest.approx(np.array([2.0, 0.0, 0.0]))  # type: ignore[index]
+        assert "no transform from base_link to map" in str(frames.transform("base_link"))
+        assert frames.names() == ["laser", "map"] and frames.parent("laser") == "map"
+    finally:
+        source.close()
+        rviz.shutdown("test over")
+        talker.shutdown("test over")
+        graph.stop()

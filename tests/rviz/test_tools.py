@@ -1,0 +1,97 @@
+"""rviz's mouse and tools on a live master, offscreen (no drawing needed): a left drag turns the
+orbit camera, the wheel zooms, a middle drag pans; 2D Pose Estimate, 2D Nav Goal and Publish
+Point publish where the mouse met the ground, facing the drag's direction, in the fixed frame."""
+
+from __future__ import annotations
+
+import math
+import threading
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pytest
+
+pytest.importorskip("OpenGL", reason="rviz draws through PyOpenGL (pip install 'kame[gui]')")
+pytest.importorskip("PySide6")
+
+from PySide6.QtCore import QPoint, Qt
+from PySide6.QtTest import QTest
+
+from geometry_msgs.msg import PointStamped, PoseStamped, PoseWithCovarianceStamped
+from kame.node.node import Node, NodeConfig
+from kame.rviz import config
+from kame.rviz.source import RvizSource
+from kame.rviz.window import NAV_GOAL, POSE_ESTIMATE, PUBLISH_POINT, RvizWindow
+from tests.tf.graph import Graph
+
+
+def test_mouse_moves_the_camera_and_the_tools_publish(tmp_path: Path, qtbot: Any) -> None:
+    graph = Graph(tmp_path)
+    rviz = Node(NodeConfig("/rviz_tools_test", graph.uri, "127.0.0.1", "127.0.0.1"))
+    listener = Node(NodeConfig("/listener", graph.uri, "127.0.0.1", "127.0.0.1"))
+    source = RvizSource(rviz, lambda: None)
+    received: dict[str, Any] = {}
+    arrived = threading.Condition()
+
+    def keep(topic: str, cls: type[Any]) -> None:
+        def deliver(frames: list[memoryview], header: dict[str, str]) -> None:
+            with arrived:
+                received[topic] = cls._from_buffer(frames[-1])
+                arrived.notify_all()
+        listener.subscribe(topic, cls._type, cls._md5sum, cls._full_text, deliver)
+
+    for topic, cls in (("/initialpose", PoseWithCovarianceStamped), ("/move_base_simple/goal", PoseStamped),
+                       ("/clicked_point", PointStamped)):
+        keep(topic, cls)
+    try:
+        window = RvizWindow(config.Config(fixed_frame="odom", displays=[]), source)
+        qtbot.addWidget(window)
+        window.timer.stop()
+        window.resize(800, 600)
+        window.show()
+        view = window.view
+        yaw, distance, focal = view.camera.yaw, view.camera.distance, view.camera.focal_point.copy()
+        QTest.mousePress(view, Qt.MouseButton.LeftButton, Qt.KeyboardModifier.NoModifier, QPoint(100, 100))
+        QTest.mouseMove(view, QPoint(160, 100))
+        QTest.mouseRelease(view, Qt.MouseButton.LeftButton, Qt.KeyboardModifier.NoModifier, QPoint(160, 100))
+        assert view.camera.yaw == pytest.approx(yaw - 60 * 0.005)
+        QTest.mousePress(view, Qt.MouseButton.MiddleButton, Qt.KeyboardModifier.NoModifier, QPoint(100, 100))
+        QTest.mouseMove(view, QPoint(100, 150))
+        QTest.mouseRelease(view, Qt.MouseButton.MiddleButton, Qt.KeyboardModifier.NoModifier, QPoint(100, 150))
+        assert not np.allclose(view.camera.focal_point, focal)
+        view.camera.zoom(1)
+        assert view.camera.distance == pytest.approx(distance * 0.9)
+
+        def use(tool: str, start: tuple[float, float], end: tuple[float, float], topic: str) -> Any:
+            window.set_tool(tool)
+            with arrived:
+                received.pop(topic, None)
+            for _ in range(50):  # the publisher is new: its first messages may go before the subscriber connects
+                pixels = [view.camera.project([[*p, 0.0]], view.width(), view.height())[0] for p in (start, end)]
+                a, b = (QPoint(round(float(x)), round(float(y))) for x, y in pixels)
+                QTest.mousePress(view, Qt.MouseButton.LeftButton, Qt.KeyboardModifier.NoModifier, a)
+                QTest.mouseMove(view, b)
+                QTest.mouseRelease(view, Qt.MouseButton.LeftButton, Qt.KeyboardModifier.NoModifier, b)
+                with arrived:
+                    if arrived.wait_for(lambda: topic in received, 0.2):
+                        return received[topic]
+            raise AssertionError(f"nothing on {topic}")
+
+        goal = use(NAV_GOAL, (1.0, 1.0), (1.0, 3.0), "/move_base_simple/goal")
+        assert goal.header.frame_id == "odom"
+        assert (goal.pose.position.x, goal.pose.position.y) == pytest.approx((1.0, 1.0), abs=0.05)
+        assert 2 * math.atan2(goal.pose.orientation.z, goal.pose.orientation.w) == pytest.approx(math.pi / 2, abs=0.05)
+        estimate = use(POSE_ESTIMATE, (-2.0, 0.5), (-3.0, 0.5), "/initialpose")
+        assert (estimate.pose.pose.position.x, estimate.pose.pose.position.y) == pytest.approx((-2, 0.5), abs=0.05)
+        assert abs(2 * math.atan2(estimate.pose.pose.orientation.z, estimate.pose.pose.orientation.w)) == \
+            pytest.approx(math.pi, abs=0.05)
+        assert estimate.pose.covariance[0] == pytest.approx(0.25)
+        point = use(PUBLISH_POINT, (0.5, -1.5), (0.5, -1.5), "/clicked_point")
+        assert (point.point.x, point.point.y, point.point.z) == pytest.approx((0.5, -1.5, 0.0), abs=0.05)
+        window.close()
+    finally:
+        source.close()
+        rviz.shutdown("test over")
+        listener.shutdown("test over")
+        graph.stop()
