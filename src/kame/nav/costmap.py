@@ -53,7 +53,8 @@ class Costmap:
 
     @property
     def shape(self) -> tuple[int, int]:
-        return int(self.static.shape[0]), int(self.static.shape[1])
+        rows, columns = np.shape(self.static)
+        return int(rows), int(columns)
 
     def cell_of(self, x: float, y: float) -> tuple[int, int] | None:
         """(row, column) of a point, None off the map."""
