@@ -106,6 +106,7 @@ LAYERS: dict[str, int] = {
     "kame.stage.map_saver": 4,
     "kame.stage.teleop": 4,
     "kame.nav.amcl_node": 4,  # amcl on kame.client and kame.tf_ros
+    "kame.nav.move_base_node": 4,
     # L5 the compatibility packages: thin facades over kame, which never imports them
     **{facade: 5 for facade in FACADES},
     # L6 the ROS programs kame ships (tutorial scripts): user code, free to import anything
