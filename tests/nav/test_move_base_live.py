@@ -39,3 +39,21 @@ def test_move_base_reaches_a_goal_and_aborts_an_unreachable_one(tmp_path: Path) 
         sim.procs.append(wall)
         line = wall.wait_line("state", timeout=60)
         assert line.split()[1] == "4" and "valid plan" in line, line  # ABORTED
+
+
+def test_amcl_demo_launch_localises_and_drives(tmp_path: Path) -> None:
+    with master(tmp_path) as sim:
+        world = Proc([str(BIN / "roslaunch"), "turtlebot_gazebo", "turtlebot_world.launch", f"world_file:={OFFICE}"],
+                     sim.env, cwd=sim.home)
+        sim.procs.append(world)
+        world.wait_line("Simulating [robot_0]", timeout=30)
+        demo = Proc([str(BIN / "roslaunch"), "turtlebot_gazebo", "amcl_demo.launch", f"map_file:={OFFICE}"],
+                    sim.env, cwd=sim.home)
+        sim.procs.append(demo)
+        echo(sim, "/amcl_pose")  # amcl has the map and a first estimate
+        reach = Proc([sys.executable, CLIENT, "-2.0", "-3.0"], sim.env, cwd=sim.home)
+        sim.procs.append(reach)
+        line = reach.wait_line("state", timeout=120)
+        assert line.split()[1] == "3", line
+        found = pose_of(echo(sim, "/base_pose_ground_truth"))
+        assert math.hypot(found[0] + 2.0, found[1] + 3.0) < 0.25
