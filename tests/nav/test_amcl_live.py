@@ -57,3 +57,4 @@ def test_amcl_tracks_the_turtlebot_from_a_wrong_initial_pose(tmp_path: Path) -> 
                    what="the particles to spread")
         sim.run("rosservice", "call", "/request_nomotion_update")
         amcl.stop()
+        assert amcl.popen.returncode == 0  # Ctrl-C ends it, no SIGKILL needed

@@ -25,7 +25,7 @@ def test_move_base_reaches_a_goal_and_aborts_an_unreachable_one(tmp_path: Path) 
         world.wait_line("Simulating [robot_0]", timeout=30)
         sim.start("map_server", "map_server", OFFICE, wait="Read a")
         sim.start("tf2_ros", "static_transform_publisher", "0", "0", "0", "0", "0", "0", "map", "odom")
-        sim.start("move_base", "move_base", "_global_costmap/robot_radius:=0.18")
+        move_base = sim.start("move_base", "move_base", "_global_costmap/robot_radius:=0.18")
         reach = Proc([sys.executable, CLIENT, "2.0", "-3.0"], sim.env, cwd=sim.home)
         sim.procs.append(reach)
         line = reach.wait_line("state", timeout=120)
@@ -39,6 +39,8 @@ def test_move_base_reaches_a_goal_and_aborts_an_unreachable_one(tmp_path: Path) 
         sim.procs.append(wall)
         line = wall.wait_line("state", timeout=60)
         assert line.split()[1] == "4" and "valid plan" in line, line  # ABORTED
+        move_base.stop()
+        assert move_base.popen.returncode == 0  # Ctrl-C ends it, no SIGKILL needed
 
 
 def test_amcl_demo_launch_localises_and_drives(tmp_path: Path) -> None:
