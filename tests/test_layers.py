@@ -49,6 +49,7 @@ LAYERS: dict[str, int] = {
     "kame.launch": 1,
     "kame.turtlesim": 1,  # the world: no ROS, no GUI, no clock
     "kame.stage": 1,  # the 2-D robot world and map_server's map files: no ROS, no clock
+    "kame.nav": 1,  # the navigation stack's algorithms (amcl's filter, costmaps, planners, SLAM): no ROS, no clock
     # L2 I/O
     "kame.net": 2,
     "kame.bag.reader": 2,  # bag file I/O
@@ -109,6 +110,8 @@ LAYERS: dict[str, int] = {
     "kame.stage.map_server": 4,
     "kame.stage.map_saver": 4,
     "kame.stage.teleop": 4,
+    "kame.nav.amcl_node": 4,  # amcl on kame.client and kame.tf_ros
+    "kame.nav.move_base_node": 4,
     # L5 the compatibility packages: thin facades over kame, which never imports them
     **{facade: 5 for facade in FACADES},
     "sensor_msgs": MESSAGES,  # generated, but for point_cloud2

@@ -177,7 +177,7 @@ class Sender:
                 self._append([keep(p) for p in parts])
                 return
             try:
-                sent = self.sock.send(parts[0]) if len(parts) == 1 else self.sock.sendmsg(parts)
+                sent = self.sock.send(parts[0]) if len(parts) == 1 else self.sock.sendmsg(parts[:_IOV_MAX])
             except (BlockingIOError, InterruptedError):
                 sent = 0
             except OSError as exc:

@@ -1,0 +1,1 @@
+"""Navigation: amcl, move_base, gmapping algorithms (pure) and their nodes."""

@@ -1,0 +1,241 @@
+"""amcl, the node: localises a robot on a known map from its laser, odometry and tf.
+
+    rosrun amcl amcl [scan:=...]
+
+As navigation's amcl: the map from the `static_map` service (or the `map` topic with
+~use_map_topic); `scan` (sensor_msgs/LaserScan), the odometry from tf (~odom_frame_id ->
+~base_frame_id); publishes `amcl_pose` (geometry_msgs/PoseWithCovarianceStamped),
+`particlecloud` (geometry_msgs/PoseArray) and the transform ~global_frame_id -> ~odom_frame_id
+(stamped transform_tolerance ahead); listens to `initialpose`; serves `global_localization`
+and `request_nomotion_update` (std_srvs/Empty). The filter updates when the odometry moved
+~update_min_d metres or turned ~update_min_a radians, resamples every ~resample_interval updates.
+Parameters are amcl's, with its defaults; the filter itself is kame.nav.amcl.
+"""
+
+from __future__ import annotations
+
+import math
+import sys
+import threading
+from collections.abc import Sequence
+from typing import Any
+
+import numpy as np
+
+from kame.client import clock, core, process, services, topics
+from kame.client import log as _log
+from kame.nav.amcl import FilterParams, LikelihoodField, ParticleFilter, angle_diff
+from kame.tf import errors as tf_errors
+from kame.tf.transformations import euler_from_quaternion, quaternion_from_euler
+from kame.tf_ros.buffer import Buffer
+from kame.tf_ros.node_io import TransformBroadcaster, TransformListener
+
+_FILTER_FIELDS = FilterParams.__dataclass_fields__
+
+
+def _param(name: str, default: Any) -> Any:
+    return process.get_param("~" + name, default)
+
+
+def filter_params() -> FilterParams:
+    values: dict[str, Any] = {}
+    for name, spec in _FILTER_FIELDS.items():
+        kind = int if spec.type in ("int", int) else float
+        values[name] = kind(_param(name, spec.default))
+    return FilterParams(**values)
+
+
+def yaw_of(q: Any) -> float:
+    return float(euler_from_quaternion((q.x, q.y, q.z, q.w))[2])
+
+
+def compose(a: tuple[float, float, float], b: tuple[float, float, float]) -> tuple[float, float, float]:
+    """a (+) b: pose b given in frame a."""
+    c, s = math.cos(a[2]), math.sin(a[2])
+    return a[0] + c * b[0] - s * b[1], a[1] + s * b[0] + c * b[1], float(angle_diff(a[2] + b[2], 0.0))
+
+
+def inverse(a: tuple[float, float, float]) -> tuple[float, float, float]:
+    c, s = math.cos(a[2]), math.sin(a[2])
+    return -c * a[0] - s * a[1], s * a[0] - c * a[1], -a[2]
+
+
+class Amcl:
+    def __init__(self) -> None:
+        self.params = filter_params()
+        self.global_frame = str(_param("global_frame_id", "map"))
+        self.odom_frame = str(_param("odom_frame_id", "odom"))
+        self.base_frame = str(_param("base_frame_id", "base_link"))
+        self.update_min_d = float(_param("update_min_d", 0.2))
+        self.update_min_a = float(_param("update_min_a", math.pi / 6.0))
+        self.resample_interval = max(1, int(_param("resample_interval", 2)))
+        self.transform_tolerance = float(_param("transform_tolerance", 0.1))
+        self.laser_min_range = float(_param("laser_min_range", -1.0))
+        self.laser_max_range = float(_param("laser_max_range", -1.0))
+        self.tf_broadcast = bool(_param("tf_broadcast", True))
+        self.initial = (float(_param("initial_pose_x", 0.0)), float(_param("initial_pose_y", 0.0)),
+                        float(_param("initial_pose_a", 0.0)))
+        self.initial_cov = np.diag([float(_param("initial_cov_xx", 0.5 * 0.5)),
+                                    float(_param("initial_cov_yy", 0.5 * 0.5)),
+                                    float(_param("initial_cov_aa", (math.pi / 12) ** 2))])
+        self.lock = threading.Lock()
+        self.filter: ParticleFilter | None = None
+        self.last_odom: tuple[float, float, float] | None = None
+        self.force_update = True
+        self.updates = 0
+        self.map_to_odom: tuple[float, float, float] | None = None
+        node = core.get_node()
+        assert node is not None
+        self.buffer = Buffer(warn=lambda text: _log.emit(_log.WARN, text, ()))
+        self.listener = TransformListener(node, self.buffer, now=lambda: clock.get_rostime().to_nsec())
+        self.broadcaster = TransformBroadcaster(node)
+        from geometry_msgs.msg import PoseArray, PoseWithCovarianceStamped
+        self.pose_pub = topics.Publisher("amcl_pose", PoseWithCovarianceStamped, queue_size=2, latch=True)
+        self.cloud_pub = topics.Publisher("particlecloud", PoseArray, queue_size=2, latch=True)
+
+    # ---------------------------------------------------------------- inputs
+
+    def set_map(self, msg: Any) -> None:
+        info = msg.info
+        data = msg.data
+        cells = np.frombuffer(data, dtype=np.int8) if isinstance(data, bytes) else np.asarray(data, np.int16)
+        cells = cells.reshape(info.height, info.width)
+        field = LikelihoodField(cells, info.resolution, (info.origin.position.x, info.origin.position.y),
+                                self.params.laser_likelihood_max_dist)
+        with self.lock:
+            self.filter = ParticleFilter(self.params, field, seed=int(_param("seed", 0)))
+            self.filter.set_gaussian(self.initial, self.initial_cov)
+            self.force_update = True
+        _log.emit(_log.INFO, "Received a %d X %d map @ %.3f m/pix", (info.width, info.height, info.resolution))
+
+    def on_initial_pose(self, msg: Any) -> None:
+        pose = msg.pose.pose
+        mean = (pose.position.x, pose.position.y, yaw_of(pose.orientation))
+        cov = np.asarray(msg.pose.covariance, dtype=float).reshape(6, 6)
+        covariance = cov[np.ix_([0, 1, 5], [0, 1, 5])]
+        _log.emit(_log.INFO, "Setting pose: %.3f %.3f %.3f", mean)
+        with self.lock:
+            if self.filter is not None:
+                self.filter.set_gaussian(mean, covariance)
+                self.force_update = True
+
+    def global_localization(self, _request: Any) -> Any:
+        from std_srvs.srv import EmptyResponse
+        with self.lock:
+            if self.filter is not None:
+                _log.emit(_log.INFO, "Initializing with uniform distribution", ())
+                self.filter.set_uniform()
+                self.force_update = True
+        return EmptyResponse()
+
+    def nomotion_update(self, _request: Any) -> Any:
+        from std_srvs.srv import EmptyResponse
+        with self.lock:
+            self.force_update = True
+        return EmptyResponse()
+
+    def _pose_of(self, target: str, source: str, stamp: Any) -> tuple[float, float, float]:
+        found = self.buffer.lookup_transform(target, source, stamp, clock.Duration(0.2))
+        t, q = found.transform.translation, found.transform.rotation
+        return t.x, t.y, yaw_of(q)
+
+    def on_scan(self, scan: Any) -> None:
+        try:
+            odom = self._pose_of(self.odom_frame, self.base_frame, scan.header.stamp)
+            laser = self._pose_of(self.base_frame, scan.header.frame_id, scan.header.stamp)
+        except tf_errors.TransformException as exc:
+            _log.emit_throttle(5.0, _log.WARN, "Failed to compute odom pose, skipping scan (%s)", (exc,))
+            return
+        ranges = np.asarray(scan.ranges, dtype=float)
+        angles = scan.angle_min + scan.angle_increment * np.arange(len(ranges))
+        range_max = self.laser_max_range if self.laser_max_range > 0 else float(scan.range_max)
+        range_min = max(self.laser_min_range, float(scan.range_min))
+        ranges = np.where(ranges < range_min, np.nan, ranges)
+        with self.lock:
+            pf = self.filter
+            if pf is None:
+                return
+            moved = self.last_odom is None or math.hypot(odom[0] - self.last_odom[0], odom[1] - self.last_odom[1]) \
+                >= self.update_min_d or abs(float(angle_diff(odom[2], self.last_odom[2]))) >= self.update_min_a
+            if moved or self.force_update:
+                if self.last_odom is not None:
+                    pf.predict(self.last_odom, odom)
+                self.last_odom = odom
+                self.force_update = False
+                pf.weigh(ranges, angles, range_max, laser)
+                self.updates += 1
+                if self.updates % self.resample_interval == 0:
+                    pf.resample()
+                estimate = pf.estimate()
+                base = (estimate.x, estimate.y, estimate.theta)
+                self.map_to_odom = compose(base, inverse(odom))
+                self._publish_estimate(scan.header.stamp, estimate, pf.particles)
+            if self.map_to_odom is not None and self.tf_broadcast:
+                self._publish_transform(scan.header.stamp)
+
+    # ---------------------------------------------------------------- outputs
+
+    def _publish_estimate(self, stamp: Any, estimate: Any, particles: np.ndarray) -> None:
+        from geometry_msgs.msg import Pose, PoseArray, PoseWithCovarianceStamped
+        msg = PoseWithCovarianceStamped()
+        msg.header.stamp, msg.header.frame_id = stamp, self.global_frame
+        msg.pose.pose = _pose(estimate.x, estimate.y, estimate.theta, Pose)
+        cov = np.zeros((6, 6))
+        cov[np.ix_([0, 1, 5], [0, 1, 5])] = estimate.covariance
+        msg.pose.covariance = [float(v) for v in cov.reshape(-1)]
+        self.pose_pub.publish(msg)
+        cloud = PoseArray()
+        cloud.header.stamp, cloud.header.frame_id = stamp, self.global_frame
+        cloud.poses = [_pose(float(x), float(y), float(t), Pose) for x, y, t in particles]
+        self.cloud_pub.publish(cloud)
+
+    def _publish_transform(self, stamp: Any) -> None:
+        from geometry_msgs.msg import TransformStamped
+        assert self.map_to_odom is not None
+        x, y, theta = self.map_to_odom
+        t = TransformStamped()
+        t.header.stamp = clock.Time.from_sec(stamp.to_sec() + self.transform_tolerance)
+        t.header.frame_id, t.child_frame_id = self.global_frame, self.odom_frame
+        t.transform.translation.x, t.transform.translation.y = x, y
+        q = quaternion_from_euler(0.0, 0.0, theta)
+        t.transform.rotation.x, t.transform.rotation.y, t.transform.rotation.z, t.transform.rotation.w = \
+            (float(v) for v in q)
+        self.broadcaster.send_transform(t)
+
+
+def _pose(x: float, y: float, theta: float, pose_class: type[Any]) -> Any:
+    pose = pose_class()
+    pose.position.x, pose.position.y = x, y
+    pose.orientation.z, pose.orientation.w = math.sin(theta / 2), math.cos(theta / 2)
+    return pose
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    argv = list(sys.argv if argv is None else argv)
+    _log.use_roscpp_console()
+    process.init_node("amcl", argv=argv)
+    from geometry_msgs.msg import PoseWithCovarianceStamped
+    from nav_msgs.msg import OccupancyGrid
+    from nav_msgs.srv import GetMap
+    from sensor_msgs.msg import LaserScan
+    from std_srvs.srv import Empty
+
+    amcl = Amcl()
+    if bool(_param("use_map_topic", False)):
+        topics.Subscriber("map", OccupancyGrid, amcl.set_map, queue_size=1)
+    else:
+        _log.emit(_log.INFO, "Requesting the map...", ())
+        try:
+            services.wait_for_service("static_map")
+            amcl.set_map(services.ServiceProxy("static_map", GetMap)().map)
+        except Exception as exc:  # shutdown while waiting, or map_server failing the call
+            if core.is_shutdown():
+                return 0
+            _log.emit(_log.ERROR, "Could not get the map from static_map: %s", (exc,))
+            return 1
+    topics.Subscriber("initialpose", PoseWithCovarianceStamped, amcl.on_initial_pose, queue_size=2)
+    topics.Subscriber("scan", LaserScan, amcl.on_scan, queue_size=1)
+    services.Service("global_localization", Empty, amcl.global_localization)
+    services.Service("request_nomotion_update", Empty, amcl.nomotion_update)
+    process.spin()
+    return 0

@@ -1,0 +1,60 @@
+"""`rosrun amcl amcl` on the TurtleBot in the office world (turtlebot_world.launch, map_server):
+started from a wrong initial pose, it finds the robot while it drives; its topics, transform
+and services are amcl's."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+from typing import Any
+
+from tests.stage.sim import echo
+from tests.stage.test_stageros import drive
+from tests.support import Proc
+from tests.turtlesim.sim import BIN, Sim, master, wait_until
+
+OFFICE = str(Path(__file__).resolve().parents[2] / "src" / "kame" / "share" / "turtlebot_gazebo" / "worlds"
+             / "office.yaml")
+
+
+def pose_of(data: dict[str, Any]) -> tuple[float, float, float]:
+    p, q = data["pose"]["pose"]["position"], data["pose"]["pose"]["orientation"]
+    return p["x"], p["y"], 2 * math.atan2(q["z"], q["w"])
+
+
+def error(sim: Sim) -> tuple[float, float]:
+    found, truth = pose_of(echo(sim, "/amcl_pose")), pose_of(echo(sim, "/base_pose_ground_truth"))
+    turn = math.remainder(found[2] - truth[2], 2 * math.pi)
+    return math.hypot(found[0] - truth[0], found[1] - truth[1]), abs(math.degrees(turn))
+
+
+def test_amcl_tracks_the_turtlebot_from_a_wrong_initial_pose(tmp_path: Path) -> None:
+    with master(tmp_path) as sim:
+        world = Proc([str(BIN / "roslaunch"), "turtlebot_gazebo", "turtlebot_world.launch", f"world_file:={OFFICE}"],
+                     sim.env, cwd=sim.home)
+        sim.procs.append(world)
+        world.wait_line("Simulating [robot_0]", timeout=30)
+        sim.start("map_server", "map_server", OFFICE, wait="Read a")
+        amcl = sim.start("amcl", "amcl", "_base_frame_id:=base_footprint", "_initial_pose_x:=0.4",
+                         "_initial_pose_y:=-0.3", "_initial_pose_a:=0.3", "_min_particles:=500",
+                         "_max_particles:=2000", wait="Received a 320 X 240 map")
+        first = pose_of(echo(sim, "/amcl_pose"))
+        assert math.hypot(first[0] - 0.4, first[1] + 0.3) < 0.3  # it starts where it was told
+        assert len(echo(sim, "/particlecloud")["poses"]) == 2000
+        tf = echo(sim, "/tf", "--filter", "m.transforms[0].header.frame_id == 'map'")["transforms"][0]
+        assert tf["child_frame_id"] == "odom"
+
+        ahead = drive(sim, "/cmd_vel", 0.3)
+        wait_until(lambda: pose_of(echo(sim, "/base_pose_ground_truth"))[0] > 1.5, timeout=60,
+                   what="the robot to drive 1.5 m")
+        ahead.stop()
+        wait_until(lambda: error(sim) < (0.2, 10.0), timeout=30, what="amcl to find the robot")
+        distance, turn = error(sim)
+        assert distance < 0.2 and turn < 10.0
+
+        sim.run("rosservice", "call", "/global_localization")
+        wait_until(lambda: len(echo(sim, "/particlecloud")["poses"]) == 2000, timeout=20,
+                   what="the particles to spread")
+        sim.run("rosservice", "call", "/request_nomotion_update")
+        amcl.stop()
+        assert amcl.popen.returncode == 0  # Ctrl-C ends it, no SIGKILL needed
