@@ -11,8 +11,8 @@
   stdlib's HTTP/XML-RPC clients and servers, or uses asyncio's streams and socket calls.
 - L0/L1 are pure (no I/O, concurrency or clock modules); net/ knows nothing of messages or
   the master.
-What breaks these rules today is listed, pair by pair, in KNOWN_VIOLATIONS; the test fails on
-anything not listed, and on a listed pair that no longer happens, so the list only shrinks.
+The tree breaks none of them; the tests below also plant each kind of break in a tiny tree and
+check the checker reports it.
 """
 
 from __future__ import annotations
@@ -133,16 +133,6 @@ ASYNCIO_SOCKET_CALLS = frozenset({"open_connection", "start_server", "open_unix_
                                   "sock_sendall", "sock_connect", "sock_accept", "StreamReader", "StreamWriter"})
 NET_FORBIDDEN = ("kame.msg", "kame.master", "kame.node")
 
-# (rule, module, what it imports) for every break of the rules today: each one is work to do.
-# The test fails when one of them no longer happens: take it off the list.
-KNOWN_VIOLATIONS: frozenset[tuple[str, str, str]] = frozenset({
-    # TCPROS handshakes and service calls done on blocking sockets in kame/node, not through net/
-    ("socket", "kame.node.services", "socket"),
-    ("socket", "kame.node.tcpros", "socket"),
-    # tools talking to a master or a port directly (port probes, XML-RPC clients of their own)
-    ("socket", "kame.cli.roscore", "socket"),
-})
-
 
 @dataclass(frozen=True)
 class Violation:
@@ -261,11 +251,8 @@ def _is_socket(name: str) -> bool:
 
 
 def test_the_tree_keeps_its_layers() -> None:
-    found = {v.key() for v in check(SRC, Layers(LAYERS, ONLY_ITSELF))}
-    new = sorted(found - KNOWN_VIOLATIONS)
-    fixed = sorted(KNOWN_VIOLATIONS - found)
-    assert new == [], "these break the layering (see the module docstring); fix them, or place the module"
-    assert fixed == [], "these no longer happen: take them off KNOWN_VIOLATIONS"
+    found = sorted(v.key() for v in check(SRC, Layers(LAYERS, ONLY_ITSELF)))
+    assert found == [], "these break the layering (see the module docstring); fix them, or place the module"
 
 
 def test_the_facades_and_message_packages_are_scanned() -> None:

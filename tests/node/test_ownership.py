@@ -113,7 +113,7 @@ def test_tcp_nodelay_goes_in_the_header_and_onto_the_publishers_socket(
 
 
 def test_a_subscriber_header_without_tcp_nodelay_gets_the_publishers_choice(make_node: Any) -> None:
-    from kame.node.tcpros import read_header, write_header
+    from kame.net.handshake import read_header, write_header
 
     talker = make_node("/nodelay_default")
     pub = talker.advertise("/nodelay_default", *STRING, tcp_nodelay=True)

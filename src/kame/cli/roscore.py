@@ -16,7 +16,6 @@ import argparse
 import asyncio
 import logging
 import os
-import socket
 import sys
 import uuid
 from collections.abc import Sequence
@@ -26,7 +25,7 @@ from urllib.parse import urlsplit
 from kame.cli.rosmaster import DEFAULT_PORT, flush_periodically, log_dir, ros_home, serve, setup_file_logging
 from kame.launch.server import LaunchServer, ProcessState
 from kame.master.server import NOTIFY_TIMEOUT, MasterServer
-from kame.net import peers
+from kame.net import interfaces, peers
 from kame.net.address import host_addresses
 from kame.net.process import SupervisedProcess
 from kame.net.xmlrpc_client import XmlRpcProxy
@@ -170,7 +169,7 @@ def main(argv: Sequence[str] | None = None) -> int:
             run_id = answer[2]  # a second roscore logs under the running master's run_id
     logs = log_dir(env)
     run_dir = logs / run_id
-    own_log = run_dir / f"roslaunch-{socket.gethostname()}-{os.getpid()}.log"
+    own_log = run_dir / f"roslaunch-{interfaces.hostname()}-{os.getpid()}.log"
     handler = setup_file_logging(own_log, LOGGER)
     print(f"... logging to {own_log}", flush=True)
     _disk_usage_check(logs)

@@ -30,10 +30,10 @@ from kame.msg.describe import describe_srv, load_srv
 from kame.msg.errors import MessageError, SerializationError
 from kame.msg.fill import FillError, fill_message_args, printable_message_args
 from kame.msg.message import find_type_problem
+from kame.net.handshake import HandshakeError
 from kame.node.master_proxy import MasterError
 from kame.node.remote_poll import poll_remote
 from kame.node.services import ServiceClient, ServiceError, probe_service
-from kame.node.tcpros import HandshakeError
 from kame.rostime import Time
 
 NAME = "rosservice"

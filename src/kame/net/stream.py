@@ -475,6 +475,21 @@ def _local(sock: socket.socket) -> str:
         return "?"
 
 
+def receive(sock: socket.socket, size: int, spin: float = 0.0) -> bytes:
+    """sock.recv(size); with `spin`, polled without blocking for that long first. An answer that
+    comes within tens of microseconds (a service call's) then costs no sleep and wake-up of a
+    blocking read (half of a persistent call)."""
+    if spin:
+        deadline = time.perf_counter() + spin
+        while True:
+            try:
+                return sock.recv(size, socket.MSG_DONTWAIT)
+            except BlockingIOError:
+                if time.perf_counter() >= deadline:
+                    break
+    return sock.recv(size)
+
+
 def shut_down(sock: socket.socket) -> None:
     """End both directions now: a thread blocked reading `sock` wakes (closing alone would not
     wake it). The caller still closes the socket."""

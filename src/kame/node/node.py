@@ -27,13 +27,13 @@ from typing import TYPE_CHECKING, Any, NamedTuple
 from kame import names
 from kame.arity import accepts
 from kame.net.address import bind_host
+from kame.net.handshake import ClosedBeforeHeader, HandshakeError, MalformedHeader, read_header, write_header
 from kame.net.rpc_server import RpcServer
 from kame.net.stream import Flusher, Listener, peer_of, shut_down
 from kame.net.workers import WorkerPool
 from kame.node.master_proxy import MasterError, MasterProxy
 from kame.node.master_watch import MasterWatch
 from kame.node.services import ServiceClient, ServiceHandler, ServiceServer
-from kame.node.tcpros import ClosedBeforeHeader, HandshakeError, MalformedHeader, read_header, write_header
 from kame.node.topics import Callback, Publication, SubscriberLink, Subscription
 from kame.node.unreachable import ReportedOnce
 from kame.protocol import tcpros

@@ -9,23 +9,21 @@ a request that arrives together with the client header.
 from __future__ import annotations
 
 import logging
-import socket
 import threading
-import time
 from collections.abc import Callable
-from functools import partial
-from typing import TYPE_CHECKING, TypeVar
+from typing import TYPE_CHECKING
 
-from kame.net.stream import connect, set_nodelay
+from kame.net.handshake import HandshakeError, read_header, write_header
+from kame.net.stream import connect, receive, set_nodelay, shut_down
 from kame.node.master_proxy import MasterProxy
-from kame.node.tcpros import HandshakeError, read_header, write_header
 from kame.protocol import tcpros
 
 if TYPE_CHECKING:
+    import socket
+
     from kame.node.node import Node
 
 log = logging.getLogger("kame.services")
-_T = TypeVar("_T")
 
 MAX_REQUEST = 1 << 30
 _RECV_MAX = 1 << 20
@@ -97,10 +95,7 @@ class ServiceServer:
             self.closed = True
             connections = list(self._connections)
         for sock in connections:
-            try:
-                sock.shutdown(socket.SHUT_RDWR)
-            except OSError:
-                pass
+            shut_down(sock)
 
 
 class _Receiving:
@@ -111,25 +106,11 @@ class _Receiving:
         self.spin = spin
         self._responses = tcpros.ServiceResponseReader(MAX_REQUEST)
 
-    def _read(self, read: Callable[[int], _T]) -> _T:
-        """read(flags); a call's answer usually comes within tens of microseconds, so with
-        `spin` it is polled for that long first: that saves the sleep and wake-up of a blocking
-        read (half of a persistent call)."""
-        if self.spin:
-            deadline = time.perf_counter() + self.spin
-            while True:
-                try:
-                    return read(socket.MSG_DONTWAIT)
-                except BlockingIOError:
-                    if time.perf_counter() >= deadline:
-                        break
-        return read(0)
-
     def frames(self, reader: tcpros.FrameReader) -> list[memoryview]:
         """The frames completed by one read (possibly none); ConnectionError at end of stream.
         The reader sizes a frame over 64 MiB as its bytes arrive: a peer claiming a gigabyte
         and sending three bytes reserves no gigabyte."""
-        chunk = self._read(partial(self.sock.recv, 65536))
+        chunk = receive(self.sock, 65536, self.spin)
         if not chunk:
             raise ConnectionError("connection closed by the peer")
         return reader.feed(chunk)
@@ -140,7 +121,7 @@ class _Receiving:
         reader = self._responses
         size = 65536
         while True:
-            chunk = self._read(partial(self.sock.recv, size))
+            chunk = receive(self.sock, size, self.spin)
             if not chunk:
                 raise ConnectionError("connection closed by the peer")
             responses = reader.feed(chunk)

@@ -28,10 +28,10 @@ from typing import TYPE_CHECKING, Any
 
 from kame.msg.size import fixed_size
 from kame.net.address import DOES_NOT_RESOLVE, unreachable_reason
+from kame.net.handshake import HandshakeError, read_header_and_rest, write_header
 from kame.net.stream import Receiver, Sender, connect, peer_of, set_keepalive, set_nodelay, shut_down
 from kame.net.xmlrpc_client import XmlRpcProxy
 from kame.node.master_proxy import unwrap
-from kame.node.tcpros import HandshakeError, read_header_and_rest, write_header
 from kame.node.unreachable import unreachable_message
 from kame.protocol import tcpros
 

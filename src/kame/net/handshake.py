@@ -1,4 +1,4 @@
-"""TCPROS handshakes on blocking sockets (headers in and out), shared by topics and services."""
+"""TCPROS handshakes on blocking sockets (connection headers in and out), shared by topics and services."""
 
 from __future__ import annotations
 
