@@ -162,6 +162,7 @@ class MoveBase:
         cycle = 1.0 / self.planner.controller_frequency
         path: list[tuple[float, float]] | None = None
         failures = 0
+        plan_failures = 0
         tick = 0
         while not core.is_shutdown():
             if server.is_preempt_requested():
@@ -182,9 +183,19 @@ class MoveBase:
                         path = self.plan(pose[:2], (gx, gy))
                         if path is None:
                             self.send(0.0, 0.0)
-                            server.set_aborted(text="Failed to find a valid plan. Even after executing recovery "
-                                                    "behaviors.")
-                            return
+                            plan_failures += 1
+                            if plan_failures > self.max_recoveries:
+                                server.set_aborted(text="Failed to find a valid plan. Even after executing "
+                                                        "recovery behaviors.")
+                                return
+                            # the clear_costmaps recovery: what the laser marked may be what blocks
+                            with self.lock:
+                                assert self.costmap is not None
+                                self.costmap.clear_obstacles()
+                            tick += 1
+                            core.wait_for_shutdown(cycle)
+                            continue
+                        plan_failures = 0
                         self._publish_plan(path)
                     with self.lock:
                         assert self.costmap is not None
@@ -249,6 +260,12 @@ def main(argv: Sequence[str] | None = None) -> int:
     topics.Subscriber("map", OccupancyGrid, move_base.on_map, queue_size=1)
     scan_topic = str(_param("global_costmap/obstacle_layer/scan/topic", "scan"))
     topics.Subscriber(scan_topic, LaserScan, move_base.on_scan, queue_size=1)
+    # as move_base's global costmap, take goals only once the static map is in
+    _log.emit(_log.INFO, "Requesting the map...", ())
+    with core.woken_at_shutdown(move_base.map_ready):
+        move_base.map_ready.wait()
+    if core.is_shutdown():
+        return 0
     server = SimpleActionServer("move_base", MoveBaseAction,
                                 execute_cb=lambda goal: move_base.execute(server, goal), auto_start=False)
     server.start()
