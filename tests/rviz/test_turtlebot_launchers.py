@@ -67,10 +67,10 @@ def test_view_robot_shows_the_turtlebot_world(tmp_path: Path) -> None:
 
         def rviz_subscribes() -> bool:
             info = sim.run("rostopic", "info", "/odom", check=False).stdout
-            return "/rviz" in info.split("Subscribers:", 1)[-1]
+            return " * /rviz (" in info.split("Subscribers:", 1)[-1]  # the launch file's name="rviz"
 
         wait_until(rviz_subscribes, timeout=90, what="view_robot's rviz to subscribe to /odom")
-        assert "/rviz" in sim.run("rostopic", "info", "/scan").stdout.split("Subscribers:", 1)[-1]
+        assert " * /rviz (" in sim.run("rostopic", "info", "/scan").stdout.split("Subscribers:", 1)[-1]
 
         # the same file in a window the test can read: each display's status and the scan's pixels (in a
         # colour of its own here: the shipped red is also the TF axes' x)
