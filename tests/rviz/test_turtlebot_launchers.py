@@ -1,7 +1,8 @@
 """turtlebot_rviz_launchers: view_robot.launch and view_navigation.launch start rviz on their
-shipped .rviz files; the files load in kame's rviz with every display known, and on a running
+shipped .rviz files; the files load in kame's rviz with every display known; on a running
 turtlebot_world.launch the robot, its scan and its odometry show in the window with status Ok and
-the scan's points drawn. The windows run on a private Xvfb."""
+the scan's points drawn, and with amcl_demo.launch too the navigation file's map, costmap and
+particle cloud do. The windows run on a private Xvfb."""
 
 from __future__ import annotations
 
@@ -95,3 +96,32 @@ def test_view_robot_shows_the_turtlebot_world(tmp_path: Path) -> None:
         assert statuses == {"Grid": "Ok", "RobotModel": "Ok", "TF": "Ok", "LaserScan": "Ok", "Odometry": "Ok"}, line
         assert int(line.split(" colour ")[1]) > 20, line  # the scan's points drawn
         assert "base_link=" in line and "base_link=none" not in line
+
+
+def test_view_navigation_shows_amcl_demo(tmp_path: Path) -> None:
+    pytest.importorskip("OpenGL", reason="rviz draws through PyOpenGL (pip install 'kame[gui]')")
+    pytest.importorskip("PySide6")
+    pytest.importorskip("numpy", reason="the 2-D world needs kame[sim]")
+    from tests.turtlesim.xserver import xvfb
+
+    with master(tmp_path) as sim, xvfb() as display:
+        world = Proc([str(BIN / "roslaunch"), "turtlebot_gazebo", "turtlebot_world.launch"], sim.env, cwd=sim.home)
+        sim.procs.append(world)
+        world.wait_line("Simulating [robot_0]", timeout=60)
+        sim.procs.append(Proc([str(BIN / "roslaunch"), "turtlebot_gazebo", "amcl_demo.launch"], sim.env, cwd=sim.home))
+        windowed = dict(sim.env, DISPLAY=display)
+        windowed.pop("QT_QPA_PLATFORM", None)
+        rviz = Proc([sys.executable, "-m", "tests.rviz.live_child", sim.uri, str(PACKAGE / "rviz" / "navigation.rviz"),
+                     "base_link"], windowed, cwd=REPO)
+        sim.procs.append(rviz)
+        wanted = ("Grid", "RobotModel", "LaserScan", "Map", "Global Costmap", "Amcl Particles")
+        line = ""
+        deadline = time.monotonic() + 70
+        while time.monotonic() < deadline:
+            reports = [line for line in list(rviz.out) if line.startswith("frames ")]
+            line = reports[-1] if reports else ""
+            if line and all(_statuses(line)[name] == "Ok" for name in wanted):
+                break
+            time.sleep(0.2)
+        assert line, f"no report from rviz:\n{''.join(rviz.out)}\n{''.join(rviz.err)}"
+        assert {name: _statuses(line)[name] for name in wanted} == dict.fromkeys(wanted, "Ok"), line
