@@ -2,9 +2,10 @@
 whatever display Qt is given (a private Xvfb in the tests). Every 200 ms it prints where the TF
 display puts each frame it names on the command line, whether the view's pixel there is drawn,
 and each display's status; with --click it also uses the Publish Point tool on the ground point
-(X, Y) of the fixed frame each time (its subscriber may connect after the first click).
+(X, Y) of the fixed frame each time (its subscriber may connect after the first click); with
+--colour it also counts the view's pixels of that colour (a display's, to see it drawn).
 
-    python -m tests.rviz.live_child MASTER_URI FILE.rviz FRAME... [--click X,Y]
+    python -m tests.rviz.live_child MASTER_URI FILE.rviz FRAME... [--click X,Y] [--colour R,G,B]
 """
 
 from __future__ import annotations
@@ -28,6 +29,11 @@ def main() -> int:
     if "--click" in args:
         at = args.index("--click")
         click = np.array([float(v) for v in args[at + 1].split(",")] + [0.0])
+        del args[at:at + 2]
+    colour = None
+    if "--colour" in args:
+        at = args.index("--colour")
+        colour = tuple(int(v) for v in args[at + 1].split(","))
         del args[at:at + 2]
     master_uri, path, *frames = args
     app = QApplication(["rviz"])
@@ -56,7 +62,13 @@ def main() -> int:
                         for dx in range(-1, 2) for dy in range(-1, 2))
             parts.append(f"{frame}={placed[frame][0]:.3f},{placed[frame][1]:.3f},{'drawn' if drawn else 'blank'}")
         statuses = ";".join(f"{d.name}:{d.status.level}" for d in window.config.displays)
-        print("frames", " ".join(parts), "status", statuses, flush=True)
+        counted = ""
+        if colour is not None:
+            pixels = image.convertToFormat(image.Format.Format_RGB888)
+            rgb = np.frombuffer(pixels.constBits(), np.uint8, pixels.sizeInBytes())
+            rows = rgb.reshape(pixels.height(), pixels.bytesPerLine())[:, : pixels.width() * 3]
+            counted = f" colour {int(np.all(rows.reshape(-1, 3) == colour, axis=1).sum())}"
+        print("frames", " ".join(parts), "status", statuses + counted, flush=True)
         if click is not None:
             window.set_tool(PUBLISH_POINT)
             x, y = view.camera.project([click], view.width(), view.height())[0]

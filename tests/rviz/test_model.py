@@ -326,3 +326,16 @@ def test_robot_model_places_the_urdf_visuals_at_their_links() -> None:
     display.describe("<robot><link name='a'>")
     build(display)
     assert "not XML" in display.status.text
+
+
+def test_a_display_draws_once_tf_has_the_frame_it_lacked() -> None:
+    grid = displays.Grid()
+    tree = TreeOf("map", {})
+    grid.build(Scene(), TreeOf("map", {"odom": ("base", (0, 0, 0))}), 0.0)
+    assert grid.status.level == OK  # the fixed frame itself needs no tf
+    grid.options["Reference Frame"] = "odom"
+    grid.build(Scene(), tree, 0.0)
+    assert grid.status.level == WARN and "odom" in grid.status.text
+    scene = Scene()
+    grid.build(scene, TreeOf("map", {"odom": ("map", (2.0, 0, 0))}), 0.0)  # the cached scene is not reused
+    assert grid.status.level == OK and scene.batches

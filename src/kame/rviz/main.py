@@ -1,5 +1,6 @@
 """`rviz [-d FILE.rviz] [-f FIXED_FRAME]` (also `rosrun rviz rviz`): the window on a node named
-/rviz_<pid> (rviz's anonymous name), with ROS remappings and __master honoured. Without
+/rviz_<pid> (rviz's anonymous name) or its `__name:=` (a launch file's name="rviz"), with ROS
+remappings, __ns and __master honoured. Without
 PySide6/PyOpenGL it says which extra to install."""
 
 from __future__ import annotations
@@ -26,9 +27,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     except ImportError as exc:
         print(f"rviz needs the gui extra (pip install 'kame[gui]'): {exc}", file=sys.stderr)
         return 1
-    from kame.net.address import address_override, advertised_host, bind_host
-    from kame.node.node import Node, NodeConfig
-    from kame.rqt.ros_node import master_uri
+    from kame.node.config import node_config
+    from kame.node.node import Node
     from kame.rviz import config as rviz_config
     from kame.rviz.source import RvizSource
 
@@ -43,10 +43,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         config.fixed_frame = options.fixed_frame
     app = QApplication.instance() or QApplication(["rviz"])
     signal.signal(signal.SIGINT, signal.SIG_DFL)  # Qt's loop never lets a Python handler run
-    override = address_override(os.environ, ros.special)
-    name = f"/rviz_{os.getpid()}"
-    node = Node(NodeConfig(name, master_uri(ros.special), advertised_host(override),
-                           bind_host(override), tuple(names.resolve_remappings(ros.remappings, name).items())))
+    node = Node(node_config(f"rviz_{os.getpid()}", ros.special, os.environ, ros.remappings))
     window: RvizWindow | None = None
     try:
         source = RvizSource(node, lambda: None)

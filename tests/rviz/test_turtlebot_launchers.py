@@ -1,0 +1,127 @@
+"""turtlebot_rviz_launchers: view_robot.launch and view_navigation.launch start rviz on their
+shipped .rviz files; the files load in kame's rviz with every display known; on a running
+turtlebot_world.launch the robot, its scan and its odometry show in the window with status Ok and
+the scan's points drawn, and with amcl_demo.launch too the navigation file's map, costmap and
+particle cloud do. The windows run on a private Xvfb."""
+
+from __future__ import annotations
+
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+import kame
+from kame.rviz import config
+from tests.support import REPO, Proc
+from tests.turtlesim.sim import BIN, master, wait_until
+
+PACKAGE = Path(kame.__file__).parent / "share" / "turtlebot_rviz_launchers"
+
+
+def _displays(path: Path) -> dict[str, tuple[str, str]]:
+    loaded = config.load(str(path))
+    assert loaded.unknown_displays == [], loaded.unknown_displays
+    return {d.name: (d.class_name, d.topic) for d in loaded.displays}
+
+
+def test_the_shipped_configs_load_with_every_display_known() -> None:
+    robot = config.load(str(PACKAGE / "rviz" / "robot.rviz"))
+    assert robot.fixed_frame == "odom"
+    assert _displays(PACKAGE / "rviz" / "robot.rviz") == {
+        "Grid": ("rviz/Grid", ""), "RobotModel": ("rviz/RobotModel", ""), "TF": ("rviz/TF", ""),
+        "LaserScan": ("rviz/LaserScan", "/scan"), "Odometry": ("rviz/Odometry", "/odom")}
+    navigation = config.load(str(PACKAGE / "rviz" / "navigation.rviz"))
+    assert navigation.fixed_frame == "map"
+    shown = _displays(PACKAGE / "rviz" / "navigation.rviz")
+    assert {topic for _, topic in shown.values()} >= {
+        "/map", "/scan", "/particlecloud", "/move_base/global_costmap/costmap", "/move_base/NavfnROS/plan"}
+    assert shown["Amcl Particles"][0] == "rviz/PoseArray" and shown["RobotModel"][0] == "rviz/RobotModel"
+    tools = {tool["Class"]: tool.get("Topic") for tool in navigation.raw["Visualization Manager"]["Tools"]}
+    assert tools["rviz/SetInitialPose"] == "/initialpose" and tools["rviz/SetGoal"] == "/move_base_simple/goal"
+    for launch in ("view_robot.launch", "view_navigation.launch"):
+        text = (PACKAGE / "launch" / launch).read_text()
+        assert 'pkg="rviz" type="rviz"' in text and "$(find turtlebot_rviz_launchers)/rviz/" in text
+
+
+def _statuses(line: str) -> dict[str, str]:
+    listed = line.split(" status ", 1)[1].split(" colour ")[0]
+    return dict(entry.rsplit(":", 1) for entry in listed.split(";"))
+
+
+def test_view_robot_shows_the_turtlebot_world(tmp_path: Path) -> None:
+    pytest.importorskip("OpenGL", reason="rviz draws through PyOpenGL (pip install 'kame[gui]')")
+    pytest.importorskip("PySide6")
+    pytest.importorskip("numpy", reason="the 2-D world needs kame[sim]")
+    from tests.turtlesim.xserver import xvfb
+
+    with master(tmp_path) as sim, xvfb() as display:
+        world = Proc([str(BIN / "roslaunch"), "turtlebot_gazebo", "turtlebot_world.launch"], sim.env, cwd=sim.home)
+        sim.procs.append(world)
+        world.wait_line("Simulating [robot_0]", timeout=60)
+        windowed = dict(sim.env, DISPLAY=display)
+        windowed.pop("QT_QPA_PLATFORM", None)
+        launched = Proc([str(BIN / "roslaunch"), "turtlebot_rviz_launchers", "view_robot.launch"], windowed,
+                        cwd=sim.home)
+        sim.procs.append(launched)
+
+        def rviz_subscribes() -> bool:
+            info = sim.run("rostopic", "info", "/odom", check=False).stdout
+            return " * /rviz (" in info.split("Subscribers:", 1)[-1]  # the launch file's name="rviz"
+
+        wait_until(rviz_subscribes, timeout=90, what="view_robot's rviz to subscribe to /odom")
+        assert " * /rviz (" in sim.run("rostopic", "info", "/scan").stdout.split("Subscribers:", 1)[-1]
+
+        # the same file in a window the test can read: each display's status and the scan's pixels (in a
+        # colour of its own here: the shipped red is also the TF axes' x)
+        shipped = (PACKAGE / "rviz" / "robot.rviz").read_text()
+        scan_colour = "      Color: 255; 0; 0\n      Color Transformer: FlatColor\n"
+        assert scan_colour in shipped
+        readable = tmp_path / "robot.rviz"
+        readable.write_text(shipped.replace(scan_colour, scan_colour.replace("255; 0; 0", "10; 200; 240")))
+        rviz = Proc([sys.executable, "-m", "tests.rviz.live_child", sim.uri, str(readable),
+                     "base_link", "--colour", "10,200,240"], windowed, cwd=REPO)
+        sim.procs.append(rviz)
+        line = ""
+        deadline = time.monotonic() + 90
+        while time.monotonic() < deadline:
+            reports = [line for line in list(rviz.out) if line.startswith("frames ")]
+            line = reports[-1] if reports else ""
+            if line and set(_statuses(line).values()) == {"Ok"} and int(line.split(" colour ")[1]) > 20:
+                break
+            time.sleep(0.2)
+        assert line, f"no report from rviz:\n{''.join(rviz.out)}\n{''.join(rviz.err)}"
+        statuses = _statuses(line)
+        assert statuses == {"Grid": "Ok", "RobotModel": "Ok", "TF": "Ok", "LaserScan": "Ok", "Odometry": "Ok"}, line
+        assert int(line.split(" colour ")[1]) > 20, line  # the scan's points drawn
+        assert "base_link=" in line and "base_link=none" not in line
+
+
+def test_view_navigation_shows_amcl_demo(tmp_path: Path) -> None:
+    pytest.importorskip("OpenGL", reason="rviz draws through PyOpenGL (pip install 'kame[gui]')")
+    pytest.importorskip("PySide6")
+    pytest.importorskip("numpy", reason="the 2-D world needs kame[sim]")
+    from tests.turtlesim.xserver import xvfb
+
+    with master(tmp_path) as sim, xvfb() as display:
+        world = Proc([str(BIN / "roslaunch"), "turtlebot_gazebo", "turtlebot_world.launch"], sim.env, cwd=sim.home)
+        sim.procs.append(world)
+        world.wait_line("Simulating [robot_0]", timeout=60)
+        sim.procs.append(Proc([str(BIN / "roslaunch"), "turtlebot_gazebo", "amcl_demo.launch"], sim.env, cwd=sim.home))
+        windowed = dict(sim.env, DISPLAY=display)
+        windowed.pop("QT_QPA_PLATFORM", None)
+        rviz = Proc([sys.executable, "-m", "tests.rviz.live_child", sim.uri, str(PACKAGE / "rviz" / "navigation.rviz"),
+                     "base_link"], windowed, cwd=REPO)
+        sim.procs.append(rviz)
+        wanted = ("Grid", "RobotModel", "LaserScan", "Map", "Global Costmap", "Amcl Particles")
+        line = ""
+        deadline = time.monotonic() + 70
+        while time.monotonic() < deadline:
+            reports = [line for line in list(rviz.out) if line.startswith("frames ")]
+            line = reports[-1] if reports else ""
+            if line and all(_statuses(line)[name] == "Ok" for name in wanted):
+                break
+            time.sleep(0.2)
+        assert line, f"no report from rviz:\n{''.join(rviz.out)}\n{''.join(rviz.err)}"
+        assert {name: _statuses(line)[name] for name in wanted} == dict.fromkeys(wanted, "Ok"), line
