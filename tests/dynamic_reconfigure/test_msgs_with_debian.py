@@ -52,3 +52,15 @@ def test_sensor_levels_constants() -> None:
 
     levels = (SensorLevels.RECONFIGURE_RUNNING, SensorLevels.RECONFIGURE_STOP, SensorLevels.RECONFIGURE_CLOSE)
     assert levels == (0, 1, 3)
+
+
+def test_a_service_call_takes_the_message_of_the_requests_one_field() -> None:
+    # Debian's Client calls set_parameters(config): rospy builds ReconfigureRequest(config) from it
+    from dynamic_reconfigure.msg import Config, Group, IntParameter
+    from dynamic_reconfigure.srv import ReconfigureRequest
+    from kame.client.message_args import args_kwds_to_message
+
+    config = Config(ints=[IntParameter("x", 3)])
+    assert args_kwds_to_message(ReconfigureRequest, (config,), {}) == ReconfigureRequest(config)
+    with pytest.raises(TypeError, match=r"expected \[dynamic_reconfigure/Config\] but got \[dynamic_reconfigure/Group"):
+        args_kwds_to_message(ReconfigureRequest, (Group(),), {})

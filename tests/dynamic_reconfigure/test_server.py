@@ -2,23 +2,28 @@
 
 from __future__ import annotations
 
+import json
 import os
 import subprocess
 import sys
 from collections.abc import Iterator
 from pathlib import Path
+from typing import Any
 
 import pytest
 
 from kame.msg.catalog import SHARE_DIR
 
 from ..libs import debian
-from ..support import Proc, free_port, kame_command, ros_env, wait_for_master
+from ..support import Proc, free_port, kame_command, ros_env, running, wait_for_master
 
 HERE = Path(__file__).parent
 TUTORIALS = HERE / "dynamic_tutorials"
 SERVER = TUTORIALS / "nodes" / "server.py"
+CLIENT = HERE / "client_driver.py"
+DEBIAN_SERVER = HERE / "debian_server.py"
 DEBIAN_DYNPARAM = Path("/usr/lib/dynamic_reconfigure/dynparam")
+NO_DEBIAN = "Debian's python3-dynamic-reconfigure is not installed"
 
 
 @pytest.fixture
@@ -45,19 +50,70 @@ def tutorial_server(master_env: dict[str, str]) -> Iterator[Proc]:
         server.stop()
 
 
-def debian_dynparam(env: dict[str, str], *args: str) -> str:
+def debian_ros_env(env: dict[str, str]) -> dict[str, str]:
     environment = {k: v for k, v in debian.debian_env().items() if not k.startswith("ROS_")}
     environment.update({k: v for k, v in env.items() if k.startswith("ROS_")})
-    # dynparam's roslib.load_manifest looks for the package; Debian ships its modules but no package.xml
+    # roslib.load_manifest('dynamic_reconfigure') looks for the package; Debian ships its modules but no package.xml
     environment["ROS_PACKAGE_PATH"] = os.pathsep.join([env["ROS_PACKAGE_PATH"], str(SHARE_DIR / "dynamic_reconfigure")])
-    result = subprocess.run([str(debian.SYSTEM_PYTHON), str(DEBIAN_DYNPARAM), *args], env=environment,
+    return environment
+
+
+def debian_dynparam(env: dict[str, str], *args: str) -> str:
+    result = subprocess.run([str(debian.SYSTEM_PYTHON), str(DEBIAN_DYNPARAM), *args], env=debian_ros_env(env),
                             capture_output=True, text=True, timeout=60)
     assert result.returncode == 0, result.stdout + result.stderr
     return result.stdout
 
 
+def run_client(python: str, env: dict[str, str], server: str, *changes: dict[str, Any]) -> dict[str, Any]:
+    result = subprocess.run([python, str(CLIENT), server, *map(json.dumps, changes)], env=env, capture_output=True,
+                            text=True, timeout=90)
+    assert result.returncode == 0, result.stdout + result.stderr
+    answer: dict[str, Any] = json.loads(result.stdout.splitlines()[-1])
+    return answer
+
+
+TUTORIAL_DEFAULTS = {"int_param": 50, "double_param": 0.5, "str_param": "Hello World", "bool_param": True, "size": 1}
+# as dynparam's users type them: text for numbers and bools, an enum constant by name; 500 is clamped to 100
+TUTORIAL_CHANGES = ({"int_param": 20}, {"bool_param": "false", "size": "Large", "double_param": "0.25"},
+                    {"int_param": 500, "str_param": "kame"}, TUTORIAL_DEFAULTS)
+
+
+def test_kames_client_changes_the_tutorial_server(master_env: dict[str, str], tutorial_server: Proc) -> None:
+    answer = run_client(sys.executable, master_env, "/dynamic_tutorials", *TUTORIAL_CHANGES)
+    assert answer["names"] == ["int_param", "double_param", "str_param", "bool_param", "size", "speed", "label"]
+    assert answer["first"] == {**TUTORIAL_DEFAULTS, "speed": 1.0, "label": ""}
+    assert answer["answers"][0]["int_param"] == 20
+    assert {k: answer["answers"][1][k] for k in ("bool_param", "size", "double_param")} == {
+        "bool_param": False, "size": 2, "double_param": 0.25}
+    assert (answer["answers"][2]["int_param"], answer["answers"][2]["str_param"]) == (100, "kame")
+    assert answer["last_seen"] == answer["first"] and answer["groups"] == ["Limits"]
+    tutorial_server.wait_line("Reconfigure Request: 100, 0.25,          kame, False, 2")
+
+
+@pytest.mark.skipif(not debian.has("rospy", "dynamic_reconfigure.client"), reason=NO_DEBIAN)
+def test_kames_and_debians_client_agree_on_kames_server(master_env: dict[str, str], tutorial_server: Proc) -> None:
+    ours = run_client(sys.executable, master_env, "/dynamic_tutorials", *TUTORIAL_CHANGES)
+    theirs = run_client(str(debian.SYSTEM_PYTHON), debian_ros_env(master_env), "/dynamic_tutorials",
+                        *TUTORIAL_CHANGES)
+    assert ours == theirs
+
+
+@pytest.mark.skipif(not debian.has("rospy", "dynamic_reconfigure.server"), reason=NO_DEBIAN)
+def test_kames_client_on_debians_server(master_env: dict[str, str]) -> None:
+    with running([str(debian.SYSTEM_PYTHON), str(DEBIAN_SERVER)], debian_ros_env(master_env)) as server:
+        server.wait_line("configured int_=0 str_=foo level=-1")
+        answer = run_client(sys.executable, master_env, "/debian_reconfigure",
+                            {"int_": 5, "str_": "kame"}, {"int_enum_": "Large"}, {"int_": 99})
+        server.wait_line("configured int_=10 str_=kame level=1")
+    assert answer["first"]["some_param"] == 20 and answer["first"]["group2_string"] == "test string"
+    assert [a["int_"] for a in answer["answers"]] == [5, 5, 10]  # 99 is above int_'s max of 10
+    assert answer["answers"][1]["int_enum_"] == 2
+    assert answer["groups"] == ["Group_One", "Upper_Group_2"]
+
+
 @pytest.mark.skipif(not (DEBIAN_DYNPARAM.exists() and debian.has("rospy", "dynamic_reconfigure.client")),
-                    reason="Debian's python3-dynamic-reconfigure is not installed")
+                    reason=NO_DEBIAN)
 def test_debians_dynparam_sets_and_gets_on_kames_server(master_env: dict[str, str], tutorial_server: Proc) -> None:
     assert debian_dynparam(master_env, "list").split() == ["/dynamic_tutorials"]
     debian_dynparam(master_env, "set", "/dynamic_tutorials", "int_param", "70")

@@ -22,16 +22,13 @@ from kame.client.services import Service
 from kame.client.topics import Publisher
 from kame.reconfigure.encoding import (
     Config,
+    DynamicReconfigureCallbackException,
     decode_config,
     encode_config,
     encode_description,
     extract_params,
     get_tree,
 )
-
-
-class DynamicReconfigureCallbackException(Exception):
-    """The server's callback returned no configuration."""
 
 
 def server_namespace(namespace: str) -> str:
