@@ -9,7 +9,8 @@ from kame.reconfigure.encoding import (
     extract_params,
     get_tree,
     group_dict,
+    initial_config,
 )
 
 __all__ = ["Config", "decode_config", "decode_description", "encode_config", "encode_description",
-           "extract_params", "get_tree", "group_dict"]
+           "extract_params", "get_tree", "group_dict", "initial_config"]

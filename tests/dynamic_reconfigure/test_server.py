@@ -124,3 +124,40 @@ def test_debians_dynparam_sets_and_gets_on_kames_server(master_env: dict[str, st
     got = debian_dynparam(master_env, "get", "/dynamic_tutorials")
     assert "'int_param': 70" in got and "'double_param': 1.0" in got and "'str_param': 'kame'" in got
     assert "'groups': {" in got
+
+
+def kame_dynparam(env: dict[str, str], *args: str) -> str:
+    result = subprocess.run(kame_command("kame.cli.rosrun", "dynamic_reconfigure", "dynparam", *args), env=env,
+                            capture_output=True, text=True, timeout=60)
+    assert result.returncode == 0, result.stdout + result.stderr
+    return result.stdout
+
+
+def test_kames_dynparam_on_the_tutorial_server(master_env: dict[str, str], tutorial_server: Proc,
+                                               tmp_path: Path) -> None:
+    assert kame_dynparam(master_env, "list").split() == ["/dynamic_tutorials"]
+    kame_dynparam(master_env, "set", "/dynamic_tutorials", "int_param", "-5")  # below min 0: clamped
+    tutorial_server.wait_line("Reconfigure Request: 0, 0.5,          Hello World, True, 1")
+    kame_dynparam(master_env, "set", "--timeout=10", "/dynamic_tutorials", "{str_param: dyn, size: ExtraLarge}")
+    tutorial_server.wait_line("Reconfigure Request: 0, 0.5,          dyn, True, 3")
+    got = kame_dynparam(master_env, "get", "/dynamic_tutorials")
+    assert "'str_param': 'dyn'" in got and "'size': 3" in got
+    if debian.has("rospy", "dynamic_reconfigure.client"):
+        assert got == debian_dynparam(master_env, "get", "/dynamic_tutorials")
+    dumped = tmp_path / "dump.yaml"
+    kame_dynparam(master_env, "dump", "/dynamic_tutorials", str(dumped))
+    kame_dynparam(master_env, "set", "/dynamic_tutorials", "{str_param: changed, int_param: 9}")
+    tutorial_server.wait_line("Reconfigure Request: 9, 0.5,          changed, True, 3")
+    kame_dynparam(master_env, "load", "/dynamic_tutorials", str(dumped))
+    assert "'str_param': 'dyn'" in kame_dynparam(master_env, "get", "/dynamic_tutorials")
+    kame_dynparam(master_env, "set_from_parameters", "/dynamic_tutorials", "_int_param:=33", "_bool_param:=false")
+    tutorial_server.wait_line("Reconfigure Request: 33, 0.5,          dyn, False, 3")
+
+
+def test_dynparam_usage_and_errors(master_env: dict[str, str]) -> None:
+    usage = subprocess.run(kame_command("kame.cli.dynparam"), env=master_env, capture_output=True, text=True,
+                           timeout=60)
+    assert usage.returncode == 1 and "dynparam list                 list configurable nodes" in usage.stdout
+    bad = subprocess.run(kame_command("kame.cli.dynparam", "set", "/n", "[1, 2]"), env=master_env,
+                         capture_output=True, text=True, timeout=60)
+    assert bad.returncode == 2 and "dynparam: error: invalid arguments. Please specify either" in bad.stderr

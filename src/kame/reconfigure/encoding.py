@@ -123,23 +123,37 @@ def get_tree(msg: Any, group: Any = None) -> Config:
     return tree
 
 
-def _fill_parameters(config: Config, tree: dict[str, Any], description: dict[str, Any]) -> None:
+def _fill_parameters(config: Config, tree: dict[str, Any], description: dict[str, Any], in_parameters: bool) -> None:
     for param in description["parameters"]:
         if param["name"] in config:
-            tree["parameters"][param["name"]] = config[param["name"]]
+            (tree["parameters"] if in_parameters else tree)[param["name"]] = config[param["name"]]
     described = description["groups"]
     for child in tree["groups"].values():
         for child_description in described.values() if isinstance(described, dict) else described:
             if child_description["name"] == child["name"]:
-                _fill_parameters(config, child, child_description)
+                _fill_parameters(config, child, child_description, in_parameters)
+
+
+def _values(msg: Any) -> Config:
+    return Config((p.name, p.value) for p in [*msg.bools, *msg.ints, *msg.strs, *msg.doubles])
 
 
 def decode_config(msg: Any, description: dict[str, Any] | None = None) -> Config:
-    """A Config from a Config message; with the description, its "groups" tree too."""
-    config = Config((p.name, p.value) for p in [*msg.bools, *msg.ints, *msg.strs, *msg.doubles])
+    """A Config from a Config message; with the description, its "groups" tree too, each group
+    holding its parameters' values beside its own keys (as dynamic_reconfigure's decode_config)."""
+    config = _values(msg)
     if msg.groups and description is not None:
         config["groups"] = get_tree(msg)
-        _fill_parameters(config, config["groups"], description)
+        _fill_parameters(config, config["groups"], description, in_parameters=False)
+    return config
+
+
+def initial_config(msg: Any, description: dict[str, Any] | None = None) -> Config:
+    """A server's first Config: as decode_config, but each group's values under its "parameters"."""
+    config = _values(msg)
+    if msg.groups and description is not None:
+        config["groups"] = get_tree(msg)
+        _fill_parameters(config, config["groups"], description, in_parameters=True)
     return config
 
 

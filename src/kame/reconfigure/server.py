@@ -28,6 +28,7 @@ from kame.reconfigure.encoding import (
     encode_description,
     extract_params,
     get_tree,
+    initial_config,
 )
 
 
@@ -56,7 +57,7 @@ class Server:
         self.callback = callback
         self._clamp(config)
         config["groups"] = get_tree(self.description)
-        self.config = decode_config(encode_config(config), type.config_description)
+        self.config = initial_config(encode_config(config), type.config_description)
         self.descr_topic = Publisher(self.ns + "parameter_descriptions", ConfigDescrMsg, latch=True, queue_size=10)
         self.descr_topic.publish(self.description)
         self.update_topic = Publisher(self.ns + "parameter_updates", ConfigMsg, latch=True, queue_size=10)
