@@ -8,6 +8,7 @@ packages=(
   ros-core python3-genpy python3-genmsg python3-numpy
   python3-geometry-msgs python3-sensor-msgs python3-nav-msgs python3-std-srvs python3-tf2-msgs
   python3-actionlib
+  python3-dynamic-reconfigure  # dynparam, Client and Server against kame's (tests/dynamic_reconfigure)
   python3-tf2-ros python3-tf python3-tf2-geometry-msgs tf2-tools tf-tools  # tf/tf2 interop (tests/tf)
   libroscpp-dev libstd-msgs-dev libgeometry-msgs-dev libsensor-msgs-dev libstd-srvs-dev
   ros-std-msgs ros-std-srvs ros-geometry-msgs ros-sensor-msgs ros-nav-msgs ros-rosgraph-msgs

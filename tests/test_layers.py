@@ -67,6 +67,9 @@ LAYERS: dict[str, int] = {
     "kame.launch.scripting": 4,  # roslaunch's script API
     "kame.client": 4,  # a program's one node (what rospy re-exports): process-wide state
     "kame.shell": 4,
+    "kame.reconfigure": 1,  # dynamic_reconfigure: the .cfg generator and its import hook, the config codec
+    "kame.reconfigure.server": 4,  # the Server on kame.client
+    "kame.reconfigure.client": 4,
     "kame.tf": 1,  # transformations and the tf2 buffer core: no clock, no threads
     "kame.tf_ros": 3,  # the Buffer that waits, /tf listener and broadcasters on a Node
     "kame.turtle_tf": 4,  # the turtle_tf demo programs
@@ -116,6 +119,11 @@ LAYERS: dict[str, int] = {
     **{facade: 5 for facade in FACADES},
     "sensor_msgs": MESSAGES,  # generated, but for point_cloud2
     "sensor_msgs.point_cloud2": 5,  # written by hand over the generated classes
+    "dynamic_reconfigure": MESSAGES,  # generated, but for the modules below
+    "dynamic_reconfigure.parameter_generator_catkin": 5,
+    "dynamic_reconfigure.encoding": 5,
+    "dynamic_reconfigure.server": 5,
+    "dynamic_reconfigure.client": 5,
     # L6 the ROS programs kame ships (tutorial scripts): user code, free to import anything
     "kame.share": 6,
 }

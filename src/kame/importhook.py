@@ -1,8 +1,9 @@
 """Run at interpreter start-up (kame.pth): lets ROS packages on ROS_PACKAGE_PATH be imported.
 
 Kept tiny on purpose: it runs in every Python process of the environment. Two finders are
-added: one first on sys.meta_path that looks only at `X.msg`/`X.srv` names (so a folder
-that merely looks like a namespace package cannot hide a package's messages), one last
+added: one first on sys.meta_path that looks only at `X.msg`/`X.srv` names and dynamic_reconfigure's
+`X.cfg`/`X.cfg.YConfig` (so a folder that merely looks like a namespace package cannot hide a
+package's messages), one last
 that looks at top-level names nobody else found. The message machinery is imported only
 when such a name comes up while ROS_PACKAGE_PATH is set. Imports that fail while that
 machinery is itself being imported (optional modules probed by the standard library) are
@@ -34,13 +35,18 @@ class _RosPackageFinder:
         self, fullname: str, path: Sequence[str] | None, target: ModuleType | None = None
     ) -> ModuleSpec | None:
         tail = fullname.partition(".")[2]
-        wanted = tail in ("msg", "srv") if self.submodules else not tail
+        cfg = tail == "cfg" or tail.startswith("cfg.")
+        wanted = (tail in ("msg", "srv") or cfg) if self.submodules else not tail
         if not wanted:
             return None
         if not os.environ.get("ROS_PACKAGE_PATH") or getattr(_busy, "active", False):
             return None
         _busy.active = True
         try:
+            if cfg:
+                from kame.reconfigure import importer as cfg_importer
+
+                return cfg_importer.CfgFinder().find_spec(fullname, path, target)
             from kame.msg import importer
 
             return importer.RosPackageFinder().find_spec(fullname, path, target)

@@ -17,8 +17,11 @@ def args_kwds_to_message(data_class: type[Any], args: tuple[Any, ...], kwds: dic
         arg = args[0]
         if isinstance(arg, Message):
             if arg._type != data_class._type:
-                raise TypeError(f"expected [{data_class._type}] but got [{arg._type}]")
-            if len(data_class.__slots__) != 1 or not isinstance(arg, data_class):
+                # a message for the class's first field, as rospy takes it: proxy(config) builds Request(config)
+                first = data_class._slot_types[0] if data_class._slot_types else ""
+                if arg._type != first:
+                    raise TypeError(f"expected [{first}] but got [{arg._type}]")
+            elif len(data_class.__slots__) != 1 or not isinstance(arg, data_class):
                 return arg
         return data_class(*args)
     return data_class(*args)

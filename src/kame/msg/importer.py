@@ -33,7 +33,7 @@ _crawled: dict[str, dict[str, Package]] = {}
 
 
 def user_packages() -> dict[str, Package]:
-    """The ROS packages on ROS_PACKAGE_PATH that have interface files, by name."""
+    """The ROS packages on ROS_PACKAGE_PATH that have interface files (or dynamic_reconfigure .cfg files), by name."""
     value = os.environ.get("ROS_PACKAGE_PATH", "")
     if not value:
         return {}
@@ -42,7 +42,7 @@ def user_packages() -> dict[str, Package]:
         roots = [r for r in package_path_roots(value) if r != SHARE_DIR]
         found = {
             name: pkg for name, pkg in find_packages(roots).items()
-            if any(pkg.interface_files(kind) for kind in (*_KINDS, "action"))
+            if any(pkg.interface_files(kind) for kind in (*_KINDS, "action", "cfg"))
         }
         _crawled[value] = found
     return found
