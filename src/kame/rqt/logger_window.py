@@ -1,23 +1,16 @@
 """rqt_logger_level's window (PySide6): nodes, their loggers, and the five levels, as rqt's plugin
 lays them out. Choosing a level sets it at once (set_logger_level) and reads the loggers back.
 
-Rules: every call to a node runs on the window's one worker thread, never on the window's
-thread, so a hung node costs a "waiting" status line, not a frozen window. The worker hands
-each answer back through `answered` (a queued signal); an answer about a node or logger that
-is no longer chosen is dropped. `close_worker()` (closing the window calls it) joins the
-worker: at most one call's timeout.
+Rules: every call to a node runs on the window's one worker thread (kame.rqt.asking); an
+answer about a node or logger that is no longer chosen is dropped.
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable
-from concurrent.futures import ThreadPoolExecutor
-from typing import Any
-
-from PySide6.QtCore import Qt, Signal
-from PySide6.QtGui import QCloseEvent
+from PySide6.QtCore import Qt
 from PySide6.QtWidgets import QHBoxLayout, QLabel, QListWidget, QListWidgetItem, QPushButton, QVBoxLayout, QWidget
 
+from kame.rqt.asking import AskingWindow
 from kame.rqt.logger_source import LEVELS, LoggerError, LoggerLevels
 
 
@@ -28,12 +21,11 @@ def _column(title: str, widget: QWidget) -> QVBoxLayout:
     return column
 
 
-class LoggerWindow(QWidget):
-    answered = Signal(object)  # (what to do with the answer, the answer or the LoggerError)
-    idle = Signal()  # every call asked so far has been answered
+class LoggerWindow(AskingWindow):
+    failures = (LoggerError,)
 
     def __init__(self, levels: LoggerLevels) -> None:
-        super().__init__()
+        super().__init__("rqt-logger-level")
         self.setWindowTitle("rqt_logger_level")
         self.levels = levels
         self.node_list = QListWidget()
@@ -42,11 +34,7 @@ class LoggerWindow(QWidget):
         for level in LEVELS:
             self.level_list.addItem(QListWidgetItem(level.capitalize()))
         self.refresh_button = QPushButton("Refresh")
-        self.status = QLabel("")
         self._loggers: dict[str, str] = {}
-        self._worker: ThreadPoolExecutor | None = ThreadPoolExecutor(max_workers=1,
-                                                                     thread_name_prefix="rqt-logger-level")
-        self._asked = 0
         lists = QHBoxLayout()
         lists.addLayout(_column("Nodes", self.node_list), 2)
         lists.addLayout(_column("Loggers", self.logger_list), 2)
@@ -58,51 +46,10 @@ class LoggerWindow(QWidget):
         bottom.addWidget(self.status, 1)
         layout.addLayout(bottom)
         self.resize(760, 420)
-        self.answered.connect(self._on_answer)
         self.refresh_button.clicked.connect(self.refresh)
         self.node_list.currentTextChanged.connect(self.show_loggers)
         self.logger_list.currentTextChanged.connect(self._show_level)
         self.level_list.itemClicked.connect(lambda item: self.choose_level(item.text().lower()))
-
-    # ---------------------------------------------------------------- the worker
-
-    def _ask(self, what: str, call: Callable[[], Any], then: Callable[[Any], None]) -> None:
-        """Run `call` on the worker; `then(answer)` runs on the window's thread when it is back."""
-        if self._worker is None:
-            return
-        self._asked += 1
-        self.status.setText(f"waiting for {what}...")
-
-        def job() -> None:
-            try:
-                answer = call()
-            except LoggerError as exc:
-                answer = exc
-            self.answered.emit((then, answer))
-
-        self._worker.submit(job)
-
-    def _on_answer(self, pair: tuple[Callable[[Any], None], Any]) -> None:
-        then, answer = pair
-        self._asked -= 1
-        if isinstance(answer, LoggerError):
-            self.status.setText(str(answer))
-        else:
-            then(answer)
-        if self._asked == 0:
-            self.idle.emit()
-
-    def busy(self) -> bool:
-        return self._asked > 0
-
-    def close_worker(self) -> None:
-        if self._worker is not None:
-            self._worker.shutdown(wait=True, cancel_futures=True)
-            self._worker = None
-
-    def closeEvent(self, event: QCloseEvent) -> None:
-        self.close_worker()
-        super().closeEvent(event)
 
     # ---------------------------------------------------------------- what the user does
 

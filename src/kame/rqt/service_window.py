@@ -2,18 +2,14 @@
 field, `math` and `random` there), call it, read the response as a tree.
 
 Rules: asking a service its type and calling it run on the window's one worker thread (a hung
-service shows "calling...", it does not freeze the window); answers come back through
-`answered`, and `close_worker()` (closing the window calls it) joins the worker.
+service shows "calling...", it does not freeze the window: kame.rqt.asking).
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable
-from concurrent.futures import ThreadPoolExecutor
 from typing import Any
 
-from PySide6.QtCore import Qt, Signal
-from PySide6.QtGui import QCloseEvent
+from PySide6.QtCore import Qt
 from PySide6.QtWidgets import (
     QComboBox,
     QHBoxLayout,
@@ -23,22 +19,22 @@ from PySide6.QtWidgets import (
     QTreeWidget,
     QTreeWidgetItem,
     QVBoxLayout,
-    QWidget,
 )
 
 from kame.node.master_proxy import MasterError
+from kame.rqt.asking import AskingWindow
 from kame.rqt.message_tree import TreeRow, editable_fields, value_tree
 from kame.rqt.service_source import CallError, ServiceCaller
 
 EXPRESSION = 2
 
 
-class ServiceWindow(QWidget):
-    answered = Signal(object)  # (what to do with it, the answer or the CallError)
-    idle = Signal()
+class ServiceWindow(AskingWindow):
+    failures = (CallError, OSError, MasterError)
+    waiting = "{}..."
 
     def __init__(self, caller: ServiceCaller) -> None:
-        super().__init__()
+        super().__init__("rqt-service-caller")
         self.setWindowTitle("rqt_service_caller")
         self.caller = caller
         self.service_box = QComboBox()
@@ -52,12 +48,8 @@ class ServiceWindow(QWidget):
         self.response.setHeaderLabels(("Response field", "Type", "Value"))
         for tree in (self.request, self.response):
             tree.setColumnWidth(0, 220)
-        self.status = QLabel("")
         self.service_class: Any = None
         self.fields: dict[str, QTreeWidgetItem] = {}
-        self._worker: ThreadPoolExecutor | None = ThreadPoolExecutor(max_workers=1,
-                                                                     thread_name_prefix="rqt-service-caller")
-        self._asked = 0
         top = QHBoxLayout()
         for widget in (QLabel("Service"), self.service_box, self.refresh_button, self.call_button):
             top.addWidget(widget)
@@ -70,35 +62,9 @@ class ServiceWindow(QWidget):
         page.addWidget(split, 1)
         page.addWidget(self.status)
         self.resize(800, 520)
-        self.answered.connect(self._on_answer)
         self.refresh_button.clicked.connect(self.refresh_services)
         self.service_box.currentTextChanged.connect(self.choose_service)
         self.call_button.clicked.connect(self.call)
-
-    def _ask(self, what: str, call: Callable[[], Any], then: Callable[[Any], None]) -> None:
-        if self._worker is None:
-            return
-        self._asked += 1
-        self.status.setText(f"{what}...")
-
-        def job() -> None:
-            try:
-                answer = call()
-            except (CallError, OSError, MasterError) as exc:
-                answer = CallError(str(exc))
-            self.answered.emit((then, answer))
-
-        self._worker.submit(job)
-
-    def _on_answer(self, pair: tuple[Callable[[Any], None], Any]) -> None:
-        then, answer = pair
-        self._asked -= 1
-        if isinstance(answer, CallError):
-            self.status.setText(str(answer))
-        else:
-            then(answer)
-        if self._asked == 0:
-            self.idle.emit()
 
     def refresh_services(self) -> None:
         def show(services: list[str]) -> None:
@@ -153,15 +119,6 @@ class ServiceWindow(QWidget):
             self.status.setText(f"{service} answered")
 
         self._ask(f"calling {service}", lambda: self.caller.call(service, cls, expressions), show)
-
-    def close_worker(self) -> None:
-        if self._worker is not None:
-            self._worker.shutdown(wait=True, cancel_futures=True)
-            self._worker = None
-
-    def closeEvent(self, event: QCloseEvent) -> None:
-        self.close_worker()
-        super().closeEvent(event)
 
 
 def _add_rows(parent: QTreeWidgetItem, rows: tuple[TreeRow, ...]) -> None:
