@@ -145,3 +145,28 @@ def test_wait_for_server_and_sleep_end_on_simulated_time_and_at_shutdown(env: di
             print('sleep interrupted')
     """)
     assert out.splitlines() == ["timed wait: False 110", "slept until 130", "endless wait: False", "sleep interrupted"]
+
+
+def test_sigint_caught_by_another_thread_ends_spin(env: dict[str, str]) -> None:
+    # Linux gives a signal sent to the process to any thread that does not block it, often a
+    # busy one rather than the sleeping main thread (roslaunch's SIGINT to a node receiving
+    # messages). The program sends its SIGINT to one of its other threads, once the main thread
+    # sleeps in spin(): spin must still end, through the handler rospy installed.
+    out = run(env, """
+        import signal, threading, time
+        import rospy
+        from kame.client import core
+        rospy.init_node('spinner')
+        main_task = '/proc/self/task/%d/stat' % threading.main_thread().native_id
+        def main_sleeps():
+            with open(main_task) as stat:
+                return stat.read().rsplit(')', 1)[1].split()[0] == 'S'
+        def interrupt_from_here():
+            while not (core.main_thread_is_waiting() and main_sleeps()):
+                time.sleep(0.01)  # the main thread's state has no event to wait on
+            signal.pthread_kill(threading.get_ident(), signal.SIGINT)
+        threading.Thread(target=interrupt_from_here, name='interrupter').start()
+        rospy.spin()
+        print('spin returned:', rospy.core.is_shutdown_requested())
+    """, timeout=10)
+    assert out.splitlines() == ["spin returned: True"]
