@@ -9,11 +9,11 @@ from __future__ import annotations
 
 import os
 import signal
-import threading
 from collections.abc import Callable, Mapping
 from typing import Any
 
 from kame import environ
+from kame.net.signal_wake import SignalSafeEvent
 from kame.node.config import node_config
 from kame.node.master_proxy import MasterError
 from kame.node.node import Node
@@ -31,9 +31,9 @@ class ToolNode:
         config = node_config(default_name, special, os.environ, remappings)
         self.namespace = environ.namespace(os.environ, special)
         self.caller_id = config.name
-        self.stop = threading.Event()
-        # reentrant: the signal handler notifies from the main thread, which may be waiting on it
-        self._changed = threading.Condition(threading.RLock())
+        # waited on by the main thread: events a signal caught by any thread still ends
+        self.stop = SignalSafeEvent()
+        self._changed = SignalSafeEvent()  # set by notify(); wait_until clears it before looking
 
         def on_signal(signum: int, frame: Any) -> None:
             self.request_stop()
@@ -49,13 +49,13 @@ class ToolNode:
 
     def notify(self) -> None:
         """Something a wait_until condition reads has changed."""
-        with self._changed:
-            self._changed.notify_all()
+        self._changed.set()
 
     def wait_until(self, ready: Callable[[], bool]) -> bool:
         """Until ready() (True) or the tool is stopped (False); what makes ready() true calls notify()."""
-        with self._changed:
-            self._changed.wait_for(lambda: self.stop.is_set() or ready())
+        while not (self.stop.is_set() or ready()):
+            self._changed.wait()
+            self._changed.clear()  # a notify() after this is seen by the next look or wait
         return not self.stop.is_set()
 
     def wait_for_master(self) -> bool:

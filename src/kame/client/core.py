@@ -16,7 +16,7 @@ from typing import Any
 
 from kame import environ, names
 from kame.arity import accepts
-from kame.net.signal_wake import MainThreadWait
+from kame.net.signal_wake import main_thread_wait
 from kame.node.node import Node
 
 _node: Node | None = None
@@ -107,21 +107,18 @@ def is_shutdown_requested() -> bool:
 
 _main_waiting = 0  # >0 while the main thread blocks in one of our waits
 _wakers: set[threading.Event] = set()  # events that shutdown sets (woken_at_shutdown)
-_main_wait: MainThreadWait | None = None  # made by the main thread's first wait; shutdown wakes it
 
 
 def wait_for_shutdown(timeout: float | None) -> bool:
     """Wait up to `timeout` for shutdown; True once it happened. A signal wakes it at once."""
-    global _main_waiting, _main_wait
+    global _main_waiting
     if threading.current_thread() is not threading.main_thread():
         return _shutdown.wait(timeout)
     # Not _shutdown.wait(): a SIGINT that the kernel gives to another thread would not end
     # that wait, so its handler (which starts the shutdown) would never run (see MainThreadWait).
-    if _main_wait is None:
-        _main_wait = MainThreadWait()
     _main_waiting += 1
     try:
-        return _main_wait.wait(_shutdown.is_set, timeout)
+        return main_thread_wait().wait(_shutdown.is_set, timeout)
     finally:
         _main_waiting -= 1
 
@@ -199,8 +196,7 @@ def signal_shutdown(reason: str) -> None:
         _shutdown.set()
         for waker in _wakers:
             waker.set()
-        if _main_wait is not None:
-            _main_wait.wake()
+        main_thread_wait().wake()
     with _hooks_lock:
         hooks, _shutdown_hooks[:] = list(_shutdown_hooks), []
     for hook in hooks:

@@ -13,6 +13,7 @@ from kame import environ, names
 from kame.client import clock, core
 from kame.client import log as _log
 from kame.client.errors import ROSException, ROSInitException, ROSInterruptException
+from kame.net.signal_wake import SignalSafeEvent
 from kame.node.config import node_config
 from kame.node.master_proxy import MasterError
 from kame.node.node import Node
@@ -282,7 +283,7 @@ def wait_for_message(topic: str, topic_type: type[Any], timeout: float | None = 
     from kame.client.topics import Subscriber
 
     got: list[Any] = []
-    event = threading.Event()
+    event = SignalSafeEvent()  # often waited on by the main thread
 
     def callback(msg: Any) -> None:
         if not got:

@@ -10,6 +10,7 @@ from typing import Any
 from kame import rostime as values
 from kame.client import clock, core
 from kame.client.errors import ROSInterruptException, ROSTimeMovedBackwardsException
+from kame.net.signal_wake import SignalSafeEvent
 
 
 def _seconds(duration: Any) -> float:
@@ -25,7 +26,7 @@ def sleep(duration: Any) -> None:
         return
     start = clock.get_rostime()
     target = start + clock.Duration.from_sec(seconds)
-    ticked = threading.Event()  # by each /clock message, and by shutdown; cleared before looking
+    ticked = SignalSafeEvent()  # by each /clock message, and by shutdown; cleared before looking
     with core.woken_at_shutdown(ticked), clock.woken_at_change(ticked):
         while not core.is_shutdown():
             ticked.clear()

@@ -34,6 +34,7 @@ from kame.nav.amcl_node import yaw_of
 from kame.nav.costmap import NO_INFORMATION, Costmap, CostmapParams
 from kame.nav.local_planner import LocalPlannerParams, compute_velocity, rotate_toward
 from kame.nav.planner import make_plan
+from kame.net.signal_wake import SignalSafeEvent
 from kame.tf import errors as tf_errors
 from kame.tf_ros.buffer import Buffer
 from kame.tf_ros.node_io import TransformListener
@@ -72,7 +73,7 @@ class MoveBase:
         self.max_recoveries = int(_param("max_recoveries", 2))
         self.lock = threading.Lock()
         self.costmap: Costmap | None = None
-        self.map_ready = threading.Event()
+        self.map_ready = SignalSafeEvent()  # the main thread waits on it
         self.velocity = (0.0, 0.0)
         node = core.get_node()
         assert node is not None

@@ -58,3 +58,33 @@ class MainThreadWait:
                 pass
         except BlockingIOError:
             pass
+
+
+_shared: MainThreadWait | None = None
+_shared_lock = threading.Lock()
+
+
+def main_thread_wait() -> MainThreadWait:
+    """The process's one MainThreadWait (only the main thread waits in it, one wait at a time)."""
+    global _shared
+    with _shared_lock:  # made once, whichever thread asks first
+        if _shared is None:
+            _shared = MainThreadWait()
+        return _shared
+
+
+class SignalSafeEvent(threading.Event):
+    """An Event whose wait() in the main thread also lets signal handlers run at once, whichever
+    thread the kernel gave the signal to: a tool's Ctrl-C handler that sets its stop event then
+    ends the wait. In other threads it waits as any Event does. Setting one wakes the main
+    thread's wait, whatever it waits for; that wait looks at its own condition again."""
+
+    def set(self) -> None:
+        super().set()
+        if _shared is not None:  # made before its waiter first looks at the flag: none missed
+            _shared.wake()
+
+    def wait(self, timeout: float | None = None) -> bool:
+        if threading.current_thread() is not threading.main_thread():
+            return super().wait(timeout)
+        return main_thread_wait().wait(self.is_set, timeout)

@@ -8,10 +8,10 @@ Waits for one message on `map`, writes <mapname>.pgm and <mapname>.yaml, says so
 from __future__ import annotations
 
 import sys
-import threading
 from collections.abc import Sequence
 from typing import Any
 
+from kame.net.signal_wake import SignalSafeEvent
 from kame.stage import runtime
 from kame.stage.mapfile import SAVER_FREE, SAVER_OCCUPIED, Grid, MapError, saved_pgm, saved_yaml, saver_thresholds
 
@@ -78,7 +78,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     from nav_msgs.msg import OccupancyGrid
 
     received: list[Any] = []
-    got = threading.Event()
+    got = SignalSafeEvent()  # the main thread waits on it
 
     def on_map(msg: Any) -> None:
         if not got.is_set():

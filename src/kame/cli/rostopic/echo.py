@@ -10,6 +10,7 @@ from typing import Any
 from kame.msg.echo import as_field_value, csv_header, csv_row, field_filter, to_yaml, transform
 from kame.msg.errors import MessageError
 from kame.msg.fieldpath import FieldPath, FieldPathError, field_type, parse_field_path
+from kame.net.signal_wake import SignalSafeEvent
 from kame.rostime import Time
 
 from ._common import (
@@ -94,7 +95,7 @@ class Echo:
         self.width = width
         self.field_filter = field_filter(nostr, noarr) if plot else None
         self.first = True
-        self.done = threading.Event()
+        self.done = SignalSafeEvent()  # the main thread waits on it: Ctrl-C must end that wait
         self.heard = threading.Event()  # a message was printed, or the echo is done
         self.failure: str | None = None
 
