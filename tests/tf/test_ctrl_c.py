@@ -1,6 +1,6 @@
-"""Ctrl-C ends kame's long-running programs promptly while their main thread sits in a plain
-stop.wait(): on Linux a signal sent to a process goes to its main thread (the thread its pid
-names) unless that thread blocks it, so the wait is interrupted and the handler runs there."""
+"""Ctrl-C ends kame's long-running programs promptly while their main thread waits for their
+stop event (a SignalSafeEvent: the kernel may give the SIGINT to another thread, and the wait
+still lets the handler run; tests/net/test_signal_wake.py forces that case)."""
 
 from __future__ import annotations
 
