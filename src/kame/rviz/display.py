@@ -5,6 +5,7 @@ frames it asks of tf."""
 
 from __future__ import annotations
 
+import abc
 from collections.abc import Iterable
 from dataclasses import dataclass
 from typing import Any, ClassVar, Protocol
@@ -93,7 +94,7 @@ class RecordingFrames:
         return True
 
 
-class Display:
+class Display(abc.ABC):
     class_name: ClassVar[str] = ""
     message_types: ClassVar[tuple[str, ...]] = ()  # the first is what a new display subscribes as
     defaults: ClassVar[dict[str, Any]] = {}
@@ -170,8 +171,9 @@ class Display:
         self._cached = (key, recording, own, self.status)
         scene.extend(own)
 
+    @abc.abstractmethod
     def draw(self, scene: Scene, frames: Frames, now: float) -> None:
-        raise NotImplementedError
+        """Add this display's geometry, in the fixed frame, to `scene` (each kind draws its own)."""
 
     def placed(self, frames: Frames, frame_id: str) -> np.ndarray | None:
         """The matrix of `frame_id` in the fixed frame; None (and the status says why) if tf has none."""
