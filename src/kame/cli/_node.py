@@ -17,6 +17,7 @@ from kame.net.signal_wake import SignalSafeEvent
 from kame.node.config import node_config
 from kame.node.master_proxy import MasterError
 from kame.node.node import Node
+from kame.node.remote_poll import poll_remote
 
 # A master that is not up yet sends no event: it is asked again five times a second.
 MASTER_POLL_PERIOD = 0.2
@@ -60,10 +61,11 @@ class ToolNode:
 
     def wait_for_master(self) -> bool:
         """Until the master answers (True), or the tool is stopped first (False)."""
-        while True:
+        def answers() -> bool | None:
             try:
                 self.node.master.call("getPid", timeout=2.0)
-                return True
             except (OSError, MasterError):
-                if self.stop.wait(MASTER_POLL_PERIOD):
-                    return False
+                return None
+            return True
+
+        return poll_remote(answers, self.stop.wait, MASTER_POLL_PERIOD) is not None

@@ -8,6 +8,7 @@ import threading
 from collections.abc import Callable
 
 from kame.node.master_proxy import MasterError, MasterProxy
+from kame.node.remote_poll import poll_remote
 from kame.protocol.xmlrpc import XmlRpcError
 
 RETRY = 0.5  # seconds between asks; each ask is also bounded by ASK_TIMEOUT
@@ -24,15 +25,16 @@ class MasterWaiter:
         self._thread.start()
 
     def _wait(self) -> None:
+        def answers() -> bool | None:
+            try:
+                self._master.call("getPid")
+            except (OSError, MasterError, XmlRpcError):
+                return None
+            return True
+
         try:
-            while not self._stop.is_set():
-                try:
-                    self._master.call("getPid")
-                except (OSError, MasterError, XmlRpcError):
-                    self._stop.wait(RETRY)  # woken at once by stop()
-                    continue
+            if poll_remote(answers, self._stop.wait, RETRY):  # stop() ends the wait at once
                 self.on_up()
-                return
         finally:
             self._master.close()
 
