@@ -559,3 +559,36 @@ def test_a_publisher_at_an_unusable_address_is_one_warning_naming_it_and_the_fix
         assert "ROS_IP" in warnings[0] and "ROS_HOSTNAME" in warnings[0]
     finally:
         master.unregisterPublisher("/ghost", "/unreachable", ghost_uri)
+
+
+def test_a_publisher_killed_mid_frame_costs_only_its_half_message(make_node: Any) -> None:
+    # A publisher process dies (SIGKILL, power) half-way through a frame: the subscriber keeps the
+    # whole messages before it, drops the half, and goes on hearing the topic's other publishers.
+    server = socket.socket()
+    server.bind(("127.0.0.1", 0))
+    server.listen(1)
+    dying = make_node("/dying_talker")
+    dying.advertise("/mid", *STRING)
+    dying.tcpros_port = server.getsockname()[1]
+
+    def serve() -> None:
+        conn, _ = server.accept()
+        conn.recv(65536)
+        conn.sendall(tcpros.encode_header(tcpros.publisher_reply_fields(
+            callerid="/dying_talker", topic="/mid", spec=tcpros.TopicSpec(*STRING))))
+        whole = struct.pack("<I", 5) + b"whole"
+        conn.sendall(tcpros.encode_frame(whole) + struct.pack("<I", 100) + b"\x05\x00\x00\x00ha")
+        conn.setsockopt(socket.SOL_SOCKET, socket.SO_LINGER, struct.pack("ii", 1, 0))
+        conn.close()  # a reset, as from a killed process
+        server.close()
+
+    serving = threading.Thread(target=serve)
+    serving.start()
+    listener = make_node("/mid_listener")
+    got, _ = collect(listener, "/mid")
+    serving.join(10)
+    assert wait_until(lambda: got == ["whole"])
+    pub = make_node("/living_talker").advertise("/mid", *STRING)
+    assert wait_until(lambda: any(link.callerid == "/mid_listener" for link in pub.links), 10)
+    pub.publish_frame(serialize_frame(String("still heard")))
+    assert wait_until(lambda: got == ["whole", "still heard"], 10)
