@@ -64,6 +64,7 @@ LAYERS: dict[str, int] = {
     "kame.cli": 4,
     "kame.importhook": 4,
     "kame.launch.runner": 4,
+    "kame.launch.remote": 4,  # the other machines' roslaunch children, over kame.net.ssh
     "kame.launch.scripting": 4,  # roslaunch's script API
     "kame.client": 4,  # a program's one node (what rospy re-exports): process-wide state
     "kame.shell": 4,

@@ -9,100 +9,22 @@ process is stopped by its PID and every namespace is deleted at the end.
 
 from __future__ import annotations
 
-import subprocess
 import sys
 import time
-from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
 import yaml
 
-from ..support import SYSTEM_PYTHON, Proc, have_debian_ros, ros_env
-from ..support.netns import Host, Lan
+from ..support import SYSTEM_PYTHON, Proc, have_debian_ros
+from ..support.hosts import BIN, Hosts
+from ..support.netns import Lan
 from ..support.roscpp import build_peers, roscpp_flags
 
 pytestmark = pytest.mark.skipif(Lan.unavailable() is not None, reason=Lan.unavailable() or "")
 
-BIN = Path(sys.executable).parent
 TUTORIALS = Path(__file__).parents[1] / "interop" / "tutorials"
-MASTER_URI = "http://robot:11311/"
 debian = pytest.mark.skipif(not have_debian_ros(), reason="Debian's ROS 1 (rospy, ros* tools) is not installed")
-
-
-class Hosts:
-    """The three hosts and the master on robot; `start` and `run` put a program on one host."""
-
-    def __init__(self, home: Path) -> None:
-        self.home = home
-        self.lan = Lan(["robot", "laptop", "tablet"])
-        self.procs: list[Proc] = []
-        try:
-            self.master = self.start("robot", [str(BIN / "rosmaster"), "--core", "-p", "11311"])
-            self.run("tablet", [str(BIN / "rosparam"), "set", "/hosts_up", "1"], timeout=20, retry=True)
-        except BaseException:
-            self.close()
-            raise
-
-    def env(self, host: str) -> dict[str, str]:
-        env = ros_env(self.home / host, MASTER_URI)
-        env["ROS_HOSTNAME"] = host
-        env.pop("DISPLAY", None)
-        return env
-
-    def host(self, name: str) -> Host:
-        return self.lan[name]
-
-    def start(self, host: str, args: list[str], **env: str) -> Proc:
-        proc = Proc(self.lan[host].command(args), {**self.env(host), **env}, cwd=self.home)
-        self.procs.append(proc)
-        return proc
-
-    def run(self, host: str, args: list[str], timeout: float = 20.0, retry: bool = False, **env: str) -> str:
-        """`args` run to the end on `host`; with `retry`, again (for at most `timeout`) while they fail."""
-        deadline = time.monotonic() + timeout
-        while True:
-            result = subprocess.run(self.lan[host].command(args), env={**self.env(host), **env}, capture_output=True,
-                                    text=True, timeout=timeout, cwd=self.home)
-            if result.returncode == 0:
-                return result.stdout
-            if not retry or time.monotonic() > deadline:
-                raise AssertionError(f"{args} on {host} failed ({result.returncode}):\n"
-                                     f"{result.stdout}\n{result.stderr}")
-            time.sleep(0.1)
-
-    def stop(self, proc: Proc) -> tuple[str, str]:
-        self.procs.remove(proc)
-        return proc.stop()
-
-    def close(self) -> None:
-        for proc in reversed(self.procs):
-            proc.stop()
-        self.procs.clear()
-        self.lan.close()
-
-
-@pytest.fixture(scope="module")
-def hosts(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Hosts]:
-    try:
-        h = Hosts(tmp_path_factory.mktemp("hosts"))
-    except subprocess.CalledProcessError as exc:  # root without the right to make namespaces (a container)
-        pytest.skip(f"cannot make network namespaces: {' '.join(exc.cmd)}: {exc.stderr.strip()}")
-    try:
-        yield h
-    finally:
-        h.close()
-
-
-@pytest.fixture
-def cleanup(hosts: Hosts) -> Iterator[Hosts]:
-    """Stops what a test started on the hosts, keeping the module's master."""
-    before = list(hosts.procs)
-    try:
-        yield hosts
-    finally:
-        for proc in [p for p in hosts.procs if p not in before]:
-            hosts.stop(proc)
 
 
 def pose_x(hosts: Hosts, host: str) -> float:

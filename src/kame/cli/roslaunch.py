@@ -31,6 +31,7 @@ from kame.launch import plan
 from kame.launch.errors import LaunchError, PackageNotFound
 from kame.launch.loader import ArgDecl, LaunchLoader, LoaderHost
 from kame.launch.model import LaunchConfig, Node
+from kame.launch.remote import CHILD_READY
 from kame.launch.runner import LaunchRun, RunOptions, core_params, master_answers, ros_home_of, run_dir_of
 from kame.launch.server import LaunchServer
 from kame.launch.supervisor import say, say_bold, say_error
@@ -290,7 +291,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     if options.sigterm_timeout <= 0:
         return _fail(f"sigterm_timeout must be a positive number, received {options.sigterm_timeout:f}")
     if options.child_name:
-        return _fail("kame's roslaunch does not run as a remote child (-c): remote machines are not supported yet")
+        if not options.run_id:
+            parser.error("--child option requires --run_id to be set as well")
+        return _child(options)
     try:
         files = resolve_launch_arguments(positional)
     except LaunchError as exc:
@@ -360,7 +363,7 @@ def _launch(options: argparse.Namespace, files: list[str], argv: list[str]) -> i
         if options.core:
             say(f"ros_comm version {config.params['/rosversion'].value.strip()}")
         if not options.no_summary:
-            say(plan.summary(config))
+            say(plan.summary(config, local=not run.remote_nodes(), is_local=run.is_local))
         for err in config.errors:
             say_error(f"WARNING: {err}")
         _link_latest(run_dir.parent, run_dir)
@@ -375,6 +378,64 @@ def _launch(options: argparse.Namespace, files: list[str], argv: list[str]) -> i
         handler.close()
         if options.pid_fn:
             Path(options.pid_fn).unlink(missing_ok=True)
+
+
+def _read_line(fd: int) -> bytes:
+    """One line from `fd`, read unbuffered: what follows it (its end) is watched on the fd itself."""
+    data = b""
+    while not data.endswith(b"\n"):
+        chunk = os.read(fd, 1 if data else 65536)
+        if not chunk:
+            break
+        data += chunk
+    return data
+
+
+def _child(options: argparse.Namespace) -> int:
+    """`roslaunch -c NAME --run_id ID`: a remote machine's share of a launch (kame.launch.remote).
+
+    The nodes come as one line of JSON on stdin; `ready` goes back on stdout; the end of stdin
+    (the parent stopping, or its connection lost) stops them. Python nodes' output is unbuffered:
+    their stdout is the SSH channel, read by a person at the parent's terminal."""
+    env = dict(os.environ)
+    env.setdefault("PYTHONUNBUFFERED", "1")
+    try:
+        nodes = plan.nodes_from_json(_read_line(sys.stdin.fileno()).decode("utf-8", "replace"))
+    except LaunchError as exc:
+        return _fail(str(exc))
+    run_dir = run_dir_of(env, options.run_id)
+    handler = setup_file_logging(run_dir / f"roslaunch-{interfaces.hostname()}-{os.getpid()}.log", LOGGER)
+    try:
+        run = LaunchRun(LaunchConfig(nodes=nodes), _run_options(options, options.run_id, env))
+        return asyncio.run(_run_child(run))
+    finally:
+        handler.close()
+
+
+async def _run_child(run: LaunchRun) -> int:
+    loop = asyncio.get_running_loop()
+    stdin = sys.stdin.fileno()
+
+    def readable() -> None:
+        if not os.read(stdin, 4096):  # the parent is done with us
+            loop.remove_reader(stdin)
+            run.monitor.done.set()
+
+    loop.add_reader(stdin, readable)
+    for sig in (signal.SIGINT, signal.SIGTERM):
+        loop.add_signal_handler(sig, run.monitor.done.set)
+    try:
+        say(CHILD_READY)
+        await run.launch_nodes()
+        await run.spin()
+        return 0
+    except BaseException:
+        await run.monitor.shutdown()  # whatever went wrong, no node is left behind
+        raise
+    finally:
+        loop.remove_reader(stdin)
+        for sig in (signal.SIGINT, signal.SIGTERM):
+            loop.remove_signal_handler(sig)
 
 
 async def _run(run: LaunchRun) -> int:

@@ -13,14 +13,16 @@ Rules (roslaunch's config.summary, node_args, nodeprocess):
 
 from __future__ import annotations
 
+import json
 import shlex
-from collections.abc import Mapping, Sequence
-from dataclasses import dataclass
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import asdict, dataclass, fields
 from pathlib import Path
 from typing import Any
 
 import yaml
 
+from kame.launch.errors import LaunchError
 from kame.launch.model import LaunchConfig, Node
 
 
@@ -96,8 +98,11 @@ def _short(value: Any) -> str:
     return text
 
 
-def summary(config: LaunchConfig, local: bool = True) -> str:
-    """The SUMMARY block roslaunch prints before starting anything (without the final newline)."""
+def summary(config: LaunchConfig, local: bool = True, is_local: Callable[[Node], bool] = lambda node: True) -> str:
+    """The SUMMARY block roslaunch prints before starting anything (without the final newline).
+
+    `local`: only this machine's nodes are run (no remote node, or --local): no MACHINES, and only
+    the nodes `is_local` accepts."""
     out = "\nSUMMARY\n========"
     if config.clear_params:
         out += "\n\nCLEAR PARAMETERS\n" + "\n".join(sorted(f" * {p}" for p in config.clear_params))
@@ -108,6 +113,8 @@ def summary(config: LaunchConfig, local: bool = True) -> str:
     out += "\n\nNODES\n"
     groups: dict[str, list[Node]] = {}
     for node in config.nodes:
+        if local and not is_local(node):
+            continue
         groups.setdefault(node.namespace, []).append(node)
     for ns in sorted(groups):
         out += f"  {ns}\n" + "\n".join(sorted(f"    {n.name} ({n.package}/{n.type})" for n in groups[ns])) + "\n"
@@ -131,3 +138,28 @@ def unify_clear_params(params: Sequence[str]) -> list[str]:
         if not any(p.startswith(k) for k in kept):
             kept.append(p)
     return kept
+
+
+NODE_FIELDS = frozenset(f.name for f in fields(Node))
+
+
+def nodes_to_json(nodes: Sequence[Node]) -> str:
+    """The nodes a remote roslaunch child is to run, on one line (what its stdin first receives)."""
+    return json.dumps([{**asdict(n), "machine_name": None} for n in nodes])
+
+
+def nodes_from_json(text: str) -> list[Node]:
+    """The nodes of `nodes_to_json`; LaunchError for anything else."""
+    try:
+        items = json.loads(text)
+        if not isinstance(items, list):
+            raise TypeError("not a list of nodes")
+        nodes = []
+        for item in items:
+            if not isinstance(item, dict) or not set(item) <= NODE_FIELDS:
+                raise TypeError(f"not a node: {item!r}")
+            pairs = {k: [(str(a), str(b)) for a, b in item.get(k, [])] for k in ("remap_args", "env_args")}
+            nodes.append(Node(**{**item, **pairs}))
+        return nodes
+    except (ValueError, TypeError) as exc:
+        raise LaunchError(f"the parent roslaunch sent no list of nodes: {exc}") from None

@@ -22,6 +22,7 @@ from kame.cli.rosmaster import log_dir, ros_home
 from kame.launch import plan
 from kame.launch.errors import LaunchError
 from kame.launch.model import LOCAL_ADDRESSES, LaunchConfig, Node, Param
+from kame.launch.remote import RemoteChild
 from kame.launch.server import LaunchServer, ProcessState
 from kame.launch.supervisor import Child, Monitor, say, say_bold, say_error
 from kame.net.address import is_this_host
@@ -96,7 +97,7 @@ class LaunchRun:
     # ------------------------------------------------------------------ setup
 
     def check(self) -> None:
-        """Everything refused before anything starts: values the server cannot hold, remote machines."""
+        """Everything refused before anything starts: values the server cannot hold, unknown machines."""
         for param in self.config.params.values():
             try:
                 check(param.key, param.value)
@@ -108,11 +109,6 @@ class LaunchRun:
             machine = self.config.machines.get(node.machine_name or "")
             if node.machine_name and machine is None:
                 raise LaunchError(f"ERROR: unknown machine [{node.machine_name}]", node.filename, node.line)
-            if machine is not None and machine.address not in LOCAL_ADDRESSES and not is_this_host(machine.address):
-                raise LaunchError(
-                    f"node [{node.resolved_name}] is to run on machine [{machine.name}] ({machine.address}): "
-                    "kame does not launch nodes on other machines over ssh yet; run roslaunch there, "
-                    "or use --local to launch only this machine's nodes", node.filename, node.line)
 
     async def setup(self) -> None:
         await self._master()
@@ -248,15 +244,34 @@ class LaunchRun:
         self.failed.append(spec.name)
         return None
 
-    def _local(self, node: Node) -> bool:
+    def is_local(self, node: Node) -> bool:
         machine = self.config.machines.get(node.machine_name or "")
         return machine is None or machine.address in LOCAL_ADDRESSES or is_this_host(machine.address)
 
+    def remote_nodes(self) -> dict[str, list[Node]]:
+        """The nodes to run on other machines, by machine name (none with --local)."""
+        by_machine: dict[str, list[Node]] = {}
+        if not self.options.local_only:
+            for node in self.config.nodes:
+                if not self.is_local(node):
+                    by_machine.setdefault(node.machine_name or "", []).append(node)
+        return by_machine
+
     async def launch_nodes(self) -> None:
+        """The other machines' roslaunch children first (a failure ends the launch, as roslaunch's), then ours."""
+        for counter, (machine_name, nodes) in enumerate(self.remote_nodes().items()):
+            machine = self.config.machines[machine_name]
+            child = RemoteChild(f"{machine.address}-{counter}", machine, nodes)
+            failure = await child.start(self.options.run_id, self.options.master_uri, self.options.sigint_timeout,
+                                        self.options.sigterm_timeout)
+            if child.command is not None:
+                self.monitor.add_remote(child)
+            if failure is not None:
+                raise LaunchError(failure)
+            self.succeeded.extend(n.name for n in nodes)
         for node in self.config.nodes:
-            if self.options.local_only and not self._local(node):
-                continue
-            await self.launch_node(node)
+            if self.is_local(node):
+                await self.launch_node(node)
 
     async def spin(self) -> None:
         """Until the launch is over; then everything is stopped."""

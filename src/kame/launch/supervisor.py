@@ -16,6 +16,8 @@ Rules (roslaunch's nodeprocess and pmon, with its console wording):
   (SIGKILL, a crash), its children get SIGTERM instead of living on as orphans.
 - When every non-core child is gone and nothing will respawn, the monitor ends (unless told to
   keep going, as roslaunch does when it started the master).
+- Remote processes (a roslaunch child per other machine) are watched alongside: the launch goes
+  on while one of them lives, and shutdown stops them together with the local children.
 - Shutdown stops the children in reverse start order, then the core processes (rosout, master);
   `[name] killing on exit` names those still registered: running, respawning, or the required
   one that ended the launch (not those that already ended for good).
@@ -32,7 +34,7 @@ import signal
 import sys
 from collections.abc import Callable
 from pathlib import Path
-from typing import IO
+from typing import IO, Protocol
 
 from kame.launch.plan import ProcessSpec
 from kame.net.process import RespawnBackoff, die_with_parent
@@ -167,6 +169,21 @@ class Child:
                 os.kill(self.proc.pid, sig)
 
 
+class RemoteProcess(Protocol):
+    """A process on another machine (kame.launch.remote's roslaunch child): watched, stopped with the rest."""
+
+    name: str
+    ended: asyncio.Event
+    stopping: bool
+    gone: bool
+
+    def alive(self) -> bool: ...
+
+    async def stop(self, sigint_timeout: float, sigterm_timeout: float) -> None: ...
+
+    async def exit_description(self) -> str: ...
+
+
 class Monitor:
     """Watches the children; `run()` returns when the launch is over (or `shutdown_event` is set)."""
 
@@ -178,6 +195,7 @@ class Monitor:
         self.on_death = on_death
         self.children: list[Child] = []
         self.core: list[Child] = []
+        self.remotes: list[RemoteProcess] = []
         self.done = asyncio.Event()
         self._watchers: list[asyncio.Task[None]] = []
 
@@ -229,16 +247,33 @@ class Monitor:
                 self._check_all_dead()
                 return
 
+    def add_remote(self, remote: RemoteProcess) -> None:
+        """Watch a started remote process: its end is reported, and it is stopped on shutdown."""
+        self.remotes.append(remote)
+        self._watchers.append(asyncio.ensure_future(self._watch_remote(remote)))
+
+    async def _watch_remote(self, remote: RemoteProcess) -> None:
+        await remote.ended.wait()
+        if remote.stopping:
+            return
+        description = await remote.exit_description()
+        if remote.stopping:
+            return
+        (say_bold if description == "process has finished cleanly" else say_error)(f"[{remote.name}] {description}")
+        remote.gone = True
+        self._check_all_dead()
+
     def _alive(self, child: Child) -> bool:
         return child.proc is not None and (child.proc.returncode is None or child.spec.respawn)
 
     def _check_all_dead(self) -> None:
-        if not self.keep_alive and not any(self._alive(c) for c in self.children):
+        if not self.keep_alive and not any(self._alive(c) for c in self.children) and not any(
+                r.alive() for r in self.remotes):
             say("all processes on machine have died, roslaunch will exit")
             self.done.set()
 
     def has_processes(self) -> bool:
-        return any(self._alive(c) for c in self.children) or bool(self.core)
+        return any(self._alive(c) for c in self.children) or bool(self.core) or any(r.alive() for r in self.remotes)
 
     async def shutdown(self) -> None:
         """Stop everything: children in reverse start order (together), then core processes in turn."""
@@ -246,7 +281,11 @@ class Monitor:
         for child in reversed(self.children):
             if not child.gone:  # as pmon: one that already ended is no longer listed
                 say(f"[{child.name}] killing on exit")
-        await asyncio.gather(*(c.stop(self.sigint_timeout, self.sigterm_timeout) for c in reversed(self.children)))
+        for remote in reversed(self.remotes):
+            if not remote.gone:
+                say(f"[{remote.name}] killing on exit")
+        await asyncio.gather(*(c.stop(self.sigint_timeout, self.sigterm_timeout) for c in reversed(self.children)),
+                             *(r.stop(self.sigint_timeout, self.sigterm_timeout) for r in reversed(self.remotes)))
         for child in reversed(self.core):
             say(f"[{child.name}] killing on exit")
             await child.stop(self.sigint_timeout, self.sigterm_timeout)

@@ -1,0 +1,144 @@
+"""roslaunch's <machine> tags across hosts: roslaunch on robot starts nodes on laptop over SSH.
+
+laptop runs a real OpenSSH server (tests/support/sshd.py) that knows our key; robot's roslaunch
+runs with a HOME whose .ssh holds that key and laptop's host key, as a lab's laptop would. The
+env-loader on laptop names the host (ROS_HOSTNAME) and hands over to kame's env.sh.
+
+Needs root and openssh-server (skips without them); every process is stopped by its PID.
+"""
+
+from __future__ import annotations
+
+import subprocess
+import time
+from collections.abc import Iterator
+from pathlib import Path
+
+import pytest
+
+from ..support import Proc
+from ..support.hosts import BIN, Hosts
+from ..support.netns import Lan
+from ..support.sshd import Sshd
+
+pytestmark = pytest.mark.skipif((Lan.unavailable() or Sshd.unavailable()) is not None,
+                                reason=Lan.unavailable() or Sshd.unavailable() or "")
+
+ENV_SH = Path(__file__).parents[2] / "src" / "kame" / "shell" / "env.sh"
+SSH_PORT = 2222
+
+
+class Lab:
+    def __init__(self, hosts: Hosts) -> None:
+        self.hosts = hosts
+        self.client_home = hosts.home / "client-home"  # robot's user: ~/.ssh with the key and known_hosts
+        self.sshd = Sshd(hosts.host("laptop"), self.client_home, SSH_PORT)
+        laptop = hosts.env("laptop")
+        self.loader = hosts.home / "laptop-env.sh"
+        self.loader.write_text(
+            "#!/bin/sh\n"
+            f"export ROS_HOSTNAME=laptop ROS_HOME={laptop['ROS_HOME']} ROS_LOG_DIR={laptop['ROS_LOG_DIR']}\n"
+            f'exec {ENV_SH} "$@"\n')
+        self.loader.chmod(0o755)
+
+    def launch_file(self, name: str, machine: str, nodes: str) -> Path:
+        path = self.hosts.home / name
+        path.write_text(f"<launch>\n  {machine}\n{nodes}</launch>\n")
+        return path
+
+    def machine(self, **attrs: str) -> str:
+        values = {"name": "laptop", "address": "laptop", "ssh-port": str(SSH_PORT), "user": "root",
+                  "env-loader": str(self.loader), "timeout": "30", **attrs}
+        return "<machine " + " ".join(f'{k}="{v}"' for k, v in values.items()) + "/>"
+
+    def roslaunch(self, path: Path, **env: str) -> subprocess.CompletedProcess[str]:
+        """roslaunch run on robot to its end (for the launches that fail)."""
+        return subprocess.run(self.hosts.host("robot").command([str(BIN / "roslaunch"), str(path)]),
+                              env={**self.hosts.env("robot"), "HOME": str(self.client_home), **env},
+                              capture_output=True, text=True, timeout=120)
+
+    def wait_sessions_end(self) -> None:
+        deadline = time.monotonic() + 20
+        while sessions := self.sshd.sessions():
+            assert time.monotonic() < deadline, f"processes left on laptop: {sessions}"
+            time.sleep(0.05)
+
+    def close(self) -> None:
+        self.sshd.close()
+
+
+@pytest.fixture(scope="module")
+def lab(hosts: Hosts) -> Iterator[Lab]:
+    lab = Lab(hosts)
+    try:
+        yield lab
+    finally:
+        lab.close()
+
+
+def node_pid(hosts: Hosts, name: str) -> int:
+    out = hosts.run("robot", [str(BIN / "python"), "-c", (
+        "import sys, xmlrpc.client as x; m = x.ServerProxy('http://robot:11311/'); "
+        f"uri = m.lookupNode('/t', '{name}')[2]; print(x.ServerProxy(uri).getPid('/t')[2])")], retry=True)
+    return int(out)
+
+
+def test_a_node_on_laptop_talks_to_one_on_robot_and_ctrl_c_stops_it(lab: Lab) -> None:
+    hosts = lab.hosts
+    path = lab.launch_file("two_hosts.launch", lab.machine(), (
+        '  <node machine="laptop" pkg="rospy_tutorials" type="talker.py" name="talker" output="screen"/>\n'
+        '  <node pkg="rospy_tutorials" type="listener.py" name="listener" output="screen"/>\n'))
+    launch = Proc(hosts.host("robot").command([str(BIN / "roslaunch"), str(path)]),
+                  {**hosts.env("robot"), "HOME": str(lab.client_home)}, cwd=hosts.home)
+    try:
+        launch.wait_line("remote[laptop-0]: creating ssh connection to laptop:2222, user[root]", timeout=30)
+        launch.wait_line("remote[laptop-0]: ssh connection created", timeout=60)
+        # data flows from laptop's talker to robot's listener
+        launch.wait_line("I heard hello world", timeout=60)
+        # the talker's own output (output="screen" on laptop) is brought back to robot's terminal
+        deadline = time.monotonic() + 20
+        while not any("hello world" in line and "I heard" not in line for line in launch.out):
+            assert time.monotonic() < deadline, "".join(launch.out)
+            time.sleep(0.05)
+        info = hosts.run("robot", [str(BIN / "rosnode"), "info", "/talker"])
+        assert "contacting node http://laptop:" in info, info
+        talker = node_pid(hosts, "/talker")
+        assert talker in lab.sshd.sessions()  # run by laptop's sshd session
+    finally:
+        out, err = launch.stop(timeout=40)  # SIGINT: Ctrl-C
+    assert launch.popen.returncode == 0, out + err
+    assert "[laptop-0] killing on exit" in out, out
+    assert not Path(f"/proc/{talker}").exists()
+    lab.wait_sessions_end()
+    assert "/talker" not in hosts.run("robot", [str(BIN / "rosnode"), "list"]).split()
+
+
+def test_an_unknown_host_is_refused_naming_the_ssh_command_that_adds_it(lab: Lab) -> None:
+    stranger = lab.hosts.home / "stranger-home"
+    (stranger / ".ssh").mkdir(parents=True, exist_ok=True)
+    path = lab.launch_file("unknown.launch", lab.machine(),
+                           '  <node machine="laptop" pkg="rospy_tutorials" type="talker.py" name="t1"/>\n')
+    done = lab.roslaunch(path, HOME=str(stranger))
+    assert done.returncode == 1
+    assert ("laptop is not in your SSH known_hosts file.\n\nPlease manually:\n  ssh -p 2222 root@laptop\n\n"
+            "then try roslaunching again.") in done.stderr, done.stderr
+    assert "RLException: unable to start remote roslaunch child: laptop-0" in done.stderr
+    # ROSLAUNCH_SSH_UNKNOWN=1 takes the host; then a wrong password is what fails
+    path = lab.launch_file("password.launch", lab.machine(password="not-the-password"),
+                           '  <node machine="laptop" pkg="rospy_tutorials" type="talker.py" name="t2"/>\n')
+    done = lab.roslaunch(path, HOME=str(stranger), ROSLAUNCH_SSH_UNKNOWN="1")
+    assert done.returncode == 1
+    assert "Authentication to remote computer[root@laptop:2222] failed." in done.stderr, done.stderr
+
+
+def test_a_remote_roslaunch_that_does_not_answer_in_time_fails_the_launch_and_is_stopped(lab: Lab) -> None:
+    silent = lab.hosts.home / "silent-env.sh"
+    silent.write_text("#!/bin/sh\nexec cat >/dev/null\n")  # never answers; ends when its input does
+    silent.chmod(0o755)
+    path = lab.launch_file("silent.launch", lab.machine(**{"env-loader": str(silent), "timeout": "1.5"}),
+                           '  <node machine="laptop" pkg="rospy_tutorials" type="talker.py" name="t3"/>\n')
+    done = lab.roslaunch(path)
+    assert done.returncode == 1
+    assert ("The following roslaunch remote processes failed to register: \n * laptop (timeout 1.5s)"
+            in done.stderr), done.stderr
+    lab.wait_sessions_end()
