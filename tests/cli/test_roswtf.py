@@ -250,3 +250,55 @@ def test_usage(tmp_path: Path) -> None:
     assert (result.returncode, result.stdout, result.stderr) == (
         0, "", "Unable to load roslaunch file [nosuch.launch]: Invalid roslaunch XML syntax: [Errno 2] No such file "
                "or directory: 'nosuch.launch'\n")
+
+
+# ------------------------------------------------------------------ clocks of other machines
+
+
+class SkewedNode:
+    """A node's XML-RPC server on a machine whose clock runs 30 s ahead (its answers' Date says so)."""
+
+    def __init__(self) -> None:
+        import threading
+        from xmlrpc.server import SimpleXMLRPCRequestHandler, SimpleXMLRPCServer
+
+        class Ahead(SimpleXMLRPCRequestHandler):
+            def date_time_string(self, timestamp: float | None = None) -> str:
+                return super().date_time_string(time.time() + 30)
+
+        self.server = SimpleXMLRPCServer(("127.0.0.1", 0), Ahead, logRequests=False)
+        self.server.register_function(lambda *args: [1, "", os.getpid()], "getPid")
+        self.server.register_function(lambda *args: [1, "", []], "getBusInfo")
+        self.server.register_function(lambda *args: [1, "", [["/skewed_topic", "std_msgs/String"]]],
+                                      "getPublications")
+        self.server.register_function(lambda *args: [1, "", []], "getSubscriptions")
+        self.server.register_function(lambda *args: [1, "", 0], "publisherUpdate")
+        self.uri = f"http://127.0.0.1:{self.server.server_address[1]}/"
+        self.thread = threading.Thread(target=self.server.serve_forever, kwargs={"poll_interval": 0.05})
+        self.thread.start()
+
+    def close(self) -> None:
+        self.server.shutdown()
+        self.thread.join()
+        self.server.server_close()
+
+
+def test_a_node_whose_machine_clock_is_off_is_a_warning(tmp_path: Path) -> None:
+    import xmlrpc.client
+
+    port = free_port()
+    uri = f"http://127.0.0.1:{port}/"
+    env = clean_env(tmp_path, uri)
+    master = Proc([str(BIN / "rosmaster"), "--core", "-p", str(port)], env)
+    node = SkewedNode()
+    try:
+        wait_for_master(uri, proc=master)
+        xmlrpc.client.ServerProxy(uri).registerPublisher("/skewed", "/skewed_topic", "std_msgs/String", node.uri)
+        result = roswtf(env)
+        title = (f"{W}The clocks of these machines differ from this machine's (time stamps, tf and rosbag compare "
+                 "them; synchronise the machines' clocks, with chrony or ntpd):")
+        [line] = blocks(result.stdout)[title]
+        assert re.fullmatch(r" \* 127\.0\.0\.1 \(node /skewed\): (29|30)\.\d s ahead of this machine", line), line
+    finally:
+        node.close()
+        master.stop()

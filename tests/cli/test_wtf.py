@@ -241,3 +241,35 @@ def test_nodes_advertising_an_unusable_address_are_an_error_naming_the_fix() -> 
     _wtf.check_graph(graph, report)  # the master on this machine: loopback URIs are fine
     [error] = [e for e in report.errors if e.startswith(title)]
     assert "/local" not in error
+
+
+@pytest.mark.parametrize(("remote", "sent", "received", "skew"), [
+    (1000.0, 1000.2, 1000.3, 0.0),  # the same second: fine
+    (1000.0, 1000.9, 1001.0, 0.0),  # its second ended as ours began: cannot tell
+    (1030.0, 1000.2, 1000.3, 29.7),  # at least 29.7 s ahead
+    (970.0, 1000.2, 1000.3, -29.2),  # at least 29.2 s behind (its second ends at 971)
+])
+def test_a_clock_reading_claims_only_the_skew_its_whole_second_proves(remote: float, sent: float, received: float,
+                                                                       skew: float) -> None:
+    reading = _wtf.ClockReading("laptop", "the master", remote, sent, received)
+    assert reading.skew == pytest.approx(skew)
+
+
+def test_machines_whose_clocks_are_off_are_a_warning_one_line_each() -> None:
+    def at(host: str, who: str, offset: float) -> _wtf.ClockReading:
+        return _wtf.ClockReading(host, who, 1000.0 + offset, 1000.2, 1000.3)
+
+    graph = Graph({"/a": ["/talker", "/listener", "/local"]}, {}, {}, {
+        "/talker": NodeFacts("http://laptop:1/", clock=at("laptop", "node /talker", 5.0)),
+        "/listener": NodeFacts("http://laptop:2/", clock=at("laptop", "node /listener", 12.0)),
+        "/local": NodeFacts("http://robot:3/", clock=at("robot", "node /local", 0.0)),
+    }, master_clock=at("tablet", "the master", -60.0))
+    report = Report()
+    _wtf.check_graph(graph, report)
+    [warning] = [w for w in report.warnings if w.startswith("The clocks of these machines differ")]
+    assert "chrony" in warning
+    assert warning.splitlines()[1:] == [" * laptop (node /listener): 11.7 s ahead of this machine",
+                                        " * tablet (the master): 59.2 s behind this machine"]
+    report = Report()
+    _wtf.check_graph(Graph({}, {}, {}, {}, master_clock=at("robot", "the master", 0.0)), report)
+    assert report.warnings == []

@@ -194,3 +194,22 @@ def test_clients_stalled_mid_request_cannot_lock_others_out(caplog: pytest.LogCa
             s.close()
         loop.run(srv.close())
         loop.close()
+
+
+def test_answers_carry_the_servers_date_and_the_client_reads_it(server: tuple[HttpServer, LoopThread]) -> None:
+    import time
+
+    from kame.net.xmlrpc_client import XmlRpcProxy
+    from kame.protocol.http import parse_date
+
+    srv, _ = server
+    proxy = XmlRpcProxy(f"http://127.0.0.1:{srv.port}/rpc")
+    try:
+        before = int(time.time())
+        proxy.call("m")
+        after = time.time()
+        assert proxy.last_date is not None
+        date = parse_date(proxy.last_date)
+        assert date is not None and before <= date <= after
+    finally:
+        proxy.close()

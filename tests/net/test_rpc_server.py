@@ -99,3 +99,14 @@ def test_bad_http_is_refused_and_serving_goes_on(server: RpcServer, head: bytes)
         sock.sendall(head)
         assert sock.recv(1000).split(b" ")[1] in (b"400", b"411", b"413", b"431")
     assert _post(server.port).endswith(b"echo ping")
+
+
+def test_answers_carry_the_servers_date_for_roswtfs_clock_check(server: RpcServer) -> None:
+    import time
+    from email.utils import parsedate_to_datetime
+
+    before = int(time.time())
+    reply = _post(server.port)
+    after = time.time()
+    [date] = [line.split(b": ", 1)[1] for line in reply.split(b"\r\n") if line.startswith(b"Date: ")]
+    assert before <= parsedate_to_datetime(date.decode()).timestamp() <= after

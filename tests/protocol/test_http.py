@@ -10,9 +10,11 @@ from kame.protocol.http import (
     Request,
     RequestReader,
     ResponseReader,
+    date_header,
     encode_request,
     encode_response,
     new_head_cache,
+    parse_date,
 )
 
 
@@ -157,3 +159,18 @@ def test_no_other_module_speaks_http_or_sets_process_wide_socket_defaults() -> N
     root = Path(kame.__file__).parent
     offenders = [str(path.relative_to(root)) for path in sorted(root.rglob("*.py")) if banned.search(path.read_text())]
     assert offenders == []
+
+
+def test_a_response_carries_the_date_it_is_given_and_the_reader_keeps_it() -> None:
+    line = date_header(784111777)
+    assert line == b"Date: Sun, 06 Nov 1994 08:49:37 GMT\r\n"  # RFC 9110's example
+    data = encode_response(200, b"<x/>", date=line)
+    assert data == (b"HTTP/1.1 200 OK\r\nDate: Sun, 06 Nov 1994 08:49:37 GMT\r\nContent-type: text/xml\r\n"
+                    b"Content-length: 4\r\n\r\n<x/>")
+    reader = ResponseReader()
+    assert reader.feed(data) == b"<x/>"
+    assert reader.date == "Sun, 06 Nov 1994 08:49:37 GMT" and parse_date(reader.date) == 784111777
+    plain = ResponseReader()
+    assert plain.feed(encode_response(200, b"")) == b"" and plain.date is None
+    for bad in ("", "yesterday", "Sun, 06 Nov 1994 08:49:37"):  # the last: no zone
+        assert parse_date(bad) is None

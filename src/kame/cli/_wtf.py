@@ -11,7 +11,9 @@
 - kame adds two graph rules the real tool lacks (it only notices these as missing
   connections): a topic whose nodes disagree on the message type, and registrations at the
   master that the node itself does not report (a stale entry, or a second node started under
-  the same name).
+  the same name). And a third that ROS leaves to its documentation: machines whose clocks
+  differ from this one's by more than a second (the Date of the master's and nodes' answers;
+  whole seconds, so only a skew the answer's time bounds prove is reported).
 """
 
 from __future__ import annotations
@@ -320,6 +322,41 @@ class NodeFacts:
     # why its advertised address is unusable from here (it does not resolve, no route), when
     # that is why it did not answer
     unusable_address: str | None = None
+    clock: ClockReading | None = None
+
+
+@dataclass(frozen=True)
+class ClockReading:
+    """An answer's Date against our clock: the server's whole second `remote`, which it sent
+    between our `sent` and `received` (seconds since the epoch)."""
+
+    host: str
+    who: str  # "the master", "node /talker"
+    remote: float
+    sent: float
+    received: float
+
+    @property
+    def skew(self) -> float:
+        """How far the server's clock is ahead (>0) or behind (<0) ours, at least; 0 when the
+        answer cannot tell (its Date's second is compatible with our clock)."""
+        ahead = self.remote - self.received  # it read at least `remote` when we read at most `received`
+        behind = self.remote + 1.0 - self.sent  # it read less than `remote + 1` when we read `sent` or more
+        return ahead if ahead > 0 else behind if behind < 0 else 0.0
+
+
+CLOCK_SKEW_LIMIT = 1.0  # seconds: below, a Date (whole seconds) cannot tell
+
+
+def clock_skews(readings: Iterable[ClockReading], limit: float = CLOCK_SKEW_LIMIT) -> list[str]:
+    """One line per machine whose clock is off by more than `limit`, with its largest skew."""
+    worst: dict[str, ClockReading] = {}
+    for reading in readings:
+        known = worst.get(reading.host)
+        if known is None or abs(reading.skew) > abs(known.skew):
+            worst[reading.host] = reading
+    return [f"{host} ({r.who}): {abs(r.skew):.1f} s {'ahead of' if r.skew > 0 else 'behind'} this machine"
+            for host, r in sorted(worst.items()) if abs(r.skew) > limit]
 
 
 @dataclass(frozen=True)
@@ -331,6 +368,7 @@ class Graph:
     use_sim_time: bool = False
     # service -> why probing it failed (services missing here answered)
     service_failures: Mapping[str, str] = field(default_factory=dict)
+    master_clock: ClockReading | None = None
 
     @property
     def node_names(self) -> list[str]:
@@ -481,6 +519,10 @@ def check_graph(graph: Graph, report: Report, master_remote: bool = False) -> No
     report.warn("The following nodes are unexpectedly connected:", unexpected_links(graph))
     report.warn("The master lists registrations these nodes do not report "
                 "(stale, or another node of the same name):", stale_registrations(graph))
+    readings = [graph.master_clock, *(facts.clock for facts in graph.nodes.values())]
+    report.warn("The clocks of these machines differ from this machine's (time stamps, tf and rosbag compare "
+                "them; synchronise the machines' clocks, with chrony or ntpd):",
+                clock_skews(r for r in readings if r is not None))
     report.error("/use_sim_time is set but no publisher of /clock is present", sim_time_without_clock(graph))
     report.error("Could not contact the following nodes:", unreachable_nodes(graph))
     report.error("The following nodes advertise an address this machine cannot use (start each with ROS_IP "

@@ -13,6 +13,7 @@ from __future__ import annotations
 import errno
 import os
 import sys
+import time
 import xml.etree.ElementTree as ElementTree
 from collections.abc import Callable, Mapping, Sequence
 from concurrent.futures import ThreadPoolExecutor
@@ -32,6 +33,7 @@ from kame.net.address import DOES_NOT_RESOLVE, NO_ROUTE, unreachable_reason
 from kame.net.xmlrpc_client import XmlRpcProxy
 from kame.node.master_proxy import MasterError, MasterProxy
 from kame.node.services import probe_service
+from kame.protocol.http import parse_date
 from kame.protocol.xmlrpc import XmlRpcError
 
 ID = "/roswtf"
@@ -184,6 +186,17 @@ def _pairs(value: object) -> list[tuple[str, str]]:
     return [(str(row[0]), str(row[1])) for row in value if isinstance(row, list) and len(row) >= 2]
 
 
+def _timed_ping(proxy: MasterProxy, who: str) -> _wtf.ClockReading | None:
+    """getPid, and what its answer's Date says of the server's clock (None: it sent no Date)."""
+    sent = time.time()
+    proxy.call_raw("getPid")
+    received = time.time()
+    remote = parse_date(proxy.last_date or "")
+    if remote is None:
+        return None
+    return _wtf.ClockReading(urlsplit(proxy.uri).hostname or proxy.uri, who, remote, sent, received)
+
+
 def _ask_node(node: str, uri: str | None, uri_nodes: Mapping[str, str]) -> tuple[_wtf.NodeFacts, str | None]:
     """The node's facts and, when it did not answer, rosnode ping's complaint."""
     if uri is None:
@@ -191,11 +204,9 @@ def _ask_node(node: str, uri: str | None, uri_nodes: Mapping[str, str]) -> tuple
     proxy = MasterProxy(uri, ID, timeout=TIMEOUT)
     try:
         try:
-            proxy.call("getPid")
+            clock = _timed_ping(proxy, f"node {node}")
         except (OSError, XmlRpcError) as exc:
             return _wtf.NodeFacts(uri, reachable=False, unusable_address=_unusable(exc)), _ping_failure(node, uri, exc)
-        except MasterError:
-            pass  # it answered
         try:
             result = proxy.call_raw("getBusInfo")
             bus: list[_wtf.Link] | None = None
@@ -207,9 +218,9 @@ def _ask_node(node: str, uri: str | None, uri_nodes: Mapping[str, str]) -> tuple
                 subs = _pairs(proxy.call("getSubscriptions"))
             except MasterError:
                 pass
-            return _wtf.NodeFacts(uri, bus=bus, publications=pubs, subscriptions=subs), None
+            return _wtf.NodeFacts(uri, bus=bus, publications=pubs, subscriptions=subs, clock=clock), None
         except (OSError, XmlRpcError) as exc:
-            return _wtf.NodeFacts(uri, error=str(_cause(exc))), None
+            return _wtf.NodeFacts(uri, error=str(_cause(exc)), clock=clock), None
     finally:
         proxy.close()
 
@@ -246,6 +257,7 @@ def gather_graph(master_uri: str) -> tuple[_wtf.Graph, list[str]]:
     """The graph's snapshot and rosnode ping's complaints about the nodes that did not answer."""
     master = MasterProxy(master_uri, ID, timeout=TIMEOUT)
     try:
+        master_clock = _timed_ping(master, "the master")
         try:
             use_sim_time = bool(master.call("getParam", "/use_sim_time"))
         except MasterError:
@@ -270,7 +282,7 @@ def gather_graph(master_uri: str) -> tuple[_wtf.Graph, list[str]]:
         nodes = {n: f.result()[0] for n, f in asked.items()}
         complaints = [c for f in asked.values() if (c := f.result()[1])]
         failures = {s: why for s, f in probed.items() if (why := f.result())}
-    return _wtf.Graph(pubs, subs, srvs, nodes, use_sim_time, failures), complaints
+    return _wtf.Graph(pubs, subs, srvs, nodes, use_sim_time, failures, master_clock), complaints
 
 
 def gather_launches(master_uri: str) -> list[tuple[Sequence[Sequence[object]], Sequence[Sequence[object]]]]:

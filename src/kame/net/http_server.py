@@ -26,6 +26,7 @@ from dataclasses import dataclass
 from typing import NamedTuple
 
 from kame.net import peers
+from kame.net.http_date import current_date_header
 from kame.protocol.http import Refusal, RequestReader, encode_response, new_head_cache
 
 log = logging.getLogger("kame.net.http")
@@ -164,7 +165,7 @@ class _Connection(asyncio.Protocol):
     def _send(self, response: HttpResponse, version: str, keep_alive: bool) -> None:
         assert self.transport is not None
         self.transport.write(encode_response(response.status, response.body, response.content_type, version,
-                                             keep_alive))
+                                             keep_alive, current_date_header()))
         if not keep_alive:
             self.transport.close()
 

@@ -19,6 +19,7 @@ import time
 from collections.abc import Callable
 
 from kame.net import peers
+from kame.net.http_date import current_date_header
 from kame.net.stream import AcceptStarvation, peer_of
 from kame.protocol.http import Refusal, Request, RequestReader, encode_response
 
@@ -136,15 +137,18 @@ class RpcServer:
                 if isinstance(request, Refusal):
                     log.warning("refusing XML-RPC request from %s: %s (%d)", peer_of(conn), request.why,
                                 request.status)
-                    conn.sendall(encode_response(request.status, b"", "text/plain", keep_alive=False))
+                    conn.sendall(encode_response(request.status, b"", "text/plain", keep_alive=False,
+                                                 date=current_date_header()))
                     return
                 try:
                     answer = self._handler(request.body)
                 except Exception:
                     log.exception("XML-RPC handler failed")
-                    conn.sendall(encode_response(500, b"", "text/plain", keep_alive=False))
+                    conn.sendall(encode_response(500, b"", "text/plain", keep_alive=False,
+                                                 date=current_date_header()))
                     return
-                conn.sendall(encode_response(200, answer, "text/xml", request.version, request.keep_alive))
+                conn.sendall(encode_response(200, answer, "text/xml", request.version, request.keep_alive,
+                                             current_date_header()))
                 touch()
                 if not request.keep_alive:
                     return

@@ -51,6 +51,7 @@ class XmlRpcProxy:
         self.timeout = timeout
         self._sock: socket.socket | None = None
         self._lock = threading.Lock()
+        self.last_date: str | None = None  # the last response's Date header (the server's clock)
 
     def call(self, method: str, *params: object, timeout: float | None = None) -> Value:
         """Call `method`; raises XmlRpcTransportError (OSError), or the codec's Fault/MalformedError."""
@@ -97,6 +98,7 @@ class XmlRpcProxy:
                 break
         if not reader.keep_alive:
             self._drop()
+        self.last_date = reader.date
         return body
 
 

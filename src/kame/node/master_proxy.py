@@ -44,5 +44,10 @@ class MasterProxy:
         """The whole [code, message, value] answer (hasParam, searchParam read it)."""
         return self._proxy.call(method, self.caller_id, *args, timeout=timeout)
 
+    @property
+    def last_date(self) -> str | None:
+        """The Date header of the last answer: the clock of the server's machine, to the second."""
+        return self._proxy.last_date
+
     def close(self) -> None:
         self._proxy.close()

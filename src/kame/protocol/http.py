@@ -14,7 +14,9 @@ Rules:
   client repeats its own) is looked up in a cache the server shares between its connections
   instead of parsed again.
 - Responses: `Content-length` and `Content-type` spelled as rosmaster's (Python's http.server)
-  are; `Connection: close` when the connection ends after it. A response without
+  are; `Connection: close` when the connection ends after it; a `Date` (RFC 9110's IMF-fixdate,
+  as http.server sends) when the server gives one, which is how roswtf compares machines' clocks
+  (`ResponseReader.date`). A response without
   Content-length (HTTP/1.0 style) ends at the close: `ResponseReader.feed_eof` finishes it.
 - One error class, `HttpError`, for what a client reads (a bad or refused response).
 No I/O, no clock: kame.net calls into this module.
@@ -23,6 +25,7 @@ No I/O, no clock: kame.net calls into this module.
 from __future__ import annotations
 
 from collections.abc import Mapping
+from email.utils import formatdate, parsedate_to_datetime
 from types import MappingProxyType
 from typing import NamedTuple
 
@@ -32,8 +35,10 @@ __all__ = [
     "Request",
     "RequestReader",
     "ResponseReader",
+    "date_header",
     "encode_request",
     "encode_response",
+    "parse_date",
 ]
 
 REASONS = {
@@ -225,19 +230,38 @@ class RequestReader:
 
 
 def encode_response(status: int, body: bytes, content_type: str = "text/xml", version: str = "HTTP/1.1",
-                    keep_alive: bool = True) -> bytes:
-    """A response's bytes; the head's bytes are built once per (version, status, type, keep-alive)."""
+                    keep_alive: bool = True, date: bytes = b"") -> bytes:
+    """A response's bytes; the head's bytes are built once per (version, status, type, keep-alive).
+
+    `date`: a `date_header` line, or nothing."""
     key = (version, status, content_type, keep_alive)
     head = _RESPONSE_HEADS.get(key)
     if head is None:
-        before = (f"{version} {status} {REASONS.get(status, 'Unknown')}\r\nContent-type: {content_type}\r\n"
-                  "Content-length: ")
+        status_line = f"{version} {status} {REASONS.get(status, 'Unknown')}\r\n"
+        before = f"Content-type: {content_type}\r\nContent-length: "
         after = "\r\n" if keep_alive else "\r\nConnection: close\r\n"
-        head = _RESPONSE_HEADS[key] = (before.encode("latin-1"), (after + "\r\n").encode("latin-1"))
-    return head[0] + b"%d" % len(body) + head[1] + body
+        head = _RESPONSE_HEADS[key] = (status_line.encode("latin-1"), before.encode("latin-1"),
+                                       (after + "\r\n").encode("latin-1"))
+    return head[0] + date + head[1] + b"%d" % len(body) + head[2] + body
 
 
-_RESPONSE_HEADS: dict[tuple[str, int, str, bool], tuple[bytes, bytes]] = {}
+_RESPONSE_HEADS: dict[tuple[str, int, str, bool], tuple[bytes, bytes, bytes]] = {}
+
+
+def date_header(seconds: float) -> bytes:
+    """The `Date:` line (with its CRLF) for `seconds` since the epoch."""
+    return b"Date: " + formatdate(seconds, usegmt=True).encode("latin-1") + b"\r\n"
+
+
+def parse_date(value: str) -> float | None:
+    """Seconds since the epoch of a Date header's value; None when it is not a date."""
+    try:
+        when = parsedate_to_datetime(value)
+    except (TypeError, ValueError, IndexError):
+        return None
+    if when.tzinfo is None:  # RFC 850's and asctime's forms carry no zone: GMT by definition
+        return None
+    return when.timestamp()
 
 
 def encode_request(host: str, port: int, path: str, body: bytes, keep_alive: bool = True) -> bytes:
@@ -256,7 +280,7 @@ class ResponseReader:
     200 raises HttpError (XML-RPC faults come with 200).
     """
 
-    __slots__ = ("_buf", "_length", "keep_alive", "max_body", "max_header")
+    __slots__ = ("_buf", "_length", "date", "keep_alive", "max_body", "max_header")
 
     def __init__(self, max_header: int = DEFAULT_MAX_HEADER, max_body: int = DEFAULT_MAX_BODY) -> None:
         self.max_header = max_header
@@ -264,6 +288,7 @@ class ResponseReader:
         self._buf = bytearray()
         self._length: int | None = -1  # -1: head not yet read; None: the body ends at the close
         self.keep_alive = False
+        self.date: str | None = None  # the response's Date header, as sent
 
     def feed(self, data: bytes | bytearray | memoryview) -> bytes | None:
         buf = self._buf
@@ -274,7 +299,7 @@ class ResponseReader:
                 if len(buf) > self.max_header:
                     raise HttpError("response head too large")
                 return None
-            self._length, self.keep_alive = _parse_response_head(bytes(buf[:end]), self.max_body)
+            self._length, self.keep_alive, self.date = _parse_response_head(bytes(buf[:end]), self.max_body)
             del buf[:end + 4]
         length = self._length
         if length is None:
@@ -294,13 +319,14 @@ class ResponseReader:
         raise HttpError("response body cut short")
 
 
-def _parse_response_head(raw: bytes, max_body: int) -> tuple[int | None, bool]:
-    """(Content-Length or None, keep-alive) of a 200 response's head."""
+def _parse_response_head(raw: bytes, max_body: int) -> tuple[int | None, bool, str | None]:
+    """(Content-Length or None, keep-alive, Date) of a 200 response's head."""
     lines = raw.decode("latin-1").split("\r\n")
     status = lines[0].split(" ", 2)
     if len(status) < 2 or status[1] != "200":
         raise HttpError(f"HTTP status {lines[0][:80]!r}")
     length: int | None = None
+    date: str | None = None
     keep_alive = lines[0].startswith("HTTP/1.1")
     for line in lines[1:]:
         name, _, value = line.partition(":")
@@ -315,6 +341,8 @@ def _parse_response_head(raw: bytes, max_body: int) -> tuple[int | None, bool]:
         elif name == "connection":
             option = value.strip().lower()
             keep_alive = option == "keep-alive" or (keep_alive and option != "close")
+        elif name == "date":
+            date = value.strip()
     if length is not None and length > max_body:
         raise HttpError(f"response of {length} bytes is too large")
-    return length, keep_alive and length is not None
+    return length, keep_alive and length is not None, date
