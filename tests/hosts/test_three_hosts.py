@@ -9,6 +9,7 @@ process is stopped by its PID and every namespace is deleted at the end.
 
 from __future__ import annotations
 
+import subprocess
 import sys
 import time
 from pathlib import Path
@@ -27,21 +28,29 @@ TUTORIALS = Path(__file__).parents[1] / "interop" / "tutorials"
 debian = pytest.mark.skipif(not have_debian_ros(), reason="Debian's ROS 1 (rospy, ros* tools) is not installed")
 
 
-def pose_x(hosts: Hosts, host: str) -> float:
-    out = hosts.run(host, [str(BIN / "rostopic"), "echo", "-n", "1", "/turtle1/pose"])
+def pose_x(hosts: Hosts, host: str, **env: str) -> float:
+    out = hosts.run(host, [str(BIN / "rostopic"), "echo", "-n", "1", "/turtle1/pose"], **env)
     return float(yaml.safe_load(out.split("---")[0])["x"])
 
 
-def test_turtlesim_on_laptop_driven_and_watched_from_tablet(cleanup: Hosts) -> None:
+def drive_until_moved(hosts: Hosts, teleop: Proc, host: str, timeout: float = 20.0, **env: str) -> None:
+    """Up-arrow presses into teleop (on its stdin) until `rostopic echo` on `host` sees the turtle go 1 m forward."""
+    assert teleop.popen.stdin is not None
+    start = pose_x(hosts, host, **env)
+    deadline = time.monotonic() + timeout
+    while pose_x(hosts, host, **env) < start + 1.0:
+        assert time.monotonic() < deadline, "the turtle never moved"
+        teleop.popen.stdin.write("\x1b[A")
+        teleop.popen.stdin.flush()
+
+
+def test_turtlesim_on_laptop_driven_by_teleop_and_watched_from_tablet(cleanup: Hosts) -> None:
     hosts = cleanup
     sim = hosts.start("laptop", [str(BIN / "rosrun"), "turtlesim", "turtlesim_node", "--headless"])
     sim.wait_line("runs without a window")
-    start = pose_x(hosts, "tablet")
-    hosts.start("tablet", [str(BIN / "rostopic"), "pub", "-r", "20", "/turtle1/cmd_vel", "geometry_msgs/Twist",
-                           "{linear: {x: 2.0}}"])
-    deadline = time.monotonic() + 20
-    while pose_x(hosts, "tablet") < start + 1.0:
-        assert time.monotonic() < deadline, "the turtle on laptop never moved"
+    teleop = hosts.start("tablet", [str(BIN / "rosrun"), "turtlesim", "turtle_teleop_key"], stdin=subprocess.PIPE)
+    teleop.wait_line("Use arrow keys to move the turtle.")
+    drive_until_moved(hosts, teleop, "tablet")
     # a service across hosts: robot asks laptop's turtlesim for a second turtle
     spawned = hosts.run("robot", [str(BIN / "rosservice"), "call", "/spawn", "1.0", "1.0", "0.0", "t2"])
     assert yaml.safe_load(spawned) == {"name": "t2"}
@@ -65,6 +74,10 @@ def test_kame_talker_heard_by_rospy_and_roscpp_on_another_host_and_back(cleanup:
     hosts.start("tablet", [SYSTEM_PYTHON, str(TUTORIALS / "talker.py"), "chatter:=from_tablet"])
     kame_listener = hosts.start("laptop", [sys.executable, str(TUTORIALS / "listener.py"), "chatter:=from_tablet"])
     kame_listener.wait_line("I heard hello world", timeout=20)
+    if flags is not None:  # and roscpp's talker on tablet, heard by kame on laptop
+        hosts.start("tablet", [str(build_peers(flags)["talker"]), "chatter:=from_cpp"])
+        kame_listener = hosts.start("laptop", [sys.executable, str(TUTORIALS / "listener.py"), "chatter:=from_cpp"])
+        kame_listener.wait_line("I heard hello ", timeout=20)  # roscpp's talker says "hello <n>"
 
 
 def test_action_server_on_laptop_client_on_tablet(cleanup: Hosts) -> None:
@@ -172,3 +185,29 @@ def test_roswtf_says_when_the_master_on_another_host_cannot_be_reached(hosts: Ho
     out = hosts.run("tablet", [str(BIN / "roswtf")], timeout=60, ROS_MASTER_URI="http://robot:11399/")
     assert "ROS Master does not appear to be running." in out
     assert "The master's machine cannot be reached from here: the connection was refused." in out, out
+
+
+def test_roscore_restarted_under_turtlesim_and_teleop_on_other_hosts_and_the_turtle_moves_again(
+        cleanup: Hosts) -> None:
+    hosts = cleanup
+    own = {"ROS_MASTER_URI": "http://robot:11313/"}  # a master of its own, to restart
+    core = [str(BIN / "roscore"), "-p", "11313"]
+    master = hosts.start("robot", core, **own)
+    hosts.run("robot", [str(BIN / "rosparam"), "set", "/restart_up", "1"], retry=True, **own)
+    sim = hosts.start("laptop", [str(BIN / "rosrun"), "turtlesim", "turtlesim_node", "--headless"], **own)
+    sim.wait_line("runs without a window")
+    teleop = hosts.start("tablet", [str(BIN / "rosrun"), "turtlesim", "turtle_teleop_key"], stdin=subprocess.PIPE,
+                         **own)
+    teleop.wait_line("Use arrow keys to move the turtle.")
+    drive_until_moved(hosts, teleop, "tablet", **own)
+    hosts.stop(master)
+    master = hosts.start("robot", core, **own)
+    hosts.run("robot", [str(BIN / "rosparam"), "get", "/rosdistro"], retry=True, **own)
+    restarted = time.monotonic()
+    deadline = restarted + 20
+    while not {"/turtlesim", "/teleop_turtle"} <= set(hosts.run("robot", [str(BIN / "rosnode"), "list"],
+                                                                **own).split()):
+        assert time.monotonic() < deadline, "turtlesim and teleop never registered with the new master"
+    print(f"turtlesim and teleop listed again {time.monotonic() - restarted:.2f} s after the new master answered")
+    # the same teleop, never restarted, drives the same turtle again
+    drive_until_moved(hosts, teleop, "tablet", **own)

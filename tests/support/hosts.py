@@ -42,8 +42,9 @@ class Hosts:
     def host(self, name: str) -> Host:
         return self.lan[name]
 
-    def start(self, host: str, args: list[str], **env: str) -> Proc:
-        proc = Proc(self.lan[host].command(args), {**self.env(host), **env}, cwd=self.home)
+    def start(self, host: str, args: list[str], stdin: int | None = None, **env: str) -> Proc:
+        """`args` started on `host`; `stdin=subprocess.PIPE` for a program that reads keys (teleop)."""
+        proc = Proc(self.lan[host].command(args), {**self.env(host), **env}, cwd=self.home, stdin=stdin)
         self.procs.append(proc)
         return proc
 
