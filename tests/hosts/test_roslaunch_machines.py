@@ -47,9 +47,10 @@ class Lab:
         return path
 
     def machine(self, **attrs: str) -> str:
+        """The <machine> tag for laptop; an attribute given as "" is left out."""
         values = {"name": "laptop", "address": "laptop", "ssh-port": str(SSH_PORT), "user": "root",
                   "env-loader": str(self.loader), "timeout": "30", **attrs}
-        return "<machine " + " ".join(f'{k}="{v}"' for k, v in values.items()) + "/>"
+        return "<machine " + " ".join(f'{k}="{v}"' for k, v in values.items() if v) + "/>"
 
     def roslaunch(self, path: Path, **env: str) -> subprocess.CompletedProcess[str]:
         """roslaunch run on robot to its end (for the launches that fail)."""
@@ -141,4 +142,28 @@ def test_a_remote_roslaunch_that_does_not_answer_in_time_fails_the_launch_and_is
     assert done.returncode == 1
     assert ("The following roslaunch remote processes failed to register: \n * laptop (timeout 1.5s)"
             in done.stderr), done.stderr
+    lab.wait_sessions_end()
+
+
+def test_the_users_ssh_config_names_the_host_the_user_and_the_key(lab: Lab) -> None:
+    """As roslaunch: ~/.ssh/config's HostName, User and IdentityFile for the machine's address."""
+    home = lab.hosts.home / "config-home"
+    ssh_dir = home / ".ssh"
+    ssh_dir.mkdir(parents=True)
+    key = ssh_dir / "lab_key"
+    key.write_bytes((lab.client_home / ".ssh" / "id_ed25519").read_bytes())
+    key.chmod(0o600)
+    (ssh_dir / "known_hosts").write_text(lab.sshd.known_hosts_line)
+    (ssh_dir / "config").write_text(f"Host the-laptop\n  HostName laptop\n  User root\n  IdentityFile {key}\n")
+    path = lab.launch_file("config.launch", lab.machine(address="the-laptop", user=""),
+                           '  <node machine="laptop" pkg="rospy_tutorials" type="talker.py" name="t4"/>\n')
+    launch = Proc(lab.hosts.host("robot").command([str(BIN / "roslaunch"), str(path)]),
+                  {**lab.hosts.env("robot"), "HOME": str(home)}, cwd=lab.hosts.home)
+    try:
+        launch.wait_line("remote[the-laptop-0]: creating ssh connection to the-laptop:2222\n", timeout=60)
+        launch.wait_line("remote[the-laptop-0]: ssh connection created", timeout=60)
+        assert node_pid(lab.hosts, "/t4") in lab.sshd.sessions()
+    finally:
+        out, err = launch.stop(timeout=40)
+    assert launch.popen.returncode == 0, out + err
     lab.wait_sessions_end()
