@@ -9,6 +9,8 @@ Needs root and openssh-server (skips without them); every process is stopped by 
 
 from __future__ import annotations
 
+import os
+import signal
 import subprocess
 import time
 from collections.abc import Iterator
@@ -19,7 +21,7 @@ import pytest
 from ..support import Proc
 from ..support.hosts import BIN, Hosts
 from ..support.netns import Lan
-from ..support.sshd import Sshd
+from ..support.sshd import Sshd, children
 
 pytestmark = pytest.mark.skipif((Lan.unavailable() or Sshd.unavailable()) is not None,
                                 reason=Lan.unavailable() or Sshd.unavailable() or "")
@@ -167,3 +169,24 @@ def test_the_users_ssh_config_names_the_host_the_user_and_the_key(lab: Lab) -> N
         out, err = launch.stop(timeout=40)
     assert launch.popen.returncode == 0, out + err
     lab.wait_sessions_end()
+
+
+def test_a_lost_connection_stops_the_remote_nodes_and_is_reported(lab: Lab) -> None:
+    hosts = lab.hosts
+    path = lab.launch_file("lost.launch", lab.machine(),
+                           '  <node machine="laptop" pkg="rospy_tutorials" type="talker.py" name="t5"/>\n')
+    launch = Proc(hosts.host("robot").command([str(BIN / "roslaunch"), str(path)]),
+                  {**hosts.env("robot"), "HOME": str(lab.client_home)}, cwd=hosts.home)
+    try:
+        launch.wait_line("remote[laptop-0]: ssh connection created", timeout=60)
+        talker = node_pid(hosts, "/t5")
+        # laptop's sshd drops the connection (its process for this connection dies)
+        [connection] = [pid for pid in lab.sshd.sessions() if pid in children(lab.sshd.proc.pid)]
+        os.kill(connection, signal.SIGKILL)
+        launch.wait_line("all processes on machine have died, roslaunch will exit", timeout=30)
+        assert launch.popen.wait(30) == 0
+    finally:
+        out, err = launch.stop(timeout=40)
+    assert "[laptop-0] process has died [the connection to laptop was lost]." in err, out + err
+    lab.wait_sessions_end()  # the remote roslaunch saw its input end and stopped its talker
+    assert not Path(f"/proc/{talker}").exists()

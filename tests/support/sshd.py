@@ -78,11 +78,11 @@ class Sshd:
 
     def sessions(self) -> list[int]:
         """The PIDs of every process below sshd (its sessions and what they run): none once all ended."""
-        found, todo = [], _children(self.proc.pid)
+        found, todo = [], children(self.proc.pid)
         while todo:
             pid = todo.pop()
             found.append(pid)
-            todo.extend(_children(pid))
+            todo.extend(children(pid))
         return found
 
     def close(self) -> str:
@@ -91,7 +91,8 @@ class Sshd:
         return err
 
 
-def _children(pid: int) -> list[int]:
+def children(pid: int) -> list[int]:
+    """The PIDs of the processes `pid` started that are still running."""
     try:
         text = Path(f"/proc/{pid}/task/{pid}/children").read_text()
     except OSError:

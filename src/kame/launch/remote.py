@@ -29,7 +29,7 @@ from pathlib import Path
 from kame.launch import plan
 from kame.launch.model import Machine, Node
 from kame.launch.supervisor import say, say_error
-from kame.net.ssh import RemoteCommand, SshError, SshTarget
+from kame.net.ssh import LOST, RemoteCommand, SshError, SshTarget
 
 log = logging.getLogger("kame.launch.remote")
 
@@ -135,4 +135,6 @@ class RemoteChild:
         status = await asyncio.to_thread(command.wait, STOP_GRACE) if command is not None else None
         if status == 0:
             return "process has finished cleanly"
+        if status is None or status == LOST:
+            return f"process has died [the connection to {self.machine.address} was lost]."
         return f"process has died [exit code {status}, remote roslaunch on {self.machine.address}]."

@@ -32,6 +32,7 @@ if TYPE_CHECKING:
 log = logging.getLogger("kame.net.ssh")
 
 SSH_CONNECT_TIMEOUT = 30.0
+LOST = -1  # the exit status of a command whose channel closed without one (paramiko's): the connection was lost
 SYSTEM_KNOWN_HOSTS = "/etc/ssh/ssh_known_hosts"
 
 
@@ -194,7 +195,8 @@ class RemoteCommand:
             log.info("ssh stdin already closed: %s", exc)
 
     def wait(self, timeout: float) -> int | None:
-        """The command's exit status, or None when it has not ended within `timeout`."""
+        """The command's exit status (LOST when the connection ended without one), or None when it
+        has not ended within `timeout`."""
         if not self._channel.status_event.wait(timeout):
             return None
         return int(self._channel.recv_exit_status())
