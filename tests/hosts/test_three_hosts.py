@@ -211,3 +211,9 @@ def test_roscore_restarted_under_turtlesim_and_teleop_on_other_hosts_and_the_tur
     print(f"turtlesim and teleop listed again {time.monotonic() - restarted:.2f} s after the new master answered")
     # the same teleop, never restarted, drives the same turtle again
     drive_until_moved(hosts, teleop, "tablet", **own)
+
+
+def test_roswtf_on_a_host_that_advertises_loopback_with_the_master_elsewhere_is_an_error(hosts: Hosts) -> None:
+    out = hosts.run("tablet", [str(BIN / "roswtf")], timeout=60, ROS_HOSTNAME="localhost")
+    [line] = [line for line in out.splitlines() if "Nodes on other machines cannot reach this one: " in line]
+    assert "[localhost], which means [127.0.0.1]" in line and "ROS_IP" in line, out
