@@ -100,3 +100,21 @@ def test_a_child_runs_its_nodes_until_its_input_ends(tmp_path: Path) -> None:
 def test_a_child_needs_a_run_id() -> None:
     done = subprocess.run(kame_command("kame.cli.roslaunch", "-c", "x-0"), capture_output=True, text=True)
     assert done.returncode == 2 and "--child option requires --run_id to be set as well" in done.stderr
+
+
+def test_nodes_are_remote_by_their_machines_address_and_local_with_dash_dash_local(tmp_path: Path) -> None:
+    from kame.launch.runner import LaunchRun, RunOptions
+
+    config = LaunchConfig(
+        nodes=[Node("p", "a", "plain"), Node("p", "b", "here", machine_name="me"),
+               Node("p", "c", "there", machine_name="laptop"), Node("p", "d", "too", machine_name="laptop")],
+        machines={"me": Machine("me", "localhost"), "laptop": Machine("laptop", "laptop.invalid")})
+
+    def run(local_only: bool) -> LaunchRun:
+        return LaunchRun(config, RunOptions("r1", "http://localhost:11311/", tmp_path, tmp_path, {},
+                                            local_only=local_only))
+
+    remote = run(local_only=False).remote_nodes()
+    assert {m: [n.name for n in nodes] for m, nodes in remote.items()} == {"laptop": ["there", "too"]}
+    assert run(local_only=True).remote_nodes() == {}
+    assert [n.name for n in config.nodes if run(False).is_local(n)] == ["plain", "here"]
