@@ -112,6 +112,7 @@ LAYERS: dict[str, int] = {
     "kame.rviz.main": 4,
     "kame.stage.runtime": 4,  # the simulator's and map tools' one way to the ROS runtime
     "kame.stage.node": 4,
+    "kame.stage.gui": 4,  # Qt; knows only the simulator's frames
     "kame.stage.map_server": 4,
     "kame.stage.map_saver": 4,
     "kame.stage.teleop": 4,

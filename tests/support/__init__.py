@@ -38,8 +38,10 @@ def have_debian_ros() -> bool:
 
 
 def ros_env(home: Path, master_uri: str | None = None) -> dict[str, str]:
-    """The environment for a ROS process: its own ROS_HOME/ROS_LOG_DIR, loopback addresses."""
-    env = {k: v for k, v in os.environ.items() if not k.startswith("ROS_") and k != "PYTHONPATH"}
+    """The environment for a ROS process: its own ROS_HOME/ROS_LOG_DIR, loopback addresses, no
+    display (a simulator's window opens only in the tests that give it one)."""
+    env = {k: v for k, v in os.environ.items()
+           if not k.startswith("ROS_") and k not in ("PYTHONPATH", "DISPLAY", "WAYLAND_DISPLAY", "QT_QPA_PLATFORM")}
     home.mkdir(parents=True, exist_ok=True)
     env.update(ROS_HOME=str(home), ROS_LOG_DIR=str(home / "log"), ROS_HOSTNAME="127.0.0.1",
                PYTHONUNBUFFERED="1")

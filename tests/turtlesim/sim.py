@@ -64,8 +64,6 @@ def master(home: Path) -> Iterator[Sim]:
     port = free_port()
     uri = f"http://127.0.0.1:{port}/"
     env = ros_env(home, uri)
-    env.pop("DISPLAY", None)
-    env.pop("WAYLAND_DISPLAY", None)
     core = Proc([str(BIN / "rosmaster"), "--core", "-p", str(port)], env)
     sim = Sim(home, uri, env, [core])
     try:

@@ -18,7 +18,10 @@ Private params: ~initial_pose_x/y/a (one robot) or ~robots ([{name, x, y, a}, ..
 ~laser_beams, ~laser_angle_min/max, ~laser_range_min/max, ~laser_rate, ~laser_noise;
 ~odom_drift_linear/angular, ~seed; ~step (seconds of simulated time, 0.01), ~odom_rate (Hz, 50);
 ~real_time_factor (1.0; 0 runs as fast as it can); ~odom_frame_id, ~base_frame_id, ~laser_frame_id.
--g (no GUI) and -u are accepted for stageros's command lines; kame's world has no window yet.
+The window (as Stage's: the world from above, robots, laser hits) is a process of its own fed
+frames (kame.net.feed, kame.stage.gui); -g runs without it, as does a machine without a display
+or PySide6 (said once). Closing the window ends stageros, as closing Stage's does; a window
+that dies otherwise leaves the simulation running. -u is accepted for stageros's command lines.
 Bad input (no map, a robot in a wall, a NaN command) is an error line, never a traceback.
 """
 
@@ -29,14 +32,17 @@ import os
 import sys
 import threading
 import time
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import Any
 
 from kame.names import is_legal_base_name
+from kame.net.feed import ChildFeed
+from kame.net.window import window_problem
 from kame.stage import runtime
 from kame.stage.map_server import read_map
 from kame.stage.mapfile import Grid, MapError, decode_image
+from kame.stage.view import Frame, FrameEncoder, frame_of, scan_hits, wall_raster
 from kame.stage.world import LaserModel, OdometryModel, Pose, RobotState, Walls, World, WorldError
 from kame.stage.worldfile import WorldFileError, rasterise
 from kame.stage.worldfile import parse as parse_world_file
@@ -50,10 +56,14 @@ class SetupError(ValueError):
     """A command line or parameter the simulator cannot start with."""
 
 
+WINDOW_PERIOD = 0.05  # seconds of wall time between the window's frames (20 Hz)
+
+
 @dataclass(frozen=True)
 class Options:
     map_path: str
     stand_in_for: str | None
+    headless: bool = False
 
 
 def parse_args(args: Sequence[str]) -> Options:
@@ -67,7 +77,7 @@ def parse_args(args: Sequence[str]) -> Options:
         del rest[i:i + 2]
     if len(rest) != 1:
         raise SetupError(USAGE)
-    return Options(rest[0], stand_in)
+    return Options(rest[0], stand_in, "-g" in args)
 
 
 def _number(name: str, default: float) -> float:
@@ -223,6 +233,8 @@ class Simulator:
         self.frames = frames
         self._tf: Any = None
         self._clock: Any = None
+        self._hits: dict[str, bytes] = {}  # each robot's last scan, as the window shows it
+        self._raster: bytes | None = None
 
     def robot_names(self) -> list[str]:
         return [r.name for r in self._robots]
@@ -292,6 +304,8 @@ class Simulator:
             now = self.world.time
             self._steps += 1
             scans = self.world.scans() if self._steps % self._scan_every == 0 else {}
+            if scans and self._raster is not None:
+                self._hits = {name: scan_hits(self.world, name, ranges) for name, ranges in scans.items()}
         stamp = _stamp(now)
         if self._clock is not None:
             from rosgraph_msgs.msg import Clock
@@ -321,13 +335,25 @@ class Simulator:
         if transforms:
             self._tf.publish(TFMessage(transforms))
 
-    def run(self) -> None:
+    def frame(self) -> Frame:
+        """The world as the window draws it now."""
+        with self.lock:
+            if self._raster is None:
+                self._raster = wall_raster(self.world)
+            return frame_of(self.world, self._raster, self._hits)
+
+    def run(self, show: Callable[[Frame], None] | None = None) -> None:
         """Step until shutdown, each step lasting step / real_time_factor of wall time (no waiting
-        at factor 0); a late step is not made up for by a burst."""
+        at factor 0); a late step is not made up for by a burst. `show` gets a frame every
+        WINDOW_PERIOD of wall time."""
         pace = self.step_seconds / self.real_time_factor if self.real_time_factor > 0 else 0.0
         deadline = time.monotonic()
+        next_frame = deadline
         while not runtime.is_shutdown():
             self.tick()
+            if show is not None and time.monotonic() >= next_frame:
+                show(self.frame())
+                next_frame = time.monotonic() + WINDOW_PERIOD
             if pace == 0.0:
                 continue
             deadline += pace
@@ -336,6 +362,20 @@ class Simulator:
                 deadline = time.monotonic()
             elif delay > 0 and runtime.wait_for_shutdown(delay):
                 break
+
+
+def open_window(title: str) -> ChildFeed[Frame]:
+    """The window, a process of its own fed frames: when it dies, the simulation goes on."""
+    encoder = FrameEncoder()
+
+    def ended(status: int) -> None:
+        if status == 0:  # the user closed it: stageros ends, as Stage does
+            runtime.signal_shutdown("window closed")
+            return
+        how = f"signal {-status}" if status < 0 else f"status {status}"
+        runtime.warn("The window ended (%s): stageros continues headless, without a window", how)
+
+    return ChildFeed([sys.executable, "-m", "kame.stage.gui", "--window", title], encoder.encode, ended)
 
 
 def main(argv: Sequence[str] | None = None) -> int:
@@ -368,11 +408,19 @@ def main(argv: Sequence[str] | None = None) -> int:
     names = ", ".join(f"[{name}]" for name in sim.robot_names())
     runtime.info("Simulating %s in %s (%d x %d cells of %g m)", names, options.map_path,
                  world.walls.occupied.shape[1], world.walls.occupied.shape[0], world.walls.resolution)
+    problem = window_problem("stageros", "-g" if options.headless else None, os.environ)
+    window = None
     try:
-        sim.run()
+        if problem is not None:
+            (runtime.info if problem.asked_for else runtime.warn)("%s", problem.reason)
+        else:
+            window = open_window(f"Stage: {os.path.basename(options.map_path)}")
+        sim.run(show=window.offer if window is not None else None)
     except KeyboardInterrupt:
         pass
     finally:
+        if window is not None:
+            window.close()
         runtime.signal_shutdown("stageros exiting")
     return 0
 

@@ -22,25 +22,21 @@ gone) the simulation goes on headless and says so; when the user closes it, turt
 
 from __future__ import annotations
 
-import importlib.util
 import io
 import os
-import platform
 import sys
 import threading
 import time
-from collections.abc import Callable, Mapping, Sequence
-from dataclasses import dataclass
+from collections.abc import Callable, Sequence
 from typing import Any
 
 from geometry_msgs.msg import Twist
 from kame.client import core, log, process, topics
 from kame.client.action.simple_action_server import SimpleActionServer
-from kame.net.command import run_command
 from kame.net.feed import ChildFeed
+from kame.net.window import window_problem
 from kame.turtlesim.canvas import Rgb
 from kame.turtlesim.frame_codec import FrameEncoder
-from kame.turtlesim.window_probe import window_verdict
 from kame.turtlesim.world import (
     DEFAULT_BACKGROUND,
     UPDATE_PERIOD,
@@ -359,32 +355,6 @@ class TurtlesimNode:
             self._turtles = {}
 
 
-WINDOW_PROBE_SECONDS = 20.0  # Qt starts in well under a second; a loaded machine gets slack
-
-
-@dataclass(frozen=True)
-class NoWindow:
-    reason: str  # said once
-    asked_for: bool  # --headless or no display (an INFO line), else something is wrong (a WARN)
-
-
-def window_problem(args: Sequence[str], env: Mapping[str, str]) -> NoWindow | None:
-    """Why there will be no window, or None when Qt can open one. The last word is a probe
-    child's (kame.turtlesim.gui's probe): Qt aborts a process whose platform plugin cannot load,
-    and the simulation must not be that process."""
-    if "--headless" in args:
-        return NoWindow("--headless: turtlesim runs without a window", True)
-    if not (env.get("DISPLAY") or env.get("WAYLAND_DISPLAY") or env.get("QT_QPA_PLATFORM")):
-        return NoWindow("No display (DISPLAY is not set): turtlesim runs headless, without a window", True)
-    if importlib.util.find_spec("PySide6") is None:
-        return NoWindow("PySide6 is not installed (pip install 'kame[gui]'): turtlesim runs headless, "
-                        "without a window", False)
-    probe = run_command([sys.executable, "-m", "kame.turtlesim.gui"], env={**env, "QT_DEBUG_PLUGINS": "1"},
-                        timeout=WINDOW_PROBE_SECONDS)
-    verdict = window_verdict(probe.returncode, probe.output, platform.python_version())
-    return NoWindow(verdict, False) if verdict is not None else None
-
-
 def window_command() -> list[str]:
     return [sys.executable, "-m", "kame.turtlesim.gui", "--window", WINDOW_TITLE]
 
@@ -410,7 +380,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     process.init_node(NODE_NAME, argv=argv)
     sim = TurtlesimNode(World())
     sim.start()
-    problem = window_problem(args, os.environ)
+    problem = window_problem("turtlesim", "--headless" if "--headless" in args else None, os.environ)
     window = None
     try:
         if problem is not None:
