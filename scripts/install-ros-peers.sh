@@ -34,4 +34,13 @@ if [ ${#missing[@]} -eq 0 ]; then
 fi
 echo "install-ros-peers: installing ${#missing[@]} Debian packages" >&2
 apt-get update -qq
+# The tests start their own sshd (and nothing else) in a namespace: installing openssh-server
+# must not start a system-wide sshd on port 22 as a side effect, so for this one install
+# Debian's policy-rc.d says no service may start (exit 101), unless the machine already has one.
+policy=/usr/sbin/policy-rc.d
+
+if [ ! -e "$policy" ]; then
+  printf '#!/bin/sh\nexit 101\n' >"$policy" && chmod +x "$policy"
+  trap 'rm -f "$policy"' EXIT
+fi
 DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
