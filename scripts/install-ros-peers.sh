@@ -38,7 +38,6 @@ apt-get update -qq
 # must not start a system-wide sshd on port 22 as a side effect, so for this one install
 # Debian's policy-rc.d says no service may start (exit 101), unless the machine already has one.
 policy=/usr/sbin/policy-rc.d
-
 if [ ! -e "$policy" ]; then
   printf '#!/bin/sh\nexit 101\n' >"$policy" && chmod +x "$policy"
   trap 'rm -f "$policy"' EXIT
