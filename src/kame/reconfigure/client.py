@@ -23,13 +23,12 @@ from kame.client.services import ServiceException, ServiceProxy, wait_for_servic
 from kame.client.topics import Subscriber
 from kame.reconfigure.encoding import (
     Config,
-    DynamicReconfigureCallbackException,
-    DynamicReconfigureParameterException,
     decode_config,
     decode_description,
     encode_config,
     extract_params,
 )
+from kame.reconfigure.errors import DynamicReconfigureCallbackException, DynamicReconfigureParameterException
 
 _TYPES: dict[str, type] = {"int": int, "double": float, "str": str, "bool": bool}
 

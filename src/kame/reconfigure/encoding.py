@@ -22,14 +22,6 @@ from dynamic_reconfigure.msg import ConfigDescription as ConfigDescrMsg
 from dynamic_reconfigure.msg import Group as GroupMsg
 
 
-class DynamicReconfigureParameterException(Exception):
-    """A change names an unknown parameter or a value that does not convert to its type."""
-
-
-class DynamicReconfigureCallbackException(Exception):
-    """A server's callback returned no configuration, or a server did not accept a change."""
-
-
 class Config(dict[str, Any]):
     """A dict whose items are attributes too."""
 
