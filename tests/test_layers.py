@@ -92,6 +92,8 @@ LAYERS: dict[str, int] = {
     "kame.rqt.service_window": 4,
     "kame.rqt.image_source": 4,
     "kame.rqt.image_window": 4,
+    "kame.rqt.reconfigure_source": 4,  # follows a dynamic_reconfigure server, calls its set_parameters
+    "kame.rqt.reconfigure_window": 4,
     "kame.rqt.plugins": 4,  # the rqt window's plugins: each tool's window and what it talks through
     "kame.rqt.gui_window": 4,
     "kame.rqt.asking": 4,  # Qt: a window whose calls run on its worker thread
