@@ -1,4 +1,5 @@
-"""roslaunch's Python API on kame: scriptapi.ROSLaunch, parent.ROSLaunchParent, rlutil, core.Node.
+"""roslaunch's Python API on kame: scriptapi.ROSLaunch, parent.ROSLaunchParent, rlutil, core
+(Node, Test, Param, Machine, Master), config (ROSLaunchConfig, load_config_default), xmlloader.
 
 `roslaunch.main()` is the command line (kame.cli.roslaunch).
 """
