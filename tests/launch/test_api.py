@@ -31,6 +31,7 @@ print("after stop", talker.is_alive(), flush=True)
 launch.stop()
 
 run_id = roslaunch.rlutil.get_or_generate_uuid(None, False)
+roslaunch.configure_logging(run_id)
 files = roslaunch.rlutil.resolve_launch_arguments([sys.argv[1], "rate:=5"])
 parent = roslaunch.parent.ROSLaunchParent(run_id, [(files[0], ["rate:=5"])], show_summary=False)
 parent.start()
@@ -58,6 +59,8 @@ def test_scriptapi_and_parent(tmp_path: Path) -> None:
         assert proc.popen.returncode == 0, out + err
         assert "alive True pid" in out and "after stop False" in out
         assert "rate 5" in out and "spun" in out
+        logged = re.search(r"\.\.\. logging to (\S+/roslaunch-\S+\.log)", out)
+        assert logged and Path(logged.group(1)).is_file(), out
         pid = int(re.search(r"alive True pid (\d+)", out)[1])  # type: ignore[index]
         assert not os.path.exists(f"/proc/{pid}")
         assert xmlrpc.client.ServerProxy(f"http://127.0.0.1:{port}").getParam("/t", "/rate")[2] == 5
