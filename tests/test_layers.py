@@ -93,6 +93,8 @@ LAYERS: dict[str, int] = {
     "kame.rqt.service_window": 4,
     "kame.rqt.image_source": 4,
     "kame.rqt.image_window": 4,
+    "kame.rqt.reconfigure_source": 4,  # follows a dynamic_reconfigure server, calls its set_parameters
+    "kame.rqt.reconfigure_window": 4,
     "kame.rqt.plugins": 4,  # the rqt window's plugins: each tool's window and what it talks through
     "kame.rqt.gui_window": 4,
     "kame.rqt.asking": 4,  # Qt: a window whose calls run on its worker thread
@@ -122,11 +124,9 @@ LAYERS: dict[str, int] = {
     **{facade: 5 for facade in FACADES},
     "sensor_msgs": MESSAGES,  # generated, but for point_cloud2
     "sensor_msgs.point_cloud2": 5,  # written by hand over the generated classes
-    "dynamic_reconfigure": MESSAGES,  # generated, but for the modules below
-    "dynamic_reconfigure.parameter_generator_catkin": 5,
-    "dynamic_reconfigure.encoding": 5,
-    "dynamic_reconfigure.server": 5,
-    "dynamic_reconfigure.client": 5,
+    "dynamic_reconfigure": 5,  # upstream's package __init__, server, client, encoding, parameter_generator_catkin
+    "dynamic_reconfigure.msg": MESSAGES,  # generated
+    "dynamic_reconfigure.srv": MESSAGES,
     # L6 the ROS programs kame ships (tutorial scripts): user code, free to import anything
     "kame.share": 6,
 }

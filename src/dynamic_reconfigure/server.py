@@ -1,6 +1,6 @@
 """dynamic_reconfigure.server as ROS nodes import it (kame.reconfigure.server)."""
 
-from kame.reconfigure.encoding import DynamicReconfigureCallbackException
+from kame.reconfigure.errors import DynamicReconfigureCallbackException
 from kame.reconfigure.server import Server
 
 __all__ = ["DynamicReconfigureCallbackException", "Server"]

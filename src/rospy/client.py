@@ -1,5 +1,12 @@
 """rospy.client: init_node, spin, parameters and the other top-level functions (kame.client.process)."""
 
+from __future__ import annotations
+
+from typing import Any
+
+from kame import names as _names
+from kame import param_yaml as _param_yaml
+from kame.client.errors import ROSInitException
 from kame.client.process import (
     DEFAULT_MASTER_URI,
     delete_param,
@@ -27,9 +34,20 @@ __all__ = [
     "get_published_topics",
     "has_param",
     "init_node",
+    "load_command_line_node_params",
     "myargv",
     "search_param",
     "set_param",
     "spin",
     "wait_for_message",
 ]
+
+
+def load_command_line_node_params(argv: list[str]) -> dict[str, Any]:
+    """The private parameters of a command line (`_rate:=10` -> {'rate': 10}, values read as YAML)."""
+    try:
+        params = _names.parse_args(argv).params
+        return {key[len(_names.PRIVATE_PREFIX):]: _param_yaml.safe_load(text) for key, text in params.items()
+                if key != _names.PRIVATE_PREFIX}  # `_:=x` names no parameter
+    except Exception as exc:
+        raise ROSInitException(f"invalid command-line parameters: {exc}") from exc

@@ -23,6 +23,7 @@ from rosgraph.names import (
     namespace,
     ns_join,
 )
+from rospy.impl.validators import ParameterInvalid
 
 __all__ = ["ANYTYPE", "GLOBALNS", "REMAP", "SEP", "ParameterInvalid", "canonicalize_name", "get_caller_id",
            "get_mappings", "get_name", "get_namespace", "get_resolved_mappings", "get_ros_namespace",
@@ -32,10 +33,6 @@ __all__ = ["ANYTYPE", "GLOBALNS", "REMAP", "SEP", "ParameterInvalid", "canonical
 get_caller_id = core.get_caller_id
 get_name = core.get_name
 get_namespace = core.get_namespace
-
-
-class ParameterInvalid(Exception):
-    """A parameter of an API call that is not a valid name."""
 
 
 def canonicalize_name(name: str) -> str:

@@ -8,6 +8,7 @@ from kame.client.clock import (
     is_rostime_initialized,
     is_sim_time,
     set_rostime_initialized,
+    set_sim_time,
     wallsleep,
 )
 
@@ -20,6 +21,7 @@ __all__ = [
     "is_sim_time",
     "is_wallclock",
     "set_rostime_initialized",
+    "switch_to_wallclock",
     "wallsleep",
 ]
 
@@ -27,3 +29,13 @@ __all__ = [
 def is_wallclock() -> bool:
     """True unless ROS time comes from /clock (upstream's name for `not is_sim_time()`)."""
     return not is_sim_time()
+
+
+def switch_to_wallclock() -> None:
+    """ROS time follows the wall clock again (after /clock or _set_rostime)."""
+    set_sim_time(None)
+
+
+def _set_rostime(t: Time) -> None:
+    """Set simulated ROS time to `t`, waking sleepers (what each /clock message does)."""
+    set_sim_time(t)

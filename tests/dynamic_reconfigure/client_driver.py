@@ -2,13 +2,15 @@
 
 argv: the server's name, then JSON changes to send one after another. Prints one JSON line:
 the parameter names described, the first configuration, each answer to update_configuration,
-and the configuration the config_callback saw last.
+the configuration the config_callback saw last, the servers the package finds, and what an
+unknown parameter raises (upstream's exception classes, importable from the package itself).
 """
 
 import json
 import sys
 import threading
 
+import dynamic_reconfigure
 import rospy
 from dynamic_reconfigure.client import Client
 
@@ -20,6 +22,15 @@ def on_config(config):
     with changed:
         seen.append(config)
         changed.notify_all()
+
+
+def unknown_parameter(client):
+    try:
+        client.update_configuration({"no_such_param": 1})
+    except dynamic_reconfigure.DynamicReconfigureException as exc:
+        return [type(exc).__name__, str(exc),
+                isinstance(exc, dynamic_reconfigure.DynamicReconfigureParameterException)]
+    return None
 
 
 def plain(config):
@@ -36,5 +47,9 @@ if __name__ == "__main__":
         changed.wait_for(lambda: seen and plain(seen[-1]) == answers[-1], timeout=30)
     print(json.dumps({"names": [d["name"] for d in descriptions], "types": [d["type"] for d in descriptions],
                       "first": first, "answers": answers, "last_seen": plain(seen[-1]),
-                      "groups": sorted(client.get_configuration()["groups"]["groups"])}))
+                      "groups": sorted(client.get_configuration()["groups"]["groups"]),
+                      "services": dynamic_reconfigure.find_reconfigure_services(),
+                      "unknown": unknown_parameter(client),
+                      "callback_error": issubclass(dynamic_reconfigure.DynamicReconfigureCallbackException,
+                                                   dynamic_reconfigure.DynamicReconfigureException)}))
     client.close()

@@ -64,3 +64,5 @@ def test_a_service_call_takes_the_message_of_the_requests_one_field() -> None:
     assert args_kwds_to_message(ReconfigureRequest, (config,), {}) == ReconfigureRequest(config)
     with pytest.raises(TypeError, match=r"expected \[dynamic_reconfigure/Config\] but got \[dynamic_reconfigure/Group"):
         args_kwds_to_message(ReconfigureRequest, (Group(),), {})
+    request = ReconfigureRequest(config)  # the request itself, one field or not, is taken as it is (rospy's md5 rule)
+    assert args_kwds_to_message(ReconfigureRequest, (request,), {}) is request

@@ -88,6 +88,8 @@ def test_kames_client_changes_the_tutorial_server(master_env: dict[str, str], tu
         "bool_param": False, "size": 2, "double_param": 0.25}
     assert (answer["answers"][2]["int_param"], answer["answers"][2]["str_param"]) == (100, "kame")
     assert answer["last_seen"] == answer["first"] and answer["groups"] == ["Limits"]
+    assert answer["services"] == ["/dynamic_tutorials"] and answer["callback_error"]
+    assert answer["unknown"] == ["DynamicReconfigureParameterException", "don't know parameter: no_such_param", True]
     tutorial_server.wait_line("Reconfigure Request: 100, 0.25,          kame, False, 2")
 
 

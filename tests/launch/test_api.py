@@ -12,7 +12,7 @@ from tests.support import Proc, free_port, ros_env
 
 SCRIPT = """
 import os, sys, time, xmlrpc.client
-import roslaunch, roslaunch.rlutil
+import roslaunch, roslaunch.pmon, roslaunch.rlutil
 from roslaunch.core import Node
 
 launch = roslaunch.scriptapi.ROSLaunch()
@@ -30,9 +30,21 @@ talker.stop()
 print("after stop", talker.is_alive(), flush=True)
 launch.stop()
 
+class Listener(roslaunch.pmon.ProcessListener):
+    def process_died(self, name, exit_code):
+        print("died", name, exit_code, flush=True)
+
+
+class Broken(roslaunch.pmon.ProcessListener):
+    def process_died(self, name, exit_code):
+        raise RuntimeError("a listener's own bug")
+
+
 run_id = roslaunch.rlutil.get_or_generate_uuid(None, False)
+roslaunch.configure_logging(run_id)
 files = roslaunch.rlutil.resolve_launch_arguments([sys.argv[1], "rate:=5"])
-parent = roslaunch.parent.ROSLaunchParent(run_id, [(files[0], ["rate:=5"])], show_summary=False)
+parent = roslaunch.parent.ROSLaunchParent(run_id, [(files[0], ["rate:=5"])], show_summary=False,
+                                          process_listeners=[Broken(), Listener()])
 parent.start()
 print("rate", master.getParam("/t", "/rate")[2], flush=True)
 parent.spin()
@@ -58,6 +70,10 @@ def test_scriptapi_and_parent(tmp_path: Path) -> None:
         assert proc.popen.returncode == 0, out + err
         assert "alive True pid" in out and "after stop False" in out
         assert "rate 5" in out and "spun" in out
+        assert re.search(r"died brief-\d+ 124", out), out  # `timeout 1` ends it with 124; the broken one is said
+        assert "process listener" in err and "a listener's own bug" in err
+        logged = re.search(r"\.\.\. logging to (\S+/roslaunch-\S+\.log)", out)
+        assert logged and Path(logged.group(1)).is_file(), out
         pid = int(re.search(r"alive True pid (\d+)", out)[1])  # type: ignore[index]
         assert not os.path.exists(f"/proc/{pid}")
         assert xmlrpc.client.ServerProxy(f"http://127.0.0.1:{port}").getParam("/t", "/rate")[2] == 5

@@ -196,3 +196,50 @@ def _run_with_env(script: Path, env: dict[str, str]) -> Any:
                             env=env)
     assert result.returncode == 0, result.stderr
     return json.loads(result.stdout)
+
+
+DEBIAN_NODE = """
+import rospy
+from geometry_msgs.msg import PoseStamped
+from std_srvs.srv import SetBool, SetBoolResponse
+rospy.init_node("debian_node")
+pose = rospy.Publisher("pose", PoseStamped, queue_size=10)
+rospy.Service("switch", SetBool, lambda req: SetBoolResponse(req.data, "on" if req.data else "off"))
+print("ready", flush=True)
+rate = rospy.Rate(50)
+while not rospy.is_shutdown():
+    pose.publish(PoseStamped())
+    rate.sleep()
+"""
+
+
+@pytest.mark.skipif(not debian.has("rospy", "std_srvs.srv", "geometry_msgs.msg"),
+                    reason="Debian's rospy is not installed")
+def test_kames_modules_on_a_debian_rospy_node(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    # the other way round: a node of Debian's real rospy, asked and killed through kame's modules
+    from geometry_msgs.msg import PoseStamped
+
+    port = free_port()
+    uri = f"http://127.0.0.1:{port}/"
+    env = ros_env(tmp_path, uri)
+    master = Proc(kame_command("kame.cli.rosmaster", "--core", "-p", str(port)), env)
+    node = None
+    try:
+        wait_for_master(uri, proc=master)
+        node = Proc([str(debian.SYSTEM_PYTHON), "-c", DEBIAN_NODE], {**debian.debian_env(), **env})
+        node.wait_line("ready")
+        monkeypatch.setenv("ROS_MASTER_URI", uri)
+        monkeypatch.setattr("sys.argv", ["test"])
+        # a process that is no node keeps its first master for service calls, as rospy does: this one is new
+        monkeypatch.setattr("kame.client.services._anonymous_master", None)
+        assert rostopic.get_topic_class("/pose")[:2] == (PoseStamped, "/pose")
+        assert rosservice.get_service_type("/switch") == "std_srvs/SetBool"
+        request, response = rosservice.call_service("/switch", [True])
+        assert request.data is True and (response.success, response.message) == (True, "on")
+        assert rosnode.rosnode_ping("/debian_node", max_count=1)
+        assert rosnode.kill_nodes(["/debian_node"]) == (["/debian_node"], [])
+        node.popen.wait(30)  # the real rospy node shut down on kame's kill
+    finally:
+        if node is not None:
+            node.stop()
+        master.stop()

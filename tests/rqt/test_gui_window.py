@@ -31,7 +31,8 @@ def test_plugins_dock_close_and_come_back(sim: Sim, qtbot, tmp_path: Path) -> No
     qtbot.addWidget(window)
     window.show()
     groups = {a.text(): [x.text() for x in a.menu().actions()] for a in window.plugin_menu.actions()}
-    assert groups == {"Introspection": ["Node Graph"], "Logging": ["Console", "Logger Level"],
+    assert groups == {"Configuration": ["Dynamic Reconfigure"], "Introspection": ["Node Graph"],
+                      "Logging": ["Console", "Logger Level"],
                       "Services": ["Service Caller"], "Topics": ["Message Publisher", "Topic Monitor"],
                       "Visualization": ["Image View", "Plot"]}
     window.plugin_actions["rqt_plot"].trigger()  # Plugins > Visualization > Plot

@@ -18,7 +18,7 @@ from kame.cli._options import OptionParser
 from kame.client import core, process
 from kame.client.errors import ROSException, ROSInterruptException
 from kame.reconfigure.client import Client
-from kame.reconfigure.encoding import DynamicReconfigureParameterException
+from kame.reconfigure.errors import DynamicReconfigureParameterException
 
 NAME = "dynparam"
 USAGE = """dynparam is a command-line tool for getting, setting, and

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from typing import Any
 
+from kame.msg.anymsg import AnyMsg
 from kame.msg.message import Message
 
 
@@ -15,13 +16,12 @@ def args_kwds_to_message(data_class: type[Any], args: tuple[Any, ...], kwds: dic
         return data_class(**kwds)
     if len(args) == 1:
         arg = args[0]
+        # the message itself (compared by md5sum: a dynamically made class is the same type), or any AnyMsg
+        if getattr(arg, "_md5sum", None) == data_class._md5sum or isinstance(arg, AnyMsg):
+            return arg
         if isinstance(arg, Message):
-            if arg._type != data_class._type:
-                # a message for the class's first field, as rospy takes it: proxy(config) builds Request(config)
-                first = data_class._slot_types[0] if data_class._slot_types else ""
-                if arg._type != first:
-                    raise TypeError(f"expected [{first}] but got [{arg._type}]")
-            elif len(data_class.__slots__) != 1 or not isinstance(arg, data_class):
-                return arg
-        return data_class(*args)
+            # a message for the class's first field, as rospy takes it: proxy(config) builds Request(config)
+            first = data_class._slot_types[0] if data_class._slot_types else ""
+            if arg._type != first:
+                raise TypeError(f"expected [{first}] but got [{arg._type}]")
     return data_class(*args)

@@ -129,6 +129,7 @@ class ROSLaunchParent:
                                   num_workers=num_workers, master_timeout=timeout,
                                   master_logger_level=level, is_core=is_core)
         self.verbose = verbose
+        self.process_listeners = list(process_listeners or [])
         self.runner = _Runner(self)
         self._run: LaunchRun | None = None
         self._loop = asyncio.new_event_loop()
@@ -154,7 +155,17 @@ class ROSLaunchParent:
         config, _ = load_config(files, argv, self.options.env, strings=self.roslaunch_strs, verbose=self.verbose)
         run = LaunchRun(config, self.options)
         run.check()
+        run.monitor.on_death = self._tell_listeners
         return run
+
+    def _tell_listeners(self, child: Child) -> None:
+        """process_died(name, exit code) on each listener (roslaunch.pmon.ProcessListener), on the launch's
+        thread; a listener that raises is reported, and the others are still told."""
+        for listener in self.process_listeners:
+            try:
+                listener.process_died(child.name, child.exit_code)  # type: ignore[attr-defined]
+            except Exception as exc:  # a user's callback: reported, never the end of the launch
+                say_error(f"process listener {listener!r} failed on [{child.name}]: {exc!r}")
 
     def start(self, auto_terminate: bool = True) -> None:
         """Load, start the master if needed, set parameters and start the nodes."""

@@ -4,7 +4,8 @@
 
 Each ROS package P with msg/, srv/ or action/ becomes an importable Python package P with
 P.msg and P.srv as genpy lays them out (P/msg/_Type.py, imported lazily by P/msg/__init__.py
-on first use, so `from sensor_msgs.msg import Image` loads one module, not thirty).
+on first use, so `from sensor_msgs.msg import Image` loads one module, not thirty). P/__init__.py
+is written empty unless the package has its own (one without the GENERATED line), which is kept.
 --check compares instead of writing and exits 1 if anything is stale.
 """
 
@@ -79,6 +80,12 @@ def lazy_init(package: str, kind: str, exports: dict[str, str]) -> str:
     )
 
 
+def is_packages_own(rel: Path, current: str) -> bool:
+    """A package's top-level `__init__.py` without the GENERATED line is the package's own Python
+    (dynamic_reconfigure's exceptions): kept, as catkin leaves `src/<pkg>/__init__.py` to the package."""
+    return len(rel.parts) == 2 and rel.name == "__init__.py" and not current.startswith(HEADER.split("{")[0])
+
+
 def render(share: Path = SHARE_DIR) -> dict[Path, str]:
     """Every generated file, as a path relative to the output folder and its text."""
     catalog = MsgCatalog(find_packages([share]))
@@ -126,7 +133,7 @@ def main(argv: list[str] | None = None) -> int:
     for rel, text in files.items():
         target = args.out / rel
         current = target.read_text(encoding="utf-8") if target.exists() else None
-        if current == text:
+        if current == text or (current is not None and is_packages_own(rel, current)):
             continue
         stale.append(rel)
         if not args.check:

@@ -26,6 +26,13 @@ _CODES: dict[str, tuple[str, str]] = {  # ROS type -> (pack code, unpack code)
     "int16": ("h", "h"), "uint16": ("H", "H"), "int32": ("i", "i"), "uint32": ("I", "I"),
     "int64": ("q", "q"), "uint64": ("Q", "Q"), "float32": ("f", "f"), "float64": ("d", "d"),
 }
+
+
+def pack_codes() -> dict[str, str]:
+    """The struct code each fixed-size primitive is written with (bool as an unsigned byte)."""
+    return {name: codes[0] for name, codes in _CODES.items()}
+
+
 _DTYPES: dict[str, str] = {
     "bool": "?", "int8": "<i1", "byte": "<i1", "int16": "<i2", "uint16": "<u2", "int32": "<i4",
     "uint32": "<u4", "int64": "<i8", "uint64": "<u8", "float32": "<f4", "float64": "<f8",

@@ -3,12 +3,11 @@
 Client(name, timeout, config_callback) waits for <name>/set_parameters, then follows the
 latched <name>/parameter_descriptions and <name>/parameter_updates topics.
 update_configuration converts values as dynparam's users type them ("true", enum constant
-names, numbers as text) to the parameter's type before sending.
+names, numbers as text) to the parameter's type before sending (encoding.converted).
 """
 
 from __future__ import annotations
 
-import ast
 import sys
 import threading
 from collections.abc import Callable
@@ -23,31 +22,13 @@ from kame.client.services import ServiceException, ServiceProxy, wait_for_servic
 from kame.client.topics import Subscriber
 from kame.reconfigure.encoding import (
     Config,
-    DynamicReconfigureCallbackException,
-    DynamicReconfigureParameterException,
+    converted,
     decode_config,
     decode_description,
     encode_config,
     extract_params,
 )
-
-_TYPES: dict[str, type] = {"int": int, "double": float, "str": str, "bool": bool}
-
-
-def converted(value: Any, param: dict[str, Any]) -> Any:
-    """`value` as parameter `param` takes it: bools from yes/true/t/1, enum constants by name, else the type's own."""
-    target = _TYPES[param["type"]]
-    if target is bool and isinstance(value, str):
-        return value.lower() in ("yes", "true", "t", "1")
-    if isinstance(value, str) and param["edit_method"]:
-        for constant in ast.literal_eval(param["edit_method"])["enum"]:
-            if value.lower() == constant["name"].lower():
-                return _TYPES[constant["type"]](constant["value"])
-    try:
-        return target(value)
-    except ValueError as exc:
-        raise DynamicReconfigureParameterException(
-            f"can't set parameter '{param['name']}' of {target}: {exc}") from None
+from kame.reconfigure.errors import DynamicReconfigureCallbackException, DynamicReconfigureParameterException
 
 
 class Client:

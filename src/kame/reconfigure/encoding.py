@@ -6,6 +6,7 @@ callbacks use it. Descriptions are the trees a generated <Name>Config module hol
 
 from __future__ import annotations
 
+import ast
 import copy
 from typing import Any
 
@@ -20,14 +21,7 @@ from dynamic_reconfigure.msg import (
 from dynamic_reconfigure.msg import Config as ConfigMsg
 from dynamic_reconfigure.msg import ConfigDescription as ConfigDescrMsg
 from dynamic_reconfigure.msg import Group as GroupMsg
-
-
-class DynamicReconfigureParameterException(Exception):
-    """A change names an unknown parameter or a value that does not convert to its type."""
-
-
-class DynamicReconfigureCallbackException(Exception):
-    """A server's callback returned no configuration, or a server did not accept a change."""
+from kame.reconfigure.errors import DynamicReconfigureParameterException
 
 
 class Config(dict[str, Any]):
@@ -183,3 +177,29 @@ def decode_description(msg: Any) -> dict[str, Any]:
     root["parameters"] = params(root_msg)
     root["groups"] = children(root)
     return root
+
+
+_TYPES: dict[str, type] = {"int": int, "double": float, "str": str, "bool": bool}
+
+
+def enum_choices(param: dict[str, Any]) -> list[tuple[str, Any]]:
+    """The (name, value) constants of a parameter edited through an enum, else []."""
+    if not param.get("edit_method"):
+        return []
+    return [(str(c["name"]), _TYPES[c["type"]](c["value"])) for c in ast.literal_eval(param["edit_method"])["enum"]]
+
+
+def converted(value: Any, param: dict[str, Any]) -> Any:
+    """`value` as parameter `param` takes it: bools from yes/true/t/1, enum constants by name, else the type's own."""
+    target = _TYPES[param["type"]]
+    if target is bool and isinstance(value, str):
+        return value.lower() in ("yes", "true", "t", "1")
+    if isinstance(value, str):
+        for name, constant in enum_choices(param):
+            if value.lower() == name.lower():
+                return constant
+    try:
+        return target(value)
+    except ValueError as exc:
+        raise DynamicReconfigureParameterException(
+            f"can't set parameter '{param['name']}' of {target}: {exc}") from None

@@ -22,7 +22,6 @@ from kame.client.services import Service
 from kame.client.topics import Publisher
 from kame.reconfigure.encoding import (
     Config,
-    DynamicReconfigureCallbackException,
     decode_config,
     encode_config,
     encode_description,
@@ -30,6 +29,7 @@ from kame.reconfigure.encoding import (
     get_tree,
     initial_config,
 )
+from kame.reconfigure.errors import DynamicReconfigureCallbackException
 
 
 def server_namespace(namespace: str) -> str:

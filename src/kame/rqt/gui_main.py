@@ -7,7 +7,8 @@ The Plugins menu opens Node Graph, Plot, Console, Logger Level (and so on) as do
 of each as wanted. The plugins, their docks and the window come back next time (the
 perspective: <ROS_HOME>/kame/rqt_gui.json unless --perspective-file says). --standalone shows
 one plugin alone and remembers nothing. Also `rosrun rqt_gui rqt_gui`; rqt_topic, rqt_publisher,
-rqt_service_caller and rqt_image_view [TOPIC] are their plugins standalone, as in ROS.
+rqt_service_caller, rqt_reconfigure and rqt_image_view [TOPIC] are their plugins standalone,
+as in ROS.
 """
 
 from __future__ import annotations
@@ -87,6 +88,10 @@ def publisher_main(argv: Sequence[str] | None = None) -> int:
 
 def service_caller_main(argv: Sequence[str] | None = None) -> int:
     return _standalone("rqt_service_caller", argv)
+
+
+def reconfigure_main(argv: Sequence[str] | None = None) -> int:
+    return _standalone("rqt_reconfigure", argv)
 
 
 def image_view_main(argv: Sequence[str] | None = None) -> int:

@@ -48,6 +48,7 @@ PLUGINS = (
     PluginInfo("rqt_topic", "Topics", "Topic Monitor", "rqt_topic/TopicPlugin"),
     PluginInfo("rqt_publisher", "Topics", "Message Publisher", "rqt_publisher/Publisher"),
     PluginInfo("rqt_service_caller", "Services", "Service Caller", "rqt_service_caller/ServiceCaller"),
+    PluginInfo("rqt_reconfigure", "Configuration", "Dynamic Reconfigure", "rqt_reconfigure/Param"),
 )
 
 

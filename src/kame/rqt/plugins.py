@@ -183,6 +183,27 @@ def _image_view(context: PluginContext, instance: int, settings: Mapping[str, An
                         lambda: {"topic": source.topic}, ask)
 
 
+def _reconfigure(context: PluginContext, instance: int, settings: Mapping[str, Any]) -> PluginHandle:
+    from kame.rqt.reconfigure_source import ReconfigureSource
+    from kame.rqt.reconfigure_window import ReconfigureWindow
+    from kame.rqt.ros_node import start_node
+
+    node = start_node(f"gui_reconfigure_{instance}", _node_special(context))
+    holder: list[ReconfigureWindow] = []
+    source = ReconfigureSource(node, lambda server: holder[0].server_changed.emit(server))
+    window = ReconfigureWindow(source)
+    holder.append(window)
+
+    def ask() -> None:
+        window.refresh_servers()
+        if settings.get("server") and not source.server:
+            window.choose(str(settings["server"]))
+
+    ask()
+    return PluginHandle(window, [lambda: node.shutdown("reconfigure closed"), window.close_worker],
+                        lambda: {"server": source.server}, ask)
+
+
 Factory = Callable[[PluginContext, int, Mapping[str, Any]], PluginHandle]
 FACTORIES: dict[str, Factory] = {
     "rqt_graph": _graph,
@@ -193,6 +214,7 @@ FACTORIES: dict[str, Factory] = {
     "rqt_publisher": _publisher,
     "rqt_service_caller": _service_caller,
     "rqt_image_view": _image_view,
+    "rqt_reconfigure": _reconfigure,
 }
 
 

@@ -1,0 +1,74 @@
+"""genpy.base, generate_struct, generate_numpy, generator (MsgGenerator/SrvGenerator over
+kame's codegen) and message.check_type: the same answers as Debian's real genpy on one request
+(tests/libs/genpy_driver.py run by both interpreters)."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+from . import debian
+
+DRIVER = Path(__file__).with_name("genpy_driver.py")
+STD_MSGS = Path("/usr/share/std_msgs/msg")
+
+REQUEST: dict[str, Any] = {
+    "patterns": ["", "i", "iii", "iiiB", "BBdd", "B99d", "%si", "3iB", "BBBBBBBBBBBB"],
+    "check_type": [
+        ["int8", 127], ["int8", 128], ["int8", -129], ["int8", True], ["int8", 1.0], ["uint8", -1], ["uint8", 255],
+        ["uint8", 256], ["uint64", 2**64 - 1], ["uint64", 2**64], ["int64", -(2**63)], ["char", 3], ["byte", -3],
+        ["float32", 1], ["float64", "1.0"], ["float64", True], ["bool", 2], ["bool", 1], ["bool", False],
+        ["string", "ascii"], ["string", "caf\u00e9"], ["string", {"bytes": "raw"}], ["string", 3],
+        ["time", {"time": [1, 2]}], ["time", {"duration": [1, 2]}], ["duration", {"duration": [-1, 2]}],
+        ["uint8[]", {"bytes": "xyz"}], ["uint8[]", "text"], ["int32[]", "text"], ["int32[]", {"tuple": [1, 2]}],
+        ["int32[3]", [1, 2**40]], ["float64[]", 3], ["std_msgs/String", {"msg": "std_msgs/String"}],
+        ["std_msgs/String", {"msg": "std_msgs/Int32"}], ["Header", {"msg": "std_msgs/Header"}],
+        ["std_msgs/String", {"msg": "std_msgs/Header"}],
+        ["std_msgs/Int8", {"msg": "std_msgs/Int8", "fields": {"data": 300}}],
+        ["std_msgs/Header", {"msg": "std_msgs/Header", "fields": {"frame_id": 5}}], ["foo/Bar", 3],
+    ],
+    "package": {
+        "name": "kame_gen_test",
+        "msg": {"Reading": "Header header\nfloat64[] values\nuint8[4] tag\nstring from\nint32 KIND=3\n",
+                "Pair": "Reading a\nReading b\ntime stamp\n"},
+        "srv": {"Measure": "string what\nint32 count\n---\nReading result\nbool ok\n"},
+        "search_path": {"std_msgs": [str(STD_MSGS)]},
+    },
+}
+
+
+def run(python: str) -> dict[str, Any]:
+    result = subprocess.run([python, str(DRIVER)], input=json.dumps(REQUEST), capture_output=True, text=True,
+                            timeout=120, env=debian.debian_env())
+    assert result.returncode == 0, result.stderr
+    answer: dict[str, Any] = json.loads(result.stdout)
+    return answer
+
+
+def test_genpy_helpers_and_generator_on_kame() -> None:
+    ours = run(sys.executable)
+    struct = ours["struct"]
+    assert struct["reduced"][:6] == ["", "i", "3i", "3iB", "2B2d", "B29d"] and struct["struct_I"] == "<I"
+    assert struct["code"][2] == "buff.write(_get_struct_3i().pack(a, b, c))" and struct["patterns"] == ["3i", "2d"]
+    checks = dict(zip((f"{t} {json.dumps(v)}" for t, v in REQUEST["check_type"]), ours["check_type"], strict=True))
+    assert checks["int8 128"] == "field f exceeds specified width [int8]"
+    assert checks['string "caf\\u00e9"'] == "field f is a non-ascii string" and checks["uint8 255"] is None
+    generated = ours["generated"]
+    assert generated["codes"] == [0, 0] and generated["missing_file_code"] == 1
+    assert generated["files"] == ["_Measure.py", "_Pair.py", "_Reading.py"]
+    assert generated["Reading"][2] == ["header", "values", "tag", "from_"]  # genpy's keyword rename
+    assert generated["bad_package"][0] == "MsgGenerationException"
+
+
+@pytest.mark.skipif(not (debian.has("genpy.generator", "std_msgs.msg") and STD_MSGS.is_dir()),
+                    reason="Debian's python3-genpy and ros-std-msgs are not installed")
+def test_genpy_answers_as_debians_genpy() -> None:
+    ours, theirs = run(sys.executable), run(str(debian.SYSTEM_PYTHON))
+    assert ours["struct"] == theirs["struct"]
+    assert ours["check_type"] == theirs["check_type"]
+    assert ours["generated"] == theirs["generated"]
