@@ -6,8 +6,9 @@ empty or '/'-prefixed ids (InvalidArgumentException) and unknown ones (LookupExc
 means the latest time every link of the chain has data for; a lookup walks both frames up to
 their common ancestor and fails with ConnectivityException when there is none or the tree has a
 loop, ExtrapolationException when a link has no data at that time. Transforms with NaNs,
-non-unit quaternions, no frame ids or a frame as its own parent are refused with tf2's
-message. Pure: no clock, no locks (the node-layer Buffer serializes calls and waits).
+no frame ids or a frame as its own parent are refused with tf2's message; a non-unit
+quaternion is normalized with a warning (tf2 refuses it). Pure: no clock, no locks (the
+node-layer Buffer serializes calls and waits).
 
 Successful lookups are remembered by (target, source, time), with the frames the walk read and
 their generations (each frame's count of transforms stored into its cache): a lookup whose
@@ -124,8 +125,14 @@ class BufferCore:
     # ------------------------------------------------------------------ input
 
     def set_transform(self, transform: Transform, authority: str, is_static: bool = False) -> str | None:
-        """Store one transform; None when stored, else tf2's warning or error text."""
-        child, parent = strip_slash(transform.child), strip_slash(transform.parent)
+        """Store one transform; None when stored, else tf2's error text. A quaternion off unit
+        length by tf2's tolerance or more is normalized and stored, with a warning to `warn`
+        (tf2 refuses it; ROS users expect it fixed, and a zero or infinite one is refused)."""
+        child, parent = transform.child, transform.parent
+        if child[:1] == "/":
+            child = child[1:]
+        if parent[:1] == "/":
+            parent = parent[1:]
         if child == parent:
             return (f'TF_SELF_TRANSFORM: Ignoring transform from authority "{authority}" with frame_id and '
                     f'child_frame_id  "{child}" because they are the same')
@@ -135,25 +142,34 @@ class BufferCore:
         if not parent:
             return (f'TF_NO_FRAME_ID: Ignoring transform with child_frame_id "{child}"  from authority "{authority}" '
                     f"because frame_id not set")
-        values = (*transform.translation, *transform.rotation)
-        if any(math.isnan(v) for v in values):
+        tx, ty, tz = transform.translation
+        qx, qy, qz, qw = transform.rotation
+        total = tx + ty + tz + qx + qy + qz + qw
+        if total != total and any(math.isnan(v) for v in (tx, ty, tz, qx, qy, qz, qw)):  # NaN != NaN
             numbers = " ".join(f"{v:f}" for v in transform.translation), " ".join(f"{v:f}" for v in transform.rotation)
             return (f'TF_NAN_INPUT: Ignoring transform for child_frame_id "{child}" from authority "{authority}" '
                     f"because of a nan value in the transform ({numbers[0]}) ({numbers[1]})")
-        if abs(rotation.norm_squared(transform.rotation) - 1.0) >= 10e-6:
+        norm_squared = qx * qx + qy * qy + qz * qz + qw * qw
+        if abs(norm_squared - 1.0) >= 10e-6:
             quaternion = " ".join(f"{v:f}" for v in transform.rotation)
-            return (f'TF_DENORMALIZED_QUATERNION: Ignoring transform for child_frame_id "{child}" from authority '
-                    f'"{authority}" because of an invalid quaternion in the transform ({quaternion})')
-        child_number = self._insert_frame(child)
-        parent_number = self._insert_frame(parent)
+            if not 0.0 < norm_squared < math.inf:
+                return (f'TF_DENORMALIZED_QUATERNION: Ignoring transform for child_frame_id "{child}" from authority '
+                        f'"{authority}" because of an invalid quaternion in the transform ({quaternion})')
+            norm = math.sqrt(norm_squared)
+            qx, qy, qz, qw = qx / norm, qy / norm, qz / norm, qw / norm
+            self.warn(f'TF_DENORMALIZED_QUATERNION: Normalizing the quaternion ({quaternion}) of length {norm:f} '
+                      f'in the transform for child_frame_id "{child}" from authority "{authority}"')
+        known = self._numbers
+        child_number = known.get(child) or self._insert_frame(child)
+        parent_number = known.get(parent) or self._insert_frame(parent)
         cache = self._caches[child_number]
         if cache is None:
             cache = StaticCache() if is_static else TimeCache(self.cache_time)
             self._caches[child_number] = cache
-        tx, ty, tz = transform.translation
-        qx, qy, qz, qw = transform.rotation
-        refusal = cache.insert(Stored(int(transform.stamp), parent_number, (float(tx), float(ty), float(tz)),
-                                      (float(qx), float(qy), float(qz), float(qw))))
+        # tuple.__new__ skips the named tuple's Python-level __new__: this runs for every transform received
+        item = tuple.__new__(Stored, (int(transform.stamp), parent_number, (tx + 0.0, ty + 0.0, tz + 0.0),
+                                      (qx + 0.0, qy + 0.0, qz + 0.0, qw + 0.0)))
+        refusal = cache.insert(item)
         if refusal is None:
             self.authority[child_number] = authority
             self._generations[child_number] += 1

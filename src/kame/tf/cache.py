@@ -58,18 +58,20 @@ class TimeCache:
 
     def insert(self, item: Stored) -> Refusal | None:
         stamps = self._stamps
-        if stamps and stamps[-1] > item.stamp + self.max_age:
-            return Refusal.OLD
-        if not stamps or item.stamp > stamps[-1]:
-            stamps.append(item.stamp)
+        stamp = item.stamp
+        if not stamps or stamp > stamps[-1]:  # the usual case: the newest yet
+            stamps.append(stamp)
             self._data.append(item)
-        else:
-            index = bisect_left(stamps, item.stamp)
-            if index < len(stamps) and stamps[index] == item.stamp:
-                return Refusal.REPEATED
-            stamps.insert(index, item.stamp)
-            self._data.insert(index, item)
-        self._prune()
+            if stamps[0] < stamp - self.max_age:
+                self._prune()
+            return None
+        if stamps[-1] > stamp + self.max_age:
+            return Refusal.OLD
+        index = bisect_left(stamps, stamp)
+        if stamps[index] == stamp:  # index < len: stamp is not past the newest
+            return Refusal.REPEATED
+        stamps.insert(index, stamp)
+        self._data.insert(index, item)
         return None
 
     def _prune(self) -> None:
