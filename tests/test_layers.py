@@ -120,6 +120,8 @@ LAYERS: dict[str, int] = {
     **{facade: 5 for facade in FACADES},
     "sensor_msgs": MESSAGES,  # generated, but for point_cloud2
     "sensor_msgs.point_cloud2": 5,  # written by hand over the generated classes
+    "tf.msg": MESSAGES,  # generated beside the tf facade (tf/tfMessage, tf/FrameGraph)
+    "tf.srv": MESSAGES,
     "dynamic_reconfigure": MESSAGES,  # generated, but for the modules below
     "dynamic_reconfigure.parameter_generator_catkin": 5,
     "dynamic_reconfigure.encoding": 5,
