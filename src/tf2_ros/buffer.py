@@ -72,3 +72,10 @@ class Buffer(_buffer.Buffer, BufferInterface):
     def _chain(self, target_frame, target_time, source_frame, source_time, fixed_frame):
         return self.chain(target_frame, source_frame, target_time)
 
+
+class BufferCore(Buffer):
+    """tf2_py's BufferCore, which tf2_ros re-exports (tf2_ros.BufferCore(cache_time)): the same
+    buffer, without the ~tf2_frames service."""
+
+    def __init__(self, cache_time=None):
+        Buffer.__init__(self, cache_time, debug=False)

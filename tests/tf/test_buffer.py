@@ -97,3 +97,14 @@ def test_a_clock_that_jumps_back_clears_all_but_static_data() -> None:
     assert warnings == ["Detected jump back in time of 50s. Clearing TF buffer."]
     assert buffer.lookup_transform("map", "robot", Time()).header.stamp == Time(1)
 
+
+def test_tf2_ros_buffer_core_is_tf2_pys() -> None:
+    import rospy
+    import tf2_ros
+
+    core = tf2_ros.BufferCore(rospy.Duration(10))
+    core.set_transform(transform("map", "robot", 1.0, x=2.0), "/core")
+    assert core.lookup_transform_core("map", "robot", rospy.Time(0)).transform.translation.x == 2.0
+    assert core.can_transform_core("map", "robot", rospy.Time(5)) == (
+        False, "Lookup would require extrapolation at time 5.000000000, but only time 1.000000000 is in the buffer, "
+        "when looking up transform from frame [robot] to frame [map]")
