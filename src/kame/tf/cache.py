@@ -117,7 +117,7 @@ class TimeCache:
             s0 = sin((1.0 - ratio) * theta)
             quaternion = ((ax * s0 + bx * s1) * d, (ay * s0 + by * s1) * d, (az * s0 + bz * s1) * d,
                           (aw * s0 + bw * s1) * d)
-        return Stored(time, older.parent, translation, quaternion)
+        return tuple.__new__(Stored, (time, older.parent, translation, quaternion))  # skips Stored's Python __new__
 
     def latest(self) -> tuple[int, int]:
         """(newest stamp, its parent), or (0, 0) when empty."""
