@@ -127,6 +127,8 @@ LAYERS: dict[str, int] = {
     "dynamic_reconfigure": 5,  # upstream's package __init__, server, client, encoding, parameter_generator_catkin
     "dynamic_reconfigure.msg": MESSAGES,  # generated
     "dynamic_reconfigure.srv": MESSAGES,
+    "tf.msg": MESSAGES,  # generated beside the tf facade (tf/tfMessage, tf/FrameGraph)
+    "tf.srv": MESSAGES,
     # L6 the ROS programs kame ships (tutorial scripts): user code, free to import anything
     "kame.share": 6,
 }

@@ -1,5 +1,7 @@
 """tf.TransformListener and friends: the first tf API (lists for translations and quaternions,
-camelCase names, frames with or without a leading '/') over a tf2_ros Buffer."""
+camelCase names, frames with or without a leading '/') over a tf2_ros Buffer. A node's first
+TransformListener serves ~tf_frames (tf/FrameGraph: allFramesAsDot), which
+`view_frames --node` asks."""
 
 import numpy
 import yaml
@@ -10,6 +12,8 @@ import sensor_msgs.msg
 import tf2_ros
 
 from . import transformations
+
+_frames_service = []  # the process's one ~tf_frames service, if any
 
 
 def xyz_to_mat44(pos):
@@ -208,3 +212,10 @@ class TransformListener(TransformerROS):
         TransformerROS.__init__(self, *args, **kwargs)
         self._listener = tf2_ros.TransformListener(self._buffer)
         self.setUsingDedicatedThread(True)
+        if not _frames_service and rospy.core.is_initialized():
+            from tf.srv import FrameGraph
+            _frames_service.append(rospy.Service("~tf_frames", FrameGraph, self._frame_graph))
+
+    def _frame_graph(self, request):
+        from tf.srv import FrameGraphResponse
+        return FrameGraphResponse(self.allFramesAsDot(rospy.Time.now()))

@@ -10,7 +10,7 @@ from kame.tf.errors import (
     TransformException,
 )
 
-from .buffer import Buffer
+from .buffer import Buffer, BufferCore
 from .buffer_client import BufferClient
 from .buffer_interface import (
     BufferInterface,
@@ -26,7 +26,7 @@ from .transform_broadcaster import TransformBroadcaster
 from .transform_listener import TransformListener
 
 __all__ = [
-    "Buffer", "BufferClient", "BufferInterface", "ConnectivityException", "ConvertRegistration",
+    "Buffer", "BufferClient", "BufferCore", "BufferInterface", "ConnectivityException", "ConvertRegistration",
     "ExtrapolationException", "InvalidArgumentException", "LookupException", "NotImplementedException", "Stamped",
     "StaticTransformBroadcaster", "TimeoutException", "TransformBroadcaster", "TransformException",
     "TransformListener", "TransformRegistration", "TypeException", "convert",

@@ -14,7 +14,8 @@ _frames_service = []  # the process's one ~tf2_frames service, if any
 
 class Buffer(_buffer.Buffer, BufferInterface):
     def __init__(self, cache_time=None, debug=True):
-        _buffer.Buffer.__init__(self, cache_time, TransformStamped, rospy.Time, warn=rospy.logwarn)
+        _buffer.Buffer.__init__(self, cache_time, TransformStamped, rospy.Time, warn=rospy.logwarn,
+                                error=rospy.logerr)
         BufferInterface.__init__(self)
         if debug and not _frames_service and rospy.core.is_initialized():
             _frames_service.append(rospy.Service("~tf2_frames", FrameGraph, self._get_frames))
@@ -70,3 +71,11 @@ class Buffer(_buffer.Buffer, BufferInterface):
 
     def _chain(self, target_frame, target_time, source_frame, source_time, fixed_frame):
         return self.chain(target_frame, source_frame, target_time)
+
+
+class BufferCore(Buffer):
+    """tf2_py's BufferCore, which tf2_ros re-exports (tf2_ros.BufferCore(cache_time)): the same
+    buffer, without the ~tf2_frames service."""
+
+    def __init__(self, cache_time=None):
+        Buffer.__init__(self, cache_time, debug=False)

@@ -54,27 +54,37 @@ def test_a_wait_ends_at_its_timeout_with_the_reason() -> None:
         buffer.lookup_transform("map", "ghost", Time(), Duration(0.05))
 
 
-def test_bad_transforms_are_refused_with_tf2s_warnings() -> None:
+def test_bad_transforms_are_refused_with_tf2s_errors() -> None:
     warnings: list[str] = []
-    buffer = Buffer(warn=warnings.append)
+    errors_seen: list[str] = []
+    buffer = Buffer(warn=warnings.append, error=errors_seen.append)
     buffer.receive([transform("map", "a", 1.0, x=math.nan), transform("map", "b", 1.0, q=(0, 0, 0, 3)),
                     transform("map", "map", 1.0), transform("", "c", 1.0), transform("/map", "/d", 1.0)], "/bad",
                    is_static=False)
-    assert [w.split(":")[0] for w in warnings] == ["TF_NAN_INPUT", "TF_DENORMALIZED_QUATERNION", "TF_SELF_TRANSFORM",
-                                                   "TF_NO_FRAME_ID"]
-    assert buffer.frames() == ["d", "map"]  # a leading slash is stripped on the way in
+    assert [e.split(":")[0] for e in errors_seen] == ["TF_NAN_INPUT", "TF_SELF_TRANSFORM", "TF_NO_FRAME_ID"]
+    assert [w.split(":")[0] for w in warnings] == ["TF_DENORMALIZED_QUATERNION"]  # normalized and kept
+    assert buffer.frames() == ["b", "map", "d"]  # a leading slash is stripped on the way in
+    assert buffer.lookup_transform("map", "b", Time()).transform.rotation.w == 1.0
     with pytest.raises(errors.InvalidArgumentException, match="cannot start with a '/'"):
         buffer.lookup_transform("/map", "d", Time())
 
 
-def test_repeated_stamps_warn_once_per_interval() -> None:
+def test_each_kind_of_bad_data_is_reported_once_per_interval() -> None:
     warnings: list[str] = []
-    buffer = Buffer(warn=warnings.append)
-    for _ in range(50):
+    errors_seen: list[str] = []
+    buffer = Buffer(warn=warnings.append, error=errors_seen.append)
+    for index in range(50):
         buffer.set_transform(transform("map", "robot", 1.0), "/again")
-    assert len(warnings) == 1
-    assert warnings[0] == ("TF_REPEATED_DATA ignoring data with redundant timestamp for frame robot at time "
-                           "1.000000 according to authority /again")
+        buffer.set_transform(transform("map", "arm", 1.0 + index, q=(0, 0, 0, 2)), "/long")
+        buffer.set_transform(transform("map", "leg", 1.0 + index, x=math.nan), "/nan")
+    assert warnings == [
+        'TF_DENORMALIZED_QUATERNION: Normalizing the quaternion (0.000000 0.000000 0.000000 2.000000) of length '
+        '2.000000 in the transform for child_frame_id "arm" from authority "/long"',
+        "TF_REPEATED_DATA ignoring data with redundant timestamp for frame robot at time 1.000000 according to "
+        "authority /again"]  # the first repeat comes with the second round
+    assert len(errors_seen) == 1
+    assert errors_seen[0].startswith('TF_NAN_INPUT: Ignoring transform for child_frame_id "leg"')
+    assert buffer.lookup_transform("map", "arm", Time()).header.stamp == Time(50)  # all fifty kept, normalized
 
 
 def test_a_clock_that_jumps_back_clears_all_but_static_data() -> None:
@@ -86,3 +96,15 @@ def test_a_clock_that_jumps_back_clears_all_but_static_data() -> None:
     buffer.receive([transform("odom", "robot", 1.0)], "/d", is_static=False, now=now - 50 * 10**9)
     assert warnings == ["Detected jump back in time of 50s. Clearing TF buffer."]
     assert buffer.lookup_transform("map", "robot", Time()).header.stamp == Time(1)
+
+
+def test_tf2_ros_buffer_core_is_tf2_pys() -> None:
+    import rospy
+    import tf2_ros
+
+    core = tf2_ros.BufferCore(rospy.Duration(10))
+    core.set_transform(transform("map", "robot", 1.0, x=2.0), "/core")
+    assert core.lookup_transform_core("map", "robot", rospy.Time(0)).transform.translation.x == 2.0
+    assert core.can_transform_core("map", "robot", rospy.Time(5)) == (
+        False, "Lookup would require extrapolation at time 5.000000000, but only time 1.000000000 is in the buffer, "
+        "when looking up transform from frame [robot] to frame [map]")

@@ -82,7 +82,7 @@ SCRIPT: list[list[Any]] = [
     ["set", "world", "base", 4 * S, [9.0, 9.0, 9.0], IDENTITY, "/late", False],
     ["lookup", "world", "base", 4 * S],
     ["set", "world", "base", 4 * S, [math.nan, 0.0, 0.0], IDENTITY, "/nan", False],
-    ["set", "world", "base", 4 * S, [0.0, 0.0, 0.0], [0.0, 0.0, 0.0, 2.0], "/long", False],
+    ["set", "world", "base", 4 * S, [0.0, 0.0, 0.0], [0.0, 0.0, 0.0, 0.0], "/zero", False],
     ["set", "world", "world", 4 * S, [0.0, 0.0, 0.0], IDENTITY, "/self", False],
     ["set", "world", "", 4 * S, [0.0, 0.0, 0.0], IDENTITY, "/nochild", False],
     ["set", "", "base", 4 * S, [0.0, 0.0, 0.0], IDENTITY, "/noparent", False],
@@ -154,8 +154,29 @@ def test_same_results_and_messages_as_tf2() -> None:
     for step, a, b in zip(SCRIPT, ours, theirs, strict=True):
         assert same(a, b), f"{step}:\n kame: {a}\n tf2:  {b}"
     assert len(warnings) == 7
+    # tf2 refuses a non-unit quaternion; kame normalizes it (with a warning): see the test below
     for warning in warnings:
         assert warning in done.stderr, f"{warning!r} not in tf2's output:\n{done.stderr}"
+
+
+def test_a_non_unit_quaternion_is_normalized_with_a_warning_and_nan_is_refused() -> None:
+    warnings: list[str] = []
+    core = BufferCore(warn=warnings.append)
+    assert core.set_transform(Transform("map", "robot", S, (1.0, 0.0, 0.0), (0.0, 0.0, 0.0, 2.0)), "/long") is None
+    assert core.lookup_transform("map", "robot", 0).rotation == (0.0, 0.0, 0.0, 1.0)
+    assert core.set_transform(Transform("map", "robot", 2 * S, (1.0, 0.0, 0.0), (0.0, 0.0, 3.0, 4.0)), "/long") is None
+    assert core.lookup_transform("map", "robot", 0).rotation == pytest.approx((0.0, 0.0, 0.6, 0.8))
+    assert warnings == [
+        'TF_DENORMALIZED_QUATERNION: Normalizing the quaternion (0.000000 0.000000 0.000000 2.000000) of length '
+        '2.000000 in the transform for child_frame_id "robot" from authority "/long"',
+        'TF_DENORMALIZED_QUATERNION: Normalizing the quaternion (0.000000 0.000000 3.000000 4.000000) of length '
+        '5.000000 in the transform for child_frame_id "robot" from authority "/long"']
+    refused = core.set_transform(Transform("map", "robot", 3 * S, (1.0, 0.0, 0.0), (0.0, math.nan, 0.0, 1.0)), "/nan")
+    assert refused == ('TF_NAN_INPUT: Ignoring transform for child_frame_id "robot" from authority "/nan" because '
+                       "of a nan value in the transform (1.000000 0.000000 0.000000) (0.000000 nan 0.000000 1.000000)")
+    infinite = core.set_transform(Transform("map", "robot", 3 * S, (0.0, 0.0, 0.0), (math.inf, 0.0, 0.0, 1.0)), "/i")
+    assert infinite is not None and "because of an invalid quaternion" in infinite
+    assert core.lookup_transform("map", "robot", 0).stamp == 2 * S
 
 
 def test_interpolation_is_lerp_and_slerp() -> None:

@@ -118,6 +118,46 @@ def test_view_frames_writes_gv_and_pdf(graph: Graph, tmp_path: Path, function: s
     assert b"(\\(camera\\)) Tj" in pdf and b"(world) Tj" in pdf  # names drawn, PDF-escaped
 
 
+TF_LISTENER_NODE = """
+    import rospy, tf
+    rospy.init_node('looker')
+    listener = tf.TransformListener()
+    listener.waitForTransform('world', 'base', rospy.Time(0), rospy.Duration(30))
+    print('ready', flush=True)
+    rospy.spin()
+"""
+
+
+def test_view_frames_node_asks_one_listeners_tf_frames(graph: Graph, tmp_path: Path) -> None:
+    graph.start([*STATIC_TF2, "1", "0", "0", "0", "0", "0", "world", "base"])
+    looker = graph.kame(TF_LISTENER_NODE)
+    looker.wait_line("ready", timeout=40)
+    proc = Proc(kame_tool("kame.cli.view_frames", "main_tf", "--node=looker"), graph.env, cwd=tmp_path)
+    graph.procs.append(proc)
+    out = graph.finish(proc, timeout=40)
+    assert out.splitlines() == ["Generating graph for node:  looker", "Waiting for service /looker/tf_frames",
+                                "Polling service", "frames.pdf generated"]
+    dot = (tmp_path / "frames.gv").read_text()
+    assert dot.startswith("digraph G {") and '"world" -> "base"[label="Broadcaster: /static_transform_publisher' in dot
+    assert b"(world) Tj" in (tmp_path / "frames.pdf").read_bytes()
+
+
+@debian
+def test_debians_view_frames_node_reads_a_kame_listener(graph: Graph, tmp_path: Path) -> None:
+    graph.start([*STATIC_TF2, "1", "0", "0", "0", "0", "0", "world", "base"])
+    looker = graph.kame(TF_LISTENER_NODE)
+    looker.wait_line("ready", timeout=40)
+    # Debian's writes frames.gv, then stops where it would run graphviz's dot (absent or not)
+    proc = Proc([SYSTEM_PYTHON, "/usr/lib/tf/view_frames", "--node=/looker"], graph.env, cwd=tmp_path)
+    graph.procs.append(proc)
+    try:
+        proc.popen.wait(40)
+    except subprocess.TimeoutExpired:
+        pass
+    proc.stop()
+    assert '"world" -> "base"[label="Broadcaster: /static_transform_publisher' in (tmp_path / "frames.gv").read_text()
+
+
 def test_tf_monitor_reports_frames_broadcasters_and_a_chain(graph: Graph) -> None:
     graph.start([*STATIC_TF2, "1", "0", "0", "0", "0", "0", "world", "base", "__name:=fixed"])
     graph.start([*STATIC_TF, "0", "1", "0", "0", "0", "0", "base", "camera", "100", "__name:=moving"])
@@ -126,6 +166,18 @@ def test_tf_monitor_reports_frames_broadcasters_and_a_chain(graph: Graph) -> Non
     monitor.wait_line("Frame: base published by /fixed(static) Average Delay: 0 Max Delay: 0")
     broadcaster = monitor.wait_line("Node: /moving ")
     assert " Hz, Average Delay: -0.0" in broadcaster  # stamped a period (0.1 s) ahead
+
+
+@debian
+def test_debians_tf_monitor_hears_kames_broadcasters(graph: Graph) -> None:
+    graph.start([*STATIC_TF2, "1", "0", "0", "0", "0", "0", "world", "base", "__name:=fixed"])
+    graph.start([*STATIC_TF, "0", "1", "0", "0", "0", "0", "base", "camera", "100", "__name:=moving"])
+    monitor = graph.start(["/usr/lib/tf/tf_monitor", "world", "camera"])
+    monitor.wait_line("Chain is: world -> base -> camera", timeout=30)
+    # Debian's tf_monitor names no publisher, for Debian's own publishers too
+    monitor.wait_line("Frame: base published by unknown_publisher(static) Average Delay: 0 Max Delay: 0")
+    monitor.wait_line("Frame: camera published by unknown_publisher Average Delay: -0.0")
+    assert " Hz, Average Delay: -0.0" in monitor.wait_line("Node: unknown_publisher ")  # a period (0.1 s) ahead
 
 
 def test_static_publishers_in_a_launch_file(graph: Graph, tmp_path: Path) -> None:

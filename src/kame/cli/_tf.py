@@ -89,7 +89,7 @@ def start_node(argv: Sequence[str], default_name: str, anonymous: bool = True) -
 def listening_buffer(tool: TfTool, on_message: Callable[[Any, str, bool], None] | None = None,
                      ) -> tuple[Buffer, TransformListener]:
     """A Buffer fed from /tf and /tf_static; `on_message` also sees each message."""
-    buffer = Buffer(warn=lambda text: console("WARN", text))
+    buffer = Buffer(warn=lambda text: console("WARN", text), error=lambda text: console("ERROR", text))
     return buffer, TransformListener(tool.node, buffer, now=tool.now_ns, on_message=on_message)
 
 

@@ -82,7 +82,8 @@ def lazy_init(package: str, kind: str, exports: dict[str, str]) -> str:
 
 def is_packages_own(rel: Path, current: str) -> bool:
     """A package's top-level `__init__.py` without the GENERATED line is the package's own Python
-    (dynamic_reconfigure's exceptions): kept, as catkin leaves `src/<pkg>/__init__.py` to the package."""
+    (dynamic_reconfigure's exceptions, the tf facade beside tf.msg): kept, as catkin leaves
+    `src/<pkg>/__init__.py` to the package."""
     return len(rel.parts) == 2 and rel.name == "__init__.py" and not current.startswith(HEADER.split("{")[0])
 
 

@@ -86,7 +86,8 @@ class Amcl:
         self.map_to_odom: tuple[float, float, float] | None = None
         node = core.get_node()
         assert node is not None
-        self.buffer = Buffer(warn=lambda text: _log.emit(_log.WARN, text, ()))
+        self.buffer = Buffer(warn=lambda text: _log.emit(_log.WARN, text, ()),
+                             error=lambda text: _log.emit(_log.ERROR, text, ()))
         self.listener = TransformListener(node, self.buffer, now=lambda: clock.get_rostime().to_nsec())
         self.broadcaster = TransformBroadcaster(node)
         from geometry_msgs.msg import PoseArray, PoseWithCovarianceStamped

@@ -54,7 +54,8 @@ class RvizSource:
     def __init__(self, node: Node, on_ready: Callable[[], None]) -> None:
         self.node = node
         self.on_ready = on_ready
-        self.buffer = Buffer(warn=lambda text: None)  # tf's complaints show as display statuses
+        # tf's complaints show as display statuses
+        self.buffer = Buffer(warn=lambda text: None, error=lambda text: None)
         self.listener = TransformListener(node, self.buffer)
         self._lock = threading.Lock()
         self._waiting: dict[str, list[bytes]] = {}

@@ -6,15 +6,22 @@ empty or '/'-prefixed ids (InvalidArgumentException) and unknown ones (LookupExc
 means the latest time every link of the chain has data for; a lookup walks both frames up to
 their common ancestor and fails with ConnectivityException when there is none or the tree has a
 loop, ExtrapolationException when a link has no data at that time. Transforms with NaNs,
-non-unit quaternions, no frame ids or a frame as its own parent are refused with tf2's
-message. Pure: no clock, no locks (the node-layer Buffer serializes calls and waits).
+no frame ids or a frame as its own parent are refused with tf2's message; a non-unit
+quaternion is normalized with a warning (tf2 refuses it). Pure: no clock, no locks (the
+node-layer Buffer serializes calls and waits).
+
+Successful lookups are remembered by (target, source, time), with the frames the walk read and
+their generations (each frame's count of transforms stored into its cache): a lookup whose
+frames have taken no new data since is answered from memory, as the walk would give the same
+answer. Errors are never remembered; clear() forgets everything.
 """
 
 from __future__ import annotations
 
 import math
 from collections.abc import Callable, Iterator
-from typing import NamedTuple
+from operator import itemgetter
+from typing import Any, NamedTuple
 
 from . import rotation
 from .cache import Cache, StaticCache, Stored, TimeCache
@@ -30,6 +37,7 @@ from .rotation import Quaternion, Vector
 DEFAULT_CACHE_TIME = 10 * 10**9
 MAX_GRAPH_DEPTH = 1000
 NO_PARENT = "NO_PARENT"
+REMEMBERED_LOOKUPS = 4096  # results kept; the oldest is forgotten first
 _LOOP = "The tf tree is invalid because it contains a loop."
 
 
@@ -72,6 +80,8 @@ class BufferCore:
         self._names: list[str] = [NO_PARENT]
         self._numbers: dict[str, int] = {}
         self._caches: list[Cache | None] = [None]
+        self._generations: list[int] = [0]
+        self._remembered: dict[tuple[int, int, int], tuple[Transform, Any, Any]] = {}
         self.authority: dict[int, str] = {}
 
     # ------------------------------------------------------------------ frames
@@ -86,6 +96,7 @@ class BufferCore:
             self._names.append(frame)
             self._numbers[frame] = number
             self._caches.append(None)
+            self._generations.append(0)
         return number
 
     def frame_exists(self, frame: str) -> bool:
@@ -114,8 +125,14 @@ class BufferCore:
     # ------------------------------------------------------------------ input
 
     def set_transform(self, transform: Transform, authority: str, is_static: bool = False) -> str | None:
-        """Store one transform; None when stored, else tf2's warning or error text."""
-        child, parent = strip_slash(transform.child), strip_slash(transform.parent)
+        """Store one transform; None when stored, else tf2's error text. A quaternion off unit
+        length by tf2's tolerance or more is normalized and stored, with a warning to `warn`
+        (tf2 refuses it; ROS users expect it fixed, and a zero or infinite one is refused)."""
+        child, parent = transform.child, transform.parent
+        if child[:1] == "/":
+            child = child[1:]
+        if parent[:1] == "/":
+            parent = parent[1:]
         if child == parent:
             return (f'TF_SELF_TRANSFORM: Ignoring transform from authority "{authority}" with frame_id and '
                     f'child_frame_id  "{child}" because they are the same')
@@ -125,27 +142,37 @@ class BufferCore:
         if not parent:
             return (f'TF_NO_FRAME_ID: Ignoring transform with child_frame_id "{child}"  from authority "{authority}" '
                     f"because frame_id not set")
-        values = (*transform.translation, *transform.rotation)
-        if any(math.isnan(v) for v in values):
+        tx, ty, tz = transform.translation
+        qx, qy, qz, qw = transform.rotation
+        total = tx + ty + tz + qx + qy + qz + qw
+        if total != total and any(math.isnan(v) for v in (tx, ty, tz, qx, qy, qz, qw)):  # NaN != NaN
             numbers = " ".join(f"{v:f}" for v in transform.translation), " ".join(f"{v:f}" for v in transform.rotation)
             return (f'TF_NAN_INPUT: Ignoring transform for child_frame_id "{child}" from authority "{authority}" '
                     f"because of a nan value in the transform ({numbers[0]}) ({numbers[1]})")
-        if abs(rotation.norm_squared(transform.rotation) - 1.0) >= 10e-6:
+        norm_squared = qx * qx + qy * qy + qz * qz + qw * qw
+        if abs(norm_squared - 1.0) >= 10e-6:
             quaternion = " ".join(f"{v:f}" for v in transform.rotation)
-            return (f'TF_DENORMALIZED_QUATERNION: Ignoring transform for child_frame_id "{child}" from authority '
-                    f'"{authority}" because of an invalid quaternion in the transform ({quaternion})')
-        child_number = self._insert_frame(child)
-        parent_number = self._insert_frame(parent)
+            if not 0.0 < norm_squared < math.inf:
+                return (f'TF_DENORMALIZED_QUATERNION: Ignoring transform for child_frame_id "{child}" from authority '
+                        f'"{authority}" because of an invalid quaternion in the transform ({quaternion})')
+            norm = math.sqrt(norm_squared)
+            qx, qy, qz, qw = qx / norm, qy / norm, qz / norm, qw / norm
+            self.warn(f'TF_DENORMALIZED_QUATERNION: Normalizing the quaternion ({quaternion}) of length {norm:f} '
+                      f'in the transform for child_frame_id "{child}" from authority "{authority}"')
+        known = self._numbers
+        child_number = known.get(child) or self._insert_frame(child)
+        parent_number = known.get(parent) or self._insert_frame(parent)
         cache = self._caches[child_number]
         if cache is None:
             cache = StaticCache() if is_static else TimeCache(self.cache_time)
             self._caches[child_number] = cache
-        tx, ty, tz = transform.translation
-        qx, qy, qz, qw = transform.rotation
-        refusal = cache.insert(Stored(int(transform.stamp), parent_number, (float(tx), float(ty), float(tz)),
-                                      (float(qx), float(qy), float(qz), float(qw))))
+        # tuple.__new__ skips the named tuple's Python-level __new__: this runs for every transform received
+        item = tuple.__new__(Stored, (int(transform.stamp), parent_number, (tx + 0.0, ty + 0.0, tz + 0.0),
+                                      (qx + 0.0, qy + 0.0, qz + 0.0, qw + 0.0)))
+        refusal = cache.insert(item)
         if refusal is None:
             self.authority[child_number] = authority
+            self._generations[child_number] += 1
             return None
         return (f"{refusal.value} for frame {child} at time {transform.stamp / 1e9:f} "
                 f"according to authority {authority}")
@@ -155,6 +182,7 @@ class BufferCore:
         for cache in self._caches:
             if cache is not None:
                 cache.clear()
+        self._remembered.clear()
 
     # ------------------------------------------------------------------ lookups
 
@@ -167,9 +195,24 @@ class BufferCore:
                 cache = self._caches[target_number]
                 time = cache.latest()[0] if cache is not None else 0
             return Transform(target, source, time, rotation.ZERO, rotation.IDENTITY)
-        walk, time = self._walk(target_number, source_number, time)
-        translation, quaternion = walk.result()
-        return Transform(target, source, time, translation, quaternion)
+        return self._resolve(target_number, source_number, time)
+
+    def _resolve(self, target: int, source: int, time: int) -> Transform:
+        """The lookup between two distinct known frames: remembered, or walked and remembered."""
+        key = (target, source, time)
+        remembered = self._remembered.get(key)
+        if remembered is not None:
+            found, generations_of, generations = remembered
+            if generations_of(self._generations) == generations:
+                return found
+        read: list[int] = []
+        walk, stamp = self._walk(target, source, time, read)
+        found = Transform(self._names[target], self._names[source], stamp, *walk.result())
+        if len(self._remembered) >= REMEMBERED_LOOKUPS:
+            del self._remembered[next(iter(self._remembered))]
+        generations_of = itemgetter(*read)  # read holds both frames, so this always gives a tuple
+        self._remembered[key] = (found, generations_of, generations_of(self._generations))
+        return found
 
     def lookup_transform_full(self, target: str, target_time: int, source: str, source_time: int,
                               fixed: str) -> Transform:
@@ -204,7 +247,7 @@ class BufferCore:
         if target_number == source_number:
             return True, ""
         try:
-            self._walk(target_number, source_number, time)
+            self._resolve(target_number, source_number, time)
         except (ConnectivityException, ExtrapolationException) as exc:
             return False, str(exc)
         return True, ""
@@ -220,21 +263,23 @@ class BufferCore:
         target_number = self._validate("getLatestCommonTime argument target_frame", target)
         source_number = self._validate("getLatestCommonTime argument source_frame", source)
         try:
-            return self._latest_common_time(target_number, source_number)
+            return self._latest_common_time(target_number, source_number, [])
         except ConnectivityException as exc:
             raise TransformException(str(exc)) from None  # tf2_py raises the base class here
 
-    def _walk(self, target: int, source: int, time: int) -> tuple[_Walk, int]:
+    def _walk(self, target: int, source: int, time: int, read: list[int]) -> tuple[_Walk, int]:
         """Both frames' transforms up to their common ancestor at `time` (0: the latest common
-        time), as tf2's walkToTopParent; raises what a lookup raises."""
+        time), as tf2's walkToTopParent; raises what a lookup raises. Appends to `read` every
+        frame whose cache it (or the latest common time) looked at: the answer depends on them only."""
         if time == 0:
-            time = self._latest_common_time(target, source)
+            time = self._latest_common_time(target, source, read)
         walk = _Walk()
         caches = self._caches
         chain = rotation.chain
         translation, quaternion = rotation.ZERO, rotation.IDENTITY
         frame, top, extrapolation, extrapolated = source, source, "", False
         for _ in range(MAX_GRAPH_DEPTH + 1):
+            read.append(frame)
             cache = caches[frame]
             if cache is None:  # a root
                 top = frame
@@ -256,6 +301,7 @@ class BufferCore:
         for _ in range(MAX_GRAPH_DEPTH + 1):
             if frame == top:
                 break
+            read.append(frame)
             cache = caches[frame]
             if cache is None:
                 break
@@ -285,9 +331,11 @@ class BufferCore:
         return (f"Could not find a connection between '{self._names[target]}' and '{self._names[source]}' "
                 f"because they are not part of the same tree.Tf has two or more unconnected trees.")
 
-    def _links_up(self, frame: int) -> Iterator[tuple[int, int]]:
-        """(newest stamp, parent) of each link from `frame` up to its root (tf2's getLatestTimeAndParent)."""
+    def _links_up(self, frame: int, read: list[int]) -> Iterator[tuple[int, int]]:
+        """(newest stamp, parent) of each link from `frame` up to its root (tf2's
+        getLatestTimeAndParent); appends each frame it reads to `read`."""
         for _ in range(MAX_GRAPH_DEPTH + 1):
+            read.append(frame)
             cache = self._caches[frame]
             if cache is None:
                 return
@@ -298,7 +346,7 @@ class BufferCore:
             frame = parent
         raise ConnectivityException(_LOOP + "\n" + self.all_frames_as_string())
 
-    def _latest_common_time(self, target: int, source: int) -> int:
+    def _latest_common_time(self, target: int, source: int, read: list[int]) -> int:
         """The newest time every link between the two frames has data for (tf2's
         getLatestCommonTime); static links do not limit it, and 0 means any time."""
         if source == target:
@@ -306,14 +354,14 @@ class BufferCore:
             return cache.latest()[0] if cache is not None else 0
         source_links: list[tuple[int, int]] = []
         common = 0
-        for stamp, parent in self._links_up(source):
+        for stamp, parent in self._links_up(source, read):
             common = _earlier(common, stamp)
             source_links.append((stamp, parent))
             if parent == target:
                 return common
         source_parents = {parent for _, parent in source_links}
         common, common_parent = 0, 0
-        for stamp, parent in self._links_up(target):
+        for stamp, parent in self._links_up(target, read):
             common = _earlier(common, stamp)
             if parent in source_parents:
                 common_parent = parent

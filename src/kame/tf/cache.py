@@ -9,11 +9,11 @@ at every time, and is never cleared. Times are integer nanoseconds.
 
 from __future__ import annotations
 
-import bisect
+from bisect import bisect_left
 from enum import Enum
+from math import acos, sin, sqrt
 from typing import NamedTuple
 
-from . import rotation
 from .rotation import Quaternion, Vector
 
 
@@ -58,51 +58,66 @@ class TimeCache:
 
     def insert(self, item: Stored) -> Refusal | None:
         stamps = self._stamps
-        if stamps and stamps[-1] > item.stamp + self.max_age:
-            return Refusal.OLD
-        if not stamps or item.stamp > stamps[-1]:
-            stamps.append(item.stamp)
+        stamp = item.stamp
+        if not stamps or stamp > stamps[-1]:  # the usual case: the newest yet
+            stamps.append(stamp)
             self._data.append(item)
-        else:
-            index = bisect.bisect_left(stamps, item.stamp)
-            if index < len(stamps) and stamps[index] == item.stamp:
-                return Refusal.REPEATED
-            stamps.insert(index, item.stamp)
-            self._data.insert(index, item)
-        self._prune()
+            if stamps[0] < stamp - self.max_age:
+                self._prune()
+            return None
+        if stamps[-1] > stamp + self.max_age:
+            return Refusal.OLD
+        index = bisect_left(stamps, stamp)
+        if stamps[index] == stamp:  # index < len: stamp is not past the newest
+            return Refusal.REPEATED
+        stamps.insert(index, stamp)
+        self._data.insert(index, item)
         return None
 
     def _prune(self) -> None:
-        cut = bisect.bisect_left(self._stamps, self._stamps[-1] - self.max_age)
+        cut = bisect_left(self._stamps, self._stamps[-1] - self.max_age)
         if cut:
             del self._stamps[:cut]
             del self._data[:cut]
 
     def get(self, time: int) -> Stored | str:
-        """The transform at `time` (0: the newest), or why there is none."""
+        """The transform at `time` (0: the newest), or why there is none. The hot path of every
+        lookup, once per link: the interpolation is rotation.lerp and rotation.slerp written out
+        in place (same arithmetic, same order), as their calls cost more than the sums."""
         data = self._data
         if not data:
             return ""  # tf2 says nothing for an empty cache; the caller reports connectivity
         if time == 0:
             return data[-1]
         stamps = self._stamps
+        newer = bisect_left(stamps, time)
+        if newer < len(stamps) and stamps[newer] == time:
+            return data[newer]
         if len(data) == 1:
-            return data[0] if stamps[0] == time else _extrapolation_single(time, stamps[0])
-        if time == stamps[-1]:
-            return data[-1]
-        if time == stamps[0]:
-            return data[0]
-        if time > stamps[-1]:
+            return _extrapolation_single(time, stamps[0])
+        if newer == len(stamps):
             return _extrapolation_future(time, stamps[-1])
-        if time < stamps[0]:
+        if newer == 0:
             return _extrapolation_past(time, stamps[0])
-        newer = bisect.bisect_right(stamps, time)
         older, later = data[newer - 1], data[newer]
-        if older.stamp == time or older.parent != later.parent:
+        if older.parent != later.parent:
             return older
         ratio = (time - older.stamp) / (later.stamp - older.stamp)
-        return Stored(time, older.parent, rotation.lerp(older.translation, later.translation, ratio),
-                      rotation.slerp(older.rotation, later.rotation, ratio))
+        (ax, ay, az), (bx, by, bz) = older.translation, later.translation
+        translation = (ax + (bx - ax) * ratio, ay + (by - ay) * ratio, az + (bz - az) * ratio)
+        quaternion = older.rotation
+        (ax, ay, az, aw), (bx, by, bz, bw) = quaternion, later.rotation
+        product = (ax * bx + ay * by + az * bz + aw * bw) / sqrt(
+            (ax * ax + ay * ay + az * az + aw * aw) * (bx * bx + by * by + bz * bz + bw * bw))
+        if -1.0 < product < 1.0:
+            sign = -1.0 if product < 0 else 1.0
+            theta = acos(sign * product)
+            s1 = sin(sign * ratio * theta)
+            d = 1.0 / sin(theta)
+            s0 = sin((1.0 - ratio) * theta)
+            quaternion = ((ax * s0 + bx * s1) * d, (ay * s0 + by * s1) * d, (az * s0 + bz * s1) * d,
+                          (aw * s0 + bw * s1) * d)
+        return tuple.__new__(Stored, (time, older.parent, translation, quaternion))  # skips Stored's Python __new__
 
     def latest(self) -> tuple[int, int]:
         """(newest stamp, its parent), or (0, 0) when empty."""

@@ -16,9 +16,13 @@ def to_nsec(stamp: Any) -> int:
 
 
 def from_message(msg: Any) -> Transform:
+    """Runs for every transform a listener receives: tuple.__new__ skips the named tuple's
+    Python-level __new__, and a stamp is read directly when it is a Time."""
     t, r = msg.transform.translation, msg.transform.rotation
-    return Transform(msg.header.frame_id, msg.child_frame_id, to_nsec(msg.header.stamp),
-                     (t.x, t.y, t.z), (r.x, r.y, r.z, r.w))
+    stamp = msg.header.stamp
+    nsec = stamp.secs * 1_000_000_000 + stamp.nsecs if hasattr(stamp, "nsecs") else to_nsec(stamp)
+    return tuple.__new__(Transform, (msg.header.frame_id, msg.child_frame_id, nsec, (t.x, t.y, t.z),
+                                     (r.x, r.y, r.z, r.w)))
 
 
 def to_message(transform: Transform, message_type: type[Any], time_type: Any) -> Any:

@@ -1,7 +1,8 @@
 """tf2_ros.Buffer's behaviour over the pure buffer core: one lock around the core, a condition
 that wakes waiting lookups when a transform arrives (never a poll), timeouts, the handling of
-a /tf message (authority, a clock that jumped back clears the cache) and tf2's warnings, the
-repeated-stamp one rate-limited."""
+a /tf message (authority, a clock that jumped back clears the cache) and tf2's warnings and
+errors about the data, each kind (TF_REPEATED_DATA, TF_NAN_INPUT, ...) at most once per
+REPORT_INTERVAL so that a publisher repeating a mistake at 1 kHz does not flood the log."""
 
 from __future__ import annotations
 
@@ -18,27 +19,32 @@ from kame.tf.messages import from_message, to_message, to_nsec
 
 log = logging.getLogger("kame.tf")
 
-REPEATED_WARNING_INTERVAL = 10.0  # seconds between two TF_REPEATED_DATA warnings
+REPORT_INTERVAL = 10.0  # seconds between two reports of one kind of bad data
 
 
 class Buffer:
     def __init__(self, cache_time: Any = None, transform_type: type[Any] | None = None,
-                 time_type: Any = Time, warn: Callable[[str], None] | None = None) -> None:
+                 time_type: Any = Time, warn: Callable[[str], None] | None = None,
+                 error: Callable[[str], None] | None = None) -> None:
         """`cache_time` is a Duration (default 10 s); `transform_type` the TransformStamped
-        class lookups return; `warn` where tf2's warnings go (the node's log)."""
+        class lookups return; `warn` and `error` where tf2's warnings and errors go (the node's log)."""
         if transform_type is None:
             from geometry_msgs.msg import TransformStamped
             transform_type = TransformStamped
         self.warn: Callable[[str], None] = warn or log.warning
+        self.error: Callable[[str], None] = error or log.error
         self._core = BufferCore(to_nsec(cache_time) if cache_time is not None else 10 * 10**9, self._warn)
         self._changed = threading.Condition()
         self._transform_type = transform_type
         self._time_type = time_type
-        self._last_repeated_warning = -REPEATED_WARNING_INTERVAL
+        self._last_report: dict[str, float] = {}
         self._latest_input = 0
 
     def _warn(self, text: str) -> None:
-        self.warn(text)
+        if text.startswith("TF_DENORMALIZED_QUATERNION"):  # normalized and stored: a warning
+            self._report(text, self.warn)
+        else:
+            self.warn(text)
 
     # ------------------------------------------------------------------ input
 
@@ -49,21 +55,35 @@ class Buffer:
         return self._set(transform, authority, True)
 
     def _set(self, transform: Any, authority: str, is_static: bool) -> bool:
-        with self._changed:
-            refusal = self._core.set_transform(from_message(transform), authority, is_static)
-            if refusal is None:
-                self._changed.notify_all()
-        if refusal is not None:
-            self._report(refusal)
-        return refusal is None
+        return not self._store([transform], authority, is_static)
 
-    def _report(self, refusal: str) -> None:
-        if refusal.startswith("TF_REPEATED_DATA"):
-            now = wallclock.monotonic()
-            if now - self._last_repeated_warning < REPEATED_WARNING_INTERVAL:
-                return
-            self._last_repeated_warning = now
-        self.warn(refusal)
+    def _store(self, transforms: list[Any], authority: str, is_static: bool) -> list[str]:
+        """Store transforms under one lock, wake the waiters once; the refusals, reported."""
+        refusals = []
+        stored = False
+        set_transform = self._core.set_transform
+        with self._changed:
+            for transform in transforms:
+                refusal = set_transform(from_message(transform), authority, is_static)
+                if refusal is None:
+                    stored = True
+                else:
+                    refusals.append(refusal)
+            if stored:
+                self._changed.notify_all()
+        for refusal in refusals:  # tf2 warns about late and repeated data, and refuses the rest as errors
+            self._report(refusal, self.warn if refusal.startswith(("TF_REPEATED_DATA", "TF_OLD_DATA")) else self.error)
+        return refusals
+
+    def _report(self, text: str, sink: Callable[[str], None]) -> None:
+        """A bad-data message to `sink`, unless one of its kind went out less than
+        REPORT_INTERVAL ago."""
+        kind = text.split(" ", 1)[0].rstrip(":")
+        now = wallclock.monotonic()
+        if now - self._last_report.get(kind, -REPORT_INTERVAL) < REPORT_INTERVAL:
+            return
+        self._last_report[kind] = now
+        sink(text)
 
     def receive(self, transforms: list[Any], authority: str, is_static: bool, now: int = 0) -> None:
         """One /tf or /tf_static message from `authority` (the publisher's callerid), received at
@@ -74,8 +94,7 @@ class Buffer:
             self.clear()
         if now:
             self._latest_input = now
-        for transform in transforms:
-            self._set(transform, authority, is_static)
+        self._store(transforms, authority, is_static)
 
     def clear(self) -> None:
         with self._changed:
