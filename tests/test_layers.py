@@ -109,6 +109,9 @@ LAYERS: dict[str, int] = {
     "kame.rviz.source": 4,  # the rviz node: subscriptions, the tf Buffer
     "kame.rviz.window": 4,  # Qt and OpenGL
     "kame.rviz.main": 4,
+    "kame.robot": 1,  # a URDF's joints and joint_state_publisher's positions: no ROS, no Qt
+    "kame.robot.programs": 4,  # robot_state_publisher and joint_state_publisher
+    "kame.robot.sliders": 4,  # joint_state_publisher_gui's Qt window
     "kame.stage.runtime": 4,  # the simulator's and map tools' one way to the ROS runtime
     "kame.stage.node": 4,
     "kame.stage.map_server": 4,

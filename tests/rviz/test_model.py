@@ -319,7 +319,8 @@ def test_robot_model_places_the_urdf_visuals_at_their_links() -> None:
     assert cylinder.min(axis=0) == pytest.approx([0.5, 1.5, -0.1], abs=1e-6)
     assert triangles.colors[-1] == pytest.approx([0.8, 0.8, 0.8, 1])
     assert display.status.level == WARN
-    assert "wheel: no transform from wheel to map" in display.status.text and "mesh" in display.status.text
+    assert "wheel: no transform from wheel to map" in display.status.text
+    assert "laser: package [r] not found for package://r/base.dae" in display.status.text
     display.describe(None)
     build(display)
     assert "parameter robot_description is not set" in display.status.text
@@ -339,3 +340,63 @@ def test_a_display_draws_once_tf_has_the_frame_it_lacked() -> None:
     scene = Scene()
     grid.build(scene, TreeOf("map", {"odom": ("map", (2.0, 0, 0))}), 0.0)  # the cached scene is not reused
     assert grid.status.level == OK and scene.batches
+
+
+def _mesh_package(tmp_path):  # type: ignore[no-untyped-def]
+    """A package `parts` holding a 1 x 2 x 3 box as binary STL, ASCII STL and red Collada."""
+    trimesh = pytest.importorskip("trimesh", reason="rviz reads meshes with trimesh (kame[gui])")
+    pytest.importorskip("collada", reason="Collada files are read through pycollada (kame[gui])")
+    box = trimesh.creation.box((1.0, 2.0, 3.0))
+    box.visual.face_colors = [255, 0, 0, 255]
+    meshes = tmp_path / "parts" / "meshes"
+    meshes.mkdir(parents=True)
+    (meshes / "box.stl").write_bytes(box.export(file_type="stl"))
+    (meshes / "box_ascii.stl").write_text(box.export(file_type="stl_ascii"))
+    (meshes / "box.dae").write_bytes(box.export(file_type="dae"))
+    from kame.rviz.meshes import MeshLibrary
+
+    return MeshLibrary(lambda name: str(tmp_path / name) if name == "parts" else None)
+
+
+def test_mesh_resources_are_read_from_stl_and_collada_through_package_urls(tmp_path) -> None:  # type: ignore[no-untyped-def]
+    library = _mesh_package(tmp_path)
+    for name in ("box.stl", "box_ascii.stl", "box.dae"):
+        mesh = library.load(f"package://parts/meshes/{name}")
+        assert not isinstance(mesh, str), mesh
+        assert mesh.triangles.shape == (36, 3)
+        assert mesh.triangles.min(axis=0) == pytest.approx([-0.5, -1, -1.5])
+    dae = library.load("package://parts/meshes/box.dae")
+    assert not isinstance(dae, str) and dae.colors is not None and dae.colors[0] == pytest.approx([1, 0, 0, 1])
+    assert library.load(f"file://{tmp_path}/parts/meshes/box.stl") is not None
+    assert "package [nowhere] not found" in str(library.load("package://nowhere/box.stl"))
+    assert "No such file" in str(library.load("package://parts/meshes/missing.stl"))
+    (tmp_path / "parts" / "meshes" / "broken.dae").write_text("<COLLADA>")
+    assert "cannot read mesh" in str(library.load("package://parts/meshes/broken.dae"))
+
+
+def test_a_mesh_marker_and_a_urdf_mesh_visual_are_drawn_scaled_and_placed(tmp_path) -> None:  # type: ignore[no-untyped-def]
+    from kame.rviz.robot import RobotModel
+
+    library = _mesh_package(tmp_path)
+    display = markers.Marker()
+    display.meshes = library
+    marker = Marker(type=markers.MESH, action=markers.ADD, mesh_resource="package://parts/meshes/box.stl")
+    marker.header.frame_id = "odom"
+    marker.pose.orientation.w = 1.0
+    marker.scale.x = marker.scale.y = marker.scale.z = 2.0
+    marker.color.g = marker.color.a = 1.0
+    scene = build(display, marker)
+    assert display.status.level == OK, display.status.text
+    assert all_vertices(scene).min(axis=0) == pytest.approx([0, -2, -3])  # odom at x = 1
+    assert scene.batches[0].colors[0] == pytest.approx([0, 1, 0, 1])
+    marker.mesh_use_embedded_materials, marker.mesh_resource = True, "package://parts/meshes/box.dae"
+    assert build(display, marker).batches[0].colors[0] == pytest.approx([1, 0, 0, 1])  # the file's red
+    robot = RobotModel()
+    robot.meshes = library
+    robot.describe('<robot name="r"><link name="laser"><visual><origin xyz="0 0 1"/><geometry>'
+                   '<mesh filename="package://parts/meshes/box.dae" scale="1 1 0.5"/></geometry></visual></link>'
+                   '</robot>')
+    drawn = build(robot)
+    assert robot.status.level == OK, robot.status.text
+    assert all_vertices(drawn).min(axis=0) == pytest.approx([0.5, 1, 0.25])  # laser at (1, 2, 0)
+    assert drawn.batches[0].colors[0] == pytest.approx([1, 0, 0, 1])  # no URDF material: the mesh's colour

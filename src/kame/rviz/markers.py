@@ -1,7 +1,7 @@
 """rviz's Marker and MarkerArray displays: markers kept by (namespace, id), replaced by a newer
 one, removed by DELETE, DELETEALL (all, or a namespace's in rviz's way: all) or when their
 lifetime ends; each type drawn as rviz does (cube, sphere, cylinder, arrow, line strip/list,
-cube/sphere lists, points, text, triangle list). Namespaces can be hidden ("Namespaces")."""
+cube/sphere lists, points, text, triangle list, STL/DAE mesh resource). Namespaces can be hidden ("Namespaces")."""
 
 from __future__ import annotations
 
@@ -10,6 +10,7 @@ from typing import Any
 import numpy as np
 
 from kame.rviz.display import WARN, Display, Frames, Status
+from kame.rviz.meshes import MeshLibrary, add_mesh
 from kame.rviz.scene import (
     Scene,
     apply,
@@ -34,7 +35,7 @@ def _point_colors(marker: Any, count: int) -> np.ndarray:
     return np.tile(np.array(_rgba(marker.color), dtype=np.float32), (count, 1))
 
 
-def draw_marker(scene: Scene, marker: Any, placed: np.ndarray) -> str:
+def draw_marker(scene: Scene, marker: Any, placed: np.ndarray, meshes: MeshLibrary | None = None) -> str:
     """Adds `marker` (whose frame is at `placed`) to the scene; says why not when it cannot."""
     matrix = placed @ pose_matrix(marker.pose)
     scale = (marker.scale.x, marker.scale.y, marker.scale.z)
@@ -78,7 +79,11 @@ def draw_marker(scene: Scene, marker: Any, placed: np.ndarray) -> str:
         even = len(points) // 3 * 3
         scene.add("triangles", apply(matrix, points[:even]), _point_colors(marker, len(points))[:even])
     elif kind == MESH:
-        return f"mesh resources are not drawn yet ({marker.mesh_resource})"
+        mesh = (meshes or MeshLibrary()).load(marker.mesh_resource)
+        if isinstance(mesh, str):
+            return mesh
+        # rviz: the marker's colour, unless it asks for the file's own and the file has some
+        add_mesh(scene, mesh, matrix, scale, None if marker.mesh_use_embedded_materials else color)
     else:
         return f"unknown marker type {kind}"
     return ""
@@ -93,6 +98,7 @@ class Marker(Display):
     def __init__(self, *args: Any, **kwargs: Any) -> None:
         super().__init__(*args, **kwargs)
         self.markers: dict[tuple[str, int], tuple[Any, float]] = {}
+        self.meshes = MeshLibrary()  # the window gives it kame's package finder
 
     def reset(self) -> None:
         super().reset()
@@ -137,7 +143,7 @@ class Marker(Display):
             if isinstance(found, str):
                 problems.append(f"{marker.ns}/{marker.id}: {found}")
                 continue
-            problem = draw_marker(scene, marker, found)
+            problem = draw_marker(scene, marker, found, self.meshes)
             if problem:
                 problems.append(f"{marker.ns}/{marker.id}: {problem}")
         if problems:

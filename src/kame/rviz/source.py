@@ -7,12 +7,14 @@ window's turn, when it takes them."""
 
 from __future__ import annotations
 
+import os
 import threading
 from collections.abc import Callable
 from typing import Any
 
 import numpy as np
 
+from kame.catkin import executables
 from kame.msg.lookup import message_class
 from kame.node.node import Node
 from kame.node.topics import serialize_frame
@@ -133,6 +135,11 @@ class RvizSource:
         if not isinstance(answer, list) or len(answer) < 3 or answer[0] != 1 or not isinstance(answer[2], str):
             return None
         return answer[2]
+
+    def find_package(self, name: str) -> str | None:
+        """Where package `name` is (ROS_PACKAGE_PATH and kame's own): package:// mesh resources."""
+        package = executables.packages(os.environ).get(name)
+        return str(package.path) if package is not None else None
 
     def publish(self, topic: str, message: Any) -> None:
         topic = self.node.resolve(topic)

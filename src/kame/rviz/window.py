@@ -33,6 +33,8 @@ from PySide6.QtWidgets import (
 from kame.rviz import config as rviz_config
 from kame.rviz.camera import ORBIT, TOP_DOWN, Camera
 from kame.rviz.display import ERROR, OK, Display, Status, format_color, parse_color
+from kame.rviz.markers import Marker
+from kame.rviz.meshes import MeshLibrary
 from kame.rviz.robot import RobotModel
 from kame.rviz.scene import Batch, Scene
 from kame.rviz.source import RvizSource
@@ -209,6 +211,7 @@ class RvizWindow(QMainWindow):
         super().__init__()
         self.config = config
         self.source = source
+        self.meshes = MeshLibrary(source.find_package if source is not None else None)
         self.config_path = config_path
         self.setWindowTitle(f"{config_path or 'default.rviz'} - RViz")
         self.view = RenderView()
@@ -395,6 +398,9 @@ class RvizWindow(QMainWindow):
 
     def _rewatch(self) -> None:
         """Subscribes to what the displays show, and leaves what none shows any more."""
+        for display in self.config.displays:
+            if isinstance(display, (RobotModel, Marker)):
+                display.meshes = self.meshes  # one cache of mesh files for the window
         if self.source is None:
             return
         self._topic_errors.clear()
