@@ -229,9 +229,9 @@ Visualization Manager:
       Name: LaserScan
       Topic: /scan
       Size (m): 0.05
-    - Class: rviz/Camera
+    - Class: rviz/DepthCloud
       Enabled: true
-      Name: Camera
+      Name: DepthCloud
   Enabled: true
   Global Options:
     Background Color: 48; 48; 48
@@ -260,7 +260,7 @@ def test_an_rviz_file_loads_and_saves_back_what_it_had() -> None:
     again = config.parse(config.dump(loaded))
     assert [d.name for d in again.displays] == ["Grid", "LaserScan"]
     assert again.displays[1].options["Size (m)"] == 0.05
-    assert [e["Class"] for e in again.unknown_displays] == ["rviz/Camera"]
+    assert [e["Class"] for e in again.unknown_displays] == ["rviz/DepthCloud"]
     assert again.camera.pitch == 0.6 and again.fixed_frame == "odom"
     with pytest.raises(ValueError):
         config.parse("- just a list")

@@ -33,6 +33,7 @@ from PySide6.QtWidgets import (
 from kame.rviz import config as rviz_config
 from kame.rviz.camera import ORBIT, TOP_DOWN, Camera
 from kame.rviz.display import ERROR, OK, Display, Status, format_color, parse_color
+from kame.rviz.image_panels import ImagePanels
 from kame.rviz.markers import Marker
 from kame.rviz.meshes import MeshLibrary
 from kame.rviz.robot import RobotModel
@@ -219,6 +220,7 @@ class RvizWindow(QMainWindow):
         self.view.background = config.background
         self.view.clicked.connect(self._tool_used)
         self.setCentralWidget(self.view)
+        self.image_panels = ImagePanels(self)
         self.tree = QTreeWidget()
         self.tree.setHeaderLabels(["Property", "Value"])
         self.tree.setColumnWidth(0, 150)
@@ -411,6 +413,11 @@ class RvizWindow(QMainWindow):
                 if problem:
                     self._topic_errors[id(display)] = problem
                 wanted[self.source.node.resolve(display.topic)] = display
+            for topic, type_name in display.side_topics().items():
+                problem = self.source.watch(topic, type_name, False)
+                if problem:
+                    self._topic_errors[id(display)] = problem
+                wanted[self.source.node.resolve(topic)] = display
         for topic in self.source.watched() - set(wanted):
             self.source.unwatch(topic)
         for display in self.config.displays:
@@ -426,6 +433,8 @@ class RvizWindow(QMainWindow):
             for display in self.config.displays:
                 if display.topic and display.message_types:
                     display.receive(taken.get(self.source.node.resolve(display.topic), []), now)
+                for topic in display.side_topics():
+                    display.receive_side(topic, taken.get(self.source.node.resolve(topic), []), now)
         self.draw(now)
 
     def draw(self, now: float, frames: Any = None) -> None:
@@ -448,6 +457,7 @@ class RvizWindow(QMainWindow):
             self._show_status(display)
         self.view.scene = scene
         self.view.update()
+        self.image_panels.sync(self.config.displays, scene)
 
     def _show_status(self, display: Display) -> None:
         item = self._items.get(id(display))
