@@ -67,6 +67,18 @@ def _cloud() -> tuple[Display, list[Any]]:
     return displays.PointCloud2(options={"Color": "0; 255; 255", "Size (Pixels)": 6}), [cloud]
 
 
+def _rgb_cloud() -> tuple[Display, list[Any]]:
+    """Colours from the cloud's packed rgb field (uploaded as bytes)."""
+    points = np.zeros(25, dtype=[("x", "<f4"), ("y", "<f4"), ("z", "<f4"), ("rgb", "<u4")])
+    points["x"] = -1 + np.repeat(np.linspace(-0.04, 0.04, 5), 5)
+    points["y"] = 0.5 + np.tile(np.linspace(-0.04, 0.04, 5), 5)
+    points["rgb"] = 0xFF8000
+    fields = [PointField(name=n, offset=4 * i, datatype=7, count=1) for i, n in enumerate(("x", "y", "z", "rgb"))]
+    cloud = PointCloud2(height=1, width=25, fields=fields, point_step=16, row_step=400, data=points.tobytes())
+    cloud.header.frame_id = "map"
+    return displays.PointCloud2(options={"Size (Pixels)": 6}), [cloud]
+
+
 def _grid() -> tuple[Display, list[Any]]:
     grid = OccupancyGrid(data=[0] * 100)
     grid.header.frame_id = "map"
@@ -200,6 +212,7 @@ def _mesh() -> tuple[Display, list[Any]]:
 CASES = [
     Case("LaserScan", _scan, (2.0, 1.0, 0.0), (255, 0, 0)),
     Case("PointCloud2", _cloud, (-2.0, -1.0, 0.0), (0, 255, 255)),
+    Case("PointCloud2 rgb", _rgb_cloud, (-1.0, 0.5, 0.0), (255, 128, 0)),
     Case("Map", _grid, (-2.5, 1.5, 0.0), (255, 255, 255)),
     Case("Marker cube", _marker_case(markers.CUBE), (1.0, -2.0, 0.0), (0, 0, 255)),
     Case("Marker sphere", _marker_case(markers.SPHERE), (1.0, -2.0, 0.0), (0, 0, 255)),

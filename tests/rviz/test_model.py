@@ -13,7 +13,7 @@ from geometry_msgs.msg import Point, PointStamped, Pose, PoseArray, PoseStamped,
 from kame.rviz import config, displays, markers
 from kame.rviz.camera import TOP_DOWN, Camera
 from kame.rviz.display import OK, WARN
-from kame.rviz.scene import Scene
+from kame.rviz.scene import Scene, apply, box_triangles, cylinder_triangles, pose_matrix, sphere_triangles
 from nav_msgs.msg import OccupancyGrid, Odometry, Path
 from sensor_msgs.msg import LaserScan, PointCloud2, PointField
 from visualization_msgs.msg import Marker, MarkerArray
@@ -101,18 +101,23 @@ def test_a_display_without_messages_says_so() -> None:
 
 
 def test_pointcloud2_xyz_rgb() -> None:
-    points = np.zeros(2, dtype=[("x", "<f4"), ("y", "<f4"), ("z", "<f4"), ("rgb", "<u4")])
-    points["x"], points["z"] = [1, 2], [0.5, 0.5]
-    points["rgb"] = [0xFF0000, 0x00FF00]
+    points = np.zeros(3, dtype=[("x", "<f4"), ("y", "<f4"), ("z", "<f4"), ("rgb", "<u4")])
+    points["x"], points["z"] = [1, np.nan, 2], [0.5, 0.5, 0.5]  # the NaN point is not drawn
+    points["rgb"] = [0xFF0000, 0x0000FF, 0x00FF00]
     fields = [PointField(name=n, offset=o, datatype=d, count=1) for n, o, d in
               (("x", 0, 7), ("y", 4, 7), ("z", 8, 7), ("rgb", 12, 7))]
-    cloud = PointCloud2(height=1, width=2, fields=fields, is_bigendian=False, point_step=16, row_step=32,
-                        data=points.tobytes(), is_dense=True)
+    cloud = PointCloud2(height=1, width=3, fields=fields, is_bigendian=False, point_step=16, row_step=48,
+                        data=points.tobytes(), is_dense=False)
     cloud.header.frame_id = "odom"
-    scene = build(displays.PointCloud2(), cloud)
+    scene = build(displays.PointCloud2(options={"Alpha": 0.5}), cloud)
     batch = scene.batches[0]
+    assert batch.vertices.dtype == np.float32
     assert batch.vertices == pytest.approx(np.array([[2, 0, 0.5], [3, 0, 0.5]]))
-    assert batch.colors[0][:3] == pytest.approx([1, 0, 0]) and batch.colors[1][:3] == pytest.approx([0, 1, 0])
+    assert batch.colors.dtype == np.uint8  # 4 bytes a point to upload
+    assert batch.colors.tolist() == [[255, 0, 0, 128], [0, 255, 0, 128]]
+    plain = build(displays.PointCloud2(options={"Color Transformer": "FlatColor", "Color": "0; 0; 255"}),
+                  cloud).batches[0]
+    assert plain.uniform and plain.colors[1] == pytest.approx([0, 0, 1, 1])  # one colour: no colour array
 
 
 def test_occupancy_grid_is_a_texture_on_its_origin_with_rvizs_map_colours() -> None:
@@ -400,3 +405,36 @@ def test_a_mesh_marker_and_a_urdf_mesh_visual_are_drawn_scaled_and_placed(tmp_pa
     assert robot.status.level == OK, robot.status.text
     assert all_vertices(drawn).min(axis=0) == pytest.approx([0.5, 1, 0.25])  # laser at (1, 2, 0)
     assert drawn.batches[0].colors[0] == pytest.approx([1, 0, 0, 1])  # no URDF material: the mesh's colour
+
+
+def test_solid_markers_drawn_together_match_each_drawn_alone() -> None:
+    rng = np.random.default_rng(3)
+    for kind in markers.SOLIDS:
+        array = MarkerArray()
+        for i in range(6):
+            marker = Marker(ns="n", id=i, type=kind, action=markers.ADD)
+            marker.header.frame_id = ("odom", "laser")[i % 2]
+            marker.pose.position = Point(*rng.uniform(-3, 3, 3))
+            marker.pose.orientation = Quaternion(*rng.normal(size=4))  # not normalised: rviz normalises
+            marker.scale.x, marker.scale.y, marker.scale.z = rng.uniform(0.1, 2, 3)
+            marker.color.r, marker.color.a = i / 6, 1.0
+            array.markers.append(marker)
+        together = build(markers.MarkerArray(), array).batches[0]
+        if kind == markers.ARROW:  # a shaft and head about the pose's x, scale.x long, tip at the end
+            for i, marker in enumerate(array.markers):
+                m = TREE.transform(marker.header.frame_id) @ pose_matrix(marker.pose)
+                tail, tip = m[:3, 3], m[:3, 3] + m[:3, 0] * marker.scale.x
+                arrow = together.vertices[96 * i:96 * (i + 1)]
+                along = (arrow - tail) @ m[:3, 0]
+                across = np.linalg.norm(arrow - tail - np.outer(along, m[:3, 0]), axis=1)
+                assert along.min() == pytest.approx(0, abs=1e-5) and along.max() == pytest.approx(marker.scale.x)
+                assert across.max() == pytest.approx(marker.scale.y, rel=1e-5)  # the head: twice the shaft
+                assert np.linalg.norm(arrow - tip, axis=1).min() == pytest.approx(0, abs=1e-5)
+            continue
+        shape = {markers.CUBE: box_triangles, markers.SPHERE: sphere_triangles,
+                 markers.CYLINDER: cylinder_triangles}[kind]
+        alone = [apply(TREE.transform(m.header.frame_id) @ pose_matrix(m.pose), shape((m.scale.x, m.scale.y,
+                                                                                      m.scale.z)))
+                 for m in array.markers]
+        assert together.vertices == pytest.approx(np.concatenate(alone), abs=1e-5)
+        assert together.colors[::len(alone[0])] == pytest.approx(np.array([(i / 6, 0, 0, 1) for i in range(6)]))

@@ -121,14 +121,20 @@ class PointCloud2(Display):
         if not {"x", "y", "z"} <= set(points.dtype.names or ()):
             self.status = Status(WARN, "the cloud has no x, y, z fields")
             return
-        xyz = np.column_stack([points["x"], points["y"], points["z"]]).astype(float)
+        xyz = np.empty((len(points), 3), dtype=np.float32)  # float32 throughout: what GL draws
+        for axis, name in enumerate("xyz"):
+            xyz[:, axis] = points[name]
         finite = np.isfinite(xyz).all(axis=1)
+        if not finite.all():
+            xyz = xyz[finite]
         colors: Any = self.color()
         if "rgb" in (points.dtype.names or ()) and self.options.get("Color Transformer") == "RGB8":
-            packed = np.ascontiguousarray(points["rgb"]).view(np.uint32)
-            rgb = np.column_stack([(packed >> 16) & 255, (packed >> 8) & 255, packed & 255]) / 255.0
-            colors = np.column_stack([rgb, np.full(len(rgb), self.number("Alpha", 1.0))])[finite]
-        scene.add("points", apply(placed, xyz[finite]), colors, self.number("Size (Pixels)", 3))
+            packed = np.ascontiguousarray(points["rgb"]).view(np.uint32)[finite]
+            colors = np.empty((len(packed), 4), dtype=np.uint8)  # 4 bytes a point, not 16
+            for channel, shift in enumerate((16, 8, 0)):
+                colors[:, channel] = (packed >> shift) & 255
+            colors[:, 3] = round(255 * min(1.0, max(0.0, self.number("Alpha", 1.0))))
+        scene.add("points", apply(placed, xyz), colors, self.number("Size (Pixels)", 3))
 
 
 def _arrow(scene: Scene, matrix: np.ndarray, length: float, color: Any) -> None:

@@ -63,7 +63,7 @@ class ImagePanel(QWidget):
         for batch in self.scene.batches:
             pixels, in_front = camera.project(batch.vertices)
             spots = pixels * scale + (left, top)
-            colors = np.clip(batch.colors * 255, 0, 255).astype(int).tolist()
+            colors = np.clip(batch.float_colors() * 255, 0, 255).astype(int).tolist()
             if batch.kind == "triangles":
                 painter.setPen(Qt.PenStyle.NoPen)
                 count = min(len(spots) // 3, MAX_OVERLAY_TRIANGLES)

@@ -10,6 +10,7 @@ import functools
 import math
 import time
 from collections.abc import Callable
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -44,6 +45,26 @@ PRIMITIVES = {"lines": GL.GL_LINES, "points": GL.GL_POINTS, "triangles": GL.GL_T
 INTERACT, POSE_ESTIMATE, NAV_GOAL, PUBLISH_POINT = "Interact", "2D Pose Estimate", "2D Nav Goal", "Publish Point"
 
 
+@dataclass
+class GpuBatch:
+    batch: Batch | None  # what the buffers hold now
+    vertices: int
+    colors: int
+    vertex_bytes: int = 0  # the buffers' sizes
+    color_bytes: int = 0
+
+
+def _upload(buffer: int, data: np.ndarray, capacity: int) -> int:
+    """`data` into the GL buffer, reusing its storage when it fits; the buffer's size after."""
+    data = np.ascontiguousarray(data)
+    GL.glBindBuffer(GL.GL_ARRAY_BUFFER, buffer)
+    if data.nbytes <= capacity:
+        GL.glBufferSubData(GL.GL_ARRAY_BUFFER, 0, data.nbytes, data)
+        return capacity
+    GL.glBufferData(GL.GL_ARRAY_BUFFER, data.nbytes, data, GL.GL_DYNAMIC_DRAW)
+    return data.nbytes
+
+
 class RenderView(QOpenGLWidget):
     """Draws a Scene through a Camera; the mouse moves the camera as rviz's does, or drives a tool."""
 
@@ -56,7 +77,7 @@ class RenderView(QOpenGLWidget):
         self.background = (48 / 255, 48 / 255, 48 / 255, 1.0)
         self.tool = INTERACT
         self._textures: dict[int, tuple[np.ndarray, int]] = {}  # GL textures by their image's id, kept while drawn
-        self._buffers: dict[int, tuple[Batch, int, int]] = {}  # vertex and colour buffers by their batch's id
+        self._buffers: list[GpuBatch] = []  # the buffers of the scene's batches, by their place in it
         self._last: QPointF | None = None
         self._pressed_at: np.ndarray | None = None
         self.setMinimumSize(320, 240)
@@ -87,38 +108,41 @@ class RenderView(QOpenGLWidget):
             GL.glDeleteTextures([self._textures.pop(gone)[1]])
         GL.glDepthMask(GL.GL_TRUE)
         GL.glEnableClientState(GL.GL_VERTEX_ARRAY)
-        GL.glEnableClientState(GL.GL_COLOR_ARRAY)
-        used = set()
-        for batch in self.scene.batches:
+        for slot, batch in enumerate(self.scene.batches):
             GL.glLineWidth(max(1.0, batch.size))
             GL.glPointSize(max(1.0, batch.size))
-            vertices, colors = self._uploaded(batch)
-            used.add(id(batch))
+            vertices, colors = self._uploaded(slot, batch)
             GL.glBindBuffer(GL.GL_ARRAY_BUFFER, vertices)
             GL.glVertexPointer(3, GL.GL_FLOAT, 0, None)
-            GL.glBindBuffer(GL.GL_ARRAY_BUFFER, colors)
-            GL.glColorPointer(4, GL.GL_FLOAT, 0, None)
+            if batch.uniform:  # one colour for all: no colour array to upload or read
+                GL.glColor4f(*(float(c) for c in batch.float_colors()[0]))
+            else:
+                GL.glEnableClientState(GL.GL_COLOR_ARRAY)
+                GL.glBindBuffer(GL.GL_ARRAY_BUFFER, colors)
+                GL.glColorPointer(4, GL.GL_UNSIGNED_BYTE if batch.colors.dtype == np.uint8 else GL.GL_FLOAT, 0, None)
             GL.glDrawArrays(PRIMITIVES[batch.kind], 0, len(batch.vertices))
+            GL.glDisableClientState(GL.GL_COLOR_ARRAY)
         GL.glBindBuffer(GL.GL_ARRAY_BUFFER, 0)
-        for gone in set(self._buffers) - used:
-            GL.glDeleteBuffers(2, list(self._buffers.pop(gone)[1:]))
-        GL.glDisableClientState(GL.GL_COLOR_ARRAY)
+        for unused in self._buffers[len(self.scene.batches):]:
+            GL.glDeleteBuffers(2, [unused.vertices, unused.colors])
+        del self._buffers[len(self.scene.batches):]
         GL.glDisableClientState(GL.GL_VERTEX_ARRAY)
         self._draw_labels()
 
-    def _uploaded(self, batch: Batch) -> tuple[int, int]:
-        """The batch's vertex and colour buffers on the GPU: a display's unchanged scene is uploaded once."""
-        known = self._buffers.get(id(batch))
-        if known is not None and known[0] is batch:
-            return known[1], known[2]
-        if known is not None:
-            GL.glDeleteBuffers(2, [known[1], known[2]])
-        vertices, colors = (int(b) for b in GL.glGenBuffers(2))
-        for buffer, data in ((vertices, batch.vertices), (colors, batch.colors)):
-            GL.glBindBuffer(GL.GL_ARRAY_BUFFER, buffer)
-            GL.glBufferData(GL.GL_ARRAY_BUFFER, np.ascontiguousarray(data, dtype=np.float32), GL.GL_STATIC_DRAW)
-        self._buffers[id(batch)] = (batch, vertices, colors)
-        return vertices, colors
+    def _uploaded(self, slot: int, batch: Batch) -> tuple[int, int]:
+        """The batch's vertex and colour buffers on the GPU, the slot-th of the scene's: an
+        unchanged batch is not uploaded again; a new one goes into the slot's buffers
+        (glBufferSubData while it fits, so a cloud's buffers are allocated once)."""
+        if slot == len(self._buffers):
+            vertices, colors = (int(b) for b in GL.glGenBuffers(2))
+            self._buffers.append(GpuBatch(None, vertices, colors))
+        known = self._buffers[slot]
+        if known.batch is not batch:
+            known.vertex_bytes = _upload(known.vertices, batch.vertices, known.vertex_bytes)
+            if not batch.uniform:
+                known.color_bytes = _upload(known.colors, batch.colors, known.color_bytes)
+            known.batch = batch
+        return known.vertices, known.colors
 
     def _draw_texture(self, corners: np.ndarray, rgba: np.ndarray) -> None:
         known = self._textures.get(id(rgba))
