@@ -129,7 +129,7 @@ def _odometry() -> tuple[Display, list[Any]]:
     odometry = Odometry()
     odometry.header.frame_id = "laser"  # along the laser's x: the map's +y from (2, 0)
     odometry.pose.pose.orientation = IDENTITY
-    return displays.Odometry(options={"Color": "255; 0; 255"}), [odometry]
+    return displays.Odometry(options={"Shape": {"Color": "255; 0; 255"}}), [odometry]
 
 
 def _path() -> tuple[Display, list[Any]]:

@@ -115,6 +115,8 @@ def test_pointcloud2_xyz_rgb() -> None:
     assert batch.vertices == pytest.approx(np.array([[2, 0, 0.5], [3, 0, 0.5]]))
     assert batch.colors.dtype == np.uint8  # 4 bytes a point to upload
     assert batch.colors.tolist() == [[255, 0, 0, 128], [0, 255, 0, 128]]
+    unchosen = build(displays.PointCloud2(options={"Color Transformer": ""}), cloud).batches[0]  # as rviz saves it
+    assert unchosen.colors.tolist() == [[255, 0, 0, 255], [0, 255, 0, 255]]
     plain = build(displays.PointCloud2(options={"Color Transformer": "FlatColor", "Color": "0; 0; 255"}),
                   cloud).batches[0]
     assert plain.uniform and plain.colors[1] == pytest.approx([0, 0, 1, 1])  # one colour: no colour array

@@ -126,8 +126,13 @@ def draw_marker(scene: Scene, marker: Any, placed: np.ndarray, meshes: MeshLibra
 class Marker(Display):
     class_name = "rviz/Marker"
     message_types = ("visualization_msgs/Marker",)
-    defaults = {"Topic": "/visualization_marker", "Queue Size": 100, "Namespaces": {}}
+    defaults = {"Marker Topic": "/visualization_marker", "Queue Size": 100, "Namespaces": {}}
     keeps_every_message = True
+
+    @property
+    def topic(self) -> str:
+        """rviz keeps a marker display's topic under "Marker Topic"."""
+        return str(self.options.get("Marker Topic", ""))
 
     def __init__(self, *args: Any, **kwargs: Any) -> None:
         super().__init__(*args, **kwargs)
@@ -196,7 +201,7 @@ class Marker(Display):
 class MarkerArray(Marker):
     class_name = "rviz/MarkerArray"
     message_types = ("visualization_msgs/MarkerArray",)
-    defaults = {"Topic": "/visualization_marker_array", "Queue Size": 100, "Namespaces": {}}
+    defaults = {"Marker Topic": "/visualization_marker_array", "Queue Size": 100, "Namespaces": {}}
 
     def unpack(self, message: Any) -> list[Any]:
         return list(message.markers)

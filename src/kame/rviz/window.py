@@ -399,7 +399,7 @@ class RvizWindow(QMainWindow):
         display = self.config.displays[self.tree.indexOfTopLevelItem(parent) - 1]
         old = display.options.get(key)
         display.options[key] = type(old)(value) if isinstance(old, (int, float)) and _is_number(value) else value
-        if key == "Topic":
+        if key in ("Topic", "Marker Topic", "Image Topic"):
             display.reset()
             self._rewatch()
 
