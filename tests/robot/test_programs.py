@@ -2,7 +2,8 @@
 file (`command="$(find xacro)/xacro ..."`, args passed through), joint_state_publisher publishes
 the joints (one started at `~zeros`), robot_state_publisher turns them into tf, and tf_echo sees
 the moving and the fixed frames where the URDF puts them; a rospy script reads the description
-with urdf_parser_py's URDF.from_parameter_server."""
+with urdf_parser_py's URDF.from_parameter_server; rviz's RobotModel draws the links where tf
+puts them (the window in its own process on a private Xvfb)."""
 
 from __future__ import annotations
 
@@ -13,7 +14,7 @@ from pathlib import Path
 import pytest
 
 from tests.support import Proc
-from tests.turtlesim.sim import BIN, master
+from tests.turtlesim.sim import BIN, master, wait_until
 
 pytest.importorskip("urdf_parser_py", reason="the robot programs parse URDF with urdf_parser_py (kame[robot])")
 pytest.importorskip("xacro", reason="the xacro command needs kame[robot]")
@@ -23,7 +24,8 @@ ARM_XACRO = """<?xml version="1.0"?>
   <xacro:arg name="len" default="1.0"/>
   <xacro:property name="len" value="$(arg len)"/>
   <xacro:macro name="segment" params="n parent">
-    <link name="link${n}"><visual><geometry><box size="0.1 0.1 ${len}"/></geometry></visual></link>
+    <link name="link${n}"><visual><geometry><box size="0.1 0.1 ${len}"/></geometry>
+      <material name="red"><color rgba="1 0 0 1"/></material></visual></link>
     <joint name="j${n}" type="revolute"><parent link="${parent}"/><child link="link${n}"/>
       <origin xyz="0 0 ${len}"/><axis xyz="0 1 0"/>
       <limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
@@ -95,3 +97,45 @@ def test_a_launched_xacro_robot_shows_up_in_tf(tmp_path: Path) -> None:
         assert read.returncode == 0, read.stderr
         assert read.stdout.split("\n")[0] == (
             "arm ['base_joint', 'j1', 'j2', 'mount', 'scan_joint'] [0.1, 0.1, 0.25]")
+
+
+RVIZ_FILE = """\
+Visualization Manager:
+  Displays:
+    - {Class: rviz/RobotModel, Name: RobotModel, Enabled: true, Robot Description: robot_description}
+    - {Class: rviz/TF, Name: TF, Enabled: true}
+  Global Options:
+    Background Color: 48; 48; 48
+    Fixed Frame: base
+  Views:
+    Current: {Class: rviz/TopDownOrtho, Scale: 200, X: 0, Y: 0}
+"""
+
+
+def test_rviz_draws_the_launched_robot_where_tf_puts_its_links(tmp_path: Path) -> None:
+    pytest.importorskip("OpenGL", reason="rviz draws through PyOpenGL (pip install 'kame[gui]')")
+    pytest.importorskip("PySide6")
+    from tests.support import REPO
+    from tests.turtlesim.xserver import xvfb
+
+    (tmp_path / "arm.urdf.xacro").write_text(ARM_XACRO)
+    (tmp_path / "arm.launch").write_text(LAUNCH)
+    (tmp_path / "arm.rviz").write_text(RVIZ_FILE)
+    with master(tmp_path / "home") as sim, xvfb() as display:
+        launched = Proc([str(BIN / "roslaunch"), str(tmp_path / "arm.launch")], sim.env, cwd=sim.home)
+        sim.procs.append(launched)
+        launched.wait_line("process[robot_state_publisher-", timeout=60)
+        rviz = Proc([sys.executable, "-m", "tests.rviz.live_child", sim.uri, str(tmp_path / "arm.rviz"), "link1",
+                     "link2", "--colour", "255,0,0"], dict(sim.env, DISPLAY=display), cwd=REPO)
+        sim.procs.append(rviz)
+        wanted = "status RobotModel:Ok;TF:Ok colour "
+
+        def robot_drawn() -> list[str]:  # tf fills in after the first frames
+            return [line for line in list(rviz.out)
+                    if wanted in line and "link2=none" not in line and int(line.rsplit(" ", 1)[1]) > 0]
+
+        wait_until(lambda: bool(robot_drawn()), timeout=90, what="rviz to draw the robot")
+        line = robot_drawn()[-1]
+        frames = dict(part.split("=") for part in line.split(" status ")[0].split()[1:])
+        assert frames["link2"].startswith("0.120,0.000,"), line  # 0.25 sin 0.5 along x, seen from above
+        assert int(line.rsplit(" ", 1)[1]) > 100, line  # the red links drawn
