@@ -54,6 +54,10 @@ class GpuBatch:
     color_bytes: int = 0
 
 
+def _same(these: list[Any], those: list[Any]) -> bool:
+    return len(these) == len(those) and all(a is b for a, b in zip(these, those, strict=True))
+
+
 def _upload(buffer: int, data: np.ndarray, capacity: int) -> int:
     """`data` into the GL buffer, reusing its storage when it fits; the buffer's size after."""
     data = np.ascontiguousarray(data)
@@ -84,6 +88,15 @@ class RenderView(QOpenGLWidget):
         self.setFocusPolicy(Qt.FocusPolicy.StrongFocus)
 
     # -------------------------------------------------------------- drawing
+
+    def show_scene(self, scene: Scene) -> None:
+        """Draw `scene` from now on; repaint only when it differs from the one shown (the same
+        batch, label and texture objects: every display reused its cached scene), so a still
+        scene costs no drawing at the frame rate. The mouse and resizes repaint on their own."""
+        if not (_same(scene.batches, self.scene.batches) and _same(scene.labels, self.scene.labels)
+                and _same(scene.textures, self.scene.textures)):
+            self.scene = scene
+            self.update()
 
     def paintGL(self) -> None:
         ratio = self.devicePixelRatioF()
@@ -418,6 +431,7 @@ class RvizWindow(QMainWindow):
             self.config.fixed_frame = value
         elif key == "Background Color":
             self.config.background = self.view.background = parse_color(value, self.config.background)
+            self.view.update()
         elif key == "Frame Rate" and _is_number(value):
             self.config.frame_rate = max(1, int(float(value)))
             self.timer.setInterval(max(1, 1000 // self.config.frame_rate))
@@ -479,8 +493,7 @@ class RvizWindow(QMainWindow):
             if id(display) in self._topic_errors:
                 display.status = Status(ERROR, self._topic_errors[id(display)])
             self._show_status(display)
-        self.view.scene = scene
-        self.view.update()
+        self.view.show_scene(scene)
         self.image_panels.sync(self.config.displays, scene)
 
     def _show_status(self, display: Display) -> None:
