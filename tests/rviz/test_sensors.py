@@ -150,3 +150,33 @@ def test_the_image_and_camera_panels_show_the_image_and_the_scene_over_it(qtbot:
     settings.displays = [point]
     window.draw(0.0, TREE)
     assert window.image_panels.panel(camera) is None  # the display went, and its dock with it
+
+
+def test_a_compressed_image_is_read_beside_the_topic_and_decoded_by_the_window(qtbot: Any) -> None:
+    pytest.importorskip("PySide6")
+    from PySide6.QtCore import QBuffer, QByteArray, QIODevice
+    from PySide6.QtGui import QColor, QImage
+
+    from kame.rviz.image_panels import decode_compressed
+    from sensor_msgs.msg import CompressedImage
+
+    display = sensors.Camera(options={"Image Topic": "/camera/image_raw", "Transport Hint": "compressed"})
+    assert display.subscription() == ("/camera/image_raw/compressed", "sensor_msgs/CompressedImage")
+    assert display.side_topics() == {"/camera/camera_info": "sensor_msgs/CameraInfo"}
+    assert sensors.Image(options={"Image Topic": "/i"}).subscription() == ("/i", "sensor_msgs/Image")
+    picture = QImage(4, 3, QImage.Format.Format_RGB888)
+    picture.fill(QColor(0, 128, 255))
+    encoded = QByteArray()
+    sink = QBuffer(encoded)
+    sink.open(QIODevice.OpenModeFlag.WriteOnly)
+    assert picture.save(sink, "PNG")
+    message = CompressedImage(format="png", data=bytes(encoded.data()))
+    build(display, message)
+    assert display.status.level == ERROR and "decoded by the window" in display.status.text
+    display.decode_compressed = decode_compressed
+    display.version += 1
+    build(display)
+    assert display.pixels is not None and display.pixels.shape == (3, 4, 4)
+    assert display.pixels[2, 3].tolist() == [0, 128, 255, 255]
+    build(display, CompressedImage(format="jpeg", data=b"not a jpeg"))
+    assert display.status.level == ERROR and "cannot decode the jpeg image" in display.status.text

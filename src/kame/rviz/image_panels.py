@@ -16,6 +16,18 @@ from kame.rviz.sensors import Camera, Image
 MAX_OVERLAY_TRIANGLES = 20_000  # beyond this the overlay draws the first ones only: painting is per triangle
 
 
+def decode_compressed(data: bytes) -> np.ndarray:
+    """A CompressedImage's JPEG or PNG bytes as H x W x 4 RGBA (Qt decodes them, as
+    rqt_image_view does); ValueError when Qt cannot."""
+    image = QImage.fromData(data)
+    if image.isNull():
+        raise ValueError("not a JPEG or PNG image Qt can read")
+    image = image.convertToFormat(QImage.Format.Format_RGBA8888)
+    rows = np.frombuffer(image.constBits(), np.uint8, image.sizeInBytes()).reshape(image.height(), -1)
+    pixels: np.ndarray = rows[:, :4 * image.width()].reshape(image.height(), image.width(), 4).copy()
+    return pixels
+
+
 class ImagePanel(QWidget):
     def __init__(self, display: Image) -> None:
         super().__init__()

@@ -8,7 +8,8 @@ Rules (rviz 1.14):
   ranger (min == max) reporting -inf, which draws at that distance.
 - WrenchStamped: the force as an arrow from the frame's origin, |f| * Force Arrow Scale long; the
   torque as an arrow |t| * Torque Arrow Scale long with a circle about it.
-- Image and Camera read `Image Topic`; decoding (rqt_image_view's encodings) happens once per
+- Image and Camera read `Image Topic` (`/compressed` beside it, JPEG or PNG, with Transport
+  Hint "compressed"); decoding (rqt_image_view's encodings) happens once per
   new message; Camera takes its CameraInfo from the image topic's namespace + /camera_info, and
   projects with its P matrix from the image's frame (the optical frame: z forward, x right).
 """
@@ -16,6 +17,7 @@ Rules (rviz 1.14):
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
@@ -103,10 +105,20 @@ class Image(Display):
     def __init__(self, *args: Any, **kwargs: Any) -> None:
         super().__init__(*args, **kwargs)
         self.pixels: np.ndarray | None = None  # H x W x 4 uint8
+        # JPEG/PNG bytes -> H x W x 4 uint8 (ValueError when they are not an image); the window's
+        self.decode_compressed: Callable[[bytes], np.ndarray] | None = None
 
     @property
     def topic(self) -> str:
         return str(self.options.get("Image Topic", ""))
+
+    def subscription(self) -> tuple[str, str] | None:
+        """image_transport's: Transport Hint "compressed" reads `<Image Topic>/compressed`."""
+        if not self.topic:
+            return None
+        if self.options.get("Transport Hint") == "compressed":
+            return f"{self.topic}/compressed", "sensor_msgs/CompressedImage"
+        return self.topic, "sensor_msgs/Image"
 
     def reset(self) -> None:
         super().reset()
@@ -114,6 +126,15 @@ class Image(Display):
 
     def draw(self, scene: Scene, frames: Frames, now: float) -> None:
         message = self.message
+        if message._type == "sensor_msgs/CompressedImage":
+            if self.decode_compressed is None:
+                self.pixels, self.status = None, Status(ERROR, "compressed images are decoded by the window")
+                return
+            try:
+                self.pixels = self.decode_compressed(bytes(message.data))
+            except ValueError as exc:
+                self.pixels, self.status = None, Status(ERROR, f"cannot decode the {message.format} image: {exc}")
+            return
         try:
             shown = to_display(message.encoding, message.width, message.height, message.step, bytes(message.data),
                                bool(message.is_bigendian))

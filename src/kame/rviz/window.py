@@ -34,11 +34,12 @@ from PySide6.QtWidgets import (
 from kame.rviz import config as rviz_config
 from kame.rviz.camera import ORBIT, TOP_DOWN, Camera
 from kame.rviz.display import ERROR, OK, Display, Status, format_color, parse_color
-from kame.rviz.image_panels import ImagePanels
+from kame.rviz.image_panels import ImagePanels, decode_compressed
 from kame.rviz.markers import Marker
 from kame.rviz.meshes import MeshLibrary
 from kame.rviz.robot import RobotModel
 from kame.rviz.scene import Batch, Scene
+from kame.rviz.sensors import Image
 from kame.rviz.source import RvizSource
 
 PRIMITIVES = {"lines": GL.GL_LINES, "points": GL.GL_POINTS, "triangles": GL.GL_TRIANGLES}
@@ -441,16 +442,20 @@ class RvizWindow(QMainWindow):
         for display in self.config.displays:
             if isinstance(display, (RobotModel, Marker)):
                 display.meshes = self.meshes  # one cache of mesh files for the window
+            if isinstance(display, Image):
+                display.decode_compressed = decode_compressed
         if self.source is None:
             return
         self._topic_errors.clear()
         wanted = {}
         for display in self.config.displays:
-            if display.message_types and display.topic:
-                problem = self.source.watch(display.topic, display.message_types[0], display.keeps_every_message)
+            subscription = display.subscription()
+            if subscription is not None:
+                topic, type_name = subscription
+                problem = self.source.watch(topic, type_name, display.keeps_every_message)
                 if problem:
                     self._topic_errors[id(display)] = problem
-                wanted[self.source.node.resolve(display.topic)] = display
+                wanted[self.source.node.resolve(topic)] = display
             for topic, type_name in display.side_topics().items():
                 problem = self.source.watch(topic, type_name, False)
                 if problem:
@@ -469,8 +474,9 @@ class RvizWindow(QMainWindow):
         if self.source is not None:
             taken = self.source.take()
             for display in self.config.displays:
-                if display.topic and display.message_types:
-                    display.receive(taken.get(self.source.node.resolve(display.topic), []), now)
+                subscription = display.subscription()
+                if subscription is not None:
+                    display.receive(taken.get(self.source.node.resolve(subscription[0]), []), now)
                 for topic in display.side_topics():
                     display.receive_side(topic, taken.get(self.source.node.resolve(topic), []), now)
         self.draw(now)
