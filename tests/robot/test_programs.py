@@ -139,3 +139,19 @@ def test_rviz_draws_the_launched_robot_where_tf_puts_its_links(tmp_path: Path) -
         frames = dict(part.split("=") for part in line.split(" status ")[0].split()[1:])
         assert frames["link2"].startswith("0.120,0.000,"), line  # 0.25 sin 0.5 along x, seen from above
         assert int(line.rsplit(" ", 1)[1]) > 100, line  # the red links drawn
+
+
+def test_joint_state_publisher_gui_publishes_the_sliders_and_stops_on_ctrl_c(tmp_path: Path) -> None:
+    pytest.importorskip("PySide6")
+    (tmp_path / "arm.urdf.xacro").write_text(ARM_XACRO)
+    with master(tmp_path / "home") as sim:
+        expanded = subprocess.run([str(BIN / "xacro"), str(tmp_path / "arm.urdf.xacro")], capture_output=True,
+                                  text=True, timeout=60, check=True).stdout
+        sim.run("rosparam", "set", "robot_description", expanded)
+        gui = Proc([str(BIN / "rosrun"), "joint_state_publisher_gui", "joint_state_publisher_gui"],
+                   dict(sim.env, QT_QPA_PLATFORM="offscreen"), cwd=sim.home)
+        sim.procs.append(gui)
+        echoed = sim.run("rostopic", "echo", "-n", "1", "/joint_states", timeout=60)
+        assert "name: \n  - j1\n  - j2\nposition: [0.0, 0.0]\n" in echoed.stdout
+        gui.stop(timeout=20)
+        assert gui.popen.returncode != -9, "".join(gui.err)  # Ctrl-C ended it, not the SIGKILL after 20 s

@@ -5,6 +5,7 @@ only moves them and shows them."""
 from __future__ import annotations
 
 import random
+import signal
 import threading
 from typing import Any
 
@@ -75,8 +76,9 @@ class SliderWindow(QtWidgets.QWidget):
 
 
 def run_window(publisher: JointStatePublisher, stop: Any) -> int:
-    """The window until it is closed or `stop` is set (Ctrl-C, the master's shutdown)."""
+    """The window until it is closed, Ctrl-C, or `stop` is set (the master's shutdown request)."""
     app = QtWidgets.QApplication.instance() or QtWidgets.QApplication(["joint_state_publisher_gui"])
+    signal.signal(signal.SIGINT, signal.SIG_DFL)  # Qt's loop never lets a Python handler run (as rqt's tools)
     window = SliderWindow(publisher)
     window.show()
 
