@@ -51,8 +51,36 @@ class GpuBatch:
     batch: Batch | None  # what the buffers hold now
     vertices: int
     colors: int
+    normals: int  # triangles' only
     vertex_bytes: int = 0  # the buffers' sizes
     color_bytes: int = 0
+    normal_bytes: int = 0
+
+
+def face_normals(vertices: np.ndarray) -> np.ndarray:
+    """Each triangle's unit normal, once per vertex (N x 3 float32); a degenerate one's is z."""
+    corners = vertices.reshape(-1, 3, 3)
+    normals = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
+    lengths = np.linalg.norm(normals, axis=1)
+    flat = lengths < 1e-12
+    normals[flat] = (0.0, 0.0, 1.0)
+    normals[~flat] /= lengths[~flat, None]
+    return np.repeat(normals.astype(np.float32), 3, axis=0)
+
+
+def _headlight() -> None:
+    """One light at the eye, shining where it looks, lighting both sides of every face (the
+    displays do not wind their triangles one way): a face turned to the camera shows its
+    colour exactly, one seen edge-on the ambient 35 % of it."""
+    GL.glLightfv(GL.GL_LIGHT0, GL.GL_POSITION, (0.0, 0.0, 1.0, 0.0))
+    GL.glLightfv(GL.GL_LIGHT0, GL.GL_AMBIENT, (0.35, 0.35, 0.35, 1.0))
+    GL.glLightfv(GL.GL_LIGHT0, GL.GL_DIFFUSE, (0.65, 0.65, 0.65, 1.0))
+    GL.glLightfv(GL.GL_LIGHT0, GL.GL_SPECULAR, (0.0, 0.0, 0.0, 1.0))
+    GL.glLightModelfv(GL.GL_LIGHT_MODEL_AMBIENT, (0.0, 0.0, 0.0, 1.0))
+    GL.glLightModeli(GL.GL_LIGHT_MODEL_TWO_SIDE, GL.GL_TRUE)
+    GL.glEnable(GL.GL_LIGHT0)
+    GL.glEnable(GL.GL_COLOR_MATERIAL)
+    GL.glColorMaterial(GL.GL_FRONT_AND_BACK, GL.GL_AMBIENT_AND_DIFFUSE)
 
 
 def _same(these: list[Any], those: list[Any]) -> bool:
@@ -112,6 +140,8 @@ class RenderView(QOpenGLWidget):
         GL.glMatrixMode(GL.GL_PROJECTION)
         GL.glLoadMatrixd(self.camera.projection_matrix(width, height).T.astype(np.float64))
         GL.glMatrixMode(GL.GL_MODELVIEW)
+        GL.glLoadIdentity()
+        _headlight()  # set in eye space: it moves with the camera, as rviz's default light
         GL.glLoadMatrixd(self.camera.view_matrix().T.astype(np.float64))
         GL.glDepthMask(GL.GL_FALSE)  # maps lie under what shares their plane (the grid), as in rviz
         drawn = set()
@@ -134,11 +164,20 @@ class RenderView(QOpenGLWidget):
                 GL.glEnableClientState(GL.GL_COLOR_ARRAY)
                 GL.glBindBuffer(GL.GL_ARRAY_BUFFER, colors)
                 GL.glColorPointer(4, GL.GL_UNSIGNED_BYTE if batch.colors.dtype == np.uint8 else GL.GL_FLOAT, 0, None)
+            lit = batch.kind == "triangles"
+            if lit:  # surfaces are shaded by their facing; lines, points and labels are not
+                GL.glEnable(GL.GL_LIGHTING)
+                GL.glEnableClientState(GL.GL_NORMAL_ARRAY)
+                GL.glBindBuffer(GL.GL_ARRAY_BUFFER, self._buffers[slot].normals)
+                GL.glNormalPointer(GL.GL_FLOAT, 0, None)
             GL.glDrawArrays(PRIMITIVES[batch.kind], 0, len(batch.vertices))
+            if lit:
+                GL.glDisableClientState(GL.GL_NORMAL_ARRAY)
+                GL.glDisable(GL.GL_LIGHTING)
             GL.glDisableClientState(GL.GL_COLOR_ARRAY)
         GL.glBindBuffer(GL.GL_ARRAY_BUFFER, 0)
         for unused in self._buffers[len(self.scene.batches):]:
-            GL.glDeleteBuffers(2, [unused.vertices, unused.colors])
+            GL.glDeleteBuffers(3, [unused.vertices, unused.colors, unused.normals])
         del self._buffers[len(self.scene.batches):]
         GL.glDisableClientState(GL.GL_VERTEX_ARRAY)
         self._draw_labels()
@@ -148,13 +187,15 @@ class RenderView(QOpenGLWidget):
         unchanged batch is not uploaded again; a new one goes into the slot's buffers
         (glBufferSubData while it fits, so a cloud's buffers are allocated once)."""
         if slot == len(self._buffers):
-            vertices, colors = (int(b) for b in GL.glGenBuffers(2))
-            self._buffers.append(GpuBatch(None, vertices, colors))
+            vertices, colors, normals = (int(b) for b in GL.glGenBuffers(3))
+            self._buffers.append(GpuBatch(None, vertices, colors, normals))
         known = self._buffers[slot]
         if known.batch is not batch:
             known.vertex_bytes = _upload(known.vertices, batch.vertices, known.vertex_bytes)
             if not batch.uniform:
                 known.color_bytes = _upload(known.colors, batch.colors, known.color_bytes)
+            if batch.kind == "triangles":
+                known.normal_bytes = _upload(known.normals, face_normals(batch.vertices), known.normal_bytes)
             known.batch = batch
         return known.vertices, known.colors
 
