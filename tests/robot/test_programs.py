@@ -75,6 +75,12 @@ def test_xacro_expands_macros_args_and_find(tmp_path: Path) -> None:
     assert done.returncode == 0, done.stderr
     assert '<box size="0.1 0.1 0.25"/>' in done.stdout and '<joint name="j2" type="revolute">' in done.stdout
     assert '<link name="base_scan">' in done.stdout  # the included turtlebot.urdf, found through $(find)
+    (tmp_path / "lost.xacro").write_text('<robot name="x" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+                                         '<xacro:include filename="$(find no_such_package)/a.urdf"/></robot>')
+    for args, reason in (([str(tmp_path / "lost.xacro")], "[no_such_package] not found"),
+                         ([str(tmp_path / "missing.xacro")], "No such file or directory")):
+        failed = subprocess.run([str(BIN / "xacro"), *args], capture_output=True, text=True, timeout=60)
+        assert failed.returncode != 0 and reason in failed.stderr and "Traceback" not in failed.stderr, failed.stderr
 
 
 def test_a_launched_xacro_robot_shows_up_in_tf(tmp_path: Path) -> None:

@@ -32,6 +32,10 @@ def use_kame_packages() -> None:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
+    # xacro 2.1's error path names xml.parsers.expat without importing it: a missing input file
+    # ended in an AttributeError traceback instead of its "No such file or directory" message
+    import xml.parsers.expat  # noqa: F401
+
     import xacro
 
     use_kame_packages()
