@@ -161,3 +161,14 @@ def test_joint_state_publisher_gui_publishes_the_sliders_and_stops_on_ctrl_c(tmp
         assert "name: \n  - j1\n  - j2\nposition: [0.0, 0.0]\n" in echoed.stdout
         gui.stop(timeout=20)
         assert gui.popen.returncode != -9, "".join(gui.err)  # Ctrl-C ended it, not the SIGKILL after 20 s
+
+
+def test_robot_state_publisher_without_a_description_says_so_and_the_old_name_warns(tmp_path: Path) -> None:
+    with master(tmp_path / "home") as sim:
+        done = sim.run("rosrun", "robot_state_publisher", "state_publisher", check=False, timeout=60)
+        assert done.returncode == 1
+        assert "The 'state_publisher' executable is deprecated" in done.stderr
+        assert "Could not find parameter robot_description on parameter server" in done.stderr
+        sim.run("rosparam", "set", "robot_description", "<robot><link name='a'>")
+        done = sim.run("rosrun", "robot_state_publisher", "robot_state_publisher", check=False, timeout=60)
+        assert done.returncode == 1 and "Failed to extract kdl tree from xml robot description" in done.stderr

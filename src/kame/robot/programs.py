@@ -119,6 +119,11 @@ def state_publisher_main(argv: Sequence[str] | None = None) -> int:
         node.shutdown("robot_state_publisher exiting")
 
 
+def deprecated_state_publisher_main(argv: Sequence[str] | None = None) -> int:
+    console("WARN", "The 'state_publisher' executable is deprecated. Please use 'robot_state_publisher' instead")
+    return state_publisher_main(argv)
+
+
 class JointStatePublisher:
     """The publishing half of joint_state_publisher; the window (if any) changes `positions`
     under `lock`."""
