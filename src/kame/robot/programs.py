@@ -177,7 +177,13 @@ def joint_state_publisher_main(argv: Sequence[str] | None = None, window: bool =
         if tree is None:
             return 1
         publisher = JointStatePublisher(tool, tree)
-        if window or bool(_param(tool, "~use_gui", False)):
+        if not window and bool(_param(tool, "~use_gui", False)):
+            console("WARN", "The 'use_gui' parameter was specified, which is deprecated.  We'll attempt to find and "
+                            "run the GUI, but if this fails you should install the 'joint_state_publisher_gui' "
+                            "package instead and run that.  This backwards compatibility option will be removed in "
+                            "Noetic.")
+            window = True
+        if window:
             from kame.robot.sliders import run_window
 
             worker = threading.Thread(target=publisher.run, args=(tool.stop.wait,), name="joint_states")
