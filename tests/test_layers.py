@@ -111,7 +111,11 @@ LAYERS: dict[str, int] = {
     "kame.rviz": 1,  # rviz's model: camera, scene, displays, .rviz files; no Qt, no ROS I/O
     "kame.rviz.source": 4,  # the rviz node: subscriptions, the tf Buffer
     "kame.rviz.window": 4,  # Qt and OpenGL
+    "kame.rviz.image_panels": 4,  # Qt: the Image and Camera displays' panels
     "kame.rviz.main": 4,
+    "kame.robot": 1,  # a URDF's joints and joint_state_publisher's positions: no ROS, no Qt
+    "kame.robot.programs": 4,  # robot_state_publisher and joint_state_publisher
+    "kame.robot.sliders": 4,  # joint_state_publisher_gui's Qt window
     "kame.stage.runtime": 4,  # the simulator's and map tools' one way to the ROS runtime
     "kame.stage.node": 4,
     "kame.stage.gui": 4,  # Qt; knows only the simulator's frames

@@ -3,7 +3,8 @@ whatever display Qt is given (a private Xvfb in the tests). Every 200 ms it prin
 display puts each frame it names on the command line, whether the view's pixel there is drawn,
 and each display's status; with --click it also uses the Publish Point tool on the ground point
 (X, Y) of the fixed frame each time (its subscriber may connect after the first click); with
---colour it also counts the view's pixels of that colour (a display's, to see it drawn).
+--colour it also counts the view's pixels of that colour, lit or not (a display's, to see it
+drawn).
 
     python -m tests.rviz.live_child MASTER_URI FILE.rviz FRAME... [--click X,Y] [--colour R,G,B]
 """
@@ -21,6 +22,15 @@ from kame.node.node import Node, NodeConfig
 from kame.rviz import config
 from kame.rviz.source import RvizSource
 from kame.rviz.window import PUBLISH_POINT, RvizWindow
+
+
+def _shades_of(pixels: np.ndarray, colour: tuple[int, ...]) -> int:
+    """How many pixels are `colour` as the headlight shades it: k * colour for k in 0.3..1."""
+    wanted = np.asarray(colour, dtype=float)
+    found = pixels.astype(float)
+    k = found @ wanted / float(wanted @ wanted)
+    close = np.all(np.abs(found - k[:, None] * wanted) <= 3, axis=1)
+    return int((close & (k >= 0.3) & (k <= 1.01)).sum())
 
 
 def main() -> int:
@@ -67,7 +77,7 @@ def main() -> int:
             pixels = image.convertToFormat(image.Format.Format_RGB888)
             rgb = np.frombuffer(pixels.constBits(), np.uint8, pixels.sizeInBytes())
             rows = rgb.reshape(pixels.height(), pixels.bytesPerLine())[:, : pixels.width() * 3]
-            counted = f" colour {int(np.all(rows.reshape(-1, 3) == colour, axis=1).sum())}"
+            counted = f" colour {_shades_of(rows.reshape(-1, 3), colour)}"
         print("frames", " ".join(parts), "status", statuses + counted, flush=True)
         if click is not None:
             window.set_tool(PUBLISH_POINT)

@@ -67,6 +67,18 @@ def _cloud() -> tuple[Display, list[Any]]:
     return displays.PointCloud2(options={"Color": "0; 255; 255", "Size (Pixels)": 6}), [cloud]
 
 
+def _rgb_cloud() -> tuple[Display, list[Any]]:
+    """Colours from the cloud's packed rgb field (uploaded as bytes)."""
+    points = np.zeros(25, dtype=[("x", "<f4"), ("y", "<f4"), ("z", "<f4"), ("rgb", "<u4")])
+    points["x"] = -1 + np.repeat(np.linspace(-0.04, 0.04, 5), 5)
+    points["y"] = 0.5 + np.tile(np.linspace(-0.04, 0.04, 5), 5)
+    points["rgb"] = 0xFF8000
+    fields = [PointField(name=n, offset=4 * i, datatype=7, count=1) for i, n in enumerate(("x", "y", "z", "rgb"))]
+    cloud = PointCloud2(height=1, width=25, fields=fields, point_step=16, row_step=400, data=points.tobytes())
+    cloud.header.frame_id = "map"
+    return displays.PointCloud2(options={"Size (Pixels)": 6}), [cloud]
+
+
 def _grid() -> tuple[Display, list[Any]]:
     grid = OccupancyGrid(data=[0] * 100)
     grid.header.frame_id = "map"
@@ -117,7 +129,7 @@ def _odometry() -> tuple[Display, list[Any]]:
     odometry = Odometry()
     odometry.header.frame_id = "laser"  # along the laser's x: the map's +y from (2, 0)
     odometry.pose.pose.orientation = IDENTITY
-    return displays.Odometry(options={"Color": "255; 0; 255"}), [odometry]
+    return displays.Odometry(options={"Shape": {"Color": "255; 0; 255"}}), [odometry]
 
 
 def _path() -> tuple[Display, list[Any]]:
@@ -157,9 +169,50 @@ def _robot() -> tuple[Display, list[Any]]:
     return robot, []
 
 
+def _range() -> tuple[Display, list[Any]]:
+    from kame.rviz.sensors import Range as RangeDisplay
+    from sensor_msgs.msg import Range
+
+    cone = Range(field_of_view=0.5, min_range=0.1, max_range=2.0, range=1.0)
+    cone.header.frame_id = "laser"  # along the laser's x: the map's +y from (2, 0)
+    return RangeDisplay(options={"Color": "0; 255; 0", "Alpha": 1}), [cone]
+
+
+def _wrench() -> tuple[Display, list[Any]]:
+    from geometry_msgs.msg import WrenchStamped
+    from kame.rviz.sensors import WrenchStamped as WrenchDisplay
+
+    wrench = WrenchStamped()
+    wrench.header.frame_id = "map"
+    wrench.wrench.force.y = 0.5  # an arrow from the origin to (0, 1)
+    return WrenchDisplay(options={"Force Color": "255; 0; 0"}), [wrench]
+
+
+def _mesh() -> tuple[Display, list[Any]]:
+    """A binary STL box (read once: the display's library keeps it after the file is gone)."""
+    import os
+    import tempfile
+
+    import trimesh
+
+    from kame.rviz.meshes import MeshLibrary
+
+    handle, path = tempfile.mkstemp(suffix=".stl")
+    try:
+        os.write(handle, trimesh.creation.box((0.5, 0.5, 0.5)).export(file_type="stl"))
+        os.close(handle)
+        display = markers.Marker()
+        display.meshes = MeshLibrary()
+        display.meshes.load(f"file://{path}")
+    finally:
+        os.unlink(path)
+    return display, [_marker(markers.MESH, mesh_resource=f"file://{path}")]
+
+
 CASES = [
     Case("LaserScan", _scan, (2.0, 1.0, 0.0), (255, 0, 0)),
     Case("PointCloud2", _cloud, (-2.0, -1.0, 0.0), (0, 255, 255)),
+    Case("PointCloud2 rgb", _rgb_cloud, (-1.0, 0.5, 0.0), (255, 128, 0)),
     Case("Map", _grid, (-2.5, 1.5, 0.0), (255, 255, 255)),
     Case("Marker cube", _marker_case(markers.CUBE), (1.0, -2.0, 0.0), (0, 0, 255)),
     Case("Marker sphere", _marker_case(markers.SPHERE), (1.0, -2.0, 0.0), (0, 0, 255)),
@@ -183,5 +236,8 @@ CASES = [
     Case("Grid", lambda: (displays.Grid(options={"Color": "255; 255; 255", "Alpha": 1}), []), (0.0, 1.5, 0.0),
          (255, 255, 255)),
     Case("RobotModel", _robot, (1.0, 0.0, 0.0), (255, 0, 0)),  # the laser's y is the map's -x
+    Case("Range", _range, (2.0, 0.8, 0.0), (0, 255, 0)),
+    Case("WrenchStamped", _wrench, (0.0, 0.4, 0.0), (255, 0, 0)),
+    Case("Marker mesh", _mesh, (1.0, -2.0, 0.0), (0, 0, 255)),
     Case("TF", lambda: (displays.TF(options={"Show Names": False}), []), (2.0, 0.15, 0.0), (255, 0, 0)),
 ]

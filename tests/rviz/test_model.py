@@ -13,7 +13,7 @@ from geometry_msgs.msg import Point, PointStamped, Pose, PoseArray, PoseStamped,
 from kame.rviz import config, displays, markers
 from kame.rviz.camera import TOP_DOWN, Camera
 from kame.rviz.display import OK, WARN
-from kame.rviz.scene import Scene
+from kame.rviz.scene import Scene, apply, box_triangles, cylinder_triangles, pose_matrix, sphere_triangles
 from nav_msgs.msg import OccupancyGrid, Odometry, Path
 from sensor_msgs.msg import LaserScan, PointCloud2, PointField
 from visualization_msgs.msg import Marker, MarkerArray
@@ -101,18 +101,25 @@ def test_a_display_without_messages_says_so() -> None:
 
 
 def test_pointcloud2_xyz_rgb() -> None:
-    points = np.zeros(2, dtype=[("x", "<f4"), ("y", "<f4"), ("z", "<f4"), ("rgb", "<u4")])
-    points["x"], points["z"] = [1, 2], [0.5, 0.5]
-    points["rgb"] = [0xFF0000, 0x00FF00]
+    points = np.zeros(3, dtype=[("x", "<f4"), ("y", "<f4"), ("z", "<f4"), ("rgb", "<u4")])
+    points["x"], points["z"] = [1, np.nan, 2], [0.5, 0.5, 0.5]  # the NaN point is not drawn
+    points["rgb"] = [0xFF0000, 0x0000FF, 0x00FF00]
     fields = [PointField(name=n, offset=o, datatype=d, count=1) for n, o, d in
               (("x", 0, 7), ("y", 4, 7), ("z", 8, 7), ("rgb", 12, 7))]
-    cloud = PointCloud2(height=1, width=2, fields=fields, is_bigendian=False, point_step=16, row_step=32,
-                        data=points.tobytes(), is_dense=True)
+    cloud = PointCloud2(height=1, width=3, fields=fields, is_bigendian=False, point_step=16, row_step=48,
+                        data=points.tobytes(), is_dense=False)
     cloud.header.frame_id = "odom"
-    scene = build(displays.PointCloud2(), cloud)
+    scene = build(displays.PointCloud2(options={"Alpha": 0.5}), cloud)
     batch = scene.batches[0]
+    assert batch.vertices.dtype == np.float32
     assert batch.vertices == pytest.approx(np.array([[2, 0, 0.5], [3, 0, 0.5]]))
-    assert batch.colors[0][:3] == pytest.approx([1, 0, 0]) and batch.colors[1][:3] == pytest.approx([0, 1, 0])
+    assert batch.colors.dtype == np.uint8  # 4 bytes a point to upload
+    assert batch.colors.tolist() == [[255, 0, 0, 128], [0, 255, 0, 128]]
+    unchosen = build(displays.PointCloud2(options={"Color Transformer": ""}), cloud).batches[0]  # as rviz saves it
+    assert unchosen.colors.tolist() == [[255, 0, 0, 255], [0, 255, 0, 255]]
+    plain = build(displays.PointCloud2(options={"Color Transformer": "FlatColor", "Color": "0; 0; 255"}),
+                  cloud).batches[0]
+    assert plain.uniform and plain.colors[1] == pytest.approx([0, 0, 1, 1])  # one colour: no colour array
 
 
 def test_occupancy_grid_is_a_texture_on_its_origin_with_rvizs_map_colours() -> None:
@@ -229,9 +236,9 @@ Visualization Manager:
       Name: LaserScan
       Topic: /scan
       Size (m): 0.05
-    - Class: rviz/Camera
+    - Class: rviz/DepthCloud
       Enabled: true
-      Name: Camera
+      Name: DepthCloud
   Enabled: true
   Global Options:
     Background Color: 48; 48; 48
@@ -260,7 +267,7 @@ def test_an_rviz_file_loads_and_saves_back_what_it_had() -> None:
     again = config.parse(config.dump(loaded))
     assert [d.name for d in again.displays] == ["Grid", "LaserScan"]
     assert again.displays[1].options["Size (m)"] == 0.05
-    assert [e["Class"] for e in again.unknown_displays] == ["rviz/Camera"]
+    assert [e["Class"] for e in again.unknown_displays] == ["rviz/DepthCloud"]
     assert again.camera.pitch == 0.6 and again.fixed_frame == "odom"
     with pytest.raises(ValueError):
         config.parse("- just a list")
@@ -319,7 +326,8 @@ def test_robot_model_places_the_urdf_visuals_at_their_links() -> None:
     assert cylinder.min(axis=0) == pytest.approx([0.5, 1.5, -0.1], abs=1e-6)
     assert triangles.colors[-1] == pytest.approx([0.8, 0.8, 0.8, 1])
     assert display.status.level == WARN
-    assert "wheel: no transform from wheel to map" in display.status.text and "mesh" in display.status.text
+    assert "wheel: no transform from wheel to map" in display.status.text
+    assert "laser: package [r] not found for package://r/base.dae" in display.status.text
     display.describe(None)
     build(display)
     assert "parameter robot_description is not set" in display.status.text
@@ -339,3 +347,96 @@ def test_a_display_draws_once_tf_has_the_frame_it_lacked() -> None:
     scene = Scene()
     grid.build(scene, TreeOf("map", {"odom": ("map", (2.0, 0, 0))}), 0.0)  # the cached scene is not reused
     assert grid.status.level == OK and scene.batches
+
+
+def _mesh_package(tmp_path):  # type: ignore[no-untyped-def]
+    """A package `parts` holding a 1 x 2 x 3 box as binary STL, ASCII STL and red Collada."""
+    trimesh = pytest.importorskip("trimesh", reason="rviz reads meshes with trimesh (kame[gui])")
+    pytest.importorskip("collada", reason="Collada files are read through pycollada (kame[gui])")
+    box = trimesh.creation.box((1.0, 2.0, 3.0))
+    box.visual.face_colors = [255, 0, 0, 255]
+    meshes = tmp_path / "parts" / "meshes"
+    meshes.mkdir(parents=True)
+    (meshes / "box.stl").write_bytes(box.export(file_type="stl"))
+    (meshes / "box_ascii.stl").write_text(box.export(file_type="stl_ascii"))
+    (meshes / "box.dae").write_bytes(box.export(file_type="dae"))
+    from kame.rviz.meshes import MeshLibrary
+
+    return MeshLibrary(lambda name: str(tmp_path / name) if name == "parts" else None)
+
+
+def test_mesh_resources_are_read_from_stl_and_collada_through_package_urls(tmp_path) -> None:  # type: ignore[no-untyped-def]
+    library = _mesh_package(tmp_path)
+    for name in ("box.stl", "box_ascii.stl", "box.dae"):
+        mesh = library.load(f"package://parts/meshes/{name}")
+        assert not isinstance(mesh, str), mesh
+        assert mesh.triangles.shape == (36, 3)
+        assert mesh.triangles.min(axis=0) == pytest.approx([-0.5, -1, -1.5])
+    dae = library.load("package://parts/meshes/box.dae")
+    assert not isinstance(dae, str) and dae.colors is not None and dae.colors[0] == pytest.approx([1, 0, 0, 1])
+    assert library.load(f"file://{tmp_path}/parts/meshes/box.stl") is not None
+    assert "package [nowhere] not found" in str(library.load("package://nowhere/box.stl"))
+    assert "No such file" in str(library.load("package://parts/meshes/missing.stl"))
+    (tmp_path / "parts" / "meshes" / "broken.dae").write_text("<COLLADA>")
+    assert "cannot read mesh" in str(library.load("package://parts/meshes/broken.dae"))
+
+
+def test_a_mesh_marker_and_a_urdf_mesh_visual_are_drawn_scaled_and_placed(tmp_path) -> None:  # type: ignore[no-untyped-def]
+    from kame.rviz.robot import RobotModel
+
+    library = _mesh_package(tmp_path)
+    display = markers.Marker()
+    display.meshes = library
+    marker = Marker(type=markers.MESH, action=markers.ADD, mesh_resource="package://parts/meshes/box.stl")
+    marker.header.frame_id = "odom"
+    marker.pose.orientation.w = 1.0
+    marker.scale.x = marker.scale.y = marker.scale.z = 2.0
+    marker.color.g = marker.color.a = 1.0
+    scene = build(display, marker)
+    assert display.status.level == OK, display.status.text
+    assert all_vertices(scene).min(axis=0) == pytest.approx([0, -2, -3])  # odom at x = 1
+    assert scene.batches[0].colors[0] == pytest.approx([0, 1, 0, 1])
+    marker.mesh_use_embedded_materials, marker.mesh_resource = True, "package://parts/meshes/box.dae"
+    assert build(display, marker).batches[0].colors[0] == pytest.approx([1, 0, 0, 1])  # the file's red
+    robot = RobotModel()
+    robot.meshes = library
+    robot.describe('<robot name="r"><link name="laser"><visual><origin xyz="0 0 1"/><geometry>'
+                   '<mesh filename="package://parts/meshes/box.dae" scale="1 1 0.5"/></geometry></visual></link>'
+                   '</robot>')
+    drawn = build(robot)
+    assert robot.status.level == OK, robot.status.text
+    assert all_vertices(drawn).min(axis=0) == pytest.approx([0.5, 1, 0.25])  # laser at (1, 2, 0)
+    assert drawn.batches[0].colors[0] == pytest.approx([1, 0, 0, 1])  # no URDF material: the mesh's colour
+
+
+def test_solid_markers_drawn_together_match_each_drawn_alone() -> None:
+    rng = np.random.default_rng(3)
+    for kind in markers.SOLIDS:
+        array = MarkerArray()
+        for i in range(6):
+            marker = Marker(ns="n", id=i, type=kind, action=markers.ADD)
+            marker.header.frame_id = ("odom", "laser")[i % 2]
+            marker.pose.position = Point(*rng.uniform(-3, 3, 3))
+            marker.pose.orientation = Quaternion(*rng.normal(size=4))  # not normalised: rviz normalises
+            marker.scale.x, marker.scale.y, marker.scale.z = rng.uniform(0.1, 2, 3)
+            marker.color.r, marker.color.a = i / 6, 1.0
+            array.markers.append(marker)
+        together = build(markers.MarkerArray(), array).batches[0]
+        if kind == markers.ARROW:  # a shaft and head about the pose's x, scale.x long, tip at the end
+            for i, marker in enumerate(array.markers):
+                m = TREE.transform(marker.header.frame_id) @ pose_matrix(marker.pose)
+                tail, tip = m[:3, 3], m[:3, 3] + m[:3, 0] * marker.scale.x
+                arrow = together.vertices[96 * i:96 * (i + 1)]
+                along = (arrow - tail) @ m[:3, 0]
+                across = np.linalg.norm(arrow - tail - np.outer(along, m[:3, 0]), axis=1)
+                assert along.min() == pytest.approx(0, abs=1e-5) and along.max() == pytest.approx(marker.scale.x)
+                assert across.max() == pytest.approx(marker.scale.y, rel=1e-5)  # the head: twice the shaft
+                assert np.linalg.norm(arrow - tip, axis=1).min() == pytest.approx(0, abs=1e-5)
+            continue
+        shape = {markers.CUBE: box_triangles, markers.SPHERE: sphere_triangles,
+                 markers.CYLINDER: cylinder_triangles}[kind]
+        alone = [apply(TREE.transform(m.header.frame_id) @ pose_matrix(m.pose), shape((m.scale.x, m.scale.y,
+                                                                                      m.scale.z)))
+                 for m in array.markers]
+        assert together.vertices == pytest.approx(np.concatenate(alone), abs=1e-5)
+        assert together.colors[::len(alone[0])] == pytest.approx(np.array([(i / 6, 0, 0, 1) for i in range(6)]))

@@ -54,6 +54,10 @@ def anonymous_name(name: str) -> str:
 
 
 def run_command(argv: list[str]) -> tuple[int, str]:
+    """A `<param command>`: a Python program named by its path (`$(find xacro)/xacro`) runs
+    under this interpreter, as rosrun runs it, not whichever python3 its #! line finds."""
+    if argv and os.sep in argv[0]:
+        argv = [*executables.command_for(Path(argv[0])), *argv[1:]]
     done = subprocess.run(argv, stdout=subprocess.PIPE, check=False)
     return done.returncode, done.stdout.decode("utf-8", "replace")
 

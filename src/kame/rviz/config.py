@@ -30,10 +30,12 @@ from kame.rviz.displays import (
 from kame.rviz.markers import Marker, MarkerArray
 from kame.rviz.robot import RobotModel
 from kame.rviz.scene import Color
+from kame.rviz.sensors import Camera as CameraDisplay
+from kame.rviz.sensors import Image, Range, WrenchStamped
 
 DISPLAY_CLASSES: dict[str, type[Display]] = {cls.class_name: cls for cls in (
     Grid, Axes, TF, LaserScan, PointCloud2, Odometry, Pose, PoseArray, PointStamped, Path, Polygon, OccupancyGrid,
-    Marker, MarkerArray, RobotModel)}
+    Marker, MarkerArray, RobotModel, Range, WrenchStamped, Image, CameraDisplay)}
 COMMON_KEYS = ("Class", "Name", "Enabled")
 
 

@@ -141,6 +141,18 @@ class Display(abc.ABC):
             self.message = message
             self.version += 1
 
+    def subscription(self) -> tuple[str, str] | None:
+        """The topic (resolved or not) and message type this display shows; None: none."""
+        return (self.topic, self.message_types[0]) if self.message_types and self.topic else None
+
+    def side_topics(self) -> dict[str, str]:
+        """Other topics (resolved or not) -> message type this display reads (Camera's CameraInfo)."""
+        return {}
+
+    def receive_side(self, topic: str, messages: list[Any], now: float) -> None:
+        """New messages of one of side_topics(), oldest first (a display with none ignores this)."""
+        return None
+
     def reset(self) -> None:
         self.message = None
         self.version += 1

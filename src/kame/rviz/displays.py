@@ -9,7 +9,7 @@ from typing import Any
 
 import numpy as np
 
-from kame.rviz.display import WARN, Display, Frames, Status
+from kame.rviz.display import WARN, Display, Frames, Status, parse_color
 from kame.rviz.scene import Scene, apply, arrow_triangles, axes_lines, pose_matrix, sphere_triangles
 
 FLOAT32 = 7
@@ -19,7 +19,7 @@ FIELD_DTYPES = {1: "i1", 2: "u1", 3: "i2", 4: "u2", 5: "i4", 6: "u4", 7: "f4", 8
 class Grid(Display):
     class_name = "rviz/Grid"
     defaults = {"Cell Size": 1, "Plane Cell Count": 10, "Color": "160; 160; 164", "Alpha": 0.5,
-                "Reference Frame": "<Fixed Frame>", "Line Width": 1}
+                "Reference Frame": "<Fixed Frame>"}
 
     def draw(self, scene: Scene, frames: Frames, now: float) -> None:
         placed = self.placed(frames, self.reference_frame(frames))
@@ -121,14 +121,21 @@ class PointCloud2(Display):
         if not {"x", "y", "z"} <= set(points.dtype.names or ()):
             self.status = Status(WARN, "the cloud has no x, y, z fields")
             return
-        xyz = np.column_stack([points["x"], points["y"], points["z"]]).astype(float)
+        xyz = np.empty((len(points), 3), dtype=np.float32)  # float32 throughout: what GL draws
+        for axis, name in enumerate("xyz"):
+            xyz[:, axis] = points[name]
         finite = np.isfinite(xyz).all(axis=1)
+        if not finite.all():
+            xyz = xyz[finite]
         colors: Any = self.color()
-        if "rgb" in (points.dtype.names or ()) and self.options.get("Color Transformer") == "RGB8":
-            packed = np.ascontiguousarray(points["rgb"]).view(np.uint32)
-            rgb = np.column_stack([(packed >> 16) & 255, (packed >> 8) & 255, packed & 255]) / 255.0
-            colors = np.column_stack([rgb, np.full(len(rgb), self.number("Alpha", 1.0))])[finite]
-        scene.add("points", apply(placed, xyz[finite]), colors, self.number("Size (Pixels)", 3))
+        # "": rviz had seen no cloud to choose a transformer for; it takes rgb when the cloud has it
+        if "rgb" in (points.dtype.names or ()) and self.options.get("Color Transformer") in ("RGB8", ""):
+            packed = np.ascontiguousarray(points["rgb"]).view(np.uint32)[finite]
+            colors = np.empty((len(packed), 4), dtype=np.uint8)  # 4 bytes a point, not 16
+            for channel, shift in enumerate((16, 8, 0)):
+                colors[:, channel] = (packed >> shift) & 255
+            colors[:, 3] = round(255 * min(1.0, max(0.0, self.number("Alpha", 1.0))))
+        scene.add("points", apply(placed, xyz), colors, self.number("Size (Pixels)", 3))
 
 
 def _arrow(scene: Scene, matrix: np.ndarray, length: float, color: Any) -> None:
@@ -156,8 +163,9 @@ class Odometry(Display):
     """Each message's pose as an arrow; the last `Keep` stay (rviz's odometry trail)."""
     class_name = "rviz/Odometry"
     message_types = ("nav_msgs/Odometry",)
-    defaults = {"Topic": "/odom", "Color": "255; 25; 0", "Alpha": 1, "Keep": 100, "Shaft Length": 1,
-                "Position Tolerance": 0.1, "Angle Tolerance": 0.1}
+    # rviz 1.14 keeps the arrow's look under "Shape"; older files (turtlebot's) have it flat
+    defaults = {"Topic": "/odom", "Keep": 100, "Position Tolerance": 0.1, "Angle Tolerance": 0.1}
+    SHAPE = {"Value": "Arrow", "Color": "255; 25; 0", "Alpha": 1, "Shaft Length": 1}
 
     def __init__(self, *args: Any, **kwargs: Any) -> None:
         super().__init__(*args, **kwargs)
@@ -188,10 +196,18 @@ class Odometry(Display):
         self.kept = []
 
     def draw(self, scene: Scene, frames: Frames, now: float) -> None:
+        shape = self.options.get("Shape")
+        flat = {key: self.options[key] for key in ("Color", "Alpha", "Shaft Length") if key in self.options}
+        look = {**self.SHAPE, **flat, **(shape if isinstance(shape, dict) else {})}
+        r, g, b, _ = parse_color(look["Color"], (1.0, 25 / 255, 0.0, 1.0))
+        try:
+            alpha, length = float(look["Alpha"]), float(look["Shaft Length"])
+        except (TypeError, ValueError):
+            alpha, length = 1.0, 1.0
         for message in self.kept:
             placed = self.placed(frames, message.header.frame_id)
             if placed is not None:
-                _arrow(scene, placed @ pose_matrix(message.pose.pose), self.number("Shaft Length", 1.0), self.color())
+                _arrow(scene, placed @ pose_matrix(message.pose.pose), length, (r, g, b, alpha))
 
 
 class PoseArray(Display):

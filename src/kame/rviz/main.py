@@ -44,7 +44,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     app = QApplication.instance() or QApplication(["rviz"])
     signal.signal(signal.SIGINT, signal.SIG_DFL)  # Qt's loop never lets a Python handler run
     node = Node(node_config(f"rviz_{os.getpid()}", ros.special, os.environ, ros.remappings))
-    window: RvizWindow | None = None
+    source: RvizSource | None = None
     try:
         source = RvizSource(node, lambda: None)
         window = RvizWindow(config, source, options.display_config)
@@ -52,6 +52,6 @@ def main(argv: Sequence[str] | None = None) -> int:
         window.show()
         return int(app.exec())
     finally:
-        if window is not None and window.source is not None:
-            window.source.close()
+        if source is not None:
+            source.close()
         node.shutdown("rviz closed")

@@ -1,15 +1,17 @@
 """rviz's Marker and MarkerArray displays: markers kept by (namespace, id), replaced by a newer
 one, removed by DELETE, DELETEALL (all, or a namespace's in rviz's way: all) or when their
 lifetime ends; each type drawn as rviz does (cube, sphere, cylinder, arrow, line strip/list,
-cube/sphere lists, points, text, triangle list). Namespaces can be hidden ("Namespaces")."""
+cube/sphere lists, points, text, triangle list, STL/DAE mesh resource). Namespaces can be hidden ("Namespaces")."""
 
 from __future__ import annotations
 
+import functools
 from typing import Any
 
 import numpy as np
 
 from kame.rviz.display import WARN, Display, Frames, Status
+from kame.rviz.meshes import MeshLibrary, add_mesh
 from kame.rviz.scene import (
     Scene,
     apply,
@@ -17,6 +19,7 @@ from kame.rviz.scene import (
     box_triangles,
     cylinder_triangles,
     pose_matrix,
+    quaternion_matrices,
     sphere_triangles,
 )
 
@@ -34,25 +37,57 @@ def _point_colors(marker: Any, count: int) -> np.ndarray:
     return np.tile(np.array(_rgba(marker.color), dtype=np.float32), (count, 1))
 
 
-def draw_marker(scene: Scene, marker: Any, placed: np.ndarray) -> str:
+SOLIDS = (CUBE, SPHERE, CYLINDER, ARROW)
+
+
+@functools.cache
+def solid_template(kind: int) -> np.ndarray:
+    """The kind's shape at scale 1 (an arrow: length 1 along x, shaft 1 and head 2 wide)."""
+    if kind == ARROW:
+        return arrow_triangles(np.zeros(3), np.array([1.0, 0.0, 0.0]), 1.0, 2.0, 0.23)
+    return {CUBE: box_triangles, SPHERE: sphere_triangles, CYLINDER: cylinder_triangles}[kind]((1.0, 1.0, 1.0))
+
+
+def draw_solids(scene: Scene, kind: int, placed: list[tuple[Any, np.ndarray]]) -> None:
+    """Markers of one solid kind (each with the matrix of its frame) in one batch: their poses,
+    scales and colours gathered into arrays and every vertex placed in one numpy expression, the
+    same geometry draw_marker gives each alone."""
+    count = len(placed)
+    fields = np.empty((count, 14))
+    for row, (marker, _) in enumerate(placed):
+        p, q, s, c = marker.pose.position, marker.pose.orientation, marker.scale, marker.color
+        fields[row] = (p.x, p.y, p.z, q.x, q.y, q.z, q.w, s.x, s.y, s.z, c.r, c.g, c.b, c.a)
+    frames = np.stack([matrix for _, matrix in placed])
+    rotations = frames[:, :3, :3] @ quaternion_matrices(fields[:, 3:7])
+    origins = np.einsum("nij,nj->ni", frames[:, :3, :3], fields[:, :3]) + frames[:, :3, 3]
+    scales = fields[:, 7:10].copy()
+    if kind == ARROW:  # as draw_marker: length x, both diameters from y
+        scales[:, 2] = scales[:, 1]
+    else:
+        scales = np.abs(scales)
+    template = solid_template(kind)
+    scaled = [template[None, :, axis] * scales[:, axis, None] for axis in range(3)]  # N x V each
+    vertices = np.empty((count, len(template), 3))
+    for row in range(3):  # written out, as scene.apply: a batched matmul is slower here
+        r = rotations[:, row, :, None]
+        vertices[:, :, row] = r[:, 0] * scaled[0] + r[:, 1] * scaled[1] + r[:, 2] * scaled[2] + origins[:, row, None]
+    colors = np.repeat(fields[:, 10:14].astype(np.float32), len(template), axis=0)
+    scene.add("triangles", vertices.reshape(-1, 3), colors)
+
+
+def draw_marker(scene: Scene, marker: Any, placed: np.ndarray, meshes: MeshLibrary | None = None) -> str:
     """Adds `marker` (whose frame is at `placed`) to the scene; says why not when it cannot."""
     matrix = placed @ pose_matrix(marker.pose)
     scale = (marker.scale.x, marker.scale.y, marker.scale.z)
     color = _rgba(marker.color)
     points = np.array([[p.x, p.y, p.z] for p in marker.points], dtype=float).reshape(-1, 3)
     kind = marker.type
-    if kind in (CUBE, SPHERE, CYLINDER):
-        shape = {CUBE: box_triangles, SPHERE: sphere_triangles, CYLINDER: cylinder_triangles}[kind](scale)
-        scene.add("triangles", apply(matrix, shape), color)
-    elif kind == ARROW:
-        if len(points) >= 2:
-            start, end = apply(matrix, points[:2])
-            head_length = scale[2] if scale[2] > 0 else 0.23 * float(np.linalg.norm(end - start))
-            triangles = arrow_triangles(start, end, scale[0], scale[1], head_length)
-        else:
-            start, end = apply(matrix, [[0, 0, 0], [scale[0], 0, 0]])
-            triangles = arrow_triangles(start, end, scale[1], scale[1] * 2, scale[0] * 0.23)
-        scene.add("triangles", triangles, color)
+    if kind in SOLIDS and (kind != ARROW or len(points) < 2):
+        draw_solids(scene, kind, [(marker, placed)])
+    elif kind == ARROW:  # from the first point to the second
+        start, end = apply(matrix, points[:2])
+        head_length = scale[2] if scale[2] > 0 else 0.23 * float(np.linalg.norm(end - start))
+        scene.add("triangles", arrow_triangles(start, end, scale[0], scale[1], head_length), color)
     elif kind in (LINE_STRIP, LINE_LIST):
         if len(points) < 2:
             return ""
@@ -78,7 +113,11 @@ def draw_marker(scene: Scene, marker: Any, placed: np.ndarray) -> str:
         even = len(points) // 3 * 3
         scene.add("triangles", apply(matrix, points[:even]), _point_colors(marker, len(points))[:even])
     elif kind == MESH:
-        return f"mesh resources are not drawn yet ({marker.mesh_resource})"
+        mesh = (meshes or MeshLibrary()).load(marker.mesh_resource)
+        if isinstance(mesh, str):
+            return mesh
+        # rviz: the marker's colour, unless it asks for the file's own and the file has some
+        add_mesh(scene, mesh, matrix, scale, None if marker.mesh_use_embedded_materials else color)
     else:
         return f"unknown marker type {kind}"
     return ""
@@ -87,12 +126,18 @@ def draw_marker(scene: Scene, marker: Any, placed: np.ndarray) -> str:
 class Marker(Display):
     class_name = "rviz/Marker"
     message_types = ("visualization_msgs/Marker",)
-    defaults = {"Topic": "/visualization_marker", "Queue Size": 100, "Namespaces": {}}
+    defaults = {"Marker Topic": "/visualization_marker", "Queue Size": 100, "Namespaces": {}}
     keeps_every_message = True
+
+    @property
+    def topic(self) -> str:
+        """rviz keeps a marker display's topic under "Marker Topic"."""
+        return str(self.options.get("Marker Topic", ""))
 
     def __init__(self, *args: Any, **kwargs: Any) -> None:
         super().__init__(*args, **kwargs)
         self.markers: dict[tuple[str, int], tuple[Any, float]] = {}
+        self.meshes = MeshLibrary()  # the window gives it kame's package finder
 
     def reset(self) -> None:
         super().reset()
@@ -126,6 +171,7 @@ class Marker(Display):
 
     def draw(self, scene: Scene, frames: Frames, now: float) -> None:
         problems = []
+        solids: dict[int, list[tuple[Any, np.ndarray]]] = {}  # drawn together, by kind
         for key, (marker, received) in list(self.markers.items()):
             lifetime = marker.lifetime.secs + marker.lifetime.nsecs * 1e-9
             if lifetime > 0 and now - received > lifetime:
@@ -137,9 +183,14 @@ class Marker(Display):
             if isinstance(found, str):
                 problems.append(f"{marker.ns}/{marker.id}: {found}")
                 continue
-            problem = draw_marker(scene, marker, found)
+            if marker.type in SOLIDS and (marker.type != ARROW or len(marker.points) < 2):
+                solids.setdefault(marker.type, []).append((marker, found))
+                continue
+            problem = draw_marker(scene, marker, found, self.meshes)
             if problem:
                 problems.append(f"{marker.ns}/{marker.id}: {problem}")
+        for kind, placed in solids.items():
+            draw_solids(scene, kind, placed)
         if problems:
             self.status = Status(WARN, "; ".join(problems[:3]) + (" ..." if len(problems) > 3 else ""))
 
@@ -150,7 +201,7 @@ class Marker(Display):
 class MarkerArray(Marker):
     class_name = "rviz/MarkerArray"
     message_types = ("visualization_msgs/MarkerArray",)
-    defaults = {"Topic": "/visualization_marker_array", "Queue Size": 100, "Namespaces": {}}
+    defaults = {"Marker Topic": "/visualization_marker_array", "Queue Size": 100, "Namespaces": {}}
 
     def unpack(self, message: Any) -> list[Any]:
         return list(message.markers)

@@ -1,21 +1,22 @@
-"""rviz's RobotModel display: the robot_description URDF's visuals (box, cylinder, sphere; a
-mesh is named in the status, not drawn yet), each placed at its link's tf frame and the
-visual's origin, in the material's colour (rviz's default grey without one). The window reads
-the parameter and hands its text to `describe`."""
+"""rviz's RobotModel display: the robot_description URDF's visuals (box, cylinder, sphere and
+STL/DAE meshes), each placed at its link's tf frame and the visual's origin, in the material's
+colour (a mesh's own colours without one; rviz's default grey when neither gives one). The
+URDF is parsed by urdf_parser_py; the window reads the parameter and hands its text to
+`describe`."""
 
 from __future__ import annotations
 
 import math
-import xml.etree.ElementTree as ElementTree
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
 from kame.rviz.display import WARN, Display, Frames, Status
+from kame.rviz.meshes import DEFAULT_COLOR, MeshLibrary, add_mesh
 from kame.rviz.scene import Color, Scene, apply, box_triangles, cylinder_triangles, sphere_triangles
 
-DEFAULT_COLOR: Color = (0.8, 0.8, 0.8, 1.0)
+SHAPES = {"box": box_triangles, "cylinder": cylinder_triangles, "sphere": sphere_triangles}
 
 
 @dataclass
@@ -23,21 +24,16 @@ class Visual:
     link: str
     origin: np.ndarray  # 4x4, in the link's frame
     shape: str  # box, cylinder, sphere, mesh
-    size: tuple[float, float, float]  # the shape's scale (diameters and heights)
-    color: Color
+    size: tuple[float, float, float]  # the shape's scale (diameters and heights; a mesh's scale)
+    color: Color | None  # None: the URDF gives none
     mesh: str = ""
 
 
-def _floats(text: str | None, count: int, default: float = 0.0) -> list[float]:
-    values = [float(v) for v in (text or "").split()]
-    return (values + [default] * count)[:count]
-
-
-def origin_matrix(element: ElementTree.Element | None) -> np.ndarray:
-    x, y, z = _floats(element.get("xyz") if element is not None else None, 3)
-    roll, pitch, yaw = _floats(element.get("rpy") if element is not None else None, 3)
-    cr, sr, cp, sp, cy, sy = math.cos(roll), math.sin(roll), math.cos(pitch), math.sin(pitch), math.cos(yaw), \
-        math.sin(yaw)
+def origin_matrix(xyz: Any, rpy: Any) -> np.ndarray:
+    x, y, z = (float(v) for v in (xyz or (0.0, 0.0, 0.0)))
+    roll, pitch, yaw = (float(v) for v in (rpy or (0.0, 0.0, 0.0)))
+    cr, sr, cp, sp = math.cos(roll), math.sin(roll), math.cos(pitch), math.sin(pitch)
+    cy, sy = math.cos(yaw), math.sin(yaw)
     matrix = np.eye(4)
     matrix[:3, :3] = [[cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
                       [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
@@ -46,46 +42,58 @@ def origin_matrix(element: ElementTree.Element | None) -> np.ndarray:
     return matrix
 
 
+def _color(material: Any, named: dict[str, Color]) -> Color | None:
+    if material is None:
+        return None
+    own = getattr(material, "color", None)
+    if own is not None and own.rgba is not None:
+        r, g, b, a = (float(v) for v in own.rgba)
+        return r, g, b, a
+    return named.get(str(material.name or ""))
+
+
 def parse_urdf(text: str) -> list[Visual]:
     """The visuals of a URDF document; ValueError when it is not one."""
+    from xml.etree.ElementTree import ParseError
+
+    from urdf_parser_py.urdf import URDF
+
     try:
-        robot = ElementTree.fromstring(text)
-    except ElementTree.ParseError as exc:
+        robot = URDF.from_xml_string(text.encode())
+    except ParseError as exc:
         raise ValueError(f"not XML: {exc}") from None
-    if robot.tag != "robot":
-        raise ValueError(f"a URDF's root is <robot>, not <{robot.tag}>")
-    materials = {}
-    for named in robot.findall("material"):
-        rgba = named.find("color")
-        if rgba is not None:
-            materials[named.get("name", "")] = tuple(_floats(rgba.get("rgba"), 4, 1.0))
+    except Exception as exc:  # urdf_parser_py's own (a missing attribute, a wrong root)
+        raise ValueError(f"not a URDF: {exc}") from None
+    named: dict[str, Color] = {}
+    for material in robot.materials or []:
+        found = _color(material, {})
+        if found is not None:
+            named[str(material.name)] = found
     visuals = []
-    for link in robot.findall("link"):
-        for visual in link.findall("visual"):
-            geometry = visual.find("geometry")
-            shape = geometry[0] if geometry is not None and len(geometry) else None
-            if shape is None:
+    for link in robot.links:
+        for visual in link.visuals or []:
+            geometry = visual.geometry
+            if geometry is None:
                 continue
-            color: Any = DEFAULT_COLOR
-            material = visual.find("material")
-            if material is not None:
-                own = material.find("color")
-                color = tuple(_floats(own.get("rgba"), 4, 1.0)) if own is not None else materials.get(
-                    material.get("name", ""), DEFAULT_COLOR)
-            size: tuple[float, float, float]
-            if shape.tag == "box":
-                sx, sy, sz = _floats(shape.get("size"), 3)
+            kind = type(geometry).__name__.lower()
+            size: tuple[float, float, float] = (1.0, 1.0, 1.0)
+            mesh = ""
+            if kind == "box":
+                sx, sy, sz = (float(v) for v in geometry.size)
                 size = (sx, sy, sz)
-            elif shape.tag == "cylinder":
-                radius, length = float(shape.get("radius", 0)), float(shape.get("length", 0))
-                size = (2 * radius, 2 * radius, length)
-            elif shape.tag == "sphere":
-                diameter = 2 * float(shape.get("radius", 0))
-                size = (diameter, diameter, diameter)
-            else:
-                size = (1.0, 1.0, 1.0)
-            visuals.append(Visual(link.get("name", ""), origin_matrix(visual.find("origin")), shape.tag, size, color,
-                                  shape.get("filename", "")))
+            elif kind == "cylinder":
+                size = (2 * float(geometry.radius), 2 * float(geometry.radius), float(geometry.length))
+            elif kind == "sphere":
+                size = (2 * float(geometry.radius),) * 3
+            elif kind == "mesh":
+                mesh = str(geometry.filename)
+                if geometry.scale is not None:
+                    sx, sy, sz = (float(v) for v in geometry.scale)
+                    size = (sx, sy, sz)
+            origin = visual.origin
+            visuals.append(Visual(str(link.name), origin_matrix(origin.xyz if origin else None,
+                                                                origin.rpy if origin else None),
+                                  kind, size, _color(visual.material, named), mesh))
     return visuals
 
 
@@ -97,6 +105,7 @@ class RobotModel(Display):
         super().__init__(*args, **kwargs)
         self.visuals: list[Visual] = []
         self.problem = "no robot description yet"
+        self.meshes = MeshLibrary()  # the window gives it kame's package finder
 
     def describe(self, text: str | None) -> None:
         """The parameter's text (None: the parameter is not set)."""
@@ -121,11 +130,19 @@ class RobotModel(Display):
             if isinstance(placed, str):
                 problems.append(f"{visual.link}: {placed}")
                 continue
-            shapes = {"box": box_triangles, "cylinder": cylinder_triangles, "sphere": sphere_triangles}
-            if visual.shape not in shapes:
-                problems.append(f"{visual.link}: {visual.shape} {visual.mesh} not drawn yet")
-                continue
-            color = (*visual.color[:3], visual.color[3] * alpha)
-            scene.add("triangles", apply(placed @ visual.origin, shapes[visual.shape](visual.size)), color)
+            matrix = placed @ visual.origin
+            color = visual.color or DEFAULT_COLOR
+            if visual.shape == "mesh":
+                mesh = self.meshes.load(visual.mesh)
+                if isinstance(mesh, str):
+                    problems.append(f"{visual.link}: {mesh}")
+                    continue
+                add_mesh(scene, mesh, matrix, visual.size, visual.color, alpha)
+            elif visual.shape in SHAPES:
+                scene.add("triangles", apply(matrix, SHAPES[visual.shape](visual.size)),
+                          (*color[:3], color[3] * alpha))
+            else:
+                problems.append(f"{visual.link}: {visual.shape} is not drawn")
         if problems:
             self.status = Status(WARN, "; ".join(sorted(set(problems))[:3]))
+

@@ -16,11 +16,24 @@ Color = tuple[float, float, float, float]
 
 @dataclass
 class Batch:
-    """One draw call: `kind` is "lines" (vertex pairs), "points" or "triangles" (vertex triples)."""
+    """One draw call: `kind` is "lines" (vertex pairs), "points" or "triangles" (vertex triples).
+    `colors` is N x 4: float32 0..1, or uint8 0..255 (a cloud's packed rgb: a quarter of the
+    bytes); one colour for every vertex is a broadcast view (stride 0), drawn without a colour
+    array at all."""
     kind: str
     vertices: np.ndarray  # N x 3 float32, fixed frame
-    colors: np.ndarray  # N x 4 float32
+    colors: np.ndarray  # N x 4 float32 or uint8
     size: float = 1.0  # line width or point size in pixels
+
+    @property
+    def uniform(self) -> bool:
+        return len(self.colors) > 0 and self.colors.strides[0] == 0
+
+    def float_colors(self) -> np.ndarray:
+        """N x 4 float32 0..1, whatever the batch keeps."""
+        if self.colors.dtype == np.uint8:
+            return self.colors.astype(np.float32) / 255
+        return np.asarray(self.colors, dtype=np.float32)
 
 
 @dataclass
@@ -51,10 +64,14 @@ class Scene:
         vertices = np.asarray(vertices, dtype=np.float32).reshape(-1, 3)
         if not len(vertices):
             return
-        colors = np.asarray(colors, dtype=np.float32)
+        colors = np.asarray(colors)
+        if colors.dtype != np.uint8:
+            colors = colors.astype(np.float32, copy=False)
         if colors.ndim == 1:
             colors = np.broadcast_to(colors, (len(vertices), 4))
-        self.batches.append(Batch(kind, vertices, np.ascontiguousarray(colors, dtype=np.float32), size))
+        else:
+            colors = np.ascontiguousarray(colors)
+        self.batches.append(Batch(kind, np.ascontiguousarray(vertices), colors, size))
 
     def merged(self) -> Scene:
         """The same scene with batches of one kind and size joined: one draw call for 2,000 markers."""
@@ -62,8 +79,9 @@ class Scene:
         for batch in self.batches:
             groups.setdefault((batch.kind, batch.size), []).append(batch)
         batches = [group[0] if len(group) == 1 else
-                   Batch(kind, np.concatenate([b.vertices for b in group]), np.concatenate([b.colors for b in group]),
-                         size) for (kind, size), group in groups.items()]
+                   Batch(kind, np.concatenate([b.vertices for b in group]),
+                         np.concatenate([b.float_colors() for b in group]), size)
+                   for (kind, size), group in groups.items()]
         return Scene(batches, self.labels, self.textures)
 
     def extend(self, other: Scene) -> None:
@@ -89,6 +107,20 @@ def quaternion_matrix(x: float, y: float, z: float, w: float) -> np.ndarray:
     ])
 
 
+def quaternion_matrices(quaternions: np.ndarray) -> np.ndarray:
+    """quaternion_matrix for N quaternions (N x 4, x y z w) at once: N x 3 x 3."""
+    q = np.asarray(quaternions, dtype=float)
+    norm = np.sqrt((q * q).sum(axis=1))
+    zero = norm < 1e-12
+    q = np.where(zero[:, None], (0.0, 0.0, 0.0, 1.0), q / np.where(zero, 1.0, norm)[:, None])
+    x, y, z, w = q.T
+    return np.stack([
+        np.stack([1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)], axis=-1),
+        np.stack([2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)], axis=-1),
+        np.stack([2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)], axis=-1),
+    ], axis=1)
+
+
 def pose_matrix(pose: Any) -> np.ndarray:
     """A geometry_msgs/Pose (or Transform: translation/rotation) as a 4x4 matrix."""
     position = getattr(pose, "position", None) or pose.translation
@@ -100,9 +132,12 @@ def pose_matrix(pose: Any) -> np.ndarray:
 
 
 def apply(matrix: np.ndarray, points: Any) -> np.ndarray:
-    """`points` (N x 3) moved by the 4x4 `matrix`. Written out per row of the matrix: a BLAS
-    matmul of a tall N x 3 array is many times slower here (thread start-up on a busy machine)."""
-    points = np.asarray(points, dtype=float).reshape(-1, 3)
+    """`points` (N x 3) moved by the 4x4 `matrix` (float32 points give float32). Written out per
+    row of the matrix: a BLAS matmul of a tall N x 3 array is many times slower here (thread
+    start-up on a busy machine)."""
+    points = np.asarray(points)
+    # float32 stays float32 (a cloud's 300k points: half the bytes to move and to upload)
+    points = points.astype(np.float32 if points.dtype == np.float32 else float, copy=False).reshape(-1, 3)
     x, y, z = points[:, 0], points[:, 1], points[:, 2]
     result: np.ndarray = np.empty_like(points)
     for row in range(3):

@@ -1,18 +1,20 @@
 """rviz's node: the tf Buffer fed from /tf and /tf_static (kame.tf_ros), one subscription per
 topic the displays show, and the publishers of the tools. Subscriber threads only store bytes:
 the newest message of a topic (latest wins), or for marker topics every message up to a bound,
-and wake the window once (`on_ready`) when nothing was waiting, so a 30 Hz 1 MB cloud costs one
-decode per drawn frame, never a queue the window falls behind on. Messages are decoded in the
-window's turn, when it takes them."""
+and the source's own decoding thread decodes what arrived (a burst of clouds: the newest only)
+and wakes the window once (`on_ready`) when nothing decoded was waiting, so a 30 Hz 1 MB cloud
+is never a queue the window falls behind on, and the window's turn only takes messages."""
 
 from __future__ import annotations
 
+import os
 import threading
 from collections.abc import Callable
 from typing import Any
 
 import numpy as np
 
+from kame.catkin import executables
 from kame.msg.lookup import message_class
 from kame.node.node import Node
 from kame.node.topics import serialize_frame
@@ -58,10 +60,16 @@ class RvizSource:
         self.buffer = Buffer(warn=lambda text: None, error=lambda text: None)
         self.listener = TransformListener(node, self.buffer)
         self._lock = threading.Lock()
-        self._waiting: dict[str, list[bytes]] = {}
+        self._waiting: dict[str, list[bytes]] = {}  # received, not yet decoded
+        self._decoded: dict[str, list[Any]] = {}  # decoded, not yet taken by the window
         self._keep_every: dict[str, bool] = {}
         self._classes: dict[str, type[Any]] = {}
         self._publishers: set[str] = set()
+        self._pending = threading.Event()
+        self._closing = False
+        # decoding (a 2,000-marker array: tens of ms) happens here, never in the window's turn
+        self._decoder = threading.Thread(target=self._decode_loop, name="rviz_decode")
+        self._decoder.start()
 
     def frames(self, fixed_frame: str) -> TfFrames:
         return TfFrames(self.buffer, fixed_frame)
@@ -88,6 +96,7 @@ class RvizSource:
             self.node.unsubscribe(topic)
         with self._lock:
             self._waiting.pop(topic, None)
+            self._decoded.pop(topic, None)
 
     def watched(self) -> set[str]:
         return set(self._classes)
@@ -97,33 +106,58 @@ class RvizSource:
             if not frames:
                 return
             with self._lock:
-                was_empty = not any(self._waiting.values())
                 if self._keep_every.get(topic):
                     kept = self._waiting.setdefault(topic, [])
                     kept.extend(bytes(frame) for frame in frames)
                     del kept[:-KEPT_PER_TOPIC]
                 else:
                     self._waiting[topic] = [bytes(frames[-1])]
-            if was_empty:
-                self.on_ready()
+            self._pending.set()
         return deliver
 
-    def take(self) -> dict[str, list[Any]]:
-        """Every waiting message, decoded, by resolved topic (a bad one is skipped)."""
-        with self._lock:
-            waiting, self._waiting = self._waiting, {}
-        taken: dict[str, list[Any]] = {}
-        for topic, payloads in waiting.items():
-            cls = self._classes.get(topic)
-            if cls is None:
-                continue
-            decoded = []
-            for payload in payloads:
-                try:
-                    decoded.append(cls._from_buffer(memoryview(payload)))
-                except Exception:  # a malformed message is dropped; the display keeps the last good one
+    def _decode_loop(self) -> None:
+        """Decodes what arrived (the newest of a topic, or every marker message) and wakes the
+        window when it had nothing to take; a burst arriving while it decodes is one more turn."""
+        while True:
+            self._pending.wait()
+            self._pending.clear()
+            if self._closing:
+                return
+            with self._lock:
+                waiting, self._waiting = self._waiting, {}
+            decoded: dict[str, list[Any]] = {}
+            for topic, payloads in waiting.items():
+                cls = self._classes.get(topic)
+                if cls is None:
                     continue
-            taken[topic] = decoded
+                messages = []
+                for payload in payloads:
+                    try:
+                        messages.append(cls._from_buffer(memoryview(payload)))
+                    except Exception:  # a malformed message is dropped; the display keeps the last good one
+                        continue
+                decoded[topic] = messages
+            if not any(decoded.values()):
+                continue
+            with self._lock:
+                was_empty = not any(self._decoded.values())
+                for topic, messages in decoded.items():
+                    if topic not in self._classes:  # unwatched while it was decoded
+                        continue
+                    if self._keep_every.get(topic):
+                        kept = self._decoded.setdefault(topic, [])
+                        kept.extend(messages)
+                        del kept[:-KEPT_PER_TOPIC]
+                    elif messages:
+                        self._decoded[topic] = messages[-1:]
+            if was_empty:
+                self.on_ready()
+
+    def take(self) -> dict[str, list[Any]]:
+        """Every decoded message waiting, by resolved topic (the newest of a topic, every marker
+        message in order)."""
+        with self._lock:
+            taken, self._decoded = self._decoded, {}
         return taken
 
     def param(self, name: str) -> str | None:
@@ -135,6 +169,11 @@ class RvizSource:
             return None
         return answer[2]
 
+    def find_package(self, name: str) -> str | None:
+        """Where package `name` is (ROS_PACKAGE_PATH and kame's own): package:// mesh resources."""
+        package = executables.packages(os.environ).get(name)
+        return str(package.path) if package is not None else None
+
     def publish(self, topic: str, message: Any) -> None:
         topic = self.node.resolve(topic)
         if topic not in self._publishers:
@@ -143,6 +182,9 @@ class RvizSource:
         self.node.publications[topic].publish_frame(serialize_frame(message))
 
     def close(self) -> None:
+        self._closing = True
+        self._pending.set()
+        self._decoder.join()
         self.listener.unregister()
         for topic in list(self._classes):
             self.unwatch(topic)

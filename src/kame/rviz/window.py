@@ -10,6 +10,7 @@ import functools
 import math
 import time
 from collections.abc import Callable
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -33,12 +34,68 @@ from PySide6.QtWidgets import (
 from kame.rviz import config as rviz_config
 from kame.rviz.camera import ORBIT, TOP_DOWN, Camera
 from kame.rviz.display import ERROR, OK, Display, Status, format_color, parse_color
+from kame.rviz.image_panels import ImagePanels, decode_compressed
+from kame.rviz.markers import Marker
+from kame.rviz.meshes import MeshLibrary
 from kame.rviz.robot import RobotModel
 from kame.rviz.scene import Batch, Scene
+from kame.rviz.sensors import Image
 from kame.rviz.source import RvizSource
 
 PRIMITIVES = {"lines": GL.GL_LINES, "points": GL.GL_POINTS, "triangles": GL.GL_TRIANGLES}
 INTERACT, POSE_ESTIMATE, NAV_GOAL, PUBLISH_POINT = "Interact", "2D Pose Estimate", "2D Nav Goal", "Publish Point"
+
+
+@dataclass
+class GpuBatch:
+    batch: Batch | None  # what the buffers hold now
+    vertices: int
+    colors: int
+    normals: int  # triangles' only
+    vertex_bytes: int = 0  # the buffers' sizes
+    color_bytes: int = 0
+    normal_bytes: int = 0
+
+
+def face_normals(vertices: np.ndarray) -> np.ndarray:
+    """Each triangle's unit normal, once per vertex (N x 3 float32); a degenerate one's is z."""
+    corners = vertices.reshape(-1, 3, 3)
+    normals = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
+    lengths = np.linalg.norm(normals, axis=1)
+    flat = lengths < 1e-12
+    normals[flat] = (0.0, 0.0, 1.0)
+    normals[~flat] /= lengths[~flat, None]
+    return np.repeat(normals.astype(np.float32), 3, axis=0)
+
+
+def _headlight() -> None:
+    """One light at the eye, shining where it looks, lighting both sides of every face (the
+    displays do not wind their triangles one way): a face turned to the camera shows its
+    colour exactly, one seen edge-on the ambient 35 % of it."""
+    GL.glLightfv(GL.GL_LIGHT0, GL.GL_POSITION, (0.0, 0.0, 1.0, 0.0))
+    GL.glLightfv(GL.GL_LIGHT0, GL.GL_AMBIENT, (0.35, 0.35, 0.35, 1.0))
+    GL.glLightfv(GL.GL_LIGHT0, GL.GL_DIFFUSE, (0.65, 0.65, 0.65, 1.0))
+    GL.glLightfv(GL.GL_LIGHT0, GL.GL_SPECULAR, (0.0, 0.0, 0.0, 1.0))
+    GL.glLightModelfv(GL.GL_LIGHT_MODEL_AMBIENT, (0.0, 0.0, 0.0, 1.0))
+    GL.glLightModeli(GL.GL_LIGHT_MODEL_TWO_SIDE, GL.GL_TRUE)
+    GL.glEnable(GL.GL_LIGHT0)
+    GL.glEnable(GL.GL_COLOR_MATERIAL)
+    GL.glColorMaterial(GL.GL_FRONT_AND_BACK, GL.GL_AMBIENT_AND_DIFFUSE)
+
+
+def _same(these: list[Any], those: list[Any]) -> bool:
+    return len(these) == len(those) and all(a is b for a, b in zip(these, those, strict=True))
+
+
+def _upload(buffer: int, data: np.ndarray, capacity: int) -> int:
+    """`data` into the GL buffer, reusing its storage when it fits; the buffer's size after."""
+    data = np.ascontiguousarray(data)
+    GL.glBindBuffer(GL.GL_ARRAY_BUFFER, buffer)
+    if data.nbytes <= capacity:
+        GL.glBufferSubData(GL.GL_ARRAY_BUFFER, 0, data.nbytes, data)
+        return capacity
+    GL.glBufferData(GL.GL_ARRAY_BUFFER, data.nbytes, data, GL.GL_DYNAMIC_DRAW)
+    return data.nbytes
 
 
 class RenderView(QOpenGLWidget):
@@ -53,13 +110,22 @@ class RenderView(QOpenGLWidget):
         self.background = (48 / 255, 48 / 255, 48 / 255, 1.0)
         self.tool = INTERACT
         self._textures: dict[int, tuple[np.ndarray, int]] = {}  # GL textures by their image's id, kept while drawn
-        self._buffers: dict[int, tuple[Batch, int, int]] = {}  # vertex and colour buffers by their batch's id
+        self._buffers: list[GpuBatch] = []  # the buffers of the scene's batches, by their place in it
         self._last: QPointF | None = None
         self._pressed_at: np.ndarray | None = None
         self.setMinimumSize(320, 240)
         self.setFocusPolicy(Qt.FocusPolicy.StrongFocus)
 
     # -------------------------------------------------------------- drawing
+
+    def show_scene(self, scene: Scene) -> None:
+        """Draw `scene` from now on; repaint only when it differs from the one shown (the same
+        batch, label and texture objects: every display reused its cached scene), so a still
+        scene costs no drawing at the frame rate. The mouse and resizes repaint on their own."""
+        if not (_same(scene.batches, self.scene.batches) and _same(scene.labels, self.scene.labels)
+                and _same(scene.textures, self.scene.textures)):
+            self.scene = scene
+            self.update()
 
     def paintGL(self) -> None:
         ratio = self.devicePixelRatioF()
@@ -74,6 +140,8 @@ class RenderView(QOpenGLWidget):
         GL.glMatrixMode(GL.GL_PROJECTION)
         GL.glLoadMatrixd(self.camera.projection_matrix(width, height).T.astype(np.float64))
         GL.glMatrixMode(GL.GL_MODELVIEW)
+        GL.glLoadIdentity()
+        _headlight()  # set in eye space: it moves with the camera, as rviz's default light
         GL.glLoadMatrixd(self.camera.view_matrix().T.astype(np.float64))
         GL.glDepthMask(GL.GL_FALSE)  # maps lie under what shares their plane (the grid), as in rviz
         drawn = set()
@@ -84,38 +152,52 @@ class RenderView(QOpenGLWidget):
             GL.glDeleteTextures([self._textures.pop(gone)[1]])
         GL.glDepthMask(GL.GL_TRUE)
         GL.glEnableClientState(GL.GL_VERTEX_ARRAY)
-        GL.glEnableClientState(GL.GL_COLOR_ARRAY)
-        used = set()
-        for batch in self.scene.batches:
+        for slot, batch in enumerate(self.scene.batches):
             GL.glLineWidth(max(1.0, batch.size))
             GL.glPointSize(max(1.0, batch.size))
-            vertices, colors = self._uploaded(batch)
-            used.add(id(batch))
+            vertices, colors = self._uploaded(slot, batch)
             GL.glBindBuffer(GL.GL_ARRAY_BUFFER, vertices)
             GL.glVertexPointer(3, GL.GL_FLOAT, 0, None)
-            GL.glBindBuffer(GL.GL_ARRAY_BUFFER, colors)
-            GL.glColorPointer(4, GL.GL_FLOAT, 0, None)
+            if batch.uniform:  # one colour for all: no colour array to upload or read
+                GL.glColor4f(*(float(c) for c in batch.float_colors()[0]))
+            else:
+                GL.glEnableClientState(GL.GL_COLOR_ARRAY)
+                GL.glBindBuffer(GL.GL_ARRAY_BUFFER, colors)
+                GL.glColorPointer(4, GL.GL_UNSIGNED_BYTE if batch.colors.dtype == np.uint8 else GL.GL_FLOAT, 0, None)
+            lit = batch.kind == "triangles"
+            if lit:  # surfaces are shaded by their facing; lines, points and labels are not
+                GL.glEnable(GL.GL_LIGHTING)
+                GL.glEnableClientState(GL.GL_NORMAL_ARRAY)
+                GL.glBindBuffer(GL.GL_ARRAY_BUFFER, self._buffers[slot].normals)
+                GL.glNormalPointer(GL.GL_FLOAT, 0, None)
             GL.glDrawArrays(PRIMITIVES[batch.kind], 0, len(batch.vertices))
+            if lit:
+                GL.glDisableClientState(GL.GL_NORMAL_ARRAY)
+                GL.glDisable(GL.GL_LIGHTING)
+            GL.glDisableClientState(GL.GL_COLOR_ARRAY)
         GL.glBindBuffer(GL.GL_ARRAY_BUFFER, 0)
-        for gone in set(self._buffers) - used:
-            GL.glDeleteBuffers(2, list(self._buffers.pop(gone)[1:]))
-        GL.glDisableClientState(GL.GL_COLOR_ARRAY)
+        for unused in self._buffers[len(self.scene.batches):]:
+            GL.glDeleteBuffers(3, [unused.vertices, unused.colors, unused.normals])
+        del self._buffers[len(self.scene.batches):]
         GL.glDisableClientState(GL.GL_VERTEX_ARRAY)
         self._draw_labels()
 
-    def _uploaded(self, batch: Batch) -> tuple[int, int]:
-        """The batch's vertex and colour buffers on the GPU: a display's unchanged scene is uploaded once."""
-        known = self._buffers.get(id(batch))
-        if known is not None and known[0] is batch:
-            return known[1], known[2]
-        if known is not None:
-            GL.glDeleteBuffers(2, [known[1], known[2]])
-        vertices, colors = (int(b) for b in GL.glGenBuffers(2))
-        for buffer, data in ((vertices, batch.vertices), (colors, batch.colors)):
-            GL.glBindBuffer(GL.GL_ARRAY_BUFFER, buffer)
-            GL.glBufferData(GL.GL_ARRAY_BUFFER, np.ascontiguousarray(data, dtype=np.float32), GL.GL_STATIC_DRAW)
-        self._buffers[id(batch)] = (batch, vertices, colors)
-        return vertices, colors
+    def _uploaded(self, slot: int, batch: Batch) -> tuple[int, int]:
+        """The batch's vertex and colour buffers on the GPU, the slot-th of the scene's: an
+        unchanged batch is not uploaded again; a new one goes into the slot's buffers
+        (glBufferSubData while it fits, so a cloud's buffers are allocated once)."""
+        if slot == len(self._buffers):
+            vertices, colors, normals = (int(b) for b in GL.glGenBuffers(3))
+            self._buffers.append(GpuBatch(None, vertices, colors, normals))
+        known = self._buffers[slot]
+        if known.batch is not batch:
+            known.vertex_bytes = _upload(known.vertices, batch.vertices, known.vertex_bytes)
+            if not batch.uniform:
+                known.color_bytes = _upload(known.colors, batch.colors, known.color_bytes)
+            if batch.kind == "triangles":
+                known.normal_bytes = _upload(known.normals, face_normals(batch.vertices), known.normal_bytes)
+            known.batch = batch
+        return known.vertices, known.colors
 
     def _draw_texture(self, corners: np.ndarray, rgba: np.ndarray) -> None:
         known = self._textures.get(id(rgba))
@@ -209,6 +291,7 @@ class RvizWindow(QMainWindow):
         super().__init__()
         self.config = config
         self.source = source
+        self.meshes = MeshLibrary(source.find_package if source is not None else None)
         self.config_path = config_path
         self.setWindowTitle(f"{config_path or 'default.rviz'} - RViz")
         self.view = RenderView()
@@ -216,6 +299,7 @@ class RvizWindow(QMainWindow):
         self.view.background = config.background
         self.view.clicked.connect(self._tool_used)
         self.setCentralWidget(self.view)
+        self.image_panels = ImagePanels(self)
         self.tree = QTreeWidget()
         self.tree.setHeaderLabels(["Property", "Value"])
         self.tree.setColumnWidth(0, 150)
@@ -370,7 +454,7 @@ class RvizWindow(QMainWindow):
         display = self.config.displays[self.tree.indexOfTopLevelItem(parent) - 1]
         old = display.options.get(key)
         display.options[key] = type(old)(value) if isinstance(old, (int, float)) and _is_number(value) else value
-        if key == "Topic":
+        if key in ("Topic", "Marker Topic", "Image Topic"):
             display.reset()
             self._rewatch()
 
@@ -389,22 +473,35 @@ class RvizWindow(QMainWindow):
             self.config.fixed_frame = value
         elif key == "Background Color":
             self.config.background = self.view.background = parse_color(value, self.config.background)
+            self.view.update()
         elif key == "Frame Rate" and _is_number(value):
             self.config.frame_rate = max(1, int(float(value)))
             self.timer.setInterval(max(1, 1000 // self.config.frame_rate))
 
     def _rewatch(self) -> None:
         """Subscribes to what the displays show, and leaves what none shows any more."""
+        for display in self.config.displays:
+            if isinstance(display, (RobotModel, Marker)):
+                display.meshes = self.meshes  # one cache of mesh files for the window
+            if isinstance(display, Image):
+                display.decode_compressed = decode_compressed
         if self.source is None:
             return
         self._topic_errors.clear()
         wanted = {}
         for display in self.config.displays:
-            if display.message_types and display.topic:
-                problem = self.source.watch(display.topic, display.message_types[0], display.keeps_every_message)
+            subscription = display.subscription()
+            if subscription is not None:
+                topic, type_name = subscription
+                problem = self.source.watch(topic, type_name, display.keeps_every_message)
                 if problem:
                     self._topic_errors[id(display)] = problem
-                wanted[self.source.node.resolve(display.topic)] = display
+                wanted[self.source.node.resolve(topic)] = display
+            for topic, type_name in display.side_topics().items():
+                problem = self.source.watch(topic, type_name, False)
+                if problem:
+                    self._topic_errors[id(display)] = problem
+                wanted[self.source.node.resolve(topic)] = display
         for topic in self.source.watched() - set(wanted):
             self.source.unwatch(topic)
         for display in self.config.displays:
@@ -418,8 +515,11 @@ class RvizWindow(QMainWindow):
         if self.source is not None:
             taken = self.source.take()
             for display in self.config.displays:
-                if display.topic and display.message_types:
-                    display.receive(taken.get(self.source.node.resolve(display.topic), []), now)
+                subscription = display.subscription()
+                if subscription is not None:
+                    display.receive(taken.get(self.source.node.resolve(subscription[0]), []), now)
+                for topic in display.side_topics():
+                    display.receive_side(topic, taken.get(self.source.node.resolve(topic), []), now)
         self.draw(now)
 
     def draw(self, now: float, frames: Any = None) -> None:
@@ -440,8 +540,8 @@ class RvizWindow(QMainWindow):
             if id(display) in self._topic_errors:
                 display.status = Status(ERROR, self._topic_errors[id(display)])
             self._show_status(display)
-        self.view.scene = scene
-        self.view.update()
+        self.view.show_scene(scene)
+        self.image_panels.sync(self.config.displays, scene)
 
     def _show_status(self, display: Display) -> None:
         item = self._items.get(id(display))
