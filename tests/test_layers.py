@@ -118,7 +118,8 @@ LAYERS: dict[str, int] = {
     "kame.robot.sliders": 4,  # joint_state_publisher_gui's Qt window
     "kame.stage.runtime": 4,  # the simulator's and map tools' one way to the ROS runtime
     "kame.stage.node": 4,
-    "kame.stage.gui": 4,  # Qt; knows only the simulator's frames
+    "kame.stage.gui": 4,
+    "kame.fed_window": 4,  # Qt: a simulation's window process  # Qt; knows only the simulator's frames
     "kame.stage.map_server": 4,
     "kame.stage.map_saver": 4,
     "kame.stage.teleop": 4,
