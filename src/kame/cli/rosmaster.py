@@ -186,7 +186,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     # The master logs a line per registration and no format of ours names a source line: skip
     # the stack walk logging does for each record to find one (about a third of a record's cost).
     # Only here, in the master's own process: nodes' records carry their file and line to /rosout.
-    logging._srcfile = None  # type: ignore[attr-defined]
+    logging._srcfile = None
     if options.master_logger_level:
         logging.getLogger("kame.master").setLevel(_LEVELS[options.master_logger_level])
     if not options.core:
