@@ -22,6 +22,7 @@ from __future__ import annotations
 import io
 import itertools
 import logging
+import struct
 import threading
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
@@ -51,6 +52,9 @@ UNQUEUED_BACKLOG = 256 << 20
 STALL_TIMEOUT = 30.0
 
 
+_pack_frame_length = struct.Struct("<I").pack
+
+
 class _Chunks(list[Any]):
     """A write-only buffer for generated serializers: keeps the pieces, copies nothing."""
 
@@ -61,6 +65,10 @@ def serialize_frame(msg: Any) -> list[Any]:
     """A message as TCPROS frame buffers: [length prefix + small data] or [prefix, *pieces]."""
     chunks = _Chunks()
     msg.serialize(chunks)
+    if len(chunks) == 1:  # a message written in one piece (fixed-size ones, most small ones)
+        size = len(chunks[0])
+        if size <= SMALL_FRAME:
+            return [_pack_frame_length(size) + chunks[0]]
     size = 0
     for chunk in chunks:
         size += len(chunk)
