@@ -110,6 +110,15 @@ def test_images_are_encoded_only_for_listeners(tmp_path: Path) -> None:
         assert listener.popen.poll() is None and "Traceback" not in "".join(relay.err)
 
 
+def missing(folder: Path, *modules: str) -> str:
+    """A folder that, first on PYTHONPATH, makes importing `modules` fail as if they were not installed."""
+    for module in modules:
+        (folder / module).mkdir(parents=True)
+        (folder / module / "__init__.py").write_text(
+            f"raise ModuleNotFoundError(\"No module named '{module}'\", name='{module}')\n")
+    return str(folder)
+
+
 def test_bad_arguments(tmp_path: Path) -> None:
     with master(tmp_path) as sim:
         usage = sim.run("rosrun", "image_transport", "republish")
@@ -117,6 +126,14 @@ def test_bad_arguments(tmp_path: Path) -> None:
             usage.stdout.endswith(" in_transport in:=<in_base_topic> [out_transport] out:=<out_base_topic>\n")
         theora = sim.run("rosrun", "image_transport", "republish", "theora", "in:=a", "out:=b", check=False)
         assert theora.returncode == 1 and "Unable to load plugin for transport 'theora'" in theora.stderr
+        no_codec = sim.run("rosrun", "image_transport", "republish", "raw", "in:=a", "compressed", "out:=b",
+                           check=False, env={**sim.env, "PYTHONPATH": missing(tmp_path / "no_codec", "cv2", "PIL")})
+        assert no_codec.returncode == 1 and "Traceback" not in no_codec.stderr
+        assert "the compressed transport needs Pillow or OpenCV: pip install 'kame[image]'" in no_codec.stderr
+        no_numpy = sim.run("rosrun", "image_transport", "republish", "raw", "in:=a", "out:=b", check=False,
+                           env={**sim.env, "PYTHONPATH": missing(tmp_path / "no_numpy", "numpy")})
+        assert no_numpy.returncode == 1 and "Traceback" not in no_numpy.stderr
+        assert "republish needs numpy and Pillow (or OpenCV), kame's 'image' extra" in no_numpy.stderr
 
 
 @pytest.mark.skipif(not debian.has("rospy", "cv_bridge", "cv2"),
