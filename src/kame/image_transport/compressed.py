@@ -78,32 +78,37 @@ def to_array(image: Any) -> numpy.ndarray[Any, Any]:
                                f"step x height bytes; it has step {image.step} and {len(data)} bytes")
     pixels = numpy.ndarray((image.height, image.width, channels), dtype, data,
                            strides=(image.step, channels * dtype.itemsize, dtype.itemsize))
-    native: numpy.ndarray[Any, Any] = pixels.astype(dtype.newbyteorder("="))
+    native: numpy.ndarray[Any, Any] = pixels.astype(dtype.newbyteorder("="), copy=False)  # a view when it can be
     return native[..., 0] if channels == 1 else native
 
 
 def from_array(pixels: numpy.ndarray[Any, Any], encoding: str, header: Any) -> Image:
     """An Image of native-order pixels (little-endian on the wire, as cv_bridge writes on x86)."""
     height, width = pixels.shape[:2]
-    data = numpy.ascontiguousarray(pixels.astype(pixels.dtype.newbyteorder("<"))).tobytes()
+    data = pixels.astype(pixels.dtype.newbyteorder("<"), copy=False).tobytes()
     return Image(header=header, height=height, width=width, encoding=encoding, is_bigendian=0,
                  step=len(data) // height if height else 0, data=data)
 
 
 class Codec(Protocol):
-    def encode(self, pixels: numpy.ndarray[Any, Any], settings: Settings) -> bytes:
-        """jpeg or png bytes of 1-, 3- (BGR) or 4-channel (BGRA) pixels of uint8 (or uint16 for png)."""
+    """jpeg and png in OpenCV's channel order (BGR, BGRA), or with red and blue swapped (`rgb`)."""
 
-    def decode(self, data: bytes) -> numpy.ndarray[Any, Any] | None:
-        """Pixels as OpenCV's imdecode(IMREAD_UNCHANGED) gives them (BGR order), None if undecodable."""
+    def encode(self, pixels: numpy.ndarray[Any, Any], settings: Settings, rgb: bool = False) -> bytes:
+        """jpeg or png bytes of 1-, 3- or 4-channel pixels of uint8 (or uint16 for png)."""
+
+    def decode(self, data: bytes, rgb: bool = False) -> numpy.ndarray[Any, Any] | None:
+        """Pixels as OpenCV's imdecode(IMREAD_UNCHANGED) gives them, None if undecodable."""
 
 
 class OpenCVCodec:
     def __init__(self, cv2: Any) -> None:
         self.cv2 = cv2
 
-    def encode(self, pixels: numpy.ndarray[Any, Any], settings: Settings) -> bytes:
+    def encode(self, pixels: numpy.ndarray[Any, Any], settings: Settings, rgb: bool = False) -> bytes:
         cv2 = self.cv2
+        pixels = numpy.ascontiguousarray(pixels)
+        if rgb and pixels.ndim == 3:
+            pixels = cv2.cvtColor(pixels, cv2.COLOR_RGB2BGR if pixels.shape[2] == 3 else cv2.COLOR_RGBA2BGRA)
         if settings.format == "jpeg":
             params = [cv2.IMWRITE_JPEG_QUALITY, settings.jpeg_quality,
                       cv2.IMWRITE_JPEG_PROGRESSIVE, int(settings.jpeg_progressive),
@@ -116,9 +121,12 @@ class OpenCVCodec:
             raise CompressionError(f"cv::imencode ({settings.format}) failed on input image")
         return bytes(encoded)
 
-    def decode(self, data: bytes) -> numpy.ndarray[Any, Any] | None:
-        decoded: numpy.ndarray[Any, Any] | None = self.cv2.imdecode(numpy.frombuffer(data, numpy.uint8),
-                                                                     self.cv2.IMREAD_UNCHANGED)
+    def decode(self, data: bytes, rgb: bool = False) -> numpy.ndarray[Any, Any] | None:
+        cv2 = self.cv2
+        decoded: numpy.ndarray[Any, Any] | None = cv2.imdecode(numpy.frombuffer(data, numpy.uint8),
+                                                                cv2.IMREAD_UNCHANGED)
+        if rgb and decoded is not None and decoded.ndim == 3 and decoded.shape[2] in (3, 4):
+            decoded = cv2.cvtColor(decoded, cv2.COLOR_BGR2RGB if decoded.shape[2] == 3 else cv2.COLOR_BGRA2RGBA)
         return decoded
 
 
@@ -126,12 +134,12 @@ class PillowCodec:
     def __init__(self, image_module: Any) -> None:
         self.pil = image_module
 
-    def encode(self, pixels: numpy.ndarray[Any, Any], settings: Settings) -> bytes:
+    def encode(self, pixels: numpy.ndarray[Any, Any], settings: Settings, rgb: bool = False) -> bytes:
         if pixels.ndim == 3:
             if pixels.dtype != numpy.uint8:
                 raise CompressionError("a 16-bit colour png needs OpenCV: pip install opencv-python-headless")
-            keep = 3 if settings.format == "jpeg" else pixels.shape[2]  # jpeg has no alpha: OpenCV drops it
-            pixels = numpy.ascontiguousarray(pixels[..., [2, 1, 0, 3][:keep]])
+            keep = 4 if pixels.shape[2] == 4 and settings.format == "png" else 3  # jpeg has no alpha: OpenCV drops it
+            pixels = numpy.ascontiguousarray(pixels[..., :keep] if rgb else pixels[..., [2, 1, 0, 3][:keep]])
         out = io.BytesIO()
         picture = self.pil.fromarray(pixels)
         if settings.format == "jpeg":
@@ -141,7 +149,7 @@ class PillowCodec:
             picture.save(out, "PNG", compress_level=settings.png_level)
         return out.getvalue()
 
-    def decode(self, data: bytes) -> numpy.ndarray[Any, Any] | None:
+    def decode(self, data: bytes, rgb: bool = False) -> numpy.ndarray[Any, Any] | None:
         try:
             picture = self.pil.open(io.BytesIO(data))
             picture.load()
@@ -153,8 +161,8 @@ class PillowCodec:
         if picture.mode == "I":  # 16-bit grey png, read by older Pillow as 32-bit
             return numpy.asarray(picture).astype(numpy.uint16)
         alpha = "A" in picture.getbands() or "transparency" in picture.info
-        rgb = numpy.asarray(picture.convert("RGBA" if alpha else "RGB"))
-        return numpy.ascontiguousarray(rgb[..., [2, 1, 0, 3][:rgb.shape[2]]])
+        colour = numpy.asarray(picture.convert("RGBA" if alpha else "RGB"))
+        return colour if rgb else colour[..., [2, 1, 0, 3][:colour.shape[2]]]
 
 
 def default_codec() -> Codec:
@@ -194,41 +202,43 @@ def compress(image: Any, settings: Settings = Settings(), codec: Codec | None = 
     pixels = to_array(image)
     target = ""
     colour = _COLOUR.match(image.encoding)
-    if colour:
+    rgb = colour is not None and colour.group(1) == "rgb"
+    if colour:  # to bgr8 or bgr16 as cv_bridge converts: the codec writes it in OpenCV's order
         target = "bgr8" if settings.format == "jpeg" else f"bgr{bit_depth}"
-        pixels = pixels[..., :3] if colour.group(1) == "bgr" else pixels[..., [2, 1, 0]]
+        pixels = pixels[..., :3]
         if bit_depth == 16 and target == "bgr8":  # cv_bridge's depth change: scaled and rounded
             pixels = numpy.rint(pixels * (255.0 / 65535.0)).astype(numpy.uint8)
     if channels == 2:
         raise CompressionError(f"cannot compress a 2-channel image ({image.encoding}) as {settings.format}")
     if not (settings.format == "png" and pixels.dtype == numpy.uint16):
         pixels = _to_8bit(pixels)
-    data = (codec or default_codec()).encode(numpy.ascontiguousarray(pixels), settings)
+    data = (codec or default_codec()).encode(pixels, settings, rgb)
     return CompressedImage(header=image.header, format=f"{image.encoding}; {settings.format} compressed {target}",
                            data=data)
 
 
 def decompress(compressed: Any, codec: Codec | None = None) -> Image:
     """The Image compressed_image_transport's subscriber makes of `compressed`."""
-    pixels = (codec or default_codec()).decode(bytes(compressed.data))
+    encoding, named, compressed_as = compressed.format.partition(";")
+    colour = _COLOUR.match(encoding) if named else None
+    # "compressed bgr8": the codec's order is the image's; else ("compressed rgb8") red and blue are swapped
+    source = "bgr" if "compressed bgr" in compressed_as else "rgb"
+    swap = colour is not None and source != colour.group(1)
+    pixels = (codec or default_codec()).decode(bytes(compressed.data), rgb=swap)
     if pixels is None or pixels.size == 0:
         raise CompressionError(f"cannot decode the {compressed.format or 'compressed'} image")
     channels = 1 if pixels.ndim == 2 else pixels.shape[2]
-    encoding, _, compressed_as = compressed.format.partition(";")
-    if not _:  # older compressed_image_transport did not name the encoding
+    if not named:  # older compressed_image_transport did not name the encoding
         if channels not in (1, 3):
             raise CompressionError(f"Unsupported number of channels: {channels}")
         depth = "8" if pixels.dtype == numpy.uint8 else "16"
         return from_array(pixels, ("mono" if channels == 1 else "bgr") + depth, compressed.header)
     code, wanted_channels = layout(encoding)
-    colour = _COLOUR.match(encoding)
     if colour and channels >= 3:
-        order = colour.group(1) + colour.group(2)  # rgb, bgra ...
-        source = "bgr" if "compressed bgr" in compressed_as else "rgb"
-        maximum = numpy.iinfo(pixels.dtype).max if pixels.dtype.kind == "u" else 1
-        planes = [pixels[..., source.index(c)] if c in source else numpy.full(pixels.shape[:2], maximum, pixels.dtype)
-                  for c in order]
-        pixels = numpy.stack(planes, axis=-1)
+        pixels = pixels[..., :3]
+        if colour.group(2):  # alpha the codec did not keep: opaque
+            maximum = numpy.iinfo(pixels.dtype).max if pixels.dtype.kind == "u" else 1
+            pixels = numpy.concatenate([pixels, numpy.full((*pixels.shape[:2], 1), maximum, pixels.dtype)], axis=2)
     wanted = numpy.dtype(code)
     if pixels.dtype.itemsize < wanted.itemsize:  # sent as 8 bits: back to the encoding's depth
         pixels = pixels.astype(wanted) * (257 if colour else 1)
