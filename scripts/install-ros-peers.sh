@@ -11,6 +11,9 @@ packages=(
   python3-actionlib
   python3-dynamic-reconfigure  # dynparam, Client and Server against kame's (tests/dynamic_reconfigure)
   python3-tf2-ros python3-tf python3-tf2-geometry-msgs tf2-tools tf-tools  # tf/tf2 interop (tests/tf)
+  # image_transport's republish (raw only: Debian has no compressed plugin) and cv_bridge with OpenCV,
+  # which decode and make the compressed images kame's republish reads and writes (tests/libs/test_image_transport.py)
+  image-transport-tools python3-cv-bridge
   libroscpp-dev libstd-msgs-dev libgeometry-msgs-dev libsensor-msgs-dev libstd-srvs-dev
   ros-std-msgs ros-std-srvs ros-geometry-msgs ros-sensor-msgs ros-nav-msgs ros-rosgraph-msgs
   ros-actionlib-msgs ros-diagnostic-msgs ros-trajectory-msgs ros-visualization-msgs

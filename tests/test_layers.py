@@ -71,6 +71,8 @@ LAYERS: dict[str, int] = {
     "kame.reconfigure": 1,  # dynamic_reconfigure: the .cfg generator and its import hook, the config codec
     "kame.reconfigure.server": 4,  # the Server on kame.client
     "kame.reconfigure.client": 4,
+    "kame.image_transport": 1,  # compressed_image_transport's codec (numpy, OpenCV or Pillow)
+    "kame.image_transport.republish": 4,  # image_transport's republish node on kame.client
     "kame.tf": 1,  # transformations and the tf2 buffer core: no clock, no threads
     "kame.tf_ros": 3,  # the Buffer that waits, /tf listener and broadcasters on a Node
     "kame.turtle_tf": 4,  # the turtle_tf demo programs
