@@ -269,8 +269,7 @@ class Gmapping:
             return
         reach = ranges[index] + _INTO_SURFACE * p.delta
         local = np.column_stack((reach * np.cos(angles[index]), reach * np.sin(angles[index])))
-        margin = reach.max() + 4 * p.lstep + (p.kernelSize + 2) * p.delta
-        fields = _Fields(self.grids, self.poses, margin, p)
+        fields = _Fields(self.grids, self._reach(local), p)
         if fields.empty:
             return
         poses = self.poses.copy()
@@ -318,6 +317,21 @@ class Gmapping:
         likelihood = fields.likelihood(particle, self.poses, local)
         self.log_weights += likelihood
         self.weight_sums += likelihood
+
+    def _reach(self, local: np.ndarray) -> tuple[float, float, float, float]:
+        """The rectangle where the matcher may look up the beams' ends: around where they end
+        from every particle turned to either end of the search, widened by its shifts."""
+        p = self.params
+        turn = _COARSE_TURNS * p.astep + 2 * p.astep  # the search, then the climb's first steps
+        xs, ys = [], []
+        for dt in (-turn, 0.0, turn):
+            theta = self.poses[:, 2:3] + dt
+            xs.append(self.poses[:, 0:1] + np.cos(theta) * local[None, :, 0] - np.sin(theta) * local[None, :, 1])
+            ys.append(self.poses[:, 1:2] + np.sin(theta) * local[None, :, 0] + np.cos(theta) * local[None, :, 1])
+        sag = float(np.hypot(local[:, 0], local[:, 1]).max()) * (1 - math.cos(turn))
+        margin = 4 * p.lstep + (p.kernelSize + 2) * p.delta + sag
+        x, y = np.concatenate(xs, axis=1), np.concatenate(ys, axis=1)
+        return (float(x.min()) - margin, float(y.min()) - margin, float(x.max()) + margin, float(y.max()) + margin)
 
     def _search(self, fields: _Fields, poses: np.ndarray, local: np.ndarray, counted: np.ndarray) -> np.ndarray:
         """A correlative search around each particle's pose on the blurred walls (kame's, before
@@ -418,38 +432,47 @@ class _Fields:
     from each cell, the distance to the nearest cell at least _FULLNESS occupied within
     kernelSize cells."""
 
-    def __init__(self, grids: GridStack, poses: np.ndarray, margin: float, p: GmappingParams) -> None:
+    def __init__(self, grids: GridStack, bounds: tuple[float, float, float, float], p: GmappingParams) -> None:
         self.params = p
-        xs, ys = poses[:, 0], poses[:, 1]
-        rows, columns = grids.window(float(xs.min()) - margin, float(ys.min()) - margin,
-                                     float(xs.max()) + margin, float(ys.max()) + margin)
+        rows, columns = grids.window(*bounds)
         hits = grids.hits[:, rows, columns]
         visits = grids.visits[:, rows, columns]
         self.empty = hits.size == 0
         self.visited = visits > 0
         self.origin = (grids.origin[0] + columns.start * p.delta, grids.origin[1] + rows.start * p.delta)
         occupied = hits.astype(np.float32) > _FULLNESS * visits
+        # each cell's class: which distance, among those of the kernel's cells, to the nearest
+        # occupied cell of the kernel; the last class is none
         k = p.kernelSize
+        offsets = [(dr, dc) for dr in range(-k, k + 1) for dc in range(-k, k + 1)]
+        distances = sorted({math.hypot(dr, dc) * p.delta for dr, dc in offsets})
         padded = np.pad(occupied, ((0, 0), (k, k), (k, k)))
-        nearest = np.full(occupied.shape, np.inf, dtype=np.float32)
         height, width = occupied.shape[1:]
-        for dr in range(-k, k + 1):
-            for dc in range(-k, k + 1):
-                shifted = padded[:, k + dr:k + dr + height, k + dc:k + dc + width]
-                nearest = np.where(shifted, np.minimum(nearest, math.hypot(dr, dc) * p.delta), nearest)
-        self.score_field = np.exp(-(nearest ** 2) / (2 * p.sigma ** 2))  # 0 where no wall is near
+        self.classes: np.ndarray = np.full(occupied.shape, len(distances), dtype=np.uint8)
+        for index in range(len(distances) - 1, -1, -1):
+            near = np.zeros(occupied.shape, dtype=bool)
+            for dr, dc in offsets:
+                if abs(math.hypot(dr, dc) * p.delta - distances[index]) < 1e-12:
+                    near |= padded[:, k + dr:k + dr + height, k + dc:k + dc + width]
+            self.classes[near] = index
+        d = np.array(distances)
+        self.score_of = np.append(np.exp(-(d ** 2) / (2 * p.sigma ** 2)), 0.0)  # 0 where no wall is near
+        self.likelihood_of = np.append(-(d ** 2) / p.lsigma, _NULL_LIKELIHOOD / p.lsigma)
+        self.score_grid = self.score_of.astype(np.float32)[self.classes]
         # the correlative search's field: the walls blurred, about 1 on a wall's line
         blur = _COARSE_BLUR * p.sigma / p.delta
         self.coarse_field = np.minimum(1.0, ndimage.gaussian_filter(occupied.astype(np.float32), sigma=(0, blur, blur),
                                                                    mode="constant") * math.sqrt(2 * math.pi) * blur)
-        self.likelihood_field = np.where(np.isfinite(nearest), -(nearest ** 2) / p.lsigma,
-                                         _NULL_LIKELIHOOD / p.lsigma).astype(np.float32)
 
     def _points(self, poses: np.ndarray, local: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        c, s = np.cos(poses[:, 2:3]), np.sin(poses[:, 2:3])
-        gx = (poses[:, 0:1] + c * local[None, :, 0] - s * local[None, :, 1] - self.origin[0]) / self.params.delta
-        gy = (poses[:, 1:2] + s * local[None, :, 0] + c * local[None, :, 1] - self.origin[1]) / self.params.delta
-        return gx, gy
+        """The beams' ends from each pose, in cells of the window (float32: a cell's 1/1000th)."""
+        scale = 1.0 / self.params.delta
+        c = (np.cos(poses[:, 2:3]) * scale).astype(np.float32)
+        s = (np.sin(poses[:, 2:3]) * scale).astype(np.float32)
+        x0 = ((poses[:, 0:1] - self.origin[0]) * scale).astype(np.float32)
+        y0 = ((poses[:, 1:2] - self.origin[1]) * scale).astype(np.float32)
+        lx, ly = local[None, :, 0].astype(np.float32), local[None, :, 1].astype(np.float32)
+        return x0 + c * lx - s * ly, y0 + s * lx + c * ly
 
     def seen(self, poses: np.ndarray, local: np.ndarray, bearing: np.ndarray) -> np.ndarray:
         """Which beams of each particle, from its pose, pass through space its map has seen
@@ -475,8 +498,7 @@ class _Fields:
     def score(self, particle: np.ndarray, poses: np.ndarray, local: np.ndarray, counted: np.ndarray) -> np.ndarray:
         """gmapping's match score of each (particle, pose) over the beams counted for the particle:
         bilinear between cell centres."""
-        field = self.score_field
-        height, width = field.shape[1:]
+        height, width = self.classes.shape[1:]
         gx, gy = self._points(poses, local)
         gx, gy = gx - 0.5, gy - 0.5
         x0, y0 = np.floor(gx), np.floor(gy)
@@ -485,7 +507,7 @@ class _Fields:
         y0 = y0.astype(np.int64)
         inside = (x0 >= 0) & (y0 >= 0) & (x0 < width - 1) & (y0 < height - 1)
         x0, y0 = np.where(inside, x0, 0), np.where(inside, y0, 0)
-        flat = field.reshape(-1)
+        flat = self.score_grid.reshape(-1)
         base = particle[:, None] * (height * width) + y0 * width + x0
         v00, v01 = flat[base], flat[base + 1]
         v10, v11 = flat[base + width], flat[base + width + 1]
@@ -493,12 +515,12 @@ class _Fields:
         return np.asarray(np.where(inside & counted[particle], value, 0.0).sum(axis=1))
 
     def likelihood(self, particle: np.ndarray, poses: np.ndarray, local: np.ndarray) -> np.ndarray:
-        field = self.likelihood_field
-        height, width = field.shape[1:]
+        height, width = self.classes.shape[1:]
         gx, gy = self._points(poses, local)
         column, row = np.floor(gx).astype(np.int64), np.floor(gy).astype(np.int64)
         inside = (column >= 0) & (row >= 0) & (column < width) & (row < height)
-        value = field[particle[:, None], np.where(inside, row, 0), np.where(inside, column, 0)]
+        classes = self.classes[particle[:, None], np.where(inside, row, 0), np.where(inside, column, 0)]
+        value = self.likelihood_of[classes]
         null = _NULL_LIKELIHOOD / self.params.lsigma
         return np.asarray(np.where(inside, value, null).sum(axis=1), dtype=np.float64)
 
