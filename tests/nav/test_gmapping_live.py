@@ -82,3 +82,28 @@ def test_gmapping_demo_maps_the_corridor_and_map_saver_keeps_it(tmp_path: Path) 
         assert cell(2.0, -3.0) == 254  # the room's floor before the box
         demo.stop()
         assert demo.popen.returncode == 0
+
+
+def test_turtlebot_navigation_launch_files_and_a_bad_parameter(tmp_path: Path) -> None:
+    with master(tmp_path) as sim:
+        bad = sim.run("rosrun", "gmapping", "slam_gmapping", "_particles:=0", check=False)
+        assert bad.returncode == 1 and "particles must be at least 1" in bad.stdout + bad.stderr
+        assert "Traceback" not in bad.stdout + bad.stderr
+        world = Proc([str(BIN / "roslaunch"), "turtlebot_gazebo", "turtlebot_world.launch", f"world_file:={OFFICE}"],
+                     sim.env, cwd=sim.home)
+        sim.procs.append(world)
+        world.wait_line("Simulating [robot_0]", timeout=30)
+        amcl = Proc([str(BIN / "roslaunch"), "turtlebot_navigation", "amcl_demo.launch", f"map_file:={OFFICE}"],
+                    sim.env, cwd=sim.home)
+        sim.procs.append(amcl)
+        found = pose_of(echo(sim, "/amcl_pose"))
+        assert math.hypot(found[0], found[1]) < 0.5  # localised on the office's map, where it starts
+        amcl.stop()
+        assert amcl.popen.returncode == 0
+        mapping = Proc([str(BIN / "roslaunch"), "turtlebot_navigation", "gmapping_demo.launch"], sim.env, cwd=sim.home)
+        sim.procs.append(mapping)
+        mapping.wait_line("Initialization complete", timeout=60)
+        assert echo(sim, "/map", "--noarr")["header"]["frame_id"] == "map"
+        assert "/move_base" in sim.run("rosnode", "list").stdout
+        mapping.stop()
+        assert mapping.popen.returncode == 0
