@@ -256,14 +256,14 @@ class Gmapping:
 
     # ---------------------------------------------------------------- the scan matcher
 
-    def _beams(self, ranges: np.ndarray, angles: np.ndarray, range_max: float) -> np.ndarray:
+    def _beams(self, ranges: np.ndarray, range_max: float) -> np.ndarray:
         """Mask of the beams gmapping reads at all (within maxRange, with a return)."""
         limit = self.params.maxRange if self.params.maxRange > 0 else range_max
         return np.asarray(np.isfinite(ranges) & (ranges > 0) & (ranges <= limit))
 
     def _match(self, ranges: np.ndarray, angles: np.ndarray, range_max: float) -> None:
         p = self.params
-        usable = self._beams(ranges, angles, range_max) & (ranges < p.maxUrange)
+        usable = self._beams(ranges, range_max) & (ranges < p.maxUrange)
         index = np.flatnonzero(usable)[:: p.lskip + 1]
         if index.size == 0:
             return
@@ -363,7 +363,7 @@ class Gmapping:
         """Each particle's map takes the scan from the particle's pose: the cells each beam
         crosses are visited, the one it ends in (within maxUrange) is hit and visited."""
         p = self.params
-        readable = self._beams(ranges, angles, range_max)
+        readable = self._beams(ranges, range_max)
         if not readable.any():
             return
         reach = np.minimum(ranges[readable], p.maxUrange)
