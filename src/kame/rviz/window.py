@@ -293,7 +293,7 @@ class RvizWindow(QMainWindow):
         self.source = source
         self.meshes = MeshLibrary(source.find_package if source is not None else None)
         self.config_path = config_path
-        self.setWindowTitle(f"{config_path or 'default.rviz'} - RViz")
+        self.setWindowTitle(rviz_config.window_title(config_path))
         self.view = RenderView()
         self.view.camera = config.camera
         self.view.background = config.background
@@ -384,7 +384,7 @@ class RvizWindow(QMainWindow):
         self.config.camera = self.view.camera
         rviz_config.save(self.config, path)
         self.config_path = path
-        self.setWindowTitle(f"{path} - RViz")
+        self.setWindowTitle(rviz_config.window_title(path))
 
     def set_view(self, kind: str) -> None:
         self.view.camera.kind = kind
