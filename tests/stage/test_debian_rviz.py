@@ -1,20 +1,20 @@
-"""Debian's real rviz 1.14 (the reference peer) shows kame's TurtleBot world: on a private Xvfb,
-against kame's master running `turtlebot_world.launch gui:=false`, map_server on the same world and
-map -> odom from tf2_ros's static_transform_publisher, rviz draws (read back from the screen) the
-map's walls and free cells where the map file has them, the scan's points on the walls, and the
-robot at its pose; its Displays panel shows no warning or error, and it logs no error to /rosout.
+"""Debian's real rviz 1.14 (the reference peer) and kame's rviz show kame's TurtleBot world alike:
+on a private Xvfb, against kame's master running `turtlebot_world.launch gui:=false`, map_server
+on the same world and map -> odom from tf2_ros's static_transform_publisher, each draws (read back
+from the screen) the map's walls and free cells where the map file has them, the scan's points on
+the walls and the robot at its pose; its Displays panel first flags the Map and the scan (no map,
+no map -> odom yet: their names in rviz's warning and error colours), then flags nothing; and
+Debian's rviz logs no error to /rosout.
 
 The config (tests/data/rviz/turtlebot_world_top_down.rviz) is a top-down orthographic view of the
 map frame at 50 pixels a metre, with the scan in a green no other display uses; the robot model has
-no material, which rviz draws in its default red. kame's own rviz on the same world:
+no material, which rviz draws in its default red. kame's rviz with the course's own configs:
 tests/rviz/test_turtlebot_launchers.py."""
 
 from __future__ import annotations
 
 import math
 import os
-import re
-import subprocess
 import time
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -27,19 +27,16 @@ import yaml
 from tests.support import REPO, Proc, have_debian_ros
 from tests.turtlesim.sim import BIN, master
 
-RVIZ = "/usr/bin/rviz"
+np = pytest.importorskip("numpy", reason="the 2-D world needs kame[sim]")
+
+DEBIAN_RVIZ = "/usr/bin/rviz"
 CONFIG = REPO / "tests" / "data" / "rviz" / "turtlebot_world_top_down.rviz"
 WORLD = REPO / "src" / "kame" / "share" / "turtlebot_gazebo" / "worlds" / "playground.yaml"
 SCALE = 50.0  # pixels a metre, the config's TopDownOrtho Scale
+BACKGROUND = (48, 48, 48)  # the config's Background Color
 # Mesa's GLSL linker under Xvfb complains of rviz's own map shader (indexed_8bit_image) and rviz
 # logs it as an error; the map is drawn all the same (checked pixel by pixel below)
 MESA_SHADER_COMPLAINT = "GLSL link result"
-
-pytestmark = [
-    pytest.mark.skipif(not have_debian_ros(), reason="Debian's ROS 1 is not installed"),
-    pytest.mark.skipif(not os.path.exists(RVIZ),
-                       reason="Debian's rviz is not installed (apt-get install rviz; scripts/install-ros-peers.sh)"),
-]
 
 
 @dataclass(frozen=True)
@@ -50,52 +47,62 @@ class Area:
     height: int
 
 
-def render_area(display: str, window_id: str) -> Area | None:
-    """Where rviz's Ogre render window sits in its main window: the largest nameless descendant."""
-    tree = subprocess.run(["xwininfo", "-tree", "-id", window_id], env=dict(os.environ, DISPLAY=display),
-                          capture_output=True, text=True, timeout=10).stdout
-    found = [Area(int(x), int(y), int(w), int(h)) for w, h, x, y in
-             re.findall(r"\(has no name\): \(\)\s+(\d+)x(\d+)\+-?\d+\+-?\d+\s+\+(-?\d+)\+(-?\d+)", tree)]
-    return max(found, key=lambda a: a.width * a.height, default=None)
+def pixels(shot: Any) -> Any:
+    """A screenshot as an (height, width, 3) array of red, green, blue."""
+    raw = np.frombuffer(shot.data[:shot.height * shot.bytes_per_line], dtype=np.uint8)
+    rows = raw.reshape(shot.height, shot.bytes_per_line)[:, :shot.width * shot.bytes_per_pixel]
+    pixel = rows.reshape(shot.height, shot.width, shot.bytes_per_pixel)
+    if shot.little_endian:  # B, G, R(, pad)
+        return pixel[:, :, 2::-1][:, :, :3].astype(np.int32)
+    return pixel[:, :, -3:].astype(np.int32)
 
 
-def is_green(rgb: tuple[int, int, int]) -> bool:
-    return rgb[1] > 180 and rgb[0] < 100 and rgb[2] < 100
+def render_area(image: Any) -> Area | None:
+    """Where the 3-D view is: the columns and rows that show the background for over 100 pixels
+    (the map leaves a margin of it on every side; the Displays panel's colour swatch is smaller)."""
+    background = (image == BACKGROUND).all(axis=2)
+    columns = np.flatnonzero(background.sum(axis=0) > 100)
+    rows = np.flatnonzero(background.sum(axis=1) > 100)
+    if not len(columns) or not len(rows):
+        return None
+    return Area(int(columns[0]), int(rows[0]), int(columns[-1] + 1 - columns[0]), int(rows[-1] + 1 - rows[0]))
 
 
-def is_red(rgb: tuple[int, int, int]) -> bool:
-    return rgb[0] > 120 and rgb[1] < 60 and rgb[2] < 60
+def green(image: Any) -> Any:
+    return (image[:, :, 1] > 180) & (image[:, :, 0] < 100) & (image[:, :, 2] < 100)
 
 
-def is_status_colour(rgb: tuple[int, int, int]) -> bool:
-    """The orange (warning) or red (error) rviz writes a display's name in; Ok names are blue."""
-    r, g, b = rgb
-    return r > 150 and r - b > 90 and g < 170
+def red(image: Any) -> Any:
+    return (image[:, :, 0] > 120) & (image[:, :, 1] < 60) & (image[:, :, 2] < 60)
 
 
-def test_debian_rviz_shows_the_robot_scan_and_map(tmp_path: Path) -> None:
-    pytest.importorskip("numpy", reason="the 2-D world needs kame[sim]")
+def status_coloured(image: Any) -> Any:
+    """The orange (warning) and red (error) rviz writes a flagged display's name in."""
+    r, g, b = image[:, :, 0], image[:, :, 1], image[:, :, 2]
+    return (r > 150) & (r - b > 90) & (g < 170)
+
+
+def viewer_command(viewer: str) -> list[str]:
+    if viewer == "debian":
+        if not have_debian_ros():
+            pytest.skip("Debian's ROS 1 is not installed")
+        if not os.path.exists(DEBIAN_RVIZ):
+            pytest.skip("Debian's rviz is not installed (apt-get install rviz; scripts/install-ros-peers.sh)")
+        return [DEBIAN_RVIZ, "-d", str(CONFIG)]
+    pytest.importorskip("OpenGL", reason="kame's rviz draws through PyOpenGL (pip install 'kame[gui]')")
+    pytest.importorskip("PySide6")
+    return [str(BIN / "rosrun"), "rviz", "rviz", "-d", str(CONFIG)]
+
+
+@pytest.mark.parametrize("viewer", ["debian", "kame"])
+def test_rviz_shows_the_robot_scan_and_map(tmp_path: Path, viewer: str) -> None:
+    command = viewer_command(viewer)
     from kame.stage import mapfile
     from tests.turtlesim.xserver import find_window, screenshot, xvfb
 
     description = mapfile.parse_description(WORLD.read_text())
-    image = Path(description.image_path(str(WORLD)))
-    grid = mapfile.load(description, image.read_bytes(), image.name)
-
-    def cell(x: float, y: float) -> tuple[int, int]:
-        return (math.floor((x - grid.origin[0]) / grid.resolution), math.floor((y - grid.origin[1]) / grid.resolution))
-
-    def uniform_around(x: float, y: float) -> int | None:
-        """The cells' value around (x, y) when its 3 x 3 cells agree (off the walls' pixel-rounded edges)."""
-        col, row = cell(x, y)
-        if not (1 <= col < grid.width - 1 and 1 <= row < grid.height - 1):
-            return None
-        values = {int(v) for v in grid.cells[row - 1:row + 2, col - 1:col + 2].flat}
-        return values.pop() if len(values) == 1 else None
-
-    def near_wall(x: float, y: float, cells: int = 3) -> bool:
-        col, row = cell(x, y)
-        return bool((grid.cells[max(row - cells, 0):row + cells + 1, max(col - cells, 0):col + cells + 1] == 100).any())
+    image_file = Path(description.image_path(str(WORLD)))
+    grid = mapfile.load(description, image_file.read_bytes(), image_file.name)
 
     with master(tmp_path) as sim, xvfb("1024x768") as display:
         rosout = Proc([str(BIN / "rostopic"), "echo", "/rosout"], sim.env, cwd=sim.home)
@@ -104,82 +111,91 @@ def test_debian_rviz_shows_the_robot_scan_and_map(tmp_path: Path) -> None:
                      cwd=sim.home)
         sim.procs.append(world)
         world.wait_line("Simulating [robot_0]", timeout=60)
-        # Debian's rviz under the system's ROS: its own environment, kame's master, the private display
-        rviz_env = dict(sim.env, DISPLAY=display, LIBGL_ALWAYS_SOFTWARE="1")
-        rviz = Proc([RVIZ, "-d", str(CONFIG)], rviz_env, cwd=sim.home)
+        # Debian's rviz runs under the system's ROS with this environment: kame's master, the display
+        rviz = Proc(command, dict(sim.env, DISPLAY=display, LIBGL_ALWAYS_SOFTWARE="1"), cwd=sim.home)
         sim.procs.append(rviz)
 
         def wait_for(what: str, predicate: Callable[[], Any], timeout: float) -> Any:
             deadline = time.monotonic() + timeout
             while time.monotonic() < deadline:
                 found = predicate()
-                if found:
+                if found is not None and found is not False:
                     return found
                 assert rviz.popen.poll() is None, f"rviz exited:\n{''.join(rviz.out)}\n{''.join(rviz.err)}"
                 time.sleep(0.5)
             raise AssertionError(f"timed out waiting for {what}:\n{''.join(rviz.out)}\n{''.join(rviz.err)}")
 
-        title = f"{CONFIG.name} - RViz"
-        window = wait_for("rviz's window", lambda: find_window(display, title), timeout=120)
-        area = wait_for("rviz's render window", lambda: render_area(display, window.id), timeout=60)
-        names = Area(40, area.y, max(area.x - 200, 100), area.height)  # the Displays tree's name column
+        window = wait_for("rviz's window", lambda: find_window(display, f"{CONFIG.name} - RViz"), timeout=120)
 
-        def statuses_shown() -> bool:
-            shot = screenshot(display, window.id)
-            return any(is_status_colour(rgb) for rgb in shot.colours(names.x, names.y, names.x + names.width,
-                                                                      names.y + names.height))
+        def shown() -> Any:
+            return pixels(screenshot(display, window.id))
 
-        # no map yet and no map -> odom: the Map and the scan are flagged (which the check below must not see)
-        wait_for("rviz to flag the displays that lack the map and map -> odom", statuses_shown, timeout=60)
+        area = wait_for("rviz's 3-D view", lambda: render_area(shown()), timeout=60)
+
+        def flagged(image: Any) -> bool:  # in the Displays tree's name column
+            return bool(status_coloured(image[area.y:area.y + area.height, 40:max(area.x - 160, 140)]).any())
+
+        wait_for("rviz to flag the displays that lack the map and map -> odom", lambda: flagged(shown()), timeout=60)
 
         sim.procs.append(Proc([str(BIN / "rosrun"), "map_server", "map_server", str(WORLD)], sim.env, cwd=sim.home))
         sim.procs.append(Proc([str(BIN / "rosrun"), "tf2_ros", "static_transform_publisher",
                                "0", "0", "0", "0", "0", "0", "map", "odom"], sim.env, cwd=sim.home))
-        centre_x, centre_y = area.x + area.width / 2, area.y + area.height / 2
-
-        def world_point(px: int, py: int) -> tuple[float, float]:
-            return (px + 0.5 - centre_x) / SCALE, (centre_y - py - 0.5) / SCALE
 
         def drawn() -> Any:
-            """The screenshot once rviz shows no flagged display and draws the scan and the robot."""
-            if statuses_shown():
+            """The view once nothing is flagged and the scan and the robot show."""
+            image = shown()
+            view = image[area.y:area.y + area.height, area.x:area.x + area.width]
+            if flagged(image) or green(view).sum() < 50 or red(view).sum() < 50:
                 return None
-            shot = screenshot(display, window.id)
-            pixels = [(px, py) for px in range(area.x, area.x + area.width)
-                      for py in range(area.y, area.y + area.height)]
-            green = [p for p in pixels if is_green(shot.rgb(*p))]
-            red = [p for p in pixels if is_red(shot.rgb(*p))]
-            return (shot, green, red) if len(green) > 50 and len(red) > 50 else None
+            return view
 
-        shot, green, red = wait_for("rviz to draw the map, the scan and the robot", drawn, timeout=90)
+        view = wait_for("rviz to draw the map, the scan and the robot", drawn, timeout=90)
 
-        # the robot: a disc of the TurtleBot's radius (0.177 m) at the origin, where the world starts it
-        mean_x = sum(world_point(*p)[0] for p in red) / len(red)
-        mean_y = sum(world_point(*p)[1] for p in red) / len(red)
-        assert abs(mean_x) < 0.06 and abs(mean_y) < 0.06, (mean_x, mean_y)
-        disc = math.pi * (0.177 * SCALE) ** 2
-        assert 0.6 * disc < len(red) < 1.6 * disc, (len(red), disc)
-        # the scan: every green point lies on a wall of the map
-        off_walls = [p for p in green if not near_wall(*world_point(*p))]
-        assert len(off_walls) <= len(green) // 50, (len(off_walls), len(green), off_walls[:10])
-        # the map: walls black and free cells white, sampled every 5 pixels away from walls' edges
-        checked = 0
-        for px in range(area.x + 2, area.x + area.width, 5):
-            for py in range(area.y + 2, area.y + area.height, 5):
-                rgb = shot.rgb(px, py)
-                expected = uniform_around(*world_point(px, py))
-                if expected is None or is_green(rgb) or is_red(rgb):
-                    continue
-                checked += 1
-                if expected == 100:
-                    assert max(rgb) < 40, (px, py, rgb, "a wall")
-                elif expected == 0:
-                    assert min(rgb) > 215, (px, py, rgb, "free")
-        assert checked > 0.8 * (grid.width * grid.resolution * SCALE / 5) ** 2, checked
+    # each pixel's centre in the map frame, and the map cell under it
+    ys, xs = np.mgrid[0:area.height, 0:area.width]
+    world_x = (xs + 0.5 - area.width / 2) / SCALE
+    world_y = (area.height / 2 - ys - 0.5) / SCALE
+    cols = np.floor((world_x - grid.origin[0]) / grid.resolution).astype(int)
+    rows = np.floor((world_y - grid.origin[1]) / grid.resolution).astype(int)
+    inside = (cols >= 1) & (cols < grid.width - 1) & (rows >= 1) & (rows < grid.height - 1)
 
-    logged = [entry for document in "".join(rosout.out).split("\n---\n") if document.strip()
-              for entry in [yaml.safe_load(document)] if str(entry.get("name", "")).startswith("/rviz")]
-    assert logged, "".join(rosout.out)  # rviz's log reaches /rosout, so its errors would be seen
-    errors = [entry["msg"] for entry in logged
-              if int(entry["level"]) >= 8 and MESA_SHADER_COMPLAINT not in str(entry["msg"])]
-    assert errors == [], errors
+    def around(cells: int, value: int) -> Any:
+        """Per pixel: is any map cell within `cells` of the one under it `value`?"""
+        padded = np.pad(grid.cells == value, cells)
+        near = np.zeros(grid.cells.shape, dtype=bool)
+        for dr in range(2 * cells + 1):
+            for dc in range(2 * cells + 1):
+                near |= padded[dr:dr + grid.height, dc:dc + grid.width]
+        return np.where(inside, near[rows.clip(0, grid.height - 1), cols.clip(0, grid.width - 1)], False)
+
+    # the robot: a red disc of the TurtleBot's radius (0.177 m) at the origin, where the world starts it
+    robot = red(view)
+    assert abs(world_x[robot].mean()) < 0.06 and abs(world_y[robot].mean()) < 0.06, (world_x[robot].mean(),
+                                                                                      world_y[robot].mean())
+    disc = math.pi * (0.177 * SCALE) ** 2
+    assert 0.6 * disc < robot.sum() < 1.6 * disc, (robot.sum(), disc)
+    # the scan: its green points lie on the map's walls
+    scan = green(view)
+    off_walls = scan & ~around(3, 100)
+    assert off_walls.sum() <= scan.sum() // 50, (off_walls.sum(), scan.sum())
+    # the map: black over walls and white over free cells, away from the edges between them
+    drawn_over = scan | robot  # and their anti-aliased edges, a few pixels wide
+    for _ in range(3):
+        drawn_over = drawn_over | np.roll(drawn_over, 1, 0) | np.roll(drawn_over, -1, 0)
+        drawn_over = drawn_over | np.roll(drawn_over, 1, 1) | np.roll(drawn_over, -1, 1)
+    plain = ~drawn_over
+    walls = plain & around(1, 100) & ~around(1, 0) & ~around(1, -1)
+    free = plain & around(1, 0) & ~around(1, 100) & ~around(1, -1)
+    assert walls.sum() > 5000 and free.sum() > 100_000, (walls.sum(), free.sum())
+    assert (view[walls].max(axis=1) < 40).all(), view[walls][view[walls].max(axis=1) >= 40][:5]
+    assert (view[free].min(axis=1) > 215).all(), view[free][view[free].min(axis=1) <= 215][:5]
+    # outside the map: the background
+    assert (view[~inside & ~around(0, 100)] == BACKGROUND).all(axis=1).mean() > 0.95
+
+    if viewer == "debian":
+        logged = [entry for document in "".join(rosout.out).split("\n---\n") if document.strip()
+                  for entry in [yaml.safe_load(document)] if str(entry.get("name", "")).startswith("/rviz")]
+        assert logged, "".join(rosout.out)  # rviz's log reaches /rosout, so its errors would be seen
+        errors = [entry["msg"] for entry in logged
+                  if int(entry["level"]) >= 8 and MESA_SHADER_COMPLAINT not in str(entry["msg"])]
+        assert errors == [], errors
