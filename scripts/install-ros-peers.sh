@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs real ROS 1 (Debian's ros_comm 1.15.15) as a test peer for the interop tests, and the
 # shells and terminal multiplexer some end-to-end tests drive, iproute2 and
-# sshd for the tests on several hosts.
+# sshd for the tests on several hosts, and Debian's rviz (the reference viewer of kame's worlds).
 # It runs under the system interpreter (/usr/bin/python3) and is never a kame dependency.
 # Does nothing where apt is missing or we are not root: the interop tests then skip.
 set -euo pipefail
@@ -23,6 +23,7 @@ packages=(
   zsh tmux  # the shell-integration and terminal (teleop) tests drive these
   iproute2  # ip netns: the several-hosts tests (tests/hosts) run each host in a network namespace
   openssh-server  # sshd, run by tests/hosts in a namespace for roslaunch's <machine> nodes
+  rviz  # Debian's rviz 1.14 on Xvfb, shown kame's TurtleBot world (tests/stage/test_debian_rviz.py)
 )
 if ! command -v apt-get >/dev/null 2>&1 || [ "$(id -u)" != 0 ]; then
   echo "install-ros-peers: no apt-get or not root; interop tests with real ROS 1 will be skipped" >&2
