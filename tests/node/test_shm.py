@@ -196,9 +196,10 @@ def segments_of(pid: int) -> list[str]:
 def test_no_segment_is_left_when_either_side_is_killed(master_uri: str, tmp_path: Path, killed: str) -> None:
     env = {**ros_env(tmp_path, master_uri), "KAME_SHM": "1"}
     topic = f"/killed_{killed}"
+    logs = {role: open(tmp_path / f"{role}.err", "w") for role in ("publisher", "subscriber")}
     procs = {role: subprocess.Popen([sys.executable, "-c", textwrap.dedent(code), master_uri, topic,
                                      f"__name:=/{role}_{killed}"], env=env,
-                                    stdout=subprocess.PIPE, text=True)
+                                    stdout=subprocess.PIPE, stderr=logs[role], text=True)
              for role, code in (("publisher", PUBLISHER), ("subscriber", SUBSCRIBER))}
     try:
         sub_out = procs["subscriber"].stdout
@@ -206,8 +207,8 @@ def test_no_segment_is_left_when_either_side_is_killed(master_uri: str, tmp_path
         line: list[str] = []
         reader = threading.Thread(target=lambda: line.append(sub_out.readline()), daemon=True)
         reader.start()
-        reader.join(30)
-        assert line == ["receiving\n"]
+        reader.join(60)
+        assert line == ["receiving\n"], {role: (tmp_path / f"{role}.err").read_text() for role in logs}
         victim, survivor = procs[killed], procs["subscriber" if killed == "publisher" else "publisher"]
         victim.send_signal(signal.SIGKILL)
         victim.wait()
@@ -223,4 +224,6 @@ def test_no_segment_is_left_when_either_side_is_killed(master_uri: str, tmp_path
             proc.wait()
             if proc.stdout is not None:
                 proc.stdout.close()
+        for log in logs.values():
+            log.close()
     assert not segments_of(procs["publisher"].pid)

@@ -9,6 +9,9 @@ Rules:
   broke) is unlinked by the publisher when the connection ends. What a SIGKILL between
   creating and announcing a segment would leave, the next kame process to create one on this
   host sweeps: names of its pid namespace whose process is gone.
+- A connection has one ring at a time: created for its first large message (four of it, 1 MiB
+  at least), replaced by a larger one when a message outgrows it or when it fills up (doubling
+  up to GROW_TO, 8 MiB, or four of the largest message): what loopback socket buffers would hold.
 - `ShmSender` has `Sender`'s shape (kame.net.stream): sending never blocks and never waits on
   the subscriber; a message that finds no room in the ring waits in a backlog of at most
   max_frames messages (the publisher's queue_size) that drops the oldest, as over TCP. The
@@ -41,6 +44,10 @@ log = logging.getLogger("kame.net.shm")
 SHM_DIR = "/dev/shm"
 INLINE_BELOW = 16 * 1024
 MIN_CAPACITY = 1 << 20
+#: A ring that fills up grows (doubling) up to this, or four of its largest message: what a
+#: loopback socket's buffers would hold, so a subscriber's short stall costs no messages here
+#: either.
+GROW_TO = 8 << 20
 MAX_CAPACITY = 1 << 31
 _IOV_MAX = 512
 _NAME = re.compile(r"kame\.(\d+)\.(\d+)\.[0-9a-f]+")
@@ -270,6 +277,9 @@ class ShmSender:
             ring = self._ring_for(length)
             if ring is not None:
                 offset = ring.place(length)
+                if offset is None and ring.capacity < max(GROW_TO, _capacity_for(length)):
+                    ring = self._new_segment(2 * ring.capacity) or ring
+                    offset = ring.place(length)
                 if offset is None:
                     self.bytes_sent -= length + 4
                     return None
@@ -298,9 +308,22 @@ class ShmSender:
         need = 2 * (length + shmros.ALIGN)
         if ring is not None and (ring.capacity >= need or ring.capacity >= MAX_CAPACITY):
             return ring if length + shmros.ALIGN <= ring.capacity else None
-        segment = create_segment(_capacity_for(length))
-        if segment is None:
+        fresh = self._new_segment(_capacity_for(length))
+        if fresh is None:
             return ring if ring is not None and length + shmros.ALIGN <= ring.capacity else None
+        return fresh
+
+    def _new_segment(self, capacity: int) -> shmros.Ring | None:
+        """Switch to a new segment (the subscriber maps it when the MAP record reaches it;
+        messages still in the old one stay readable in its mapping)."""
+        segment = create_segment(min(capacity, MAX_CAPACITY))
+        if segment is None:
+            return None
+        if self._pending_map is not None:  # the last new segment was never announced: forget it
+            self._pending_map = None
+            self._records -= 1
+            self._inflight.pop()
+            unlink(self._announced.pop(self._records))
         if self._segment is not None:
             self._segment.close()  # the subscriber keeps its own mapping as long as it reads it
         self._segment = segment
