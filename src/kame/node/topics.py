@@ -182,9 +182,7 @@ class Publication:
         `use_shm`: it offered shared memory and may have it (kame.protocol.shmros)."""
         shm_reply = {shmros.HEADER_FIELD: shmros.ACCEPTED} if use_shm else {}
         write_header(sock, {**accepted.reply, **self.extra_headers, **shm_reply})
-        # with shared memory the socket carries small records (descriptors, acknowledgements)
-        # that must not wait for Nagle's algorithm and the peer's delayed ACK
-        set_nodelay(sock, use_shm or (self.tcp_nodelay if accepted.tcp_nodelay is None else accepted.tcp_nodelay))
+        set_nodelay(sock, self.tcp_nodelay if accepted.tcp_nodelay is None else accepted.tcp_nodelay)
         set_keepalive(sock)
         peer = peer_of(sock)
         link_box: list[SubscriberLink] = []
@@ -382,7 +380,7 @@ class PublisherLink:
             sock.close()
             raise _Refused(f"md5sum mismatch: we expect [{sub.type}/{sub.md5sum}], "
                            f"the publisher sends [{reply.type}/{reply.md5sum}]")
-        set_nodelay(sock, sub.tcp_nodelay or bool(offer and shmros.accepted(header)))
+        set_nodelay(sock, sub.tcp_nodelay)
         set_keepalive(sock)
         self.header = header
         self.callerid = header.get("callerid", "")
