@@ -130,3 +130,15 @@ def test_unadvertising_ends_the_link_and_advertising_again_makes_a_new_one(make_
     assert wait_until(lambda: len(pub.links) == 1)
     pub.publish_message(String("second life"))
     assert wait_until(lambda: [m.data for m in got.objects] == ["second life"])
+
+
+def test_unsubscribing_in_the_node_ends_the_publications_link(make_node: Any) -> None:
+    node = make_node("/unsubscriber")
+    pub = node.advertise("/dropped", *STRING, queue_size=10)
+    got = Received()
+    got.subscribe(node, "/dropped")
+    assert wait_until(lambda: len(pub.links) == 1)
+    node.unsubscribe("/dropped")
+    assert pub.links == [] and pub.local_links == 0
+    pub.publish_message(String("nobody"))
+    assert got.objects == []

@@ -31,7 +31,7 @@ from kame.protocol import tcpros
 
 if TYPE_CHECKING:
     from kame.net.stream import Buffer
-    from kame.node.topics import Subscription
+    from kame.node.topics import Publication, Subscription
 
 log = logging.getLogger("kame.topics")
 
@@ -128,6 +128,7 @@ class LocalPublisherLink:
         self.latched: bytes | None = None
         self.latched_object: Any = None
         self._sender: LocalSender | None = None
+        self._publication: tuple[Publication, SubscriberLink] | None = None
         self._lock = threading.Lock()
 
     def run(self) -> None:
@@ -153,6 +154,7 @@ class LocalPublisherLink:
             if self.closed:
                 return
             self._sender = sender
+            self._publication = (pub, link)
             self.connected = True
         sender.start()
         if not pub.add_link(link, sender.send_message if sender._takes is not None else None):
@@ -195,6 +197,9 @@ class LocalPublisherLink:
     def close(self) -> None:
         with self._lock:
             self.closed = True
-            sender = self._sender
-        if sender is not None:
+            sender, publication = self._sender, self._publication
+        if publication is not None:
+            pub, link = publication
+            pub.drop_link(link)  # the publication forgets us (and closes the sender)
+        elif sender is not None:
             sender.close()

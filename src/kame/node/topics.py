@@ -122,6 +122,7 @@ class Publication:
         self.links: list[SubscriberLink] = []
         self.latched: list[Any] | None = None
         self.latched_object: Any = None  # the latched message as published, for subscribers in this node
+        self.local_links = 0  # how many of links are subscribers in this node
         # next() of a count is one call that the interpreter does not interrupt: publishers on
         # several threads still number 1, 2, 3, ... without a lock's 100 ns on every publish
         self._seqs = itertools.count(1)
@@ -151,6 +152,11 @@ class Publication:
         """Send a message object: as that object to subscribers in this node that take it
         (kame.node.local), serialized once for the others and for latching. A message that
         cannot be serialized raises before anyone gets it, when anyone needs its bytes."""
+        if not self.local_links:  # the usual case: no subscriber in this node
+            self.publish_frame(serialize_frame(msg))
+            if self.latch:
+                self.latched_object = msg
+            return
         links = self.links
         frame: list[Any] | None = None
         if self.latch or any(link.local is None or not link.local.takes(msg) for link in links):
@@ -189,7 +195,7 @@ class Publication:
 
         def broken(exc: BaseException | None) -> None:
             if link_box:
-                self._drop(link_box[0])
+                self.drop_link(link_box[0])
 
         kind = shm.ShmSender if use_shm else Sender
         if self.queue_size:
@@ -209,6 +215,7 @@ class Publication:
                 link.close()
                 return False
             self.links = [*self.links, link]
+            self.local_links += link.local is not None
             latched, latched_object = self.latched, self.latched_object
         if latched_message is not None and latched_object is not None:
             latched_message(latched_object)
@@ -231,11 +238,13 @@ class Publication:
         with self._lock:
             self.on_connect = [c for c in self.on_connect if c is not callback]
 
-    def _drop(self, link: SubscriberLink) -> None:
+    def drop_link(self, link: SubscriberLink) -> None:
+        """End the connection of one subscriber (it went away, or it was in this node and unsubscribed)."""
         with self._lock:
             if link not in self.links:
                 return
             self.links = [other for other in self.links if other is not link]
+            self.local_links -= link.local is not None
         link.close()
         for callback in self.on_disconnect:
             callback(link)
@@ -244,6 +253,7 @@ class Publication:
         with self._lock:
             self.closed = True
             links, self.links = self.links, []
+            self.local_links = 0
         for link in links:
             link.close(shut=True)
 
