@@ -281,17 +281,17 @@ class ShmSender:
                 return
             self.frames_sent += 1
             if self._backlog or self._out:
+                # behind others: the flusher already waits for the socket (out) or acks (backlog)
                 self._enqueue(payload, length, borrowed)
-                waiting = True
-            else:
-                record = self._commit(payload, length)
-                if record is None:
-                    self._enqueue(payload, length, borrowed)
-                    return
-                self._out = record
-                waiting = not self._write()
-                if waiting and borrowed:
-                    self._out = [memoryview(bytes(view)) for view in self._out]
+                return
+            record = self._commit(payload, length)
+            if record is None:
+                self._enqueue(payload, length, borrowed)
+                return
+            self._out = record
+            waiting = not self._write()
+            if waiting and borrowed:
+                self._out = [memoryview(bytes(view)) for view in self._out]
         if self._failure is not None:
             self._report_failure()
         elif waiting:

@@ -66,6 +66,9 @@ class Flusher:
         self._selector = selectors.DefaultSelector()
         self._wake_r, self._wake_w = socket.socketpair()
         self._wake_r.setblocking(False)
+        # a full wake-up socket already wakes the thread: never block on it (the thread itself
+        # calls watch(), and would wait on itself)
+        self._wake_w.setblocking(False)
         self._selector.register(self._wake_r, selectors.EVENT_READ, None)
         self._lock = threading.Lock()
         self._changes: dict[Flushable, int] = {}  # sender -> wanted events (0: forget it)
