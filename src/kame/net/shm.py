@@ -274,6 +274,9 @@ class ShmSender:
 
     def send_parts(self, parts: Sequence[Buffer], borrowed: bool = False) -> None:
         """Queue one TCPROS frame (its 4-byte length prefix first, in the first buffer)."""
+        if len(parts) == 1 and len(parts[0]) - 4 < self.inline_below:
+            self._send_small(parts[0], borrowed)
+            return
         payload = _payload(parts)
         length = sum(len(p) for p in payload)
         with self._lock:
@@ -295,6 +298,32 @@ class ShmSender:
         if self._failure is not None:
             self._report_failure()
         elif waiting:
+            self._flusher.want_write(self)
+
+    def _send_small(self, frame: Buffer, borrowed: bool) -> None:
+        """A small message in one buffer (the usual case: a ping, a pose): straight onto the
+        socket as an INLINE record, as Sender.send would, when nothing waits before it."""
+        with self._lock:
+            if self.closed:
+                return
+            self.frames_sent += 1
+            if self._backlog or self._out:
+                self._enqueue([memoryview(frame)[4:]], len(frame) - 4, borrowed)
+                return
+            record = shmros.inline_prefix(len(frame) - 4) + frame[4:]
+            self.bytes_sent += len(frame)
+            try:
+                sent = self.sock.send(record)
+            except (BlockingIOError, InterruptedError):
+                sent = 0
+            except OSError as exc:
+                self._fail(exc)
+                sent = len(record)
+            if sent < len(record):
+                self._out = [memoryview(record)[sent:]]
+        if self._failure is not None:
+            self._report_failure()
+        elif sent < len(record):
             self._flusher.want_write(self)
 
     def _enqueue(self, payload: list[Buffer], length: int, borrowed: bool) -> None:
@@ -535,6 +564,9 @@ class ShmReceiver:
     def payloads(self, frames: list[memoryview]) -> list[memoryview]:
         out: list[memoryview] = []
         for frame in frames:
+            if len(frame) and frame[0] == shmros.INLINE:  # the usual small message, decoded here
+                out.append(frame[1:])
+                continue
             record = shmros.decode(frame)
             if isinstance(record, memoryview):
                 out.append(record)
