@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import struct
 from collections.abc import Iterator
 from pathlib import Path
 
@@ -17,7 +18,9 @@ from kame.rqt.plot_model import (
     as_number,
     expand_series_args,
     numeric_fields,
+    padded,
     split_series,
+    value_range,
     visible_peaks,
 )
 from kame.rqt.plot_source import PlotSource
@@ -105,6 +108,14 @@ def test_what_a_plot_draws_is_thinned_to_its_pixels_keeping_the_peaks() -> None:
     assert series.data()[0][0] == 0.0  # the peaks are copies
 
 
+def test_the_value_axis_spans_the_finite_values_drawn() -> None:
+    assert value_range([np.array([1.0, 3.0]), np.array([-1.0, 2.0])], padding=0.25) == (-2.0, 4.0)
+    assert value_range([np.array([np.nan, 2.0, np.inf]), np.array([])], padding=0.0) == (1.5, 2.5)  # flat
+    assert value_range([np.array([np.nan]), np.array([])]) is None  # nothing to fit
+    assert value_range([]) is None
+    assert padded(0.0, 10.0, 0.1) == (-1.0, 11.0) and padded(4.0, 4.0, 0.1) == (3.5, 4.5)
+
+
 @pytest.fixture(scope="module")
 def sim(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Sim]:
     with turtlesim(tmp_path_factory.mktemp("rqt_plot")) as (live, _node):
@@ -171,6 +182,63 @@ def test_the_window_plots_adds_and_removes(sim: Sim, source: PlotSource, qtbot, 
     assert points() == frozen
     window.grab().save(str(tmp_path / "plot.png"))
     assert (tmp_path / "plot.png").stat().st_size > 0
+
+
+def test_the_window_draws_only_what_changed_and_fits_the_value_axis(sim: Sim, source: PlotSource, qtbot,  # type: ignore[no-untyped-def]
+                                                                     monkeypatch: pytest.MonkeyPatch) -> None:
+    from PySide6.QtCore import QPoint, QPointF, Qt
+    from PySide6.QtGui import QWheelEvent
+    from PySide6.QtWidgets import QApplication
+
+    from kame.rqt.plot_window import PlotWindow
+    from std_msgs.msg import Float64
+
+    publisher_node = start_node("levels", {"master": sim.uri}, sim.env)
+    try:
+        publisher_node.advertise("/level", "std_msgs/Float64", Float64._md5sum, Float64._full_text)
+        window = PlotWindow(source)
+        qtbot.addWidget(window)
+        window.show()
+        window.timer.stop()  # the test draws each frame itself
+        assert window.add_series("/level/data") == ["/level/data"]
+        curve = window.curves["/level/data"]
+        drawn: list[int] = []
+        real_set_data = curve.setData
+        monkeypatch.setattr(curve, "setData", lambda *a, **k: (drawn.append(len(a[0])), real_set_data(*a, **k)))
+
+        def arrive(*values: float) -> None:  # as the subscriber hands a batch of messages over
+            source._deliver("/level", [memoryview(struct.pack("<d", v)) for v in values], {})
+
+        arrive(1.0, 3.0, 2.0)
+        window.redraw()
+        assert drawn == [3] and list(curve.yData) == [1.0, 3.0, 2.0] and curve.opts["connect"] == "all"
+        view = window.plot.getViewBox()
+        low, high = view.viewRange()[1]
+        assert low < 1.0 < 3.0 < high and high - low < 2.5  # fitted to the values, padded
+        window.redraw()
+        assert drawn == [3]  # nothing new: nothing drawn
+        arrive(float("nan"), 7.0)
+        window.redraw()
+        assert drawn == [3, 5] and np.array_equal(curve.yData, [1.0, 3.0, 2.0, np.nan, 7.0], equal_nan=True)
+        assert curve.opts["connect"] == "finite"  # the NaN is a gap, found by pyqtgraph
+        assert 7.0 < view.viewRange()[1][1] < 8.0  # and no part of the value axis' range
+
+        centre = window.plot.viewport().rect().center()  # a turn of the mouse wheel zooms both axes
+        wheel = QWheelEvent(QPointF(centre), QPointF(window.plot.viewport().mapToGlobal(centre)), QPoint(0, 0),
+                            QPoint(0, 120), Qt.MouseButton.NoButton, Qt.KeyboardModifier.NoModifier,
+                            Qt.ScrollPhase.NoScrollPhase, False)
+        QApplication.sendEvent(window.plot.viewport(), wheel)
+        assert not window.autoscroll.isChecked() and not window.y_auto.isChecked()
+        zoomed = np.ravel(view.viewRange())
+        assert (window.y_min.value(), window.y_max.value()) == pytest.approx(zoomed[2:], abs=1e-3)
+        arrive(50.0)
+        window.redraw()
+        assert len(drawn) == 3 and np.ravel(view.viewRange()) == pytest.approx(zoomed, abs=1e-3)  # the user's view
+        window.y_auto.setChecked(True)
+        window.redraw()
+        assert view.viewRange()[1][1] > 50.0
+    finally:
+        publisher_node.shutdown("test over")
 
 
 def test_a_type_kame_does_not_have_is_read_from_its_publishers_definition(sim: Sim, source: PlotSource) -> None:

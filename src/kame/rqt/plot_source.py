@@ -8,6 +8,8 @@ header stamped zero) with its arrival time; both in seconds since the plot start
 clock header stamps use. A series keeps its points in time order: a message stamped before the
 topic's previous one is left out, and the window says so. The series are
 shared between the subscriber threads and the window under one lock; the window takes copies.
+Messages are decoded straight from the received frames (no copy of their bytes), and
+`version` changes whenever what there is to draw does, so the window redraws only then.
 """
 
 from __future__ import annotations
@@ -54,6 +56,7 @@ class PlotSource:
         # numpy append per message costs more than the message; folded into the series on demand
         self._staged: dict[str, tuple[list[float], list[float]]] = {}
         self._latest: dict[str, float] = {}  # topic -> the time of its newest point
+        self.version = 0  # bumped under the lock by every change to the series or their set
 
     def topic_types(self) -> list[tuple[str, str]]:
         return [(str(t), str(ty)) for t, ty in self.node.master.call("getTopicTypes")]
@@ -74,6 +77,7 @@ class PlotSource:
         with self._lock:
             self.specs[name] = spec
             self.series[name] = Series(self.history)
+            self.version += 1
             subscribed = spec.topic in self._by_topic
             self._by_topic.setdefault(spec.topic, []).append(name)
         if not subscribed:
@@ -94,6 +98,7 @@ class PlotSource:
             spec = self.specs.pop(name, None)
             self.series.pop(name, None)
             self._staged.pop(name, None)
+            self.version += 1
             if spec is None:
                 return
             names = self._by_topic[spec.topic]
@@ -125,10 +130,10 @@ class PlotSource:
             return
         messages: list[tuple[float, Any]] = []  # (time since start, message)
         stamped = bool(getattr(cls, "_has_header", False))
+        from_buffer = cls._from_buffer  # the frames are only lent: the messages die with this call
         for frame in frames:
-            msg = cls()
             try:
-                msg.deserialize(bytes(frame))
+                msg = from_buffer(frame)
             except Exception as exc:  # the publisher's fault; the plot goes on with the next message
                 with self._lock:
                     for name in self._by_topic.get(topic, []):
@@ -155,6 +160,7 @@ class PlotSource:
                     if len(staged) > STAGE_LIMIT:
                         self._fold(name)
                     self.errors.pop(name, None)
+                    self.version += 1
                 if left_out:  # after the pop: a batch with good messages too still says it
                     self.errors[name] = f"a message on {topic} stamped before the previous one was left out"
 
@@ -217,6 +223,7 @@ class PlotSource:
             self._staged.clear()
             for series in self.series.values():
                 series.clear()
+            self.version += 1
 
     def set_history(self, seconds: float) -> None:
         with self._lock:
@@ -224,6 +231,7 @@ class PlotSource:
             self.history = seconds
             for series in self.series.values():
                 series.set_history(seconds)
+            self.version += 1
 
     def completions(self) -> list[str]:
         """Every plottable /topic/field of the published topics whose type kame can load."""
