@@ -6,8 +6,8 @@ rqt_graph refresh of a 200-node graph (run with the project venv's python; Qt of
 
 console: a kame node publishes rosgraph_msgs/Log on /rosout_agg at --log-rate a second (absolute
          schedule); the console window (offscreen) with its feed and 20,000-message store takes
-         them. Reports messages shown against sent, the longest stall of the window's event loop
-         (a 10 ms timer's worst gap) and this process's CPU.
+         them. Reports messages shown against sent, the table's rows and the store against its
+         bound, the longest stall of the window's event loop (a 10 ms timer's worst gap) and CPU.
 plot:    one process publishes 10 std_msgs/Float64 topics at --plot-rate each; the plot window
          (offscreen) plots all ten. Reports frames drawn a second, points kept, the worst stall
          and CPU.
@@ -250,7 +250,8 @@ def bench_console(args: argparse.Namespace, env: dict[str, str], procs: Procs) -
     node.shutdown("bench over")
     sent = _sent(feeder)
     return (f"console  {args.log_rate:>7.0f} msg/s: shown {window.view.received:>7d} of {sent:>7d} sent; "
-            f"worst event-loop stall {stalls.worst * 1e3:5.0f} ms; {usage}")
+            f"{window.model.rowCount()} rows in the table, {window.view.stored_count} stored (bound "
+            f"{window.view.capacity}); worst event-loop stall {stalls.worst * 1e3:5.0f} ms; {usage}")
 
 
 def _sent(proc: subprocess.Popen[str]) -> int:
