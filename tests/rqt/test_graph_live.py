@@ -138,6 +138,43 @@ def test_a_dead_and_a_hung_node_leave_the_refresh_bounded(lesson: Sim) -> None:
         hung.close()
 
 
+def test_a_hung_node_leaves_the_graph_window_responsive(lesson: Sim, qtbot) -> None:  # type: ignore[no-untyped-def]
+    from PySide6.QtCore import QTimer
+
+    from kame.rqt.graph_window import GraphWindow
+
+    hung = SilentPeer()  # accepts the connection, never answers getBusInfo
+    master = xmlrpc.client.ServerProxy(lesson.uri)
+    master.registerSubscriber("/hung", "/turtle1/pose", "turtlesim/Pose", hung.uri)
+    graph = GraphSource(lesson.uri, node_timeout=1.0)
+    try:
+        window = GraphWindow(graph.fetch)
+        qtbot.addWidget(window)
+        window.show()
+        ticks = 0
+
+        def tick() -> None:
+            nonlocal ticks
+            ticks += 1
+
+        timer = QTimer()
+        timer.timeout.connect(tick)
+        timer.start(10)
+        with qtbot.waitSignal(window.refreshed, timeout=10_000):
+            window.refresh()
+            assert not window.refresh_button.isEnabled()  # asked, not yet answered: the window goes on
+        timer.stop()
+        assert ticks >= 2  # the event loop kept running while the hung node's answer was awaited
+        assert window.scene_model is not None and window.snapshot is not None
+        assert window.snapshot.unreachable == {"/hung"} and window.refresh_button.isEnabled()
+        window.mode_box.setCurrentIndex(list(Mode).index(Mode.NODES_TOPICS_ALL))
+        assert {v.name for v in window.scene_model.vertices if v.unreachable} == {"/hung"}  # drawn red
+    finally:
+        graph.close()
+        master.unregisterSubscriber("/hung", "/turtle1/pose", hung.uri)
+        hung.close()
+
+
 def test_the_window_draws_refreshes_and_highlights(lesson: Sim, source: GraphSource, qtbot, tmp_path: Path) -> None:  # type: ignore[no-untyped-def]
     from PySide6.QtCore import QPoint
 
