@@ -48,7 +48,10 @@ class PlotWindow(QWidget):
         pg.setConfigOptions(antialias=False, background="w", foreground="k")
         self.plot = pg.PlotWidget()
         self.plot.setLabel("bottom", "time", units="s")
-        self.plot.getAxis("bottom").enableAutoSIPrefix(False)  # else the label is set again each frame
+        # An axis with an automatic SI prefix lays its label out again on each change of range: every
+        # frame for the time axis and for the hidden top axis that follows it too. Seconds stay seconds.
+        for side in ("bottom", "top", "right"):
+            self.plot.getAxis(side).enableAutoSIPrefix(False)
         self.plot.disableAutoRange()  # the window sets both ranges itself (redraw)
         self.plot.hideButtons()  # pyqtgraph's own auto-range button would fight the window's
         self.legend = self.plot.addLegend()
