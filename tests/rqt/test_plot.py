@@ -23,7 +23,7 @@ from kame.rqt.plot_model import (
     value_range,
     visible_peaks,
 )
-from kame.rqt.plot_source import PlotSource
+from kame.rqt.plot_source import READ_INTERVAL, PlotSource
 from kame.rqt.ros_node import start_node
 from sensor_msgs.msg import JointState
 from tests.turtlesim.sim import Sim, turtlesim, wait_until
@@ -136,6 +136,7 @@ def test_pose_x_rises_after_a_cmd_vel(sim: Sim, source: PlotSource) -> None:
     for name in expand_series_args(["/turtle1/pose/x:y"]):
         source.add(name)
     assert sorted(source.series) == ["/turtle1/pose/x", "/turtle1/pose/y"]
+    assert source.node.subscriptions["/turtle1/pose"].read_interval == READ_INTERVAL  # read in batches
     wait_until(lambda: len(source.data()["/turtle1/pose/x"][0]) > 5, what="pose samples")
     start_x = source.data()["/turtle1/pose/x"][1][-1]
     sim.run("rostopic", "pub", "-1", "/turtle1/cmd_vel", "geometry_msgs/Twist", "--", "[2,0,0]", "[0,0,0]")
