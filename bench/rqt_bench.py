@@ -28,6 +28,7 @@ import signal
 import subprocess
 import sys
 import tempfile
+import threading
 import time
 from pathlib import Path
 
@@ -187,20 +188,41 @@ def run_for(app, seconds: float, until) -> None:  # type: ignore[no-untyped-def]
         time.sleep(0.002)
 
 
+def thread_seconds() -> dict[str, float]:
+    """CPU seconds of each live thread of this process so far, by thread name (Linux /proc)."""
+    tick = os.sysconf("SC_CLK_TCK")
+    out: dict[str, float] = {}
+    for thread in threading.enumerate():
+        try:
+            fields = Path(f"/proc/self/task/{thread.native_id}/stat").read_text().rsplit(")", 1)[1].split()
+        except OSError:
+            continue
+        out[thread.name] = out.get(thread.name, 0.0) + (int(fields[11]) + int(fields[12])) / tick
+    return out
+
+
 class Usage:
-    """CPU seconds per wall second over a measured stretch: the whole process's (the window's
-    thread, the subscribers' threads and the rest) and the window's thread alone."""
+    """CPU seconds per wall second over a measured stretch: the whole process's, the window's
+    thread, and the subscribers' receiving threads (kame-sub/<topic>) together."""
 
     def __init__(self) -> None:
         self.cpu, self.window, self.wall = time.process_time(), time.thread_time(), time.monotonic()
+        self._threads = thread_seconds()
+        self.subscribers = 0.0
 
     def stop(self) -> None:
         self.cpu = time.process_time() - self.cpu
         self.window = time.thread_time() - self.window
         self.wall = time.monotonic() - self.wall
+        self.subscribers = sum(seconds - self._threads.get(name, 0.0) for name, seconds in thread_seconds().items()
+                               if name.startswith("kame-sub"))
 
     def __str__(self) -> str:
-        return f"CPU {100 * self.cpu / self.wall:4.0f}% (window thread {100 * self.window / self.wall:3.0f}%)"
+        def share(seconds: float) -> str:
+            return f"{100 * seconds / self.wall:.0f}%"
+
+        return (f"CPU {share(self.cpu)} (window thread {share(self.window)}, receiving threads "
+                f"{share(self.subscribers)})")
 
 
 def event_loop(seconds: float) -> None:
