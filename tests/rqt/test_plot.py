@@ -1,4 +1,5 @@
-"""rqt_plot: series names, the bounded history, numeric fields, and the live turtle's pose."""
+"""rqt_plot: series names, the bounded history, numeric fields, the live turtle's pose, the window,
+and a real rospy publisher on Debian's rosmaster."""
 
 from __future__ import annotations
 
@@ -26,6 +27,7 @@ from kame.rqt.plot_model import (
 from kame.rqt.plot_source import READ_INTERVAL, PlotSource
 from kame.rqt.ros_node import start_node
 from sensor_msgs.msg import JointState
+from tests.support import SYSTEM_PYTHON, Proc, free_port, have_debian_ros, ros_env, wait_for_master
 from tests.turtlesim.sim import Sim, turtlesim, wait_until
 from turtlesim.msg import Pose
 
@@ -317,3 +319,31 @@ def test_points_are_stamped_with_the_header_stamp_when_there_is_one(sim: Sim, so
         assert 3.5 in source.data()[series][1]
     finally:
         publisher_node.shutdown("test over")
+
+
+@pytest.mark.skipif(not have_debian_ros(), reason="Debian's ROS 1 (rosmaster, rospy) is not installed")
+def test_a_real_rospy_publisher_on_debians_rosmaster(tmp_path: Path) -> None:
+    port = free_port()
+    uri = f"http://127.0.0.1:{port}/"
+    env = ros_env(tmp_path, uri)
+    code = ("import rospy\nfrom std_msgs.msg import Float64\nrospy.init_node('level')\n"
+            "pub = rospy.Publisher('/level', Float64, queue_size=10)\nr = rospy.Rate(100)\ni = 0\n"
+            "while not rospy.is_shutdown():\n    pub.publish(Float64(i))\n    i += 1\n    r.sleep()\n")
+    procs = [Proc([SYSTEM_PYTHON, "/usr/bin/rosmaster", "--core", "-p", str(port)], env)]
+    try:
+        wait_for_master(uri, proc=procs[0])
+        procs.append(Proc([SYSTEM_PYTHON, "-c", code], env))
+        node = start_node("plot", {"master": uri}, env)
+        source = PlotSource(node)
+        try:
+            wait_until(lambda: ("/level", "std_msgs/Float64") in source.topic_types(), what="rospy's publisher")
+            source.add("/level/data")
+            wait_until(lambda: len(source.data()["/level/data"][1]) >= 20, what="rospy's messages in the plot")
+            t, v = source.data()["/level/data"]
+            assert np.all(np.diff(v) > 0) and np.all(np.diff(t) >= 0)  # in the order published
+        finally:
+            source.close()
+            node.shutdown("test over")
+    finally:
+        for proc in reversed(procs):
+            proc.stop()
