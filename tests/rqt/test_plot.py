@@ -221,6 +221,10 @@ def test_the_window_draws_only_what_changed_and_fits_the_value_axis(sim: Sim, so
         window.redraw()
         assert drawn == [3]  # nothing new: nothing drawn
         arrive(float("nan"), 7.0)
+        window.hide()  # as a dock tabbed behind another
+        window.redraw()
+        assert drawn == [3]  # not seen: not drawn
+        window.show()
         window.redraw()
         assert drawn == [3, 5] and np.array_equal(curve.yData, [1.0, 3.0, 2.0, np.nan, 7.0], equal_nan=True)
         assert curve.opts["connect"] == "finite"  # the NaN is a gap, found by pyqtgraph

@@ -3,7 +3,8 @@
 Rules: the window redraws at a fixed frame rate (FPS) from copies of the series, each thinned to
 the visible time range and to a minimum and maximum per pixel column (PlotSource.peaks), so
 neither the message rate nor the history sets the amount of drawing; a tick with nothing new
-(same data, same view) draws nothing. Autoscroll keeps the newest `history` seconds in view;
+(same data, same view) draws nothing, nor does a plot that cannot be seen (hidden, or a dock
+tabbed behind another). Autoscroll keeps the newest `history` seconds in view;
 "Y auto" fits the value axis to what is drawn (the window's own range, from the thinned points,
 not pyqtgraph's auto-range, which measures every curve again on each change). Dragging or
 zooming an axis with the mouse turns its automatic range off. Pausing freezes the picture while
@@ -181,7 +182,7 @@ class PlotWindow(QWidget):
     def redraw(self) -> None:
         """One frame: the visible points of each series, thinned to the pixel columns, and the
         axes that follow the data; nothing when neither the data nor the view changed."""
-        if self.pause_button.isChecked():
+        if self.pause_button.isChecked() or self.visibleRegion().isEmpty():  # paused, hidden or tabbed away
             return
         view = self.plot.getViewBox()
         (start, end), _ = view.viewRange()
