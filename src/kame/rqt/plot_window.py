@@ -50,7 +50,8 @@ class PlotWindow(QWidget):
         self.plot = pg.PlotWidget()
         self.plot.setLabel("bottom", "time", units="s")
         # An axis with an automatic SI prefix lays its label out again on each change of range: every
-        # frame for the time axis and for the hidden top axis that follows it too. Seconds stay seconds.
+        # frame for the time axis, and the hidden top and right axes follow the view as well.
+        # Seconds stay seconds.
         for side in ("bottom", "top", "right"):
             self.plot.getAxis(side).enableAutoSIPrefix(False)
         self.plot.disableAutoRange()  # the window sets both ranges itself (redraw)
