@@ -248,6 +248,34 @@ def test_the_window_draws_only_what_changed_and_fits_the_value_axis(sim: Sim, so
         publisher_node.shutdown("test over")
 
 
+def test_the_messages_of_one_read_are_spread_over_the_time_since_the_last(sim: Sim) -> None:
+    from std_msgs.msg import Float64
+
+    now = 100.0
+    plot_node = start_node("plot", {"master": sim.uri}, sim.env)
+    publisher_node = start_node("spread", {"master": sim.uri}, sim.env)
+    source = PlotSource(plot_node, clock=lambda: now)
+    try:
+        publisher_node.advertise("/spread", "std_msgs/Float64", Float64._md5sum, Float64._full_text)
+        source.add("/spread/data")
+
+        def read(*values: float) -> np.ndarray:  # one read's worth of messages, as the subscriber hands it over
+            source._deliver("/spread", [memoryview(struct.pack("<d", v)) for v in values], {})
+            return source.data()["/spread/data"][0]
+
+        now = 100.5
+        assert read(1.0, 2.0) == pytest.approx([0.5 - READ_INTERVAL / 2, 0.5])  # the first: over one interval
+        now = 100.504  # 4 ms later: four messages came in those 4 ms
+        assert read(3.0, 4.0, 5.0, 6.0)[2:] == pytest.approx([0.501, 0.502, 0.503, 0.504])
+        now = 160.0  # after a quiet minute, a burst: over one interval, not the minute
+        assert read(7.0, 8.0)[-2:] == pytest.approx([60.0 - READ_INTERVAL / 2, 60.0])
+        assert np.all(np.diff(source.data()["/spread/data"][0]) > 0)  # never two points at one time
+    finally:
+        source.close()
+        publisher_node.shutdown("test over")
+        plot_node.shutdown("test over")
+
+
 def test_a_type_kame_does_not_have_is_read_from_its_publishers_definition(sim: Sim, source: PlotSource) -> None:
     from kame.msg.loader import generate_dynamic
     from kame.node.topics import serialize_frame
