@@ -6,14 +6,17 @@ rqt_graph refresh of a 200-node graph (run with the project venv's python; Qt of
 
 console: a kame node publishes rosgraph_msgs/Log on /rosout_agg at --log-rate a second (absolute
          schedule); the console window (offscreen) with its feed and 20,000-message store takes
-         them. Reports messages shown against sent, the longest stall of the window's event loop
-         (a 10 ms timer's worst gap) and this process's CPU.
+         them. Reports messages shown against sent, the table's rows and the store against its
+         bound, the longest stall of the window's event loop (a 10 ms timer's worst gap) and CPU.
 plot:    one process publishes 10 std_msgs/Float64 topics at --plot-rate each; the plot window
          (offscreen) plots all ten. Reports frames drawn a second, points kept, the worst stall
          and CPU.
 graph:   one process runs 200 kame nodes in a chain (node i publishes /chain/i, subscribes
          /chain/i-1); rqt_graph's source fetches the graph 5 times. Reports the fetch time
          (median, max) and the nodes and links seen.
+CPU is this process's CPU seconds per wall second (all its threads: the subscribers' and the
+window's) while the window runs its own Qt event loop, as the tool does; the window thread's own
+share is given beside it. With RQT_BENCH_PROFILE=1 that loop runs under cProfile (to stderr).
 Each part gets a fresh kame master on a free loopback port; every process is stopped by its PID.
 """
 
@@ -25,6 +28,7 @@ import signal
 import subprocess
 import sys
 import tempfile
+import threading
 import time
 from pathlib import Path
 
@@ -184,17 +188,67 @@ def run_for(app, seconds: float, until) -> None:  # type: ignore[no-untyped-def]
         time.sleep(0.002)
 
 
-def profiled(app, seconds: float) -> None:  # type: ignore[no-untyped-def]
-    """The window's event loop for `seconds`; with RQT_BENCH_PROFILE set, under cProfile (stderr)."""
-    if not os.environ.get("RQT_BENCH_PROFILE"):
-        run_for(app, seconds, lambda: False)
-        return
-    import cProfile
-    import pstats
+def thread_seconds() -> dict[str, float]:
+    """CPU seconds of each live thread of this process so far, by thread name (Linux /proc)."""
+    tick = os.sysconf("SC_CLK_TCK")
+    out: dict[str, float] = {}
+    for thread in threading.enumerate():
+        try:
+            fields = Path(f"/proc/self/task/{thread.native_id}/stat").read_text().rsplit(")", 1)[1].split()
+        except OSError:
+            continue
+        out[thread.name] = out.get(thread.name, 0.0) + (int(fields[11]) + int(fields[12])) / tick
+    return out
 
-    profile = cProfile.Profile()
-    profile.runcall(run_for, app, seconds, lambda: False)
-    pstats.Stats(profile, stream=sys.stderr).sort_stats("tottime").print_stats(15)
+
+class Usage:
+    """CPU seconds per wall second over a measured stretch: the whole process's, the window's
+    thread, and the subscribers' receiving threads (kame-sub/<topic>) together."""
+
+    def __init__(self) -> None:
+        self.cpu, self.window, self.wall = time.process_time(), time.thread_time(), time.monotonic()
+        self._threads = thread_seconds()
+        self.subscribers = 0.0
+
+    def stop(self) -> None:
+        self.cpu = time.process_time() - self.cpu
+        self.window = time.thread_time() - self.window
+        self.wall = time.monotonic() - self.wall
+        self.subscribers = sum(seconds - self._threads.get(name, 0.0) for name, seconds in thread_seconds().items()
+                               if name.startswith("kame-sub"))
+
+    def __str__(self) -> str:
+        def share(seconds: float) -> str:
+            return f"{100 * seconds / self.wall:.0f}%"
+
+        return (f"CPU {share(self.cpu)} (window thread {share(self.window)}, receiving threads "
+                f"{share(self.subscribers)})")
+
+
+def event_loop(seconds: float) -> None:
+    """The application's own event loop (as the tool's app.exec() runs it) for `seconds`."""
+    from PySide6.QtCore import QEventLoop, QTimer
+
+    loop = QEventLoop()
+    QTimer.singleShot(int(seconds * 1000), loop.quit)
+    loop.exec()
+
+
+def measured(seconds: float) -> Usage:
+    """The window's event loop for `seconds` and what it cost; with RQT_BENCH_PROFILE set, under
+    cProfile (stderr)."""
+    usage = Usage()
+    if not os.environ.get("RQT_BENCH_PROFILE"):
+        event_loop(seconds)
+    else:
+        import cProfile
+        import pstats
+
+        profile = cProfile.Profile()
+        profile.runcall(event_loop, seconds)
+        pstats.Stats(profile, stream=sys.stderr).sort_stats("tottime").print_stats(15)
+    usage.stop()
+    return usage
 
 
 def bench_console(args: argparse.Namespace, env: dict[str, str], procs: Procs) -> str:
@@ -213,14 +267,13 @@ def bench_console(args: argparse.Namespace, env: dict[str, str], procs: Procs) -
     feeder = procs.start([sys.executable, "-c", LOG_FEEDER, str(args.log_rate), str(args.seconds)], env)
     run_for(app, 30, lambda: window.view.received > 0)  # connected and flowing
     stalls = Stalls()
-    cpu, wall = time.process_time(), time.monotonic()
-    profiled(app, args.seconds)
-    cpu, wall = time.process_time() - cpu, time.monotonic() - wall
+    usage = measured(args.seconds)
     run_for(app, 20, lambda: feeder.poll() is not None)
     node.shutdown("bench over")
     sent = _sent(feeder)
     return (f"console  {args.log_rate:>7.0f} msg/s: shown {window.view.received:>7d} of {sent:>7d} sent; "
-            f"worst event-loop stall {stalls.worst * 1e3:5.0f} ms; CPU {100 * cpu / wall:4.0f}%")
+            f"{window.model.rowCount()} rows in the table, {window.view.stored_count} stored (bound "
+            f"{window.view.capacity}); worst event-loop stall {stalls.worst * 1e3:5.0f} ms; {usage}")
 
 
 def _sent(proc: subprocess.Popen[str]) -> int:
@@ -257,16 +310,14 @@ def bench_plot(args: argparse.Namespace, env: dict[str, str], procs: Procs) -> s
     run_for(app, 30, lambda: all(len(t) for t, _ in source.data().values()))  # every series flowing
     frames = 0
     stalls = Stalls()
-    cpu, wall = time.process_time(), time.monotonic()
-    profiled(app, args.seconds)
-    cpu, wall = time.process_time() - cpu, time.monotonic() - wall
+    usage = measured(args.seconds)
     drawn = frames
     run_for(app, 20, lambda: feeder.poll() is not None)
     kept = sum(len(t) for t, _ in source.data().values())
     node.shutdown("bench over")
     sent = _sent(feeder)
-    return (f"plot     10 x {args.plot_rate:.0f} Hz: {drawn / wall:5.1f} frames/s; {kept} of {sent} points kept; "
-            f"worst stall {stalls.worst * 1e3:5.0f} ms; CPU {100 * cpu / wall:4.0f}%")
+    return (f"plot     10 x {args.plot_rate:.0f} Hz: {drawn / usage.wall:5.1f} frames/s; {kept} of {sent} points kept; "
+            f"worst stall {stalls.worst * 1e3:5.0f} ms; {usage}")
 
 
 def bench_graph(args: argparse.Namespace, env: dict[str, str], procs: Procs) -> str:

@@ -159,6 +159,37 @@ def test_closing_a_receiver_ourselves_reports_nothing() -> None:
     b.close()
 
 
+class _CountReads(_Collect):
+    def __init__(self) -> None:
+        super().__init__()
+        self._buf = bytearray(4096)
+        self.reads = 0
+
+    def buffer_updated(self, nbytes: int) -> None:
+        self.reads += 1
+        super().buffer_updated(nbytes)
+
+
+def test_a_read_interval_gathers_what_arrives_meanwhile_into_one_read() -> None:
+    a, b = socket.socketpair()
+    consumer = _CountReads()
+    receiver = Receiver(a, consumer, lambda exc: None, name="test-receiver", read_interval=3.0)
+    receiver.start()
+    try:
+        b.sendall(b"a")
+        assert wait_until(lambda: consumer.reads == 1)  # the first read is done: now the thread waits
+        for byte in b"bcdefghijk":  # ten sends, each of which would wake a reader without the interval
+            b.sendall(bytes([byte]))
+        assert wait_until(lambda: len(consumer.data) == 11, timeout=10.0)
+        assert bytes(consumer.data) == b"abcdefghijk" and consumer.reads == 2
+        b.sendall(b"l")
+    finally:
+        receiver.close()  # wakes the wait: the thread is gone when close returns (it waits 1 s at most)
+    assert not receiver._thread.is_alive()
+    a.close()
+    b.close()
+
+
 _STARVED_SERVER = r'''
 import logging, resource, socket, sys, threading, time
 logging.basicConfig(stream=sys.stderr, level=logging.INFO, format="%(levelname)s %(message)s")

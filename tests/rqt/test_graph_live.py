@@ -1,5 +1,6 @@
 """rqt_graph on live graphs: the turtlesim lesson, mimic's two simulators, a dead and a hung node,
-the window offscreen, `rqt_graph --output`, and Debian's real rosmaster with real rospy nodes."""
+the window offscreen, `rqt_graph --output`, and Debian's real rosmaster with real rospy and roscpp
+nodes beside a kame node."""
 
 from __future__ import annotations
 
@@ -138,6 +139,43 @@ def test_a_dead_and_a_hung_node_leave_the_refresh_bounded(lesson: Sim) -> None:
         hung.close()
 
 
+def test_a_hung_node_leaves_the_graph_window_responsive(lesson: Sim, qtbot) -> None:  # type: ignore[no-untyped-def]
+    from PySide6.QtCore import QTimer
+
+    from kame.rqt.graph_window import GraphWindow
+
+    hung = SilentPeer()  # accepts the connection, never answers getBusInfo
+    master = xmlrpc.client.ServerProxy(lesson.uri)
+    master.registerSubscriber("/hung", "/turtle1/pose", "turtlesim/Pose", hung.uri)
+    graph = GraphSource(lesson.uri, node_timeout=1.0)
+    try:
+        window = GraphWindow(graph.fetch)
+        qtbot.addWidget(window)
+        window.show()
+        ticks = 0
+
+        def tick() -> None:
+            nonlocal ticks
+            ticks += 1
+
+        timer = QTimer()
+        timer.timeout.connect(tick)
+        timer.start(10)
+        with qtbot.waitSignal(window.refreshed, timeout=10_000):
+            window.refresh()
+            assert not window.refresh_button.isEnabled()  # asked, not yet answered: the window goes on
+        timer.stop()
+        assert ticks >= 2  # the event loop kept running while the hung node's answer was awaited
+        assert window.scene_model is not None and window.snapshot is not None
+        assert window.snapshot.unreachable == {"/hung"} and window.refresh_button.isEnabled()
+        window.mode_box.setCurrentIndex(list(Mode).index(Mode.NODES_TOPICS_ALL))
+        assert {v.name for v in window.scene_model.vertices if v.unreachable} == {"/hung"}  # drawn red
+    finally:
+        graph.close()
+        master.unregisterSubscriber("/hung", "/turtle1/pose", hung.uri)
+        hung.close()
+
+
 def test_the_window_draws_refreshes_and_highlights(lesson: Sim, source: GraphSource, qtbot, tmp_path: Path) -> None:  # type: ignore[no-untyped-def]
     from PySide6.QtCore import QPoint
 
@@ -194,31 +232,48 @@ def test_mimic_with_two_turtlesims(tmp_path: Path) -> None:
 
 
 @pytest.mark.skipif(not have_debian_ros(), reason="Debian's ROS 1 (rosmaster, rospy) is not installed")
-def test_debian_rosmaster_with_real_rospy_nodes(tmp_path: Path) -> None:
+def test_debian_rosmaster_with_real_rospy_and_roscpp_nodes_beside_kames(tmp_path: Path) -> None:
+    from kame.node.node import Node, NodeConfig
+    from std_msgs.msg import String
+    from tests.support.roscpp import build_peers, roscpp_flags
+
     port = free_port()
     uri = f"http://127.0.0.1:{port}/"
     env = ros_env(tmp_path, uri)
     procs = [Proc([SYSTEM_PYTHON, "/usr/bin/rosmaster", "--core", "-p", str(port)], env)]
+    kame_node: Node | None = None
     try:
         wait_for_master(uri, proc=procs[0])
         peer = Path(__file__).parents[1] / "interop" / "ros_peer_node.py"
         procs.append(Proc([SYSTEM_PYTHON, str(peer)], env))
         procs.append(Proc([SYSTEM_PYTHON, "/usr/bin/rostopic", "echo", "/chatter"], env))
+        kame_node = Node(NodeConfig("/kame_listener", uri, "127.0.0.1", "127.0.0.1"))
+        kame_node.subscribe("/chatter", "std_msgs/String", String._md5sum, String._full_text, lambda f, h: None)
+        flags = roscpp_flags()  # roscpp's talker too where its headers are installed
+        if flags is not None:
+            procs.append(Proc([str(build_peers(flags)["talker"])], env))
+        publishers = ["/peer"] + (["/cpp_talker"] if flags is not None else [])
         graph = GraphSource(uri)
         try:
             def links() -> list[tuple[str, str, str]]:
                 return build_scene(graph.fetch(), GraphOptions()).edge_names()
 
-            wait_until(lambda: len(links()) == 1, timeout=20, what="the real talker's link to rostopic")
-            publisher, subscriber, topic = links()[0]
-            assert (publisher, topic) == ("/peer", "/chatter") and subscriber.startswith("/rostopic_")
-            # both ends report the connection (rospy's inbound row names the publisher by URI): one link
+            # each publisher to both subscribers: rospy's rostopic echo and kame's node
+            wait_until(lambda: len(links()) == 2 * len(publishers), timeout=20, what="every link on /chatter")
+            assert sorted((publisher, topic) for publisher, _, topic in links()) == sorted(
+                (publisher, "/chatter") for publisher in publishers for _ in range(2))
+            for publisher in publishers:
+                subscribers = sorted(s for p, s, _ in links() if p == publisher)
+                assert subscribers[0] == "/kame_listener" and subscribers[1].startswith("/rostopic_")
+            # both ends report each connection (rospy's inbound row names the publisher by URI):
+            # one link each, and every node, rospy, roscpp and kame, answered getBusInfo
             snap = graph.fetch()
             assert snap.unreachable == frozenset()
-            both = [link for link in snap.links if link.topic == "/chatter"]
-            assert len(both) == 1
+            assert len([link for link in snap.links if link.topic == "/chatter"]) == 2 * len(publishers)
         finally:
             graph.close()
     finally:
+        if kame_node is not None:
+            kame_node.shutdown("test over")
         for proc in reversed(procs):
             proc.stop()

@@ -50,6 +50,17 @@ def test_plugins_dock_close_and_come_back(sim: Sim, qtbot, tmp_path: Path) -> No
     qtbot.waitUntil(lambda: second.curves["/turtle1/pose/x"].xData is not None, timeout=10_000)  # type: ignore[attr-defined]
     console = window.docks["rqt_console#1"].handle.widget
     qtbot.waitUntil(lambda: console.take is not None, timeout=10_000)  # type: ignore[attr-defined]
+    # a plot tabbed behind another dock draws nothing until it is brought to the front
+    window.tabifyDockWidget(window.docks["rqt_plot#2"], window.docks["rqt_console#1"])
+    window.docks["rqt_console#1"].raise_()
+    qtbot.waitUntil(lambda: second.visibleRegion().isEmpty(), timeout=5_000)
+    curve = second.curves["/turtle1/pose/x"]  # type: ignore[attr-defined]
+    shown, version = curve.xData, second.source.version  # type: ignore[attr-defined]
+    qtbot.waitUntil(lambda: second.source.version != version, timeout=10_000)  # type: ignore[attr-defined]
+    second.redraw()  # type: ignore[attr-defined]
+    assert curve.xData is shown
+    window.docks["rqt_plot#2"].raise_()
+    qtbot.waitUntil(lambda: curve.xData is not shown, timeout=10_000)
 
     first = window.docks["rqt_plot#1"]
     node = first.handle.widget.source.node  # type: ignore[attr-defined]

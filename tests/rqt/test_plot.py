@@ -1,7 +1,9 @@
-"""rqt_plot: series names, the bounded history, numeric fields, and the live turtle's pose."""
+"""rqt_plot: series names, the bounded history, numeric fields, the live turtle's pose, the window,
+and a real rospy publisher on Debian's rosmaster."""
 
 from __future__ import annotations
 
+import struct
 from collections.abc import Iterator
 from pathlib import Path
 
@@ -17,12 +19,15 @@ from kame.rqt.plot_model import (
     as_number,
     expand_series_args,
     numeric_fields,
+    padded,
     split_series,
+    value_range,
     visible_peaks,
 )
-from kame.rqt.plot_source import PlotSource
+from kame.rqt.plot_source import READ_INTERVAL, PlotSource
 from kame.rqt.ros_node import start_node
 from sensor_msgs.msg import JointState
+from tests.support import SYSTEM_PYTHON, Proc, free_port, have_debian_ros, ros_env, wait_for_master
 from tests.turtlesim.sim import Sim, turtlesim, wait_until
 from turtlesim.msg import Pose
 
@@ -105,6 +110,14 @@ def test_what_a_plot_draws_is_thinned_to_its_pixels_keeping_the_peaks() -> None:
     assert series.data()[0][0] == 0.0  # the peaks are copies
 
 
+def test_the_value_axis_spans_the_finite_values_drawn() -> None:
+    assert value_range([np.array([1.0, 3.0]), np.array([-1.0, 2.0])], padding=0.25) == (-2.0, 4.0)
+    assert value_range([np.array([np.nan, 2.0, np.inf]), np.array([])], padding=0.0) == (1.5, 2.5)  # flat
+    assert value_range([np.array([np.nan]), np.array([])]) is None  # nothing to fit
+    assert value_range([]) is None
+    assert padded(0.0, 10.0, 0.1) == (-1.0, 11.0) and padded(4.0, 4.0, 0.1) == (3.5, 4.5)
+
+
 @pytest.fixture(scope="module")
 def sim(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Sim]:
     with turtlesim(tmp_path_factory.mktemp("rqt_plot")) as (live, _node):
@@ -125,6 +138,7 @@ def test_pose_x_rises_after_a_cmd_vel(sim: Sim, source: PlotSource) -> None:
     for name in expand_series_args(["/turtle1/pose/x:y"]):
         source.add(name)
     assert sorted(source.series) == ["/turtle1/pose/x", "/turtle1/pose/y"]
+    assert source.node.subscriptions["/turtle1/pose"].read_interval == READ_INTERVAL  # read in batches
     wait_until(lambda: len(source.data()["/turtle1/pose/x"][0]) > 5, what="pose samples")
     start_x = source.data()["/turtle1/pose/x"][1][-1]
     sim.run("rostopic", "pub", "-1", "/turtle1/cmd_vel", "geometry_msgs/Twist", "--", "[2,0,0]", "[0,0,0]")
@@ -171,6 +185,95 @@ def test_the_window_plots_adds_and_removes(sim: Sim, source: PlotSource, qtbot, 
     assert points() == frozen
     window.grab().save(str(tmp_path / "plot.png"))
     assert (tmp_path / "plot.png").stat().st_size > 0
+
+
+def test_the_window_draws_only_what_changed_and_fits_the_value_axis(sim: Sim, source: PlotSource, qtbot,  # type: ignore[no-untyped-def]
+                                                                     monkeypatch: pytest.MonkeyPatch) -> None:
+    from PySide6.QtCore import QPoint, QPointF, Qt
+    from PySide6.QtGui import QWheelEvent
+    from PySide6.QtWidgets import QApplication
+
+    from kame.rqt.plot_window import PlotWindow
+    from std_msgs.msg import Float64
+
+    publisher_node = start_node("levels", {"master": sim.uri}, sim.env)
+    try:
+        publisher_node.advertise("/level", "std_msgs/Float64", Float64._md5sum, Float64._full_text)
+        window = PlotWindow(source)
+        qtbot.addWidget(window)
+        window.show()
+        window.timer.stop()  # the test draws each frame itself
+        assert window.add_series("/level/data") == ["/level/data"]
+        curve = window.curves["/level/data"]
+        drawn: list[int] = []
+        real_set_data = curve.setData
+        monkeypatch.setattr(curve, "setData", lambda *a, **k: (drawn.append(len(a[0])), real_set_data(*a, **k)))
+
+        def arrive(*values: float) -> None:  # as the subscriber hands a batch of messages over
+            source._deliver("/level", [memoryview(struct.pack("<d", v)) for v in values], {})
+
+        arrive(1.0, 3.0, 2.0)
+        window.redraw()
+        assert drawn == [3] and list(curve.yData) == [1.0, 3.0, 2.0] and curve.opts["connect"] == "all"
+        view = window.plot.getViewBox()
+        low, high = view.viewRange()[1]
+        assert low < 1.0 < 3.0 < high and high - low < 2.5  # fitted to the values, padded
+        window.redraw()
+        assert drawn == [3]  # nothing new: nothing drawn
+        arrive(float("nan"), 7.0)
+        window.hide()  # as a dock tabbed behind another
+        window.redraw()
+        assert drawn == [3]  # not seen: not drawn
+        window.show()
+        window.redraw()
+        assert drawn == [3, 5] and np.array_equal(curve.yData, [1.0, 3.0, 2.0, np.nan, 7.0], equal_nan=True)
+        assert curve.opts["connect"] == "finite"  # the NaN is a gap, found by pyqtgraph
+        assert 7.0 < view.viewRange()[1][1] < 8.0  # and no part of the value axis' range
+
+        centre = window.plot.viewport().rect().center()  # a turn of the mouse wheel zooms both axes
+        wheel = QWheelEvent(QPointF(centre), QPointF(window.plot.viewport().mapToGlobal(centre)), QPoint(0, 0),
+                            QPoint(0, 120), Qt.MouseButton.NoButton, Qt.KeyboardModifier.NoModifier,
+                            Qt.ScrollPhase.NoScrollPhase, False)
+        QApplication.sendEvent(window.plot.viewport(), wheel)
+        assert not window.autoscroll.isChecked() and not window.y_auto.isChecked()
+        zoomed = np.ravel(view.viewRange())
+        assert (window.y_min.value(), window.y_max.value()) == pytest.approx(zoomed[2:], abs=1e-3)
+        arrive(50.0)
+        window.redraw()
+        assert len(drawn) == 3 and np.ravel(view.viewRange()) == pytest.approx(zoomed, abs=1e-3)  # the user's view
+        window.y_auto.setChecked(True)
+        window.redraw()
+        assert view.viewRange()[1][1] > 50.0
+    finally:
+        publisher_node.shutdown("test over")
+
+
+def test_the_messages_of_one_read_are_spread_over_the_time_since_the_last(sim: Sim) -> None:
+    from std_msgs.msg import Float64
+
+    now = 100.0
+    plot_node = start_node("plot", {"master": sim.uri}, sim.env)
+    publisher_node = start_node("spread", {"master": sim.uri}, sim.env)
+    source = PlotSource(plot_node, clock=lambda: now)
+    try:
+        publisher_node.advertise("/spread", "std_msgs/Float64", Float64._md5sum, Float64._full_text)
+        source.add("/spread/data")
+
+        def read(*values: float) -> np.ndarray:  # one read's worth of messages, as the subscriber hands it over
+            source._deliver("/spread", [memoryview(struct.pack("<d", v)) for v in values], {})
+            return source.data()["/spread/data"][0]
+
+        now = 100.5
+        assert read(1.0, 2.0) == pytest.approx([0.5 - READ_INTERVAL / 2, 0.5])  # the first: over one interval
+        now = 100.504  # 4 ms later: four messages came in those 4 ms
+        assert read(3.0, 4.0, 5.0, 6.0)[2:] == pytest.approx([0.501, 0.502, 0.503, 0.504])
+        now = 160.0  # after a quiet minute, a burst: over one interval, not the minute
+        assert read(7.0, 8.0)[-2:] == pytest.approx([60.0 - READ_INTERVAL / 2, 60.0])
+        assert np.all(np.diff(source.data()["/spread/data"][0]) > 0)  # never two points at one time
+    finally:
+        source.close()
+        publisher_node.shutdown("test over")
+        plot_node.shutdown("test over")
 
 
 def test_a_type_kame_does_not_have_is_read_from_its_publishers_definition(sim: Sim, source: PlotSource) -> None:
@@ -248,3 +351,31 @@ def test_points_are_stamped_with_the_header_stamp_when_there_is_one(sim: Sim, so
         assert 3.5 in source.data()[series][1]
     finally:
         publisher_node.shutdown("test over")
+
+
+@pytest.mark.skipif(not have_debian_ros(), reason="Debian's ROS 1 (rosmaster, rospy) is not installed")
+def test_a_real_rospy_publisher_on_debians_rosmaster(tmp_path: Path) -> None:
+    port = free_port()
+    uri = f"http://127.0.0.1:{port}/"
+    env = ros_env(tmp_path, uri)
+    code = ("import rospy\nfrom std_msgs.msg import Float64\nrospy.init_node('level')\n"
+            "pub = rospy.Publisher('/level', Float64, queue_size=10)\nr = rospy.Rate(100)\ni = 0\n"
+            "while not rospy.is_shutdown():\n    pub.publish(Float64(i))\n    i += 1\n    r.sleep()\n")
+    procs = [Proc([SYSTEM_PYTHON, "/usr/bin/rosmaster", "--core", "-p", str(port)], env)]
+    try:
+        wait_for_master(uri, proc=procs[0])
+        procs.append(Proc([SYSTEM_PYTHON, "-c", code], env))
+        node = start_node("plot", {"master": uri}, env)
+        source = PlotSource(node)
+        try:
+            wait_until(lambda: ("/level", "std_msgs/Float64") in source.topic_types(), what="rospy's publisher")
+            source.add("/level/data")
+            wait_until(lambda: len(source.data()["/level/data"][1]) >= 20, what="rospy's messages in the plot")
+            t, v = source.data()["/level/data"]
+            assert np.all(np.diff(v) > 0) and np.all(np.diff(t) >= 0)  # in the order published
+        finally:
+            source.close()
+            node.shutdown("test over")
+    finally:
+        for proc in reversed(procs):
+            proc.stop()

@@ -354,16 +354,23 @@ class Receiver:
     when it broke (or the consumer raised), and not at all when we closed it ourselves.
     With `stall_timeout`, a peer that sends no byte for that long while the consumer is in the
     middle of a message ends the stream with Stalled (idle between messages is fine).
+    With `read_interval`, the thread waits that long after each read: what arrives meanwhile
+    gathers in the socket's buffer and comes in the next read, one wake-up for many small
+    messages instead of one each. For a consumer that only looks at the data every so often (a
+    plot drawn at a frame rate); the kernel's buffer (and TCP's flow control) bounds what waits.
     """
 
     def __init__(self, sock: socket.socket, consumer: Consumer, on_end: Callable[[BaseException | None], None],
-                 name: str, chunk_size: int = 256 * 1024, stall_timeout: float | None = None) -> None:
+                 name: str, chunk_size: int = 256 * 1024, stall_timeout: float | None = None,
+                 read_interval: float = 0.0) -> None:
         self.sock = sock
         self._stall_timeout = stall_timeout
+        self._read_interval = read_interval
         self._consumer = consumer
         self._on_end = on_end
         self._chunk_size = chunk_size
         self._closing = False
+        self._closed = threading.Event()  # wakes a read_interval wait at close
         self._thread = threading.Thread(target=self._run, name=name, daemon=True)
 
     def start(self) -> None:
@@ -375,6 +382,8 @@ class Receiver:
         chunk_size = self._chunk_size
         error: BaseException | None = None
         stall = self._stall_timeout
+        interval = self._read_interval
+        closed = self._closed
         try:
             if stall is not None:
                 self.sock.settimeout(stall)
@@ -388,6 +397,8 @@ class Receiver:
                 if n == 0:
                     break
                 consumer.buffer_updated(n)
+                if interval and closed.wait(interval):
+                    break
         except OSError as exc:
             error = exc
         except Exception as exc:  # a protocol error or a bug in the consumer: end this stream only
@@ -397,6 +408,7 @@ class Receiver:
 
     def close(self) -> None:
         self._closing = True
+        self._closed.set()
         shut_down(self.sock)
         if self._thread.is_alive() and self._thread is not threading.current_thread():
             self._thread.join(timeout=1.0)

@@ -157,18 +157,19 @@ class Node:
     def subscribe(self, topic: str, type: str, md5sum: str, definition: str, deliver: Callback,
                   queue_size: int | None = None, tcp_nodelay: bool = False,
                   buff_size: int | None = None, max_frame: int | None = None, message_class: type[Any] | None = None,
-                  deliver_messages: MessagesCallback | None = None, shared_memory: bool = True) -> Subscription:
-        """Subscribe to `topic` (already resolved); see Subscription for tcp_nodelay and buff_size.
-        `max_frame`: the largest message accepted (default: the type's size when it has no
-        variable-length fields, else 1 GiB); a larger one drops that publisher's connection.
-        `deliver_messages` gets messages of `message_class` that a publication of this node
-        publishes as objects, unserialized (kame.node.local); `shared_memory=False` is the transport hint
-        that keeps this subscription off shared memory (kame.protocol.shmros)."""
+                  deliver_messages: MessagesCallback | None = None, shared_memory: bool = True,
+                  read_interval: float = 0.0) -> Subscription:
+        """Subscribe to `topic` (already resolved); see Subscription for tcp_nodelay, buff_size
+        and read_interval. `max_frame`: the largest message accepted (default: the type's size
+        when it has no variable-length fields, else 1 GiB); a larger one drops that publisher's
+        connection. `deliver_messages` gets messages of `message_class` that a publication of this
+        node publishes as objects, unserialized (kame.node.local); `shared_memory=False` is the
+        transport hint that keeps this subscription off shared memory (kame.protocol.shmros)."""
         with self._lock:
             if topic in self.subscriptions:
                 raise ValueError(f"already subscribed to {topic}")
             sub = Subscription(self, topic, type, md5sum, definition, queue_size, tcp_nodelay, deliver, buff_size,
-                               max_frame, message_class, deliver_messages, shared_memory)
+                               max_frame, message_class, deliver_messages, shared_memory, read_interval)
             self.subscriptions[topic] = sub
         publishers = self.master.call("registerSubscriber", topic, type, self.uri)
         sub.set_publishers([str(uri) for uri in publishers])

@@ -414,7 +414,8 @@ class PublisherLink:
                 sock.close()
                 return
             self.receiver = Receiver(sock, consumer, self._ended, name=f"kame-sub{sub.topic}",
-                                     chunk_size=sub.buff_size, stall_timeout=sub.stall_timeout)
+                                     chunk_size=sub.buff_size, stall_timeout=sub.stall_timeout,
+                                     read_interval=sub.read_interval)
             self.connected = True
             self.receiver.start()
         for callback in sub.on_connect:
@@ -525,14 +526,18 @@ class Subscription:
     is how many bytes each read asks of the kernel, as rospy's (the default is kame's own);
     with a queue_size, a read asks for no more than about queue_size messages' worth. A
     message larger than `buff_size` still arrives whole: once its length is known, the rest
-    is read straight into its own buffer.
+    is read straight into its own buffer. `read_interval` (seconds, 0: none) is a pause after
+    each read (stream.Receiver), for a subscriber that batches anyway: many small messages
+    then cost one wake-up of the receiving thread instead of one each.
     """
 
     def __init__(self, node: Node, topic: str, type: str, md5sum: str, definition: str, queue_size: int | None,
                  tcp_nodelay: bool, deliver_frames: Callback, buff_size: int | None = None,
                  max_frame: int | None = None, message_class: type[Any] | None = None,
-                 deliver_messages: MessagesCallback | None = None, shared_memory: bool = True) -> None:
+                 deliver_messages: MessagesCallback | None = None, shared_memory: bool = True,
+                 read_interval: float = 0.0) -> None:
         self.node = node
+        self.read_interval = read_interval
         # a publisher in this node hands messages of `message_class` to `deliver_messages` as
         # they were published (kame.node.local); without it, they come as bytes
         self.message_class = message_class

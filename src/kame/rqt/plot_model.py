@@ -10,6 +10,8 @@ Rules:
 - A series keeps (t, value) pairs in numpy arrays, oldest first; points older than `history`
   seconds before its newest are dropped, and never more than `max_points` are kept.
   Appending is amortised O(1): the arrays have room to grow, and are compacted when full.
+- What a frame draws is thinned to the pixels (visible_peaks); the value axis of an
+  automatic range spans the finite values drawn (value_range), padded on both sides.
 """
 
 from __future__ import annotations
@@ -174,6 +176,30 @@ class Series:
         if not len(self):
             return None
         return float(self._t[self._end - 1]), float(self._v[self._end - 1])
+
+
+def padded(low: float, high: float, padding: float) -> tuple[float, float]:
+    """(low, high) widened by `padding` times its span on each side; a span of zero (a flat line)
+    is widened to one unit, so the line is drawn mid-height instead of on an axis."""
+    if high <= low:
+        return low - 0.5, low + 0.5
+    margin = (high - low) * padding
+    return low - margin, high + margin
+
+
+def value_range(values: Iterable[np.ndarray], padding: float = 0.02) -> tuple[float, float] | None:
+    """The range of the value axis that shows every finite value of every array, padded (NaN
+    and infinity are gaps in a curve, not part of its range); None when there is none."""
+    low, high = np.inf, -np.inf
+    for array in values:
+        if not len(array):
+            continue
+        finite = array if np.isfinite(array).all() else array[np.isfinite(array)]
+        if len(finite):
+            low, high = min(low, float(finite.min())), max(high, float(finite.max()))
+    if low > high:
+        return None
+    return padded(low, high, padding)
 
 
 def visible_peaks(t: np.ndarray, v: np.ndarray, start: float, end: float, bins: int) -> tuple[np.ndarray, np.ndarray]:
