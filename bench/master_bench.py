@@ -16,7 +16,12 @@ per connection, all in this process).
 
 Metrics: XML-RPC calls/s for registerPublisher, lookupNode and getSystemState with 1, 10 and 50
 concurrent clients, with the master's and the client's CPU time per call; ms to register 100
-publishers + 100 subscribers; getSystemState latency (median) on a graph of 1000 topics.
+publishers + 100 subscribers; getSystemState latency (median) on a graph of 1000 topics; a
+registration storm: 1,000 nodes start at once, each connects and registers 10 publications and
+then 10 subscriptions (topics shared by 100 nodes each, so subscribers get publisher lists back),
+ms from the start until the last registration is answered.
+
+  --only PREFIX [--only PREFIX ...]   just the metrics whose label starts with a PREFIX
 """
 
 from __future__ import annotations
@@ -370,6 +375,130 @@ def system_state_latency(m: Master) -> float:
     return statistics.median(times)
 
 
+def storm_worker(port: int, nodes: list[int], topics: int, pipe) -> None:  # type: ignore[no-untyped-def]
+    """One client process of the storm: its nodes, each one connection sending its registrations one
+    after the other, all driven by one epoll loop. Sends back (calls answered, error text or "")."""
+    ep = select.epoll()
+    conns: dict[int, Conn] = {}
+
+    def connect(c: Conn) -> None:
+        if c.sock is not None:
+            ep.unregister(c.sock.fileno())
+            del conns[c.sock.fileno()]
+            c.sock.close()
+        c.sock = socket.create_connection(("127.0.0.1", port))
+        c.sock.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
+        c.buf = b""
+        conns[c.sock.fileno()] = c
+        ep.register(c.sock.fileno(), select.EPOLLIN)
+
+    pending = [Conn(storm_requests(i, topics)) for i in nodes]
+    calls, error = 0, ""
+    try:
+        pipe.send("ready")
+        pipe.recv()  # go
+        for c in pending:
+            connect(c)
+            c.sock.sendall(c.reqs[0])  # type: ignore[union-attr]
+        left = len(pending)
+        while left:
+            for fd, _ in ep.poll(5.0) or [(None, None)]:
+                if fd is None:
+                    raise TimeoutError(f"no answer for 5 s, {left} nodes not done")
+                c = conns[fd]
+                chunk = c.sock.recv(65536)  # type: ignore[union-attr]
+                if not chunk:  # closed before answering: reconnect, send again
+                    connect(c)
+                    c.sock.sendall(c.reqs[c.n])  # type: ignore[union-attr]
+                    continue
+                buf = c.buf + chunk
+                head, sep, rest = buf.partition(b"\r\n\r\n")
+                if not sep:
+                    c.buf = buf
+                    continue
+                lower = head.lower()
+                i = lower.find(b"content-length:")
+                j = head.find(b"\r\n", i)
+                length = int(head[i + 15: j if j > 0 else None])
+                if len(rest) < length:
+                    c.buf = buf
+                    continue
+                if not ok(rest[:length]):
+                    raise RuntimeError(f"registration failed: {rest[:300]!r}")
+                c.buf = rest[length:]
+                calls += 1
+                c.n += 1
+                if c.n == len(c.reqs):  # this node is registered: it keeps its connection, quiet
+                    left -= 1
+                    continue
+                if head.startswith(b"HTTP/1.0") or b"connection: close" in lower:
+                    connect(c)
+                c.sock.sendall(c.reqs[c.n])  # type: ignore[union-attr]
+    except Exception as e:  # reported to the parent, which raises it
+        error = repr(e)
+    pipe.send((calls, error))
+    pipe.recv()  # the parent has the time: now the nodes go away
+    for c in conns.values():
+        c.sock.close()  # type: ignore[union-attr]
+
+
+STORM_NODES = 1000
+STORM_TOPICS = 10
+STORM_SHARING = 100  # nodes per topic
+
+
+def storm_requests(i: int, topics: int) -> list[bytes]:
+    node, api = f"/storm/node{i}", f"http://127.0.0.1:1/storm{i}"  # never contacted: see NODE_API
+    names = [f"/storm/g{i // STORM_SHARING}/t{t}" for t in range(topics)]
+    return ([request("registerPublisher", node, t, "std_msgs/String", api) for t in names]
+            + [request("registerSubscriber", node, t + "_in", "std_msgs/String", api) for t in names])
+
+
+def storm(m: Master, procs: int, nodes: int = STORM_NODES, topics: int = STORM_TOPICS) -> float:
+    """ms for `nodes` nodes, started at once over `procs` client processes, to each register `topics`
+    publications and `topics` subscriptions; the master's CPU per call as the second value."""
+    ctx = multiprocessing.get_context("fork")
+    pipes, workers = [], []
+    try:
+        for p in range(procs):
+            parent, child = ctx.Pipe()
+            w = ctx.Process(target=storm_worker, args=(m.port, list(range(p, nodes, procs)), topics, child),
+                            daemon=True)
+            w.start()
+            child.close()
+            pipes.append(parent)
+            workers.append(w)
+        for pipe in pipes:
+            if not pipe.poll(30) or pipe.recv() != "ready":
+                raise RuntimeError(f"{m.name}: a storm client did not start")
+        cpu0 = cpu_seconds(m.proc.pid)
+        t0 = time.perf_counter()
+        for pipe in pipes:
+            pipe.send("go")
+        results = []
+        for pipe in pipes:
+            if not pipe.poll(120):
+                raise RuntimeError(f"{m.name}: a storm client did not finish")
+            results.append(pipe.recv())
+        elapsed = time.perf_counter() - t0
+        cpu = cpu_seconds(m.proc.pid) - cpu0
+        for pipe in pipes:
+            pipe.send("done")
+    finally:
+        for w in workers:
+            w.join(10)
+            if w.is_alive():
+                w.kill()
+                w.join()
+    errors = [e for _, e in results if e]
+    if errors:
+        raise RuntimeError(f"{m.name}: {errors[0]}")
+    calls = sum(n for n, _ in results)
+    if calls != nodes * topics * 2:
+        raise RuntimeError(f"{m.name}: {calls} registrations answered, not {nodes * topics * 2}")
+    return elapsed * 1e3, cpu / calls * 1e6, 0.0
+
+
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--window", type=float, default=2.0, help="seconds per throughput measurement")
@@ -380,6 +509,8 @@ def main() -> int:
                          "threads: the old client, one thread per connection in this one process")
     ap.add_argument("--procs", type=int, default=os.cpu_count() or 1,
                     help="client worker processes with --client procs (at most N; default: cpu count, %(default)s)")
+    ap.add_argument("--only", action="append", default=[], metavar="PREFIX",
+                    help="measure only the metrics whose label starts with PREFIX (repeatable)")
     args = ap.parse_args()
     compile_kame()
     masters = {"rosmaster": ["/usr/bin/python3", args.rosmaster],
@@ -387,6 +518,8 @@ def main() -> int:
     rows: list[tuple[str, str, dict[str, float]]] = []
 
     def measure(label: str, unit: str, fn) -> None:  # type: ignore[no-untyped-def]
+        if args.only and not any(label.startswith(prefix) for prefix in args.only):
+            return
         values: dict[str, float] = {}
         cpu: dict[str, float] = {}
         own: dict[str, float] = {}
@@ -406,6 +539,7 @@ def main() -> int:
         if all(cpu.values()):
             # on a shared machine the client and neighbours take CPU too: this is the master's own cost
             rows.append(("  master CPU per call", "us", cpu))
+        if all(own.values()):
             rows.append(("  client CPU per call", "us", own))
 
     for method in ("registerPublisher", "lookupNode", "getSystemState"):
@@ -418,6 +552,8 @@ def main() -> int:
             measure(f"{method}, {clients} client{'s' if clients > 1 else ''}", "call/s", fn)
     measure("register 100 pubs + 100 subs", "ms", register_200)
     measure("getSystemState, 1000 topics (median)", "ms", system_state_latency)
+    measure(f"storm: {STORM_NODES} nodes x {STORM_TOPICS} pubs + {STORM_TOPICS} subs", "ms",
+            lambda m: storm(m, args.procs))
 
     if args.client == "threads":
         how = "client: --client threads, N threads (one connection each) in this one process"

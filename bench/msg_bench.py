@@ -19,6 +19,11 @@ serialized bytes are identical) and times, per message, the way a node uses mess
   serialize    msg.serialize(buff) into a fresh io.BytesIO, then buff.getvalue()
   ser. reused  msg.serialize(buff) into one BytesIO reused (seek(0), truncate())
   deserialize  Cls().deserialize(data) from bytes
+  node: to frame    what a publisher does with a message: rospy's serialize_message()
+               into its reused BytesIO (length prefix, header seq) and getvalue(); kame's
+               kame.node.topics.serialize_frame(msg)
+  node: from frame  what a subscriber does with a frame's payload: rospy's
+               Cls().deserialize(payload bytes); kame's Cls._from_buffer(memoryview)
 and a plain copy of the large messages' bytes (bytearray(b), a memoryview slice
 assignment into a preallocated buffer, numpy.copyto when numpy imports) as the physical
 reference.  Standard library only (numpy optional).  Every worker is started in its own
@@ -49,17 +54,23 @@ IMPLS = {  # name -> command prefix of the interpreter that runs the worker
 }
 MISSING_EXIT = 3
 clock = time.perf_counter
+CLOCKS = {'wall': time.perf_counter, 'cpu': time.process_time}
+rate_clock = clock  # what rate() times with; the worker sets it from --clock
 
 # name, label; the order of the table
 MESSAGES = [
     ('string', 'std_msgs/String'),
     ('twist', 'geometry_msgs/Twist'),
+    ('pose', 'geometry_msgs/Pose'),
+    ('joints', 'sensor_msgs/JointState 6 joints'),
     ('odometry', 'nav_msgs/Odometry'),
     ('image', 'sensor_msgs/Image 1920x1080 rgb8'),
     ('cloud', 'sensor_msgs/PointCloud2 1M pts'),
 ]
 LARGE = ('image', 'cloud')
-OPS = [('ser', 'serialize'), ('ser_reuse', 'ser. reused buf'), ('deser', 'deserialize')]
+OPS = [('ser', 'serialize'), ('ser_reuse', 'ser. reused buf'), ('deser', 'deserialize'),
+       ('send', 'node: to frame'), ('recv', 'node: from frame')]
+NODE_OPS = ('send', 'recv')
 COPIES = [('bytearray', 'bytearray(b)'), ('mv_assign', 'dst[:] = b'), ('numpy', 'numpy.copyto')]
 
 
@@ -78,9 +89,9 @@ def set_header(h, frame_id):
 
 def build_messages():
     """{name: (class, message)} with identical contents for kame and genpy."""
-    from geometry_msgs.msg import Twist
+    from geometry_msgs.msg import Pose, Twist
     from nav_msgs.msg import Odometry
-    from sensor_msgs.msg import Image, PointCloud2, PointField
+    from sensor_msgs.msg import Image, JointState, PointCloud2, PointField
     from std_msgs.msg import String
 
     out = {'string': (String, String(data='hello kame'))}
@@ -89,6 +100,19 @@ def build_messages():
     tw.linear.x, tw.linear.y, tw.linear.z = 0.5, -0.25, 0.0
     tw.angular.x, tw.angular.y, tw.angular.z = 0.0, 0.0, 1.5
     out['twist'] = (Twist, tw)
+
+    pose = Pose()
+    pose.position.x, pose.position.y, pose.position.z = 1.0, 2.0, 0.5
+    pose.orientation.z, pose.orientation.w = 0.3826834, 0.9238795
+    out['pose'] = (Pose, pose)
+
+    js = JointState()
+    set_header(js.header, 'base_link')
+    js.name = ['shoulder_pan', 'shoulder_lift', 'elbow', 'wrist_1', 'wrist_2', 'wrist_3']
+    js.position = [0.1 * i for i in range(6)]
+    js.velocity = [0.01 * i for i in range(6)]
+    js.effort = [1.5 * i for i in range(6)]
+    out['joints'] = (JointState, js)
 
     od = Odometry()
     set_header(od.header, 'odom')
@@ -120,7 +144,43 @@ def build_messages():
     return out
 
 
-def loops(cls, msg, data):
+def node_ops(impl, cls, msg, data):
+    """The node's own paths: (send, recv) functions(n), see the module's docstring."""
+    if impl == 'genpy':
+        from rospy.msg import serialize_message
+
+        buff = io.BytesIO()
+
+        def send(n):
+            b = buff
+            for seq in range(n):
+                serialize_message(b, seq, msg)
+                b.getvalue()
+                b.seek(0)
+                b.truncate(0)
+
+        def recv(n):
+            for _ in range(n):
+                cls().deserialize(data)
+
+        return send, recv
+    from kame.node.topics import serialize_frame
+
+    view = memoryview(data)
+    from_buffer = cls._from_buffer
+
+    def send(n):
+        for _ in range(n):
+            serialize_frame(msg)
+
+    def recv(n):
+        for _ in range(n):
+            from_buffer(view)
+
+    return send, recv
+
+
+def loops(impl, cls, msg, data):
     """op -> function(n) running the op n times (the loop inlined, as a node would run it)."""
     BytesIO = io.BytesIO
 
@@ -143,7 +203,8 @@ def loops(cls, msg, data):
         for _ in range(n):
             cls().deserialize(data)
 
-    return {'ser': ser, 'ser_reuse': ser_reuse, 'deser': deser}
+    send, recv = node_ops(impl, cls, msg, data)
+    return {'ser': ser, 'ser_reuse': ser_reuse, 'deser': deser, 'send': send, 'recv': recv}
 
 
 def copies(data):
@@ -183,9 +244,9 @@ def rate(fn, block, blocks):
     """
     n = 1
     while True:  # calibrate: grow n until one block takes >= block / 4
-        t = clock()
+        t = rate_clock()
         fn(n)
-        dt = clock() - t
+        dt = rate_clock() - t
         if dt >= block / 4:
             break
         n *= 4 if dt < block / 40 else 2
@@ -193,9 +254,9 @@ def rate(fn, block, blocks):
     rates = []
     for _ in range(blocks):
         gc.collect()
-        t = clock()
+        t = rate_clock()
         fn(n)
-        rates.append(n / (clock() - t))
+        rates.append(n / (rate_clock() - t))
     return max(rates)
 
 
@@ -248,7 +309,9 @@ def worker(impl, block, blocks):
             print('%s: deserialize(serialize(msg)) does not round-trip' % name, file=sys.stderr)
             return 2
         r = {'bytes': len(data), 'sha256': hashlib.sha256(data).hexdigest()}
-        for op, fn in loops(cls, msg, data).items():
+        for op, fn in loops(impl, cls, msg, data).items():
+            if name in LARGE and op in NODE_OPS:
+                continue  # kame frames large messages without copying them: no like-for-like figure
             r[op] = rate(fn, block, blocks)
         res['messages'][name] = r
         if name in LARGE:
@@ -261,7 +324,7 @@ def worker(impl, block, blocks):
 def run_worker(impl, prefix, o):
     """Run one worker in its own process group; return (result dict or None, exit status, error line)."""
     cmd = [*prefix, os.path.abspath(__file__), '--worker', impl, '--block', str(o.block),
-           '--blocks', str(o.blocks)]
+           '--blocks', str(o.blocks), '--clock', o.clock]
     p = subprocess.Popen(cmd, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                          text=True, start_new_session=True)
     try:
@@ -327,6 +390,8 @@ def table(res, base='genpy'):
         big = name in LARGE and size
         copy_rate = med(everyone, 'copies', name, 'bytearray')
         for i, (op, op_label) in enumerate(OPS):
+            if name in LARGE and op in NODE_OPS:
+                continue
             rates = [med(res[n], 'messages', name, op) for n in names]
             rows.append([
                 label if i == 0 else '', size_text(size) if i == 0 and size else '', op_label,
@@ -389,8 +454,8 @@ def driver(o):
             res[name].append(r)
             print('rep %d %-8s %5.1fs  %s' % (rep + 1, name, clock() - t, '  '.join(
                 '%s=%s' % (m, fmt(v['ser'])) for m, v in r['messages'].items())), file=sys.stderr, flush=True)
-    print('message serialization, msg/s and MB/s, medians of %d repetitions (workers interleaved); '
-          'loadavg %s -> %s' % (o.reps, load0, loadavg()))
+    print('message serialization, msg/s and MB/s (%s time), medians of %d repetitions (workers interleaved); '
+          'loadavg %s -> %s' % (o.clock, o.reps, load0, loadavg()))
     for name, prefix in impls.items():
         r = res[name][0] if res[name] else None
         print('  %-8s %s' % (name, 'Python %s (%s), messages from %s' % (r['python'], ' '.join(prefix), r['std_msgs'])
@@ -418,10 +483,15 @@ def main():
                          "which separates codegen from interpreter build (default: on)")
     ap.add_argument('--impl', action='append', default=[], metavar='NAME=COMMAND',
                     help='add or override an implementation: NAME=interpreter command prefix')
+    ap.add_argument('--clock', choices=sorted(CLOCKS), default='wall',
+                    help="time blocks by wall clock or by the worker's CPU time, which a machine busy "
+                         "with other work disturbs less (default %(default)s)")
     ap.add_argument('--json', help='write all per-repetition results to this file')
     ap.add_argument('--worker', help=argparse.SUPPRESS)
     o = ap.parse_args()
     if o.worker:
+        global rate_clock
+        rate_clock = CLOCKS[o.clock]
         return worker(o.worker, o.block, o.blocks)
     for sig in (signal.SIGTERM, signal.SIGHUP):
         signal.signal(sig, _on_signal)

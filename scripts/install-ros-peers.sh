@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs real ROS 1 (Debian's ros_comm 1.15.15) as a test peer for the interop tests, and the
 # shells and terminal multiplexer some end-to-end tests drive, iproute2 and
-# sshd for the tests on several hosts.
+# sshd for the tests on several hosts, and Debian's rviz (the reference viewer of kame's worlds).
 # It runs under the system interpreter (/usr/bin/python3) and is never a kame dependency.
 # Does nothing where apt is missing or we are not root: the interop tests then skip.
 set -euo pipefail
@@ -11,6 +11,9 @@ packages=(
   python3-actionlib
   python3-dynamic-reconfigure  # dynparam, Client and Server against kame's (tests/dynamic_reconfigure)
   python3-tf2-ros python3-tf python3-tf2-geometry-msgs tf2-tools tf-tools  # tf/tf2 interop (tests/tf)
+  # image_transport's republish (raw only: Debian has no compressed plugin) and cv_bridge with OpenCV,
+  # which decode and make the compressed images kame's republish reads and writes (tests/libs/test_image_transport.py)
+  image-transport-tools python3-cv-bridge
   libroscpp-dev libstd-msgs-dev libgeometry-msgs-dev libsensor-msgs-dev libstd-srvs-dev
   ros-std-msgs ros-std-srvs ros-geometry-msgs ros-sensor-msgs ros-nav-msgs ros-rosgraph-msgs
   ros-actionlib-msgs ros-diagnostic-msgs ros-trajectory-msgs ros-visualization-msgs
@@ -20,6 +23,7 @@ packages=(
   zsh tmux  # the shell-integration and terminal (teleop) tests drive these
   iproute2  # ip netns: the several-hosts tests (tests/hosts) run each host in a network namespace
   openssh-server  # sshd, run by tests/hosts in a namespace for roslaunch's <machine> nodes
+  rviz  # Debian's rviz 1.14 on Xvfb, shown kame's TurtleBot world (tests/stage/test_debian_rviz.py)
 )
 if ! command -v apt-get >/dev/null 2>&1 || [ "$(id -u)" != 0 ]; then
   echo "install-ros-peers: no apt-get or not root; interop tests with real ROS 1 will be skipped" >&2

@@ -71,6 +71,8 @@ LAYERS: dict[str, int] = {
     "kame.reconfigure": 1,  # dynamic_reconfigure: the .cfg generator and its import hook, the config codec
     "kame.reconfigure.server": 4,  # the Server on kame.client
     "kame.reconfigure.client": 4,
+    "kame.image_transport": 1,  # compressed_image_transport's codec (numpy, OpenCV or Pillow)
+    "kame.image_transport.republish": 4,  # image_transport's republish node on kame.client
     "kame.tf": 1,  # transformations and the tf2 buffer core: no clock, no threads
     "kame.tf_ros": 3,  # the Buffer that waits, /tf listener and broadcasters on a Node
     "kame.turtle_tf": 4,  # the turtle_tf demo programs
@@ -118,13 +120,15 @@ LAYERS: dict[str, int] = {
     "kame.robot.sliders": 4,  # joint_state_publisher_gui's Qt window
     "kame.stage.runtime": 4,  # the simulator's and map tools' one way to the ROS runtime
     "kame.stage.node": 4,
-    "kame.stage.gui": 4,  # Qt; knows only the simulator's frames
+    "kame.stage.gui": 4,
+    "kame.fed_window": 4,  # Qt: a simulation's window process  # Qt; knows only the simulator's frames
     "kame.stage.map_server": 4,
     "kame.stage.map_saver": 4,
     "kame.stage.teleop": 4,
     "kame.nav.amcl_node": 4,  # amcl on kame.client and kame.tf_ros
     "kame.nav.move_base_node": 4,
     "kame.nav.costmap_ros": 4,  # move_base's costmaps on kame.client and kame.tf_ros
+    "kame.nav.gmapping_node": 4,  # slam_gmapping on kame.client and kame.tf_ros
     # L5 the compatibility packages: thin facades over kame, which never imports them
     **{facade: 5 for facade in FACADES},
     "sensor_msgs": MESSAGES,  # generated, but for point_cloud2

@@ -8,7 +8,6 @@ the callback's bug, and must reach the log with its traceback, not pick another 
 
 from __future__ import annotations
 
-import inspect
 from collections.abc import Callable
 from typing import Any
 
@@ -17,6 +16,8 @@ def accepts(function: Callable[..., Any], count: int) -> bool:
     """True when `function` can be called with `count` positional arguments. Bound methods,
     functools.partial, defaults and *args are read as inspect.signature reads them; a callable
     whose signature Python cannot tell (some builtins) is taken to accept them."""
+    import inspect  # here: inspect (with ast, dis, tokenize) is a megabyte a talker never needs
+
     try:
         signature = inspect.signature(function)
     except (TypeError, ValueError):

@@ -28,7 +28,9 @@ def numpy_msg(msg_type: type[Any]) -> type[Any]:
         "__slots__": (),
         "serialize": serialize,
         "deserialize": deserialize,
-        "_from_buffer": classmethod(lambda cls, data: deserialize(object.__new__(cls), data)),
+        # the arrays are views of what they are read from: a copy that is theirs, not the
+        # subscriber's reused read buffer or the publisher's shared-memory ring
+        "_from_buffer": classmethod(lambda cls, data: deserialize(object.__new__(cls), bytes(data))),
         "__module__": msg_type.__module__,
     })
     _cache[msg_type] = numpy_type

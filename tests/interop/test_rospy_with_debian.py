@@ -257,3 +257,34 @@ def test_kame_talker_to_roscpp_listener_and_roscpp_talker_to_kame_listener(
     kame_listener = graph.kame("listener.py", "chatter:=from_cpp")
     heard = kame_listener.wait_line("I heard hello ")
     assert "]: /listener_" in heard and heard.rstrip().split("I heard hello ")[1].isdigit()
+
+
+SHM_PROBE = """
+import threading
+import rospy
+from std_msgs.msg import String
+rospy.init_node("shm_probe")
+for topic in ("/from_rospy", "/from_cpp"):
+    heard = threading.Event()
+    sub = rospy.Subscriber(topic, String, lambda msg: heard.set())
+    assert heard.wait(30), topic
+    print(topic, [link.header.get("kame_shm") for link in sub.impl.links.values() if link.connected], flush=True)
+"""
+
+
+@debian
+def test_real_ros_peers_ignore_the_shared_memory_offer_and_keep_tcpros(
+        graph: Graph, cpp_peers: dict[str, Path]) -> None:
+    graph.env["KAME_SHM"] = "always"  # for the kame processes started from here on
+    graph.real(TUTORIALS / "talker.py", "chatter:=from_rospy")
+    cpp_talker = Proc([str(cpp_peers["talker"]), "chatter:=from_cpp"], graph.env)
+    graph.procs.append(cpp_talker)
+    probe = graph.kame_code(SHM_PROBE)  # offers shared memory to both: neither answers it
+    assert probe.wait_line("/from_rospy", 40).strip() == "/from_rospy [None]"
+    assert probe.wait_line("/from_cpp", 40).strip() == "/from_cpp [None]"
+    graph.kame("talker.py")  # Debian's subscribers never offer: the kame publisher keeps TCPROS
+    real_listener = graph.real(TUTORIALS / "listener.py")
+    assert "I heard hello world" in real_listener.wait_line("I heard")
+    cpp_listener = Proc([str(cpp_peers["listener"])], graph.env)
+    graph.procs.append(cpp_listener)
+    assert cpp_listener.wait_line("I heard: [hello world ").startswith("I heard: [hello world ")

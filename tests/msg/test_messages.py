@@ -130,6 +130,27 @@ def test_arrays_are_lists_in_and_tuples_out() -> None:
     assert back == msg  # lists and tuples compare equal, as genpy does
 
 
+def test_numeric_arrays_of_any_length_and_kind_keep_their_bytes() -> None:
+    # Lists and tuples go through structs cached per element count; counts past the cache's
+    # bound and array-like values take other paths: the bytes must not depend on which.
+    import array
+
+    from kame.msg.runtime import ArrayStructs
+    from sensor_msgs.msg import JointState
+
+    for count in (0, 1, 6, ArrayStructs.MAX_CACHED + 1):
+        values = [0.5 * i for i in range(count)]
+        expected = struct.pack(f"<I{count}d", count, *values)
+        for value in (values, tuple(values), numpy.array(values), array.array("d", values)):
+            data = serialize(JointState(position=value))
+            assert data[-8 - len(expected):-8] == expected  # then velocity, effort: 4-byte zero counts
+            assert JointState().deserialize(data).position == tuple(values)
+    counted = ArrayStructs("<%dd")
+    for count in (3, ArrayStructs.MAX_CACHED + 1, 1 << 28):
+        assert counted[count].size == 8 * count
+    assert sorted(counted) == [3]  # only small counts are kept: bad input cannot grow the cache
+
+
 def test_uint8_arrays_take_bytes_lists_and_buffers() -> None:
     from std_msgs.msg import UInt8MultiArray
 

@@ -222,3 +222,40 @@ def test_accept_loops_pause_when_out_of_file_descriptors() -> None:
         if proc.poll() is None:
             proc.kill()
             proc.wait()
+
+
+class _StuckSender:
+    """A Flushable whose first flush waits until released (a flusher thread held up)."""
+
+    def __init__(self) -> None:
+        self.sock, self._other = socket.socketpair()
+        self.closed = False
+        self.in_flush = threading.Event()
+        self.release = threading.Event()
+
+    def flush(self) -> bool:
+        self.in_flush.set()
+        self.release.wait(10)
+        return True
+
+    def peer_hung_up(self) -> bool:
+        return False
+
+
+def test_requests_to_a_busy_flusher_never_block_the_caller() -> None:
+    # The wake-up socket filled while the flusher thread was busy, and a send on it blocked the
+    # publisher (and the flusher itself, when it asked to watch a sender: a deadlock).
+    flusher = Flusher()
+    sender = _StuckSender()
+    try:
+        flusher.want_write(sender)
+        assert sender.in_flush.wait(5)
+        requests = threading.Thread(target=lambda: [flusher.want_write(sender) for _ in range(300_000)])
+        requests.start()
+        requests.join(30)
+        assert not requests.is_alive()
+    finally:
+        sender.release.set()
+        flusher.close()
+        sender.sock.close()
+        sender._other.close()

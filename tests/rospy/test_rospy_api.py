@@ -214,7 +214,8 @@ def test_a_latched_message_that_comes_with_the_handshake_reaches_the_callback(en
     # Under load the latched message arrives in the same read as the publisher's header, so it
     # is delivered the moment the connection starts: forced here by holding subscribe() until
     # then. The callback must already be in place (it once was added after, and missed it).
-    out, _ = run(env, """
+    # Publisher and subscriber share the process: intra-process delivery is off to keep TCPROS.
+    out, _ = run({**env, "KAME_INTRAPROCESS": "0"}, """
         import threading
         import rospy
         from kame.node import topics

@@ -324,7 +324,7 @@ def test_robot_model_places_the_urdf_visuals_at_their_links() -> None:
     assert triangles.colors[0] == pytest.approx([0, 0, 1, 1])
     cylinder = triangles.vertices[36:]
     assert cylinder.min(axis=0) == pytest.approx([0.5, 1.5, -0.1], abs=1e-6)
-    assert triangles.colors[-1] == pytest.approx([0.8, 0.8, 0.8, 1])
+    assert triangles.colors[-1] == pytest.approx([1, 0, 0, 1])  # rviz's red for a part with no material
     assert display.status.level == WARN
     assert "wheel: no transform from wheel to map" in display.status.text
     assert "laser: package [r] not found for package://r/base.dae" in display.status.text

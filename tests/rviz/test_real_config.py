@@ -76,3 +76,13 @@ def test_odometry_reads_its_arrow_from_the_shape_rviz_writes_and_from_older_flat
         batch = scene.batches[0]
         assert batch.colors[0][:3] == pytest.approx(color)
         assert batch.vertices[:, 0].max() == pytest.approx(length)
+
+
+def test_the_window_is_titled_and_sized_as_the_real_rviz_opens_it() -> None:
+    loaded = config.load(str(REAL))
+    geometry = loaded.raw["Window Geometry"]
+    assert config.window_size(loaded) == (geometry["Width"], geometry["Height"])
+    assert config.window_size(config.Config()) == (1280, 720)  # no file: kame's default
+    # rviz 1.14 names the file, not its folder, and says "RViz" alone without one
+    assert config.window_title(str(REAL)) == "rviz_1.14_every_display.rviz - RViz"
+    assert config.window_title("") == "RViz"

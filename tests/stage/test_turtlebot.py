@@ -1,20 +1,23 @@
 """The course's TurtleBot flow on kame's 2-D world: `roslaunch turtlebot_gazebo turtlebot_world.launch`,
-`roslaunch turtlebot_teleop keyboard_teleop.launch` in a real terminal (tmux), keys drive the
-robot in /odom and ground truth, `k` stops it, Ctrl-C quits; the teleop script's key rules."""
+the live /scan hits the map's walls cell by cell, `roslaunch turtlebot_teleop keyboard_teleop.launch`
+in a real terminal (tmux), keys drive the robot in /odom and ground truth, `k` stops it, Ctrl-C
+quits; the teleop script's key rules."""
 
 from __future__ import annotations
 
+import math
 import os
 import shutil
 import signal
 import subprocess
 from pathlib import Path
+from typing import Any
 
 import pytest
 
 from kame.stage.teleop import BANNER, Teleop, speeds_line
 from tests.stage.sim import echo
-from tests.support import Proc, sending_to
+from tests.support import REPO, Proc, sending_to
 from tests.turtlesim.sim import BIN, master, wait_until
 
 
@@ -40,6 +43,34 @@ def test_keys_follow_the_scripts_rules() -> None:
     assert lines[-1] == BANNER and len(lines) == 15  # the banner again every 15 speed changes
 
 
+def assert_scan_hits_walls(scan: dict[str, Any]) -> None:
+    """Each beam of a scan taken at the playground's origin ends in a wall cell of the world's map
+    (within a cell: the beam's end lies on the wall's face) and crosses no wall before it."""
+    from kame.stage import mapfile
+
+    world = REPO / "src" / "kame" / "share" / "turtlebot_gazebo" / "worlds" / "playground.yaml"
+    description = mapfile.parse_description(world.read_text())
+    image = Path(description.image_path(str(world)))
+    grid = mapfile.load(description, image.read_bytes(), image.name)
+
+    def cells_near(x: float, y: float, around: int) -> Any:
+        col = math.floor((x - grid.origin[0]) / grid.resolution)
+        row = math.floor((y - grid.origin[1]) / grid.resolution)
+        return grid.cells[max(row - around, 0):row + around + 1, max(col - around, 0):col + around + 1]
+
+    hits = 0
+    for i, distance in enumerate(scan["ranges"]):
+        if not scan["range_min"] <= distance < scan["range_max"]:
+            continue
+        angle = scan["angle_min"] + i * scan["angle_increment"]
+        end_x, end_y = distance * math.cos(angle), distance * math.sin(angle)
+        assert (cells_near(end_x, end_y, 1) == 100).any(), (i, distance, "no wall where the beam ends")
+        short = distance - 2 * grid.resolution  # the way there is free
+        assert not (cells_near(short * math.cos(angle), short * math.sin(angle), 0) == 100).any(), (i, distance)
+        hits += 1
+    assert hits > len(scan["ranges"]) // 2, hits
+
+
 @pytest.mark.skipif(shutil.which("tmux") is None, reason="tmux is not installed")
 def test_turtlebot_world_and_keyboard_teleop(tmp_path: Path) -> None:
     with master(tmp_path) as sim:
@@ -51,6 +82,7 @@ def test_turtlebot_world_and_keyboard_teleop(tmp_path: Path) -> None:
         assert "turtlebot" in sim.run("rosparam", "get", "/robot_description").stdout
         scan = echo(sim, "/scan")  # stageros's base_scan, remapped as turtlebot_stage does
         assert len(scan["ranges"]) == 640 and scan["header"]["frame_id"] == "base_scan"
+        assert_scan_hits_walls(scan)  # the robot stands at the origin, base_scan above base_link
 
         sock = str(tmp_path / "tmux.sock")
 

@@ -240,7 +240,7 @@ def test_the_world_knows_nothing_of_ros_and_the_gui_only_the_world() -> None:
     ros = ("rospy", "kame.node", "kame.net", "geometry_msgs", "turtlesim", "std_srvs", "PySide6")
     for pure in ("world.py", "canvas.py", "window_probe.py", "frame_codec.py"):
         assert not [m for m in imports(pure) if m.startswith(ros) and not m.startswith("kame.turtlesim")]
-    # the GUI draws the world, as frames from the node (frame_codec); its start-up probe speaks
-    # window_probe's words; neither knows ROS
+    # the GUI draws the world, as frames from the node (frame_codec) read by kame.fed_window's
+    # window process; its start-up probe speaks window_probe's words; neither knows ROS
     assert {m for m in imports("gui.py") if m.startswith(("kame", "rospy"))} == {
-        "kame.turtlesim.world", "kame.turtlesim.window_probe", "kame.turtlesim.frame_codec"}
+        "kame.turtlesim.world", "kame.turtlesim.window_probe", "kame.turtlesim.frame_codec", "kame.fed_window"}

@@ -27,11 +27,11 @@ def require_x_tools() -> None:
 
 
 @contextmanager
-def xvfb() -> Iterator[str]:
-    """A running Xvfb; yields its DISPLAY (":N")."""
+def xvfb(size: str = "800x600") -> Iterator[str]:
+    """A running Xvfb of `size` pixels (24-bit colour); yields its DISPLAY (":N")."""
     require_x_tools()
     read, write = os.pipe()
-    server = subprocess.Popen(["Xvfb", "-displayfd", str(write), "-screen", "0", "800x600x24", "-nolisten", "tcp"],
+    server = subprocess.Popen(["Xvfb", "-displayfd", str(write), "-screen", "0", f"{size}x24", "-nolisten", "tcp"],
                               pass_fds=(write,), stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
     os.close(write)
     try:

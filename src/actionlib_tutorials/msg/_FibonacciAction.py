@@ -6,6 +6,7 @@ from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
 from kame.msg.message import refill as _refill
+from kame.msg.runtime import ArrayStructs as _ArrayStructs
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -13,7 +14,6 @@ from kame.rostime import Duration as _Duration
 from kame.rostime import Time as _Time
 
 _new = object.__new__
-_unpack_from = _struct.unpack_from
 from actionlib_tutorials.msg._FibonacciActionGoal import FibonacciActionGoal as _T_actionlib_tutorials__FibonacciActionGoal
 from std_msgs.msg._Header import Header as _T_std_msgs__Header
 from actionlib_msgs.msg._GoalID import GoalID as _T_actionlib_msgs__GoalID
@@ -29,6 +29,8 @@ _S1 = _struct.Struct('<III')
 _S2 = _struct.Struct('<iIIII')
 _S3 = _struct.Struct('<BI')
 _S4 = _struct.Struct('<I')
+_A0 = _ArrayStructs('<I%di')
+_A1 = _ArrayStructs('<%di')
 
 
 class FibonacciAction(_Message):
@@ -123,8 +125,8 @@ class FibonacciAction(_Message):
             if _b16.__class__ is not bytes: _b16 = _b16.encode()
             _w(_S3.pack(_m12.status, len(_b16)) + _b16)
             _x17 = _m8.result.sequence
-            _w(_S4.pack(len(_x17)))
-            _w(_pack_array(_x17, 'i', '<i4'))
+            if _x17.__class__ is list or _x17.__class__ is tuple: _w(_A0[len(_x17)].pack(len(_x17), *_x17))
+            else: _w(_S4.pack(len(_x17)) + _pack_array(_x17, 'i', '<i4'))
             _m18 = self.action_feedback
             _m19 = _m18.header
             _m20 = _m19.stamp
@@ -141,8 +143,8 @@ class FibonacciAction(_Message):
             if _b26.__class__ is not bytes: _b26 = _b26.encode()
             _w(_S3.pack(_m22.status, len(_b26)) + _b26)
             _x27 = _m18.feedback.sequence
-            _w(_S4.pack(len(_x27)))
-            _w(_pack_array(_x27, 'i', '<i4'))
+            if _x27.__class__ is list or _x27.__class__ is tuple: _w(_A0[len(_x27)].pack(len(_x27), *_x27))
+            else: _w(_S4.pack(len(_x27)) + _pack_array(_x27, 'i', '<i4'))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -192,7 +194,7 @@ class FibonacciAction(_Message):
             _end = _s + _n
             _v10.text = str(_buf[_s:_end], 'utf-8', 'replace')
             _n, = _S4.unpack_from(_buf, _end)
-            _v13.sequence = _unpack_from('<%di' % _n, _buf, _end + 4)
+            _v13.sequence = _A1[_n].unpack_from(_buf, _end + 4)
             _end += 4 + _n * 4
             _v15.seq, _t16.secs, _t16.nsecs, _n = _S0.unpack_from(_buf, _end)
             _s = _end + 16
@@ -207,7 +209,7 @@ class FibonacciAction(_Message):
             _end = _s + _n
             _v17.text = str(_buf[_s:_end], 'utf-8', 'replace')
             _n, = _S4.unpack_from(_buf, _end)
-            _v20.sequence = _unpack_from('<%di' % _n, _buf, _end + 4)
+            _v20.sequence = _A1[_n].unpack_from(_buf, _end + 4)
             _end += 4 + _n * 4
             if _end > len(_buf): raise _Truncated
             return self
@@ -255,7 +257,7 @@ class FibonacciAction(_Message):
             _v10.text = str(_buf[_s:_end], 'utf-8', 'replace')
             _v7.result = _v13 = _new(_T_actionlib_tutorials__FibonacciResult)
             _n, = _S4.unpack_from(_buf, _end)
-            _v13.sequence = _unpack_from('<%di' % _n, _buf, _end + 4)
+            _v13.sequence = _A1[_n].unpack_from(_buf, _end + 4)
             _end += 4 + _n * 4
             self.action_feedback = _v14 = _new(_T_actionlib_tutorials__FibonacciActionFeedback)
             _v14.header = _v15 = _new(_T_std_msgs__Header)
@@ -277,7 +279,7 @@ class FibonacciAction(_Message):
             _v17.text = str(_buf[_s:_end], 'utf-8', 'replace')
             _v14.feedback = _v20 = _new(_T_actionlib_tutorials__FibonacciFeedback)
             _n, = _S4.unpack_from(_buf, _end)
-            _v20.sequence = _unpack_from('<%di' % _n, _buf, _end + 4)
+            _v20.sequence = _A1[_n].unpack_from(_buf, _end + 4)
             _end += 4 + _n * 4
             if _end > len(_buf): raise _Truncated
         except Exception as exc:

@@ -6,6 +6,7 @@ from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
 from kame.msg.message import refill as _refill
+from kame.msg.runtime import ArrayStructs as _ArrayStructs
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -13,7 +14,6 @@ from kame.rostime import Duration as _Duration
 from kame.rostime import Time as _Time
 
 _new = object.__new__
-_unpack_from = _struct.unpack_from
 from std_msgs.msg._Header import Header as _T_std_msgs__Header
 from actionlib_msgs.msg._GoalStatus import GoalStatus as _T_actionlib_msgs__GoalStatus
 from actionlib_msgs.msg._GoalID import GoalID as _T_actionlib_msgs__GoalID
@@ -23,6 +23,8 @@ _S0 = _struct.Struct('<IIII')
 _S1 = _struct.Struct('<III')
 _S2 = _struct.Struct('<BI')
 _S3 = _struct.Struct('<I')
+_A0 = _ArrayStructs('<I%di')
+_A1 = _ArrayStructs('<%di')
 
 
 class FibonacciActionFeedback(_Message):
@@ -77,8 +79,8 @@ class FibonacciActionFeedback(_Message):
             if _b8.__class__ is not bytes: _b8 = _b8.encode()
             _w(_S2.pack(_m4.status, len(_b8)) + _b8)
             _x9 = self.feedback.sequence
-            _w(_S3.pack(len(_x9)))
-            _w(_pack_array(_x9, 'i', '<i4'))
+            if _x9.__class__ is list or _x9.__class__ is tuple: _w(_A0[len(_x9)].pack(len(_x9), *_x9))
+            else: _w(_S3.pack(len(_x9)) + _pack_array(_x9, 'i', '<i4'))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -106,7 +108,7 @@ class FibonacciActionFeedback(_Message):
             _end = _s + _n
             _v3.text = str(_buf[_s:_end], 'utf-8', 'replace')
             _n, = _S3.unpack_from(_buf, _end)
-            _v6.sequence = _unpack_from('<%di' % _n, _buf, _end + 4)
+            _v6.sequence = _A1[_n].unpack_from(_buf, _end + 4)
             _end += 4 + _n * 4
             if _end > len(_buf): raise _Truncated
             return self
@@ -139,7 +141,7 @@ class FibonacciActionFeedback(_Message):
             _v3.text = str(_buf[_s:_end], 'utf-8', 'replace')
             self.feedback = _v6 = _new(_T_actionlib_tutorials__FibonacciFeedback)
             _n, = _S3.unpack_from(_buf, _end)
-            _v6.sequence = _unpack_from('<%di' % _n, _buf, _end + 4)
+            _v6.sequence = _A1[_n].unpack_from(_buf, _end + 4)
             _end += 4 + _n * 4
             if _end > len(_buf): raise _Truncated
         except Exception as exc:

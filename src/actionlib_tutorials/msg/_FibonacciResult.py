@@ -6,6 +6,7 @@ from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
 from kame.msg.message import refill as _refill
+from kame.msg.runtime import ArrayStructs as _ArrayStructs
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -13,9 +14,10 @@ from kame.rostime import Duration as _Duration
 from kame.rostime import Time as _Time
 
 _new = object.__new__
-_unpack_from = _struct.unpack_from
 
 _S0 = _struct.Struct('<I')
+_A0 = _ArrayStructs('<I%di')
+_A1 = _ArrayStructs('<%di')
 
 
 class FibonacciResult(_Message):
@@ -39,8 +41,8 @@ class FibonacciResult(_Message):
         try:
             _w = buff.write
             _x1 = self.sequence
-            _w(_S0.pack(len(_x1)))
-            _w(_pack_array(_x1, 'i', '<i4'))
+            if _x1.__class__ is list or _x1.__class__ is tuple: _w(_A0[len(_x1)].pack(len(_x1), *_x1))
+            else: _w(_S0.pack(len(_x1)) + _pack_array(_x1, 'i', '<i4'))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -51,7 +53,7 @@ class FibonacciResult(_Message):
         try:
             _buf = data
             _n, = _S0.unpack_from(_buf, 0)
-            self.sequence = _unpack_from('<%di' % _n, _buf, 4)
+            self.sequence = _A1[_n].unpack_from(_buf, 4)
             _end = 4 + _n * 4
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
@@ -63,7 +65,7 @@ class FibonacciResult(_Message):
         try:
             _buf = data
             _n, = _S0.unpack_from(_buf, 0)
-            self.sequence = _unpack_from('<%di' % _n, _buf, 4)
+            self.sequence = _A1[_n].unpack_from(_buf, 4)
             _end = 4 + _n * 4
         except Exception as exc:
             raise _deserialize_failed(cls, data, exc) from exc

@@ -50,6 +50,7 @@ class TfTool(ToolNode):
             def on_clock(frames: list[memoryview], header: dict[str, str]) -> None:
                 clock = Clock._from_buffer(frames[-1]).clock
                 self._sim_time = int(clock.secs) * 1_000_000_000 + int(clock.nsecs)
+                self.notify()
 
             self.node.subscribe(self.node.resolve("/clock"), Clock._type, Clock._md5sum, Clock._full_text,
                                 on_clock, queue_size=1)
@@ -64,6 +65,14 @@ class TfTool(ToolNode):
     def now_ns(self) -> int:
         """ROS time in ns (0 under sim time until the first /clock, as roscpp)."""
         return time.time_ns() if self._sim_time is None else self._sim_time
+
+    def sleep_ns(self, duration: int) -> bool:
+        """ros::Duration::sleep: `duration` of ROS time (under sim time, until /clock has moved
+        that far); False when the tool was stopped first."""
+        if self._sim_time is None:
+            return not self.stop.wait(duration / 1e9)
+        until = self.now_ns() + duration
+        return self.wait_until(lambda: self.now_ns() >= until)
 
 
 def roscpp_value(text: str) -> Any:

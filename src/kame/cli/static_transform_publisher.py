@@ -147,7 +147,7 @@ def main_tf(argv: Sequence[str] | None = None) -> int:
         ahead = round(period * 1e9) if math.isfinite(period) and period > 0 else 0
         while True:
             broadcaster.send_transform(_transform(parent, child, tool.now_ns() + ahead, translation, quaternion))
-            if tool.stop.wait(ahead / 1e9 if ahead else 0.0) or tool.stop.is_set():
+            if not tool.sleep_ns(ahead) or tool.stop.is_set():
                 return 0
     finally:
         tool.node.shutdown("static_transform_publisher exiting")

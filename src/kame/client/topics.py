@@ -147,10 +147,9 @@ class Publisher(Topic):
         if msg._has_header:
             msg.header.seq = impl.next_seq()
         try:
-            frame = serialize_frame(msg)
+            impl.publish_message(msg)
         except SerializationError as exc:
             raise ROSSerializationException(str(exc)) from exc
-        impl.publish_frame(frame)
 
     def unregister(self) -> None:
         self._unregistered = True
@@ -182,6 +181,14 @@ class _Callbacks:
     def deliver(self, frames: list[memoryview], header: dict[str, str]) -> None:
         self.deliver_to(self.entries, frames, header)
 
+    def deliver_messages(self, msgs: list[Any], header: dict[str, str]) -> None:
+        """Messages published in this process, as published (kame.node.local): shared with the
+        publisher and every other subscriber, so callbacks must not modify them."""
+        entries = self.entries
+        for msg in msgs:
+            msg._connection_header = header
+            self._run(entries, msg)
+
     def deliver_to(self, entries: list[tuple[Callable[..., Any], Any, bool]], frames: list[memoryview],
                    header: dict[str, str]) -> None:
         from_buffer = self.data_class._from_buffer
@@ -194,16 +201,19 @@ class _Callbacks:
                 self._undeserializable(header.get("callerid", "?"), exc)
                 continue
             msg._connection_header = header
-            for callback, args, has_args in entries:
-                try:
-                    if has_args:
-                        callback(msg, args)
-                    else:
-                        callback(msg)
-                except Exception:
-                    _log.emit(_log.ERROR, "bad callback: %s\n%s", (callback, traceback.format_exc()),
-                              caller=("topics.py", 0, "deliver", None))
+            self._run(entries, msg)
 
+    @staticmethod
+    def _run(entries: list[tuple[Callable[..., Any], Any, bool]], msg: Any) -> None:
+        for callback, args, has_args in entries:
+            try:
+                if has_args:
+                    callback(msg, args)
+                else:
+                    callback(msg)
+            except Exception:
+                _log.emit(_log.ERROR, "bad callback: %s\n%s", (callback, traceback.format_exc()),
+                          caller=("topics.py", 0, "deliver", None))
 
     def _undeserializable(self, callerid: str, exc: Exception) -> None:
         count = self.undeserializable.get(callerid, 0)
@@ -217,9 +227,11 @@ class _Callbacks:
 class Subscriber(Topic):
     def __init__(self, name: str, data_class: type[Any], callback: Callable[..., Any] | None = None,
                  callback_args: Any = None, queue_size: int | None = None, buff_size: int = DEFAULT_BUFF_SIZE,
-                 tcp_nodelay: bool = False) -> None:
+                 tcp_nodelay: bool = False, shared_memory: bool = True) -> None:
         """`buff_size` is the bytes each read from a publisher asks for, and `tcp_nodelay` asks
-        publishers to send without delay (see kame.node.topics.Subscription)."""
+        publishers to send without delay (see kame.node.topics.Subscription). `shared_memory`
+        (kame's own transport hint, not rospy's) False keeps this topic on TCPROS even with
+        kame publishers on this host (kame.protocol.shmros)."""
         super().__init__(name, data_class)
         if type(buff_size) is not int:
             raise ROSException("buff_size must be an integer")
@@ -230,6 +242,7 @@ class Subscriber(Topic):
         self.queue_size = queue_size
         self.tcp_nodelay = tcp_nodelay
         self.buff_size = buff_size
+        self.shared_memory = shared_memory
         self.impl: Subscription | None = None
         self._unregistered = False
         self._when_initialized()
@@ -253,7 +266,10 @@ class Subscriber(Topic):
                 any_type = self.data_class is AnyMsg
                 impl = node.subscribe(self.resolved_name, self.type, "*" if any_type else self.md5sum,
                                       "" if any_type else self.data_class._full_text, callbacks.deliver,
-                                      self.queue_size, self.tcp_nodelay, self.buff_size)
+                                      self.queue_size, self.tcp_nodelay, self.buff_size,
+                                      message_class=None if any_type else self.data_class,
+                                      deliver_messages=callbacks.deliver_messages,
+                                      shared_memory=self.shared_memory)
                 entry = (impl, callbacks, [])
                 _subscriptions[self.resolved_name] = entry
             elif entry[0].md5sum not in ("*", self.md5sum):

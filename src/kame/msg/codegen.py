@@ -68,11 +68,19 @@ class _Structs:
     """Precompiled structs a module needs, by format."""
 
     names: dict[str, str] = field(default_factory=dict)
+    #: "%d" formats of variable-length numeric arrays -> the name of their ArrayStructs cache
+    arrays: dict[str, str] = field(default_factory=dict)
 
     def ref(self, fmt: str) -> str:
         name = self.names.get(fmt)
         if name is None:
             name = self.names[fmt] = f"_S{len(self.names)}"
+        return name
+
+    def array_ref(self, template: str) -> str:
+        name = self.arrays.get(template)
+        if name is None:
+            name = self.arrays[template] = f"_A{len(self.arrays)}"
         return name
 
 
@@ -154,15 +162,22 @@ class _Serializer:
                 code.emit(f"if len({x}) != {length}: raise ValueError({x})")
                 self.group.add(f"{length}s", x)
             return
-        if length is None:
-            self.group.add("I", f"len({x})")
         if base in _CODES and length is not None:
             self.group.add(f"{length}{_CODES[base][0]}", f"*{x}")
             return
-        self.flush()
         if base in _CODES:
-            code.emit(f"_w(_pack_array({x}, {_CODES[base][0]!r}, {_DTYPES[base]!r}))")
+            # lists and tuples: count and items in one call of a struct cached per count
+            self.flush()
+            pack_code = _CODES[base][0]
+            counted = self.structs.array_ref(f"<I%d{pack_code}")
+            code.emit(f"if {x}.__class__ is list or {x}.__class__ is tuple: "
+                      f"_w({counted}[len({x})].pack(len({x}), *{x}))")
+            code.emit(f"else: _w({self.structs.ref('<I')}.pack(len({x})) + "
+                      f"_pack_array({x}, {pack_code!r}, {_DTYPES[base]!r}))")
             return
+        if length is None:
+            self.group.add("I", f"len({x})")
+        self.flush()
         if length is not None:
             code.emit(f"if len({x}) != {length}: raise ValueError({x})")
         e = code.var("e")
@@ -283,7 +298,8 @@ class _Deserializer:
             if self.use_numpy:
                 code.emit(f"{target} = _np.frombuffer(_buf, {_DTYPES[base]!r}, {count}, {self.pos()})")
             elif length is None:
-                code.emit(f"{target} = _unpack_from('<%d{_CODES[base][1]}' % _n, _buf, {self.pos()})")
+                ref = self.structs.array_ref(f"<%d{_CODES[base][1]}")
+                code.emit(f"{target} = {ref}[_n].unpack_from(_buf, {self.pos()})")
             else:
                 ref = self.structs.ref(f"<{length}{_CODES[base][1]}")
                 code.emit(f"{target} = {ref}.unpack_from(_buf, {self.pos()})")
@@ -521,6 +537,7 @@ from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
 from kame.msg.message import refill as _refill
+from kame.msg.runtime import ArrayStructs as _ArrayStructs
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -528,12 +545,12 @@ from kame.rostime import Duration as _Duration
 from kame.rostime import Time as _Time
 
 _new = object.__new__
-_unpack_from = _struct.unpack_from
 """
 
 
 def struct_definitions(structs: _Structs) -> str:
-    return "".join(f"{name} = _struct.Struct({fmt!r})\n" for fmt, name in structs.names.items())
+    return "".join([f"{name} = _struct.Struct({fmt!r})\n" for fmt, name in structs.names.items()]
+                   + [f"{name} = _ArrayStructs({template!r})\n" for template, name in structs.arrays.items()])
 
 
 def new_structs() -> _Structs:

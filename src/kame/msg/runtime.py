@@ -10,6 +10,27 @@ class Truncated(Exception):
     """Raised inside generated deserializers when a length points past the end of the data."""
 
 
+class ArrayStructs(dict[int, struct.Struct]):
+    """Precompiled structs of a variable-length array format, by element count.
+
+    template has one %d for the count ("<I%dd": count and float64 items). Counts up to
+    MAX_CACHED are kept (real messages repeat their lengths); larger ones, and the counts of
+    bad input, get a struct that is not kept, so the cache stays small.
+    """
+
+    MAX_CACHED = 4096
+
+    def __init__(self, template: str) -> None:
+        super().__init__()
+        self.template = template
+
+    def __missing__(self, count: int) -> struct.Struct:
+        compiled = struct.Struct(self.template % count)
+        if count <= self.MAX_CACHED:
+            self[count] = compiled
+        return compiled
+
+
 def u8_payload(value: Any) -> bytes | memoryview:
     """A uint8[]/char[] value as something with byte length and the buffer protocol.
 

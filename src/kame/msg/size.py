@@ -8,8 +8,6 @@ Pure: text in, a number out.
 from __future__ import annotations
 
 from kame.msg.errors import MsgDefinitionError
-from kame.msg.md5 import split_full_text
-from kame.msg.parser import parse_msg
 
 __all__ = ["fixed_size"]
 
@@ -24,6 +22,11 @@ def fixed_size(type_name: str, full_definition: str) -> int | None:
     definition cannot say: empty, unparsable, a dependency missing)."""
     if not full_definition.strip():
         return None
+    # here, not at the top: the parser (with dataclasses, inspect, hashlib) is a few megabytes
+    # that a node which only publishes never needs; the transport imports this module
+    from kame.msg.md5 import split_full_text
+    from kame.msg.parser import parse_msg
+
     main, deps = split_full_text(full_definition)
     texts = {**deps, type_name: main}
     sizes: dict[str, int | None] = {}

@@ -46,6 +46,17 @@ def set_keepalive(sock: socket.socket) -> None:
     sock.setsockopt(socket.SOL_SOCKET, socket.SO_KEEPALIVE, 1)
 
 
+class Flushable(Protocol):
+    """What a Flusher drives: a connection's sender (Sender here, kame.net.shm's ShmSender)."""
+
+    sock: socket.socket
+    closed: bool
+
+    def flush(self) -> bool: ...
+
+    def peer_hung_up(self) -> bool: ...
+
+
 class Flusher:
     """One thread watching the owner's senders: it drains the backlogs of those whose sockets
     were full, and notices peers that hung up (a reader of ours never sends after the
@@ -55,24 +66,27 @@ class Flusher:
         self._selector = selectors.DefaultSelector()
         self._wake_r, self._wake_w = socket.socketpair()
         self._wake_r.setblocking(False)
+        # a full wake-up socket already wakes the thread: never block on it (the thread itself
+        # calls watch(), and would wait on itself)
+        self._wake_w.setblocking(False)
         self._selector.register(self._wake_r, selectors.EVENT_READ, None)
         self._lock = threading.Lock()
-        self._changes: dict[Sender, int] = {}  # sender -> wanted events (0: forget it)
-        self._events: dict[Sender, int] = {}
+        self._changes: dict[Flushable, int] = {}  # sender -> wanted events (0: forget it)
+        self._events: dict[Flushable, int] = {}
         self._closed = False
         self._thread = threading.Thread(target=self._run, name=name, daemon=True)
         self._thread.start()
 
-    def watch(self, sender: Sender) -> None:
+    def watch(self, sender: Flushable) -> None:
         self._change(sender, selectors.EVENT_READ)
 
-    def want_write(self, sender: Sender) -> None:
+    def want_write(self, sender: Flushable) -> None:
         self._change(sender, selectors.EVENT_READ | selectors.EVENT_WRITE)
 
-    def forget(self, sender: Sender) -> None:
+    def forget(self, sender: Flushable) -> None:
         self._change(sender, 0)
 
-    def _change(self, sender: Sender, events: int) -> None:
+    def _change(self, sender: Flushable, events: int) -> None:
         with self._lock:
             if self._closed:
                 return

@@ -14,7 +14,6 @@ response reader, for every kame caller (nodes, the master's notifications, the C
 
 from __future__ import annotations
 
-import asyncio
 import socket
 import threading
 from urllib.parse import urlsplit
@@ -105,6 +104,9 @@ class XmlRpcProxy:
 async def post(uri: str, body: bytes, timeout: float, max_response: int = MAX_NOTIFICATION_RESPONSE) -> bytes:
     """POST an XML-RPC body to `uri` and return the response body. Raises OSError, TimeoutError
     or HttpError."""
+    import asyncio  # here, not at the top: nodes use only the blocking proxy, and asyncio (with
+    # ssl) is a third of a node's memory and import time
+
     return await asyncio.wait_for(_post(uri, body, max_response), timeout)
 
 
@@ -114,6 +116,8 @@ async def call(uri: str, method: str, params: list[Value], timeout: float) -> Va
 
 
 async def _post(uri: str, body: bytes, max_response: int) -> bytes:
+    import asyncio  # loaded already by post's caller
+
     host, port, path = _split(uri)
     reader, writer = await asyncio.open_connection(host, port, limit=MAX_HEAD)
     try:

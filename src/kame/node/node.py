@@ -26,6 +26,7 @@ from typing import TYPE_CHECKING, Any, NamedTuple
 
 from kame import names
 from kame.arity import accepts
+from kame.net import shm
 from kame.net.address import bind_host
 from kame.net.handshake import ClosedBeforeHeader, HandshakeError, MalformedHeader, read_header, write_header
 from kame.net.rpc_server import RpcServer
@@ -34,9 +35,9 @@ from kame.net.workers import WorkerPool
 from kame.node.master_proxy import MasterError, MasterProxy
 from kame.node.master_watch import MasterWatch
 from kame.node.services import ServiceClient, ServiceHandler, ServiceServer
-from kame.node.topics import Callback, Publication, SubscriberLink, Subscription
+from kame.node.topics import Callback, MessagesCallback, Publication, SubscriberLink, Subscription
 from kame.node.unreachable import ReportedOnce
-from kame.protocol import tcpros
+from kame.protocol import shmros, tcpros
 from kame.protocol.xmlrpc import Fault, MalformedError, decode_request, encode_fault, encode_response
 
 if TYPE_CHECKING:
@@ -155,15 +156,19 @@ class Node:
 
     def subscribe(self, topic: str, type: str, md5sum: str, definition: str, deliver: Callback,
                   queue_size: int | None = None, tcp_nodelay: bool = False,
-                  buff_size: int | None = None, max_frame: int | None = None) -> Subscription:
+                  buff_size: int | None = None, max_frame: int | None = None, message_class: type[Any] | None = None,
+                  deliver_messages: MessagesCallback | None = None, shared_memory: bool = True) -> Subscription:
         """Subscribe to `topic` (already resolved); see Subscription for tcp_nodelay and buff_size.
         `max_frame`: the largest message accepted (default: the type's size when it has no
-        variable-length fields, else 1 GiB); a larger one drops that publisher's connection."""
+        variable-length fields, else 1 GiB); a larger one drops that publisher's connection.
+        `deliver_messages` gets messages of `message_class` that a publication of this node
+        publishes as objects, unserialized (kame.node.local); `shared_memory=False` is the transport hint
+        that keeps this subscription off shared memory (kame.protocol.shmros)."""
         with self._lock:
             if topic in self.subscriptions:
                 raise ValueError(f"already subscribed to {topic}")
             sub = Subscription(self, topic, type, md5sum, definition, queue_size, tcp_nodelay, deliver, buff_size,
-                               max_frame)
+                               max_frame, message_class, deliver_messages, shared_memory)
             self.subscriptions[topic] = sub
         publishers = self.master.call("registerSubscriber", topic, type, self.uri)
         sub.set_publishers([str(uri) for uri in publishers])
@@ -248,7 +253,7 @@ class Node:
                 if pub is None:
                     self._refuse(sock, f"[{self.name}] is not a publisher of [{accepted.topic}]", header)
                     return
-                pub.attach(sock, accepted)
+                pub.attach(sock, accepted, shmros.accept(header, shm.local_token()))
             elif kind == "service":
                 with self._lock:
                     service_specs = {name: server.spec for name, server in self.services.items()}
@@ -306,10 +311,10 @@ class Node:
         info: list[Any] = []
         for topic, pub in list(self.publications.items()):
             for link in pub.links:
-                info.append([link.connection_id, link.callerid, "o", "TCPROS", topic, True, link.peer])
+                info.append([link.connection_id, link.callerid, "o", link.transport, topic, True, link.peer])
         for topic, sub in list(self.subscriptions.items()):
             for uri, plink in list(sub.links.items()):
-                info.append([plink.connection_id, uri, "i", "TCPROS", topic, plink.connected, plink.callerid])
+                info.append([plink.connection_id, uri, "i", plink.transport, topic, plink.connected, plink.callerid])
         return [1, "bus info", info]
 
     def _get_bus_stats(self, caller_id: str) -> list[Any]:

@@ -22,22 +22,25 @@ from __future__ import annotations
 import io
 import itertools
 import logging
+import struct
 import threading
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 from kame.msg.size import fixed_size
+from kame.net import shm
 from kame.net.address import DOES_NOT_RESOLVE, unreachable_reason
 from kame.net.handshake import HandshakeError, read_header_and_rest, write_header
 from kame.net.stream import Receiver, Sender, connect, peer_of, set_keepalive, set_nodelay, shut_down
 from kame.net.xmlrpc_client import XmlRpcProxy
 from kame.node.master_proxy import unwrap
 from kame.node.unreachable import unreachable_message
-from kame.protocol import tcpros
+from kame.protocol import shmros, tcpros
 
 if TYPE_CHECKING:
     import socket
 
+    from kame.node.local import LocalPublisherLink, LocalSender
     from kame.node.node import Node
 
 log = logging.getLogger("kame.topics")
@@ -51,6 +54,9 @@ UNQUEUED_BACKLOG = 256 << 20
 STALL_TIMEOUT = 30.0
 
 
+_pack_frame_length = struct.Struct("<I").pack
+
+
 class _Chunks(list[Any]):
     """A write-only buffer for generated serializers: keeps the pieces, copies nothing."""
 
@@ -61,6 +67,10 @@ def serialize_frame(msg: Any) -> list[Any]:
     """A message as TCPROS frame buffers: [length prefix + small data] or [prefix, *pieces]."""
     chunks = _Chunks()
     msg.serialize(chunks)
+    if len(chunks) == 1:  # a message written in one piece (fixed-size ones, most small ones)
+        size = len(chunks[0])
+        if size <= SMALL_FRAME:
+            return [_pack_frame_length(size) + chunks[0]]
     size = 0
     for chunk in chunks:
         size += len(chunk)
@@ -78,15 +88,30 @@ def serialize_payload(msg: Any) -> bytes:
 
 
 class SubscriberLink:
-    """One subscriber connected to one of our publications."""
+    """One subscriber connected to one of our publications: over TCPROS (`Sender`), shared
+    memory (`ShmSender`) or in this node (kame.node.local's `LocalSender`, no socket)."""
 
-    __slots__ = ("callerid", "connection_id", "peer", "sender")
+    __slots__ = ("callerid", "connection_id", "local", "peer", "sender", "sock", "transport")
 
-    def __init__(self, connection_id: int, callerid: str, sender: Sender, peer: str) -> None:
+    def __init__(self, connection_id: int, callerid: str, sender: Sender | shm.ShmSender | LocalSender, peer: str,
+                 sock: socket.socket | None = None, transport: str = "TCPROS") -> None:
         self.connection_id = connection_id
         self.callerid = callerid
         self.sender = sender
         self.peer = peer
+        self.sock = sock
+        self.transport = transport
+        self.local: LocalSender | None = None  # a subscriber in this node: objects go here
+
+    def close(self, shut: bool = False) -> None:
+        self.sender.close()
+        if self.sock is not None:
+            try:
+                if shut:
+                    shut_down(self.sock)
+                self.sock.close()
+            except OSError:
+                pass
 
 
 class Publication:
@@ -104,6 +129,8 @@ class Publication:
         self.tcp_nodelay = tcp_nodelay
         self.links: list[SubscriberLink] = []
         self.latched: list[Any] | None = None
+        self.latched_object: Any = None  # the latched message as published, for subscribers in this node
+        self.local_links = 0  # how many of links are subscribers in this node
         # next() of a count is one call that the interpreter does not interrupt: publishers on
         # several threads still number 1, 2, 3, ... without a lock's 100 ns on every publish
         self._seqs = itertools.count(1)
@@ -122,11 +149,38 @@ class Publication:
         for a slow socket, or be latched, is copied; the rest goes out without a copy."""
         if self.latch:
             self.latched = [b"".join(frame)] if borrowed else frame
+            self.latched_object = None
         for link in self.links:
             if len(frame) == 1 and not borrowed:
                 link.sender.send(frame[0])
             else:
                 link.sender.send_parts(frame, borrowed)
+
+    def publish_message(self, msg: Any) -> None:
+        """Send a message object: as that object to subscribers in this node that take it
+        (kame.node.local), serialized once for the others and for latching. A message that
+        cannot be serialized raises before anyone gets it, when anyone needs its bytes."""
+        if not self.local_links:  # the usual case: no subscriber in this node
+            self.publish_frame(serialize_frame(msg))
+            if self.latch:
+                self.latched_object = msg
+            return
+        links = self.links
+        frame: list[Any] | None = None
+        if self.latch or any(link.local is None or not link.local.takes(msg) for link in links):
+            frame = serialize_frame(msg)
+        if self.latch:
+            self.latched = frame
+            self.latched_object = msg
+        for link in links:
+            local = link.local
+            if local is not None and local.takes(msg):
+                local.send_message(msg)
+            elif frame is not None:
+                if len(frame) == 1:
+                    link.sender.send(frame[0])
+                else:
+                    link.sender.send_parts(frame)
 
     def publish_payload(self, payload: bytes | memoryview, borrowed: bool = False) -> None:
         """Send a message serialized elsewhere (a bag's bytes, a relayed frame) as it is: framed
@@ -137,9 +191,11 @@ class Publication:
     def spec(self) -> tcpros.TopicSpec:
         return tcpros.TopicSpec(self.type, self.md5sum, self.definition, self.latch)
 
-    def attach(self, sock: socket.socket, accepted: tcpros.SubscriberAccepted) -> None:
-        """Finish the handshake of a subscriber our TCPROS server accepted for this topic."""
-        write_header(sock, {**accepted.reply, **self.extra_headers})
+    def attach(self, sock: socket.socket, accepted: tcpros.SubscriberAccepted, use_shm: bool = False) -> None:
+        """Finish the handshake of a subscriber our TCPROS server accepted for this topic;
+        `use_shm`: it offered shared memory and may have it (kame.protocol.shmros)."""
+        shm_reply = {shmros.HEADER_FIELD: shmros.ACCEPTED} if use_shm else {}
+        write_header(sock, {**accepted.reply, **self.extra_headers, **shm_reply})
         set_nodelay(sock, self.tcp_nodelay if accepted.tcp_nodelay is None else accepted.tcp_nodelay)
         set_keepalive(sock)
         peer = peer_of(sock)
@@ -147,28 +203,38 @@ class Publication:
 
         def broken(exc: BaseException | None) -> None:
             if link_box:
-                self._drop(link_box[0])
+                self.drop_link(link_box[0])
 
+        kind = shm.ShmSender if use_shm else Sender
         if self.queue_size:
-            sender = Sender(sock, self.node.flusher, self.queue_size, broken)
+            sender = kind(sock, self.node.flusher, self.queue_size, broken)
         else:  # no queue_size: any number of frames, within UNQUEUED_BACKLOG bytes
-            sender = Sender(sock, self.node.flusher, 1 << 62, broken, max_bytes=UNQUEUED_BACKLOG)
-        link = SubscriberLink(self.node.next_connection_id(), accepted.callerid, sender, peer)
+            sender = kind(sock, self.node.flusher, 1 << 62, broken, max_bytes=UNQUEUED_BACKLOG)
+        link = SubscriberLink(self.node.next_connection_id(), accepted.callerid, sender, peer, sock)
         link_box.append(link)
+        self.add_link(link)
+
+    def add_link(self, link: SubscriberLink, latched_message: Callable[[Any], None] | None = None) -> bool:
+        """Start sending to a connected subscriber, the latched message first; False (and the
+        link closed) when the publication has closed meanwhile. `latched_message` takes the
+        latched message as an object when there is one (a subscriber in this node)."""
         with self._lock:
             if self.closed:
-                sender.close()
-                sock.close()
-                return
+                link.close()
+                return False
             self.links = [*self.links, link]
-            latched = self.latched
-        if latched is not None:
+            self.local_links += link.local is not None
+            latched, latched_object = self.latched, self.latched_object
+        if latched_message is not None and latched_object is not None:
+            latched_message(latched_object)
+        elif latched is not None:
             if len(latched) == 1:
-                sender.send(latched[0])
+                link.sender.send(latched[0])
             else:
-                sender.send_parts(latched)
+                link.sender.send_parts(latched)
         for callback in self.on_connect:
             callback(link)
+        return True
 
     def add_connect_callback(self, callback: Callable[[SubscriberLink], None]) -> None:
         """Called with each subscriber that connects from now on. The lists are replaced, never
@@ -180,16 +246,14 @@ class Publication:
         with self._lock:
             self.on_connect = [c for c in self.on_connect if c is not callback]
 
-    def _drop(self, link: SubscriberLink) -> None:
+    def drop_link(self, link: SubscriberLink) -> None:
+        """End the connection of one subscriber (it went away, or it was in this node and unsubscribed)."""
         with self._lock:
             if link not in self.links:
                 return
             self.links = [other for other in self.links if other is not link]
-        link.sender.close()
-        try:
-            link.sender.sock.close()
-        except OSError:
-            pass
+            self.local_links -= link.local is not None
+        link.close()
         for callback in self.on_disconnect:
             callback(link)
 
@@ -197,13 +261,9 @@ class Publication:
         with self._lock:
             self.closed = True
             links, self.links = self.links, []
+            self.local_links = 0
         for link in links:
-            link.sender.close()
-            try:
-                shut_down(link.sender.sock)
-                link.sender.sock.close()
-            except OSError:
-                pass
+            link.close(shut=True)
 
     @property
     def bytes_sent(self) -> int:
@@ -211,10 +271,13 @@ class Publication:
 
 
 Callback = Callable[[list[memoryview], dict[str, str]], None]
+MessagesCallback = Callable[[list[Any], dict[str, str]], None]
 
 
 class PublisherLink:
-    """Our connection to one publisher of a subscribed topic."""
+    """Our connection to one publisher of a subscribed topic (plain TCPROS, or with shared memory)."""
+
+    transport = "TCPROS"
 
     def __init__(self, subscription: Subscription, publisher_uri: str, connection_id: int,
                  reconnecting: bool = False) -> None:
@@ -238,6 +301,11 @@ class PublisherLink:
         # With a latching publisher, its last message (a copy: frames are reused buffers), so a
         # callback added later still gets it, as rospy's add_callback does (#1852).
         self.latched: bytes | None = None
+        self.ended = False  # always False: a TCPROS link retries by itself
+        self._shm: shm.ShmReceiver | None = None
+
+    def latched_payload(self) -> bytes | None:
+        return self.latched
 
     def run(self) -> None:
         """Connect, retrying while the publisher stays registered (runs on its own thread)."""
@@ -312,9 +380,11 @@ class PublisherLink:
                 return
             self.sock = sock
         try:
+            may_share = sub.shared_memory and self.publisher_uri not in sub.no_shm
+            offer = shmros.offer(shm.local_token() if may_share else None)
             write_header(sock, tcpros.subscriber_header_fields(
                 callerid=node.name, topic=sub.topic, type=sub.type, md5sum=sub.md5sum,
-                message_definition=sub.definition, tcp_nodelay=sub.tcp_nodelay))
+                message_definition=sub.definition, tcp_nodelay=sub.tcp_nodelay, extra=offer))
             header, trailing = read_header_and_rest(sock, 5.0)
             sock.settimeout(None)
         except BaseException:
@@ -333,7 +403,12 @@ class PublisherLink:
         self.header = header
         self.callerid = header.get("callerid", "")
         self.latching = reply.latching
-        consumer = _Frames(self._deliver, trailing, sub.queue_size, sub.max_frame)
+        if offer and shmros.accepted(header):
+            self._shm = shm.ShmReceiver(sub.max_frame)
+            # records are one byte longer than the message, and a MAP names a segment
+            consumer = _Frames(self._deliver_shm, trailing, sub.queue_size, max(sub.max_frame + 1, 256))
+        else:
+            consumer = _Frames(self._deliver, trailing, sub.queue_size, sub.max_frame)
         with self._lock:  # close() either sees the receiver, or we see that it was closed
             if self.closed:
                 sock.close()
@@ -350,8 +425,22 @@ class PublisherLink:
             self.bytes_received += len(frame) + 4
         self.subscription.deliver(frames, self.header, self)
 
+    def _deliver_shm(self, frames: list[memoryview]) -> None:
+        receiver, sock = self._shm, self.sock
+        assert receiver is not None and sock is not None
+        payloads = receiver.payloads(frames)
+        if payloads:
+            self._deliver(payloads)
+        receiver.acknowledge(sock)
+
     def _ended(self, exc: BaseException | None) -> None:
         self.connected = False
+        if self._shm is not None:
+            self._shm.close()
+        if isinstance(exc, shm.ShmUnavailable):
+            log.warning("%s on %s; connecting again without shared memory", exc, self.subscription.topic)
+            self.subscription.no_shm.add(self.publisher_uri)
+            exc = OSError(str(exc))
         if exc is not None and not isinstance(exc, OSError):
             # The publisher sent something that is not TCPROS, or our consumer failed on what it
             # sent: one error, and no retry (it would send the same again). Never silent: a link
@@ -376,6 +465,8 @@ class PublisherLink:
         self._closing.set()
         if receiver is not None:
             receiver.close()
+        if self._shm is not None:
+            self._shm.close()
         if sock is not None:
             try:
                 shut_down(sock)  # wakes a handshake read in progress
@@ -439,8 +530,15 @@ class Subscription:
 
     def __init__(self, node: Node, topic: str, type: str, md5sum: str, definition: str, queue_size: int | None,
                  tcp_nodelay: bool, deliver_frames: Callback, buff_size: int | None = None,
-                 max_frame: int | None = None) -> None:
+                 max_frame: int | None = None, message_class: type[Any] | None = None,
+                 deliver_messages: MessagesCallback | None = None, shared_memory: bool = True) -> None:
         self.node = node
+        # a publisher in this node hands messages of `message_class` to `deliver_messages` as
+        # they were published (kame.node.local); without it, they come as bytes
+        self.message_class = message_class
+        self.deliver_messages = deliver_messages
+        self.shared_memory = shared_memory  # offer shared memory to kame publishers on this host (kame.protocol.shmros)
+        self.no_shm: set[str] = set()  # publishers whose segments we could not map
         if max_frame is None:
             exact = fixed_size(type, definition) if "*" not in (type, md5sum) else None
             max_frame = MAX_FRAME if exact is None else exact
@@ -454,7 +552,7 @@ class Subscription:
         self.tcp_nodelay = tcp_nodelay
         self.buff_size = buff_size or READ_SIZE
         self.deliver_frames = deliver_frames
-        self.links: dict[str, PublisherLink] = {}
+        self.links: dict[str, PublisherLink | LocalPublisherLink] = {}
         # called with each publisher link once its handshake is done (replaced, never changed in place)
         self.on_connect: list[Callable[[PublisherLink], None]] = []
         self.closed = False
@@ -469,7 +567,8 @@ class Subscription:
         with self._lock:
             self.on_connect = [c for c in self.on_connect if c is not callback]
 
-    def deliver(self, frames: list[memoryview], header: dict[str, str], link: PublisherLink | None = None) -> None:
+    def deliver(self, frames: list[memoryview], header: dict[str, str],
+                link: PublisherLink | LocalPublisherLink | None = None) -> None:
         if self.queue_size and len(frames) > self.queue_size:
             frames = frames[-self.queue_size:]  # a slow callback keeps the newest, as queue_size promises
         with self.callback_lock:
@@ -478,15 +577,28 @@ class Subscription:
             if not self.closed:
                 self.deliver_frames(frames, header)
 
+    def deliver_objects(self, msgs: list[Any], header: dict[str, str], link: LocalPublisherLink) -> None:
+        """Messages from a publication of this node, as published (kame.node.local)."""
+        deliver = self.deliver_messages
+        assert deliver is not None
+        with self.callback_lock:
+            if link.latching:
+                link.latched_object = msgs[-1]
+            if not self.closed:
+                deliver(msgs, header)
+
     def latched_messages(self) -> list[tuple[bytes, dict[str, str]]]:
         """The last message of each connected latching publisher, with its connection header.
         Hold callback_lock while using them, so none is also delivered as new meanwhile."""
         with self._lock:
             links = list(self.links.values())
-        return [(link.latched, link.header) for link in links if link.connected and link.latched is not None]
+        latched = [(link.latched_payload(), link.header) for link in links if link.connected]
+        return [(payload, header) for payload, header in latched if payload is not None]
 
     def set_publishers(self, uris: list[str]) -> None:
         """The master's complete list of publishers: connect to new ones, drop the gone."""
+        from kame.node import local  # it builds on this module: imported when first needed
+
         wanted = set(uris)
         with self._lock:
             if self.closed:
@@ -494,18 +606,23 @@ class Subscription:
             gone = [link for uri, link in self.links.items() if uri not in wanted]
             for link in gone:
                 del self.links[link.publisher_uri]
-            new = []
+            new: list[PublisherLink | LocalPublisherLink] = []
             for uri in uris:
-                if uri not in self.links:
-                    link = PublisherLink(self, uri, self.node.next_connection_id())
-                    self.links[uri] = link
-                    new.append(link)
+                old = self.links.get(uri)
+                if old is None or old.ended:
+                    fresh: PublisherLink | LocalPublisherLink
+                    if uri == self.node.uri and local.enabled():
+                        fresh = local.LocalPublisherLink(self, uri, self.node.next_connection_id())
+                    else:
+                        fresh = PublisherLink(self, uri, self.node.next_connection_id())
+                    self.links[uri] = fresh
+                    new.append(fresh)
         for link in gone:
             link.close()
         for link in new:
             self.node.spawn(link.run, f"kame-connect{self.topic}")
 
-    def reconnect(self, old: PublisherLink) -> None:
+    def reconnect(self, old: PublisherLink | LocalPublisherLink) -> None:
         with self._lock:
             if self.closed or self.links.get(old.publisher_uri) is not old:
                 return

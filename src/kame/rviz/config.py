@@ -5,6 +5,7 @@ written back, so a file saved by kame still opens in rviz with what rviz had put
 
 from __future__ import annotations
 
+import posixpath
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -148,3 +149,18 @@ def dump(config: Config) -> str:
 def save(config: Config, path: str) -> None:
     with open(path, "w", encoding="utf-8") as f:
         f.write(dump(config))
+
+
+def window_title(path: str) -> str:
+    """rviz's title: the file's name (not its folder) before " - RViz", or "RViz" without a file."""
+    return f"{posixpath.basename(path)} - RViz" if path else "RViz"
+
+
+def window_size(config: Config, default: tuple[int, int] = (1280, 720)) -> tuple[int, int]:
+    """The window's size as the file's Window Geometry gives it (rviz opens at that size)."""
+    geometry = config.raw.get("Window Geometry")
+    if isinstance(geometry, dict):
+        width, height = geometry.get("Width"), geometry.get("Height")
+        if isinstance(width, int) and isinstance(height, int) and width > 0 and height > 0:
+            return width, height
+    return default

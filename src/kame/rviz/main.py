@@ -48,7 +48,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     try:
         source = RvizSource(node, lambda: None)
         window = RvizWindow(config, source, options.display_config)
-        window.resize(1280, 720)
+        window.resize(*rviz_config.window_size(config))
         window.show()
         return int(app.exec())
     finally:

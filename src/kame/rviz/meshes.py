@@ -21,7 +21,9 @@ import numpy as np
 from kame.rviz.scene import Color, Scene, apply
 
 FORMATS = {".stl": "stl", ".dae": "dae"}
-DEFAULT_COLOR: Color = (0.8, 0.8, 0.8, 1.0)  # rviz's grey for a robot part without a colour
+# rviz's RVIZ/ShadedRed, its material for a robot part whose URDF gives no colour (and a mesh
+# without colours of its own), as Debian's rviz draws kame's TurtleBot (tests/stage/test_debian_rviz.py)
+DEFAULT_COLOR: Color = (1.0, 0.0, 0.0, 1.0)
 
 
 @dataclass(frozen=True)

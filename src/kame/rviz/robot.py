@@ -1,6 +1,6 @@
 """rviz's RobotModel display: the robot_description URDF's visuals (box, cylinder, sphere and
 STL/DAE meshes), each placed at its link's tf frame and the visual's origin, in the material's
-colour (a mesh's own colours without one; rviz's default grey when neither gives one). The
+colour (a mesh's own colours without one; rviz's default red when neither gives one). The
 URDF is parsed by urdf_parser_py; the window reads the parameter and hands its text to
 `describe`."""
 

@@ -16,7 +16,7 @@ from typing import Any
 import numpy as np
 from OpenGL import GL
 from PySide6.QtCore import QPointF, Qt, QTimer, Signal
-from PySide6.QtGui import QAction, QActionGroup, QColor, QMouseEvent, QPainter, QWheelEvent
+from PySide6.QtGui import QAction, QActionGroup, QBrush, QColor, QMouseEvent, QPainter, QWheelEvent
 from PySide6.QtOpenGLWidgets import QOpenGLWidget
 from PySide6.QtWidgets import (
     QComboBox,
@@ -33,7 +33,7 @@ from PySide6.QtWidgets import (
 
 from kame.rviz import config as rviz_config
 from kame.rviz.camera import ORBIT, TOP_DOWN, Camera
-from kame.rviz.display import ERROR, OK, Display, Status, format_color, parse_color
+from kame.rviz.display import ERROR, OK, WARN, Display, Status, format_color, parse_color
 from kame.rviz.image_panels import ImagePanels, decode_compressed
 from kame.rviz.markers import Marker
 from kame.rviz.meshes import MeshLibrary
@@ -55,6 +55,9 @@ class GpuBatch:
     vertex_bytes: int = 0  # the buffers' sizes
     color_bytes: int = 0
     normal_bytes: int = 0
+
+
+STATUS_COLOURS = {WARN: (205, 153, 51), ERROR: (192, 32, 32)}  # as Debian's rviz 1.14 draws them
 
 
 def face_normals(vertices: np.ndarray) -> np.ndarray:
@@ -293,7 +296,7 @@ class RvizWindow(QMainWindow):
         self.source = source
         self.meshes = MeshLibrary(source.find_package if source is not None else None)
         self.config_path = config_path
-        self.setWindowTitle(f"{config_path or 'default.rviz'} - RViz")
+        self.setWindowTitle(rviz_config.window_title(config_path))
         self.view = RenderView()
         self.view.camera = config.camera
         self.view.background = config.background
@@ -384,7 +387,7 @@ class RvizWindow(QMainWindow):
         self.config.camera = self.view.camera
         rviz_config.save(self.config, path)
         self.config_path = path
-        self.setWindowTitle(f"{path} - RViz")
+        self.setWindowTitle(rviz_config.window_title(path))
 
     def set_view(self, kind: str) -> None:
         self.view.camera.kind = kind
@@ -554,6 +557,10 @@ class RvizWindow(QMainWindow):
         if status.text(1) != text:
             self.tree.blockSignals(True)
             status.setText(1, text)
+            # rviz writes a flagged display's name and status in its warning or error colour
+            colour = STATUS_COLOURS.get(display.status.level)
+            for row in (item, status):
+                row.setData(0, Qt.ItemDataRole.ForegroundRole, QBrush(QColor(*colour)) if colour else None)
             self.tree.blockSignals(False)
 
     def frame_names(self) -> list[str]:

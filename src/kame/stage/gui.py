@@ -11,16 +11,16 @@ pressed; its laser's hits are dots. The window repaints only when a new frame ca
 from __future__ import annotations
 
 import math
-import os
 import sys
 from collections.abc import Sequence
 
 import numpy as np
-from PySide6.QtCore import QPointF, QRectF, QSocketNotifier
+from PySide6.QtCore import QPointF, QRectF
 from PySide6.QtGui import QBrush, QColor, QImage, QPainter, QPaintEvent, QPen, QTransform
-from PySide6.QtWidgets import QApplication, QWidget
+from PySide6.QtWidgets import QWidget
 
-from kame.stage.view import Frame, FrameDecoder, FrameError
+from kame.fed_window import show_fed_frames
+from kame.stage.view import Frame, FrameDecoder
 
 LARGEST_SIDE = 800  # pixels: the window's first size for the map's longer side
 SMALLEST_SIDE = 300
@@ -108,36 +108,10 @@ class WorldWindow(QWidget):
 
 
 def show_frames(fd: int, title: str) -> int:
-    """The window process: draw the frames that arrive on `fd` until they end (EOF) or the user
-    closes the window (status 0 either way); a broken frame ends it with status 3."""
-    decoder = FrameDecoder()
-    while (first := decoder.latest()) is None:
-        data = os.read(fd, 1 << 20)
-        if not data:
-            return 0
-        decoder.feed(data)
-    app = QApplication.instance() or QApplication(["stageros"])
-    window = WorldWindow(first, title)
-    window.show()
-
-    def on_readable() -> None:
-        try:
-            data = os.read(fd, 1 << 20)
-            if not data:
-                app.exit(0)
-                return
-            decoder.feed(data)
-        except (OSError, FrameError) as exc:
-            print(f"stageros window: {exc}", file=sys.stderr, flush=True)
-            app.exit(3)
-            return
-        latest = decoder.latest()
-        if latest is not None:
-            window.show_frame(latest)
-
-    notifier = QSocketNotifier(fd, QSocketNotifier.Type.Read)
-    notifier.activated.connect(on_readable)
-    return int(app.exec())
+    """The window process: draw the frames (kame.stage.view) that arrive on `fd` (kame.fed_window
+    says how it ends)."""
+    return show_fed_frames(fd, FrameDecoder(), "stageros", lambda first: WorldWindow(first, title),
+                           WorldWindow.show_frame)
 
 
 def main(argv: Sequence[str]) -> int:

@@ -17,6 +17,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from kame.protocol.latest_frame import LatestFrameDecoder
 from kame.stage.world import World
 
 WALL_GREY, FLOOR_GREY = 40, 235
@@ -101,24 +102,12 @@ class FrameEncoder:
         return b"".join(parts)
 
 
-class FrameDecoder:
+class FrameDecoder(LatestFrameDecoder[Frame]):
     """Feed it bytes as they arrive; `latest()` is the newest whole frame (None before the first)."""
 
-    def __init__(self) -> None:
-        self._buffer = bytearray()
-        self._raster = b""
-        self._latest: Frame | None = None
+    error = FrameError
 
-    def feed(self, data: bytes) -> None:
-        self._buffer += data
-        while (frame := self._next()) is not None:
-            self._latest = frame
-
-    def latest(self) -> Frame | None:
-        return self._latest
-
-    def _next(self) -> Frame | None:
-        buffer = self._buffer
+    def _parse(self, buffer: bytearray) -> tuple[Frame, int] | None:
         if len(buffer) < _HEADER.size:
             return None
         magic, columns, rows, resolution, origin_x, origin_y, count, raster_size = _HEADER.unpack_from(buffer)
@@ -139,11 +128,5 @@ class FrameDecoder:
             offset = end
         if len(buffer) < offset + raster_size:
             return None
-        if raster_size:
-            if raster_size != columns * rows:
-                raise FrameError(f"a {columns}x{rows} raster of {raster_size} bytes")
-            self._raster = bytes(buffer[offset:offset + raster_size])
-        elif len(self._raster) != columns * rows:
-            raise FrameError("a frame without a raster before any raster")
-        del buffer[:offset + raster_size]
-        return Frame(columns, rows, resolution, (origin_x, origin_y), self._raster, tuple(robots))
+        raster = self._raster_at(buffer, offset, raster_size, columns * rows, f"a {columns}x{rows} map")
+        return Frame(columns, rows, resolution, (origin_x, origin_y), raster, tuple(robots)), offset + raster_size

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import struct
 
+from kame.protocol.latest_frame import LatestFrameDecoder
 from kame.turtlesim.world import Snapshot, Sprite
 
 _MAGIC = b"KTF1"
@@ -38,24 +39,12 @@ class FrameEncoder:
         return b"".join(parts)
 
 
-class FrameDecoder:
+class FrameDecoder(LatestFrameDecoder[Snapshot]):
     """Feed it bytes as they arrive; `latest()` is the newest whole frame (None before the first)."""
 
-    def __init__(self) -> None:
-        self._buffer = bytearray()
-        self._raster = b""
-        self._latest: Snapshot | None = None
+    error = FrameError
 
-    def feed(self, data: bytes) -> None:
-        self._buffer += data
-        while (frame := self._next()) is not None:
-            self._latest = frame
-
-    def latest(self) -> Snapshot | None:
-        return self._latest
-
-    def _next(self) -> Snapshot | None:
-        buffer = self._buffer
+    def _parse(self, buffer: bytearray) -> tuple[Snapshot, int] | None:
         if len(buffer) < _HEADER.size:
             return None
         magic, version, width, height, count, raster_size = _HEADER.unpack_from(buffer)
@@ -74,11 +63,5 @@ class FrameDecoder:
             offset += name_size
         if len(buffer) < offset + raster_size:
             return None
-        if raster_size:
-            if raster_size != width * height * 3:
-                raise FrameError(f"a {width}x{height} raster of {raster_size} bytes")
-            self._raster = bytes(buffer[offset:offset + raster_size])
-        elif len(self._raster) != width * height * 3:
-            raise FrameError("a frame without a raster before any raster")
-        del buffer[:offset + raster_size]
-        return Snapshot(width, height, self._raster, tuple(sprites), version)
+        raster = self._raster_at(buffer, offset, raster_size, width * height * 3, f"a {width}x{height} world")
+        return Snapshot(width, height, raster, tuple(sprites), version), offset + raster_size

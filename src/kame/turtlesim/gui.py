@@ -12,16 +12,16 @@ from __future__ import annotations
 
 import functools
 import math
-import os
 import sys
 from collections.abc import Sequence
 from dataclasses import dataclass
 
-from PySide6.QtCore import QPointF, QRectF, QSocketNotifier, Qt
+from PySide6.QtCore import QPointF, QRectF, Qt
 from PySide6.QtGui import QBrush, QColor, QImage, QPainter, QPaintEvent, QPen, QPolygonF, QTransform
-from PySide6.QtWidgets import QApplication, QWidget
+from PySide6.QtWidgets import QWidget
 
-from kame.turtlesim.frame_codec import FrameDecoder, FrameError
+from kame.fed_window import application, show_fed_frames
+from kame.turtlesim.frame_codec import FrameDecoder
 from kame.turtlesim.world import IMAGE_COUNT, Snapshot, Sprite
 
 # (shell, shell pattern, skin): one per turtle image
@@ -142,46 +142,11 @@ class TurtleWindow(QWidget):
         self.frames_painted += 1
 
 
-def application(program: str | None = None) -> QApplication:
-    """This process's QApplication; `program` names it to the window system (WM_CLASS)."""
-    app = QApplication.instance()
-    if isinstance(app, QApplication):
-        return app
-    return QApplication([program] if program else sys.argv[:1])
-
-
 def show_frames(fd: int, title: str) -> int:
-    """The window process: draw the frames (kame.turtlesim.frame_codec) that arrive on `fd` until
-    they end (EOF: the simulation is gone or closed us) or the user closes the window. A
-    broken frame ends it with status 3; Qt itself ends it when its display goes away."""
-    decoder = FrameDecoder()
-    while (first := decoder.latest()) is None:
-        data = os.read(fd, 1 << 20)
-        if not data:
-            return 0
-        decoder.feed(data)
-    app = application("turtlesim_node")
-    window = TurtleWindow(first, title)
-    window.show()
-
-    def on_readable() -> None:
-        try:
-            data = os.read(fd, 1 << 20)
-            if not data:
-                app.exit(0)
-                return
-            decoder.feed(data)
-        except (OSError, FrameError) as exc:
-            print(f"turtlesim window: {exc}", file=sys.stderr, flush=True)
-            app.exit(3)
-            return
-        latest = decoder.latest()
-        if latest is not None:
-            window.show_snapshot(latest)
-
-    notifier = QSocketNotifier(fd, QSocketNotifier.Type.Read)
-    notifier.activated.connect(on_readable)
-    return int(app.exec())
+    """The window process: draw the frames (kame.turtlesim.frame_codec) that arrive on `fd`
+    (kame.fed_window says how it ends)."""
+    return show_fed_frames(fd, FrameDecoder(), "turtlesim_node", lambda first: TurtleWindow(first, title),
+                           TurtleWindow.show_snapshot)
 
 
 def references_lost_to_none(calls: int = 200) -> int:

@@ -6,6 +6,7 @@ from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
 from kame.msg.message import refill as _refill
+from kame.msg.runtime import ArrayStructs as _ArrayStructs
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -13,7 +14,6 @@ from kame.rostime import Duration as _Duration
 from kame.rostime import Time as _Time
 
 _new = object.__new__
-_unpack_from = _struct.unpack_from
 from nav_msgs.msg._GetMapActionGoal import GetMapActionGoal as _T_nav_msgs__GetMapActionGoal
 from std_msgs.msg._Header import Header as _T_std_msgs__Header
 from actionlib_msgs.msg._GoalID import GoalID as _T_actionlib_msgs__GoalID
@@ -32,7 +32,11 @@ from nav_msgs.msg._GetMapFeedback import GetMapFeedback as _T_nav_msgs__GetMapFe
 _S0 = _struct.Struct('<IIII')
 _S1 = _struct.Struct('<III')
 _S2 = _struct.Struct('<BI')
-_S3 = _struct.Struct('<IIfIIdddddddI')
+_S3 = _struct.Struct('<IIfIIddddddd')
+_S4 = _struct.Struct('<I')
+_S5 = _struct.Struct('<IIfIIdddddddI')
+_A0 = _ArrayStructs('<I%db')
+_A1 = _ArrayStructs('<%db')
 
 
 class GetMapAction(_Message):
@@ -158,8 +162,9 @@ class GetMapAction(_Message):
             _m24 = _m23.position
             _m25 = _m23.orientation
             _x26 = _m17.data
-            _w(_S3.pack(_m22.secs, _m22.nsecs, _m21.resolution, _m21.width, _m21.height, _m24.x, _m24.y, _m24.z, _m25.x, _m25.y, _m25.z, _m25.w, len(_x26)))
-            _w(_pack_array(_x26, 'b', '<i1'))
+            _w(_S3.pack(_m22.secs, _m22.nsecs, _m21.resolution, _m21.width, _m21.height, _m24.x, _m24.y, _m24.z, _m25.x, _m25.y, _m25.z, _m25.w))
+            if _x26.__class__ is list or _x26.__class__ is tuple: _w(_A0[len(_x26)].pack(len(_x26), *_x26))
+            else: _w(_S4.pack(len(_x26)) + _pack_array(_x26, 'b', '<i1'))
             _m27 = self.action_feedback
             _m28 = _m27.header
             _m29 = _m28.stamp
@@ -235,8 +240,8 @@ class GetMapAction(_Message):
             _s = _end + 16
             _end = _s + _n
             _v15.frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
-            _t18.secs, _t18.nsecs, _v17.resolution, _v17.width, _v17.height, _v20.x, _v20.y, _v20.z, _v21.x, _v21.y, _v21.z, _v21.w, _n = _S3.unpack_from(_buf, _end)
-            _v14.data = _unpack_from('<%db' % _n, _buf, _end + 80)
+            _t18.secs, _t18.nsecs, _v17.resolution, _v17.width, _v17.height, _v20.x, _v20.y, _v20.z, _v21.x, _v21.y, _v21.z, _v21.w, _n = _S5.unpack_from(_buf, _end)
+            _v14.data = _A1[_n].unpack_from(_buf, _end + 80)
             _end += 80 + _n
             _v23.seq, _t24.secs, _t24.nsecs, _n = _S0.unpack_from(_buf, _end)
             _s = _end + 16
@@ -307,8 +312,8 @@ class GetMapAction(_Message):
             _v17.origin = _v19 = _new(_T_geometry_msgs__Pose)
             _v19.position = _v20 = _new(_T_geometry_msgs__Point)
             _v19.orientation = _v21 = _new(_T_geometry_msgs__Quaternion)
-            _t18.secs, _t18.nsecs, _v17.resolution, _v17.width, _v17.height, _v20.x, _v20.y, _v20.z, _v21.x, _v21.y, _v21.z, _v21.w, _n = _S3.unpack_from(_buf, _end)
-            _v14.data = _unpack_from('<%db' % _n, _buf, _end + 80)
+            _t18.secs, _t18.nsecs, _v17.resolution, _v17.width, _v17.height, _v20.x, _v20.y, _v20.z, _v21.x, _v21.y, _v21.z, _v21.w, _n = _S5.unpack_from(_buf, _end)
+            _v14.data = _A1[_n].unpack_from(_buf, _end + 80)
             _end += 80 + _n
             self.action_feedback = _v22 = _new(_T_nav_msgs__GetMapActionFeedback)
             _v22.header = _v23 = _new(_T_std_msgs__Header)
@@ -382,7 +387,7 @@ class GetMapAction(_Message):
             _v17.origin = _v19 = _new(_T_geometry_msgs__Pose)
             _v19.position = _v20 = _new(_T_geometry_msgs__Point)
             _v19.orientation = _v21 = _new(_T_geometry_msgs__Quaternion)
-            _t18.secs, _t18.nsecs, _v17.resolution, _v17.width, _v17.height, _v20.x, _v20.y, _v20.z, _v21.x, _v21.y, _v21.z, _v21.w, _n = _S3.unpack_from(_buf, _end)
+            _t18.secs, _t18.nsecs, _v17.resolution, _v17.width, _v17.height, _v20.x, _v20.y, _v20.z, _v21.x, _v21.y, _v21.z, _v21.w, _n = _S5.unpack_from(_buf, _end)
             _v14.data = _np.frombuffer(_buf, '<i1', _n, _end + 80)
             _end += 80 + _n
             self.action_feedback = _v22 = _new(_T_nav_msgs__GetMapActionFeedback)

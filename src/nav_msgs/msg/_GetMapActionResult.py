@@ -6,6 +6,7 @@ from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
 from kame.msg.message import refill as _refill
+from kame.msg.runtime import ArrayStructs as _ArrayStructs
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -13,7 +14,6 @@ from kame.rostime import Duration as _Duration
 from kame.rostime import Time as _Time
 
 _new = object.__new__
-_unpack_from = _struct.unpack_from
 from std_msgs.msg._Header import Header as _T_std_msgs__Header
 from actionlib_msgs.msg._GoalStatus import GoalStatus as _T_actionlib_msgs__GoalStatus
 from actionlib_msgs.msg._GoalID import GoalID as _T_actionlib_msgs__GoalID
@@ -27,7 +27,11 @@ from geometry_msgs.msg._Quaternion import Quaternion as _T_geometry_msgs__Quater
 _S0 = _struct.Struct('<IIII')
 _S1 = _struct.Struct('<III')
 _S2 = _struct.Struct('<BI')
-_S3 = _struct.Struct('<IIfIIdddddddI')
+_S3 = _struct.Struct('<IIfIIddddddd')
+_S4 = _struct.Struct('<I')
+_S5 = _struct.Struct('<IIfIIdddddddI')
+_A0 = _ArrayStructs('<I%db')
+_A1 = _ArrayStructs('<%db')
 
 
 class GetMapActionResult(_Message):
@@ -115,8 +119,9 @@ class GetMapActionResult(_Message):
             _m16 = _m15.position
             _m17 = _m15.orientation
             _x18 = _m9.data
-            _w(_S3.pack(_m14.secs, _m14.nsecs, _m13.resolution, _m13.width, _m13.height, _m16.x, _m16.y, _m16.z, _m17.x, _m17.y, _m17.z, _m17.w, len(_x18)))
-            _w(_pack_array(_x18, 'b', '<i1'))
+            _w(_S3.pack(_m14.secs, _m14.nsecs, _m13.resolution, _m13.width, _m13.height, _m16.x, _m16.y, _m16.z, _m17.x, _m17.y, _m17.z, _m17.w))
+            if _x18.__class__ is list or _x18.__class__ is tuple: _w(_A0[len(_x18)].pack(len(_x18), *_x18))
+            else: _w(_S4.pack(len(_x18)) + _pack_array(_x18, 'b', '<i1'))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -155,8 +160,8 @@ class GetMapActionResult(_Message):
             _s = _end + 16
             _end = _s + _n
             _v8.frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
-            _t11.secs, _t11.nsecs, _v10.resolution, _v10.width, _v10.height, _v13.x, _v13.y, _v13.z, _v14.x, _v14.y, _v14.z, _v14.w, _n = _S3.unpack_from(_buf, _end)
-            _v7.data = _unpack_from('<%db' % _n, _buf, _end + 80)
+            _t11.secs, _t11.nsecs, _v10.resolution, _v10.width, _v10.height, _v13.x, _v13.y, _v13.z, _v14.x, _v14.y, _v14.z, _v14.w, _n = _S5.unpack_from(_buf, _end)
+            _v7.data = _A1[_n].unpack_from(_buf, _end + 80)
             _end += 80 + _n
             if _end > len(_buf): raise _Truncated
             return self
@@ -200,8 +205,8 @@ class GetMapActionResult(_Message):
             _v10.origin = _v12 = _new(_T_geometry_msgs__Pose)
             _v12.position = _v13 = _new(_T_geometry_msgs__Point)
             _v12.orientation = _v14 = _new(_T_geometry_msgs__Quaternion)
-            _t11.secs, _t11.nsecs, _v10.resolution, _v10.width, _v10.height, _v13.x, _v13.y, _v13.z, _v14.x, _v14.y, _v14.z, _v14.w, _n = _S3.unpack_from(_buf, _end)
-            _v7.data = _unpack_from('<%db' % _n, _buf, _end + 80)
+            _t11.secs, _t11.nsecs, _v10.resolution, _v10.width, _v10.height, _v13.x, _v13.y, _v13.z, _v14.x, _v14.y, _v14.z, _v14.w, _n = _S5.unpack_from(_buf, _end)
+            _v7.data = _A1[_n].unpack_from(_buf, _end + 80)
             _end += 80 + _n
             if _end > len(_buf): raise _Truncated
         except Exception as exc:
@@ -241,7 +246,7 @@ class GetMapActionResult(_Message):
             _v10.origin = _v12 = _new(_T_geometry_msgs__Pose)
             _v12.position = _v13 = _new(_T_geometry_msgs__Point)
             _v12.orientation = _v14 = _new(_T_geometry_msgs__Quaternion)
-            _t11.secs, _t11.nsecs, _v10.resolution, _v10.width, _v10.height, _v13.x, _v13.y, _v13.z, _v14.x, _v14.y, _v14.z, _v14.w, _n = _S3.unpack_from(_buf, _end)
+            _t11.secs, _t11.nsecs, _v10.resolution, _v10.width, _v10.height, _v13.x, _v13.y, _v13.z, _v14.x, _v14.y, _v14.z, _v14.w, _n = _S5.unpack_from(_buf, _end)
             _v7.data = _np.frombuffer(_buf, '<i1', _n, _end + 80)
             _end += 80 + _n
             if _end > len(_buf): raise _Truncated

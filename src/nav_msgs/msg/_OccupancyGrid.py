@@ -6,6 +6,7 @@ from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
 from kame.msg.message import refill as _refill
+from kame.msg.runtime import ArrayStructs as _ArrayStructs
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -13,7 +14,6 @@ from kame.rostime import Duration as _Duration
 from kame.rostime import Time as _Time
 
 _new = object.__new__
-_unpack_from = _struct.unpack_from
 from std_msgs.msg._Header import Header as _T_std_msgs__Header
 from nav_msgs.msg._MapMetaData import MapMetaData as _T_nav_msgs__MapMetaData
 from geometry_msgs.msg._Pose import Pose as _T_geometry_msgs__Pose
@@ -21,7 +21,11 @@ from geometry_msgs.msg._Point import Point as _T_geometry_msgs__Point
 from geometry_msgs.msg._Quaternion import Quaternion as _T_geometry_msgs__Quaternion
 
 _S0 = _struct.Struct('<IIII')
-_S1 = _struct.Struct('<IIfIIdddddddI')
+_S1 = _struct.Struct('<IIfIIddddddd')
+_S2 = _struct.Struct('<I')
+_S3 = _struct.Struct('<IIfIIdddddddI')
+_A0 = _ArrayStructs('<I%db')
+_A1 = _ArrayStructs('<%db')
 
 
 class OccupancyGrid(_Message):
@@ -80,8 +84,9 @@ class OccupancyGrid(_Message):
             _m7 = _m6.position
             _m8 = _m6.orientation
             _x9 = self.data
-            _w(_S1.pack(_m5.secs, _m5.nsecs, _m4.resolution, _m4.width, _m4.height, _m7.x, _m7.y, _m7.z, _m8.x, _m8.y, _m8.z, _m8.w, len(_x9)))
-            _w(_pack_array(_x9, 'b', '<i1'))
+            _w(_S1.pack(_m5.secs, _m5.nsecs, _m4.resolution, _m4.width, _m4.height, _m7.x, _m7.y, _m7.z, _m8.x, _m8.y, _m8.z, _m8.w))
+            if _x9.__class__ is list or _x9.__class__ is tuple: _w(_A0[len(_x9)].pack(len(_x9), *_x9))
+            else: _w(_S2.pack(len(_x9)) + _pack_array(_x9, 'b', '<i1'))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -101,8 +106,8 @@ class OccupancyGrid(_Message):
             _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
             _end = 16 + _n
             _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
-            _t4.secs, _t4.nsecs, _v3.resolution, _v3.width, _v3.height, _v6.x, _v6.y, _v6.z, _v7.x, _v7.y, _v7.z, _v7.w, _n = _S1.unpack_from(_buf, _end)
-            self.data = _unpack_from('<%db' % _n, _buf, _end + 80)
+            _t4.secs, _t4.nsecs, _v3.resolution, _v3.width, _v3.height, _v6.x, _v6.y, _v6.z, _v7.x, _v7.y, _v7.z, _v7.w, _n = _S3.unpack_from(_buf, _end)
+            self.data = _A1[_n].unpack_from(_buf, _end + 80)
             _end += 80 + _n
             if _end > len(_buf): raise _Truncated
             return self
@@ -127,8 +132,8 @@ class OccupancyGrid(_Message):
             _v3.origin = _v5 = _new(_T_geometry_msgs__Pose)
             _v5.position = _v6 = _new(_T_geometry_msgs__Point)
             _v5.orientation = _v7 = _new(_T_geometry_msgs__Quaternion)
-            _t4.secs, _t4.nsecs, _v3.resolution, _v3.width, _v3.height, _v6.x, _v6.y, _v6.z, _v7.x, _v7.y, _v7.z, _v7.w, _n = _S1.unpack_from(_buf, _end)
-            self.data = _unpack_from('<%db' % _n, _buf, _end + 80)
+            _t4.secs, _t4.nsecs, _v3.resolution, _v3.width, _v3.height, _v6.x, _v6.y, _v6.z, _v7.x, _v7.y, _v7.z, _v7.w, _n = _S3.unpack_from(_buf, _end)
+            self.data = _A1[_n].unpack_from(_buf, _end + 80)
             _end += 80 + _n
             if _end > len(_buf): raise _Truncated
         except Exception as exc:
@@ -149,7 +154,7 @@ class OccupancyGrid(_Message):
             _v3.origin = _v5 = _new(_T_geometry_msgs__Pose)
             _v5.position = _v6 = _new(_T_geometry_msgs__Point)
             _v5.orientation = _v7 = _new(_T_geometry_msgs__Quaternion)
-            _t4.secs, _t4.nsecs, _v3.resolution, _v3.width, _v3.height, _v6.x, _v6.y, _v6.z, _v7.x, _v7.y, _v7.z, _v7.w, _n = _S1.unpack_from(_buf, _end)
+            _t4.secs, _t4.nsecs, _v3.resolution, _v3.width, _v3.height, _v6.x, _v6.y, _v6.z, _v7.x, _v7.y, _v7.z, _v7.w, _n = _S3.unpack_from(_buf, _end)
             self.data = _np.frombuffer(_buf, '<i1', _n, _end + 80)
             _end += 80 + _n
             if _end > len(_buf): raise _Truncated

@@ -6,6 +6,7 @@ from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
 from kame.msg.message import refill as _refill
+from kame.msg.runtime import ArrayStructs as _ArrayStructs
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -13,7 +14,6 @@ from kame.rostime import Duration as _Duration
 from kame.rostime import Time as _Time
 
 _new = object.__new__
-_unpack_from = _struct.unpack_from
 from nav_msgs.msg._OccupancyGrid import OccupancyGrid as _T_nav_msgs__OccupancyGrid
 from std_msgs.msg._Header import Header as _T_std_msgs__Header
 from nav_msgs.msg._MapMetaData import MapMetaData as _T_nav_msgs__MapMetaData
@@ -22,7 +22,11 @@ from geometry_msgs.msg._Point import Point as _T_geometry_msgs__Point
 from geometry_msgs.msg._Quaternion import Quaternion as _T_geometry_msgs__Quaternion
 
 _S0 = _struct.Struct('<IIII')
-_S1 = _struct.Struct('<IIfIIdddddddI')
+_S1 = _struct.Struct('<IIfIIddddddd')
+_S2 = _struct.Struct('<I')
+_S3 = _struct.Struct('<IIfIIdddddddI')
+_A0 = _ArrayStructs('<I%db')
+_A1 = _ArrayStructs('<%db')
 
 
 class GetMapRequest(_Message):
@@ -125,8 +129,9 @@ class GetMapResponse(_Message):
             _m8 = _m7.position
             _m9 = _m7.orientation
             _x10 = _m1.data
-            _w(_S1.pack(_m6.secs, _m6.nsecs, _m5.resolution, _m5.width, _m5.height, _m8.x, _m8.y, _m8.z, _m9.x, _m9.y, _m9.z, _m9.w, len(_x10)))
-            _w(_pack_array(_x10, 'b', '<i1'))
+            _w(_S1.pack(_m6.secs, _m6.nsecs, _m5.resolution, _m5.width, _m5.height, _m8.x, _m8.y, _m8.z, _m9.x, _m9.y, _m9.z, _m9.w))
+            if _x10.__class__ is list or _x10.__class__ is tuple: _w(_A0[len(_x10)].pack(len(_x10), *_x10))
+            else: _w(_S2.pack(len(_x10)) + _pack_array(_x10, 'b', '<i1'))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -147,8 +152,8 @@ class GetMapResponse(_Message):
             _v2.seq, _t3.secs, _t3.nsecs, _n = _S0.unpack_from(_buf, 0)
             _end = 16 + _n
             _v2.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
-            _t5.secs, _t5.nsecs, _v4.resolution, _v4.width, _v4.height, _v7.x, _v7.y, _v7.z, _v8.x, _v8.y, _v8.z, _v8.w, _n = _S1.unpack_from(_buf, _end)
-            _v1.data = _unpack_from('<%db' % _n, _buf, _end + 80)
+            _t5.secs, _t5.nsecs, _v4.resolution, _v4.width, _v4.height, _v7.x, _v7.y, _v7.z, _v8.x, _v8.y, _v8.z, _v8.w, _n = _S3.unpack_from(_buf, _end)
+            _v1.data = _A1[_n].unpack_from(_buf, _end + 80)
             _end += 80 + _n
             if _end > len(_buf): raise _Truncated
             return self
@@ -174,8 +179,8 @@ class GetMapResponse(_Message):
             _v4.origin = _v6 = _new(_T_geometry_msgs__Pose)
             _v6.position = _v7 = _new(_T_geometry_msgs__Point)
             _v6.orientation = _v8 = _new(_T_geometry_msgs__Quaternion)
-            _t5.secs, _t5.nsecs, _v4.resolution, _v4.width, _v4.height, _v7.x, _v7.y, _v7.z, _v8.x, _v8.y, _v8.z, _v8.w, _n = _S1.unpack_from(_buf, _end)
-            _v1.data = _unpack_from('<%db' % _n, _buf, _end + 80)
+            _t5.secs, _t5.nsecs, _v4.resolution, _v4.width, _v4.height, _v7.x, _v7.y, _v7.z, _v8.x, _v8.y, _v8.z, _v8.w, _n = _S3.unpack_from(_buf, _end)
+            _v1.data = _A1[_n].unpack_from(_buf, _end + 80)
             _end += 80 + _n
             if _end > len(_buf): raise _Truncated
         except Exception as exc:
@@ -197,7 +202,7 @@ class GetMapResponse(_Message):
             _v4.origin = _v6 = _new(_T_geometry_msgs__Pose)
             _v6.position = _v7 = _new(_T_geometry_msgs__Point)
             _v6.orientation = _v8 = _new(_T_geometry_msgs__Quaternion)
-            _t5.secs, _t5.nsecs, _v4.resolution, _v4.width, _v4.height, _v7.x, _v7.y, _v7.z, _v8.x, _v8.y, _v8.z, _v8.w, _n = _S1.unpack_from(_buf, _end)
+            _t5.secs, _t5.nsecs, _v4.resolution, _v4.width, _v4.height, _v7.x, _v7.y, _v7.z, _v8.x, _v8.y, _v8.z, _v8.w, _n = _S3.unpack_from(_buf, _end)
             _v1.data = _np.frombuffer(_buf, '<i1', _n, _end + 80)
             _end += 80 + _n
             if _end > len(_buf): raise _Truncated

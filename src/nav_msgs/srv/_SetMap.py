@@ -6,6 +6,7 @@ from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
 from kame.msg.message import refill as _refill
+from kame.msg.runtime import ArrayStructs as _ArrayStructs
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -13,7 +14,6 @@ from kame.rostime import Duration as _Duration
 from kame.rostime import Time as _Time
 
 _new = object.__new__
-_unpack_from = _struct.unpack_from
 from nav_msgs.msg._OccupancyGrid import OccupancyGrid as _T_nav_msgs__OccupancyGrid
 from std_msgs.msg._Header import Header as _T_std_msgs__Header
 from nav_msgs.msg._MapMetaData import MapMetaData as _T_nav_msgs__MapMetaData
@@ -24,12 +24,16 @@ from geometry_msgs.msg._PoseWithCovarianceStamped import PoseWithCovarianceStamp
 from geometry_msgs.msg._PoseWithCovariance import PoseWithCovariance as _T_geometry_msgs__PoseWithCovariance
 
 _S0 = _struct.Struct('<IIII')
-_S1 = _struct.Struct('<IIfIIdddddddI')
-_S2 = _struct.Struct('<ddddddd36d')
-_S3 = _struct.Struct('<ddddddd')
-_S4 = _struct.Struct('<36d')
-_S5 = _struct.Struct('<B')
-_S6 = _struct.Struct('<?')
+_S1 = _struct.Struct('<IIfIIddddddd')
+_S2 = _struct.Struct('<I')
+_S3 = _struct.Struct('<ddddddd36d')
+_S4 = _struct.Struct('<IIfIIdddddddI')
+_S5 = _struct.Struct('<ddddddd')
+_S6 = _struct.Struct('<36d')
+_S7 = _struct.Struct('<B')
+_S8 = _struct.Struct('<?')
+_A0 = _ArrayStructs('<I%db')
+_A1 = _ArrayStructs('<%db')
 
 
 class SetMapRequest(_Message):
@@ -106,8 +110,9 @@ class SetMapRequest(_Message):
             _m8 = _m7.position
             _m9 = _m7.orientation
             _x10 = _m1.data
-            _w(_S1.pack(_m6.secs, _m6.nsecs, _m5.resolution, _m5.width, _m5.height, _m8.x, _m8.y, _m8.z, _m9.x, _m9.y, _m9.z, _m9.w, len(_x10)))
-            _w(_pack_array(_x10, 'b', '<i1'))
+            _w(_S1.pack(_m6.secs, _m6.nsecs, _m5.resolution, _m5.width, _m5.height, _m8.x, _m8.y, _m8.z, _m9.x, _m9.y, _m9.z, _m9.w))
+            if _x10.__class__ is list or _x10.__class__ is tuple: _w(_A0[len(_x10)].pack(len(_x10), *_x10))
+            else: _w(_S2.pack(len(_x10)) + _pack_array(_x10, 'b', '<i1'))
             _m11 = self.initial_pose
             _m12 = _m11.header
             _m13 = _m12.stamp
@@ -119,7 +124,7 @@ class SetMapRequest(_Message):
             _m17 = _m16.position
             _m18 = _m16.orientation
             _x19 = _m15.covariance
-            _w(_S2.pack(_m17.x, _m17.y, _m17.z, _m18.x, _m18.y, _m18.z, _m18.w, *_x19))
+            _w(_S3.pack(_m17.x, _m17.y, _m17.z, _m18.x, _m18.y, _m18.z, _m18.w, *_x19))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -147,15 +152,15 @@ class SetMapRequest(_Message):
             _v2.seq, _t3.secs, _t3.nsecs, _n = _S0.unpack_from(_buf, 0)
             _end = 16 + _n
             _v2.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
-            _t5.secs, _t5.nsecs, _v4.resolution, _v4.width, _v4.height, _v7.x, _v7.y, _v7.z, _v8.x, _v8.y, _v8.z, _v8.w, _n = _S1.unpack_from(_buf, _end)
-            _v1.data = _unpack_from('<%db' % _n, _buf, _end + 80)
+            _t5.secs, _t5.nsecs, _v4.resolution, _v4.width, _v4.height, _v7.x, _v7.y, _v7.z, _v8.x, _v8.y, _v8.z, _v8.w, _n = _S4.unpack_from(_buf, _end)
+            _v1.data = _A1[_n].unpack_from(_buf, _end + 80)
             _end += 80 + _n
             _v10.seq, _t11.secs, _t11.nsecs, _n = _S0.unpack_from(_buf, _end)
             _s = _end + 16
             _end = _s + _n
             _v10.frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
-            _v14.x, _v14.y, _v14.z, _v15.x, _v15.y, _v15.z, _v15.w = _S3.unpack_from(_buf, _end)
-            _v12.covariance = _S4.unpack_from(_buf, _end + 56)
+            _v14.x, _v14.y, _v14.z, _v15.x, _v15.y, _v15.z, _v15.w = _S5.unpack_from(_buf, _end)
+            _v12.covariance = _S6.unpack_from(_buf, _end + 56)
             if _end > len(_buf): raise _Truncated
             return self
         except AttributeError:
@@ -180,8 +185,8 @@ class SetMapRequest(_Message):
             _v4.origin = _v6 = _new(_T_geometry_msgs__Pose)
             _v6.position = _v7 = _new(_T_geometry_msgs__Point)
             _v6.orientation = _v8 = _new(_T_geometry_msgs__Quaternion)
-            _t5.secs, _t5.nsecs, _v4.resolution, _v4.width, _v4.height, _v7.x, _v7.y, _v7.z, _v8.x, _v8.y, _v8.z, _v8.w, _n = _S1.unpack_from(_buf, _end)
-            _v1.data = _unpack_from('<%db' % _n, _buf, _end + 80)
+            _t5.secs, _t5.nsecs, _v4.resolution, _v4.width, _v4.height, _v7.x, _v7.y, _v7.z, _v8.x, _v8.y, _v8.z, _v8.w, _n = _S4.unpack_from(_buf, _end)
+            _v1.data = _A1[_n].unpack_from(_buf, _end + 80)
             _end += 80 + _n
             self.initial_pose = _v9 = _new(_T_geometry_msgs__PoseWithCovarianceStamped)
             _v9.header = _v10 = _new(_T_std_msgs__Header)
@@ -194,8 +199,8 @@ class SetMapRequest(_Message):
             _v12.pose = _v13 = _new(_T_geometry_msgs__Pose)
             _v13.position = _v14 = _new(_T_geometry_msgs__Point)
             _v13.orientation = _v15 = _new(_T_geometry_msgs__Quaternion)
-            _v14.x, _v14.y, _v14.z, _v15.x, _v15.y, _v15.z, _v15.w = _S3.unpack_from(_buf, _end)
-            _v12.covariance = _S4.unpack_from(_buf, _end + 56)
+            _v14.x, _v14.y, _v14.z, _v15.x, _v15.y, _v15.z, _v15.w = _S5.unpack_from(_buf, _end)
+            _v12.covariance = _S6.unpack_from(_buf, _end + 56)
             if _end > len(_buf): raise _Truncated
         except Exception as exc:
             raise _deserialize_failed(cls, data, exc) from exc
@@ -216,7 +221,7 @@ class SetMapRequest(_Message):
             _v4.origin = _v6 = _new(_T_geometry_msgs__Pose)
             _v6.position = _v7 = _new(_T_geometry_msgs__Point)
             _v6.orientation = _v8 = _new(_T_geometry_msgs__Quaternion)
-            _t5.secs, _t5.nsecs, _v4.resolution, _v4.width, _v4.height, _v7.x, _v7.y, _v7.z, _v8.x, _v8.y, _v8.z, _v8.w, _n = _S1.unpack_from(_buf, _end)
+            _t5.secs, _t5.nsecs, _v4.resolution, _v4.width, _v4.height, _v7.x, _v7.y, _v7.z, _v8.x, _v8.y, _v8.z, _v8.w, _n = _S4.unpack_from(_buf, _end)
             _v1.data = _np.frombuffer(_buf, '<i1', _n, _end + 80)
             _end += 80 + _n
             self.initial_pose = _v9 = _new(_T_geometry_msgs__PoseWithCovarianceStamped)
@@ -230,7 +235,7 @@ class SetMapRequest(_Message):
             _v12.pose = _v13 = _new(_T_geometry_msgs__Pose)
             _v13.position = _v14 = _new(_T_geometry_msgs__Point)
             _v13.orientation = _v15 = _new(_T_geometry_msgs__Quaternion)
-            _v14.x, _v14.y, _v14.z, _v15.x, _v15.y, _v15.z, _v15.w = _S3.unpack_from(_buf, _end)
+            _v14.x, _v14.y, _v14.z, _v15.x, _v15.y, _v15.z, _v15.w = _S5.unpack_from(_buf, _end)
             _v12.covariance = _np.frombuffer(_buf, '<f8', 36, _end + 56)
             if _end > len(_buf): raise _Truncated
         except Exception as exc:
@@ -258,7 +263,7 @@ class SetMapResponse(_Message):
 
     def serialize(self, buff):
         try:
-            buff.write(_S5.pack(self.success))
+            buff.write(_S7.pack(self.success))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -268,7 +273,7 @@ class SetMapResponse(_Message):
     def deserialize(self, data):
         try:
             _buf = data
-            self.success, = _S6.unpack_from(_buf, 0)
+            self.success, = _S8.unpack_from(_buf, 0)
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
         return self
@@ -278,7 +283,7 @@ class SetMapResponse(_Message):
         self = _new(cls)
         try:
             _buf = data
-            self.success, = _S6.unpack_from(_buf, 0)
+            self.success, = _S8.unpack_from(_buf, 0)
         except Exception as exc:
             raise _deserialize_failed(cls, data, exc) from exc
         return self

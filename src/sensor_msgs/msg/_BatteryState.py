@@ -6,6 +6,7 @@ from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
 from kame.msg.message import refill as _refill
+from kame.msg.runtime import ArrayStructs as _ArrayStructs
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -13,13 +14,14 @@ from kame.rostime import Duration as _Duration
 from kame.rostime import Time as _Time
 
 _new = object.__new__
-_unpack_from = _struct.unpack_from
 from std_msgs.msg._Header import Header as _T_std_msgs__Header
 
 _S0 = _struct.Struct('<IIII')
-_S1 = _struct.Struct('<fffffffBBBBI')
+_S1 = _struct.Struct('<fffffffBBBB')
 _S2 = _struct.Struct('<I')
 _S3 = _struct.Struct('<fffffffBBB?I')
+_A0 = _ArrayStructs('<I%df')
+_A1 = _ArrayStructs('<%df')
 
 
 class BatteryState(_Message):
@@ -118,11 +120,12 @@ class BatteryState(_Message):
             if _b3.__class__ is not bytes: _b3 = _b3.encode()
             _w(_S0.pack(_m1.seq, _m2.secs, _m2.nsecs, len(_b3)) + _b3)
             _x4 = self.cell_voltage
-            _w(_S1.pack(self.voltage, self.temperature, self.current, self.charge, self.capacity, self.design_capacity, self.percentage, self.power_supply_status, self.power_supply_health, self.power_supply_technology, self.present, len(_x4)))
-            _w(_pack_array(_x4, 'f', '<f4'))
+            _w(_S1.pack(self.voltage, self.temperature, self.current, self.charge, self.capacity, self.design_capacity, self.percentage, self.power_supply_status, self.power_supply_health, self.power_supply_technology, self.present))
+            if _x4.__class__ is list or _x4.__class__ is tuple: _w(_A0[len(_x4)].pack(len(_x4), *_x4))
+            else: _w(_S2.pack(len(_x4)) + _pack_array(_x4, 'f', '<f4'))
             _x5 = self.cell_temperature
-            _w(_S2.pack(len(_x5)))
-            _w(_pack_array(_x5, 'f', '<f4'))
+            if _x5.__class__ is list or _x5.__class__ is tuple: _w(_A0[len(_x5)].pack(len(_x5), *_x5))
+            else: _w(_S2.pack(len(_x5)) + _pack_array(_x5, 'f', '<f4'))
             _b6 = self.location
             if _b6.__class__ is not bytes: _b6 = _b6.encode()
             _w(_S2.pack(len(_b6)) + _b6)
@@ -144,10 +147,10 @@ class BatteryState(_Message):
             _end = 16 + _n
             _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
             self.voltage, self.temperature, self.current, self.charge, self.capacity, self.design_capacity, self.percentage, self.power_supply_status, self.power_supply_health, self.power_supply_technology, self.present, _n = _S3.unpack_from(_buf, _end)
-            self.cell_voltage = _unpack_from('<%df' % _n, _buf, _end + 36)
+            self.cell_voltage = _A1[_n].unpack_from(_buf, _end + 36)
             _end += 36 + _n * 4
             _n, = _S2.unpack_from(_buf, _end)
-            self.cell_temperature = _unpack_from('<%df' % _n, _buf, _end + 4)
+            self.cell_temperature = _A1[_n].unpack_from(_buf, _end + 4)
             _end += 4 + _n * 4
             _n, = _S2.unpack_from(_buf, _end)
             _s = _end + 4
@@ -176,10 +179,10 @@ class BatteryState(_Message):
             _end = 16 + _n
             _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
             self.voltage, self.temperature, self.current, self.charge, self.capacity, self.design_capacity, self.percentage, self.power_supply_status, self.power_supply_health, self.power_supply_technology, self.present, _n = _S3.unpack_from(_buf, _end)
-            self.cell_voltage = _unpack_from('<%df' % _n, _buf, _end + 36)
+            self.cell_voltage = _A1[_n].unpack_from(_buf, _end + 36)
             _end += 36 + _n * 4
             _n, = _S2.unpack_from(_buf, _end)
-            self.cell_temperature = _unpack_from('<%df' % _n, _buf, _end + 4)
+            self.cell_temperature = _A1[_n].unpack_from(_buf, _end + 4)
             _end += 4 + _n * 4
             _n, = _S2.unpack_from(_buf, _end)
             _s = _end + 4

@@ -6,6 +6,7 @@ from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
 from kame.msg.message import refill as _refill
+from kame.msg.runtime import ArrayStructs as _ArrayStructs
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -13,7 +14,6 @@ from kame.rostime import Duration as _Duration
 from kame.rostime import Time as _Time
 
 _new = object.__new__
-_unpack_from = _struct.unpack_from
 from std_msgs.msg._Header import Header as _T_std_msgs__Header
 from sensor_msgs.msg._RegionOfInterest import RegionOfInterest as _T_sensor_msgs__RegionOfInterest
 
@@ -24,6 +24,8 @@ _S3 = _struct.Struct('<9d9d12dIIIIIIB')
 _S4 = _struct.Struct('<9d')
 _S5 = _struct.Struct('<12d')
 _S6 = _struct.Struct('<IIIIII?')
+_A0 = _ArrayStructs('<I%dd')
+_A1 = _ArrayStructs('<%dd')
 
 
 class CameraInfo(_Message):
@@ -94,8 +96,8 @@ class CameraInfo(_Message):
             if _b4.__class__ is not bytes: _b4 = _b4.encode()
             _w(_S1.pack(self.height, self.width, len(_b4)) + _b4)
             _x5 = self.D
-            _w(_S2.pack(len(_x5)))
-            _w(_pack_array(_x5, 'd', '<f8'))
+            if _x5.__class__ is list or _x5.__class__ is tuple: _w(_A0[len(_x5)].pack(len(_x5), *_x5))
+            else: _w(_S2.pack(len(_x5)) + _pack_array(_x5, 'd', '<f8'))
             _x6 = self.K
             _x7 = self.R
             _x8 = self.P
@@ -121,7 +123,7 @@ class CameraInfo(_Message):
             _end = _s + _n
             self.distortion_model = str(_buf[_s:_end], 'utf-8', 'replace')
             _n, = _S2.unpack_from(_buf, _end)
-            self.D = _unpack_from('<%dd' % _n, _buf, _end + 4)
+            self.D = _A1[_n].unpack_from(_buf, _end + 4)
             _end += 4 + _n * 8
             self.K = _S4.unpack_from(_buf, _end)
             self.R = _S4.unpack_from(_buf, _end + 72)
@@ -150,7 +152,7 @@ class CameraInfo(_Message):
             _end = _s + _n
             self.distortion_model = str(_buf[_s:_end], 'utf-8', 'replace')
             _n, = _S2.unpack_from(_buf, _end)
-            self.D = _unpack_from('<%dd' % _n, _buf, _end + 4)
+            self.D = _A1[_n].unpack_from(_buf, _end + 4)
             _end += 4 + _n * 8
             self.K = _S4.unpack_from(_buf, _end)
             self.R = _S4.unpack_from(_buf, _end + 72)

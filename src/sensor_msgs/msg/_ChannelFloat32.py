@@ -6,6 +6,7 @@ from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
 from kame.msg.message import refill as _refill
+from kame.msg.runtime import ArrayStructs as _ArrayStructs
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -13,9 +14,10 @@ from kame.rostime import Duration as _Duration
 from kame.rostime import Time as _Time
 
 _new = object.__new__
-_unpack_from = _struct.unpack_from
 
 _S0 = _struct.Struct('<I')
+_A0 = _ArrayStructs('<I%df')
+_A1 = _ArrayStructs('<%df')
 
 
 class ChannelFloat32(_Message):
@@ -45,8 +47,8 @@ class ChannelFloat32(_Message):
             if _b1.__class__ is not bytes: _b1 = _b1.encode()
             _w(_S0.pack(len(_b1)) + _b1)
             _x2 = self.values
-            _w(_S0.pack(len(_x2)))
-            _w(_pack_array(_x2, 'f', '<f4'))
+            if _x2.__class__ is list or _x2.__class__ is tuple: _w(_A0[len(_x2)].pack(len(_x2), *_x2))
+            else: _w(_S0.pack(len(_x2)) + _pack_array(_x2, 'f', '<f4'))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -60,7 +62,7 @@ class ChannelFloat32(_Message):
             _end = 4 + _n
             self.name = str(_buf[4:_end], 'utf-8', 'replace')
             _n, = _S0.unpack_from(_buf, _end)
-            self.values = _unpack_from('<%df' % _n, _buf, _end + 4)
+            self.values = _A1[_n].unpack_from(_buf, _end + 4)
             _end += 4 + _n * 4
             if _end > len(_buf): raise _Truncated
         except Exception as exc:
@@ -76,7 +78,7 @@ class ChannelFloat32(_Message):
             _end = 4 + _n
             self.name = str(_buf[4:_end], 'utf-8', 'replace')
             _n, = _S0.unpack_from(_buf, _end)
-            self.values = _unpack_from('<%df' % _n, _buf, _end + 4)
+            self.values = _A1[_n].unpack_from(_buf, _end + 4)
             _end += 4 + _n * 4
             if _end > len(_buf): raise _Truncated
         except Exception as exc:

@@ -6,6 +6,7 @@ from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
 from kame.msg.message import refill as _refill
+from kame.msg.runtime import ArrayStructs as _ArrayStructs
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -13,11 +14,12 @@ from kame.rostime import Duration as _Duration
 from kame.rostime import Time as _Time
 
 _new = object.__new__
-_unpack_from = _struct.unpack_from
 from std_msgs.msg._Header import Header as _T_std_msgs__Header
 
 _S0 = _struct.Struct('<IIII')
 _S1 = _struct.Struct('<I')
+_A0 = _ArrayStructs('<I%dd')
+_A1 = _ArrayStructs('<%dd')
 
 
 class JointState(_Message):
@@ -68,14 +70,14 @@ class JointState(_Message):
                 if _b6.__class__ is not bytes: _b6 = _b6.encode()
                 _w(_S1.pack(len(_b6)) + _b6)
             _x7 = self.position
-            _w(_S1.pack(len(_x7)))
-            _w(_pack_array(_x7, 'd', '<f8'))
+            if _x7.__class__ is list or _x7.__class__ is tuple: _w(_A0[len(_x7)].pack(len(_x7), *_x7))
+            else: _w(_S1.pack(len(_x7)) + _pack_array(_x7, 'd', '<f8'))
             _x8 = self.velocity
-            _w(_S1.pack(len(_x8)))
-            _w(_pack_array(_x8, 'd', '<f8'))
+            if _x8.__class__ is list or _x8.__class__ is tuple: _w(_A0[len(_x8)].pack(len(_x8), *_x8))
+            else: _w(_S1.pack(len(_x8)) + _pack_array(_x8, 'd', '<f8'))
             _x9 = self.effort
-            _w(_S1.pack(len(_x9)))
-            _w(_pack_array(_x9, 'd', '<f8'))
+            if _x9.__class__ is list or _x9.__class__ is tuple: _w(_A0[len(_x9)].pack(len(_x9), *_x9))
+            else: _w(_S1.pack(len(_x9)) + _pack_array(_x9, 'd', '<f8'))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -101,13 +103,13 @@ class JointState(_Message):
                 _l3.append(_i4)
             self.name = _l3
             _n, = _S1.unpack_from(_buf, _end)
-            self.position = _unpack_from('<%dd' % _n, _buf, _end + 4)
+            self.position = _A1[_n].unpack_from(_buf, _end + 4)
             _end += 4 + _n * 8
             _n, = _S1.unpack_from(_buf, _end)
-            self.velocity = _unpack_from('<%dd' % _n, _buf, _end + 4)
+            self.velocity = _A1[_n].unpack_from(_buf, _end + 4)
             _end += 4 + _n * 8
             _n, = _S1.unpack_from(_buf, _end)
-            self.effort = _unpack_from('<%dd' % _n, _buf, _end + 4)
+            self.effort = _A1[_n].unpack_from(_buf, _end + 4)
             _end += 4 + _n * 8
             if _end > len(_buf): raise _Truncated
             return self
@@ -138,13 +140,13 @@ class JointState(_Message):
                 _l3.append(_i4)
             self.name = _l3
             _n, = _S1.unpack_from(_buf, _end)
-            self.position = _unpack_from('<%dd' % _n, _buf, _end + 4)
+            self.position = _A1[_n].unpack_from(_buf, _end + 4)
             _end += 4 + _n * 8
             _n, = _S1.unpack_from(_buf, _end)
-            self.velocity = _unpack_from('<%dd' % _n, _buf, _end + 4)
+            self.velocity = _A1[_n].unpack_from(_buf, _end + 4)
             _end += 4 + _n * 8
             _n, = _S1.unpack_from(_buf, _end)
-            self.effort = _unpack_from('<%dd' % _n, _buf, _end + 4)
+            self.effort = _A1[_n].unpack_from(_buf, _end + 4)
             _end += 4 + _n * 8
             if _end > len(_buf): raise _Truncated
         except Exception as exc:

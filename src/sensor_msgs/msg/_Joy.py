@@ -6,6 +6,7 @@ from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
 from kame.msg.message import refill as _refill
+from kame.msg.runtime import ArrayStructs as _ArrayStructs
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -13,11 +14,14 @@ from kame.rostime import Duration as _Duration
 from kame.rostime import Time as _Time
 
 _new = object.__new__
-_unpack_from = _struct.unpack_from
 from std_msgs.msg._Header import Header as _T_std_msgs__Header
 
 _S0 = _struct.Struct('<IIII')
 _S1 = _struct.Struct('<I')
+_A0 = _ArrayStructs('<I%df')
+_A1 = _ArrayStructs('<I%di')
+_A2 = _ArrayStructs('<%df')
+_A3 = _ArrayStructs('<%di')
 
 
 class Joy(_Message):
@@ -56,11 +60,11 @@ class Joy(_Message):
             if _b3.__class__ is not bytes: _b3 = _b3.encode()
             _w(_S0.pack(_m1.seq, _m2.secs, _m2.nsecs, len(_b3)) + _b3)
             _x4 = self.axes
-            _w(_S1.pack(len(_x4)))
-            _w(_pack_array(_x4, 'f', '<f4'))
+            if _x4.__class__ is list or _x4.__class__ is tuple: _w(_A0[len(_x4)].pack(len(_x4), *_x4))
+            else: _w(_S1.pack(len(_x4)) + _pack_array(_x4, 'f', '<f4'))
             _x5 = self.buttons
-            _w(_S1.pack(len(_x5)))
-            _w(_pack_array(_x5, 'i', '<i4'))
+            if _x5.__class__ is list or _x5.__class__ is tuple: _w(_A1[len(_x5)].pack(len(_x5), *_x5))
+            else: _w(_S1.pack(len(_x5)) + _pack_array(_x5, 'i', '<i4'))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -76,10 +80,10 @@ class Joy(_Message):
             _end = 16 + _n
             _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
             _n, = _S1.unpack_from(_buf, _end)
-            self.axes = _unpack_from('<%df' % _n, _buf, _end + 4)
+            self.axes = _A2[_n].unpack_from(_buf, _end + 4)
             _end += 4 + _n * 4
             _n, = _S1.unpack_from(_buf, _end)
-            self.buttons = _unpack_from('<%di' % _n, _buf, _end + 4)
+            self.buttons = _A3[_n].unpack_from(_buf, _end + 4)
             _end += 4 + _n * 4
             if _end > len(_buf): raise _Truncated
             return self
@@ -100,10 +104,10 @@ class Joy(_Message):
             _end = 16 + _n
             _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
             _n, = _S1.unpack_from(_buf, _end)
-            self.axes = _unpack_from('<%df' % _n, _buf, _end + 4)
+            self.axes = _A2[_n].unpack_from(_buf, _end + 4)
             _end += 4 + _n * 4
             _n, = _S1.unpack_from(_buf, _end)
-            self.buttons = _unpack_from('<%di' % _n, _buf, _end + 4)
+            self.buttons = _A3[_n].unpack_from(_buf, _end + 4)
             _end += 4 + _n * 4
             if _end > len(_buf): raise _Truncated
         except Exception as exc:

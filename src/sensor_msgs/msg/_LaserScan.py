@@ -6,6 +6,7 @@ from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
 from kame.msg.message import refill as _refill
+from kame.msg.runtime import ArrayStructs as _ArrayStructs
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -13,12 +14,14 @@ from kame.rostime import Duration as _Duration
 from kame.rostime import Time as _Time
 
 _new = object.__new__
-_unpack_from = _struct.unpack_from
 from std_msgs.msg._Header import Header as _T_std_msgs__Header
 
 _S0 = _struct.Struct('<IIII')
-_S1 = _struct.Struct('<fffffffI')
+_S1 = _struct.Struct('<fffffff')
 _S2 = _struct.Struct('<I')
+_S3 = _struct.Struct('<fffffffI')
+_A0 = _ArrayStructs('<I%df')
+_A1 = _ArrayStructs('<%df')
 
 
 class LaserScan(_Message):
@@ -78,11 +81,12 @@ class LaserScan(_Message):
             if _b3.__class__ is not bytes: _b3 = _b3.encode()
             _w(_S0.pack(_m1.seq, _m2.secs, _m2.nsecs, len(_b3)) + _b3)
             _x4 = self.ranges
-            _w(_S1.pack(self.angle_min, self.angle_max, self.angle_increment, self.time_increment, self.scan_time, self.range_min, self.range_max, len(_x4)))
-            _w(_pack_array(_x4, 'f', '<f4'))
+            _w(_S1.pack(self.angle_min, self.angle_max, self.angle_increment, self.time_increment, self.scan_time, self.range_min, self.range_max))
+            if _x4.__class__ is list or _x4.__class__ is tuple: _w(_A0[len(_x4)].pack(len(_x4), *_x4))
+            else: _w(_S2.pack(len(_x4)) + _pack_array(_x4, 'f', '<f4'))
             _x5 = self.intensities
-            _w(_S2.pack(len(_x5)))
-            _w(_pack_array(_x5, 'f', '<f4'))
+            if _x5.__class__ is list or _x5.__class__ is tuple: _w(_A0[len(_x5)].pack(len(_x5), *_x5))
+            else: _w(_S2.pack(len(_x5)) + _pack_array(_x5, 'f', '<f4'))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -97,11 +101,11 @@ class LaserScan(_Message):
             _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
             _end = 16 + _n
             _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
-            self.angle_min, self.angle_max, self.angle_increment, self.time_increment, self.scan_time, self.range_min, self.range_max, _n = _S1.unpack_from(_buf, _end)
-            self.ranges = _unpack_from('<%df' % _n, _buf, _end + 32)
+            self.angle_min, self.angle_max, self.angle_increment, self.time_increment, self.scan_time, self.range_min, self.range_max, _n = _S3.unpack_from(_buf, _end)
+            self.ranges = _A1[_n].unpack_from(_buf, _end + 32)
             _end += 32 + _n * 4
             _n, = _S2.unpack_from(_buf, _end)
-            self.intensities = _unpack_from('<%df' % _n, _buf, _end + 4)
+            self.intensities = _A1[_n].unpack_from(_buf, _end + 4)
             _end += 4 + _n * 4
             if _end > len(_buf): raise _Truncated
             return self
@@ -121,11 +125,11 @@ class LaserScan(_Message):
             _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
             _end = 16 + _n
             _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
-            self.angle_min, self.angle_max, self.angle_increment, self.time_increment, self.scan_time, self.range_min, self.range_max, _n = _S1.unpack_from(_buf, _end)
-            self.ranges = _unpack_from('<%df' % _n, _buf, _end + 32)
+            self.angle_min, self.angle_max, self.angle_increment, self.time_increment, self.scan_time, self.range_min, self.range_max, _n = _S3.unpack_from(_buf, _end)
+            self.ranges = _A1[_n].unpack_from(_buf, _end + 32)
             _end += 32 + _n * 4
             _n, = _S2.unpack_from(_buf, _end)
-            self.intensities = _unpack_from('<%df' % _n, _buf, _end + 4)
+            self.intensities = _A1[_n].unpack_from(_buf, _end + 4)
             _end += 4 + _n * 4
             if _end > len(_buf): raise _Truncated
         except Exception as exc:
@@ -141,7 +145,7 @@ class LaserScan(_Message):
             _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
             _end = 16 + _n
             _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
-            self.angle_min, self.angle_max, self.angle_increment, self.time_increment, self.scan_time, self.range_min, self.range_max, _n = _S1.unpack_from(_buf, _end)
+            self.angle_min, self.angle_max, self.angle_increment, self.time_increment, self.scan_time, self.range_min, self.range_max, _n = _S3.unpack_from(_buf, _end)
             self.ranges = _np.frombuffer(_buf, '<f4', _n, _end + 32)
             _end += 32 + _n * 4
             _n, = _S2.unpack_from(_buf, _end)

@@ -6,6 +6,7 @@ from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
 from kame.msg.message import refill as _refill
+from kame.msg.runtime import ArrayStructs as _ArrayStructs
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -13,13 +14,14 @@ from kame.rostime import Duration as _Duration
 from kame.rostime import Time as _Time
 
 _new = object.__new__
-_unpack_from = _struct.unpack_from
 from std_msgs.msg._Header import Header as _T_std_msgs__Header
 from sensor_msgs.msg._LaserEcho import LaserEcho as _T_sensor_msgs__LaserEcho
 
 _S0 = _struct.Struct('<IIII')
 _S1 = _struct.Struct('<fffffffI')
 _S2 = _struct.Struct('<I')
+_A0 = _ArrayStructs('<I%df')
+_A1 = _ArrayStructs('<%df')
 
 
 class MultiEchoLaserScan(_Message):
@@ -82,14 +84,14 @@ class MultiEchoLaserScan(_Message):
             _w(_S1.pack(self.angle_min, self.angle_max, self.angle_increment, self.time_increment, self.scan_time, self.range_min, self.range_max, len(_x4)))
             for _e5 in _x4:
                 _x6 = _e5.echoes
-                _w(_S2.pack(len(_x6)))
-                _w(_pack_array(_x6, 'f', '<f4'))
+                if _x6.__class__ is list or _x6.__class__ is tuple: _w(_A0[len(_x6)].pack(len(_x6), *_x6))
+                else: _w(_S2.pack(len(_x6)) + _pack_array(_x6, 'f', '<f4'))
             _x7 = self.intensities
             _w(_S2.pack(len(_x7)))
             for _e8 in _x7:
                 _x9 = _e8.echoes
-                _w(_S2.pack(len(_x9)))
-                _w(_pack_array(_x9, 'f', '<f4'))
+                if _x9.__class__ is list or _x9.__class__ is tuple: _w(_A0[len(_x9)].pack(len(_x9), *_x9))
+                else: _w(_S2.pack(len(_x9)) + _pack_array(_x9, 'f', '<f4'))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -110,7 +112,7 @@ class MultiEchoLaserScan(_Message):
             for _ in range(_n):
                 _i4 = _v5 = _new(_T_sensor_msgs__LaserEcho)
                 _n, = _S2.unpack_from(_buf, _end)
-                _v5.echoes = _unpack_from('<%df' % _n, _buf, _end + 4)
+                _v5.echoes = _A1[_n].unpack_from(_buf, _end + 4)
                 _end += 4 + _n * 4
                 _l3.append(_i4)
             self.ranges = _l3
@@ -120,7 +122,7 @@ class MultiEchoLaserScan(_Message):
             for _ in range(_n):
                 _i7 = _v8 = _new(_T_sensor_msgs__LaserEcho)
                 _n, = _S2.unpack_from(_buf, _end)
-                _v8.echoes = _unpack_from('<%df' % _n, _buf, _end + 4)
+                _v8.echoes = _A1[_n].unpack_from(_buf, _end + 4)
                 _end += 4 + _n * 4
                 _l6.append(_i7)
             self.intensities = _l6
@@ -148,7 +150,7 @@ class MultiEchoLaserScan(_Message):
             for _ in range(_n):
                 _i4 = _v5 = _new(_T_sensor_msgs__LaserEcho)
                 _n, = _S2.unpack_from(_buf, _end)
-                _v5.echoes = _unpack_from('<%df' % _n, _buf, _end + 4)
+                _v5.echoes = _A1[_n].unpack_from(_buf, _end + 4)
                 _end += 4 + _n * 4
                 _l3.append(_i4)
             self.ranges = _l3
@@ -158,7 +160,7 @@ class MultiEchoLaserScan(_Message):
             for _ in range(_n):
                 _i7 = _v8 = _new(_T_sensor_msgs__LaserEcho)
                 _n, = _S2.unpack_from(_buf, _end)
-                _v8.echoes = _unpack_from('<%df' % _n, _buf, _end + 4)
+                _v8.echoes = _A1[_n].unpack_from(_buf, _end + 4)
                 _end += 4 + _n * 4
                 _l6.append(_i7)
             self.intensities = _l6

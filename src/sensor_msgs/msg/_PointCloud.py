@@ -6,6 +6,7 @@ from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
 from kame.msg.message import refill as _refill
+from kame.msg.runtime import ArrayStructs as _ArrayStructs
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -13,7 +14,6 @@ from kame.rostime import Duration as _Duration
 from kame.rostime import Time as _Time
 
 _new = object.__new__
-_unpack_from = _struct.unpack_from
 from std_msgs.msg._Header import Header as _T_std_msgs__Header
 from geometry_msgs.msg._Point32 import Point32 as _T_geometry_msgs__Point32
 from sensor_msgs.msg._ChannelFloat32 import ChannelFloat32 as _T_sensor_msgs__ChannelFloat32
@@ -21,6 +21,8 @@ from sensor_msgs.msg._ChannelFloat32 import ChannelFloat32 as _T_sensor_msgs__Ch
 _S0 = _struct.Struct('<IIII')
 _S1 = _struct.Struct('<I')
 _S2 = _struct.Struct('<fff')
+_A0 = _ArrayStructs('<I%df')
+_A1 = _ArrayStructs('<%df')
 
 
 class PointCloud(_Message):
@@ -69,8 +71,8 @@ class PointCloud(_Message):
                 if _b8.__class__ is not bytes: _b8 = _b8.encode()
                 _w(_S1.pack(len(_b8)) + _b8)
                 _x9 = _e7.values
-                _w(_S1.pack(len(_x9)))
-                _w(_pack_array(_x9, 'f', '<f4'))
+                if _x9.__class__ is list or _x9.__class__ is tuple: _w(_A0[len(_x9)].pack(len(_x9), *_x9))
+                else: _w(_S1.pack(len(_x9)) + _pack_array(_x9, 'f', '<f4'))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -104,7 +106,7 @@ class PointCloud(_Message):
                 _end = _s + _n
                 _v8.name = str(_buf[_s:_end], 'utf-8', 'replace')
                 _n, = _S1.unpack_from(_buf, _end)
-                _v8.values = _unpack_from('<%df' % _n, _buf, _end + 4)
+                _v8.values = _A1[_n].unpack_from(_buf, _end + 4)
                 _end += 4 + _n * 4
                 _l6.append(_i7)
             self.channels = _l6
@@ -145,7 +147,7 @@ class PointCloud(_Message):
                 _end = _s + _n
                 _v8.name = str(_buf[_s:_end], 'utf-8', 'replace')
                 _n, = _S1.unpack_from(_buf, _end)
-                _v8.values = _unpack_from('<%df' % _n, _buf, _end + 4)
+                _v8.values = _A1[_n].unpack_from(_buf, _end + 4)
                 _end += 4 + _n * 4
                 _l6.append(_i7)
             self.channels = _l6

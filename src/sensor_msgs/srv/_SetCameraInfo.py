@@ -6,6 +6,7 @@ from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
 from kame.msg.message import refill as _refill
+from kame.msg.runtime import ArrayStructs as _ArrayStructs
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -13,7 +14,6 @@ from kame.rostime import Duration as _Duration
 from kame.rostime import Time as _Time
 
 _new = object.__new__
-_unpack_from = _struct.unpack_from
 from sensor_msgs.msg._CameraInfo import CameraInfo as _T_sensor_msgs__CameraInfo
 from std_msgs.msg._Header import Header as _T_std_msgs__Header
 from sensor_msgs.msg._RegionOfInterest import RegionOfInterest as _T_sensor_msgs__RegionOfInterest
@@ -27,6 +27,8 @@ _S5 = _struct.Struct('<12d')
 _S6 = _struct.Struct('<IIIIII?')
 _S7 = _struct.Struct('<BI')
 _S8 = _struct.Struct('<?I')
+_A0 = _ArrayStructs('<I%dd')
+_A1 = _ArrayStructs('<%dd')
 
 
 class SetCameraInfoRequest(_Message):
@@ -79,8 +81,8 @@ class SetCameraInfoRequest(_Message):
             if _b5.__class__ is not bytes: _b5 = _b5.encode()
             _w(_S1.pack(_m1.height, _m1.width, len(_b5)) + _b5)
             _x6 = _m1.D
-            _w(_S2.pack(len(_x6)))
-            _w(_pack_array(_x6, 'd', '<f8'))
+            if _x6.__class__ is list or _x6.__class__ is tuple: _w(_A0[len(_x6)].pack(len(_x6), *_x6))
+            else: _w(_S2.pack(len(_x6)) + _pack_array(_x6, 'd', '<f8'))
             _x7 = _m1.K
             _x8 = _m1.R
             _x9 = _m1.P
@@ -107,7 +109,7 @@ class SetCameraInfoRequest(_Message):
             _end = _s + _n
             _v1.distortion_model = str(_buf[_s:_end], 'utf-8', 'replace')
             _n, = _S2.unpack_from(_buf, _end)
-            _v1.D = _unpack_from('<%dd' % _n, _buf, _end + 4)
+            _v1.D = _A1[_n].unpack_from(_buf, _end + 4)
             _end += 4 + _n * 8
             _v1.K = _S4.unpack_from(_buf, _end)
             _v1.R = _S4.unpack_from(_buf, _end + 72)
@@ -137,7 +139,7 @@ class SetCameraInfoRequest(_Message):
             _end = _s + _n
             _v1.distortion_model = str(_buf[_s:_end], 'utf-8', 'replace')
             _n, = _S2.unpack_from(_buf, _end)
-            _v1.D = _unpack_from('<%dd' % _n, _buf, _end + 4)
+            _v1.D = _A1[_n].unpack_from(_buf, _end + 4)
             _end += 4 + _n * 8
             _v1.K = _S4.unpack_from(_buf, _end)
             _v1.R = _S4.unpack_from(_buf, _end + 72)

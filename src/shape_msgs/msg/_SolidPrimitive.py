@@ -6,6 +6,7 @@ from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
 from kame.msg.message import refill as _refill
+from kame.msg.runtime import ArrayStructs as _ArrayStructs
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -13,9 +14,12 @@ from kame.rostime import Duration as _Duration
 from kame.rostime import Time as _Time
 
 _new = object.__new__
-_unpack_from = _struct.unpack_from
 
-_S0 = _struct.Struct('<BI')
+_S0 = _struct.Struct('<B')
+_S1 = _struct.Struct('<I')
+_S2 = _struct.Struct('<BI')
+_A0 = _ArrayStructs('<I%dd')
+_A1 = _ArrayStructs('<%dd')
 
 
 class SolidPrimitive(_Message):
@@ -54,8 +58,9 @@ class SolidPrimitive(_Message):
         try:
             _w = buff.write
             _x1 = self.dimensions
-            _w(_S0.pack(self.type, len(_x1)))
-            _w(_pack_array(_x1, 'd', '<f8'))
+            _w(_S0.pack(self.type))
+            if _x1.__class__ is list or _x1.__class__ is tuple: _w(_A0[len(_x1)].pack(len(_x1), *_x1))
+            else: _w(_S1.pack(len(_x1)) + _pack_array(_x1, 'd', '<f8'))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -65,8 +70,8 @@ class SolidPrimitive(_Message):
     def deserialize(self, data):
         try:
             _buf = data
-            self.type, _n = _S0.unpack_from(_buf, 0)
-            self.dimensions = _unpack_from('<%dd' % _n, _buf, 5)
+            self.type, _n = _S2.unpack_from(_buf, 0)
+            self.dimensions = _A1[_n].unpack_from(_buf, 5)
             _end = 5 + _n * 8
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
@@ -77,8 +82,8 @@ class SolidPrimitive(_Message):
         self = _new(cls)
         try:
             _buf = data
-            self.type, _n = _S0.unpack_from(_buf, 0)
-            self.dimensions = _unpack_from('<%dd' % _n, _buf, 5)
+            self.type, _n = _S2.unpack_from(_buf, 0)
+            self.dimensions = _A1[_n].unpack_from(_buf, 5)
             _end = 5 + _n * 8
         except Exception as exc:
             raise _deserialize_failed(cls, data, exc) from exc
@@ -88,7 +93,7 @@ class SolidPrimitive(_Message):
         try:
             _np = numpy
             _buf = data
-            self.type, _n = _S0.unpack_from(_buf, 0)
+            self.type, _n = _S2.unpack_from(_buf, 0)
             self.dimensions = _np.frombuffer(_buf, '<f8', _n, 5)
             _end = 5 + _n * 8
         except Exception as exc:

@@ -6,6 +6,7 @@ from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
 from kame.msg.message import refill as _refill
+from kame.msg.runtime import ArrayStructs as _ArrayStructs
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -13,7 +14,6 @@ from kame.rostime import Duration as _Duration
 from kame.rostime import Time as _Time
 
 _new = object.__new__
-_unpack_from = _struct.unpack_from
 
 _S0 = _struct.Struct('<b')
 

@@ -6,6 +6,7 @@ from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
 from kame.msg.message import refill as _refill
+from kame.msg.runtime import ArrayStructs as _ArrayStructs
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -13,12 +14,13 @@ from kame.rostime import Duration as _Duration
 from kame.rostime import Time as _Time
 
 _new = object.__new__
-_unpack_from = _struct.unpack_from
 from std_msgs.msg._MultiArrayLayout import MultiArrayLayout as _T_std_msgs__MultiArrayLayout
 from std_msgs.msg._MultiArrayDimension import MultiArrayDimension as _T_std_msgs__MultiArrayDimension
 
 _S0 = _struct.Struct('<I')
 _S1 = _struct.Struct('<II')
+_A0 = _ArrayStructs('<I%dH')
+_A1 = _ArrayStructs('<%dH')
 
 
 class UInt16MultiArray(_Message):
@@ -55,8 +57,9 @@ class UInt16MultiArray(_Message):
                 _w(_S0.pack(len(_b4)) + _b4)
                 _w(_S1.pack(_e3.size, _e3.stride))
             _x5 = self.data
-            _w(_S1.pack(_m1.data_offset, len(_x5)))
-            _w(_pack_array(_x5, 'H', '<u2'))
+            _w(_S0.pack(_m1.data_offset))
+            if _x5.__class__ is list or _x5.__class__ is tuple: _w(_A0[len(_x5)].pack(len(_x5), *_x5))
+            else: _w(_S0.pack(len(_x5)) + _pack_array(_x5, 'H', '<u2'))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
@@ -81,7 +84,7 @@ class UInt16MultiArray(_Message):
                 _l2.append(_i3)
             _v1.dim = _l2
             _v1.data_offset, _n = _S1.unpack_from(_buf, _end)
-            self.data = _unpack_from('<%dH' % _n, _buf, _end + 8)
+            self.data = _A1[_n].unpack_from(_buf, _end + 8)
             _end += 8 + _n * 2
             if _end > len(_buf): raise _Truncated
             return self
@@ -111,7 +114,7 @@ class UInt16MultiArray(_Message):
                 _l2.append(_i3)
             _v1.dim = _l2
             _v1.data_offset, _n = _S1.unpack_from(_buf, _end)
-            self.data = _unpack_from('<%dH' % _n, _buf, _end + 8)
+            self.data = _A1[_n].unpack_from(_buf, _end + 8)
             _end += 8 + _n * 2
             if _end > len(_buf): raise _Truncated
         except Exception as exc:

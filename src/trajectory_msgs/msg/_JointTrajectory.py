@@ -6,6 +6,7 @@ from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
 from kame.msg.message import refill as _refill
+from kame.msg.runtime import ArrayStructs as _ArrayStructs
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -13,13 +14,14 @@ from kame.rostime import Duration as _Duration
 from kame.rostime import Time as _Time
 
 _new = object.__new__
-_unpack_from = _struct.unpack_from
 from std_msgs.msg._Header import Header as _T_std_msgs__Header
 from trajectory_msgs.msg._JointTrajectoryPoint import JointTrajectoryPoint as _T_trajectory_msgs__JointTrajectoryPoint
 
 _S0 = _struct.Struct('<IIII')
 _S1 = _struct.Struct('<I')
 _S2 = _struct.Struct('<ii')
+_A0 = _ArrayStructs('<I%dd')
+_A1 = _ArrayStructs('<%dd')
 
 
 class JointTrajectory(_Message):
@@ -67,17 +69,17 @@ class JointTrajectory(_Message):
             _w(_S1.pack(len(_x7)))
             for _e8 in _x7:
                 _x9 = _e8.positions
-                _w(_S1.pack(len(_x9)))
-                _w(_pack_array(_x9, 'd', '<f8'))
+                if _x9.__class__ is list or _x9.__class__ is tuple: _w(_A0[len(_x9)].pack(len(_x9), *_x9))
+                else: _w(_S1.pack(len(_x9)) + _pack_array(_x9, 'd', '<f8'))
                 _x10 = _e8.velocities
-                _w(_S1.pack(len(_x10)))
-                _w(_pack_array(_x10, 'd', '<f8'))
+                if _x10.__class__ is list or _x10.__class__ is tuple: _w(_A0[len(_x10)].pack(len(_x10), *_x10))
+                else: _w(_S1.pack(len(_x10)) + _pack_array(_x10, 'd', '<f8'))
                 _x11 = _e8.accelerations
-                _w(_S1.pack(len(_x11)))
-                _w(_pack_array(_x11, 'd', '<f8'))
+                if _x11.__class__ is list or _x11.__class__ is tuple: _w(_A0[len(_x11)].pack(len(_x11), *_x11))
+                else: _w(_S1.pack(len(_x11)) + _pack_array(_x11, 'd', '<f8'))
                 _x12 = _e8.effort
-                _w(_S1.pack(len(_x12)))
-                _w(_pack_array(_x12, 'd', '<f8'))
+                if _x12.__class__ is list or _x12.__class__ is tuple: _w(_A0[len(_x12)].pack(len(_x12), *_x12))
+                else: _w(_S1.pack(len(_x12)) + _pack_array(_x12, 'd', '<f8'))
                 _m13 = _e8.time_from_start
                 _w(_S2.pack(_m13.secs, _m13.nsecs))
         except Exception as exc:
@@ -110,16 +112,16 @@ class JointTrajectory(_Message):
             for _ in range(_n):
                 _i6 = _v7 = _new(_T_trajectory_msgs__JointTrajectoryPoint)
                 _n, = _S1.unpack_from(_buf, _end)
-                _v7.positions = _unpack_from('<%dd' % _n, _buf, _end + 4)
+                _v7.positions = _A1[_n].unpack_from(_buf, _end + 4)
                 _end += 4 + _n * 8
                 _n, = _S1.unpack_from(_buf, _end)
-                _v7.velocities = _unpack_from('<%dd' % _n, _buf, _end + 4)
+                _v7.velocities = _A1[_n].unpack_from(_buf, _end + 4)
                 _end += 4 + _n * 8
                 _n, = _S1.unpack_from(_buf, _end)
-                _v7.accelerations = _unpack_from('<%dd' % _n, _buf, _end + 4)
+                _v7.accelerations = _A1[_n].unpack_from(_buf, _end + 4)
                 _end += 4 + _n * 8
                 _n, = _S1.unpack_from(_buf, _end)
-                _v7.effort = _unpack_from('<%dd' % _n, _buf, _end + 4)
+                _v7.effort = _A1[_n].unpack_from(_buf, _end + 4)
                 _end += 4 + _n * 8
                 _v7.time_from_start = _t8 = _new(_Duration)
                 _t8.secs, _t8.nsecs = _S2.unpack_from(_buf, _end)
@@ -160,16 +162,16 @@ class JointTrajectory(_Message):
             for _ in range(_n):
                 _i6 = _v7 = _new(_T_trajectory_msgs__JointTrajectoryPoint)
                 _n, = _S1.unpack_from(_buf, _end)
-                _v7.positions = _unpack_from('<%dd' % _n, _buf, _end + 4)
+                _v7.positions = _A1[_n].unpack_from(_buf, _end + 4)
                 _end += 4 + _n * 8
                 _n, = _S1.unpack_from(_buf, _end)
-                _v7.velocities = _unpack_from('<%dd' % _n, _buf, _end + 4)
+                _v7.velocities = _A1[_n].unpack_from(_buf, _end + 4)
                 _end += 4 + _n * 8
                 _n, = _S1.unpack_from(_buf, _end)
-                _v7.accelerations = _unpack_from('<%dd' % _n, _buf, _end + 4)
+                _v7.accelerations = _A1[_n].unpack_from(_buf, _end + 4)
                 _end += 4 + _n * 8
                 _n, = _S1.unpack_from(_buf, _end)
-                _v7.effort = _unpack_from('<%dd' % _n, _buf, _end + 4)
+                _v7.effort = _A1[_n].unpack_from(_buf, _end + 4)
                 _end += 4 + _n * 8
                 _v7.time_from_start = _t8 = _new(_Duration)
                 _t8.secs, _t8.nsecs = _S2.unpack_from(_buf, _end)

@@ -6,6 +6,7 @@ from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
 from kame.msg.message import deserialize_failed as _deserialize_failed
 from kame.msg.message import refill as _refill
+from kame.msg.runtime import ArrayStructs as _ArrayStructs
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
@@ -13,10 +14,11 @@ from kame.rostime import Duration as _Duration
 from kame.rostime import Time as _Time
 
 _new = object.__new__
-_unpack_from = _struct.unpack_from
 
 _S0 = _struct.Struct('<I')
 _S1 = _struct.Struct('<ii')
+_A0 = _ArrayStructs('<I%dd')
+_A1 = _ArrayStructs('<%dd')
 
 
 class JointTrajectoryPoint(_Message):
@@ -53,17 +55,17 @@ class JointTrajectoryPoint(_Message):
         try:
             _w = buff.write
             _x1 = self.positions
-            _w(_S0.pack(len(_x1)))
-            _w(_pack_array(_x1, 'd', '<f8'))
+            if _x1.__class__ is list or _x1.__class__ is tuple: _w(_A0[len(_x1)].pack(len(_x1), *_x1))
+            else: _w(_S0.pack(len(_x1)) + _pack_array(_x1, 'd', '<f8'))
             _x2 = self.velocities
-            _w(_S0.pack(len(_x2)))
-            _w(_pack_array(_x2, 'd', '<f8'))
+            if _x2.__class__ is list or _x2.__class__ is tuple: _w(_A0[len(_x2)].pack(len(_x2), *_x2))
+            else: _w(_S0.pack(len(_x2)) + _pack_array(_x2, 'd', '<f8'))
             _x3 = self.accelerations
-            _w(_S0.pack(len(_x3)))
-            _w(_pack_array(_x3, 'd', '<f8'))
+            if _x3.__class__ is list or _x3.__class__ is tuple: _w(_A0[len(_x3)].pack(len(_x3), *_x3))
+            else: _w(_S0.pack(len(_x3)) + _pack_array(_x3, 'd', '<f8'))
             _x4 = self.effort
-            _w(_S0.pack(len(_x4)))
-            _w(_pack_array(_x4, 'd', '<f8'))
+            if _x4.__class__ is list or _x4.__class__ is tuple: _w(_A0[len(_x4)].pack(len(_x4), *_x4))
+            else: _w(_S0.pack(len(_x4)) + _pack_array(_x4, 'd', '<f8'))
             _m5 = self.time_from_start
             _w(_S1.pack(_m5.secs, _m5.nsecs))
         except Exception as exc:
@@ -77,16 +79,16 @@ class JointTrajectoryPoint(_Message):
             _t1 = self.time_from_start
             _buf = data
             _n, = _S0.unpack_from(_buf, 0)
-            self.positions = _unpack_from('<%dd' % _n, _buf, 4)
+            self.positions = _A1[_n].unpack_from(_buf, 4)
             _end = 4 + _n * 8
             _n, = _S0.unpack_from(_buf, _end)
-            self.velocities = _unpack_from('<%dd' % _n, _buf, _end + 4)
+            self.velocities = _A1[_n].unpack_from(_buf, _end + 4)
             _end += 4 + _n * 8
             _n, = _S0.unpack_from(_buf, _end)
-            self.accelerations = _unpack_from('<%dd' % _n, _buf, _end + 4)
+            self.accelerations = _A1[_n].unpack_from(_buf, _end + 4)
             _end += 4 + _n * 8
             _n, = _S0.unpack_from(_buf, _end)
-            self.effort = _unpack_from('<%dd' % _n, _buf, _end + 4)
+            self.effort = _A1[_n].unpack_from(_buf, _end + 4)
             _end += 4 + _n * 8
             _t1.secs, _t1.nsecs = _S1.unpack_from(_buf, _end)
             return self
@@ -102,16 +104,16 @@ class JointTrajectoryPoint(_Message):
         try:
             _buf = data
             _n, = _S0.unpack_from(_buf, 0)
-            self.positions = _unpack_from('<%dd' % _n, _buf, 4)
+            self.positions = _A1[_n].unpack_from(_buf, 4)
             _end = 4 + _n * 8
             _n, = _S0.unpack_from(_buf, _end)
-            self.velocities = _unpack_from('<%dd' % _n, _buf, _end + 4)
+            self.velocities = _A1[_n].unpack_from(_buf, _end + 4)
             _end += 4 + _n * 8
             _n, = _S0.unpack_from(_buf, _end)
-            self.accelerations = _unpack_from('<%dd' % _n, _buf, _end + 4)
+            self.accelerations = _A1[_n].unpack_from(_buf, _end + 4)
             _end += 4 + _n * 8
             _n, = _S0.unpack_from(_buf, _end)
-            self.effort = _unpack_from('<%dd' % _n, _buf, _end + 4)
+            self.effort = _A1[_n].unpack_from(_buf, _end + 4)
             _end += 4 + _n * 8
             self.time_from_start = _t1 = _new(_Duration)
             _t1.secs, _t1.nsecs = _S1.unpack_from(_buf, _end)
