@@ -139,7 +139,9 @@ def nodes(seconds: float, home: Path) -> None:
         start("master", "rosmaster", "--core", "-p", str(port))
         time.sleep(1.0)
         subprocess.run([str(BIN / "rosparam"), "set", "/use_sim_time", "true"], env=env, check=True)
-        start("stageros", "rosrun", "stage_ros", "stageros", str(OFFICE), "base_scan:=scan", "_laser_rate:=10")
+        # the TurtleBot's base also listens where turtlebot_navigation's move_base sends (cmd_vel_mux/input/navi)
+        start("stageros", "rosrun", "stage_ros", "stageros", str(OFFICE), "base_scan:=scan", "_laser_rate:=10",
+              "_extra_cmd_vel_topics:=[cmd_vel_mux/input/navi]")
         start("map_server", "rosrun", "map_server", "map_server", str(OFFICE), "map:=office_map",
               "static_map:=office_static_map")
         start("amcl", "rosrun", "amcl", "amcl", "_base_frame_id:=base_footprint", "_tf_broadcast:=false",

@@ -127,6 +127,7 @@ LAYERS: dict[str, int] = {
     "kame.stage.teleop": 4,
     "kame.nav.amcl_node": 4,  # amcl on kame.client and kame.tf_ros
     "kame.nav.move_base_node": 4,
+    "kame.nav.costmap_ros": 4,  # move_base's costmaps on kame.client and kame.tf_ros
     "kame.nav.gmapping_node": 4,  # slam_gmapping on kame.client and kame.tf_ros
     # L5 the compatibility packages: thin facades over kame, which never imports them
     **{facade: 5 for facade in FACADES},

@@ -1,7 +1,9 @@
-"""`rosrun move_base move_base` on the TurtleBot in the office (turtlebot_world.launch,
-map_server, map = odom): a user's actionlib client's goal across the office, through a door, is
-reached within 0.25 m; the costmap is published; a goal inside a wall is aborted (status 4).
-(Boxes met on the way: tests/nav/test_navigation_loop.py, on the world model.)"""
+"""move_base on the simulated TurtleBot in the office, as the courses run it: turtlebot_navigation's
+move_base.launch.xml (its parameter files) with a box placed in the world that the map does not
+show. A user's actionlib client's goals across the office are reached within 0.25 m in the time a
+TurtleBot takes; a goal inside a wall is aborted with move_base's status and text after its
+recovery behaviours, in their order. turtlebot_gazebo's amcl_demo.launch (amcl with it) drives
+the robot to a goal; and a bare `rosrun move_base move_base` works with its own defaults."""
 
 from __future__ import annotations
 
@@ -10,37 +12,60 @@ import sys
 from pathlib import Path
 
 from tests.nav.test_amcl_live import OFFICE, pose_of
+from tests.nav.worlds import NAVIGATION
 from tests.stage.sim import echo
 from tests.support import Proc
-from tests.turtlesim.sim import BIN, master
+from tests.turtlesim.sim import BIN, Sim, master
 
 CLIENT = str(Path(__file__).with_name("goal_client.py"))
+BOX = (1.2, 0.1)  # in the corridor the first two goals' plans go through
 
 
-def test_move_base_reaches_a_goal_and_aborts_an_unreachable_one(tmp_path: Path) -> None:
+def send_goal(sim: Sim, x: float, y: float) -> tuple[float, str, float]:
+    """(the plan's length, the final state line, seconds of ROS time the goal took)."""
+    client = Proc([sys.executable, CLIENT, str(x), str(y)], sim.env, cwd=sim.home)
+    sim.procs.append(client)
+    plan = float(client.wait_line("plan", timeout=60).split()[1])
+    state = client.wait_line("state", timeout=240)
+    return plan, state, float(client.wait_line("seconds").split()[1])
+
+
+def test_turtlebot_move_base_goals_around_a_box_and_an_unreachable_one(tmp_path: Path) -> None:
     with master(tmp_path) as sim:
-        world = Proc([str(BIN / "roslaunch"), "turtlebot_gazebo", "turtlebot_world.launch", f"world_file:={OFFICE}"],
-                     sim.env, cwd=sim.home)
-        sim.procs.append(world)
-        world.wait_line("Simulating [robot_0]", timeout=30)
+        sim.run("rosparam", "set", "/use_sim_time", "true")
+        # odometry without drift and map = odom: where move_base believes the robot is, it is
+        sim.start("stage_ros", "stageros", "-g", OFFICE, "base_scan:=scan", f"_boxes:=[[{BOX[0]}, {BOX[1]}, 0.3, 0.3]]",
+                  "_real_time_factor:=2.0", "_odom_drift_linear:=0.0", "_odom_drift_angular:=0.0",
+                  "_extra_cmd_vel_topics:=[cmd_vel_mux/input/navi]", wait="Simulating")
         sim.start("map_server", "map_server", OFFICE, wait="Read a")
         sim.start("tf2_ros", "static_transform_publisher", "0", "0", "0", "0", "0", "0", "map", "odom")
-        move_base = sim.start("move_base", "move_base", "_global_costmap/robot_radius:=0.18")
-        reach = Proc([sys.executable, CLIENT, "2.0", "-3.0"], sim.env, cwd=sim.home)
-        sim.procs.append(reach)
-        line = reach.wait_line("state", timeout=120)
-        assert line.split()[1] == "3", line  # SUCCEEDED
-        found = pose_of(echo(sim, "/base_pose_ground_truth"))
-        assert math.hypot(found[0] - 2.0, found[1] + 3.0) < 0.25
-        costmap = echo(sim, "/move_base/global_costmap/costmap", "--noarr")
-        assert costmap["info"]["width"] == 320
+        demo = Proc([str(BIN / "roslaunch"), str(NAVIGATION / "launch" / "includes" / "move_base.launch.xml")],
+                    sim.env, cwd=sim.home)
+        sim.procs.append(demo)
+        for goal in [(2.0, -3.0), (-6.0, 0.2), (-2.0, 3.0)]:
+            plan, state, seconds = send_goal(sim, *goal)
+            assert state.split()[1] == "3", state  # SUCCEEDED
+            found = pose_of(echo(sim, "/base_pose_ground_truth"))
+            assert math.hypot(found[0] - goal[0], found[1] - goal[1]) < 0.25, (goal, found)
+            # a TurtleBot at half its top speed (0.5 m/s) along the plan, and 15 s to turn and settle
+            assert seconds < plan / 0.25 + 15.0, (goal, plan, seconds)
+            if goal == (2.0, -3.0):
+                local = echo(sim, "/move_base/local_costmap/costmap", "--noarr")
+                assert local["header"]["frame_id"] == "odom" and local["info"]["width"] == 80  # 4 m rolling
+                assert echo(sim, "/move_base/global_costmap/costmap", "--noarr")["info"]["width"] == 320
+                footprint = echo(sim, "/move_base/local_costmap/footprint")
+                assert len(footprint["polygon"]["points"]) == 16  # robot_radius 0.20 as costmap_2d's polygon
 
-        wall = Proc([sys.executable, CLIENT, "0.0", "0.98"], sim.env, cwd=sim.home)
-        sim.procs.append(wall)
-        line = wall.wait_line("state", timeout=60)
-        assert line.split()[1] == "4" and "valid plan" in line, line  # ABORTED
-        move_base.stop()
-        assert move_base.popen.returncode == 0  # Ctrl-C ends it, no SIGKILL needed
+        before = len(demo.err)  # roscpp's warnings and errors: move_base's stderr, through roslaunch's
+        plan, state, seconds = send_goal(sim, 0.0, 0.98)
+        assert plan == 0.0  # make_plan's empty plan
+        assert state.strip() == "state 4 Failed to find a valid plan. Even after executing recovery behaviors.", state
+        steps = [line for line in "".join(demo.err[before:]).splitlines()
+                 if "Clearing both" in line or "Rotate recovery" in line or "Aborting because" in line]
+        assert len(steps) == 5, steps
+        assert "(3.00m)" in steps[0] and "Rotate" in steps[1] and "(0.80m)" in steps[2] and "Rotate" in steps[3], steps
+        assert "Aborting because a valid plan could not be found" in steps[4], steps
+        assert seconds > 4 * 5.0  # planner_patience before each of the four recoveries and the abort
 
 
 def test_amcl_demo_launch_localises_and_drives(tmp_path: Path) -> None:
@@ -53,9 +78,27 @@ def test_amcl_demo_launch_localises_and_drives(tmp_path: Path) -> None:
                     sim.env, cwd=sim.home)
         sim.procs.append(demo)
         echo(sim, "/amcl_pose")  # amcl has the map and a first estimate
-        reach = Proc([sys.executable, CLIENT, "-2.0", "-3.0"], sim.env, cwd=sim.home)
-        sim.procs.append(reach)
-        line = reach.wait_line("state", timeout=120)
-        assert line.split()[1] == "3", line
+        _plan, state, _ = send_goal(sim, -2.0, -3.0)
+        assert state.split()[1] == "3", state
         found = pose_of(echo(sim, "/base_pose_ground_truth"))
-        assert math.hypot(found[0] + 2.0, found[1] + 3.0) < 0.25
+        # move_base stops within xy_goal_tolerance (0.15 m) of amcl's estimate, itself within 0.2 m
+        assert math.hypot(found[0] + 2.0, found[1] + 3.0) < 0.15 + 0.2
+
+
+def test_bare_move_base_reaches_a_goal(tmp_path: Path) -> None:
+    with master(tmp_path) as sim:
+        world = Proc([str(BIN / "roslaunch"), "turtlebot_gazebo", "turtlebot_world.launch", f"world_file:={OFFICE}"],
+                     sim.env, cwd=sim.home)
+        sim.procs.append(world)
+        world.wait_line("Simulating [robot_0]", timeout=30)
+        sim.start("map_server", "map_server", OFFICE, wait="Read a")
+        sim.start("tf2_ros", "static_transform_publisher", "0", "0", "0", "0", "0", "0", "map", "odom")
+        move_base = sim.start("move_base", "move_base", "_global_costmap/robot_radius:=0.18",
+                              "_local_costmap/robot_radius:=0.18", "_controller_frequency:=5.0")
+        _plan, state, _ = send_goal(sim, 2.0, -3.0)
+        assert state.split()[1] == "3", state
+        found = pose_of(echo(sim, "/base_pose_ground_truth"))
+        assert math.hypot(found[0] - 2.0, found[1] + 3.0) < 0.25
+        sim.run("rosservice", "call", "/move_base/clear_costmaps")
+        move_base.stop()
+        assert move_base.popen.returncode == 0  # Ctrl-C ends it, no SIGKILL needed

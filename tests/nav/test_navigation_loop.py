@@ -1,5 +1,6 @@
 """The navigation loop without ROS: the office world's robot steered by the costmap, navfn's plan
-and the DWA local planner reaches goals across the office, around a box it only meets on the way."""
+and the DWA local planner, configured by turtlebot_navigation's parameter files, reaches goals
+across the office, around a box it only meets on the way."""
 
 from __future__ import annotations
 
@@ -7,15 +8,16 @@ import math
 
 import numpy as np
 
-from kame.nav.costmap import Costmap, CostmapParams
+from kame.nav.config import costmap_config, local_planner_params
+from kame.nav.costmap import Costmap
 from kame.nav.local_planner import LocalPlannerParams, compute_velocity
 from kame.nav.planner import make_plan
 from kame.stage.world import LaserModel, OdometryModel, Walls, World
-from tests.nav.worlds import load_world_map
+from tests.nav.worlds import load_world_map, turtlebot_move_base_params
 
 
-def navigate(world: World, costmap: Costmap, goal: tuple[float, float], seconds: float = 90.0) -> bool:
-    params = LocalPlannerParams()
+def navigate(world: World, costmap: Costmap, goal: tuple[float, float], params: LocalPlannerParams,
+             seconds: float = 90.0) -> bool:
     cycle = 1.0 / params.controller_frequency
     laser = world.laser
     path: list[tuple[float, float]] | None = None
@@ -49,11 +51,16 @@ def test_goals_across_the_office_around_a_box() -> None:
     world = World(Walls(grid), laser=LaserModel(noise=0.01), odometry=OdometryModel(0.0, 0.0), seed=0)
     world.spawn("bot", 0.0, 0.0, 0.0)
     world.spawn("box", 1.2, 0.1, 0.0)  # in the corridor, not on the map: only the laser sees it
-    costmap = Costmap(grid.cells, grid.resolution, grid.origin[:2], CostmapParams(robot_radius=0.18))
+    get = turtlebot_move_base_params()
+    params = local_planner_params(get, "DWAPlannerROS", float(get("controller_frequency", 20.0)))
+    assert params.max_vel_x == 0.5 and params.sim_time == 1.0 and params.vth_samples == 20
+    config = costmap_config(get, "global_costmap")
+    assert config.layers.robot_radius == 0.2 and config.layers.inflation_radius == 0.5
+    costmap = Costmap(grid.cells, grid.resolution, grid.origin[:2], config.layers)
     box = costmap.cell_of(1.2, 0.1)
     assert box is not None and costmap.costs[box] == 0
     for goal in [(2.0, -3.0), (-6.0, 0.2), (-2.0, 3.0)]:
-        assert navigate(world, costmap, goal), f"did not reach {goal}: at {world.robot('bot').pose}"
+        assert navigate(world, costmap, goal, params), f"did not reach {goal}: at {world.robot('bot').pose}"
         robot = world.robot("bot").pose
         assert math.dist((robot.x, robot.y), goal) < 0.25
         if goal == (2.0, -3.0):

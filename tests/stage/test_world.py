@@ -202,3 +202,19 @@ def test_the_laser_sees_other_robots_its_limits_and_noise() -> None:
     quiet.spawn("a", 0.0, 0.0, 0.0)
     difference = noisy.scans()["a"] - quiet.scans()["a"]
     assert 0.002 < float(np.std(difference)) < 0.03
+
+
+def test_a_box_added_to_the_walls_is_seen_and_bumped_into() -> None:
+    walls = Walls(room(pillar=False))
+    walls.add_box(1.0, 1.5, 0.4, 0.2)  # x 0.8..1.2, y 1.4..1.6
+    assert walls.is_wall(*walls.cell_of(1.0, 1.5)) and walls.is_wall(*walls.cell_of(1.15, 1.45))
+    assert not walls.is_wall(*walls.cell_of(1.3, 1.5)) and not walls.is_wall(*walls.cell_of(1.0, 1.7))
+    world = World(walls, laser=LaserModel(beams=1, angle_min=0.0, angle_max=0.0, range_min=0.1, noise=0.0))
+    world.spawn("bot", 0.0, 1.5, 0.0)
+    assert world.scans()["bot"][0] == pytest.approx(0.8, abs=RES)  # the laser stops at the box's face
+    drive(world, "bot", 0.3, 0.0, 5.0)
+    robot = world.robot("bot")
+    assert robot.stalled and robot.pose.x < 0.8 - 0.17  # stopped by the box, not through it
+    for bad in ((1.0, 1.0, 0.0, 0.2), (math.nan, 1.0, 0.2, 0.2)):
+        with pytest.raises(WorldError):
+            walls.add_box(*bad)

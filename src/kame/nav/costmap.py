@@ -68,14 +68,15 @@ class Costmap:
 
     # ---------------------------------------------------------------- the obstacle layer
 
-    def update_from_scan(self, sensor: tuple[float, float], points: np.ndarray) -> None:
+    def update_from_scan(self, sensor: tuple[float, float], points: np.ndarray,
+                         marking: bool = True, clearing: bool = True) -> None:
         """Clear along each ray from the sensor to its end point (within raytrace_range), then mark
         the end points nearer than obstacle_range; points are (x, y) rows in the map frame."""
         points = np.asarray(points, dtype=float).reshape(-1, 2)
         offsets = points - np.asarray(sensor)
         lengths = np.hypot(offsets[:, 0], offsets[:, 1])
         rows, columns = self.shape
-        if len(points):
+        if clearing and len(points):
             reach = np.minimum(lengths, self.params.raytrace_range)
             steps = max(math.ceil(float(reach.max()) / (self.resolution / 2)), 1)
             fraction = np.linspace(0.0, 1.0, steps + 1)[:-1]  # stop short of the end cell
@@ -87,16 +88,46 @@ class Costmap:
             inside = (ray_rows >= 0) & (ray_rows < rows) & (ray_columns >= 0) & (ray_columns < columns)
             self.obstacles[ray_rows[inside], ray_columns[inside]] = False
             self.cleared[ray_rows[inside], ray_columns[inside]] = True
-        near = points[lengths < self.params.obstacle_range]
+        near = points[lengths < self.params.obstacle_range] if marking else points[:0]
         mark_columns = np.floor((near[:, 0] - self.origin[0]) / self.resolution).astype(np.int64)
         mark_rows = np.floor((near[:, 1] - self.origin[1]) / self.resolution).astype(np.int64)
         inside = (mark_rows >= 0) & (mark_rows < rows) & (mark_columns >= 0) & (mark_columns < columns)
         self.obstacles[mark_rows[inside], mark_columns[inside]] = True
         self.costs = self._combine()
 
-    def clear_obstacles(self) -> None:
-        """The clear_costmaps recovery: forget what the sensors marked."""
-        self.obstacles[:] = False
+    def clear_obstacles(self, keep_around: tuple[float, float] | None = None, keep_size: float = 0.0) -> None:
+        """The clear_costmaps service: forget what the sensors marked; given `keep_around`, only
+        outside the square of side keep_size centred there (ClearCostmapRecovery's reset_distance)."""
+        keep = np.zeros(self.obstacles.shape, dtype=bool)
+        if keep_around is not None and keep_size > 0:
+            rows, columns = self.shape
+            half = keep_size / 2
+            c0 = max(math.floor((keep_around[0] - half - self.origin[0]) / self.resolution), 0)
+            r0 = max(math.floor((keep_around[1] - half - self.origin[1]) / self.resolution), 0)
+            c1 = min(math.ceil((keep_around[0] + half - self.origin[0]) / self.resolution), columns)
+            r1 = min(math.ceil((keep_around[1] + half - self.origin[1]) / self.resolution), rows)
+            if c0 < c1 and r0 < r1:
+                keep[r0:r1, c0:c1] = True
+        self.obstacles &= keep
+        self.costs = self._combine()
+
+    def recentre(self, centre: tuple[float, float]) -> None:
+        """The rolling window: move the grid so `centre` is in its middle (the origin snapped to
+        whole cells, as costmap_2d's updateOrigin), keeping the marks that stay inside."""
+        rows, columns = self.shape
+        shift_c = math.floor((centre[0] - columns * self.resolution / 2 - self.origin[0]) / self.resolution)
+        shift_r = math.floor((centre[1] - rows * self.resolution / 2 - self.origin[1]) / self.resolution)
+        if shift_c == 0 and shift_r == 0:
+            return
+        self.origin = (self.origin[0] + shift_c * self.resolution, self.origin[1] + shift_r * self.resolution)
+        moved = np.zeros_like(self.obstacles)
+        src_r = slice(max(shift_r, 0), rows + min(shift_r, 0))
+        src_c = slice(max(shift_c, 0), columns + min(shift_c, 0))
+        dst_r = slice(max(-shift_r, 0), rows + min(-shift_r, 0))
+        dst_c = slice(max(-shift_c, 0), columns + min(-shift_c, 0))
+        if src_r.start < src_r.stop and src_c.start < src_c.stop:
+            moved[dst_r, dst_c] = self.obstacles[src_r, src_c]
+        self.obstacles = moved
         self.costs = self._combine()
 
     # ---------------------------------------------------------------- inflation
@@ -115,3 +146,25 @@ class Costmap:
             costs = np.where(known & ~lethal, np.maximum(costs, inflated), costs).astype(np.uint8)
         combined: np.ndarray = costs
         return combined
+
+
+def footprint_hits_lethal(costmap: Costmap, pose: tuple[float, float, float],
+                          footprint: tuple[tuple[float, float], ...]) -> int | None:
+    """The cost of a lethal cell under the footprint's outline at `pose` (costmap_2d's
+    footprintCost: edges walked cell by cell), or None when the outline touches none."""
+    corners = np.asarray(footprint, dtype=float)
+    c, s = math.cos(pose[2]), math.sin(pose[2])
+    xs = pose[0] + c * corners[:, 0] - s * corners[:, 1]
+    ys = pose[1] + s * corners[:, 0] + c * corners[:, 1]
+    ends_x, ends_y = np.roll(xs, -1), np.roll(ys, -1)
+    steps = max(math.ceil(float(np.max(np.hypot(ends_x - xs, ends_y - ys))) / (costmap.resolution / 2)), 1)
+    t = np.linspace(0.0, 1.0, steps + 1)
+    px = (xs[:, None] + (ends_x - xs)[:, None] * t[None, :]).reshape(-1)
+    py = (ys[:, None] + (ends_y - ys)[:, None] * t[None, :]).reshape(-1)
+    rows, columns = costmap.shape
+    column = np.floor((px - costmap.origin[0]) / costmap.resolution).astype(np.int64)
+    row = np.floor((py - costmap.origin[1]) / costmap.resolution).astype(np.int64)
+    inside = (row >= 0) & (row < rows) & (column >= 0) & (column < columns)
+    lethal = costmap.costs[row[inside], column[inside]] == LETHAL_OBSTACLE
+    return LETHAL_OBSTACLE if lethal.any() else None
+

@@ -1,11 +1,14 @@
 """A DWA local planner, pure: base_local_planner's dynamic window search on numpy.
 
 Each control cycle samples (v, w) pairs reachable within one cycle under the acceleration
-limits (vx_samples x vth_samples), rolls each forward for sim_time at constant speed, drops
+limits (vx_samples x vth_samples), drops those slower than min_trans_vel and min_rot_vel
+(standing still is no trajectory, as in dwa_local_planner), rolls each forward for sim_time at constant speed, drops
 those whose footprint centre enters an inscribed or lethal cell, and scores the rest as
 base_local_planner does: path_distance_bias * (distance from the trajectory's end to the plan)
 + goal_distance_bias * (distance from the end to the local goal, the plan's last point within
-the local window) + occdist_scale * (the highest cost crossed); the cheapest wins.
+the local window) + occdist_scale * (the highest cost crossed), the two distances also taken
+from a point forward_point_distance ahead of the end (dwa_local_planner's alignment and
+goal-front costs) until the goal is nearer than twice that; the cheapest wins.
 """
 
 from __future__ import annotations
@@ -34,6 +37,9 @@ class LocalPlannerParams:
     path_distance_bias: float = 32.0
     goal_distance_bias: float = 24.0
     occdist_scale: float = 0.02
+    min_trans_vel: float = 0.1  # a trajectory slower than both of these is no trajectory (it stands still)
+    min_rot_vel: float = 0.4
+    forward_point_distance: float = 0.325  # the point ahead of each end that is scored too (turns toward the path)
     xy_goal_tolerance: float = 0.15
     yaw_goal_tolerance: float = 0.3
     local_window: float = 2.0  # metres of plan ahead that the local goal may lie in
@@ -49,9 +55,25 @@ def local_goal(path: np.ndarray, position: tuple[float, float], window: float) -
     return nearest, last
 
 
+@dataclass(frozen=True)
+class Trajectory:
+    """The chosen command and the (x, y) points it was rolled out to (base_local_planner's local_plan)."""
+
+    linear: float
+    angular: float
+    points: np.ndarray
+
+
 def compute_velocity(costmap: Costmap, pose: tuple[float, float, float], velocity: tuple[float, float],
                      path: list[tuple[float, float]], params: LocalPlannerParams) -> tuple[float, float] | None:
     """The (linear, angular) command for this cycle, or None when every sampled trajectory collides."""
+    best = choose_trajectory(costmap, pose, velocity, path, params)
+    return None if best is None else (best.linear, best.angular)
+
+
+def choose_trajectory(costmap: Costmap, pose: tuple[float, float, float], velocity: tuple[float, float],
+                      path: list[tuple[float, float]], params: LocalPlannerParams) -> Trajectory | None:
+    """The cheapest collision-free sampled trajectory, or None when every one collides."""
     plan = np.asarray(path, dtype=float)
     nearest, last = local_goal(plan, (pose[0], pose[1]), params.local_window)
     ahead = plan[nearest:last + 1]
@@ -78,17 +100,32 @@ def compute_velocity(costmap: Costmap, pose: tuple[float, float, float], velocit
     inside = (row >= 0) & (row < rows) & (column >= 0) & (column < columns)
     costs = np.full(x.shape, 255, dtype=np.int64)
     costs[inside] = costmap.costs[row[inside], column[inside]]
-    valid = (costs < INSCRIBED_INFLATED_OBSTACLE).all(axis=1)
+    moving = (np.abs(v) >= params.min_trans_vel) | (np.abs(w) >= params.min_rot_vel)
+    valid = (costs < INSCRIBED_INFLATED_OBSTACLE).all(axis=1) & moving
     if not valid.any():
         return None
     end_x, end_y = x[:, -1], y[:, -1]
-    path_distance = np.min(np.hypot(end_x[:, None] - ahead[None, :, 0], end_y[:, None] - ahead[None, :, 1]), axis=1)
+
+    def to_path(px: np.ndarray, py: np.ndarray) -> np.ndarray:
+        nearest: np.ndarray = np.min(np.hypot(px[:, None] - ahead[None, :, 0], py[:, None] - ahead[None, :, 1]),
+                                     axis=1)
+        return nearest
+
+    path_distance = to_path(end_x, end_y)
     goal_distance = np.hypot(end_x - goal[0], end_y - goal[1])
+    if math.hypot(pose[0] - plan[-1][0], pose[1] - plan[-1][1]) >= 2 * params.forward_point_distance:
+        # dwa_local_planner's alignment and goal-front costs: a point ahead of the end, so that
+        # facing along the plan scores better than standing still facing away from it. Near the
+        # goal they would hold the end a forward_point_distance short of it, so they stop there.
+        front_x = end_x + params.forward_point_distance * np.cos(theta[:, -1])
+        front_y = end_y + params.forward_point_distance * np.sin(theta[:, -1])
+        path_distance = path_distance + to_path(front_x, front_y)
+        goal_distance = goal_distance + np.hypot(front_x - goal[0], front_y - goal[1])
     score = (params.path_distance_bias * path_distance + params.goal_distance_bias * goal_distance) \
         / costmap.resolution + params.occdist_scale * costs.max(axis=1)
     score[~valid] = np.inf
     best = int(np.argmin(score))
-    return float(v[best]), float(w[best])
+    return Trajectory(float(v[best]), float(w[best]), np.column_stack((x[best], y[best])))
 
 
 def rotate_toward(yaw: float, goal_yaw: float, params: LocalPlannerParams) -> float:

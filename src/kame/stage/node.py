@@ -16,7 +16,9 @@ and for all: /tf (tf2_msgs/TFMessage: odom -> base_footprint -> base_link -> bas
 robot), /clock (rosgraph_msgs/Clock, every step; set /use_sim_time to follow it).
 Private params: ~initial_pose_x/y/a (one robot) or ~robots ([{name, x, y, a}, ...]);
 ~laser_beams, ~laser_angle_min/max, ~laser_range_min/max, ~laser_rate, ~laser_noise;
-~odom_drift_linear/angular, ~seed; ~step (seconds of simulated time, 0.01), ~odom_rate (Hz, 50);
+~odom_drift_linear/angular, ~seed; ~boxes ([[x, y, width, depth], ...]: obstacles added to the
+world that its map does not show, as one places a box in Gazebo);
+~step (seconds of simulated time, 0.01), ~odom_rate (Hz, 50);
 ~real_time_factor (1.0; 0 runs as fast as it can); ~odom_frame_id, ~base_frame_id, ~laser_frame_id.
 The window (as Stage's: the world from above, robots, laser hits) is a process of its own fed
 frames (kame.net.feed, kame.stage.gui); -g runs without it, as does a machine without a display
@@ -161,7 +163,16 @@ def make_world(map_path: str) -> tuple[World, list[Placement]]:
         noise=_number("~laser_noise", LaserModel.noise))
     odometry = OdometryModel(_number("~odom_drift_linear", OdometryModel.linear),
                              _number("~odom_drift_angular", OdometryModel.angular))
-    world = World(Walls(grid), laser=laser, odometry=odometry,
+    walls = Walls(grid)
+    boxes = runtime.get_param("~boxes", [])
+    if not isinstance(boxes, list) or not all(isinstance(b, list) and len(b) == 4 for b in boxes):
+        raise SetupError("parameter ~boxes must be a list of [x, y, width, depth]")
+    for box in boxes:
+        try:
+            walls.add_box(*(float(v) for v in box))
+        except (TypeError, ValueError) as exc:
+            raise SetupError(f"parameter ~boxes: {exc}") from None
+    world = World(walls, laser=laser, odometry=odometry,
                   command_timeout=_number("~base_watchdog_timeout", 0.5), seed=int(_number("~seed", 0)))
     return world, placements
 

@@ -141,6 +141,19 @@ class Walls:
         self._frame = np.pad(np.where(self.occupied, _WALL, _OPEN).astype(np.int8), 1, constant_values=_OUTSIDE)
         self._clearance = _chessboard_distance(self._frame != _OPEN)
 
+    def add_box(self, x: float, y: float, width: float, depth: float) -> None:
+        """Make the cells of an axis-aligned box (centre x, y; width along x, depth along y) walls:
+        an obstacle the map does not have."""
+        if not _finite(x, y, width, depth) or width <= 0 or depth <= 0:
+            raise WorldError(f"a box needs a finite centre and a size above 0, not {(x, y, width, depth)}")
+        rows, cols = self.occupied.shape
+        centre_x = self.origin[0] + (np.arange(cols) + 0.5) * self.resolution
+        centre_y = self.origin[1] + (np.arange(rows) + 0.5) * self.resolution
+        inside = (np.abs(centre_x[None, :] - x) <= width / 2) & (np.abs(centre_y[:, None] - y) <= depth / 2)
+        self.occupied |= inside
+        self._frame = np.pad(np.where(self.occupied, _WALL, _OPEN).astype(np.int8), 1, constant_values=_OUTSIDE)
+        self._clearance = _chessboard_distance(self._frame != _OPEN)
+
     @property
     def size(self) -> tuple[float, float]:
         """(width, height) in metres."""
