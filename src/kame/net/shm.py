@@ -37,7 +37,6 @@ import logging
 import mmap
 import os
 import re
-import secrets
 import socket
 import threading
 from collections.abc import Callable, Sequence
@@ -116,7 +115,7 @@ class Segment:
 def create_segment(capacity: int) -> Segment | None:
     """A new segment of `capacity` bytes, reserved in full; None when /dev/shm will not have it."""
     _sweep_once()
-    name = f"kame.{_pid_namespace()}.{os.getpid()}.{secrets.token_hex(8)}"
+    name = f"kame.{_pid_namespace()}.{os.getpid()}.{os.urandom(8).hex()}"  # not secrets: it loads hashlib (footprint)
     path = os.path.join(SHM_DIR, name)
     try:
         fd = os.open(path, os.O_RDWR | os.O_CREAT | os.O_EXCL | os.O_CLOEXEC, 0o600)
