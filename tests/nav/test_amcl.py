@@ -108,6 +108,19 @@ def test_the_laser_model_prefers_the_true_pose() -> None:
     assert pf.weights[0] > 1.5 * pf.weights[1:].max()
 
 
+def test_a_pose_too_close_to_a_solid_box_scores_worse_than_the_true_one() -> None:
+    """Facing the south room's box (drawn solid on the map) with the TurtleBot's amcl parameters:
+    a particle 0.3 m closer puts its beam ends inside the box, which must not count as hits."""
+    world = World(Walls(load_world_map("office")), odometry=OdometryModel(0.0, 0.0))
+    world.spawn("bot", 2.0, -3.0, -math.pi / 2)
+    turtlebot = FilterParams(min_particles=2, max_particles=2, laser_z_hit=0.5, laser_z_rand=0.5, laser_max_beams=60)
+    pf = office_filter(turtlebot, seed=0)
+    pf._set(np.array([[2.0, -3.0, -math.pi / 2], [2.0, -3.3, -math.pi / 2]]))
+    pf.weigh(world.scans(["bot"])["bot"], world.laser.angles(), world.laser.range_max)
+    assert pf.weights[0] > 2 * pf.weights[1]
+    assert pf.field.is_free(2.0, -3.0) and not pf.field.is_free(2.0, -4.3)  # the box's inside is no free space
+
+
 def test_kld_bound() -> None:
     params = FilterParams()
     assert kld_limit(1, params) == params.max_particles  # one bin says nothing: keep them all
