@@ -2,7 +2,10 @@
 
 As navigation's amcl 1.17 (pf.c, amcl_odom.cpp, amcl_laser.cpp), on numpy arrays:
 - particles are rows (x, y, theta) with weights summing to 1;
-- the odometry model is amcl's "diff" (rotate, translate, rotate; noise from odom_alpha1..4);
+- the odometry model is amcl's "diff" (rotate, translate, rotate; noise from odom_alpha1..4),
+  with odom_model_type's two readings of the alphas: "diff" (amcl's default, and what the
+  TurtleBot's alphas were tuned for) takes alpha * motion^2 as the noise's standard deviation,
+  "diff-corrected" as its variance;
 - the laser model is the likelihood field: each used beam's end point scores
   z_hit * exp(-d^2 / (2 sigma_hit^2)) + z_rand / range_max, with d the distance to the nearest
   obstacle surface (an occupied cell beside a free or unknown one; capped at
@@ -40,6 +43,7 @@ class FilterParams:
     odom_alpha2: float = 0.2  # rotation noise from translation
     odom_alpha3: float = 0.2  # translation noise from translation
     odom_alpha4: float = 0.2  # translation noise from rotation
+    odom_model_type: str = "diff"
     laser_z_hit: float = 0.95
     laser_z_rand: float = 0.05
     laser_sigma_hit: float = 0.2
@@ -52,6 +56,8 @@ class FilterParams:
                              f"(got {self.min_particles}, {self.max_particles})")
         if not (0 < self.kld_err < 1 and 0 < self.kld_z < 1):
             raise ValueError("kld_err and kld_z must lie between 0 and 1")
+        if self.odom_model_type not in ("diff", "diff-corrected"):
+            raise ValueError(f"odom_model_type must be diff or diff-corrected, not {self.odom_model_type!r}")
         if self.laser_sigma_hit <= 0 or self.laser_max_beams < 2 or self.laser_likelihood_max_dist <= 0:
             raise ValueError("laser_sigma_hit and laser_likelihood_max_dist must be above 0, "
                              "laser_max_beams at least 2")
@@ -197,9 +203,14 @@ class ParticleFilter:
         rot2_noise = min(abs(float(angle_diff(rot2, 0.0))), abs(float(angle_diff(rot2, math.pi))))
         count = len(self.particles)
         normal = self.rng.standard_normal((count, 3))
-        rot1_sigma = math.sqrt(p.odom_alpha1 * rot1_noise ** 2 + p.odom_alpha2 * trans ** 2)
-        trans_sigma = math.sqrt(p.odom_alpha3 * trans ** 2 + p.odom_alpha4 * (rot1_noise ** 2 + rot2_noise ** 2))
-        rot2_sigma = math.sqrt(p.odom_alpha1 * rot2_noise ** 2 + p.odom_alpha2 * trans ** 2)
+        # amcl's "diff" hands these sums to pf_ran_gaussian as standard deviations; only
+        # "diff-corrected" takes their square roots. Read as variances, the TurtleBot's alphas
+        # (0.2) spread the particles some ten times wider than amcl does, 9 cm for each 0.2 rad
+        # turned, and the estimate wandered wherever the laser saw a flat wall.
+        spread = (lambda v: v) if p.odom_model_type == "diff" else math.sqrt
+        rot1_sigma = spread(p.odom_alpha1 * rot1_noise ** 2 + p.odom_alpha2 * trans ** 2)
+        trans_sigma = spread(p.odom_alpha3 * trans ** 2 + p.odom_alpha4 * (rot1_noise ** 2 + rot2_noise ** 2))
+        rot2_sigma = spread(p.odom_alpha1 * rot2_noise ** 2 + p.odom_alpha2 * trans ** 2)
         rot1_hat = angle_diff(rot1, normal[:, 0] * rot1_sigma)
         trans_hat = trans - normal[:, 1] * trans_sigma
         rot2_hat = angle_diff(rot2, normal[:, 2] * rot2_sigma)

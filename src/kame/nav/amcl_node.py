@@ -40,7 +40,7 @@ def _param(name: str, default: Any) -> Any:
 def filter_params() -> FilterParams:
     values: dict[str, Any] = {}
     for name, spec in _FILTER_FIELDS.items():
-        kind = int if spec.type in ("int", int) else float
+        kind = int if spec.type in ("int", int) else str if spec.type in ("str", str) else float
         values[name] = kind(_param(name, spec.default))
     return FilterParams(**values)
 
