@@ -58,3 +58,5 @@ def test_amcl_tracks_the_turtlebot_from_a_wrong_initial_pose(tmp_path: Path) -> 
         sim.run("rosservice", "call", "/request_nomotion_update")
         amcl.stop()
         assert amcl.popen.returncode == 0  # Ctrl-C ends it, no SIGKILL needed
+        # a scan's callback still running as it shut down is no "bad callback" on the console
+        assert not [line for line in amcl.out + amcl.err if "bad callback" in line or "Traceback" in line]

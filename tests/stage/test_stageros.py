@@ -8,6 +8,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+import yaml
 
 from tests.stage.sim import echo
 from tests.support import Proc
@@ -71,6 +72,25 @@ def test_nan_commands_are_refused_and_the_robot_goes_on(tmp_path: Path) -> None:
         assert x_of(sim, "/base_pose_ground_truth") == 0.0
         drive(sim, "/cmd_vel", 0.3)
         wait_until(lambda: x_of(sim, "/base_pose_ground_truth") > 0.2, timeout=20, what="the robot to move")
+
+
+def test_a_box_placed_while_running_is_seen_and_one_on_the_robot_is_refused(tmp_path: Path) -> None:
+    with master(tmp_path) as sim:
+        node = sim.start("stage_ros", "stageros", PLAYGROUND, "_initial_pose_x:=3.5", "_initial_pose_y:=-1.0",
+                         wait="Simulating [robot_0]")
+        assert echo(sim, "/base_scan")["ranges"][320] == pytest.approx(1.4, abs=0.06)
+        placed = yaml.safe_load(sim.run("rosservice", "call", "/stageros/add_box",
+                                        "{x: 4.1, y: -1.0, width: 0.2, depth: 0.6}").stdout)
+        assert placed == {"success": True, "message": ""}
+        node.wait_line("Placed a box of 0.2 x 0.6 m at (4.1, -1)")
+        wait_until(lambda: echo(sim, "/base_scan")["ranges"][320] == pytest.approx(0.5, abs=0.06), timeout=20,
+                   what="the laser to stop at the box's face")
+        refused = yaml.safe_load(sim.run("rosservice", "call", "/stageros/add_box",
+                                         "{x: 3.5, y: -1.0, width: 0.5, depth: 0.5}").stdout)
+        assert refused["success"] is False and "would cover robot [robot_0]" in refused["message"]
+        drive(sim, "/cmd_vel", 0.4)
+        wait_until(lambda: echo(sim, "/bumper")["data"] is True, timeout=20, what="the box to stop the robot")
+        assert x_of(sim, "/base_pose_ground_truth") < 4.0 - 0.177 + 0.01
 
 
 def test_several_robots_have_namespaces(tmp_path: Path) -> None:

@@ -7,6 +7,7 @@ publication (subscription), as in rospy; unregister() drops a handle, the last o
 from __future__ import annotations
 
 import abc
+import logging
 import threading
 import traceback
 from collections.abc import Callable
@@ -19,6 +20,8 @@ from kame.client.message_args import args_kwds_to_message
 from kame.msg.anymsg import AnyMsg
 from kame.msg.errors import SerializationError
 from kame.node.topics import Publication, SubscriberLink, Subscription, serialize_frame
+
+_file_log = logging.getLogger("rospy.topics")
 
 
 class SubscribeListener:
@@ -212,6 +215,11 @@ class _Callbacks:
                 else:
                     callback(msg)
             except Exception:
+                if core.is_shutdown():
+                    # as rospy: a callback that was running as the node shut down (publishing
+                    # to a topic just closed) is no error for the console; the log file keeps it
+                    _file_log.warning("during shutdown, bad callback: %s\n%s", callback, traceback.format_exc())
+                    continue
                 _log.emit(_log.ERROR, "bad callback: %s\n%s", (callback, traceback.format_exc()),
                           caller=("topics.py", 0, "deliver", None))
 

@@ -2,10 +2,14 @@
 
 As navigation's amcl 1.17 (pf.c, amcl_odom.cpp, amcl_laser.cpp), on numpy arrays:
 - particles are rows (x, y, theta) with weights summing to 1;
-- the odometry model is amcl's "diff" (rotate, translate, rotate; noise from odom_alpha1..4);
+- the odometry model is amcl's "diff" (rotate, translate, rotate; noise from odom_alpha1..4),
+  with odom_model_type's two readings of the alphas: "diff" (amcl's default, and what the
+  TurtleBot's alphas were tuned for) takes alpha * motion^2 as the noise's standard deviation,
+  "diff-corrected" as its variance;
 - the laser model is the likelihood field: each used beam's end point scores
   z_hit * exp(-d^2 / (2 sigma_hit^2)) + z_rand / range_max, with d the distance to the nearest
-  occupied cell (capped at laser_likelihood_max_dist), and a particle's likelihood is
+  obstacle surface (an occupied cell beside a free or unknown one; capped at
+  laser_likelihood_max_dist), and a particle's likelihood is
   1 + sum(score^3); beams at or beyond range_max (and non-finite ones) are skipped;
 - resampling draws particles in proportion to weight until the KLD bound for the number of
   histogram bins (0.5 m, 0.5 m, 10 degrees) they fill is met (kld_err, kld_z), between
@@ -39,6 +43,7 @@ class FilterParams:
     odom_alpha2: float = 0.2  # rotation noise from translation
     odom_alpha3: float = 0.2  # translation noise from translation
     odom_alpha4: float = 0.2  # translation noise from rotation
+    odom_model_type: str = "diff"
     laser_z_hit: float = 0.95
     laser_z_rand: float = 0.05
     laser_sigma_hit: float = 0.2
@@ -51,6 +56,8 @@ class FilterParams:
                              f"(got {self.min_particles}, {self.max_particles})")
         if not (0 < self.kld_err < 1 and 0 < self.kld_z < 1):
             raise ValueError("kld_err and kld_z must lie between 0 and 1")
+        if self.odom_model_type not in ("diff", "diff-corrected"):
+            raise ValueError(f"odom_model_type must be diff or diff-corrected, not {self.odom_model_type!r}")
         if self.laser_sigma_hit <= 0 or self.laser_max_beams < 2 or self.laser_likelihood_max_dist <= 0:
             raise ValueError("laser_sigma_hit and laser_likelihood_max_dist must be above 0, "
                              "laser_max_beams at least 2")
@@ -69,33 +76,52 @@ class LikelihoodField:
                  max_distance: float, occupied_at: int = 65) -> None:
         grid = np.asarray(cells, dtype=np.int16)
         occupied = grid >= occupied_at
+        self.occupied = occupied
         self.resolution = float(resolution)
         self.origin = (float(origin[0]), float(origin[1]))
         self.max_distance = float(max_distance)
-        if occupied.any():
-            distance = ndimage.distance_transform_edt(~occupied) * self.resolution
+        # Distances are to the surfaces a laser can hit (occupied cells beside free or unknown
+        # ones), as in a map a laser built, whose obstacles have unknown insides. Measured to every
+        # occupied cell, a drawn map's solid box would score a beam end deep inside it as a hit,
+        # and a particle placed too close to the box (its beams reaching into it) as well as the
+        # right one: the filter drifted towards what the robot faced by up to the box's depth.
+        surface = occupied & ndimage.binary_dilation(~occupied, structure=np.ones((3, 3), dtype=bool))
+        if surface.any():
+            distance = ndimage.distance_transform_edt(~surface) * self.resolution
         else:
             distance = np.full(grid.shape, self.max_distance)
         self.distance = np.minimum(distance, self.max_distance)
+        self._padded = np.pad(self.distance, 1, constant_values=self.max_distance)
         rows, columns = np.nonzero((grid >= 0) & (grid < 50) & ~occupied)
         self.free = np.column_stack((self.origin[0] + (columns + 0.5) * self.resolution,
                                      self.origin[1] + (rows + 0.5) * self.resolution))
 
     def distance_at(self, x: np.ndarray, y: np.ndarray) -> np.ndarray:
-        """Distance to the nearest wall at each point; max_distance off the map."""
-        column = np.floor((x - self.origin[0]) / self.resolution).astype(np.int64)
-        row = np.floor((y - self.origin[1]) / self.resolution).astype(np.int64)
+        """Distance to the nearest wall at each point, interpolated between the cells' centres;
+        max_distance off the map. Looking up the one cell a point falls in instead would score a
+        beam ending on a wall's face 0 from one side and a cell from the other, pulling the
+        estimate towards walls met from one side by up to a cell."""
+        u = (x - self.origin[0]) / self.resolution - 0.5
+        v = (y - self.origin[1]) / self.resolution - 0.5
         rows, columns = self.distance.shape
-        inside = (column >= 0) & (column < columns) & (row >= 0) & (row < rows)
+        inside = (u > -1) & (u < columns) & (v > -1) & (v < rows)
         found = np.full(x.shape, self.max_distance)
-        found[inside] = self.distance[row[inside], column[inside]]
+        u, v = u[inside], v[inside]
+        column, row = np.floor(u).astype(np.int64), np.floor(v).astype(np.int64)
+        fu, fv = u - column, v - row
+        padded = self._padded
+        c00 = padded[row + 1, column + 1]
+        c01 = padded[row + 1, column + 2]
+        c10 = padded[row + 2, column + 1]
+        c11 = padded[row + 2, column + 2]
+        found[inside] = (c00 * (1 - fu) + c01 * fu) * (1 - fv) + (c10 * (1 - fu) + c11 * fu) * fv
         return found
 
     def is_free(self, x: float, y: float) -> bool:
         column = math.floor((x - self.origin[0]) / self.resolution)
         row = math.floor((y - self.origin[1]) / self.resolution)
         rows, columns = self.distance.shape
-        return 0 <= column < columns and 0 <= row < rows and bool(self.distance[row, column] > 0)
+        return 0 <= column < columns and 0 <= row < rows and not bool(self.occupied[row, column])
 
 
 @dataclass(frozen=True)
@@ -177,9 +203,14 @@ class ParticleFilter:
         rot2_noise = min(abs(float(angle_diff(rot2, 0.0))), abs(float(angle_diff(rot2, math.pi))))
         count = len(self.particles)
         normal = self.rng.standard_normal((count, 3))
-        rot1_sigma = math.sqrt(p.odom_alpha1 * rot1_noise ** 2 + p.odom_alpha2 * trans ** 2)
-        trans_sigma = math.sqrt(p.odom_alpha3 * trans ** 2 + p.odom_alpha4 * (rot1_noise ** 2 + rot2_noise ** 2))
-        rot2_sigma = math.sqrt(p.odom_alpha1 * rot2_noise ** 2 + p.odom_alpha2 * trans ** 2)
+        # amcl's "diff" hands these sums to pf_ran_gaussian as standard deviations; only
+        # "diff-corrected" takes their square roots. Read as variances, the TurtleBot's alphas
+        # (0.2) spread the particles some ten times wider than amcl does, 9 cm for each 0.2 rad
+        # turned, and the estimate wandered wherever the laser saw a flat wall.
+        spread = (lambda v: v) if p.odom_model_type == "diff" else math.sqrt
+        rot1_sigma = spread(p.odom_alpha1 * rot1_noise ** 2 + p.odom_alpha2 * trans ** 2)
+        trans_sigma = spread(p.odom_alpha3 * trans ** 2 + p.odom_alpha4 * (rot1_noise ** 2 + rot2_noise ** 2))
+        rot2_sigma = spread(p.odom_alpha1 * rot2_noise ** 2 + p.odom_alpha2 * trans ** 2)
         rot1_hat = angle_diff(rot1, normal[:, 0] * rot1_sigma)
         trans_hat = trans - normal[:, 1] * trans_sigma
         rot2_hat = angle_diff(rot2, normal[:, 2] * rot2_sigma)

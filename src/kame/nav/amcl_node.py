@@ -40,7 +40,7 @@ def _param(name: str, default: Any) -> Any:
 def filter_params() -> FilterParams:
     values: dict[str, Any] = {}
     for name, spec in _FILTER_FIELDS.items():
-        kind = int if spec.type in ("int", int) else float
+        kind = int if spec.type in ("int", int) else str if spec.type in ("str", str) else float
         values[name] = kind(_param(name, spec.default))
     return FilterParams(**values)
 
@@ -149,7 +149,10 @@ class Amcl:
             return
         ranges = np.asarray(scan.ranges, dtype=float)
         angles = scan.angle_min + scan.angle_increment * np.arange(len(ranges))
-        range_max = self.laser_max_range if self.laser_max_range > 0 else float(scan.range_max)
+        # as amcl: laser_max_range can only shorten the scanner's range (the TurtleBot's 12 m
+        # against the Kinect's 10 m must not make a 10 m no-return reading count as a wall)
+        range_max = min(self.laser_max_range, float(scan.range_max)) if self.laser_max_range > 0 \
+            else float(scan.range_max)
         range_min = max(self.laser_min_range, float(scan.range_min))
         ranges = np.where(ranges < range_min, np.nan, ranges)
         with self.lock:

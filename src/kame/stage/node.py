@@ -17,7 +17,8 @@ robot), /clock (rosgraph_msgs/Clock, every step; set /use_sim_time to follow it)
 Private params: ~initial_pose_x/y/a (one robot) or ~robots ([{name, x, y, a}, ...]);
 ~laser_beams, ~laser_angle_min/max, ~laser_range_min/max, ~laser_rate, ~laser_noise;
 ~odom_drift_linear/angular, ~seed; ~boxes ([[x, y, width, depth], ...]: obstacles added to the
-world that its map does not show, as one places a box in Gazebo);
+world that its map does not show, as one places a box in Gazebo); the service ~add_box
+(kame_stage_msgs/AddBox: x, y, width, depth -> success, message) places one while it runs;
 ~step (seconds of simulated time, 0.01), ~odom_rate (Hz, 50);
 ~real_time_factor (1.0; 0 runs as fast as it can); ~odom_frame_id, ~base_frame_id, ~laser_frame_id.
 The window (as Stage's: the world from above, robots, laser hits) is a process of its own fed
@@ -261,6 +262,22 @@ class Simulator:
             self._robots.append(_RobotInterfaces(self, name, namespace))
         self._tf = runtime.Publisher("/tf", TFMessage, queue_size=100)
         self._clock = runtime.Publisher("/clock", Clock, queue_size=10) if publish_clock else None
+        from kame_stage_msgs.srv import AddBox
+
+        runtime.Service("~add_box", AddBox, self._on_add_box)
+
+    def _on_add_box(self, request: Any) -> Any:
+        from kame_stage_msgs.srv import AddBoxResponse
+
+        box = (request.x, request.y, request.width, request.depth)
+        try:
+            with self.lock:
+                self.world.add_box(*box)
+                self._raster = None  # the window draws the walls anew, box included
+        except WorldError as exc:
+            return AddBoxResponse(False, str(exc))
+        runtime.info("Placed a box of %g x %g m at (%g, %g)", request.width, request.depth, request.x, request.y)
+        return AddBoxResponse(True, "")
 
     # ---------------------------------------------------------------- messages
 

@@ -327,6 +327,15 @@ class World:
                 return f"on robot [{other.name}]"
         return None
 
+    def add_box(self, x: float, y: float, width: float, depth: float) -> None:
+        """Place a box (Walls.add_box) while the world runs; refused if it would cover a robot,
+        which could then neither move nor be seen to be inside it."""
+        radius = self.robot_model.radius
+        for robot in self._robots.values():
+            if (abs(robot.pose.x - x) < width / 2 + radius) and (abs(robot.pose.y - y) < depth / 2 + radius):
+                raise WorldError(f"a box at ({x:g}, {y:g}) of {width:g} x {depth:g} m would cover robot [{robot.name}]")
+        self.walls.add_box(x, y, width, depth)
+
     def spawn(self, name: str, x: float, y: float, theta: float) -> RobotState:
         if not name:
             raise WorldError("a robot needs a name")
