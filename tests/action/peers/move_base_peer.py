@@ -2,7 +2,11 @@
 Debian's rospy + python3-actionlib (both have the messages), so the two can be compared.
 
 server: a SimpleActionServer on `move_base`; a goal of x steps publishes x feedbacks 0.1 s apart,
-        checks for preemption every step, aborts when x < 0. Prints one line per event.
+        checks for preemption every step, aborts when x < 0. Prints one line per event. Each
+        feedback goes out 0.1 s into its step and the result 0.1 s after the last one: the
+        client's wait_for_server can return just before rospy's publisher has listed the new
+        feedback connection, and feedback and result travel on separate connections, so a
+        feedback sent at once (or right before the result) could be dropped or come after DONE.
 client SCENARIO...: runs the scenarios in order and prints one line per observation: the
         CommState names a goal passes through, its terminal status name, texts, counts.
 """
@@ -50,10 +54,11 @@ def serve():
                 server.set_preempted(MoveBaseResult(), f"preempted at {i}")
                 out("PREEMPTED", i)
                 return
+            time.sleep(0.1)
             fb = server.action_server.ActionFeedback().feedback
             fb.base_position.pose.position.x = float(i)
             server.publish_feedback(fb)
-            time.sleep(0.1)
+        time.sleep(0.1)
         server.set_succeeded(MoveBaseResult(), f"done {steps}")
         out("SUCCEEDED", steps)
 
