@@ -151,6 +151,27 @@ def test_numeric_arrays_of_any_length_and_kind_keep_their_bytes() -> None:
     assert sorted(counted) == [3]  # only small counts are kept: bad input cannot grow the cache
 
 
+def test_wire_structs_write_and_read_the_little_endian_bytes() -> None:
+    # Generated code may get a native struct (faster for float64): it must be byte for byte
+    # and error for error the "<" one, and only formats without padding, float32 or bool qualify.
+    from kame.msg.runtime import NATIVE_IS_WIRE, wire_struct
+
+    specials = [0.0, -0.0, 1.5, -2.25e300, 5e-324, float("inf"), float("-inf"), float("nan")]
+    for fmt, values in [("<8d", specials), ("<IIIId", [1, 2**32 - 1, 0, 7, -1.5]),
+                        ("<dqQ", [3.0, -(2**63), 2**64 - 1]), ("<Id", [9, 0.25]), ("<ff", [1.5, -2.0]),
+                        ("<d?", [1.0, True]), ("<I", [5])]:
+        compiled, standard = wire_struct(fmt), struct.Struct(fmt)
+        data = standard.pack(*values)
+        assert compiled.size == standard.size and compiled.pack(*values) == data
+        assert repr(compiled.unpack_from(data, 0)) == repr(standard.unpack_from(data, 0))
+    assert wire_struct("<8d").format == ("@8d" if NATIVE_IS_WIRE else "<8d")
+    for kept in ("<Id", "<ff", "<d?", "<I"):  # padding, float32 overflow, C _Bool, nothing to gain
+        assert wire_struct(kept).format == kept
+    for fmt, bad in [("<dI", (1.0, 2**32)), ("<dQ", (1.0, -1)), ("<dd", (1.0, "x"))]:
+        with pytest.raises(struct.error):
+            wire_struct(fmt).pack(*bad)
+
+
 def test_uint8_arrays_take_bytes_lists_and_buffers() -> None:
     from std_msgs.msg import UInt8MultiArray
 

@@ -530,8 +530,6 @@ def generate_service(srv: SrvSpec, md5sum: str) -> str:
 
 
 PRELUDE = """\
-import struct as _struct
-
 from kame.msg.message import Message as _Message
 from kame.msg.message import init_fields as _init_fields
 from kame.msg.message import serialize_failed as _serialize_failed
@@ -541,6 +539,7 @@ from kame.msg.runtime import ArrayStructs as _ArrayStructs
 from kame.msg.runtime import Truncated as _Truncated
 from kame.msg.runtime import pack_array as _pack_array
 from kame.msg.runtime import u8_payload as _u8
+from kame.msg.runtime import wire_struct as _wire
 from kame.rostime import Duration as _Duration
 from kame.rostime import Time as _Time
 
@@ -549,7 +548,7 @@ _new = object.__new__
 
 
 def struct_definitions(structs: _Structs) -> str:
-    return "".join([f"{name} = _struct.Struct({fmt!r})\n" for fmt, name in structs.names.items()]
+    return "".join([f"{name} = _wire({fmt!r})\n" for fmt, name in structs.names.items()]
                    + [f"{name} = _ArrayStructs({template!r})\n" for template, name in structs.arrays.items()])
 
 
