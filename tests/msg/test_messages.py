@@ -172,6 +172,20 @@ def test_wire_structs_write_and_read_the_little_endian_bytes() -> None:
             wire_struct(fmt).pack(*bad)
 
 
+def test_strings_decode_alike_from_every_kind_of_buffer() -> None:
+    # deserialize decodes strings with bytes.decode and hands other buffers to _from_buffer:
+    # the same fields either way, invalid UTF-8 replaced as str(b, "utf-8", "replace") does.
+    from sensor_msgs.msg import JointState
+
+    msg = JointState(name=["\u00e9lbow", "wrist"], position=[1.0, 2.0])
+    msg.header.frame_id = "base"
+    data = serialize(msg).replace(b"wrist", b"wr\xffst")
+    for buffer in (data, bytearray(data), memoryview(data)):
+        for back in (JointState().deserialize(buffer), JointState._from_buffer(buffer)):
+            assert back.name == ["\u00e9lbow", "wr\ufffdst"] and back.header.frame_id == "base"
+            assert back.position == (1.0, 2.0)
+
+
 def test_uint8_arrays_take_bytes_lists_and_buffers() -> None:
     from std_msgs.msg import UInt8MultiArray
 

@@ -56,7 +56,7 @@ class GoalID(_Message):
             _buf = data
             _t1.secs, _t1.nsecs, _n = _S0.unpack_from(_buf, 0)
             _end = 12 + _n
-            self.id = str(_buf[12:_end], 'utf-8', 'replace')
+            self.id = _buf[12:_end].decode('utf-8', 'replace')
             if _end > len(_buf): raise _Truncated
             return self
         except AttributeError:

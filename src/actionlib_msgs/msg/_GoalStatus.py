@@ -79,11 +79,11 @@ class GoalStatus(_Message):
             _buf = data
             _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
             _end = 12 + _n
-            _v1.id = str(_buf[12:_end], 'utf-8', 'replace')
+            _v1.id = _buf[12:_end].decode('utf-8', 'replace')
             self.status, _n = _S1.unpack_from(_buf, _end)
             _s = _end + 5
             _end = _s + _n
-            self.text = str(_buf[_s:_end], 'utf-8', 'replace')
+            self.text = _buf[_s:_end].decode('utf-8', 'replace')
             if _end > len(_buf): raise _Truncated
             return self
         except AttributeError:

@@ -79,7 +79,7 @@ class GoalStatusArray(_Message):
             _buf = data
             _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
             _end = 16 + _n
-            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            _v1.frame_id = _buf[16:_end].decode('utf-8', 'replace')
             _n, = _S1.unpack_from(_buf, _end)
             _end += 4
             _l3 = []
@@ -90,11 +90,11 @@ class GoalStatusArray(_Message):
                 _t7.secs, _t7.nsecs, _n = _S2.unpack_from(_buf, _end)
                 _s = _end + 12
                 _end = _s + _n
-                _v6.id = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v6.id = _buf[_s:_end].decode('utf-8', 'replace')
                 _v5.status, _n = _S3.unpack_from(_buf, _end)
                 _s = _end + 5
                 _end = _s + _n
-                _v5.text = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v5.text = _buf[_s:_end].decode('utf-8', 'replace')
                 _l3.append(_i4)
             self.status_list = _l3
             if _end > len(_buf): raise _Truncated

@@ -95,15 +95,15 @@ class AveragingActionResult(_Message):
             _buf = data
             _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
             _end = 16 + _n
-            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            _v1.frame_id = _buf[16:_end].decode('utf-8', 'replace')
             _t5.secs, _t5.nsecs, _n = _S1.unpack_from(_buf, _end)
             _s = _end + 12
             _end = _s + _n
-            _v4.id = str(_buf[_s:_end], 'utf-8', 'replace')
+            _v4.id = _buf[_s:_end].decode('utf-8', 'replace')
             _v3.status, _n = _S2.unpack_from(_buf, _end)
             _s = _end + 5
             _end = _s + _n
-            _v3.text = str(_buf[_s:_end], 'utf-8', 'replace')
+            _v3.text = _buf[_s:_end].decode('utf-8', 'replace')
             _v6.mean, _v6.std_dev = _S3.unpack_from(_buf, _end)
             if _end > len(_buf): raise _Truncated
             return self

@@ -83,11 +83,11 @@ class FibonacciActionGoal(_Message):
             _buf = data
             _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
             _end = 16 + _n
-            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            _v1.frame_id = _buf[16:_end].decode('utf-8', 'replace')
             _t4.secs, _t4.nsecs, _n = _S1.unpack_from(_buf, _end)
             _s = _end + 12
             _end = _s + _n
-            _v3.id = str(_buf[_s:_end], 'utf-8', 'replace')
+            _v3.id = _buf[_s:_end].decode('utf-8', 'replace')
             _v5.order, = _S2.unpack_from(_buf, _end)
             if _end > len(_buf): raise _Truncated
             return self

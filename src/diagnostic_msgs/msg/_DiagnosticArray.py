@@ -88,7 +88,7 @@ class DiagnosticArray(_Message):
             _buf = data
             _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
             _end = 16 + _n
-            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            _v1.frame_id = _buf[16:_end].decode('utf-8', 'replace')
             _n, = _S1.unpack_from(_buf, _end)
             _end += 4
             _l3 = []
@@ -97,15 +97,15 @@ class DiagnosticArray(_Message):
                 _v5.level, _n = _S2.unpack_from(_buf, _end)
                 _s = _end + 5
                 _end = _s + _n
-                _v5.name = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v5.name = _buf[_s:_end].decode('utf-8', 'replace')
                 _n, = _S1.unpack_from(_buf, _end)
                 _s = _end + 4
                 _end = _s + _n
-                _v5.message = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v5.message = _buf[_s:_end].decode('utf-8', 'replace')
                 _n, = _S1.unpack_from(_buf, _end)
                 _s = _end + 4
                 _end = _s + _n
-                _v5.hardware_id = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v5.hardware_id = _buf[_s:_end].decode('utf-8', 'replace')
                 _n, = _S1.unpack_from(_buf, _end)
                 _end += 4
                 _l6 = []
@@ -114,11 +114,11 @@ class DiagnosticArray(_Message):
                     _n, = _S1.unpack_from(_buf, _end)
                     _s = _end + 4
                     _end = _s + _n
-                    _v8.key = str(_buf[_s:_end], 'utf-8', 'replace')
+                    _v8.key = _buf[_s:_end].decode('utf-8', 'replace')
                     _n, = _S1.unpack_from(_buf, _end)
                     _s = _end + 4
                     _end = _s + _n
-                    _v8.value = str(_buf[_s:_end], 'utf-8', 'replace')
+                    _v8.value = _buf[_s:_end].decode('utf-8', 'replace')
                     _l6.append(_i7)
                 _v5.values = _l6
                 _l3.append(_i4)

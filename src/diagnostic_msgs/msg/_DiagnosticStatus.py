@@ -84,15 +84,15 @@ class DiagnosticStatus(_Message):
             _buf = data
             self.level, _n = _S0.unpack_from(_buf, 0)
             _end = 5 + _n
-            self.name = str(_buf[5:_end], 'utf-8', 'replace')
+            self.name = _buf[5:_end].decode('utf-8', 'replace')
             _n, = _S1.unpack_from(_buf, _end)
             _s = _end + 4
             _end = _s + _n
-            self.message = str(_buf[_s:_end], 'utf-8', 'replace')
+            self.message = _buf[_s:_end].decode('utf-8', 'replace')
             _n, = _S1.unpack_from(_buf, _end)
             _s = _end + 4
             _end = _s + _n
-            self.hardware_id = str(_buf[_s:_end], 'utf-8', 'replace')
+            self.hardware_id = _buf[_s:_end].decode('utf-8', 'replace')
             _n, = _S1.unpack_from(_buf, _end)
             _end += 4
             _l1 = []
@@ -101,17 +101,20 @@ class DiagnosticStatus(_Message):
                 _n, = _S1.unpack_from(_buf, _end)
                 _s = _end + 4
                 _end = _s + _n
-                _v3.key = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v3.key = _buf[_s:_end].decode('utf-8', 'replace')
                 _n, = _S1.unpack_from(_buf, _end)
                 _s = _end + 4
                 _end = _s + _n
-                _v3.value = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v3.value = _buf[_s:_end].decode('utf-8', 'replace')
                 _l1.append(_i2)
             self.values = _l1
             if _end > len(_buf): raise _Truncated
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
-        return self
+        return _refill(self, DiagnosticStatus, data)
 
     @classmethod
     def _from_buffer(cls, data):

@@ -57,15 +57,18 @@ class KeyValue(_Message):
             _buf = data
             _n, = _S0.unpack_from(_buf, 0)
             _end = 4 + _n
-            self.key = str(_buf[4:_end], 'utf-8', 'replace')
+            self.key = _buf[4:_end].decode('utf-8', 'replace')
             _n, = _S0.unpack_from(_buf, _end)
             _s = _end + 4
             _end = _s + _n
-            self.value = str(_buf[_s:_end], 'utf-8', 'replace')
+            self.value = _buf[_s:_end].decode('utf-8', 'replace')
             if _end > len(_buf): raise _Truncated
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
-        return self
+        return _refill(self, KeyValue, data)
 
     @classmethod
     def _from_buffer(cls, data):

@@ -52,11 +52,14 @@ class AddDiagnosticsRequest(_Message):
             _buf = data
             _n, = _S0.unpack_from(_buf, 0)
             _end = 4 + _n
-            self.load_namespace = str(_buf[4:_end], 'utf-8', 'replace')
+            self.load_namespace = _buf[4:_end].decode('utf-8', 'replace')
             if _end > len(_buf): raise _Truncated
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
-        return self
+        return _refill(self, AddDiagnosticsRequest, data)
 
     @classmethod
     def _from_buffer(cls, data):
@@ -112,11 +115,14 @@ class AddDiagnosticsResponse(_Message):
             _buf = data
             self.success, _n = _S2.unpack_from(_buf, 0)
             _end = 5 + _n
-            self.message = str(_buf[5:_end], 'utf-8', 'replace')
+            self.message = _buf[5:_end].decode('utf-8', 'replace')
             if _end > len(_buf): raise _Truncated
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
-        return self
+        return _refill(self, AddDiagnosticsResponse, data)
 
     @classmethod
     def _from_buffer(cls, data):

@@ -127,7 +127,7 @@ class SelfTestResponse(_Message):
             _buf = data
             _n, = _S0.unpack_from(_buf, 0)
             _end = 4 + _n
-            self.id = str(_buf[4:_end], 'utf-8', 'replace')
+            self.id = _buf[4:_end].decode('utf-8', 'replace')
             self.passed, _n = _S1.unpack_from(_buf, _end)
             _end += 5
             _l1 = []
@@ -136,15 +136,15 @@ class SelfTestResponse(_Message):
                 _v3.level, _n = _S1.unpack_from(_buf, _end)
                 _s = _end + 5
                 _end = _s + _n
-                _v3.name = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v3.name = _buf[_s:_end].decode('utf-8', 'replace')
                 _n, = _S0.unpack_from(_buf, _end)
                 _s = _end + 4
                 _end = _s + _n
-                _v3.message = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v3.message = _buf[_s:_end].decode('utf-8', 'replace')
                 _n, = _S0.unpack_from(_buf, _end)
                 _s = _end + 4
                 _end = _s + _n
-                _v3.hardware_id = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v3.hardware_id = _buf[_s:_end].decode('utf-8', 'replace')
                 _n, = _S0.unpack_from(_buf, _end)
                 _end += 4
                 _l4 = []
@@ -153,19 +153,22 @@ class SelfTestResponse(_Message):
                     _n, = _S0.unpack_from(_buf, _end)
                     _s = _end + 4
                     _end = _s + _n
-                    _v6.key = str(_buf[_s:_end], 'utf-8', 'replace')
+                    _v6.key = _buf[_s:_end].decode('utf-8', 'replace')
                     _n, = _S0.unpack_from(_buf, _end)
                     _s = _end + 4
                     _end = _s + _n
-                    _v6.value = str(_buf[_s:_end], 'utf-8', 'replace')
+                    _v6.value = _buf[_s:_end].decode('utf-8', 'replace')
                     _l4.append(_i5)
                 _v3.values = _l4
                 _l1.append(_i2)
             self.status = _l1
             if _end > len(_buf): raise _Truncated
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
-        return self
+        return _refill(self, SelfTestResponse, data)
 
     @classmethod
     def _from_buffer(cls, data):

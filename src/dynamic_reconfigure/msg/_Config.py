@@ -114,7 +114,7 @@ class Config(_Message):
                 _n, = _S0.unpack_from(_buf, _end)
                 _s = _end + 4
                 _end = _s + _n
-                _v3.name = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v3.name = _buf[_s:_end].decode('utf-8', 'replace')
                 _v3.value, = _S5.unpack_from(_buf, _end)
                 _end += 1
                 _l1.append(_i2)
@@ -127,7 +127,7 @@ class Config(_Message):
                 _n, = _S0.unpack_from(_buf, _end)
                 _s = _end + 4
                 _end = _s + _n
-                _v6.name = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v6.name = _buf[_s:_end].decode('utf-8', 'replace')
                 _v6.value, = _S2.unpack_from(_buf, _end)
                 _end += 4
                 _l4.append(_i5)
@@ -140,11 +140,11 @@ class Config(_Message):
                 _n, = _S0.unpack_from(_buf, _end)
                 _s = _end + 4
                 _end = _s + _n
-                _v9.name = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v9.name = _buf[_s:_end].decode('utf-8', 'replace')
                 _n, = _S0.unpack_from(_buf, _end)
                 _s = _end + 4
                 _end = _s + _n
-                _v9.value = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v9.value = _buf[_s:_end].decode('utf-8', 'replace')
                 _l7.append(_i8)
             self.strs = _l7
             _n, = _S0.unpack_from(_buf, _end)
@@ -155,7 +155,7 @@ class Config(_Message):
                 _n, = _S0.unpack_from(_buf, _end)
                 _s = _end + 4
                 _end = _s + _n
-                _v12.name = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v12.name = _buf[_s:_end].decode('utf-8', 'replace')
                 _v12.value, = _S3.unpack_from(_buf, _end)
                 _end += 8
                 _l10.append(_i11)
@@ -168,15 +168,18 @@ class Config(_Message):
                 _n, = _S0.unpack_from(_buf, _end)
                 _s = _end + 4
                 _end = _s + _n
-                _v15.name = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v15.name = _buf[_s:_end].decode('utf-8', 'replace')
                 _v15.state, _v15.id, _v15.parent = _S6.unpack_from(_buf, _end)
                 _end += 9
                 _l13.append(_i14)
             self.groups = _l13
             if _end > len(_buf): raise _Truncated
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
-        return self
+        return _refill(self, Config, data)
 
     @classmethod
     def _from_buffer(cls, data):

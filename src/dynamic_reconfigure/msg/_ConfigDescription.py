@@ -236,11 +236,11 @@ class ConfigDescription(_Message):
                 _n, = _S0.unpack_from(_buf, _end)
                 _s = _end + 4
                 _end = _s + _n
-                _v3.name = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v3.name = _buf[_s:_end].decode('utf-8', 'replace')
                 _n, = _S0.unpack_from(_buf, _end)
                 _s = _end + 4
                 _end = _s + _n
-                _v3.type = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v3.type = _buf[_s:_end].decode('utf-8', 'replace')
                 _n, = _S0.unpack_from(_buf, _end)
                 _end += 4
                 _l4 = []
@@ -249,19 +249,19 @@ class ConfigDescription(_Message):
                     _n, = _S0.unpack_from(_buf, _end)
                     _s = _end + 4
                     _end = _s + _n
-                    _v6.name = str(_buf[_s:_end], 'utf-8', 'replace')
+                    _v6.name = _buf[_s:_end].decode('utf-8', 'replace')
                     _n, = _S0.unpack_from(_buf, _end)
                     _s = _end + 4
                     _end = _s + _n
-                    _v6.type = str(_buf[_s:_end], 'utf-8', 'replace')
+                    _v6.type = _buf[_s:_end].decode('utf-8', 'replace')
                     _v6.level, _n = _S1.unpack_from(_buf, _end)
                     _s = _end + 8
                     _end = _s + _n
-                    _v6.description = str(_buf[_s:_end], 'utf-8', 'replace')
+                    _v6.description = _buf[_s:_end].decode('utf-8', 'replace')
                     _n, = _S0.unpack_from(_buf, _end)
                     _s = _end + 4
                     _end = _s + _n
-                    _v6.edit_method = str(_buf[_s:_end], 'utf-8', 'replace')
+                    _v6.edit_method = _buf[_s:_end].decode('utf-8', 'replace')
                     _l4.append(_i5)
                 _v3.parameters = _l4
                 _v3.parent, _v3.id = _S2.unpack_from(_buf, _end)
@@ -276,7 +276,7 @@ class ConfigDescription(_Message):
                 _n, = _S0.unpack_from(_buf, _end)
                 _s = _end + 4
                 _end = _s + _n
-                _v10.name = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v10.name = _buf[_s:_end].decode('utf-8', 'replace')
                 _v10.value, = _S7.unpack_from(_buf, _end)
                 _end += 1
                 _l8.append(_i9)
@@ -289,7 +289,7 @@ class ConfigDescription(_Message):
                 _n, = _S0.unpack_from(_buf, _end)
                 _s = _end + 4
                 _end = _s + _n
-                _v13.name = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v13.name = _buf[_s:_end].decode('utf-8', 'replace')
                 _v13.value, = _S4.unpack_from(_buf, _end)
                 _end += 4
                 _l11.append(_i12)
@@ -302,11 +302,11 @@ class ConfigDescription(_Message):
                 _n, = _S0.unpack_from(_buf, _end)
                 _s = _end + 4
                 _end = _s + _n
-                _v16.name = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v16.name = _buf[_s:_end].decode('utf-8', 'replace')
                 _n, = _S0.unpack_from(_buf, _end)
                 _s = _end + 4
                 _end = _s + _n
-                _v16.value = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v16.value = _buf[_s:_end].decode('utf-8', 'replace')
                 _l14.append(_i15)
             _v7.strs = _l14
             _n, = _S0.unpack_from(_buf, _end)
@@ -317,7 +317,7 @@ class ConfigDescription(_Message):
                 _n, = _S0.unpack_from(_buf, _end)
                 _s = _end + 4
                 _end = _s + _n
-                _v19.name = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v19.name = _buf[_s:_end].decode('utf-8', 'replace')
                 _v19.value, = _S5.unpack_from(_buf, _end)
                 _end += 8
                 _l17.append(_i18)
@@ -330,7 +330,7 @@ class ConfigDescription(_Message):
                 _n, = _S0.unpack_from(_buf, _end)
                 _s = _end + 4
                 _end = _s + _n
-                _v22.name = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v22.name = _buf[_s:_end].decode('utf-8', 'replace')
                 _v22.state, _v22.id, _v22.parent = _S8.unpack_from(_buf, _end)
                 _end += 9
                 _l20.append(_i21)
@@ -343,7 +343,7 @@ class ConfigDescription(_Message):
                 _n, = _S0.unpack_from(_buf, _end)
                 _s = _end + 4
                 _end = _s + _n
-                _v26.name = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v26.name = _buf[_s:_end].decode('utf-8', 'replace')
                 _v26.value, = _S7.unpack_from(_buf, _end)
                 _end += 1
                 _l24.append(_i25)
@@ -356,7 +356,7 @@ class ConfigDescription(_Message):
                 _n, = _S0.unpack_from(_buf, _end)
                 _s = _end + 4
                 _end = _s + _n
-                _v29.name = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v29.name = _buf[_s:_end].decode('utf-8', 'replace')
                 _v29.value, = _S4.unpack_from(_buf, _end)
                 _end += 4
                 _l27.append(_i28)
@@ -369,11 +369,11 @@ class ConfigDescription(_Message):
                 _n, = _S0.unpack_from(_buf, _end)
                 _s = _end + 4
                 _end = _s + _n
-                _v32.name = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v32.name = _buf[_s:_end].decode('utf-8', 'replace')
                 _n, = _S0.unpack_from(_buf, _end)
                 _s = _end + 4
                 _end = _s + _n
-                _v32.value = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v32.value = _buf[_s:_end].decode('utf-8', 'replace')
                 _l30.append(_i31)
             _v23.strs = _l30
             _n, = _S0.unpack_from(_buf, _end)
@@ -384,7 +384,7 @@ class ConfigDescription(_Message):
                 _n, = _S0.unpack_from(_buf, _end)
                 _s = _end + 4
                 _end = _s + _n
-                _v35.name = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v35.name = _buf[_s:_end].decode('utf-8', 'replace')
                 _v35.value, = _S5.unpack_from(_buf, _end)
                 _end += 8
                 _l33.append(_i34)
@@ -397,7 +397,7 @@ class ConfigDescription(_Message):
                 _n, = _S0.unpack_from(_buf, _end)
                 _s = _end + 4
                 _end = _s + _n
-                _v38.name = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v38.name = _buf[_s:_end].decode('utf-8', 'replace')
                 _v38.state, _v38.id, _v38.parent = _S8.unpack_from(_buf, _end)
                 _end += 9
                 _l36.append(_i37)
@@ -410,7 +410,7 @@ class ConfigDescription(_Message):
                 _n, = _S0.unpack_from(_buf, _end)
                 _s = _end + 4
                 _end = _s + _n
-                _v42.name = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v42.name = _buf[_s:_end].decode('utf-8', 'replace')
                 _v42.value, = _S7.unpack_from(_buf, _end)
                 _end += 1
                 _l40.append(_i41)
@@ -423,7 +423,7 @@ class ConfigDescription(_Message):
                 _n, = _S0.unpack_from(_buf, _end)
                 _s = _end + 4
                 _end = _s + _n
-                _v45.name = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v45.name = _buf[_s:_end].decode('utf-8', 'replace')
                 _v45.value, = _S4.unpack_from(_buf, _end)
                 _end += 4
                 _l43.append(_i44)
@@ -436,11 +436,11 @@ class ConfigDescription(_Message):
                 _n, = _S0.unpack_from(_buf, _end)
                 _s = _end + 4
                 _end = _s + _n
-                _v48.name = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v48.name = _buf[_s:_end].decode('utf-8', 'replace')
                 _n, = _S0.unpack_from(_buf, _end)
                 _s = _end + 4
                 _end = _s + _n
-                _v48.value = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v48.value = _buf[_s:_end].decode('utf-8', 'replace')
                 _l46.append(_i47)
             _v39.strs = _l46
             _n, = _S0.unpack_from(_buf, _end)
@@ -451,7 +451,7 @@ class ConfigDescription(_Message):
                 _n, = _S0.unpack_from(_buf, _end)
                 _s = _end + 4
                 _end = _s + _n
-                _v51.name = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v51.name = _buf[_s:_end].decode('utf-8', 'replace')
                 _v51.value, = _S5.unpack_from(_buf, _end)
                 _end += 8
                 _l49.append(_i50)
@@ -464,7 +464,7 @@ class ConfigDescription(_Message):
                 _n, = _S0.unpack_from(_buf, _end)
                 _s = _end + 4
                 _end = _s + _n
-                _v54.name = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v54.name = _buf[_s:_end].decode('utf-8', 'replace')
                 _v54.state, _v54.id, _v54.parent = _S8.unpack_from(_buf, _end)
                 _end += 9
                 _l52.append(_i53)

@@ -85,11 +85,11 @@ class Group(_Message):
             _buf = data
             _n, = _S0.unpack_from(_buf, 0)
             _end = 4 + _n
-            self.name = str(_buf[4:_end], 'utf-8', 'replace')
+            self.name = _buf[4:_end].decode('utf-8', 'replace')
             _n, = _S0.unpack_from(_buf, _end)
             _s = _end + 4
             _end = _s + _n
-            self.type = str(_buf[_s:_end], 'utf-8', 'replace')
+            self.type = _buf[_s:_end].decode('utf-8', 'replace')
             _n, = _S0.unpack_from(_buf, _end)
             _end += 4
             _l1 = []
@@ -98,26 +98,29 @@ class Group(_Message):
                 _n, = _S0.unpack_from(_buf, _end)
                 _s = _end + 4
                 _end = _s + _n
-                _v3.name = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v3.name = _buf[_s:_end].decode('utf-8', 'replace')
                 _n, = _S0.unpack_from(_buf, _end)
                 _s = _end + 4
                 _end = _s + _n
-                _v3.type = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v3.type = _buf[_s:_end].decode('utf-8', 'replace')
                 _v3.level, _n = _S1.unpack_from(_buf, _end)
                 _s = _end + 8
                 _end = _s + _n
-                _v3.description = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v3.description = _buf[_s:_end].decode('utf-8', 'replace')
                 _n, = _S0.unpack_from(_buf, _end)
                 _s = _end + 4
                 _end = _s + _n
-                _v3.edit_method = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v3.edit_method = _buf[_s:_end].decode('utf-8', 'replace')
                 _l1.append(_i2)
             self.parameters = _l1
             self.parent, self.id = _S2.unpack_from(_buf, _end)
             if _end > len(_buf): raise _Truncated
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
-        return self
+        return _refill(self, Group, data)
 
     @classmethod
     def _from_buffer(cls, data):

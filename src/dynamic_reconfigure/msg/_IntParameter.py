@@ -56,12 +56,15 @@ class IntParameter(_Message):
             _buf = data
             _n, = _S0.unpack_from(_buf, 0)
             _end = 4 + _n
-            self.name = str(_buf[4:_end], 'utf-8', 'replace')
+            self.name = _buf[4:_end].decode('utf-8', 'replace')
             self.value, = _S1.unpack_from(_buf, _end)
             if _end > len(_buf): raise _Truncated
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
-        return self
+        return _refill(self, IntParameter, data)
 
     @classmethod
     def _from_buffer(cls, data):

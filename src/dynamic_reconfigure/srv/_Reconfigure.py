@@ -110,7 +110,7 @@ class ReconfigureRequest(_Message):
                 _n, = _S0.unpack_from(_buf, _end)
                 _s = _end + 4
                 _end = _s + _n
-                _v4.name = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v4.name = _buf[_s:_end].decode('utf-8', 'replace')
                 _v4.value, = _S5.unpack_from(_buf, _end)
                 _end += 1
                 _l2.append(_i3)
@@ -123,7 +123,7 @@ class ReconfigureRequest(_Message):
                 _n, = _S0.unpack_from(_buf, _end)
                 _s = _end + 4
                 _end = _s + _n
-                _v7.name = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v7.name = _buf[_s:_end].decode('utf-8', 'replace')
                 _v7.value, = _S2.unpack_from(_buf, _end)
                 _end += 4
                 _l5.append(_i6)
@@ -136,11 +136,11 @@ class ReconfigureRequest(_Message):
                 _n, = _S0.unpack_from(_buf, _end)
                 _s = _end + 4
                 _end = _s + _n
-                _v10.name = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v10.name = _buf[_s:_end].decode('utf-8', 'replace')
                 _n, = _S0.unpack_from(_buf, _end)
                 _s = _end + 4
                 _end = _s + _n
-                _v10.value = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v10.value = _buf[_s:_end].decode('utf-8', 'replace')
                 _l8.append(_i9)
             _v1.strs = _l8
             _n, = _S0.unpack_from(_buf, _end)
@@ -151,7 +151,7 @@ class ReconfigureRequest(_Message):
                 _n, = _S0.unpack_from(_buf, _end)
                 _s = _end + 4
                 _end = _s + _n
-                _v13.name = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v13.name = _buf[_s:_end].decode('utf-8', 'replace')
                 _v13.value, = _S3.unpack_from(_buf, _end)
                 _end += 8
                 _l11.append(_i12)
@@ -164,7 +164,7 @@ class ReconfigureRequest(_Message):
                 _n, = _S0.unpack_from(_buf, _end)
                 _s = _end + 4
                 _end = _s + _n
-                _v16.name = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v16.name = _buf[_s:_end].decode('utf-8', 'replace')
                 _v16.state, _v16.id, _v16.parent = _S6.unpack_from(_buf, _end)
                 _end += 9
                 _l14.append(_i15)
@@ -341,7 +341,7 @@ class ReconfigureResponse(_Message):
                 _n, = _S0.unpack_from(_buf, _end)
                 _s = _end + 4
                 _end = _s + _n
-                _v4.name = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v4.name = _buf[_s:_end].decode('utf-8', 'replace')
                 _v4.value, = _S5.unpack_from(_buf, _end)
                 _end += 1
                 _l2.append(_i3)
@@ -354,7 +354,7 @@ class ReconfigureResponse(_Message):
                 _n, = _S0.unpack_from(_buf, _end)
                 _s = _end + 4
                 _end = _s + _n
-                _v7.name = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v7.name = _buf[_s:_end].decode('utf-8', 'replace')
                 _v7.value, = _S2.unpack_from(_buf, _end)
                 _end += 4
                 _l5.append(_i6)
@@ -367,11 +367,11 @@ class ReconfigureResponse(_Message):
                 _n, = _S0.unpack_from(_buf, _end)
                 _s = _end + 4
                 _end = _s + _n
-                _v10.name = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v10.name = _buf[_s:_end].decode('utf-8', 'replace')
                 _n, = _S0.unpack_from(_buf, _end)
                 _s = _end + 4
                 _end = _s + _n
-                _v10.value = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v10.value = _buf[_s:_end].decode('utf-8', 'replace')
                 _l8.append(_i9)
             _v1.strs = _l8
             _n, = _S0.unpack_from(_buf, _end)
@@ -382,7 +382,7 @@ class ReconfigureResponse(_Message):
                 _n, = _S0.unpack_from(_buf, _end)
                 _s = _end + 4
                 _end = _s + _n
-                _v13.name = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v13.name = _buf[_s:_end].decode('utf-8', 'replace')
                 _v13.value, = _S3.unpack_from(_buf, _end)
                 _end += 8
                 _l11.append(_i12)
@@ -395,7 +395,7 @@ class ReconfigureResponse(_Message):
                 _n, = _S0.unpack_from(_buf, _end)
                 _s = _end + 4
                 _end = _s + _n
-                _v16.name = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v16.name = _buf[_s:_end].decode('utf-8', 'replace')
                 _v16.state, _v16.id, _v16.parent = _S6.unpack_from(_buf, _end)
                 _end += 9
                 _l14.append(_i15)

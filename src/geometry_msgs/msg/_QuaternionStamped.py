@@ -72,7 +72,7 @@ class QuaternionStamped(_Message):
             _buf = data
             _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
             _end = 16 + _n
-            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            _v1.frame_id = _buf[16:_end].decode('utf-8', 'replace')
             _v3.x, _v3.y, _v3.z, _v3.w = _S1.unpack_from(_buf, _end)
             if _end > len(_buf): raise _Truncated
             return self

@@ -81,7 +81,7 @@ class TwistStamped(_Message):
             _buf = data
             _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
             _end = 16 + _n
-            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            _v1.frame_id = _buf[16:_end].decode('utf-8', 'replace')
             _v4.x, _v4.y, _v4.z, _v5.x, _v5.y, _v5.z = _S1.unpack_from(_buf, _end)
             if _end > len(_buf): raise _Truncated
             return self

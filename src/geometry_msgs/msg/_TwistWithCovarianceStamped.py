@@ -89,7 +89,7 @@ class TwistWithCovarianceStamped(_Message):
             _buf = data
             _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
             _end = 16 + _n
-            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            _v1.frame_id = _buf[16:_end].decode('utf-8', 'replace')
             _v5.x, _v5.y, _v5.z, _v6.x, _v6.y, _v6.z = _S2.unpack_from(_buf, _end)
             _v3.covariance = _S3.unpack_from(_buf, _end + 48)
             if _end > len(_buf): raise _Truncated

@@ -202,14 +202,21 @@ class _Deserializer:
     With reuse=True, nested messages (and time/duration values) outside arrays are not
     allocated: the code unpacks into the objects the message already holds, gathered
     into locals by `gather` (name, expression, class) before the body runs.
+
+    With bytes_in=True, strings are decoded with bytes.decode, quicker than str(b, ...);
+    data without .decode (a memoryview) then raises AttributeError, and the method's caller
+    takes the slow way (`decodes` says whether the code decodes any string).
     """
 
-    def __init__(self, lookup: Lookup, code: _Code, structs: _Structs, use_numpy: bool, reuse: bool = False) -> None:
+    def __init__(self, lookup: Lookup, code: _Code, structs: _Structs, use_numpy: bool, reuse: bool = False,
+                 bytes_in: bool = False) -> None:
         self.lookup = lookup
         self.code = code
         self.structs = structs
         self.use_numpy = use_numpy
         self.reuse = reuse
+        self.bytes_in = bytes_in
+        self.decodes = False
         self.gather: list[tuple[str, str, str]] = []
         self.group = _Group()
         self.dynamic = False  # whether `_end` holds the base offset (else the base is 0)
@@ -276,7 +283,11 @@ class _Deserializer:
                 self.group.add("I", "_n")
                 self.flush()
                 start, stop = self.slice_to("_n")
-                code.emit(f"{target} = str(_buf[{start}:{stop}], 'utf-8', 'replace')")
+                if self.bytes_in:
+                    self.decodes = True
+                    code.emit(f"{target} = _buf[{start}:{stop}].decode('utf-8', 'replace')")
+                else:
+                    code.emit(f"{target} = str(_buf[{start}:{stop}], 'utf-8', 'replace')")
             else:
                 v = self._object(type_ref(base), "v", target)
                 self.fields(self.lookup(base), v)
@@ -485,15 +496,17 @@ def _deserializer(
 
     deserialize (reuse=True) unpacks into the nested messages the instance already holds, as
     genpy does, so Cls().deserialize(data) allocates them once; when one is missing (an
-    instance from object.__new__, None) or does not take a field, the AttributeError sends
+    instance from object.__new__, None) or does not take a field, or the data is a buffer
+    without .decode (its strings are decoded with bytes.decode), the AttributeError sends
     it to kame.msg.message.refill, which deserializes into new objects instead.
     _from_buffer is a classmethod that unpacks into a new instance and new nested objects:
     the receive path's one-call `Cls._from_buffer(frame)`.
     """
     code = _Code()
-    des = _Deserializer(lookup, code, structs, use_numpy, reuse)
+    des = _Deserializer(lookup, code, structs, use_numpy, reuse, bytes_in=reuse)
     des.fields(spec, "self")
     des.finish()
+    slow_way = bool(des.gather) or des.decodes
     out: list[str] = []
     if method == "_from_buffer":
         out += ["    @classmethod", "    def _from_buffer(cls, data):", "        self = _new(cls)"]
@@ -507,12 +520,13 @@ def _deserializer(
     out.extend("    " + line for line in code.lines)
     if not code.lines and not des.gather:
         out.append("            pass")
-    if des.gather:
-        # a nested object missing (unset slot, None) or refusing a field: new ones, from scratch
+    if slow_way:
+        # a nested object missing (unset slot, None) or refusing a field, or data that is not
+        # bytes: new objects, from scratch
         out += ["            return self", "        except AttributeError:", "            pass"]
     failed = "cls" if method == "_from_buffer" else "type(self)"
     out += ["        except Exception as exc:", f"            raise _deserialize_failed({failed}, data, exc) from exc"]
-    out.append(f"        return _refill(self, {class_name}, data)" if des.gather else "        return self")
+    out.append(f"        return _refill(self, {class_name}, data)" if slow_way else "        return self")
     out.append("")
     return out
 

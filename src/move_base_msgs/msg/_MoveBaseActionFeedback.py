@@ -127,19 +127,19 @@ class MoveBaseActionFeedback(_Message):
             _buf = data
             _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
             _end = 16 + _n
-            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            _v1.frame_id = _buf[16:_end].decode('utf-8', 'replace')
             _t5.secs, _t5.nsecs, _n = _S1.unpack_from(_buf, _end)
             _s = _end + 12
             _end = _s + _n
-            _v4.id = str(_buf[_s:_end], 'utf-8', 'replace')
+            _v4.id = _buf[_s:_end].decode('utf-8', 'replace')
             _v3.status, _n = _S2.unpack_from(_buf, _end)
             _s = _end + 5
             _end = _s + _n
-            _v3.text = str(_buf[_s:_end], 'utf-8', 'replace')
+            _v3.text = _buf[_s:_end].decode('utf-8', 'replace')
             _v8.seq, _t9.secs, _t9.nsecs, _n = _S0.unpack_from(_buf, _end)
             _s = _end + 16
             _end = _s + _n
-            _v8.frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
+            _v8.frame_id = _buf[_s:_end].decode('utf-8', 'replace')
             _v11.x, _v11.y, _v11.z, _v12.x, _v12.y, _v12.z, _v12.w = _S3.unpack_from(_buf, _end)
             if _end > len(_buf): raise _Truncated
             return self

@@ -96,11 +96,11 @@ class RecoveryStatus(_Message):
             _buf = data
             _v2.seq, _t3.secs, _t3.nsecs, _n = _S0.unpack_from(_buf, 0)
             _end = 16 + _n
-            _v2.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            _v2.frame_id = _buf[16:_end].decode('utf-8', 'replace')
             _v5.x, _v5.y, _v5.z, _v6.x, _v6.y, _v6.z, _v6.w, self.current_recovery_number, self.total_number_of_recoveries, _n = _S1.unpack_from(_buf, _end)
             _s = _end + 64
             _end = _s + _n
-            self.recovery_behavior_name = str(_buf[_s:_end], 'utf-8', 'replace')
+            self.recovery_behavior_name = _buf[_s:_end].decode('utf-8', 'replace')
             if _end > len(_buf): raise _Truncated
             return self
         except AttributeError:

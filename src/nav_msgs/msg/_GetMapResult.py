@@ -104,7 +104,7 @@ class GetMapResult(_Message):
             _buf = data
             _v2.seq, _t3.secs, _t3.nsecs, _n = _S0.unpack_from(_buf, 0)
             _end = 16 + _n
-            _v2.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            _v2.frame_id = _buf[16:_end].decode('utf-8', 'replace')
             _t5.secs, _t5.nsecs, _v4.resolution, _v4.width, _v4.height, _v7.x, _v7.y, _v7.z, _v8.x, _v8.y, _v8.z, _v8.w, _n = _S3.unpack_from(_buf, _end)
             _v1.data = _A1[_n].unpack_from(_buf, _end + 80)
             _end += 80 + _n

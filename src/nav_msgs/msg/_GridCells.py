@@ -76,7 +76,7 @@ class GridCells(_Message):
             _buf = data
             _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
             _end = 16 + _n
-            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            _v1.frame_id = _buf[16:_end].decode('utf-8', 'replace')
             self.cell_width, self.cell_height, _n = _S1.unpack_from(_buf, _end)
             _end += 12
             _l3 = []

@@ -104,7 +104,7 @@ class OccupancyGrid(_Message):
             _buf = data
             _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
             _end = 16 + _n
-            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            _v1.frame_id = _buf[16:_end].decode('utf-8', 'replace')
             _t4.secs, _t4.nsecs, _v3.resolution, _v3.width, _v3.height, _v6.x, _v6.y, _v6.z, _v7.x, _v7.y, _v7.z, _v7.w, _n = _S3.unpack_from(_buf, _end)
             self.data = _A1[_n].unpack_from(_buf, _end + 80)
             _end += 80 + _n

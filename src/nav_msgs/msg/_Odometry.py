@@ -124,11 +124,11 @@ class Odometry(_Message):
             _buf = data
             _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
             _end = 16 + _n
-            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            _v1.frame_id = _buf[16:_end].decode('utf-8', 'replace')
             _n, = _S1.unpack_from(_buf, _end)
             _s = _end + 4
             _end = _s + _n
-            self.child_frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
+            self.child_frame_id = _buf[_s:_end].decode('utf-8', 'replace')
             _v5.x, _v5.y, _v5.z, _v6.x, _v6.y, _v6.z, _v6.w = _S3.unpack_from(_buf, _end)
             _v3.covariance = _S4.unpack_from(_buf, _end + 56)
             _v9.x, _v9.y, _v9.z, _v10.x, _v10.y, _v10.z = _S5.unpack_from(_buf, _end + 344)

@@ -81,7 +81,7 @@ class Path(_Message):
             _buf = data
             _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
             _end = 16 + _n
-            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            _v1.frame_id = _buf[16:_end].decode('utf-8', 'replace')
             _n, = _S1.unpack_from(_buf, _end)
             _end += 4
             _l3 = []
@@ -92,7 +92,7 @@ class Path(_Message):
                 _v6.seq, _t7.secs, _t7.nsecs, _n = _S0.unpack_from(_buf, _end)
                 _s = _end + 16
                 _end = _s + _n
-                _v6.frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v6.frame_id = _buf[_s:_end].decode('utf-8', 'replace')
                 _v5.pose = _v8 = _new(_T_geometry_msgs__Pose)
                 _v8.position = _v9 = _new(_T_geometry_msgs__Point)
                 _v8.orientation = _v10 = _new(_T_geometry_msgs__Quaternion)

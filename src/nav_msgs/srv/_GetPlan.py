@@ -125,11 +125,11 @@ class GetPlanRequest(_Message):
             _buf = data
             _v2.seq, _t3.secs, _t3.nsecs, _n = _S0.unpack_from(_buf, 0)
             _end = 16 + _n
-            _v2.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            _v2.frame_id = _buf[16:_end].decode('utf-8', 'replace')
             _v5.x, _v5.y, _v5.z, _v6.x, _v6.y, _v6.z, _v6.w, _v8.seq, _t9.secs, _t9.nsecs, _n = _S1.unpack_from(_buf, _end)
             _s = _end + 72
             _end = _s + _n
-            _v8.frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
+            _v8.frame_id = _buf[_s:_end].decode('utf-8', 'replace')
             _v11.x, _v11.y, _v11.z, _v12.x, _v12.y, _v12.z, _v12.w, self.tolerance = _S2.unpack_from(_buf, _end)
             if _end > len(_buf): raise _Truncated
             return self
@@ -232,7 +232,7 @@ class GetPlanResponse(_Message):
             _buf = data
             _v2.seq, _t3.secs, _t3.nsecs, _n = _S0.unpack_from(_buf, 0)
             _end = 16 + _n
-            _v2.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            _v2.frame_id = _buf[16:_end].decode('utf-8', 'replace')
             _n, = _S3.unpack_from(_buf, _end)
             _end += 4
             _l4 = []
@@ -243,7 +243,7 @@ class GetPlanResponse(_Message):
                 _v7.seq, _t8.secs, _t8.nsecs, _n = _S0.unpack_from(_buf, _end)
                 _s = _end + 16
                 _end = _s + _n
-                _v7.frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v7.frame_id = _buf[_s:_end].decode('utf-8', 'replace')
                 _v6.pose = _v9 = _new(_T_geometry_msgs__Pose)
                 _v9.position = _v10 = _new(_T_geometry_msgs__Point)
                 _v9.orientation = _v11 = _new(_T_geometry_msgs__Quaternion)

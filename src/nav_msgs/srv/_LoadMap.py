@@ -62,11 +62,14 @@ class LoadMapRequest(_Message):
             _buf = data
             _n, = _S0.unpack_from(_buf, 0)
             _end = 4 + _n
-            self.map_url = str(_buf[4:_end], 'utf-8', 'replace')
+            self.map_url = _buf[4:_end].decode('utf-8', 'replace')
             if _end > len(_buf): raise _Truncated
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
-        return self
+        return _refill(self, LoadMapRequest, data)
 
     @classmethod
     def _from_buffer(cls, data):
@@ -171,7 +174,7 @@ class LoadMapResponse(_Message):
             _buf = data
             _v2.seq, _t3.secs, _t3.nsecs, _n = _S1.unpack_from(_buf, 0)
             _end = 16 + _n
-            _v2.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            _v2.frame_id = _buf[16:_end].decode('utf-8', 'replace')
             _t5.secs, _t5.nsecs, _v4.resolution, _v4.width, _v4.height, _v7.x, _v7.y, _v7.z, _v8.x, _v8.y, _v8.z, _v8.w, _n = _S4.unpack_from(_buf, _end)
             _v1.data = _A1[_n].unpack_from(_buf, _end + 80)
             _end += 80 + _n

@@ -150,14 +150,14 @@ class SetMapRequest(_Message):
             _buf = data
             _v2.seq, _t3.secs, _t3.nsecs, _n = _S0.unpack_from(_buf, 0)
             _end = 16 + _n
-            _v2.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            _v2.frame_id = _buf[16:_end].decode('utf-8', 'replace')
             _t5.secs, _t5.nsecs, _v4.resolution, _v4.width, _v4.height, _v7.x, _v7.y, _v7.z, _v8.x, _v8.y, _v8.z, _v8.w, _n = _S4.unpack_from(_buf, _end)
             _v1.data = _A1[_n].unpack_from(_buf, _end + 80)
             _end += 80 + _n
             _v10.seq, _t11.secs, _t11.nsecs, _n = _S0.unpack_from(_buf, _end)
             _s = _end + 16
             _end = _s + _n
-            _v10.frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
+            _v10.frame_id = _buf[_s:_end].decode('utf-8', 'replace')
             _v14.x, _v14.y, _v14.z, _v15.x, _v15.y, _v15.z, _v15.w = _S5.unpack_from(_buf, _end)
             _v12.covariance = _S6.unpack_from(_buf, _end + 56)
             if _end > len(_buf): raise _Truncated

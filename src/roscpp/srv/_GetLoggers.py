@@ -110,17 +110,20 @@ class GetLoggersResponse(_Message):
                 _n, = _S0.unpack_from(_buf, _end)
                 _s = _end + 4
                 _end = _s + _n
-                _v3.name = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v3.name = _buf[_s:_end].decode('utf-8', 'replace')
                 _n, = _S0.unpack_from(_buf, _end)
                 _s = _end + 4
                 _end = _s + _n
-                _v3.level = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v3.level = _buf[_s:_end].decode('utf-8', 'replace')
                 _l1.append(_i2)
             self.loggers = _l1
             if _end > len(_buf): raise _Truncated
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
-        return self
+        return _refill(self, GetLoggersResponse, data)
 
     @classmethod
     def _from_buffer(cls, data):

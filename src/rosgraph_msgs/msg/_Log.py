@@ -107,23 +107,23 @@ class Log(_Message):
             _buf = data
             _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
             _end = 16 + _n
-            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            _v1.frame_id = _buf[16:_end].decode('utf-8', 'replace')
             self.level, _n = _S1.unpack_from(_buf, _end)
             _s = _end + 5
             _end = _s + _n
-            self.name = str(_buf[_s:_end], 'utf-8', 'replace')
+            self.name = _buf[_s:_end].decode('utf-8', 'replace')
             _n, = _S2.unpack_from(_buf, _end)
             _s = _end + 4
             _end = _s + _n
-            self.msg = str(_buf[_s:_end], 'utf-8', 'replace')
+            self.msg = _buf[_s:_end].decode('utf-8', 'replace')
             _n, = _S2.unpack_from(_buf, _end)
             _s = _end + 4
             _end = _s + _n
-            self.file = str(_buf[_s:_end], 'utf-8', 'replace')
+            self.file = _buf[_s:_end].decode('utf-8', 'replace')
             _n, = _S2.unpack_from(_buf, _end)
             _s = _end + 4
             _end = _s + _n
-            self.function = str(_buf[_s:_end], 'utf-8', 'replace')
+            self.function = _buf[_s:_end].decode('utf-8', 'replace')
             self.line, _n = _S3.unpack_from(_buf, _end)
             _end += 8
             _l3 = []
@@ -131,7 +131,7 @@ class Log(_Message):
                 _n, = _S2.unpack_from(_buf, _end)
                 _s = _end + 4
                 _end = _s + _n
-                _i4 = str(_buf[_s:_end], 'utf-8', 'replace')
+                _i4 = _buf[_s:_end].decode('utf-8', 'replace')
                 _l3.append(_i4)
             self.topics = _l3
             if _end > len(_buf): raise _Truncated

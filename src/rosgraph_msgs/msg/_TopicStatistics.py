@@ -122,15 +122,15 @@ class TopicStatistics(_Message):
             _buf = data
             _n, = _S0.unpack_from(_buf, 0)
             _end = 4 + _n
-            self.topic = str(_buf[4:_end], 'utf-8', 'replace')
+            self.topic = _buf[4:_end].decode('utf-8', 'replace')
             _n, = _S0.unpack_from(_buf, _end)
             _s = _end + 4
             _end = _s + _n
-            self.node_pub = str(_buf[_s:_end], 'utf-8', 'replace')
+            self.node_pub = _buf[_s:_end].decode('utf-8', 'replace')
             _n, = _S0.unpack_from(_buf, _end)
             _s = _end + 4
             _end = _s + _n
-            self.node_sub = str(_buf[_s:_end], 'utf-8', 'replace')
+            self.node_sub = _buf[_s:_end].decode('utf-8', 'replace')
             _t1.secs, _t1.nsecs, _t2.secs, _t2.nsecs, self.delivered_msgs, self.dropped_msgs, self.traffic, _t3.secs, _t3.nsecs, _t4.secs, _t4.nsecs, _t5.secs, _t5.nsecs, _t6.secs, _t6.nsecs, _t7.secs, _t7.nsecs, _t8.secs, _t8.nsecs = _S1.unpack_from(_buf, _end)
             if _end > len(_buf): raise _Truncated
             return self

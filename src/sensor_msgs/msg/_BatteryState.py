@@ -144,7 +144,7 @@ class BatteryState(_Message):
             _buf = data
             _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
             _end = 16 + _n
-            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            _v1.frame_id = _buf[16:_end].decode('utf-8', 'replace')
             self.voltage, self.temperature, self.current, self.charge, self.capacity, self.design_capacity, self.percentage, self.power_supply_status, self.power_supply_health, self.power_supply_technology, self.present, _n = _S3.unpack_from(_buf, _end)
             self.cell_voltage = _A1[_n].unpack_from(_buf, _end + 36)
             _end += 36 + _n * 4
@@ -154,11 +154,11 @@ class BatteryState(_Message):
             _n, = _S2.unpack_from(_buf, _end)
             _s = _end + 4
             _end = _s + _n
-            self.location = str(_buf[_s:_end], 'utf-8', 'replace')
+            self.location = _buf[_s:_end].decode('utf-8', 'replace')
             _n, = _S2.unpack_from(_buf, _end)
             _s = _end + 4
             _end = _s + _n
-            self.serial_number = str(_buf[_s:_end], 'utf-8', 'replace')
+            self.serial_number = _buf[_s:_end].decode('utf-8', 'replace')
             if _end > len(_buf): raise _Truncated
             return self
         except AttributeError:

@@ -116,11 +116,11 @@ class CameraInfo(_Message):
             _buf = data
             _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
             _end = 16 + _n
-            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            _v1.frame_id = _buf[16:_end].decode('utf-8', 'replace')
             self.height, self.width, _n = _S1.unpack_from(_buf, _end)
             _s = _end + 12
             _end = _s + _n
-            self.distortion_model = str(_buf[_s:_end], 'utf-8', 'replace')
+            self.distortion_model = _buf[_s:_end].decode('utf-8', 'replace')
             _n, = _S2.unpack_from(_buf, _end)
             self.D = _A1[_n].unpack_from(_buf, _end + 4)
             _end += 4 + _n * 8

@@ -104,7 +104,7 @@ class Imu(_Message):
             _buf = data
             _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
             _end = 16 + _n
-            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            _v1.frame_id = _buf[16:_end].decode('utf-8', 'replace')
             _v3.x, _v3.y, _v3.z, _v3.w = _S2.unpack_from(_buf, _end)
             self.orientation_covariance = _S3.unpack_from(_buf, _end + 32)
             _v4.x, _v4.y, _v4.z = _S4.unpack_from(_buf, _end + 104)

@@ -77,7 +77,7 @@ class Joy(_Message):
             _buf = data
             _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
             _end = 16 + _n
-            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            _v1.frame_id = _buf[16:_end].decode('utf-8', 'replace')
             _n, = _S1.unpack_from(_buf, _end)
             self.axes = _A2[_n].unpack_from(_buf, _end + 4)
             _end += 4 + _n * 4

@@ -99,7 +99,7 @@ class LaserScan(_Message):
             _buf = data
             _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
             _end = 16 + _n
-            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            _v1.frame_id = _buf[16:_end].decode('utf-8', 'replace')
             self.angle_min, self.angle_max, self.angle_increment, self.time_increment, self.scan_time, self.range_min, self.range_max, _n = _S3.unpack_from(_buf, _end)
             self.ranges = _A1[_n].unpack_from(_buf, _end + 32)
             _end += 32 + _n * 4

@@ -77,7 +77,7 @@ class MagneticField(_Message):
             _buf = data
             _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
             _end = 16 + _n
-            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            _v1.frame_id = _buf[16:_end].decode('utf-8', 'replace')
             _v3.x, _v3.y, _v3.z = _S2.unpack_from(_buf, _end)
             self.magnetic_field_covariance = _S3.unpack_from(_buf, _end + 24)
             if _end > len(_buf): raise _Truncated

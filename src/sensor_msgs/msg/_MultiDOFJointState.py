@@ -104,7 +104,7 @@ class MultiDOFJointState(_Message):
             _buf = data
             _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
             _end = 16 + _n
-            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            _v1.frame_id = _buf[16:_end].decode('utf-8', 'replace')
             _n, = _S1.unpack_from(_buf, _end)
             _end += 4
             _l3 = []
@@ -112,7 +112,7 @@ class MultiDOFJointState(_Message):
                 _n, = _S1.unpack_from(_buf, _end)
                 _s = _end + 4
                 _end = _s + _n
-                _i4 = str(_buf[_s:_end], 'utf-8', 'replace')
+                _i4 = _buf[_s:_end].decode('utf-8', 'replace')
                 _l3.append(_i4)
             self.joint_names = _l3
             _n, = _S1.unpack_from(_buf, _end)

@@ -93,7 +93,7 @@ class NavSatFix(_Message):
             _buf = data
             _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
             _end = 16 + _n
-            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            _v1.frame_id = _buf[16:_end].decode('utf-8', 'replace')
             _v3.status, _v3.service, self.latitude, self.longitude, self.altitude = _S2.unpack_from(_buf, _end)
             self.position_covariance = _S3.unpack_from(_buf, _end + 27)
             self.position_covariance_type, = _S4.unpack_from(_buf, _end + 99)

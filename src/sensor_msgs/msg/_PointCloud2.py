@@ -104,7 +104,7 @@ class PointCloud2(_Message):
             _buf = data
             _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
             _end = 16 + _n
-            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            _v1.frame_id = _buf[16:_end].decode('utf-8', 'replace')
             self.height, self.width, _n = _S1.unpack_from(_buf, _end)
             _end += 12
             _l3 = []
@@ -113,7 +113,7 @@ class PointCloud2(_Message):
                 _n, = _S2.unpack_from(_buf, _end)
                 _s = _end + 4
                 _end = _s + _n
-                _v5.name = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v5.name = _buf[_s:_end].decode('utf-8', 'replace')
                 _v5.offset, _v5.datatype, _v5.count = _S3.unpack_from(_buf, _end)
                 _end += 9
                 _l3.append(_i4)

@@ -102,11 +102,11 @@ class SetCameraInfoRequest(_Message):
             _buf = data
             _v2.seq, _t3.secs, _t3.nsecs, _n = _S0.unpack_from(_buf, 0)
             _end = 16 + _n
-            _v2.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            _v2.frame_id = _buf[16:_end].decode('utf-8', 'replace')
             _v1.height, _v1.width, _n = _S1.unpack_from(_buf, _end)
             _s = _end + 12
             _end = _s + _n
-            _v1.distortion_model = str(_buf[_s:_end], 'utf-8', 'replace')
+            _v1.distortion_model = _buf[_s:_end].decode('utf-8', 'replace')
             _n, = _S2.unpack_from(_buf, _end)
             _v1.D = _A1[_n].unpack_from(_buf, _end + 4)
             _end += 4 + _n * 8
@@ -215,11 +215,14 @@ class SetCameraInfoResponse(_Message):
             _buf = data
             self.success, _n = _S8.unpack_from(_buf, 0)
             _end = 5 + _n
-            self.status_message = str(_buf[5:_end], 'utf-8', 'replace')
+            self.status_message = _buf[5:_end].decode('utf-8', 'replace')
             if _end > len(_buf): raise _Truncated
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
-        return self
+        return _refill(self, SetCameraInfoResponse, data)
 
     @classmethod
     def _from_buffer(cls, data):

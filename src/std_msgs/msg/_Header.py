@@ -59,7 +59,7 @@ class Header(_Message):
             _buf = data
             self.seq, _t1.secs, _t1.nsecs, _n = _S0.unpack_from(_buf, 0)
             _end = 16 + _n
-            self.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            self.frame_id = _buf[16:_end].decode('utf-8', 'replace')
             if _end > len(_buf): raise _Truncated
             return self
         except AttributeError:

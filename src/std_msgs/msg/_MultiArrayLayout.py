@@ -67,16 +67,19 @@ class MultiArrayLayout(_Message):
                 _n, = _S0.unpack_from(_buf, _end)
                 _s = _end + 4
                 _end = _s + _n
-                _v3.label = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v3.label = _buf[_s:_end].decode('utf-8', 'replace')
                 _v3.size, _v3.stride = _S1.unpack_from(_buf, _end)
                 _end += 8
                 _l1.append(_i2)
             self.dim = _l1
             self.data_offset, = _S0.unpack_from(_buf, _end)
             if _end > len(_buf): raise _Truncated
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
-        return self
+        return _refill(self, MultiArrayLayout, data)
 
     @classmethod
     def _from_buffer(cls, data):

@@ -75,7 +75,7 @@ class UInt8MultiArray(_Message):
                 _n, = _S0.unpack_from(_buf, _end)
                 _s = _end + 4
                 _end = _s + _n
-                _v4.label = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v4.label = _buf[_s:_end].decode('utf-8', 'replace')
                 _v4.size, _v4.stride = _S1.unpack_from(_buf, _end)
                 _end += 8
                 _l2.append(_i3)

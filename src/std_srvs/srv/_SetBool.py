@@ -105,11 +105,14 @@ class SetBoolResponse(_Message):
             _buf = data
             self.success, _n = _S3.unpack_from(_buf, 0)
             _end = 5 + _n
-            self.message = str(_buf[5:_end], 'utf-8', 'replace')
+            self.message = _buf[5:_end].decode('utf-8', 'replace')
             if _end > len(_buf): raise _Truncated
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
-        return self
+        return _refill(self, SetBoolResponse, data)
 
     @classmethod
     def _from_buffer(cls, data):

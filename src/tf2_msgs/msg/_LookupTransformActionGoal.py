@@ -111,23 +111,23 @@ class LookupTransformActionGoal(_Message):
             _buf = data
             _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
             _end = 16 + _n
-            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            _v1.frame_id = _buf[16:_end].decode('utf-8', 'replace')
             _t4.secs, _t4.nsecs, _n = _S1.unpack_from(_buf, _end)
             _s = _end + 12
             _end = _s + _n
-            _v3.id = str(_buf[_s:_end], 'utf-8', 'replace')
+            _v3.id = _buf[_s:_end].decode('utf-8', 'replace')
             _n, = _S2.unpack_from(_buf, _end)
             _s = _end + 4
             _end = _s + _n
-            _v5.target_frame = str(_buf[_s:_end], 'utf-8', 'replace')
+            _v5.target_frame = _buf[_s:_end].decode('utf-8', 'replace')
             _n, = _S2.unpack_from(_buf, _end)
             _s = _end + 4
             _end = _s + _n
-            _v5.source_frame = str(_buf[_s:_end], 'utf-8', 'replace')
+            _v5.source_frame = _buf[_s:_end].decode('utf-8', 'replace')
             _t6.secs, _t6.nsecs, _t7.secs, _t7.nsecs, _t8.secs, _t8.nsecs, _n = _S3.unpack_from(_buf, _end)
             _s = _end + 28
             _end = _s + _n
-            _v5.fixed_frame = str(_buf[_s:_end], 'utf-8', 'replace')
+            _v5.fixed_frame = _buf[_s:_end].decode('utf-8', 'replace')
             _v5.advanced, = _S5.unpack_from(_buf, _end)
             if _end > len(_buf): raise _Truncated
             return self

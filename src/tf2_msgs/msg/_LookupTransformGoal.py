@@ -88,15 +88,15 @@ class LookupTransformGoal(_Message):
             _buf = data
             _n, = _S0.unpack_from(_buf, 0)
             _end = 4 + _n
-            self.target_frame = str(_buf[4:_end], 'utf-8', 'replace')
+            self.target_frame = _buf[4:_end].decode('utf-8', 'replace')
             _n, = _S0.unpack_from(_buf, _end)
             _s = _end + 4
             _end = _s + _n
-            self.source_frame = str(_buf[_s:_end], 'utf-8', 'replace')
+            self.source_frame = _buf[_s:_end].decode('utf-8', 'replace')
             _t1.secs, _t1.nsecs, _t2.secs, _t2.nsecs, _t3.secs, _t3.nsecs, _n = _S1.unpack_from(_buf, _end)
             _s = _end + 28
             _end = _s + _n
-            self.fixed_frame = str(_buf[_s:_end], 'utf-8', 'replace')
+            self.fixed_frame = _buf[_s:_end].decode('utf-8', 'replace')
             self.advanced, = _S3.unpack_from(_buf, _end)
             if _end > len(_buf): raise _Truncated
             return self

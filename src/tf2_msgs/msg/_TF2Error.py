@@ -60,11 +60,14 @@ class TF2Error(_Message):
             _buf = data
             self.error, _n = _S0.unpack_from(_buf, 0)
             _end = 5 + _n
-            self.error_string = str(_buf[5:_end], 'utf-8', 'replace')
+            self.error_string = _buf[5:_end].decode('utf-8', 'replace')
             if _end > len(_buf): raise _Truncated
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
-        return self
+        return _refill(self, TF2Error, data)
 
     @classmethod
     def _from_buffer(cls, data):

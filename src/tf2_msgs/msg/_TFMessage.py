@@ -78,11 +78,11 @@ class TFMessage(_Message):
                 _v4.seq, _t5.secs, _t5.nsecs, _n = _S1.unpack_from(_buf, _end)
                 _s = _end + 16
                 _end = _s + _n
-                _v4.frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v4.frame_id = _buf[_s:_end].decode('utf-8', 'replace')
                 _n, = _S0.unpack_from(_buf, _end)
                 _s = _end + 4
                 _end = _s + _n
-                _v3.child_frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v3.child_frame_id = _buf[_s:_end].decode('utf-8', 'replace')
                 _v3.transform = _v6 = _new(_T_geometry_msgs__Transform)
                 _v6.translation = _v7 = _new(_T_geometry_msgs__Vector3)
                 _v6.rotation = _v8 = _new(_T_geometry_msgs__Quaternion)
@@ -91,9 +91,12 @@ class TFMessage(_Message):
                 _l1.append(_i2)
             self.transforms = _l1
             if _end > len(_buf): raise _Truncated
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
-        return self
+        return _refill(self, TFMessage, data)
 
     @classmethod
     def _from_buffer(cls, data):

@@ -96,11 +96,14 @@ class FrameGraphResponse(_Message):
             _buf = data
             _n, = _S0.unpack_from(_buf, 0)
             _end = 4 + _n
-            self.frame_yaml = str(_buf[4:_end], 'utf-8', 'replace')
+            self.frame_yaml = _buf[4:_end].decode('utf-8', 'replace')
             if _end > len(_buf): raise _Truncated
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
-        return self
+        return _refill(self, FrameGraphResponse, data)
 
     @classmethod
     def _from_buffer(cls, data):

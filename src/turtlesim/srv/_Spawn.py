@@ -60,11 +60,14 @@ class SpawnRequest(_Message):
             _buf = data
             self.x, self.y, self.theta, _n = _S0.unpack_from(_buf, 0)
             _end = 16 + _n
-            self.name = str(_buf[16:_end], 'utf-8', 'replace')
+            self.name = _buf[16:_end].decode('utf-8', 'replace')
             if _end > len(_buf): raise _Truncated
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
-        return self
+        return _refill(self, SpawnRequest, data)
 
     @classmethod
     def _from_buffer(cls, data):
@@ -117,11 +120,14 @@ class SpawnResponse(_Message):
             _buf = data
             _n, = _S1.unpack_from(_buf, 0)
             _end = 4 + _n
-            self.name = str(_buf[4:_end], 'utf-8', 'replace')
+            self.name = _buf[4:_end].decode('utf-8', 'replace')
             if _end > len(_buf): raise _Truncated
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
-        return self
+        return _refill(self, SpawnResponse, data)
 
     @classmethod
     def _from_buffer(cls, data):

@@ -140,11 +140,11 @@ class ImageMarker(_Message):
             _buf = data
             _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
             _end = 16 + _n
-            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            _v1.frame_id = _buf[16:_end].decode('utf-8', 'replace')
             _n, = _S1.unpack_from(_buf, _end)
             _s = _end + 4
             _end = _s + _n
-            self.ns = str(_buf[_s:_end], 'utf-8', 'replace')
+            self.ns = _buf[_s:_end].decode('utf-8', 'replace')
             self.id, self.type, self.action, _v3.x, _v3.y, _v3.z, self.scale, _v4.r, _v4.g, _v4.b, _v4.a, self.filled, _v5.r, _v5.g, _v5.b, _v5.a, _t6.secs, _t6.nsecs, _n = _S2.unpack_from(_buf, _end)
             _end += 85
             _l7 = []

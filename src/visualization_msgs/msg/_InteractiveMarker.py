@@ -173,15 +173,15 @@ class InteractiveMarker(_Message):
             _buf = data
             _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
             _end = 16 + _n
-            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            _v1.frame_id = _buf[16:_end].decode('utf-8', 'replace')
             _v4.x, _v4.y, _v4.z, _v5.x, _v5.y, _v5.z, _v5.w, _n = _S1.unpack_from(_buf, _end)
             _s = _end + 60
             _end = _s + _n
-            self.name = str(_buf[_s:_end], 'utf-8', 'replace')
+            self.name = _buf[_s:_end].decode('utf-8', 'replace')
             _n, = _S2.unpack_from(_buf, _end)
             _s = _end + 4
             _end = _s + _n
-            self.description = str(_buf[_s:_end], 'utf-8', 'replace')
+            self.description = _buf[_s:_end].decode('utf-8', 'replace')
             self.scale, _n = _S3.unpack_from(_buf, _end)
             _end += 8
             _l6 = []
@@ -190,11 +190,11 @@ class InteractiveMarker(_Message):
                 _v8.id, _v8.parent_id, _n = _S4.unpack_from(_buf, _end)
                 _s = _end + 12
                 _end = _s + _n
-                _v8.title = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v8.title = _buf[_s:_end].decode('utf-8', 'replace')
                 _n, = _S2.unpack_from(_buf, _end)
                 _s = _end + 4
                 _end = _s + _n
-                _v8.command = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v8.command = _buf[_s:_end].decode('utf-8', 'replace')
                 _v8.command_type, = _S5.unpack_from(_buf, _end)
                 _end += 1
                 _l6.append(_i7)
@@ -207,7 +207,7 @@ class InteractiveMarker(_Message):
                 _n, = _S2.unpack_from(_buf, _end)
                 _s = _end + 4
                 _end = _s + _n
-                _v11.name = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v11.name = _buf[_s:_end].decode('utf-8', 'replace')
                 _v11.orientation = _v12 = _new(_T_geometry_msgs__Quaternion)
                 _v12.x, _v12.y, _v12.z, _v12.w, _v11.orientation_mode, _v11.interaction_mode, _v11.always_visible, _n = _S11.unpack_from(_buf, _end)
                 _end += 39
@@ -219,11 +219,11 @@ class InteractiveMarker(_Message):
                     _v16.seq, _t17.secs, _t17.nsecs, _n = _S0.unpack_from(_buf, _end)
                     _s = _end + 16
                     _end = _s + _n
-                    _v16.frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
+                    _v16.frame_id = _buf[_s:_end].decode('utf-8', 'replace')
                     _n, = _S2.unpack_from(_buf, _end)
                     _s = _end + 4
                     _end = _s + _n
-                    _v15.ns = str(_buf[_s:_end], 'utf-8', 'replace')
+                    _v15.ns = _buf[_s:_end].decode('utf-8', 'replace')
                     _v15.pose = _v18 = _new(_T_geometry_msgs__Pose)
                     _v18.position = _v19 = _new(_T_geometry_msgs__Point)
                     _v18.orientation = _v20 = _new(_T_geometry_msgs__Quaternion)
@@ -251,11 +251,11 @@ class InteractiveMarker(_Message):
                     _n, = _S2.unpack_from(_buf, _end)
                     _s = _end + 4
                     _end = _s + _n
-                    _v15.text = str(_buf[_s:_end], 'utf-8', 'replace')
+                    _v15.text = _buf[_s:_end].decode('utf-8', 'replace')
                     _n, = _S2.unpack_from(_buf, _end)
                     _s = _end + 4
                     _end = _s + _n
-                    _v15.mesh_resource = str(_buf[_s:_end], 'utf-8', 'replace')
+                    _v15.mesh_resource = _buf[_s:_end].decode('utf-8', 'replace')
                     _v15.mesh_use_embedded_materials, = _S13.unpack_from(_buf, _end)
                     _end += 1
                     _l13.append(_i14)
@@ -263,7 +263,7 @@ class InteractiveMarker(_Message):
                 _v11.independent_marker_orientation, _n = _S14.unpack_from(_buf, _end)
                 _s = _end + 5
                 _end = _s + _n
-                _v11.description = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v11.description = _buf[_s:_end].decode('utf-8', 'replace')
                 _l9.append(_i10)
             self.controls = _l9
             if _end > len(_buf): raise _Truncated

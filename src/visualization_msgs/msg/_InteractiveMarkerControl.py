@@ -144,7 +144,7 @@ class InteractiveMarkerControl(_Message):
             _buf = data
             _n, = _S0.unpack_from(_buf, 0)
             _end = 4 + _n
-            self.name = str(_buf[4:_end], 'utf-8', 'replace')
+            self.name = _buf[4:_end].decode('utf-8', 'replace')
             _v1.x, _v1.y, _v1.z, _v1.w, self.orientation_mode, self.interaction_mode, self.always_visible, _n = _S8.unpack_from(_buf, _end)
             _end += 39
             _l2 = []
@@ -155,11 +155,11 @@ class InteractiveMarkerControl(_Message):
                 _v5.seq, _t6.secs, _t6.nsecs, _n = _S2.unpack_from(_buf, _end)
                 _s = _end + 16
                 _end = _s + _n
-                _v5.frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v5.frame_id = _buf[_s:_end].decode('utf-8', 'replace')
                 _n, = _S0.unpack_from(_buf, _end)
                 _s = _end + 4
                 _end = _s + _n
-                _v4.ns = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v4.ns = _buf[_s:_end].decode('utf-8', 'replace')
                 _v4.pose = _v7 = _new(_T_geometry_msgs__Pose)
                 _v7.position = _v8 = _new(_T_geometry_msgs__Point)
                 _v7.orientation = _v9 = _new(_T_geometry_msgs__Quaternion)
@@ -187,11 +187,11 @@ class InteractiveMarkerControl(_Message):
                 _n, = _S0.unpack_from(_buf, _end)
                 _s = _end + 4
                 _end = _s + _n
-                _v4.text = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v4.text = _buf[_s:_end].decode('utf-8', 'replace')
                 _n, = _S0.unpack_from(_buf, _end)
                 _s = _end + 4
                 _end = _s + _n
-                _v4.mesh_resource = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v4.mesh_resource = _buf[_s:_end].decode('utf-8', 'replace')
                 _v4.mesh_use_embedded_materials, = _S10.unpack_from(_buf, _end)
                 _end += 1
                 _l2.append(_i3)
@@ -199,7 +199,7 @@ class InteractiveMarkerControl(_Message):
             self.independent_marker_orientation, _n = _S11.unpack_from(_buf, _end)
             _s = _end + 5
             _end = _s + _n
-            self.description = str(_buf[_s:_end], 'utf-8', 'replace')
+            self.description = _buf[_s:_end].decode('utf-8', 'replace')
             if _end > len(_buf): raise _Truncated
             return self
         except AttributeError:

@@ -126,19 +126,19 @@ class InteractiveMarkerFeedback(_Message):
             _buf = data
             _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
             _end = 16 + _n
-            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            _v1.frame_id = _buf[16:_end].decode('utf-8', 'replace')
             _n, = _S1.unpack_from(_buf, _end)
             _s = _end + 4
             _end = _s + _n
-            self.client_id = str(_buf[_s:_end], 'utf-8', 'replace')
+            self.client_id = _buf[_s:_end].decode('utf-8', 'replace')
             _n, = _S1.unpack_from(_buf, _end)
             _s = _end + 4
             _end = _s + _n
-            self.marker_name = str(_buf[_s:_end], 'utf-8', 'replace')
+            self.marker_name = _buf[_s:_end].decode('utf-8', 'replace')
             _n, = _S1.unpack_from(_buf, _end)
             _s = _end + 4
             _end = _s + _n
-            self.control_name = str(_buf[_s:_end], 'utf-8', 'replace')
+            self.control_name = _buf[_s:_end].decode('utf-8', 'replace')
             self.event_type, _v4.x, _v4.y, _v4.z, _v5.x, _v5.y, _v5.z, _v5.w, self.menu_entry_id, _v6.x, _v6.y, _v6.z, self.mouse_point_valid = _S3.unpack_from(_buf, _end)
             if _end > len(_buf): raise _Truncated
             return self

@@ -151,7 +151,7 @@ class InteractiveMarkerInit(_Message):
             _buf = data
             _n, = _S0.unpack_from(_buf, 0)
             _end = 4 + _n
-            self.server_id = str(_buf[4:_end], 'utf-8', 'replace')
+            self.server_id = _buf[4:_end].decode('utf-8', 'replace')
             self.seq_num, _n = _S1.unpack_from(_buf, _end)
             _end += 12
             _l1 = []
@@ -162,18 +162,18 @@ class InteractiveMarkerInit(_Message):
                 _v4.seq, _t5.secs, _t5.nsecs, _n = _S2.unpack_from(_buf, _end)
                 _s = _end + 16
                 _end = _s + _n
-                _v4.frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v4.frame_id = _buf[_s:_end].decode('utf-8', 'replace')
                 _v3.pose = _v6 = _new(_T_geometry_msgs__Pose)
                 _v6.position = _v7 = _new(_T_geometry_msgs__Point)
                 _v6.orientation = _v8 = _new(_T_geometry_msgs__Quaternion)
                 _v7.x, _v7.y, _v7.z, _v8.x, _v8.y, _v8.z, _v8.w, _n = _S3.unpack_from(_buf, _end)
                 _s = _end + 60
                 _end = _s + _n
-                _v3.name = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v3.name = _buf[_s:_end].decode('utf-8', 'replace')
                 _n, = _S0.unpack_from(_buf, _end)
                 _s = _end + 4
                 _end = _s + _n
-                _v3.description = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v3.description = _buf[_s:_end].decode('utf-8', 'replace')
                 _v3.scale, _n = _S4.unpack_from(_buf, _end)
                 _end += 8
                 _l9 = []
@@ -182,11 +182,11 @@ class InteractiveMarkerInit(_Message):
                     _v11.id, _v11.parent_id, _n = _S5.unpack_from(_buf, _end)
                     _s = _end + 12
                     _end = _s + _n
-                    _v11.title = str(_buf[_s:_end], 'utf-8', 'replace')
+                    _v11.title = _buf[_s:_end].decode('utf-8', 'replace')
                     _n, = _S0.unpack_from(_buf, _end)
                     _s = _end + 4
                     _end = _s + _n
-                    _v11.command = str(_buf[_s:_end], 'utf-8', 'replace')
+                    _v11.command = _buf[_s:_end].decode('utf-8', 'replace')
                     _v11.command_type, = _S6.unpack_from(_buf, _end)
                     _end += 1
                     _l9.append(_i10)
@@ -199,7 +199,7 @@ class InteractiveMarkerInit(_Message):
                     _n, = _S0.unpack_from(_buf, _end)
                     _s = _end + 4
                     _end = _s + _n
-                    _v14.name = str(_buf[_s:_end], 'utf-8', 'replace')
+                    _v14.name = _buf[_s:_end].decode('utf-8', 'replace')
                     _v14.orientation = _v15 = _new(_T_geometry_msgs__Quaternion)
                     _v15.x, _v15.y, _v15.z, _v15.w, _v14.orientation_mode, _v14.interaction_mode, _v14.always_visible, _n = _S12.unpack_from(_buf, _end)
                     _end += 39
@@ -211,11 +211,11 @@ class InteractiveMarkerInit(_Message):
                         _v19.seq, _t20.secs, _t20.nsecs, _n = _S2.unpack_from(_buf, _end)
                         _s = _end + 16
                         _end = _s + _n
-                        _v19.frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
+                        _v19.frame_id = _buf[_s:_end].decode('utf-8', 'replace')
                         _n, = _S0.unpack_from(_buf, _end)
                         _s = _end + 4
                         _end = _s + _n
-                        _v18.ns = str(_buf[_s:_end], 'utf-8', 'replace')
+                        _v18.ns = _buf[_s:_end].decode('utf-8', 'replace')
                         _v18.pose = _v21 = _new(_T_geometry_msgs__Pose)
                         _v21.position = _v22 = _new(_T_geometry_msgs__Point)
                         _v21.orientation = _v23 = _new(_T_geometry_msgs__Quaternion)
@@ -243,11 +243,11 @@ class InteractiveMarkerInit(_Message):
                         _n, = _S0.unpack_from(_buf, _end)
                         _s = _end + 4
                         _end = _s + _n
-                        _v18.text = str(_buf[_s:_end], 'utf-8', 'replace')
+                        _v18.text = _buf[_s:_end].decode('utf-8', 'replace')
                         _n, = _S0.unpack_from(_buf, _end)
                         _s = _end + 4
                         _end = _s + _n
-                        _v18.mesh_resource = str(_buf[_s:_end], 'utf-8', 'replace')
+                        _v18.mesh_resource = _buf[_s:_end].decode('utf-8', 'replace')
                         _v18.mesh_use_embedded_materials, = _S14.unpack_from(_buf, _end)
                         _end += 1
                         _l16.append(_i17)
@@ -255,15 +255,18 @@ class InteractiveMarkerInit(_Message):
                     _v14.independent_marker_orientation, _n = _S15.unpack_from(_buf, _end)
                     _s = _end + 5
                     _end = _s + _n
-                    _v14.description = str(_buf[_s:_end], 'utf-8', 'replace')
+                    _v14.description = _buf[_s:_end].decode('utf-8', 'replace')
                     _l12.append(_i13)
                 _v3.controls = _l12
                 _l1.append(_i2)
             self.markers = _l1
             if _end > len(_buf): raise _Truncated
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
-        return self
+        return _refill(self, InteractiveMarkerInit, data)
 
     @classmethod
     def _from_buffer(cls, data):

@@ -88,11 +88,11 @@ class InteractiveMarkerPose(_Message):
             _buf = data
             _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
             _end = 16 + _n
-            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            _v1.frame_id = _buf[16:_end].decode('utf-8', 'replace')
             _v4.x, _v4.y, _v4.z, _v5.x, _v5.y, _v5.z, _v5.w, _n = _S1.unpack_from(_buf, _end)
             _s = _end + 60
             _end = _s + _n
-            self.name = str(_buf[_s:_end], 'utf-8', 'replace')
+            self.name = _buf[_s:_end].decode('utf-8', 'replace')
             if _end > len(_buf): raise _Truncated
             return self
         except AttributeError:

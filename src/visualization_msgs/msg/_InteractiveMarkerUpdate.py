@@ -183,7 +183,7 @@ class InteractiveMarkerUpdate(_Message):
             _buf = data
             _n, = _S0.unpack_from(_buf, 0)
             _end = 4 + _n
-            self.server_id = str(_buf[4:_end], 'utf-8', 'replace')
+            self.server_id = _buf[4:_end].decode('utf-8', 'replace')
             self.seq_num, self.type, _n = _S1.unpack_from(_buf, _end)
             _end += 13
             _l1 = []
@@ -194,18 +194,18 @@ class InteractiveMarkerUpdate(_Message):
                 _v4.seq, _t5.secs, _t5.nsecs, _n = _S2.unpack_from(_buf, _end)
                 _s = _end + 16
                 _end = _s + _n
-                _v4.frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v4.frame_id = _buf[_s:_end].decode('utf-8', 'replace')
                 _v3.pose = _v6 = _new(_T_geometry_msgs__Pose)
                 _v6.position = _v7 = _new(_T_geometry_msgs__Point)
                 _v6.orientation = _v8 = _new(_T_geometry_msgs__Quaternion)
                 _v7.x, _v7.y, _v7.z, _v8.x, _v8.y, _v8.z, _v8.w, _n = _S3.unpack_from(_buf, _end)
                 _s = _end + 60
                 _end = _s + _n
-                _v3.name = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v3.name = _buf[_s:_end].decode('utf-8', 'replace')
                 _n, = _S0.unpack_from(_buf, _end)
                 _s = _end + 4
                 _end = _s + _n
-                _v3.description = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v3.description = _buf[_s:_end].decode('utf-8', 'replace')
                 _v3.scale, _n = _S4.unpack_from(_buf, _end)
                 _end += 8
                 _l9 = []
@@ -214,11 +214,11 @@ class InteractiveMarkerUpdate(_Message):
                     _v11.id, _v11.parent_id, _n = _S5.unpack_from(_buf, _end)
                     _s = _end + 12
                     _end = _s + _n
-                    _v11.title = str(_buf[_s:_end], 'utf-8', 'replace')
+                    _v11.title = _buf[_s:_end].decode('utf-8', 'replace')
                     _n, = _S0.unpack_from(_buf, _end)
                     _s = _end + 4
                     _end = _s + _n
-                    _v11.command = str(_buf[_s:_end], 'utf-8', 'replace')
+                    _v11.command = _buf[_s:_end].decode('utf-8', 'replace')
                     _v11.command_type, = _S6.unpack_from(_buf, _end)
                     _end += 1
                     _l9.append(_i10)
@@ -231,7 +231,7 @@ class InteractiveMarkerUpdate(_Message):
                     _n, = _S0.unpack_from(_buf, _end)
                     _s = _end + 4
                     _end = _s + _n
-                    _v14.name = str(_buf[_s:_end], 'utf-8', 'replace')
+                    _v14.name = _buf[_s:_end].decode('utf-8', 'replace')
                     _v14.orientation = _v15 = _new(_T_geometry_msgs__Quaternion)
                     _v15.x, _v15.y, _v15.z, _v15.w, _v14.orientation_mode, _v14.interaction_mode, _v14.always_visible, _n = _S12.unpack_from(_buf, _end)
                     _end += 39
@@ -243,11 +243,11 @@ class InteractiveMarkerUpdate(_Message):
                         _v19.seq, _t20.secs, _t20.nsecs, _n = _S2.unpack_from(_buf, _end)
                         _s = _end + 16
                         _end = _s + _n
-                        _v19.frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
+                        _v19.frame_id = _buf[_s:_end].decode('utf-8', 'replace')
                         _n, = _S0.unpack_from(_buf, _end)
                         _s = _end + 4
                         _end = _s + _n
-                        _v18.ns = str(_buf[_s:_end], 'utf-8', 'replace')
+                        _v18.ns = _buf[_s:_end].decode('utf-8', 'replace')
                         _v18.pose = _v21 = _new(_T_geometry_msgs__Pose)
                         _v21.position = _v22 = _new(_T_geometry_msgs__Point)
                         _v21.orientation = _v23 = _new(_T_geometry_msgs__Quaternion)
@@ -275,11 +275,11 @@ class InteractiveMarkerUpdate(_Message):
                         _n, = _S0.unpack_from(_buf, _end)
                         _s = _end + 4
                         _end = _s + _n
-                        _v18.text = str(_buf[_s:_end], 'utf-8', 'replace')
+                        _v18.text = _buf[_s:_end].decode('utf-8', 'replace')
                         _n, = _S0.unpack_from(_buf, _end)
                         _s = _end + 4
                         _end = _s + _n
-                        _v18.mesh_resource = str(_buf[_s:_end], 'utf-8', 'replace')
+                        _v18.mesh_resource = _buf[_s:_end].decode('utf-8', 'replace')
                         _v18.mesh_use_embedded_materials, = _S14.unpack_from(_buf, _end)
                         _end += 1
                         _l16.append(_i17)
@@ -287,7 +287,7 @@ class InteractiveMarkerUpdate(_Message):
                     _v14.independent_marker_orientation, _n = _S15.unpack_from(_buf, _end)
                     _s = _end + 5
                     _end = _s + _n
-                    _v14.description = str(_buf[_s:_end], 'utf-8', 'replace')
+                    _v14.description = _buf[_s:_end].decode('utf-8', 'replace')
                     _l12.append(_i13)
                 _v3.controls = _l12
                 _l1.append(_i2)
@@ -302,14 +302,14 @@ class InteractiveMarkerUpdate(_Message):
                 _v36.seq, _t37.secs, _t37.nsecs, _n = _S2.unpack_from(_buf, _end)
                 _s = _end + 16
                 _end = _s + _n
-                _v36.frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v36.frame_id = _buf[_s:_end].decode('utf-8', 'replace')
                 _v35.pose = _v38 = _new(_T_geometry_msgs__Pose)
                 _v38.position = _v39 = _new(_T_geometry_msgs__Point)
                 _v38.orientation = _v40 = _new(_T_geometry_msgs__Quaternion)
                 _v39.x, _v39.y, _v39.z, _v40.x, _v40.y, _v40.z, _v40.w, _n = _S3.unpack_from(_buf, _end)
                 _s = _end + 60
                 _end = _s + _n
-                _v35.name = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v35.name = _buf[_s:_end].decode('utf-8', 'replace')
                 _l33.append(_i34)
             self.poses = _l33
             _n, = _S0.unpack_from(_buf, _end)
@@ -319,13 +319,16 @@ class InteractiveMarkerUpdate(_Message):
                 _n, = _S0.unpack_from(_buf, _end)
                 _s = _end + 4
                 _end = _s + _n
-                _i42 = str(_buf[_s:_end], 'utf-8', 'replace')
+                _i42 = _buf[_s:_end].decode('utf-8', 'replace')
                 _l41.append(_i42)
             self.erases = _l41
             if _end > len(_buf): raise _Truncated
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
-        return self
+        return _refill(self, InteractiveMarkerUpdate, data)
 
     @classmethod
     def _from_buffer(cls, data):

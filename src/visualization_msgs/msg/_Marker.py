@@ -177,11 +177,11 @@ class Marker(_Message):
             _buf = data
             _v1.seq, _t2.secs, _t2.nsecs, _n = _S0.unpack_from(_buf, 0)
             _end = 16 + _n
-            _v1.frame_id = str(_buf[16:_end], 'utf-8', 'replace')
+            _v1.frame_id = _buf[16:_end].decode('utf-8', 'replace')
             _n, = _S1.unpack_from(_buf, _end)
             _s = _end + 4
             _end = _s + _n
-            self.ns = str(_buf[_s:_end], 'utf-8', 'replace')
+            self.ns = _buf[_s:_end].decode('utf-8', 'replace')
             self.id, self.type, self.action, _v4.x, _v4.y, _v4.z, _v5.x, _v5.y, _v5.z, _v5.w, _v6.x, _v6.y, _v6.z, _v7.r, _v7.g, _v7.b, _v7.a, _t8.secs, _t8.nsecs, self.frame_locked, _n = _S6.unpack_from(_buf, _end)
             _end += 121
             _l9 = []
@@ -203,11 +203,11 @@ class Marker(_Message):
             _n, = _S1.unpack_from(_buf, _end)
             _s = _end + 4
             _end = _s + _n
-            self.text = str(_buf[_s:_end], 'utf-8', 'replace')
+            self.text = _buf[_s:_end].decode('utf-8', 'replace')
             _n, = _S1.unpack_from(_buf, _end)
             _s = _end + 4
             _end = _s + _n
-            self.mesh_resource = str(_buf[_s:_end], 'utf-8', 'replace')
+            self.mesh_resource = _buf[_s:_end].decode('utf-8', 'replace')
             self.mesh_use_embedded_materials, = _S7.unpack_from(_buf, _end)
             if _end > len(_buf): raise _Truncated
             return self

@@ -102,11 +102,11 @@ class MarkerArray(_Message):
                 _v4.seq, _t5.secs, _t5.nsecs, _n = _S1.unpack_from(_buf, _end)
                 _s = _end + 16
                 _end = _s + _n
-                _v4.frame_id = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v4.frame_id = _buf[_s:_end].decode('utf-8', 'replace')
                 _n, = _S0.unpack_from(_buf, _end)
                 _s = _end + 4
                 _end = _s + _n
-                _v3.ns = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v3.ns = _buf[_s:_end].decode('utf-8', 'replace')
                 _v3.pose = _v6 = _new(_T_geometry_msgs__Pose)
                 _v6.position = _v7 = _new(_T_geometry_msgs__Point)
                 _v6.orientation = _v8 = _new(_T_geometry_msgs__Quaternion)
@@ -134,19 +134,22 @@ class MarkerArray(_Message):
                 _n, = _S0.unpack_from(_buf, _end)
                 _s = _end + 4
                 _end = _s + _n
-                _v3.text = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v3.text = _buf[_s:_end].decode('utf-8', 'replace')
                 _n, = _S0.unpack_from(_buf, _end)
                 _s = _end + 4
                 _end = _s + _n
-                _v3.mesh_resource = str(_buf[_s:_end], 'utf-8', 'replace')
+                _v3.mesh_resource = _buf[_s:_end].decode('utf-8', 'replace')
                 _v3.mesh_use_embedded_materials, = _S7.unpack_from(_buf, _end)
                 _end += 1
                 _l1.append(_i2)
             self.markers = _l1
             if _end > len(_buf): raise _Truncated
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
-        return self
+        return _refill(self, MarkerArray, data)
 
     @classmethod
     def _from_buffer(cls, data):

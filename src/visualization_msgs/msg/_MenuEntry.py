@@ -72,16 +72,19 @@ class MenuEntry(_Message):
             _buf = data
             self.id, self.parent_id, _n = _S0.unpack_from(_buf, 0)
             _end = 12 + _n
-            self.title = str(_buf[12:_end], 'utf-8', 'replace')
+            self.title = _buf[12:_end].decode('utf-8', 'replace')
             _n, = _S1.unpack_from(_buf, _end)
             _s = _end + 4
             _end = _s + _n
-            self.command = str(_buf[_s:_end], 'utf-8', 'replace')
+            self.command = _buf[_s:_end].decode('utf-8', 'replace')
             self.command_type, = _S2.unpack_from(_buf, _end)
             if _end > len(_buf): raise _Truncated
+            return self
+        except AttributeError:
+            pass
         except Exception as exc:
             raise _deserialize_failed(type(self), data, exc) from exc
-        return self
+        return _refill(self, MenuEntry, data)
 
     @classmethod
     def _from_buffer(cls, data):
