@@ -24,6 +24,10 @@ serialized bytes are identical) and times, per message, the way a node uses mess
                kame.node.topics.serialize_frame(msg)
   node: from frame  what a subscriber does with a frame's payload: rospy's
                Cls().deserialize(payload bytes); kame's Cls._from_buffer(memoryview)
+and, for the small messages, two parts of those loops that are not the codec's own work:
+  Cls() alone        the constructor "deserialize" runs first (its defaults are overwritten)
+  floor: BytesIO     the "serialize" loop with msg.serialize(b) replaced by b.write(bytes):
+               BytesIO(), one write of the same bytes, getvalue(); the same code on every side
 and a plain copy of the large messages' bytes (bytearray(b), a memoryview slice
 assignment into a preallocated buffer, numpy.copyto when numpy imports) as the physical
 reference.  Standard library only (numpy optional).  Every worker is started in its own
@@ -69,8 +73,10 @@ MESSAGES = [
 ]
 LARGE = ('image', 'cloud')
 OPS = [('ser', 'serialize'), ('ser_reuse', 'ser. reused buf'), ('deser', 'deserialize'),
-       ('send', 'node: to frame'), ('recv', 'node: from frame')]
+       ('send', 'node: to frame'), ('recv', 'node: from frame'), ('construct', 'Cls() alone'),
+       ('ser_floor', 'floor: BytesIO')]
 NODE_OPS = ('send', 'recv')
+SMALL_ONLY = (*NODE_OPS, 'construct', 'ser_floor')  # not measured for the large messages
 COPIES = [('bytearray', 'bytearray(b)'), ('mv_assign', 'dst[:] = b'), ('numpy', 'numpy.copyto')]
 
 
@@ -203,8 +209,19 @@ def loops(impl, cls, msg, data):
         for _ in range(n):
             cls().deserialize(data)
 
+    def construct(n):
+        for _ in range(n):
+            cls()
+
+    def ser_floor(n):
+        for _ in range(n):
+            b = BytesIO()
+            b.write(data)
+            b.getvalue()
+
     send, recv = node_ops(impl, cls, msg, data)
-    return {'ser': ser, 'ser_reuse': ser_reuse, 'deser': deser, 'send': send, 'recv': recv}
+    return {'ser': ser, 'ser_reuse': ser_reuse, 'deser': deser, 'send': send, 'recv': recv,
+            'construct': construct, 'ser_floor': ser_floor}
 
 
 def copies(data):
@@ -310,7 +327,7 @@ def worker(impl, block, blocks):
             return 2
         r = {'bytes': len(data), 'sha256': hashlib.sha256(data).hexdigest()}
         for op, fn in loops(impl, cls, msg, data).items():
-            if name in LARGE and op in NODE_OPS:
+            if name in LARGE and op in SMALL_ONLY:
                 continue  # kame frames large messages without copying them: no like-for-like figure
             r[op] = rate(fn, block, blocks)
         res['messages'][name] = r
@@ -390,7 +407,7 @@ def table(res, base='genpy'):
         big = name in LARGE and size
         copy_rate = med(everyone, 'copies', name, 'bytearray')
         for i, (op, op_label) in enumerate(OPS):
-            if name in LARGE and op in NODE_OPS:
+            if name in LARGE and op in SMALL_ONLY:
                 continue
             rates = [med(res[n], 'messages', name, op) for n in names]
             rows.append([
