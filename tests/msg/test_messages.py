@@ -186,6 +186,32 @@ def test_strings_decode_alike_from_every_kind_of_buffer() -> None:
             assert back.position == (1.0, 2.0)
 
 
+def test_messages_without_loops_are_written_in_one_piece() -> None:
+    # Parts are joined and written once (a node frames such a message without a list scan);
+    # a bad field then leaves the buffer untouched.  Loops and uint8[] payloads still stream.
+    from nav_msgs.msg import Odometry
+    from sensor_msgs.msg import Image
+
+    class Writes(list[bytes]):
+        def write(self, data: bytes) -> None:
+            self.append(bytes(data))
+
+    odometry = Odometry(child_frame_id="base_link")
+    odometry.header.frame_id = "odom"
+    writes = Writes()
+    odometry.serialize(writes)
+    assert writes == [serialize(odometry)]
+    odometry.pose.pose.position.x = "far"
+    writes.clear()
+    with pytest.raises(SerializationError, match=r"field pose\.pose\.position\.x must be float type"):
+        odometry.serialize(writes)
+    assert writes == []
+    payload = bytes(1000)
+    writes.clear()
+    Image(data=payload).serialize(writes)
+    assert writes[-1] == payload
+
+
 def test_uint8_arrays_take_bytes_lists_and_buffers() -> None:
     from std_msgs.msg import UInt8MultiArray
 

@@ -99,51 +99,42 @@ class AveragingAction(_Message):
 
     def serialize(self, buff):
         try:
-            _w = buff.write
             _m1 = self.action_goal
             _m2 = _m1.header
             _m3 = _m2.stamp
             _b4 = _m2.frame_id
             if _b4.__class__ is not bytes: _b4 = _b4.encode()
-            _w(_S0.pack(_m2.seq, _m3.secs, _m3.nsecs, len(_b4)) + _b4)
             _m5 = _m1.goal_id
             _m6 = _m5.stamp
             _b7 = _m5.id
             if _b7.__class__ is not bytes: _b7 = _b7.encode()
-            _w(_S1.pack(_m6.secs, _m6.nsecs, len(_b7)) + _b7)
             _m8 = self.action_result
             _m9 = _m8.header
             _m10 = _m9.stamp
             _b11 = _m9.frame_id
             if _b11.__class__ is not bytes: _b11 = _b11.encode()
-            _w(_S2.pack(_m1.goal.samples, _m9.seq, _m10.secs, _m10.nsecs, len(_b11)) + _b11)
             _m12 = _m8.status
             _m13 = _m12.goal_id
             _m14 = _m13.stamp
             _b15 = _m13.id
             if _b15.__class__ is not bytes: _b15 = _b15.encode()
-            _w(_S1.pack(_m14.secs, _m14.nsecs, len(_b15)) + _b15)
             _b16 = _m12.text
             if _b16.__class__ is not bytes: _b16 = _b16.encode()
-            _w(_S3.pack(_m12.status, len(_b16)) + _b16)
             _m17 = _m8.result
             _m18 = self.action_feedback
             _m19 = _m18.header
             _m20 = _m19.stamp
             _b21 = _m19.frame_id
             if _b21.__class__ is not bytes: _b21 = _b21.encode()
-            _w(_S4.pack(_m17.mean, _m17.std_dev, _m19.seq, _m20.secs, _m20.nsecs, len(_b21)) + _b21)
             _m22 = _m18.status
             _m23 = _m22.goal_id
             _m24 = _m23.stamp
             _b25 = _m23.id
             if _b25.__class__ is not bytes: _b25 = _b25.encode()
-            _w(_S1.pack(_m24.secs, _m24.nsecs, len(_b25)) + _b25)
             _b26 = _m22.text
             if _b26.__class__ is not bytes: _b26 = _b26.encode()
-            _w(_S3.pack(_m22.status, len(_b26)) + _b26)
             _m27 = _m18.feedback
-            _w(_S5.pack(_m27.sample, _m27.data, _m27.mean, _m27.std_dev))
+            buff.write(b''.join((_S0.pack(_m2.seq, _m3.secs, _m3.nsecs, len(_b4)), _b4, _S1.pack(_m6.secs, _m6.nsecs, len(_b7)), _b7, _S2.pack(_m1.goal.samples, _m9.seq, _m10.secs, _m10.nsecs, len(_b11)), _b11, _S1.pack(_m14.secs, _m14.nsecs, len(_b15)), _b15, _S3.pack(_m12.status, len(_b16)), _b16, _S4.pack(_m17.mean, _m17.std_dev, _m19.seq, _m20.secs, _m20.nsecs, len(_b21)), _b21, _S1.pack(_m24.secs, _m24.nsecs, len(_b25)), _b25, _S3.pack(_m22.status, len(_b26)), _b26, _S5.pack(_m27.sample, _m27.data, _m27.mean, _m27.std_dev))))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 

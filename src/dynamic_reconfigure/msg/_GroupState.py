@@ -47,11 +47,9 @@ class GroupState(_Message):
 
     def serialize(self, buff):
         try:
-            _w = buff.write
             _b1 = self.name
             if _b1.__class__ is not bytes: _b1 = _b1.encode()
-            _w(_S0.pack(len(_b1)) + _b1)
-            _w(_S1.pack(self.state, self.id, self.parent))
+            buff.write(b''.join((_S0.pack(len(_b1)), _b1, _S1.pack(self.state, self.id, self.parent))))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 

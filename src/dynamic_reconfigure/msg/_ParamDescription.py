@@ -49,19 +49,15 @@ class ParamDescription(_Message):
 
     def serialize(self, buff):
         try:
-            _w = buff.write
             _b1 = self.name
             if _b1.__class__ is not bytes: _b1 = _b1.encode()
-            _w(_S0.pack(len(_b1)) + _b1)
             _b2 = self.type
             if _b2.__class__ is not bytes: _b2 = _b2.encode()
-            _w(_S0.pack(len(_b2)) + _b2)
             _b3 = self.description
             if _b3.__class__ is not bytes: _b3 = _b3.encode()
-            _w(_S1.pack(self.level, len(_b3)) + _b3)
             _b4 = self.edit_method
             if _b4.__class__ is not bytes: _b4 = _b4.encode()
-            _w(_S0.pack(len(_b4)) + _b4)
+            buff.write(b''.join((_S0.pack(len(_b1)), _b1, _S0.pack(len(_b2)), _b2, _S1.pack(self.level, len(_b3)), _b3, _S0.pack(len(_b4)), _b4)))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 

@@ -60,18 +60,16 @@ class AccelWithCovarianceStamped(_Message):
 
     def serialize(self, buff):
         try:
-            _w = buff.write
             _m1 = self.header
             _m2 = _m1.stamp
             _b3 = _m1.frame_id
             if _b3.__class__ is not bytes: _b3 = _b3.encode()
-            _w(_S0.pack(_m1.seq, _m2.secs, _m2.nsecs, len(_b3)) + _b3)
             _m4 = self.accel
             _m5 = _m4.accel
             _m6 = _m5.linear
             _m7 = _m5.angular
             _x8 = _m4.covariance
-            _w(_S1.pack(_m6.x, _m6.y, _m6.z, _m7.x, _m7.y, _m7.z, *_x8))
+            buff.write(b''.join((_S0.pack(_m1.seq, _m2.secs, _m2.nsecs, len(_b3)), _b3, _S1.pack(_m6.x, _m6.y, _m6.z, _m7.x, _m7.y, _m7.z, *_x8))))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 

@@ -58,15 +58,13 @@ class InertiaStamped(_Message):
 
     def serialize(self, buff):
         try:
-            _w = buff.write
             _m1 = self.header
             _m2 = _m1.stamp
             _b3 = _m1.frame_id
             if _b3.__class__ is not bytes: _b3 = _b3.encode()
-            _w(_S0.pack(_m1.seq, _m2.secs, _m2.nsecs, len(_b3)) + _b3)
             _m4 = self.inertia
             _m5 = _m4.com
-            _w(_S1.pack(_m4.m, _m5.x, _m5.y, _m5.z, _m4.ixx, _m4.ixy, _m4.ixz, _m4.iyy, _m4.iyz, _m4.izz))
+            buff.write(b''.join((_S0.pack(_m1.seq, _m2.secs, _m2.nsecs, len(_b3)), _b3, _S1.pack(_m4.m, _m5.x, _m5.y, _m5.z, _m4.ixx, _m4.ixy, _m4.ixz, _m4.iyy, _m4.iyz, _m4.izz))))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 

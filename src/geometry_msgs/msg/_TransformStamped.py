@@ -61,19 +61,16 @@ class TransformStamped(_Message):
 
     def serialize(self, buff):
         try:
-            _w = buff.write
             _m1 = self.header
             _m2 = _m1.stamp
             _b3 = _m1.frame_id
             if _b3.__class__ is not bytes: _b3 = _b3.encode()
-            _w(_S0.pack(_m1.seq, _m2.secs, _m2.nsecs, len(_b3)) + _b3)
             _b4 = self.child_frame_id
             if _b4.__class__ is not bytes: _b4 = _b4.encode()
-            _w(_S1.pack(len(_b4)) + _b4)
             _m5 = self.transform
             _m6 = _m5.translation
             _m7 = _m5.rotation
-            _w(_S2.pack(_m6.x, _m6.y, _m6.z, _m7.x, _m7.y, _m7.z, _m7.w))
+            buff.write(b''.join((_S0.pack(_m1.seq, _m2.secs, _m2.nsecs, len(_b3)), _b3, _S1.pack(len(_b4)), _b4, _S2.pack(_m6.x, _m6.y, _m6.z, _m7.x, _m7.y, _m7.z, _m7.w))))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 

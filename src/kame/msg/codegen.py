@@ -106,19 +106,38 @@ class _Group:
 
 
 class _Serializer:
-    def __init__(self, lookup: Lookup, code: _Code, structs: _Structs) -> None:
+    """Straight-line packing code.
+
+    With joined=True the bytes are not written as they are packed: `parts` collects the
+    expressions, for one write of them all at the end (one write and one join cost less than
+    a write per part); `streams` says the code could not do that (loops, uint8[] payloads,
+    which are written without a copy) and must be generated again without joined.
+    """
+
+    def __init__(self, lookup: Lookup, code: _Code, structs: _Structs, joined: bool = False) -> None:
         self.lookup = lookup
         self.code = code
         self.structs = structs
         self.group = _Group()
+        self.parts: list[str] | None = [] if joined else None
+        self.streams = False
+
+    def write(self, expr: str) -> None:
+        if self.parts is None:
+            self.code.emit(f"_w({expr})")
+        else:
+            self.parts.append(expr)
 
     def flush(self, tail: str | None = None) -> None:
         if self.group:
             fmt, items = self.group.take()
             packed = f"{self.structs.ref(fmt)}.pack({', '.join(items)})"
-            self.code.emit(f"_w({packed} + {tail})" if tail else f"_w({packed})")
-        elif tail:
-            self.code.emit(f"_w({tail})")
+            if tail and self.parts is None:
+                self.write(f"{packed} + {tail}")
+                return
+            self.write(packed)
+        if tail:
+            self.write(tail)
 
     def fields(self, spec: MsgSpec, obj: str) -> None:
         for f in spec.fields:
@@ -157,6 +176,7 @@ class _Serializer:
             if length is None:
                 self.group.add("I", f"len({x})")
                 self.flush()
+                self.streams = True
                 code.emit(f"_w({x})")
             else:
                 code.emit(f"if len({x}) != {length}: raise ValueError({x})")
@@ -168,6 +188,7 @@ class _Serializer:
         if base in _CODES:
             # lists and tuples: count and items in one call of a struct cached per count
             self.flush()
+            self.streams = True
             pack_code = _CODES[base][0]
             counted = self.structs.array_ref(f"<I%d{pack_code}")
             code.emit(f"if {x}.__class__ is list or {x}.__class__ is tuple: "
@@ -180,6 +201,7 @@ class _Serializer:
         self.flush()
         if length is not None:
             code.emit(f"if len({x}) != {length}: raise ValueError({x})")
+        self.streams = True
         e = code.var("e")
         code.emit(f"for {e} in {x}:")
         code.depth += 1
@@ -456,11 +478,18 @@ def generate_class(
         out.append("        else:")
         out.extend(code.lines)
     out.append("")
-    # serialize
+    # serialize: one write of all parts joined when there are more than two and no loops
     code = _Code()
-    ser = _Serializer(lookup, code, structs)
+    ser = _Serializer(lookup, code, structs, joined=True)
     ser.fields(spec, "self")
     ser.flush()
+    if ser.parts is not None and len(ser.parts) > 2 and not ser.streams:
+        code.emit(f"_w(b''.join(({', '.join(ser.parts)})))")
+    else:
+        code = _Code()
+        ser = _Serializer(lookup, code, structs)
+        ser.fields(spec, "self")
+        ser.flush()
     out.append("    def serialize(self, buff):")
     out.append("        try:")
     writes = sum(line.count("_w(") for line in code.lines)

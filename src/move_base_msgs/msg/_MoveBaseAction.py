@@ -127,24 +127,20 @@ class MoveBaseAction(_Message):
 
     def serialize(self, buff):
         try:
-            _w = buff.write
             _m1 = self.action_goal
             _m2 = _m1.header
             _m3 = _m2.stamp
             _b4 = _m2.frame_id
             if _b4.__class__ is not bytes: _b4 = _b4.encode()
-            _w(_S0.pack(_m2.seq, _m3.secs, _m3.nsecs, len(_b4)) + _b4)
             _m5 = _m1.goal_id
             _m6 = _m5.stamp
             _b7 = _m5.id
             if _b7.__class__ is not bytes: _b7 = _b7.encode()
-            _w(_S1.pack(_m6.secs, _m6.nsecs, len(_b7)) + _b7)
             _m8 = _m1.goal.target_pose
             _m9 = _m8.header
             _m10 = _m9.stamp
             _b11 = _m9.frame_id
             if _b11.__class__ is not bytes: _b11 = _b11.encode()
-            _w(_S0.pack(_m9.seq, _m10.secs, _m10.nsecs, len(_b11)) + _b11)
             _m12 = _m8.pose
             _m13 = _m12.position
             _m14 = _m12.orientation
@@ -153,41 +149,34 @@ class MoveBaseAction(_Message):
             _m17 = _m16.stamp
             _b18 = _m16.frame_id
             if _b18.__class__ is not bytes: _b18 = _b18.encode()
-            _w(_S2.pack(_m13.x, _m13.y, _m13.z, _m14.x, _m14.y, _m14.z, _m14.w, _m16.seq, _m17.secs, _m17.nsecs, len(_b18)) + _b18)
             _m19 = _m15.status
             _m20 = _m19.goal_id
             _m21 = _m20.stamp
             _b22 = _m20.id
             if _b22.__class__ is not bytes: _b22 = _b22.encode()
-            _w(_S1.pack(_m21.secs, _m21.nsecs, len(_b22)) + _b22)
             _b23 = _m19.text
             if _b23.__class__ is not bytes: _b23 = _b23.encode()
-            _w(_S3.pack(_m19.status, len(_b23)) + _b23)
             _m24 = self.action_feedback
             _m25 = _m24.header
             _m26 = _m25.stamp
             _b27 = _m25.frame_id
             if _b27.__class__ is not bytes: _b27 = _b27.encode()
-            _w(_S0.pack(_m25.seq, _m26.secs, _m26.nsecs, len(_b27)) + _b27)
             _m28 = _m24.status
             _m29 = _m28.goal_id
             _m30 = _m29.stamp
             _b31 = _m29.id
             if _b31.__class__ is not bytes: _b31 = _b31.encode()
-            _w(_S1.pack(_m30.secs, _m30.nsecs, len(_b31)) + _b31)
             _b32 = _m28.text
             if _b32.__class__ is not bytes: _b32 = _b32.encode()
-            _w(_S3.pack(_m28.status, len(_b32)) + _b32)
             _m33 = _m24.feedback.base_position
             _m34 = _m33.header
             _m35 = _m34.stamp
             _b36 = _m34.frame_id
             if _b36.__class__ is not bytes: _b36 = _b36.encode()
-            _w(_S0.pack(_m34.seq, _m35.secs, _m35.nsecs, len(_b36)) + _b36)
             _m37 = _m33.pose
             _m38 = _m37.position
             _m39 = _m37.orientation
-            _w(_S4.pack(_m38.x, _m38.y, _m38.z, _m39.x, _m39.y, _m39.z, _m39.w))
+            buff.write(b''.join((_S0.pack(_m2.seq, _m3.secs, _m3.nsecs, len(_b4)), _b4, _S1.pack(_m6.secs, _m6.nsecs, len(_b7)), _b7, _S0.pack(_m9.seq, _m10.secs, _m10.nsecs, len(_b11)), _b11, _S2.pack(_m13.x, _m13.y, _m13.z, _m14.x, _m14.y, _m14.z, _m14.w, _m16.seq, _m17.secs, _m17.nsecs, len(_b18)), _b18, _S1.pack(_m21.secs, _m21.nsecs, len(_b22)), _b22, _S3.pack(_m19.status, len(_b23)), _b23, _S0.pack(_m25.seq, _m26.secs, _m26.nsecs, len(_b27)), _b27, _S1.pack(_m30.secs, _m30.nsecs, len(_b31)), _b31, _S3.pack(_m28.status, len(_b32)), _b32, _S0.pack(_m34.seq, _m35.secs, _m35.nsecs, len(_b36)), _b36, _S4.pack(_m38.x, _m38.y, _m38.z, _m39.x, _m39.y, _m39.z, _m39.w))))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 

@@ -79,31 +79,26 @@ class MoveBaseActionFeedback(_Message):
 
     def serialize(self, buff):
         try:
-            _w = buff.write
             _m1 = self.header
             _m2 = _m1.stamp
             _b3 = _m1.frame_id
             if _b3.__class__ is not bytes: _b3 = _b3.encode()
-            _w(_S0.pack(_m1.seq, _m2.secs, _m2.nsecs, len(_b3)) + _b3)
             _m4 = self.status
             _m5 = _m4.goal_id
             _m6 = _m5.stamp
             _b7 = _m5.id
             if _b7.__class__ is not bytes: _b7 = _b7.encode()
-            _w(_S1.pack(_m6.secs, _m6.nsecs, len(_b7)) + _b7)
             _b8 = _m4.text
             if _b8.__class__ is not bytes: _b8 = _b8.encode()
-            _w(_S2.pack(_m4.status, len(_b8)) + _b8)
             _m9 = self.feedback.base_position
             _m10 = _m9.header
             _m11 = _m10.stamp
             _b12 = _m10.frame_id
             if _b12.__class__ is not bytes: _b12 = _b12.encode()
-            _w(_S0.pack(_m10.seq, _m11.secs, _m11.nsecs, len(_b12)) + _b12)
             _m13 = _m9.pose
             _m14 = _m13.position
             _m15 = _m13.orientation
-            _w(_S3.pack(_m14.x, _m14.y, _m14.z, _m15.x, _m15.y, _m15.z, _m15.w))
+            buff.write(b''.join((_S0.pack(_m1.seq, _m2.secs, _m2.nsecs, len(_b3)), _b3, _S1.pack(_m6.secs, _m6.nsecs, len(_b7)), _b7, _S2.pack(_m4.status, len(_b8)), _b8, _S0.pack(_m10.seq, _m11.secs, _m11.nsecs, len(_b12)), _b12, _S3.pack(_m14.x, _m14.y, _m14.z, _m15.x, _m15.y, _m15.z, _m15.w))))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 

@@ -74,27 +74,23 @@ class MoveBaseActionGoal(_Message):
 
     def serialize(self, buff):
         try:
-            _w = buff.write
             _m1 = self.header
             _m2 = _m1.stamp
             _b3 = _m1.frame_id
             if _b3.__class__ is not bytes: _b3 = _b3.encode()
-            _w(_S0.pack(_m1.seq, _m2.secs, _m2.nsecs, len(_b3)) + _b3)
             _m4 = self.goal_id
             _m5 = _m4.stamp
             _b6 = _m4.id
             if _b6.__class__ is not bytes: _b6 = _b6.encode()
-            _w(_S1.pack(_m5.secs, _m5.nsecs, len(_b6)) + _b6)
             _m7 = self.goal.target_pose
             _m8 = _m7.header
             _m9 = _m8.stamp
             _b10 = _m8.frame_id
             if _b10.__class__ is not bytes: _b10 = _b10.encode()
-            _w(_S0.pack(_m8.seq, _m9.secs, _m9.nsecs, len(_b10)) + _b10)
             _m11 = _m7.pose
             _m12 = _m11.position
             _m13 = _m11.orientation
-            _w(_S2.pack(_m12.x, _m12.y, _m12.z, _m13.x, _m13.y, _m13.z, _m13.w))
+            buff.write(b''.join((_S0.pack(_m1.seq, _m2.secs, _m2.nsecs, len(_b3)), _b3, _S1.pack(_m5.secs, _m5.nsecs, len(_b6)), _b6, _S0.pack(_m8.seq, _m9.secs, _m9.nsecs, len(_b10)), _b10, _S2.pack(_m12.x, _m12.y, _m12.z, _m13.x, _m13.y, _m13.z, _m13.w))))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 

@@ -66,19 +66,17 @@ class RecoveryStatus(_Message):
 
     def serialize(self, buff):
         try:
-            _w = buff.write
             _m1 = self.pose_stamped
             _m2 = _m1.header
             _m3 = _m2.stamp
             _b4 = _m2.frame_id
             if _b4.__class__ is not bytes: _b4 = _b4.encode()
-            _w(_S0.pack(_m2.seq, _m3.secs, _m3.nsecs, len(_b4)) + _b4)
             _m5 = _m1.pose
             _m6 = _m5.position
             _m7 = _m5.orientation
             _b8 = self.recovery_behavior_name
             if _b8.__class__ is not bytes: _b8 = _b8.encode()
-            _w(_S1.pack(_m6.x, _m6.y, _m6.z, _m7.x, _m7.y, _m7.z, _m7.w, self.current_recovery_number, self.total_number_of_recoveries, len(_b8)) + _b8)
+            buff.write(b''.join((_S0.pack(_m2.seq, _m3.secs, _m3.nsecs, len(_b4)), _b4, _S1.pack(_m6.x, _m6.y, _m6.z, _m7.x, _m7.y, _m7.z, _m7.w, self.current_recovery_number, self.total_number_of_recoveries, len(_b8)), _b8)))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 

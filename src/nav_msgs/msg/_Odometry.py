@@ -83,15 +83,12 @@ class Odometry(_Message):
 
     def serialize(self, buff):
         try:
-            _w = buff.write
             _m1 = self.header
             _m2 = _m1.stamp
             _b3 = _m1.frame_id
             if _b3.__class__ is not bytes: _b3 = _b3.encode()
-            _w(_S0.pack(_m1.seq, _m2.secs, _m2.nsecs, len(_b3)) + _b3)
             _b4 = self.child_frame_id
             if _b4.__class__ is not bytes: _b4 = _b4.encode()
-            _w(_S1.pack(len(_b4)) + _b4)
             _m5 = self.pose
             _m6 = _m5.pose
             _m7 = _m6.position
@@ -102,7 +99,7 @@ class Odometry(_Message):
             _m12 = _m11.linear
             _m13 = _m11.angular
             _x14 = _m10.covariance
-            _w(_S2.pack(_m7.x, _m7.y, _m7.z, _m8.x, _m8.y, _m8.z, _m8.w, *_x9, _m12.x, _m12.y, _m12.z, _m13.x, _m13.y, _m13.z, *_x14))
+            buff.write(b''.join((_S0.pack(_m1.seq, _m2.secs, _m2.nsecs, len(_b3)), _b3, _S1.pack(len(_b4)), _b4, _S2.pack(_m7.x, _m7.y, _m7.z, _m8.x, _m8.y, _m8.z, _m8.w, *_x9, _m12.x, _m12.y, _m12.z, _m13.x, _m13.y, _m13.z, *_x14))))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 

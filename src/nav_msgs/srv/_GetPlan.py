@@ -82,13 +82,11 @@ class GetPlanRequest(_Message):
 
     def serialize(self, buff):
         try:
-            _w = buff.write
             _m1 = self.start
             _m2 = _m1.header
             _m3 = _m2.stamp
             _b4 = _m2.frame_id
             if _b4.__class__ is not bytes: _b4 = _b4.encode()
-            _w(_S0.pack(_m2.seq, _m3.secs, _m3.nsecs, len(_b4)) + _b4)
             _m5 = _m1.pose
             _m6 = _m5.position
             _m7 = _m5.orientation
@@ -97,11 +95,10 @@ class GetPlanRequest(_Message):
             _m10 = _m9.stamp
             _b11 = _m9.frame_id
             if _b11.__class__ is not bytes: _b11 = _b11.encode()
-            _w(_S1.pack(_m6.x, _m6.y, _m6.z, _m7.x, _m7.y, _m7.z, _m7.w, _m9.seq, _m10.secs, _m10.nsecs, len(_b11)) + _b11)
             _m12 = _m8.pose
             _m13 = _m12.position
             _m14 = _m12.orientation
-            _w(_S2.pack(_m13.x, _m13.y, _m13.z, _m14.x, _m14.y, _m14.z, _m14.w, self.tolerance))
+            buff.write(b''.join((_S0.pack(_m2.seq, _m3.secs, _m3.nsecs, len(_b4)), _b4, _S1.pack(_m6.x, _m6.y, _m6.z, _m7.x, _m7.y, _m7.z, _m7.w, _m9.seq, _m10.secs, _m10.nsecs, len(_b11)), _b11, _S2.pack(_m13.x, _m13.y, _m13.z, _m14.x, _m14.y, _m14.z, _m14.w, self.tolerance))))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 

@@ -39,13 +39,11 @@ class SetLoggerLevelRequest(_Message):
 
     def serialize(self, buff):
         try:
-            _w = buff.write
             _b1 = self.logger
             if _b1.__class__ is not bytes: _b1 = _b1.encode()
-            _w(_S0.pack(len(_b1)) + _b1)
             _b2 = self.level
             if _b2.__class__ is not bytes: _b2 = _b2.encode()
-            _w(_S0.pack(len(_b2)) + _b2)
+            buff.write(b''.join((_S0.pack(len(_b1)), _b1, _S0.pack(len(_b2)), _b2)))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 

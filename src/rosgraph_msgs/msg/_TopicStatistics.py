@@ -84,16 +84,12 @@ class TopicStatistics(_Message):
 
     def serialize(self, buff):
         try:
-            _w = buff.write
             _b1 = self.topic
             if _b1.__class__ is not bytes: _b1 = _b1.encode()
-            _w(_S0.pack(len(_b1)) + _b1)
             _b2 = self.node_pub
             if _b2.__class__ is not bytes: _b2 = _b2.encode()
-            _w(_S0.pack(len(_b2)) + _b2)
             _b3 = self.node_sub
             if _b3.__class__ is not bytes: _b3 = _b3.encode()
-            _w(_S0.pack(len(_b3)) + _b3)
             _m4 = self.window_start
             _m5 = self.window_stop
             _m6 = self.period_mean
@@ -102,7 +98,7 @@ class TopicStatistics(_Message):
             _m9 = self.stamp_age_mean
             _m10 = self.stamp_age_stddev
             _m11 = self.stamp_age_max
-            _w(_S1.pack(_m4.secs, _m4.nsecs, _m5.secs, _m5.nsecs, self.delivered_msgs, self.dropped_msgs, self.traffic, _m6.secs, _m6.nsecs, _m7.secs, _m7.nsecs, _m8.secs, _m8.nsecs, _m9.secs, _m9.nsecs, _m10.secs, _m10.nsecs, _m11.secs, _m11.nsecs))
+            buff.write(b''.join((_S0.pack(len(_b1)), _b1, _S0.pack(len(_b2)), _b2, _S0.pack(len(_b3)), _b3, _S1.pack(_m4.secs, _m4.nsecs, _m5.secs, _m5.nsecs, self.delivered_msgs, self.dropped_msgs, self.traffic, _m6.secs, _m6.nsecs, _m7.secs, _m7.nsecs, _m8.secs, _m8.nsecs, _m9.secs, _m9.nsecs, _m10.secs, _m10.nsecs, _m11.secs, _m11.nsecs))))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 

@@ -48,13 +48,11 @@ class FluidPressure(_Message):
 
     def serialize(self, buff):
         try:
-            _w = buff.write
             _m1 = self.header
             _m2 = _m1.stamp
             _b3 = _m1.frame_id
             if _b3.__class__ is not bytes: _b3 = _b3.encode()
-            _w(_S0.pack(_m1.seq, _m2.secs, _m2.nsecs, len(_b3)) + _b3)
-            _w(_S1.pack(self.fluid_pressure, self.variance))
+            buff.write(b''.join((_S0.pack(_m1.seq, _m2.secs, _m2.nsecs, len(_b3)), _b3, _S1.pack(self.fluid_pressure, self.variance))))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 

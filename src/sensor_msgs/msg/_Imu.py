@@ -75,19 +75,17 @@ class Imu(_Message):
 
     def serialize(self, buff):
         try:
-            _w = buff.write
             _m1 = self.header
             _m2 = _m1.stamp
             _b3 = _m1.frame_id
             if _b3.__class__ is not bytes: _b3 = _b3.encode()
-            _w(_S0.pack(_m1.seq, _m2.secs, _m2.nsecs, len(_b3)) + _b3)
             _m4 = self.orientation
             _x5 = self.orientation_covariance
             _m6 = self.angular_velocity
             _x7 = self.angular_velocity_covariance
             _m8 = self.linear_acceleration
             _x9 = self.linear_acceleration_covariance
-            _w(_S1.pack(_m4.x, _m4.y, _m4.z, _m4.w, *_x5, _m6.x, _m6.y, _m6.z, *_x7, _m8.x, _m8.y, _m8.z, *_x9))
+            buff.write(b''.join((_S0.pack(_m1.seq, _m2.secs, _m2.nsecs, len(_b3)), _b3, _S1.pack(_m4.x, _m4.y, _m4.z, _m4.w, *_x5, _m6.x, _m6.y, _m6.z, *_x7, _m8.x, _m8.y, _m8.z, *_x9))))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 

@@ -54,15 +54,13 @@ class MagneticField(_Message):
 
     def serialize(self, buff):
         try:
-            _w = buff.write
             _m1 = self.header
             _m2 = _m1.stamp
             _b3 = _m1.frame_id
             if _b3.__class__ is not bytes: _b3 = _b3.encode()
-            _w(_S0.pack(_m1.seq, _m2.secs, _m2.nsecs, len(_b3)) + _b3)
             _m4 = self.magnetic_field
             _x5 = self.magnetic_field_covariance
-            _w(_S1.pack(_m4.x, _m4.y, _m4.z, *_x5))
+            buff.write(b''.join((_S0.pack(_m1.seq, _m2.secs, _m2.nsecs, len(_b3)), _b3, _S1.pack(_m4.x, _m4.y, _m4.z, *_x5))))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 

@@ -70,15 +70,13 @@ class NavSatFix(_Message):
 
     def serialize(self, buff):
         try:
-            _w = buff.write
             _m1 = self.header
             _m2 = _m1.stamp
             _b3 = _m1.frame_id
             if _b3.__class__ is not bytes: _b3 = _b3.encode()
-            _w(_S0.pack(_m1.seq, _m2.secs, _m2.nsecs, len(_b3)) + _b3)
             _m4 = self.status
             _x5 = self.position_covariance
-            _w(_S1.pack(_m4.status, _m4.service, self.latitude, self.longitude, self.altitude, *_x5, self.position_covariance_type))
+            buff.write(b''.join((_S0.pack(_m1.seq, _m2.secs, _m2.nsecs, len(_b3)), _b3, _S1.pack(_m4.status, _m4.service, self.latitude, self.longitude, self.altitude, *_x5, self.position_covariance_type))))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 

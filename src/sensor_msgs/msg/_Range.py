@@ -59,13 +59,11 @@ class Range(_Message):
 
     def serialize(self, buff):
         try:
-            _w = buff.write
             _m1 = self.header
             _m2 = _m1.stamp
             _b3 = _m1.frame_id
             if _b3.__class__ is not bytes: _b3 = _b3.encode()
-            _w(_S0.pack(_m1.seq, _m2.secs, _m2.nsecs, len(_b3)) + _b3)
-            _w(_S1.pack(self.radiation_type, self.field_of_view, self.min_range, self.max_range, self.range))
+            buff.write(b''.join((_S0.pack(_m1.seq, _m2.secs, _m2.nsecs, len(_b3)), _b3, _S1.pack(self.radiation_type, self.field_of_view, self.min_range, self.max_range, self.range))))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 

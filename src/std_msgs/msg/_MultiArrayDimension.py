@@ -43,11 +43,9 @@ class MultiArrayDimension(_Message):
 
     def serialize(self, buff):
         try:
-            _w = buff.write
             _b1 = self.label
             if _b1.__class__ is not bytes: _b1 = _b1.encode()
-            _w(_S0.pack(len(_b1)) + _b1)
-            _w(_S1.pack(self.size, self.stride))
+            buff.write(b''.join((_S0.pack(len(_b1)), _b1, _S1.pack(self.size, self.stride))))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 

@@ -129,78 +129,64 @@ class LookupTransformAction(_Message):
 
     def serialize(self, buff):
         try:
-            _w = buff.write
             _m1 = self.action_goal
             _m2 = _m1.header
             _m3 = _m2.stamp
             _b4 = _m2.frame_id
             if _b4.__class__ is not bytes: _b4 = _b4.encode()
-            _w(_S0.pack(_m2.seq, _m3.secs, _m3.nsecs, len(_b4)) + _b4)
             _m5 = _m1.goal_id
             _m6 = _m5.stamp
             _b7 = _m5.id
             if _b7.__class__ is not bytes: _b7 = _b7.encode()
-            _w(_S1.pack(_m6.secs, _m6.nsecs, len(_b7)) + _b7)
             _m8 = _m1.goal
             _b9 = _m8.target_frame
             if _b9.__class__ is not bytes: _b9 = _b9.encode()
-            _w(_S2.pack(len(_b9)) + _b9)
             _b10 = _m8.source_frame
             if _b10.__class__ is not bytes: _b10 = _b10.encode()
-            _w(_S2.pack(len(_b10)) + _b10)
             _m11 = _m8.source_time
             _m12 = _m8.timeout
             _m13 = _m8.target_time
             _b14 = _m8.fixed_frame
             if _b14.__class__ is not bytes: _b14 = _b14.encode()
-            _w(_S3.pack(_m11.secs, _m11.nsecs, _m12.secs, _m12.nsecs, _m13.secs, _m13.nsecs, len(_b14)) + _b14)
             _m15 = self.action_result
             _m16 = _m15.header
             _m17 = _m16.stamp
             _b18 = _m16.frame_id
             if _b18.__class__ is not bytes: _b18 = _b18.encode()
-            _w(_S4.pack(_m8.advanced, _m16.seq, _m17.secs, _m17.nsecs, len(_b18)) + _b18)
             _m19 = _m15.status
             _m20 = _m19.goal_id
             _m21 = _m20.stamp
             _b22 = _m20.id
             if _b22.__class__ is not bytes: _b22 = _b22.encode()
-            _w(_S1.pack(_m21.secs, _m21.nsecs, len(_b22)) + _b22)
             _b23 = _m19.text
             if _b23.__class__ is not bytes: _b23 = _b23.encode()
-            _w(_S5.pack(_m19.status, len(_b23)) + _b23)
             _m24 = _m15.result
             _m25 = _m24.transform
             _m26 = _m25.header
             _m27 = _m26.stamp
             _b28 = _m26.frame_id
             if _b28.__class__ is not bytes: _b28 = _b28.encode()
-            _w(_S0.pack(_m26.seq, _m27.secs, _m27.nsecs, len(_b28)) + _b28)
             _b29 = _m25.child_frame_id
             if _b29.__class__ is not bytes: _b29 = _b29.encode()
-            _w(_S2.pack(len(_b29)) + _b29)
             _m30 = _m25.transform
             _m31 = _m30.translation
             _m32 = _m30.rotation
             _m33 = _m24.error
             _b34 = _m33.error_string
             if _b34.__class__ is not bytes: _b34 = _b34.encode()
-            _w(_S6.pack(_m31.x, _m31.y, _m31.z, _m32.x, _m32.y, _m32.z, _m32.w, _m33.error, len(_b34)) + _b34)
             _m35 = self.action_feedback
             _m36 = _m35.header
             _m37 = _m36.stamp
             _b38 = _m36.frame_id
             if _b38.__class__ is not bytes: _b38 = _b38.encode()
-            _w(_S0.pack(_m36.seq, _m37.secs, _m37.nsecs, len(_b38)) + _b38)
             _m39 = _m35.status
             _m40 = _m39.goal_id
             _m41 = _m40.stamp
             _b42 = _m40.id
             if _b42.__class__ is not bytes: _b42 = _b42.encode()
-            _w(_S1.pack(_m41.secs, _m41.nsecs, len(_b42)) + _b42)
             _b43 = _m39.text
             if _b43.__class__ is not bytes: _b43 = _b43.encode()
-            _w(_S5.pack(_m39.status, len(_b43)) + _b43)
+            buff.write(b''.join((_S0.pack(_m2.seq, _m3.secs, _m3.nsecs, len(_b4)), _b4, _S1.pack(_m6.secs, _m6.nsecs, len(_b7)), _b7, _S2.pack(len(_b9)), _b9, _S2.pack(len(_b10)), _b10, _S3.pack(_m11.secs, _m11.nsecs, _m12.secs, _m12.nsecs, _m13.secs, _m13.nsecs, len(_b14)), _b14, _S4.pack(_m8.advanced, _m16.seq, _m17.secs, _m17.nsecs, len(_b18)), _b18, _S1.pack(_m21.secs, _m21.nsecs, len(_b22)), _b22, _S5.pack(_m19.status, len(_b23)), _b23, _S0.pack(_m26.seq, _m27.secs, _m27.nsecs, len(_b28)), _b28, _S2.pack(len(_b29)), _b29, _S6.pack(_m31.x, _m31.y, _m31.z, _m32.x, _m32.y, _m32.z, _m32.w, _m33.error, len(_b34)), _b34, _S0.pack(_m36.seq, _m37.secs, _m37.nsecs, len(_b38)), _b38, _S1.pack(_m41.secs, _m41.nsecs, len(_b42)), _b42, _S5.pack(_m39.status, len(_b43)), _b43)))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 

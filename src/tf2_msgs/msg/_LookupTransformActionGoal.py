@@ -67,31 +67,25 @@ class LookupTransformActionGoal(_Message):
 
     def serialize(self, buff):
         try:
-            _w = buff.write
             _m1 = self.header
             _m2 = _m1.stamp
             _b3 = _m1.frame_id
             if _b3.__class__ is not bytes: _b3 = _b3.encode()
-            _w(_S0.pack(_m1.seq, _m2.secs, _m2.nsecs, len(_b3)) + _b3)
             _m4 = self.goal_id
             _m5 = _m4.stamp
             _b6 = _m4.id
             if _b6.__class__ is not bytes: _b6 = _b6.encode()
-            _w(_S1.pack(_m5.secs, _m5.nsecs, len(_b6)) + _b6)
             _m7 = self.goal
             _b8 = _m7.target_frame
             if _b8.__class__ is not bytes: _b8 = _b8.encode()
-            _w(_S2.pack(len(_b8)) + _b8)
             _b9 = _m7.source_frame
             if _b9.__class__ is not bytes: _b9 = _b9.encode()
-            _w(_S2.pack(len(_b9)) + _b9)
             _m10 = _m7.source_time
             _m11 = _m7.timeout
             _m12 = _m7.target_time
             _b13 = _m7.fixed_frame
             if _b13.__class__ is not bytes: _b13 = _b13.encode()
-            _w(_S3.pack(_m10.secs, _m10.nsecs, _m11.secs, _m11.nsecs, _m12.secs, _m12.nsecs, len(_b13)) + _b13)
-            _w(_S4.pack(_m7.advanced))
+            buff.write(b''.join((_S0.pack(_m1.seq, _m2.secs, _m2.nsecs, len(_b3)), _b3, _S1.pack(_m5.secs, _m5.nsecs, len(_b6)), _b6, _S2.pack(len(_b8)), _b8, _S2.pack(len(_b9)), _b9, _S3.pack(_m10.secs, _m10.nsecs, _m11.secs, _m11.nsecs, _m12.secs, _m12.nsecs, len(_b13)), _b13, _S4.pack(_m7.advanced))))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 

@@ -85,38 +85,32 @@ class LookupTransformActionResult(_Message):
 
     def serialize(self, buff):
         try:
-            _w = buff.write
             _m1 = self.header
             _m2 = _m1.stamp
             _b3 = _m1.frame_id
             if _b3.__class__ is not bytes: _b3 = _b3.encode()
-            _w(_S0.pack(_m1.seq, _m2.secs, _m2.nsecs, len(_b3)) + _b3)
             _m4 = self.status
             _m5 = _m4.goal_id
             _m6 = _m5.stamp
             _b7 = _m5.id
             if _b7.__class__ is not bytes: _b7 = _b7.encode()
-            _w(_S1.pack(_m6.secs, _m6.nsecs, len(_b7)) + _b7)
             _b8 = _m4.text
             if _b8.__class__ is not bytes: _b8 = _b8.encode()
-            _w(_S2.pack(_m4.status, len(_b8)) + _b8)
             _m9 = self.result
             _m10 = _m9.transform
             _m11 = _m10.header
             _m12 = _m11.stamp
             _b13 = _m11.frame_id
             if _b13.__class__ is not bytes: _b13 = _b13.encode()
-            _w(_S0.pack(_m11.seq, _m12.secs, _m12.nsecs, len(_b13)) + _b13)
             _b14 = _m10.child_frame_id
             if _b14.__class__ is not bytes: _b14 = _b14.encode()
-            _w(_S3.pack(len(_b14)) + _b14)
             _m15 = _m10.transform
             _m16 = _m15.translation
             _m17 = _m15.rotation
             _m18 = _m9.error
             _b19 = _m18.error_string
             if _b19.__class__ is not bytes: _b19 = _b19.encode()
-            _w(_S4.pack(_m16.x, _m16.y, _m16.z, _m17.x, _m17.y, _m17.z, _m17.w, _m18.error, len(_b19)) + _b19)
+            buff.write(b''.join((_S0.pack(_m1.seq, _m2.secs, _m2.nsecs, len(_b3)), _b3, _S1.pack(_m6.secs, _m6.nsecs, len(_b7)), _b7, _S2.pack(_m4.status, len(_b8)), _b8, _S0.pack(_m11.seq, _m12.secs, _m12.nsecs, len(_b13)), _b13, _S3.pack(len(_b14)), _b14, _S4.pack(_m16.x, _m16.y, _m16.z, _m17.x, _m17.y, _m17.z, _m17.w, _m18.error, len(_b19)), _b19)))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 

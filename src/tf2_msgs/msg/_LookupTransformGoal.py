@@ -60,20 +60,16 @@ class LookupTransformGoal(_Message):
 
     def serialize(self, buff):
         try:
-            _w = buff.write
             _b1 = self.target_frame
             if _b1.__class__ is not bytes: _b1 = _b1.encode()
-            _w(_S0.pack(len(_b1)) + _b1)
             _b2 = self.source_frame
             if _b2.__class__ is not bytes: _b2 = _b2.encode()
-            _w(_S0.pack(len(_b2)) + _b2)
             _m3 = self.source_time
             _m4 = self.timeout
             _m5 = self.target_time
             _b6 = self.fixed_frame
             if _b6.__class__ is not bytes: _b6 = _b6.encode()
-            _w(_S1.pack(_m3.secs, _m3.nsecs, _m4.secs, _m4.nsecs, _m5.secs, _m5.nsecs, len(_b6)) + _b6)
-            _w(_S2.pack(self.advanced))
+            buff.write(b''.join((_S0.pack(len(_b1)), _b1, _S0.pack(len(_b2)), _b2, _S1.pack(_m3.secs, _m3.nsecs, _m4.secs, _m4.nsecs, _m5.secs, _m5.nsecs, len(_b6)), _b6, _S2.pack(self.advanced))))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 

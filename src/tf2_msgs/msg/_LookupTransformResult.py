@@ -65,23 +65,20 @@ class LookupTransformResult(_Message):
 
     def serialize(self, buff):
         try:
-            _w = buff.write
             _m1 = self.transform
             _m2 = _m1.header
             _m3 = _m2.stamp
             _b4 = _m2.frame_id
             if _b4.__class__ is not bytes: _b4 = _b4.encode()
-            _w(_S0.pack(_m2.seq, _m3.secs, _m3.nsecs, len(_b4)) + _b4)
             _b5 = _m1.child_frame_id
             if _b5.__class__ is not bytes: _b5 = _b5.encode()
-            _w(_S1.pack(len(_b5)) + _b5)
             _m6 = _m1.transform
             _m7 = _m6.translation
             _m8 = _m6.rotation
             _m9 = self.error
             _b10 = _m9.error_string
             if _b10.__class__ is not bytes: _b10 = _b10.encode()
-            _w(_S2.pack(_m7.x, _m7.y, _m7.z, _m8.x, _m8.y, _m8.z, _m8.w, _m9.error, len(_b10)) + _b10)
+            buff.write(b''.join((_S0.pack(_m2.seq, _m3.secs, _m3.nsecs, len(_b4)), _b4, _S1.pack(len(_b5)), _b5, _S2.pack(_m7.x, _m7.y, _m7.z, _m8.x, _m8.y, _m8.z, _m8.w, _m9.error, len(_b10)), _b10)))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 

@@ -94,49 +94,40 @@ class RotateAbsoluteAction(_Message):
 
     def serialize(self, buff):
         try:
-            _w = buff.write
             _m1 = self.action_goal
             _m2 = _m1.header
             _m3 = _m2.stamp
             _b4 = _m2.frame_id
             if _b4.__class__ is not bytes: _b4 = _b4.encode()
-            _w(_S0.pack(_m2.seq, _m3.secs, _m3.nsecs, len(_b4)) + _b4)
             _m5 = _m1.goal_id
             _m6 = _m5.stamp
             _b7 = _m5.id
             if _b7.__class__ is not bytes: _b7 = _b7.encode()
-            _w(_S1.pack(_m6.secs, _m6.nsecs, len(_b7)) + _b7)
             _m8 = self.action_result
             _m9 = _m8.header
             _m10 = _m9.stamp
             _b11 = _m9.frame_id
             if _b11.__class__ is not bytes: _b11 = _b11.encode()
-            _w(_S2.pack(_m1.goal.theta, _m9.seq, _m10.secs, _m10.nsecs, len(_b11)) + _b11)
             _m12 = _m8.status
             _m13 = _m12.goal_id
             _m14 = _m13.stamp
             _b15 = _m13.id
             if _b15.__class__ is not bytes: _b15 = _b15.encode()
-            _w(_S1.pack(_m14.secs, _m14.nsecs, len(_b15)) + _b15)
             _b16 = _m12.text
             if _b16.__class__ is not bytes: _b16 = _b16.encode()
-            _w(_S3.pack(_m12.status, len(_b16)) + _b16)
             _m17 = self.action_feedback
             _m18 = _m17.header
             _m19 = _m18.stamp
             _b20 = _m18.frame_id
             if _b20.__class__ is not bytes: _b20 = _b20.encode()
-            _w(_S2.pack(_m8.result.delta, _m18.seq, _m19.secs, _m19.nsecs, len(_b20)) + _b20)
             _m21 = _m17.status
             _m22 = _m21.goal_id
             _m23 = _m22.stamp
             _b24 = _m22.id
             if _b24.__class__ is not bytes: _b24 = _b24.encode()
-            _w(_S1.pack(_m23.secs, _m23.nsecs, len(_b24)) + _b24)
             _b25 = _m21.text
             if _b25.__class__ is not bytes: _b25 = _b25.encode()
-            _w(_S3.pack(_m21.status, len(_b25)) + _b25)
-            _w(_S4.pack(_m17.feedback.remaining))
+            buff.write(b''.join((_S0.pack(_m2.seq, _m3.secs, _m3.nsecs, len(_b4)), _b4, _S1.pack(_m6.secs, _m6.nsecs, len(_b7)), _b7, _S2.pack(_m1.goal.theta, _m9.seq, _m10.secs, _m10.nsecs, len(_b11)), _b11, _S1.pack(_m14.secs, _m14.nsecs, len(_b15)), _b15, _S3.pack(_m12.status, len(_b16)), _b16, _S2.pack(_m8.result.delta, _m18.seq, _m19.secs, _m19.nsecs, len(_b20)), _b20, _S1.pack(_m23.secs, _m23.nsecs, len(_b24)), _b24, _S3.pack(_m21.status, len(_b25)), _b25, _S4.pack(_m17.feedback.remaining))))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 

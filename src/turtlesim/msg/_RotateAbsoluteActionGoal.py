@@ -55,18 +55,15 @@ class RotateAbsoluteActionGoal(_Message):
 
     def serialize(self, buff):
         try:
-            _w = buff.write
             _m1 = self.header
             _m2 = _m1.stamp
             _b3 = _m1.frame_id
             if _b3.__class__ is not bytes: _b3 = _b3.encode()
-            _w(_S0.pack(_m1.seq, _m2.secs, _m2.nsecs, len(_b3)) + _b3)
             _m4 = self.goal_id
             _m5 = _m4.stamp
             _b6 = _m4.id
             if _b6.__class__ is not bytes: _b6 = _b6.encode()
-            _w(_S1.pack(_m5.secs, _m5.nsecs, len(_b6)) + _b6)
-            _w(_S2.pack(self.goal.theta))
+            buff.write(b''.join((_S0.pack(_m1.seq, _m2.secs, _m2.nsecs, len(_b3)), _b3, _S1.pack(_m5.secs, _m5.nsecs, len(_b6)), _b6, _S2.pack(self.goal.theta))))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 

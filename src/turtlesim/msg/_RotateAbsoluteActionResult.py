@@ -60,22 +60,18 @@ class RotateAbsoluteActionResult(_Message):
 
     def serialize(self, buff):
         try:
-            _w = buff.write
             _m1 = self.header
             _m2 = _m1.stamp
             _b3 = _m1.frame_id
             if _b3.__class__ is not bytes: _b3 = _b3.encode()
-            _w(_S0.pack(_m1.seq, _m2.secs, _m2.nsecs, len(_b3)) + _b3)
             _m4 = self.status
             _m5 = _m4.goal_id
             _m6 = _m5.stamp
             _b7 = _m5.id
             if _b7.__class__ is not bytes: _b7 = _b7.encode()
-            _w(_S1.pack(_m6.secs, _m6.nsecs, len(_b7)) + _b7)
             _b8 = _m4.text
             if _b8.__class__ is not bytes: _b8 = _b8.encode()
-            _w(_S2.pack(_m4.status, len(_b8)) + _b8)
-            _w(_S3.pack(self.result.delta))
+            buff.write(b''.join((_S0.pack(_m1.seq, _m2.secs, _m2.nsecs, len(_b3)), _b3, _S1.pack(_m6.secs, _m6.nsecs, len(_b7)), _b7, _S2.pack(_m4.status, len(_b8)), _b8, _S3.pack(self.result.delta))))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 

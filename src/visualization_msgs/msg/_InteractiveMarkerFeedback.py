@@ -89,26 +89,21 @@ class InteractiveMarkerFeedback(_Message):
 
     def serialize(self, buff):
         try:
-            _w = buff.write
             _m1 = self.header
             _m2 = _m1.stamp
             _b3 = _m1.frame_id
             if _b3.__class__ is not bytes: _b3 = _b3.encode()
-            _w(_S0.pack(_m1.seq, _m2.secs, _m2.nsecs, len(_b3)) + _b3)
             _b4 = self.client_id
             if _b4.__class__ is not bytes: _b4 = _b4.encode()
-            _w(_S1.pack(len(_b4)) + _b4)
             _b5 = self.marker_name
             if _b5.__class__ is not bytes: _b5 = _b5.encode()
-            _w(_S1.pack(len(_b5)) + _b5)
             _b6 = self.control_name
             if _b6.__class__ is not bytes: _b6 = _b6.encode()
-            _w(_S1.pack(len(_b6)) + _b6)
             _m7 = self.pose
             _m8 = _m7.position
             _m9 = _m7.orientation
             _m10 = self.mouse_point
-            _w(_S2.pack(self.event_type, _m8.x, _m8.y, _m8.z, _m9.x, _m9.y, _m9.z, _m9.w, self.menu_entry_id, _m10.x, _m10.y, _m10.z, self.mouse_point_valid))
+            buff.write(b''.join((_S0.pack(_m1.seq, _m2.secs, _m2.nsecs, len(_b3)), _b3, _S1.pack(len(_b4)), _b4, _S1.pack(len(_b5)), _b5, _S1.pack(len(_b6)), _b6, _S2.pack(self.event_type, _m8.x, _m8.y, _m8.z, _m9.x, _m9.y, _m9.z, _m9.w, self.menu_entry_id, _m10.x, _m10.y, _m10.z, self.mouse_point_valid))))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 

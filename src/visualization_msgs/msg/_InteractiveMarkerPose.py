@@ -60,18 +60,16 @@ class InteractiveMarkerPose(_Message):
 
     def serialize(self, buff):
         try:
-            _w = buff.write
             _m1 = self.header
             _m2 = _m1.stamp
             _b3 = _m1.frame_id
             if _b3.__class__ is not bytes: _b3 = _b3.encode()
-            _w(_S0.pack(_m1.seq, _m2.secs, _m2.nsecs, len(_b3)) + _b3)
             _m4 = self.pose
             _m5 = _m4.position
             _m6 = _m4.orientation
             _b7 = self.name
             if _b7.__class__ is not bytes: _b7 = _b7.encode()
-            _w(_S1.pack(_m5.x, _m5.y, _m5.z, _m6.x, _m6.y, _m6.z, _m6.w, len(_b7)) + _b7)
+            buff.write(b''.join((_S0.pack(_m1.seq, _m2.secs, _m2.nsecs, len(_b3)), _b3, _S1.pack(_m5.x, _m5.y, _m5.z, _m6.x, _m6.y, _m6.z, _m6.w, len(_b7)), _b7)))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 

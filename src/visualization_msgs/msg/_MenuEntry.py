@@ -53,14 +53,11 @@ class MenuEntry(_Message):
 
     def serialize(self, buff):
         try:
-            _w = buff.write
             _b1 = self.title
             if _b1.__class__ is not bytes: _b1 = _b1.encode()
-            _w(_S0.pack(self.id, self.parent_id, len(_b1)) + _b1)
             _b2 = self.command
             if _b2.__class__ is not bytes: _b2 = _b2.encode()
-            _w(_S1.pack(len(_b2)) + _b2)
-            _w(_S2.pack(self.command_type))
+            buff.write(b''.join((_S0.pack(self.id, self.parent_id, len(_b1)), _b1, _S1.pack(len(_b2)), _b2, _S2.pack(self.command_type))))
         except Exception as exc:
             raise _serialize_failed(self, exc) from exc
 
