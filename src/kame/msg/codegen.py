@@ -3,8 +3,10 @@
 Each message becomes a class whose serialize/deserialize are straight-line code:
 nested messages are flattened, runs of fixed-size fields are packed and unpacked with one
 precompiled struct, strings and arrays carry their length in the same struct call as the
-fields before them, and uint8[] payloads are written and read with a single copy.
-Failures go to a slow path in kame.msg.message that names the offending field.
+fields before them, and uint8[] payloads are written and read with a single copy. A message
+without loops is written with one write; structs are native where that is the wire format
+(kame.msg.runtime.wire_struct). Failures go to a slow path in kame.msg.message that names
+the offending field.
 
 The same generator serves the message packages written to files (kame.msg.build), user
 packages loaded by the import hook, and classes built from a message_definition at run time.
