@@ -67,6 +67,15 @@ def _cloud() -> tuple[Display, list[Any]]:
     return displays.PointCloud2(options={"Color": "0; 255; 255", "Size (Pixels)": 6}), [cloud]
 
 
+def _intensity_scan() -> tuple[Display, list[Any]]:
+    """rviz's default for a scan with intensities: the rainbow, the strongest rays magenta; the
+    weakest (red, at the rays' other end) bound it."""
+    scan = LaserScan(angle_min=-0.1, angle_increment=0.01, range_min=0.1, range_max=10.0, ranges=[2.0] * 21,
+                     intensities=[0.0] * 10 + [100.0] * 11)
+    scan.header.frame_id = "laser"  # 2 m along the map's y from (2, 0), the strong rays to its left
+    return displays.LaserScan(options={"Size (Pixels)": 6}), [scan]
+
+
 def _rgb_cloud() -> tuple[Display, list[Any]]:
     """Colours from the cloud's packed rgb field (uploaded as bytes)."""
     points = np.zeros(25, dtype=[("x", "<f4"), ("y", "<f4"), ("z", "<f4"), ("rgb", "<u4")])
@@ -211,6 +220,7 @@ def _mesh() -> tuple[Display, list[Any]]:
 
 CASES = [
     Case("LaserScan", _scan, (2.0, 1.0, 0.0), (255, 0, 0)),
+    Case("LaserScan intensity", _intensity_scan, (1.9, 2.0, 0.0), (255, 0, 255)),
     Case("PointCloud2", _cloud, (-2.0, -1.0, 0.0), (0, 255, 255)),
     Case("PointCloud2 rgb", _rgb_cloud, (-1.0, 0.5, 0.0), (255, 128, 0)),
     Case("Map", _grid, (-2.5, 1.5, 0.0), (255, 255, 255)),

@@ -9,6 +9,7 @@ from typing import Any
 
 import numpy as np
 
+from kame.rviz.colors import point_colors
 from kame.rviz.display import WARN, Display, Frames, Status, parse_color
 from kame.rviz.scene import Scene, apply, arrow_triangles, axes_lines, pose_matrix, sphere_triangles
 
@@ -74,21 +75,78 @@ class TF(Display):
             self.status = Status(WARN, f"no transform to {frames.fixed_frame} from {', '.join(sorted(missing))}")
 
 
-class LaserScan(Display):
-    class_name = "rviz/LaserScan"
-    message_types = ("sensor_msgs/LaserScan",)
-    defaults = {"Topic": "/scan", "Size (Pixels)": 3, "Color": "255; 0; 0", "Alpha": 1}
+class PointCloudCommon(Display):
+    """What rviz's LaserScan and PointCloud2 share: the points of each message in the fixed
+    frame, coloured by a colour transformer (kame.rviz.colors), "Size (Pixels)" wide; with a
+    "Decay Time" (seconds) every message received in that time stays drawn, each through tf
+    as it is now."""
+    defaults = {"Size (Pixels)": 3, "Color": "255; 255; 255", "Alpha": 1, "Color Transformer": "",
+                "Decay Time": 0, "Channel Name": "intensity", "Use rainbow": True, "Invert Rainbow": False,
+                "Min Color": "0; 0; 0", "Max Color": "255; 255; 255", "Autocompute Intensity Bounds": True,
+                "Axis": "Z", "Use Fixed Frame": True}
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        super().__init__(*args, **kwargs)
+        self.kept: list[tuple[float, Any]] = []  # (received, message), oldest first, while they decay
+
+    def receive(self, messages: Any, now: float) -> None:
+        decay = self.number("Decay Time", 0.0)
+        for message in messages:
+            self.message = message
+            self.version += 1
+            self.kept = [*self.kept, (now, message)] if decay > 0 else [(now, message)]
+
+    def reset(self) -> None:
+        super().reset()
+        self.kept = []
+
+    def time_dependent(self) -> bool:
+        return self.number("Decay Time", 0.0) > 0 and len(self.kept) > 1
+
+    def points(self, message: Any) -> tuple[np.ndarray, dict[str, np.ndarray]] | str:
+        """The message's points (N x 3 float32, its own frame, NaN where none) and its fields,
+        one value a point; or why it has none."""
+        raise NotImplementedError
 
     def draw(self, scene: Scene, frames: Frames, now: float) -> None:
-        scan = self.message
-        placed = self.placed(frames, scan.header.frame_id)
-        if placed is None:
-            return
-        ranges = np.asarray(scan.ranges, dtype=float)
-        angles = scan.angle_min + scan.angle_increment * np.arange(len(ranges))
-        valid = np.isfinite(ranges) & (ranges >= scan.range_min) & (ranges <= scan.range_max)
-        points = np.column_stack([ranges * np.cos(angles), ranges * np.sin(angles), np.zeros_like(ranges)])[valid]
-        scene.add("points", apply(placed, points), self.color(), self.number("Size (Pixels)", 3))
+        decay = self.number("Decay Time", 0.0)
+        if decay > 0:
+            self.kept = [(at, m) for at, m in self.kept if now - at <= decay or m is self.message]
+        for _, message in self.kept or [(now, self.message)]:
+            placed = self.placed(frames, message.header.frame_id)
+            if placed is None:
+                continue
+            found = self.points(message)
+            if isinstance(found, str):
+                self.status = Status(WARN, found)
+                continue
+            local, fields = found
+            colors = point_colors(self.options, fields, placed, local, self.color())
+            finite = np.isfinite(local).all(axis=1)
+            if not finite.all():
+                local = local[finite]
+                colors = colors[finite] if isinstance(colors, np.ndarray) else colors
+            scene.add("points", apply(placed, local), colors, self.number("Size (Pixels)", 3))
+
+
+class LaserScan(PointCloudCommon):
+    """A scan's ranges as points; its intensities (when it has one a range) are the
+    "intensity" channel, as laser_geometry makes it for rviz."""
+    class_name = "rviz/LaserScan"
+    message_types = ("sensor_msgs/LaserScan",)
+    defaults = {**PointCloudCommon.defaults, "Topic": "/scan", "Color": "255; 0; 0"}
+
+    def points(self, message: Any) -> tuple[np.ndarray, dict[str, np.ndarray]] | str:
+        ranges = np.asarray(message.ranges, dtype=np.float32)
+        angles = message.angle_min + message.angle_increment * np.arange(len(ranges))
+        valid = np.isfinite(ranges) & (ranges >= message.range_min) & (ranges <= message.range_max)
+        shown = np.where(valid, ranges, np.nan).astype(np.float32)
+        local = np.column_stack([shown * np.cos(angles), shown * np.sin(angles), np.where(valid, 0.0, np.nan)])
+        fields = {}
+        if len(message.intensities) == len(ranges):
+            # a ray out of range is no point: its intensity bounds nothing (laser_geometry drops it)
+            fields["intensity"] = np.where(valid, np.asarray(message.intensities, dtype=np.float32), np.nan)
+        return local.astype(np.float32), fields
 
 
 def cloud_array(cloud: Any) -> np.ndarray:
@@ -106,36 +164,20 @@ def cloud_array(cloud: Any) -> np.ndarray:
     return np.ascontiguousarray(rows).view(dtype).reshape(-1)
 
 
-class PointCloud2(Display):
+class PointCloud2(PointCloudCommon):
     class_name = "rviz/PointCloud2"
     message_types = ("sensor_msgs/PointCloud2",)
-    defaults = {"Topic": "/points", "Size (Pixels)": 3, "Color": "255; 255; 255", "Alpha": 1,
-                "Color Transformer": "RGB8"}
+    defaults = {**PointCloudCommon.defaults, "Topic": "/points"}
 
-    def draw(self, scene: Scene, frames: Frames, now: float) -> None:
-        cloud = self.message
-        placed = self.placed(frames, cloud.header.frame_id)
-        if placed is None:
-            return
-        points = cloud_array(cloud)
-        if not {"x", "y", "z"} <= set(points.dtype.names or ()):
-            self.status = Status(WARN, "the cloud has no x, y, z fields")
-            return
+    def points(self, message: Any) -> tuple[np.ndarray, dict[str, np.ndarray]] | str:
+        points = cloud_array(message)
+        names = points.dtype.names or ()
+        if not {"x", "y", "z"} <= set(names):
+            return "the cloud has no x, y, z fields"
         xyz = np.empty((len(points), 3), dtype=np.float32)  # float32 throughout: what GL draws
         for axis, name in enumerate("xyz"):
             xyz[:, axis] = points[name]
-        finite = np.isfinite(xyz).all(axis=1)
-        if not finite.all():
-            xyz = xyz[finite]
-        colors: Any = self.color()
-        # "": rviz had seen no cloud to choose a transformer for; it takes rgb when the cloud has it
-        if "rgb" in (points.dtype.names or ()) and self.options.get("Color Transformer") in ("RGB8", ""):
-            packed = np.ascontiguousarray(points["rgb"]).view(np.uint32)[finite]
-            colors = np.empty((len(packed), 4), dtype=np.uint8)  # 4 bytes a point, not 16
-            for channel, shift in enumerate((16, 8, 0)):
-                colors[:, channel] = (packed >> shift) & 255
-            colors[:, 3] = round(255 * min(1.0, max(0.0, self.number("Alpha", 1.0))))
-        scene.add("points", apply(placed, xyz), colors, self.number("Size (Pixels)", 3))
+        return xyz, {name: points[name] for name in names}
 
 
 def _arrow(scene: Scene, matrix: np.ndarray, length: float, color: Any) -> None:
