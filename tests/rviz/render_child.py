@@ -52,6 +52,17 @@ def main() -> int:
         assert best is not None
         print(f"case {case.name.replace(' ', '_')} {display.status.level} {','.join(map(str, best[1]))} "
               f"{','.join(map(str, empty))}", flush=True)
+    # Measure picks what is drawn: on the cube (0.5 m, centred on the ground) its top, beside it the ground
+    cube = next(case for case in CASES if case.name == "Marker cube")
+    display, messages = cube.make()
+    display.receive(messages, 0.0)
+    settings.displays = [display]
+    window.draw(0.0, Frames())
+    for name, (x, y) in (("on", cube.probe[:2]), ("beside", (cube.probe[0] + 1.0, cube.probe[1]))):
+        px, py = view.camera.project([[x, y, 0.0]], view.width(), view.height())[0]
+        picked = view.pick(float(px), float(py))
+        assert picked is not None
+        print(f"pick {name} {','.join(f'{v:.3f}' for v in picked)}", flush=True)
     if len(sys.argv) > 1:
         settings.displays = [case.make()[0] for case in CASES]
         for case, display in zip(CASES, settings.displays, strict=True):

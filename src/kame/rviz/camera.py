@@ -114,6 +114,13 @@ class Camera:
             ndc = np.where(w > 0, clip[:, :3] / w, np.nan)
         return np.column_stack([(ndc[:, 0] + 1) * width / 2, (1 - ndc[:, 1]) * height / 2])
 
+    def unproject(self, x: float, y: float, depth: float, width: int, height: int) -> np.ndarray:
+        """The fixed-frame point at pixel (x, y) whose depth buffer value (0 near .. 1 far) is `depth`."""
+        inverse = np.linalg.inv(self.projection_matrix(width, height) @ self.view_matrix())
+        point = inverse @ np.array([2 * x / max(1, width) - 1, 1 - 2 * y / max(1, height), 2 * depth - 1, 1.0])
+        found: np.ndarray = point[:3] / point[3]
+        return found
+
     def ground_point(self, x: float, y: float, width: int, height: int) -> np.ndarray | None:
         """Where the ray through pixel (x, y) meets the fixed frame's z = 0 plane (the tools'
         click), or None when it does not (looking away from the ground)."""

@@ -6,7 +6,7 @@ frames it asks of tf."""
 from __future__ import annotations
 
 import abc
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass
 from typing import Any, ClassVar, Protocol
 
@@ -48,6 +48,19 @@ def parse_color(value: Any, default: Color = (1.0, 1.0, 1.0, 1.0)) -> Color:
     if len(parts) < 3:
         return default
     return parts[0] / 255, parts[1] / 255, parts[2] / 255, 1.0
+
+
+@dataclass
+class Selectable:
+    """What of a display rviz's Select tool can pick: the objects' fixed-frame positions
+    (N x 3), and for the i-th its name and properties."""
+    positions: np.ndarray
+    describe: Callable[[int], tuple[str, dict[str, str]]]
+
+
+def coordinates(values: Sequence[float] | np.ndarray) -> str:
+    """A position as rviz's panels write one: "x; y; z"."""
+    return "; ".join(f"{float(v):.4g}" for v in values)
 
 
 def format_color(color: Color) -> str:
@@ -182,6 +195,10 @@ class Display(abc.ABC):
         own = own.merged()
         self._cached = (key, recording, own, self.status)
         scene.extend(own)
+
+    def selectable(self) -> Selectable | None:
+        """What the Select tool can pick of the scene last drawn (None: nothing)."""
+        return None
 
     @abc.abstractmethod
     def draw(self, scene: Scene, frames: Frames, now: float) -> None:

@@ -10,7 +10,7 @@ from typing import Any
 import numpy as np
 
 from kame.rviz.colors import point_colors
-from kame.rviz.display import WARN, Display, Frames, Status, parse_color
+from kame.rviz.display import WARN, Display, Frames, Selectable, Status, coordinates, parse_color
 from kame.rviz.scene import Scene, apply, arrow_triangles, axes_lines, pose_matrix, sphere_triangles
 
 FLOAT32 = 7
@@ -88,6 +88,8 @@ class PointCloudCommon(Display):
     def __init__(self, *args: Any, **kwargs: Any) -> None:
         super().__init__(*args, **kwargs)
         self.kept: list[tuple[float, Any]] = []  # (received, message), oldest first, while they decay
+        # each message's points drawn last (fixed frame), their indices in it (None: all), its fields
+        self._drawn: list[tuple[np.ndarray, np.ndarray | None, dict[str, np.ndarray]]] = []
 
     def receive(self, messages: Any, now: float) -> None:
         decay = self.number("Decay Time", 0.0)
@@ -99,6 +101,7 @@ class PointCloudCommon(Display):
     def reset(self) -> None:
         super().reset()
         self.kept = []
+        self._drawn = []
 
     def time_dependent(self) -> bool:
         return self.number("Decay Time", 0.0) > 0 and len(self.kept) > 1
@@ -112,6 +115,7 @@ class PointCloudCommon(Display):
         decay = self.number("Decay Time", 0.0)
         if decay > 0:
             self.kept = [(at, m) for at, m in self.kept if now - at <= decay or m is self.message]
+        self._drawn = []
         for _, message in self.kept or [(now, self.message)]:
             placed = self.placed(frames, message.header.frame_id)
             if placed is None:
@@ -123,10 +127,32 @@ class PointCloudCommon(Display):
             local, fields = found
             colors = point_colors(self.options, fields, placed, local, self.color())
             finite = np.isfinite(local).all(axis=1)
+            indices = None
             if not finite.all():
-                local = local[finite]
+                local, indices = local[finite], np.flatnonzero(finite)
                 colors = colors[finite] if isinstance(colors, np.ndarray) else colors
-            scene.add("points", apply(placed, local), colors, self.number("Size (Pixels)", 3))
+            fixed = apply(placed, local)
+            scene.add("points", fixed, colors, self.number("Size (Pixels)", 3))
+            self._drawn.append((fixed, indices, fields))
+
+    def selectable(self) -> Selectable | None:
+        """Every point drawn: "Point <its index in the message>", its position and fields."""
+        if not self._drawn:
+            return None
+        parts = self._drawn
+        starts = np.cumsum([0] + [len(fixed) for fixed, _, _ in parts])
+
+        def describe(i: int) -> tuple[str, dict[str, str]]:
+            part = int(np.searchsorted(starts, i, side="right")) - 1
+            fixed, indices, fields = parts[part]
+            row = i - int(starts[part])
+            index = row if indices is None else int(indices[row])
+            properties = {"Position": coordinates(fixed[row])}
+            properties.update({name: f"{values[index]:.6g}" for name, values in fields.items()
+                               if name not in ("x", "y", "z")})
+            return f"Point {index}", properties
+
+        return Selectable(np.concatenate([fixed for fixed, _, _ in parts]), describe)
 
 
 class LaserScan(PointCloudCommon):

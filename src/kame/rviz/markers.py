@@ -10,7 +10,7 @@ from typing import Any
 
 import numpy as np
 
-from kame.rviz.display import WARN, Display, Frames, Status
+from kame.rviz.display import WARN, Display, Frames, Selectable, Status, coordinates
 from kame.rviz.meshes import MeshLibrary, add_mesh
 from kame.rviz.scene import (
     Scene,
@@ -25,6 +25,8 @@ from kame.rviz.scene import (
 
 ARROW, CUBE, SPHERE, CYLINDER, LINE_STRIP, LINE_LIST, CUBE_LIST, SPHERE_LIST, POINTS, TEXT, MESH, TRIANGLES = range(12)
 ADD, DELETE, DELETEALL = 0, 2, 3
+TYPE_NAMES = dict(enumerate(("Arrow", "Cube", "Sphere", "Cylinder", "Line Strip", "Line List", "Cube List",
+                             "Sphere List", "Points", "Text View Facing", "Mesh Resource", "Triangle List")))
 
 
 def _rgba(color: Any) -> tuple[float, float, float, float]:
@@ -138,10 +140,12 @@ class Marker(Display):
         super().__init__(*args, **kwargs)
         self.markers: dict[tuple[str, int], tuple[Any, float]] = {}
         self.meshes = MeshLibrary()  # the window gives it kame's package finder
+        self._drawn: list[tuple[Any, np.ndarray]] = []  # (marker, its frame's matrix) as last drawn
 
     def reset(self) -> None:
         super().reset()
         self.markers = {}
+        self._drawn = []
 
     def receive(self, messages: Any, now: float) -> None:
         for message in messages:
@@ -169,8 +173,27 @@ class Marker(Display):
         shown = self.options.get("Namespaces") or {}
         return bool(shown.get(namespace, True)) if isinstance(shown, dict) else True
 
+    def selectable(self) -> Selectable | None:
+        """Each marker drawn, at its pose: "<ns>/<id>" and what rviz's Selection panel shows of it."""
+        drawn = self._drawn
+        if not drawn:
+            return None
+
+        def describe(i: int) -> tuple[str, dict[str, str]]:
+            marker, _ = drawn[i]
+            q, s, c = marker.pose.orientation, marker.scale, marker.color
+            return f"{marker.ns}/{marker.id}", {
+                "Type": TYPE_NAMES.get(marker.type, str(marker.type)), "Frame": marker.header.frame_id,
+                "Position": coordinates(positions[i]), "Orientation": coordinates((q.x, q.y, q.z, q.w)),
+                "Scale": coordinates((s.x, s.y, s.z)), "Color": coordinates((c.r, c.g, c.b, c.a))}
+
+        positions = np.array([(placed @ [m.pose.position.x, m.pose.position.y, m.pose.position.z, 1.0])[:3]
+                              for m, placed in drawn])
+        return Selectable(positions, describe)
+
     def draw(self, scene: Scene, frames: Frames, now: float) -> None:
         problems = []
+        self._drawn = []
         solids: dict[int, list[tuple[Any, np.ndarray]]] = {}  # drawn together, by kind
         for key, (marker, received) in list(self.markers.items()):
             lifetime = marker.lifetime.secs + marker.lifetime.nsecs * 1e-9
@@ -183,6 +206,7 @@ class Marker(Display):
             if isinstance(found, str):
                 problems.append(f"{marker.ns}/{marker.id}: {found}")
                 continue
+            self._drawn.append((marker, found))
             if marker.type in SOLIDS and (marker.type != ARROW or len(marker.points) < 2):
                 solids.setdefault(marker.type, []).append((marker, found))
                 continue
