@@ -56,6 +56,21 @@ def build(display, *messages, now=0.0):  # type: ignore[no-untyped-def]
     return scene
 
 
+def unwound(vertices: np.ndarray) -> np.ndarray:
+    """Triangles with each one's corners in one order, whichever way it was wound."""
+    triangles = np.asarray(vertices, dtype=float).reshape(-1, 3, 3)
+    order = np.array([np.lexsort((t[:, 2].round(4), t[:, 1].round(4), t[:, 0].round(4))) for t in triangles])
+    return np.take_along_axis(triangles, order[:, :, None], axis=1)
+
+
+def without_flat(vertices: np.ndarray) -> np.ndarray:
+    """The triangles that have an area."""
+    triangles = np.asarray(vertices, dtype=float).reshape(-1, 3, 3)
+    areas = np.linalg.norm(np.cross(triangles[:, 1] - triangles[:, 0], triangles[:, 2] - triangles[:, 0]), axis=1)
+    kept: np.ndarray = triangles[areas > 1e-9].reshape(-1, 3)
+    return kept
+
+
 def all_vertices(scene: Scene) -> np.ndarray:
     return np.vstack([b.vertices for b in scene.batches])
 
@@ -181,7 +196,8 @@ def test_every_marker_type_draws_and_markers_are_replaced_deleted_and_expire() -
     assert [label.text for label in scene.labels] == ["hello"]
     kinds = {b.kind for b in scene.batches}
     assert kinds == {"triangles", "lines", "points"}
-    assert len(scene.batches) == 3  # one batch a kind: 2,000 markers are one draw call each kind
+    # one batch a kind (closed solids' triangles apart from the rest): 2,000 markers, a few draw calls
+    assert len(scene.batches) == 4 and sum(b.closed for b in scene.batches) == 1
     cube = build(markers.Marker(), _marker("one", 1, markers.CUBE)).batches[0].vertices
     assert cube.min(axis=0) == pytest.approx([0.5, -0.5, -0.5]) and cube.max(axis=0) == pytest.approx([1.5, 0.5, 0.5])
     build(display, MarkerArray(markers=[_marker("shapes", 1, 1, action=markers.DELETE)]))
@@ -426,7 +442,7 @@ def test_solid_markers_drawn_together_match_each_drawn_alone() -> None:
             for i, marker in enumerate(array.markers):
                 m = TREE.transform(marker.header.frame_id) @ pose_matrix(marker.pose)
                 tail, tip = m[:3, 3], m[:3, 3] + m[:3, 0] * marker.scale.x
-                arrow = together.vertices[96 * i:96 * (i + 1)]
+                arrow = together.vertices[120 * i:120 * (i + 1)]  # 8 sides of 4 triangles, a cap of 8
                 along = (arrow - tail) @ m[:3, 0]
                 across = np.linalg.norm(arrow - tail - np.outer(along, m[:3, 0]), axis=1)
                 assert along.min() == pytest.approx(0, abs=1e-5) and along.max() == pytest.approx(marker.scale.x)
@@ -438,5 +454,16 @@ def test_solid_markers_drawn_together_match_each_drawn_alone() -> None:
         alone = [apply(TREE.transform(m.header.frame_id) @ pose_matrix(m.pose), shape((m.scale.x, m.scale.y,
                                                                                       m.scale.z)))
                  for m in array.markers]
-        assert together.vertices == pytest.approx(np.concatenate(alone), abs=1e-5)
-        assert together.colors[::len(alone[0])] == pytest.approx(np.array([(i / 6, 0, 0, 1) for i in range(6)]))
+        alone = [without_flat(shape) for shape in alone]  # the sphere's at its poles are not drawn
+        assert unwound(together.vertices) == pytest.approx(unwound(np.concatenate(alone)), abs=1e-5)
+        assert together.float_colors()[::len(alone[0])] == pytest.approx(
+            np.array([(i / 6, 0, 0, 1) for i in range(6)]), abs=1 / 255)  # bytes
+        # drawn with the faces turned away culled: each must wind counter-clockwise seen from outside
+        assert together.closed
+        triangles = together.vertices.reshape(-1, 3, 3).astype(float)
+        centres = np.repeat([apply(TREE.transform(m.header.frame_id), [[m.pose.position.x, m.pose.position.y,
+                                                                        m.pose.position.z]])[0]
+                             for m in array.markers], len(alone[0]) // 3, axis=0)
+        facing = np.cross(triangles[:, 1] - triangles[:, 0], triangles[:, 2] - triangles[:, 0])
+        assert ((facing * (triangles.mean(axis=1) - centres)).sum(axis=1) >= -1e-6).all()
+        assert (np.einsum("ij,ij->i", together.normals, np.repeat(facing, 3, axis=0)) >= -1e-6).all()

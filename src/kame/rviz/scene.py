@@ -19,11 +19,15 @@ class Batch:
     """One draw call: `kind` is "lines" (vertex pairs), "points" or "triangles" (vertex triples).
     `colors` is N x 4: float32 0..1, or uint8 0..255 (a cloud's packed rgb: a quarter of the
     bytes); one colour for every vertex is a broadcast view (stride 0), drawn without a colour
-    array at all."""
+    array at all. `closed` triangles wind counter-clockwise seen from outside a closed surface,
+    so the faces turned away from the camera need not be drawn; `normals` (N x 3 float32, one a
+    vertex) spare the window working them out from the triangles."""
     kind: str
     vertices: np.ndarray  # N x 3 float32, fixed frame
     colors: np.ndarray  # N x 4 float32 or uint8
     size: float = 1.0  # line width or point size in pixels
+    closed: bool = False
+    normals: np.ndarray | None = None
 
     @property
     def uniform(self) -> bool:
@@ -60,7 +64,8 @@ class Scene:
     def texture(self, corners: Any, rgba: np.ndarray) -> None:
         self.textures.append(Texture(np.asarray(corners, dtype=np.float32).reshape(4, 3), rgba))
 
-    def add(self, kind: str, vertices: Any, colors: Any, size: float = 1.0) -> None:
+    def add(self, kind: str, vertices: Any, colors: Any, size: float = 1.0, closed: bool = False,
+            normals: np.ndarray | None = None) -> None:
         vertices = np.asarray(vertices, dtype=np.float32).reshape(-1, 3)
         if not len(vertices):
             return
@@ -71,17 +76,26 @@ class Scene:
             colors = np.broadcast_to(colors, (len(vertices), 4))
         else:
             colors = np.ascontiguousarray(colors)
-        self.batches.append(Batch(kind, np.ascontiguousarray(vertices), colors, size))
+        if normals is not None:
+            normals = np.ascontiguousarray(normals, dtype=np.float32).reshape(-1, 3)
+        self.batches.append(Batch(kind, np.ascontiguousarray(vertices), colors, size, closed, normals))
 
     def merged(self) -> Scene:
-        """The same scene with batches of one kind and size joined: one draw call for 2,000 markers."""
-        groups: dict[tuple[str, float], list[Batch]] = {}
+        """The same scene with batches of one kind, size and closedness joined: one draw call
+        for 2,000 markers (colours stay bytes when all are)."""
+        groups: dict[tuple[str, float, bool], list[Batch]] = {}
         for batch in self.batches:
-            groups.setdefault((batch.kind, batch.size), []).append(batch)
-        batches = [group[0] if len(group) == 1 else
-                   Batch(kind, np.concatenate([b.vertices for b in group]),
-                         np.concatenate([b.float_colors() for b in group]), size)
-                   for (kind, size), group in groups.items()]
+            groups.setdefault((batch.kind, batch.size, batch.closed), []).append(batch)
+        batches = []
+        for (kind, size, closed), group in groups.items():
+            if len(group) == 1:
+                batches.append(group[0])
+                continue
+            as_bytes = all(b.colors.dtype == np.uint8 for b in group)
+            colors = np.concatenate([b.colors if as_bytes else b.float_colors() for b in group])
+            normals = (np.concatenate([b.normals for b in group if b.normals is not None])
+                       if all(b.normals is not None for b in group) else None)
+            batches.append(Batch(kind, np.concatenate([b.vertices for b in group]), colors, size, closed, normals))
         return Scene(batches, self.labels, self.textures)
 
     def extend(self, other: Scene) -> None:

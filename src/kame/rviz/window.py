@@ -175,12 +175,15 @@ class RenderView(QOpenGLWidget):
                 GL.glBindBuffer(GL.GL_ARRAY_BUFFER, colors)
                 GL.glColorPointer(4, GL.GL_UNSIGNED_BYTE if batch.colors.dtype == np.uint8 else GL.GL_FLOAT, 0, None)
             lit = batch.kind == "triangles"
+            if batch.closed:  # the far side of a closed surface is hidden: llvmpipe need not fill it
+                GL.glEnable(GL.GL_CULL_FACE)
             if lit:  # surfaces are shaded by their facing; lines, points and labels are not
                 GL.glEnable(GL.GL_LIGHTING)
                 GL.glEnableClientState(GL.GL_NORMAL_ARRAY)
                 GL.glBindBuffer(GL.GL_ARRAY_BUFFER, self._buffers[slot].normals)
                 GL.glNormalPointer(GL.GL_FLOAT, 0, None)
             GL.glDrawArrays(PRIMITIVES[batch.kind], 0, len(batch.vertices))
+            GL.glDisable(GL.GL_CULL_FACE)
             if lit:
                 GL.glDisableClientState(GL.GL_NORMAL_ARRAY)
                 GL.glDisable(GL.GL_LIGHTING)
@@ -202,15 +205,15 @@ class RenderView(QOpenGLWidget):
         unchanged batch is not uploaded again; a new one goes into the slot's buffers
         (glBufferSubData while it fits, so a cloud's buffers are allocated once)."""
         if slot == len(self._buffers):
-            vertices, colors, normals = (int(b) for b in GL.glGenBuffers(3))
-            self._buffers.append(GpuBatch(None, vertices, colors, normals))
+            self._buffers.append(GpuBatch(None, *(int(b) for b in GL.glGenBuffers(3))))
         known = self._buffers[slot]
         if known.batch is not batch:
             known.vertex_bytes = _upload(known.vertices, batch.vertices, known.vertex_bytes)
             if not batch.uniform:
                 known.color_bytes = _upload(known.colors, batch.colors, known.color_bytes)
             if batch.kind == "triangles":
-                known.normal_bytes = _upload(known.normals, face_normals(batch.vertices), known.normal_bytes)
+                normals = face_normals(batch.vertices) if batch.normals is None else batch.normals
+                known.normal_bytes = _upload(known.normals, normals, known.normal_bytes)
             known.batch = batch
         return known.vertices, known.colors
 
