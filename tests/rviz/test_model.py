@@ -11,7 +11,7 @@ import pytest
 
 from geometry_msgs.msg import Point, PointStamped, Pose, PoseArray, PoseStamped, Quaternion
 from kame.rviz import config, displays, markers
-from kame.rviz.camera import TOP_DOWN, Camera
+from kame.rviz.camera import FPS, TOP_DOWN, Camera
 from kame.rviz.display import OK, WARN
 from kame.rviz.scene import Scene, apply, box_triangles, cylinder_triangles, pose_matrix, sphere_triangles
 from nav_msgs.msg import OccupancyGrid, Odometry, Path
@@ -289,7 +289,46 @@ def test_an_rviz_file_loads_and_saves_back_what_it_had() -> None:
         config.parse("- just a list")
 
 
-@pytest.mark.parametrize("kind", ["rviz/Orbit", TOP_DOWN])
+def test_first_person_view_looks_from_its_eye_and_moves_as_rvizs() -> None:
+    camera = Camera(kind=FPS, position=np.array([0.0, 0.0, 1.0]), yaw=0.0, pitch=0.0)
+    ahead, left, behind = camera.project([[5.0, 0.0, 1.0], [5.0, 1.0, 1.0], [-5.0, 0.0, 1.0]], 640, 480)
+    assert ahead == pytest.approx([320, 240]) and left[0] < 320 and np.isnan(behind).all()
+    camera.rotate(0, 100)  # dragging down looks down
+    assert camera.project([[5.0, 0.0, 1.0]], 640, 480)[0][1] < 240
+    camera.pitch = 0.0
+    camera.zoom(1)  # a wheel notch: 1.2 m forward
+    assert camera.eye() == pytest.approx([1.2, 0.0, 1.0])
+    camera.pan(100, 0, 480)  # 1 cm a pixel, to the right (the view's -y)
+    assert camera.eye() == pytest.approx([1.2, -1.0, 1.0])
+
+
+def test_switching_views_keeps_what_is_seen() -> None:
+    camera = Camera(focal_point=np.array([1.0, 2.0, 0.0]))
+    seen = camera.project([[1.0, 2.0, 0.0], [2.0, 2.0, 0.5]], 640, 480)
+    camera.become(FPS)
+    assert camera.kind == FPS and camera.project([[1.0, 2.0, 0.0], [2.0, 2.0, 0.5]], 640, 480) == pytest.approx(seen)
+    camera.position = camera.position + (0.5, 0.0, 0.0)
+    camera.become("rviz/Orbit")
+    assert camera.project([[1.5, 2.0, 0.0]], 640, 480)[0] == pytest.approx([320, 240])
+
+
+def test_a_first_person_view_loads_and_saves() -> None:
+    text = """Visualization Manager:
+  Views:
+    Current:
+      Class: rviz/FPS
+      Name: Current View
+      Pitch: 0.4
+      Position: {X: -5, Y: 1, Z: 3}
+      Yaw: 0.2
+"""
+    camera = config.parse(text).camera
+    assert camera.kind == FPS and camera.position == pytest.approx([-5, 1, 3])
+    assert (camera.pitch, camera.yaw) == pytest.approx((0.4, 0.2))
+    assert config.view_entry(camera)["Position"] == {"X": -5.0, "Y": 1.0, "Z": 3.0}
+
+
+@pytest.mark.parametrize("kind", ["rviz/Orbit", TOP_DOWN, FPS])
 def test_a_click_finds_the_ground_point_the_camera_projects_there(kind: str) -> None:
     camera = Camera(kind=kind, focal_point=np.array([2.0, -1.0, 0.0]), scale=50.0)
     ground = np.array([[3.0, 0.5, 0.0]])

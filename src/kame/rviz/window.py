@@ -33,7 +33,7 @@ from PySide6.QtWidgets import (
 )
 
 from kame.rviz import config as rviz_config
-from kame.rviz.camera import ORBIT, TOP_DOWN, Camera
+from kame.rviz.camera import FPS, ORBIT, TOP_DOWN, Camera
 from kame.rviz.display import ERROR, OK, WARN, Display, Status, format_color, parse_color
 from kame.rviz.image_panels import ImagePanels, decode_compressed
 from kame.rviz.markers import Marker
@@ -411,7 +411,7 @@ class RvizWindow(QMainWindow):
             group.addAction(action)
             bar.addAction(action)
         self.views = QComboBox()
-        self.views.addItems([ORBIT, TOP_DOWN])
+        self.views.addItems([ORBIT, TOP_DOWN, FPS])
         self.views.setCurrentText(self.config.camera.kind)
         self.views.currentTextChanged.connect(self.set_view)
         bar.addWidget(self.views)
@@ -454,7 +454,7 @@ class RvizWindow(QMainWindow):
         self.setWindowTitle(rviz_config.window_title(path))
 
     def set_view(self, kind: str) -> None:
-        self.view.camera.kind = kind
+        self.view.camera.become(kind)
         self.view.update()
 
     def set_tool(self, tool: str) -> None:
