@@ -307,7 +307,7 @@ def test_switching_views_keeps_what_is_seen() -> None:
     seen = camera.project([[1.0, 2.0, 0.0], [2.0, 2.0, 0.5]], 640, 480)
     camera.become(FPS)
     assert camera.kind == FPS and camera.project([[1.0, 2.0, 0.0], [2.0, 2.0, 0.5]], 640, 480) == pytest.approx(seen)
-    camera.position = camera.position + (0.5, 0.0, 0.0)
+    camera.position = camera.position + np.array([0.5, 0.0, 0.0])
     camera.become("rviz/Orbit")
     assert camera.project([[1.5, 2.0, 0.0]], 640, 480)[0] == pytest.approx([320, 240])
 
