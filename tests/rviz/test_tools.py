@@ -144,3 +144,34 @@ def test_measure_and_select_in_the_window(qtbot: Any) -> None:
     assert shown == {"Position": "1; 0; 0", "intensity": "1"}
     assert any(b is window.selection.overlay.batches[0] for b in view.scene.batches)  # the point is marked
     window.close()
+
+
+def test_add_a_display_by_topic(tmp_path: Path, qtbot: Any) -> None:
+    """Add > By topic offers each published topic a display shows; choosing one adds and subscribes it."""
+    from sensor_msgs.msg import LaserScan
+    from visualization_msgs.msg import MarkerArray
+
+    graph = Graph(tmp_path)
+    rviz = Node(NodeConfig("/rviz_by_topic_test", graph.uri, "127.0.0.1", "127.0.0.1"))
+    talker = Node(NodeConfig("/talker", graph.uri, "127.0.0.1", "127.0.0.1"))
+    source = RvizSource(rviz, lambda: None)
+    try:
+        for topic, cls in (("/scan", LaserScan), ("/boxes", MarkerArray), ("/chatter", PointStamped)):
+            talker.advertise(topic, cls._type, cls._md5sum, cls._full_text)
+        window = RvizWindow(config.Config(fixed_frame="odom", displays=[]), source)
+        qtbot.addWidget(window)
+        window.timer.stop()
+        window.by_topic.aboutToShow.emit()
+        offered = [action.text() for action in window.by_topic.actions()]
+        assert "/scan (rviz/LaserScan)" in offered and "/boxes (rviz/MarkerArray)" in offered
+        assert "/chatter (rviz/PointStamped)" in offered and not any("/rosout" in text for text in offered)
+        next(a for a in window.by_topic.actions() if a.text() == "/boxes (rviz/MarkerArray)").trigger()
+        added = window.config.displays[-1]
+        assert (added.class_name, added.name, added.options["Marker Topic"]) == ("rviz/MarkerArray", "/boxes", "/boxes")
+        assert "/boxes" in source.watched()
+        window.close()
+    finally:
+        source.close()
+        rviz.shutdown("test over")
+        talker.shutdown("test over")
+        graph.stop()

@@ -40,6 +40,18 @@ DISPLAY_CLASSES: dict[str, type[Display]] = {cls.class_name: cls for cls in (
 COMMON_KEYS = ("Class", "Name", "Enabled")
 
 
+def displays_by_topic(topics: list[tuple[str, str]]) -> list[tuple[str, str]]:
+    """rviz's Add > By topic: (topic, display class) for each published topic a display shows."""
+    return [(topic, class_name) for topic, type_name in sorted(topics)
+            for class_name, cls in DISPLAY_CLASSES.items() if type_name in cls.message_types]
+
+
+def display_for_topic(class_name: str, topic: str) -> Display:
+    """A new display of `class_name` showing `topic`, named after the topic."""
+    cls = DISPLAY_CLASSES[class_name]
+    return cls(name=topic, options={cls.topic_key: topic})
+
+
 @dataclass
 class Config:
     fixed_frame: str = "map"

@@ -112,6 +112,7 @@ class Display(abc.ABC):
     message_types: ClassVar[tuple[str, ...]] = ()  # the first is what a new display subscribes as
     defaults: ClassVar[dict[str, Any]] = {}
     keeps_every_message: ClassVar[bool] = False  # markers: each message adds or deletes some
+    topic_key: ClassVar[str] = "Topic"  # the option rviz keeps the display's topic under
 
     def __init__(self, name: str = "", enabled: bool = True, options: dict[str, Any] | None = None) -> None:
         self.name = name or self.class_name.split("/")[-1]
@@ -126,7 +127,7 @@ class Display(abc.ABC):
 
     @property
     def topic(self) -> str:
-        return str(self.options.get("Topic", ""))
+        return str(self.options.get(self.topic_key, ""))
 
     def color(self, key: str = "Color") -> Color:
         r, g, b, _ = parse_color(self.options.get(key), parse_color(self.defaults.get(key, "255; 255; 255")))

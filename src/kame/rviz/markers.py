@@ -193,10 +193,7 @@ class Marker(Display):
     defaults = {"Marker Topic": "/visualization_marker", "Queue Size": 100, "Namespaces": {}}
     keeps_every_message = True
 
-    @property
-    def topic(self) -> str:
-        """rviz keeps a marker display's topic under "Marker Topic"."""
-        return str(self.options.get("Marker Topic", ""))
+    topic_key = "Marker Topic"
 
     def __init__(self, *args: Any, **kwargs: Any) -> None:
         super().__init__(*args, **kwargs)

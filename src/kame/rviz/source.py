@@ -160,6 +160,10 @@ class RvizSource:
             taken, self._decoded = self._decoded, {}
         return taken
 
+    def published_topics(self) -> list[tuple[str, str]]:
+        """Every published topic and its type, from the master."""
+        return [(str(topic), str(type_name)) for topic, type_name in self.node.master.call("getPublishedTopics", "")]
+
     def param(self, name: str) -> str | None:
         """A parameter's text (the robot description), None when it is not set or not text."""
         if not name:

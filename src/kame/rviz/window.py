@@ -380,6 +380,8 @@ class RvizWindow(QMainWindow):
         menu = QMenu(add)
         for class_name in rviz_config.DISPLAY_CLASSES:
             menu.addAction(class_name, functools.partial(self.add_display, class_name))
+        self.by_topic = menu.addMenu("By topic")  # filled with the master's topics as it opens
+        self.by_topic.aboutToShow.connect(self._offer_topics)
         add.setMenu(menu)
         remove = QPushButton("Remove")
         remove.clicked.connect(self._remove_selected)
@@ -465,6 +467,18 @@ class RvizWindow(QMainWindow):
 
     def add_display(self, class_name: str) -> Display:
         display = rviz_config.DISPLAY_CLASSES[class_name]()
+        self.config.displays.append(display)
+        self.rebuild_tree()
+        return display
+
+    def _offer_topics(self) -> None:
+        self.by_topic.clear()
+        topics = self.source.published_topics() if self.source is not None else []
+        for topic, class_name in rviz_config.displays_by_topic(topics):
+            self.by_topic.addAction(f"{topic} ({class_name})", functools.partial(self.add_topic, class_name, topic))
+
+    def add_topic(self, class_name: str, topic: str) -> Display:
+        display = rviz_config.display_for_topic(class_name, topic)
         self.config.displays.append(display)
         self.rebuild_tree()
         return display
