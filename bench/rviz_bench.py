@@ -163,6 +163,8 @@ def main() -> int:
               PointCloud2, serialized(cloud(300_000)), 3, options.frames), flush=True)
     print(run("MarkerArray 2,000 markers, one message", markers.MarkerArray(), MarkerArray,
               serialized(marker_array(2000)), options.frames, options.frames), flush=True)
+    print(run("MarkerArray 2,000 markers, new every 10th frame (3 Hz at 30 fps)", markers.MarkerArray(), MarkerArray,
+              serialized(marker_array(2000)), 10, options.frames), flush=True)
     print(run("Map 2,000x2,000, one message", displays.OccupancyGrid(), OccupancyGrid,
               serialized(grid_map(2000)), options.frames, options.frames), flush=True)
     return 0
