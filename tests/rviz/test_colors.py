@@ -118,3 +118,13 @@ def test_decay_time_keeps_older_messages_until_they_are_older_than_it() -> None:
     assert all_vertices(later)[:, 0].tolist() == [6.0]
     newest = build(displays.PointCloud2(), cloud_of(x=[0], y=[0], z=[0]), cloud_of(x=[5], y=[0], z=[0]))
     assert all_vertices(newest)[:, 0].tolist() == [6.0]  # no decay: the newest alone
+
+
+def test_the_points_style_is_pixels_wide_and_the_others_metres() -> None:
+    cloud = cloud_of(x=[0], y=[0], z=[0])
+    squares = build(displays.PointCloud2(), cloud).batches[0]  # rviz's default: Flat Squares, 0.01 m
+    assert squares.metres and squares.size == pytest.approx(0.01)
+    boxes = build(displays.PointCloud2(options={"Style": "Boxes", "Size (m)": 0.2}), cloud).batches[0]
+    assert boxes.metres and boxes.size == pytest.approx(0.2)
+    points = build(displays.PointCloud2(options={"Style": "Points", "Size (Pixels)": 5}), cloud).batches[0]
+    assert not points.metres and points.size == 5

@@ -77,10 +77,13 @@ class TF(Display):
 
 class PointCloudCommon(Display):
     """What rviz's LaserScan and PointCloud2 share: the points of each message in the fixed
-    frame, coloured by a colour transformer (kame.rviz.colors), "Size (Pixels)" wide; with a
+    frame, coloured by a colour transformer (kame.rviz.colors), "Size (Pixels)" wide in the
+    Points style, else (Squares, Flat Squares and, drawn as those, Spheres and Boxes) "Size (m)"
+    wide where they are; with a
     "Decay Time" (seconds) every message received in that time stays drawn, each through tf
     as it is now."""
-    defaults = {"Size (Pixels)": 3, "Color": "255; 255; 255", "Alpha": 1, "Color Transformer": "",
+    defaults = {"Style": "Flat Squares", "Size (m)": 0.01, "Size (Pixels)": 3, "Color": "255; 255; 255", "Alpha": 1,
+                "Color Transformer": "",
                 "Decay Time": 0, "Channel Name": "intensity", "Use rainbow": True, "Invert Rainbow": False,
                 "Min Color": "0; 0; 0", "Max Color": "255; 255; 255", "Autocompute Intensity Bounds": True,
                 "Axis": "Z", "Use Fixed Frame": True}
@@ -132,7 +135,10 @@ class PointCloudCommon(Display):
                 local, indices = local[finite], np.flatnonzero(finite)
                 colors = colors[finite] if isinstance(colors, np.ndarray) else colors
             fixed = apply(placed, local)
-            scene.add("points", fixed, colors, self.number("Size (Pixels)", 3))
+            if self.options.get("Style") == "Points":
+                scene.add("points", fixed, colors, self.number("Size (Pixels)", 3))
+            else:
+                scene.add("points", fixed, colors, self.number("Size (m)", 0.01), metres=True)
             self._drawn.append((fixed, indices, fields))
 
     def selectable(self) -> Selectable | None:

@@ -165,6 +165,8 @@ class RenderView(QOpenGLWidget):
         for slot, batch in enumerate(self.scene.batches):
             GL.glLineWidth(max(1.0, batch.size))
             GL.glPointSize(max(1.0, batch.size))
+            if batch.metres:
+                self._point_metres(batch.size, height)
             vertices, colors = self._uploaded(slot, batch)
             GL.glBindBuffer(GL.GL_ARRAY_BUFFER, vertices)
             GL.glVertexPointer(3, GL.GL_FLOAT, 0, None)
@@ -184,6 +186,8 @@ class RenderView(QOpenGLWidget):
                 GL.glNormalPointer(GL.GL_FLOAT, 0, None)
             GL.glDrawArrays(PRIMITIVES[batch.kind], 0, len(batch.vertices))
             GL.glDisable(GL.GL_CULL_FACE)
+            if batch.metres:
+                GL.glPointParameterfv(GL.GL_POINT_DISTANCE_ATTENUATION, (1.0, 0.0, 0.0))
             if lit:
                 GL.glDisableClientState(GL.GL_NORMAL_ARRAY)
                 GL.glDisable(GL.GL_LIGHTING)
@@ -199,6 +203,17 @@ class RenderView(QOpenGLWidget):
             painter.setPen(QColor(255, 90, 255))
             painter.drawRect(QRectF(*self._band).normalized())
             painter.end()
+
+    def _point_metres(self, metres: float, height: int) -> None:
+        """Points `metres` wide where they are: so many pixels in the top-down view; in a
+        perspective one the pixels a metre covers 1 m from the eye, divided by each point's
+        distance (GL's point distance attenuation, 1 / sqrt(d^2))."""
+        camera = self.camera
+        if camera.kind == TOP_DOWN:
+            GL.glPointSize(max(1.0, metres * camera.scale * height / max(1, self.height())))
+            return
+        GL.glPointSize(max(1.0, metres * height / (2 * math.tan(camera.fov_y / 2))))
+        GL.glPointParameterfv(GL.GL_POINT_DISTANCE_ATTENUATION, (0.0, 0.0, 1.0))
 
     def _uploaded(self, slot: int, batch: Batch) -> tuple[int, int]:
         """The batch's vertex and colour buffers on the GPU, the slot-th of the scene's: an
