@@ -14,6 +14,7 @@ included): decoding the message, building the scene from it, painting a frame wi
 from __future__ import annotations
 
 import argparse
+import gc
 import os
 import shutil
 import signal
@@ -99,6 +100,7 @@ def run(name: str, display: Any, cls: type[Any], payload: bytes, new_every: int,
     # a window not yet exposed paints nothing: frames timed before that measure no drawing at all
     if not QTest.qWaitForWindowExposed(window, 10_000):
         raise SystemExit("the window was never exposed")
+    gc.freeze()  # as rviz's main does once its window is up
     times, cpus, latencies = [], [], []
     phases: dict[str, list[float]] = {"decode": [], "build": [], "paint new": [], "paint same": []}
     for frame in range(frames):
