@@ -100,7 +100,8 @@ def run(name: str, display: Any, cls: type[Any], payload: bytes, new_every: int,
     # a window not yet exposed paints nothing: frames timed before that measure no drawing at all
     if not QTest.qWaitForWindowExposed(window, 10_000):
         raise SystemExit("the window was never exposed")
-    gc.freeze()  # as rviz's main does once its window is up
+    gc.collect()  # as rviz's main does once its window is up (and the last scene's window is gone)
+    gc.freeze()
     times, cpus, latencies = [], [], []
     phases: dict[str, list[float]] = {"decode": [], "build": [], "paint new": [], "paint same": []}
     for frame in range(frames):

@@ -54,6 +54,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         # what is alive now (Qt, numpy, the message classes) lives as long as the window: kept
         # out of the collector's full passes, which otherwise walk it all while a 2,000-marker
         # array is decoded (40 ms more of a message's latency, every third array or so)
+        gc.collect()  # garbage first: frozen, it would never be freed
         gc.freeze()
         return int(app.exec())
     finally:
