@@ -191,7 +191,9 @@ def cloud_array(cloud: Any) -> np.ndarray:
             formats.append(endian + FIELD_DTYPES[point_field.datatype])
             offsets.append(point_field.offset)
     dtype = np.dtype({"names": names, "formats": formats, "offsets": offsets, "itemsize": cloud.point_step})
-    rows = np.frombuffer(bytes(cloud.data), dtype=np.uint8)[: cloud.row_step * cloud.height]
+    data = cloud.data  # bytes, or a numpy array over the received ones (kame.rviz.source.decode)
+    rows = (np.asarray(data, dtype=np.uint8) if isinstance(data, (list, tuple)) else
+            np.frombuffer(data, dtype=np.uint8))[: cloud.row_step * cloud.height]
     rows = rows.reshape(cloud.height, cloud.row_step)[:, : cloud.point_step * cloud.width]
     return np.ascontiguousarray(rows).view(dtype).reshape(-1)
 
@@ -384,9 +386,10 @@ class OccupancyGrid(Display):
         if self._coloured is not None and self._coloured[:3] == (grid, scheme, alpha):
             return self._coloured[3]
         palette = costmap_palette() if scheme == "costmap" else map_palette()
+        palette[:, 3] = (palette[:, 3] * alpha).astype(np.uint8)  # 256 entries, not 4 M cells
         cells = np.asarray(grid.data, dtype=np.int8).view(np.uint8).reshape(grid.info.height, grid.info.width)
-        rgba = palette[cells]
-        rgba[..., 3] = (rgba[..., 3] * alpha).astype(np.uint8)
+        # each cell's 4 bytes gathered as one 32-bit word
+        rgba = palette.view(np.uint32)[:, 0][cells].view(np.uint8).reshape(grid.info.height, grid.info.width, 4)
         self._coloured = (grid, scheme, alpha, rgba)
         return rgba
 
