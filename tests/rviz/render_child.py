@@ -63,6 +63,13 @@ def main() -> int:
         picked = view.pick(float(px), float(py))
         assert picked is not None
         print(f"pick {name} {','.join(f'{v:.3f}' for v in picked)}", flush=True)
+    # Select marks what it selected over everything: the cube's centre, inside the cube
+    px, py = view.camera.project([list(cube.probe)], view.width(), view.height())[0]
+    window._select((float(px), float(py)), (float(px), float(py)))
+    image = view.grabFramebuffer()
+    ratio = image.width() / max(1, view.width())
+    marked = image.pixelColor(round(float(px) * ratio), round(float(py) * ratio)).getRgb()[:3]
+    print(f"selected {len(window.selection.selected)} {','.join(map(str, marked))}", flush=True)
     if len(sys.argv) > 1:
         settings.displays = [case.make()[0] for case in CASES]
         for case, display in zip(CASES, settings.displays, strict=True):

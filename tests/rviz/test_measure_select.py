@@ -26,7 +26,7 @@ def test_two_clicks_measure_and_a_third_starts_again() -> None:
     assert measure.length == pytest.approx(5.0)
     assert measure.status().endswith("length: 5.000 m")
     line = measure.overlay.batches[0]
-    assert line.kind == "lines" and line.vertices.tolist() == [[0, 0, 0], [3, 4, 0]]
+    assert line.kind == "lines" and line.vertices.tolist() == [[0, 0, 0], [3, 4, 0]] and line.overlay
     measure.click(np.array([1.0, 1.0, 1.0]))
     assert measure.length is None and measure.start == pytest.approx([1, 1, 1])
     measure.reset()
@@ -49,6 +49,7 @@ def test_a_rectangle_selects_the_points_inside_with_their_fields() -> None:
     assert selection.selected[1].properties == {"Position": "3; 0; 0", "intensity": "9"}
     assert selection.total == 2
     assert selection.overlay.batches[0].vertices.tolist() == [[1, 0, 0], [3, 0, 0]]
+    assert selection.overlay.batches[0].overlay  # drawn over what it marks
     selection.select([cloud], camera, WIDTH, HEIGHT, pixel(camera, 0.5, -0.5), pixel(camera, 5.5, 0.5), limit=1)
     assert selection.total == 3 and len(selection.selected) == 1
     selection.select([cloud], camera, WIDTH, HEIGHT, pixel(camera, -3, -3), pixel(camera, -2, -2))

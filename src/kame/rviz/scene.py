@@ -22,7 +22,8 @@ class Batch:
     array at all. `closed` triangles wind counter-clockwise seen from outside a closed surface,
     so the faces turned away from the camera need not be drawn; `normals` (N x 3 float32, one a
     vertex) spare the window working them out from the triangles. `metres`: points `size`
-    metres wide where they are (rviz's Squares styles), smaller as they are farther away."""
+    metres wide where they are (rviz's Squares styles), smaller as they are farther away.
+    `overlay`: drawn over everything, hidden by nothing (the tools' marks)."""
     kind: str
     vertices: np.ndarray  # N x 3 float32, fixed frame
     colors: np.ndarray  # N x 4 float32 or uint8
@@ -30,6 +31,7 @@ class Batch:
     closed: bool = False
     normals: np.ndarray | None = None
     metres: bool = False
+    overlay: bool = False
 
     @property
     def uniform(self) -> bool:
@@ -67,7 +69,7 @@ class Scene:
         self.textures.append(Texture(np.asarray(corners, dtype=np.float32).reshape(4, 3), rgba))
 
     def add(self, kind: str, vertices: Any, colors: Any, size: float = 1.0, closed: bool = False,
-            normals: np.ndarray | None = None, metres: bool = False) -> None:
+            normals: np.ndarray | None = None, metres: bool = False, overlay: bool = False) -> None:
         vertices = np.asarray(vertices, dtype=np.float32).reshape(-1, 3)
         if not len(vertices):
             return
@@ -80,16 +82,17 @@ class Scene:
             colors = np.ascontiguousarray(colors)
         if normals is not None:
             normals = np.ascontiguousarray(normals, dtype=np.float32).reshape(-1, 3)
-        self.batches.append(Batch(kind, np.ascontiguousarray(vertices), colors, size, closed, normals, metres))
+        self.batches.append(Batch(kind, np.ascontiguousarray(vertices), colors, size, closed, normals, metres,
+                                  overlay))
 
     def merged(self) -> Scene:
         """The same scene with batches of one kind, size and closedness joined: one draw call
         for 2,000 markers (colours stay bytes when all are)."""
-        groups: dict[tuple[str, float, bool, bool], list[Batch]] = {}
+        groups: dict[tuple[str, float, bool, bool, bool], list[Batch]] = {}
         for batch in self.batches:
-            groups.setdefault((batch.kind, batch.size, batch.closed, batch.metres), []).append(batch)
+            groups.setdefault((batch.kind, batch.size, batch.closed, batch.metres, batch.overlay), []).append(batch)
         batches = []
-        for (kind, size, closed, metres), group in groups.items():
+        for (kind, size, closed, metres, overlay), group in groups.items():
             if len(group) == 1:
                 batches.append(group[0])
                 continue
@@ -98,7 +101,7 @@ class Scene:
             normals = (np.concatenate([b.normals for b in group if b.normals is not None])
                        if all(b.normals is not None for b in group) else None)
             batches.append(Batch(kind, np.concatenate([b.vertices for b in group]), colors, size, closed, normals,
-                                 metres))
+                                 metres, overlay))
         return Scene(batches, self.labels, self.textures)
 
     def extend(self, other: Scene) -> None:

@@ -51,9 +51,9 @@ class Measure:
             self.end = np.asarray(point, dtype=float)
         self.overlay = Scene()
         if self.end is None:
-            self.overlay.add("points", [self.start], HIGHLIGHT, 6.0)
+            self.overlay.add("points", [self.start], HIGHLIGHT, 6.0, overlay=True)
         else:
-            self.overlay.add("lines", [self.start, self.end], HIGHLIGHT, 2.0)
+            self.overlay.add("lines", [self.start, self.end], HIGHLIGHT, 2.0, overlay=True)
 
     def reset(self) -> None:
         self.start = self.end = None
@@ -94,7 +94,8 @@ class Selection:
                 self.selected.append(Selected(display.name, name, properties, found.positions[index]))
         self.overlay = Scene()
         if self.selected:
-            self.overlay.add("points", np.array([s.position for s in self.selected]), HIGHLIGHT, 8.0)
+            # over everything: a marker's position is inside it
+            self.overlay.add("points", np.array([s.position for s in self.selected]), HIGHLIGHT, 8.0, overlay=True)
 
     def clear(self) -> None:
         self.selected, self.total, self.overlay = [], 0, Scene()

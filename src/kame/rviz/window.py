@@ -177,6 +177,8 @@ class RenderView(QOpenGLWidget):
                 GL.glBindBuffer(GL.GL_ARRAY_BUFFER, colors)
                 GL.glColorPointer(4, GL.GL_UNSIGNED_BYTE if batch.colors.dtype == np.uint8 else GL.GL_FLOAT, 0, None)
             lit = batch.kind == "triangles"
+            if batch.overlay:
+                GL.glDisable(GL.GL_DEPTH_TEST)
             if batch.closed:  # the far side of a closed surface is hidden: llvmpipe need not fill it
                 GL.glEnable(GL.GL_CULL_FACE)
             if lit:  # surfaces are shaded by their facing; lines, points and labels are not
@@ -186,6 +188,7 @@ class RenderView(QOpenGLWidget):
                 GL.glNormalPointer(GL.GL_FLOAT, 0, None)
             GL.glDrawArrays(PRIMITIVES[batch.kind], 0, len(batch.vertices))
             GL.glDisable(GL.GL_CULL_FACE)
+            GL.glEnable(GL.GL_DEPTH_TEST)
             if batch.metres:
                 GL.glPointParameterfv(GL.GL_POINT_DISTANCE_ATTENUATION, (1.0, 0.0, 0.0))
             if lit:
