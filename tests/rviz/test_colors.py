@@ -116,6 +116,8 @@ def test_decay_time_keeps_older_messages_until_they_are_older_than_it() -> None:
     assert sorted(all_vertices(scene)[:, 0]) == [1.0, 6.0]
     later = build(display, now=1.2)
     assert all_vertices(later)[:, 0].tolist() == [6.0]
+    assert build(display, now=1.4).batches[0] is later.batches[0]  # nothing decayed since: not drawn again
+    assert build(display, now=1.6).batches == []  # rviz lets the newest decay too
     newest = build(displays.PointCloud2(), cloud_of(x=[0], y=[0], z=[0]), cloud_of(x=[5], y=[0], z=[0]))
     assert all_vertices(newest)[:, 0].tolist() == [6.0]  # no decay: the newest alone
 

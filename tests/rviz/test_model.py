@@ -205,8 +205,8 @@ def test_every_marker_type_draws_and_markers_are_replaced_deleted_and_expire() -
     build(display, MarkerArray(markers=[_marker("", 0, 0, action=markers.DELETEALL)]))
     assert display.markers == {}
     single = markers.Marker()
-    build(single, _marker("brief", 0, markers.SPHERE, lifetime=1.0), now=10.0)
-    assert build(single, now=10.5).batches
+    first = build(single, _marker("brief", 0, markers.SPHERE, lifetime=1.0), now=10.0).batches[0]
+    assert build(single, now=10.5).batches[0] is first  # alive a while yet: the same scene, not redrawn
     assert not build(single, now=11.5).batches and single.markers == {}
 
 

@@ -6,6 +6,7 @@ frames it asks of tf."""
 from __future__ import annotations
 
 import abc
+import math
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass
 from typing import Any, ClassVar, Protocol
@@ -121,6 +122,7 @@ class Display(abc.ABC):
         self.status = Status()
         self.message: Any = None
         self.version = 0  # counts what receive() changed: the cached scene is for one version
+        self.expires_at = math.inf  # when the first thing drawn last is gone by time alone (draw sets it)
         self._cached: tuple[Any, RecordingFrames, Scene, Status] | None = None
 
     # ------------------------------------------------------------------ options
@@ -172,9 +174,10 @@ class Display(abc.ABC):
         self.version += 1
         self.status = Status()
 
-    def time_dependent(self) -> bool:
-        """Whether the scene changes with `now` alone (markers whose lifetime runs)."""
-        return False
+    def expired(self, now: float) -> bool:
+        """Whether the scene last drawn has something that is gone by `now` alone (a marker
+        whose lifetime ran out, a decayed cloud): it is drawn again then, not every frame."""
+        return now > self.expires_at
 
     def build(self, scene: Scene, frames: Frames, now: float) -> None:
         if not self.enabled:
@@ -185,11 +188,12 @@ class Display(abc.ABC):
             return
         key = (self.version, repr(self.options))
         cached = self._cached
-        if cached is not None and cached[0] == key and not self.time_dependent() and cached[1].unchanged(frames):
+        if cached is not None and cached[0] == key and not self.expired(now) and cached[1].unchanged(frames):
             scene.extend(cached[2])
             self.status = cached[3]
             return
         self.status = Status()
+        self.expires_at = math.inf
         recording = RecordingFrames(frames)
         own = Scene()
         self.draw(own, recording, now)

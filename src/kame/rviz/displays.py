@@ -106,9 +106,6 @@ class PointCloudCommon(Display):
         self.kept = []
         self._drawn = []
 
-    def time_dependent(self) -> bool:
-        return self.number("Decay Time", 0.0) > 0 and len(self.kept) > 1
-
     def points(self, message: Any) -> tuple[np.ndarray, dict[str, np.ndarray]] | str:
         """The message's points (N x 3 float32, its own frame, NaN where none) and its fields,
         one value a point; or why it has none."""
@@ -116,10 +113,11 @@ class PointCloudCommon(Display):
 
     def draw(self, scene: Scene, frames: Frames, now: float) -> None:
         decay = self.number("Decay Time", 0.0)
-        if decay > 0:
-            self.kept = [(at, m) for at, m in self.kept if now - at <= decay or m is self.message]
+        if decay > 0:  # rviz drops every cloud older than the decay time, the newest too
+            self.kept = [(at, m) for at, m in self.kept if now - at <= decay]
+            self.expires_at = min((at + decay for at, _ in self.kept), default=math.inf)
         self._drawn = []
-        for _, message in self.kept or [(now, self.message)]:
+        for _, message in self.kept if decay > 0 else [(now, self.message)]:
             placed = self.placed(frames, message.header.frame_id)
             if placed is None:
                 continue

@@ -213,9 +213,6 @@ class Marker(Display):
             for marker in self.unpack(message):
                 self.apply(marker, now)
 
-    def time_dependent(self) -> bool:
-        return any(m.lifetime.secs or m.lifetime.nsecs for m, _ in self.markers.values())
-
     def unpack(self, message: Any) -> list[Any]:
         return [message]
 
@@ -260,6 +257,8 @@ class Marker(Display):
             if lifetime > 0 and now - received > lifetime:
                 del self.markers[key]
                 continue
+            if lifetime > 0:
+                self.expires_at = min(self.expires_at, received + lifetime)
             if not self.namespace_shown(marker.ns):
                 continue
             found = placements.get(marker.header.frame_id)
