@@ -138,6 +138,11 @@ class RenderView(QOpenGLWidget):
             self.update()
 
     def paintGL(self) -> None:
+        self._paint(overlays=True)
+
+    def _paint(self, overlays: bool) -> None:
+        """The scene; with `overlays`, the labels and Select's rectangle over it (Qt's painter,
+        only within a paint: a pick draws the scene alone, for its depth)."""
         ratio = self.devicePixelRatioF()
         width, height = int(self.width() * ratio), int(self.height() * ratio)
         GL.glViewport(0, 0, width, height)
@@ -200,6 +205,8 @@ class RenderView(QOpenGLWidget):
             GL.glDeleteBuffers(3, [unused.vertices, unused.colors, unused.normals])
         del self._buffers[len(self.scene.batches):]
         GL.glDisableClientState(GL.GL_VERTEX_ARRAY)
+        if not overlays:
+            return
         self._draw_labels()
         if self._band is not None:
             painter = QPainter(self)
@@ -294,7 +301,7 @@ class RenderView(QOpenGLWidget):
         context = self.context()
         if context is not None and context.isValid():
             self.makeCurrent()
-            self.paintGL()  # the frame buffer's depth may have been discarded after it was shown
+            self._paint(overlays=False)  # the frame buffer's depth may have been discarded after it was shown
             ratio = self.devicePixelRatioF()
             row = int(self.height() * ratio) - 1 - int(y * ratio)
             value = GL.glReadPixels(int(x * ratio), row, 1, 1, GL.GL_DEPTH_COMPONENT, GL.GL_FLOAT)
