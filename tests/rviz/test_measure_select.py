@@ -79,3 +79,28 @@ def test_a_click_selects_a_marker() -> None:
     far = pixel(camera, 1.3, 2.0)  # 15 pixels away
     selection.select([display], camera, WIDTH, HEIGHT, far, far)
     assert selection.selected == []
+
+
+def test_a_big_cloud_is_drawn_box_by_box_and_its_points_keep_their_names() -> None:
+    from kame.rviz.scene import spatial_order
+
+    rng = np.random.default_rng(3)
+    xyz = rng.uniform(-4, 4, (20_000, 3)).astype(np.float32)
+    xyz[5] = (np.nan, 0, 0)  # not drawn, and the indices after it still name their points
+    cloud = displays.PointCloud2()
+    batch = build(cloud, cloud_of(x=xyz[:, 0], y=xyz[:, 1], z=xyz[:, 2], intensity=np.arange(20_000))).batches[0]
+    finite = np.delete(xyz, 5, axis=0) + np.array([1, 0, 0])  # odom is 1 m along the map's x
+    assert np.sort(batch.vertices, axis=0) == pytest.approx(np.sort(finite, axis=0), abs=1e-5)  # reordered
+    assert not np.allclose(batch.vertices, finite)
+    low, high = batch.vertices.min(axis=0), batch.vertices.max(axis=0)
+    boxes = ((batch.vertices - low) * (39 / (high - low))).astype(int)  # 40 boxes an axis, as spatial_order's
+    assert (np.diff(boxes[:, 0]) >= 0).all()  # box rows in order
+    camera = Camera(kind=TOP_DOWN, scale=50.0)
+    target = xyz[1234] + np.array([1, 0, 0])
+    at = pixel(camera, float(target[0]), float(target[1]))
+    selection = Selection()
+    selection.select([cloud], camera, WIDTH, HEIGHT, (at[0] - 0.5, at[1] - 0.5), (at[0] + 0.5, at[1] + 0.5))
+    named = {s.name: s for s in selection.selected}
+    assert "Point 1234" in named and named["Point 1234"].properties["intensity"] == "1234"
+    assert named["Point 1234"].position == pytest.approx(target)
+    assert sorted(spatial_order(np.zeros((3, 3), dtype=np.float32))) == [0, 1, 2]  # one box: all of them

@@ -11,9 +11,10 @@ import numpy as np
 
 from kame.rviz.colors import point_colors
 from kame.rviz.display import WARN, Display, Frames, Selectable, Status, coordinates, parse_color
-from kame.rviz.scene import Scene, apply, arrow_triangles, axes_lines, pose_matrix, sphere_triangles
+from kame.rviz.scene import Scene, apply, arrow_triangles, axes_lines, pose_matrix, spatial_order, sphere_triangles
 
 FLOAT32 = 7
+SPATIAL_ORDER_FROM = 10_000  # points: a cloud this big is drawn box by box (scene.spatial_order)
 FIELD_DTYPES = {1: "i1", 2: "u1", 3: "i2", 4: "u2", 5: "i4", 6: "u4", 7: "f4", 8: "f8"}
 
 
@@ -133,6 +134,11 @@ class PointCloudCommon(Display):
                 local, indices = local[finite], np.flatnonzero(finite)
                 colors = colors[finite] if isinstance(colors, np.ndarray) else colors
             fixed = apply(placed, local)
+            if len(fixed) >= SPATIAL_ORDER_FROM:
+                order = spatial_order(fixed)
+                fixed = fixed[order]
+                colors = colors[order] if isinstance(colors, np.ndarray) else colors
+                indices = order if indices is None else indices[order]
             if self.options.get("Style") == "Points":
                 scene.add("points", fixed, colors, self.number("Size (Pixels)", 3))
             else:
