@@ -4,7 +4,9 @@ private Xvfb when no DISPLAY is set). A frame is what the window does each turn:
 newest message (when one came), rebuild the scene, draw it and wait for GL to finish
 (paintGL into the view's frame buffer + glFinish). Reported: frames per second the window can sustain (1 / mean frame
 time), CPU per frame, and message-to-pixels latency (decode + build + draw of a frame with a
-new message).
+new message); and where a frame's CPU goes (median ms of the process, llvmpipe's threads
+included): decoding the message, building the scene from it, painting a frame with a new message
+(uploads + draw + glFinish) and one without (draw + glFinish).
 
     .venv/bin/python bench/rviz_bench.py [--frames 60]
 """
@@ -12,6 +14,7 @@ new message).
 from __future__ import annotations
 
 import argparse
+import gc
 import os
 import shutil
 import signal
@@ -84,6 +87,7 @@ class Frames:
 
 def run(name: str, display: Any, cls: type[Any], payload: bytes, new_every: int, frames: int) -> str:
     from kame.rviz import config
+    from kame.rviz.source import decode
     from kame.rviz.window import RvizWindow
     from OpenGL import GL
     from PySide6.QtTest import QTest
@@ -97,18 +101,27 @@ def run(name: str, display: Any, cls: type[Any], payload: bytes, new_every: int,
     # a window not yet exposed paints nothing: frames timed before that measure no drawing at all
     if not QTest.qWaitForWindowExposed(window, 10_000):
         raise SystemExit("the window was never exposed")
+    gc.collect()  # as rviz's main does once its window is up (and the last scene's window is gone)
+    gc.freeze()
     times, cpus, latencies = [], [], []
+    phases: dict[str, list[float]] = {"decode": [], "build": [], "paint new": [], "paint same": []}
     for frame in range(frames):
         start, cpu = time.perf_counter(), time.process_time()
         if frame % new_every == 0:
-            display.receive([cls._from_buffer(memoryview(payload))], 0.0)
+            display.receive([decode(cls, payload)], 0.0)  # as rviz's source decodes it
+            phases["decode"].append(time.process_time() - cpu)
+        built = time.process_time()
         window.draw(0.0, Frames())
+        painted = time.process_time()
+        if frame % new_every == 0:  # a frame without one reuses the display's scene
+            phases["build"].append(painted - built)
         # paintGL into the view's frame buffer, as Qt calls it, then wait for GL to finish: a
         # repaint() request may be dropped (it painted 2 frames of 30 on a busy machine), this may not
         window.view.makeCurrent()
         window.view.paintGL()
         GL.glFinish()
         window.view.doneCurrent()
+        phases["paint new" if frame % new_every == 0 else "paint same"].append(time.process_time() - painted)
         elapsed = time.perf_counter() - start
         times.append(elapsed)
         cpus.append(time.process_time() - cpu)
@@ -116,8 +129,10 @@ def run(name: str, display: Any, cls: type[Any], payload: bytes, new_every: int,
             latencies.append(elapsed)
     window.close()
     steady = times[1:]  # the first frame uploads the map and warms caches
+    split = " | ".join(f"{1000 * np.median(phases[key]):.1f}" if phases[key] else "-"
+                       for key in ("decode", "build", "paint new", "paint same"))
     return (f"| {name} | {1 / np.mean(steady):.1f} | {1000 * np.mean(cpus[1:]):.1f} | "
-            f"{1000 * np.median(latencies):.0f} | {1000 * max(latencies):.0f} |")
+            f"{1000 * np.median(latencies):.0f} | {1000 * max(latencies):.0f} | {split} |")
 
 
 def with_display(main: Callable[[], int]) -> int:
@@ -145,12 +160,15 @@ def main() -> int:
     from sensor_msgs.msg import PointCloud2
     from visualization_msgs.msg import MarkerArray
 
-    print("| scene | frames/s | CPU ms/frame | latency median ms | latency max ms |")
-    print("|---|---|---|---|---|")
+    print("| scene | frames/s | CPU ms/frame | latency median ms | latency max ms | CPU ms: decode | build | "
+          "paint new | paint same |")
+    print("|---|---|---|---|---|---|---|---|---|")
     print(run("PointCloud2 300k points, new every 3rd frame (10 Hz at 30 fps)", displays.PointCloud2(),
               PointCloud2, serialized(cloud(300_000)), 3, options.frames), flush=True)
     print(run("MarkerArray 2,000 markers, one message", markers.MarkerArray(), MarkerArray,
               serialized(marker_array(2000)), options.frames, options.frames), flush=True)
+    print(run("MarkerArray 2,000 markers, new every 10th frame (3 Hz at 30 fps)", markers.MarkerArray(), MarkerArray,
+              serialized(marker_array(2000)), 10, options.frames), flush=True)
     print(run("Map 2,000x2,000, one message", displays.OccupancyGrid(), OccupancyGrid,
               serialized(grid_map(2000)), options.frames, options.frames), flush=True)
     return 0

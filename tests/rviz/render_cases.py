@@ -54,7 +54,7 @@ class Case:
 def _scan() -> tuple[Display, list[Any]]:
     scan = LaserScan(angle_min=-0.1, angle_increment=0.01, range_min=0.1, range_max=10.0, ranges=[1.0] * 21)
     scan.header.frame_id = "laser"  # the rays point along the laser's x: the map's y
-    return displays.LaserScan(options={"Color": "255; 0; 0", "Size (Pixels)": 6}), [scan]
+    return displays.LaserScan(options={"Color": "255; 0; 0", "Style": "Points", "Size (Pixels)": 6}), [scan]
 
 
 def _cloud() -> tuple[Display, list[Any]]:
@@ -64,7 +64,26 @@ def _cloud() -> tuple[Display, list[Any]]:
     fields = [PointField(name=n, offset=4 * i, datatype=7, count=1) for i, n in enumerate("xyz")]
     cloud = PointCloud2(height=1, width=25, fields=fields, point_step=12, row_step=300, data=points.tobytes())
     cloud.header.frame_id = "map"
-    return displays.PointCloud2(options={"Color": "0; 255; 255", "Size (Pixels)": 6}), [cloud]
+    return displays.PointCloud2(options={"Color": "0; 255; 255", "Style": "Points", "Size (Pixels)": 6}), [cloud]
+
+
+def _intensity_scan() -> tuple[Display, list[Any]]:
+    """rviz's default for a scan with intensities: the rainbow, the strongest rays magenta; the
+    weakest (red, at the rays' other end) bound it."""
+    scan = LaserScan(angle_min=-0.1, angle_increment=0.01, range_min=0.1, range_max=10.0, ranges=[2.0] * 21,
+                     intensities=[0.0] * 10 + [100.0] * 11)
+    scan.header.frame_id = "laser"  # 2 m along the map's y from (2, 0), the strong rays to its left
+    return displays.LaserScan(options={"Style": "Points", "Size (Pixels)": 6}), [scan]
+
+
+def _square_cloud() -> tuple[Display, list[Any]]:
+    """rviz's default style: squares "Size (m)" wide where they are, here 0.3 m: 15 pixels."""
+    points = np.zeros(1, dtype=[("x", "<f4"), ("y", "<f4"), ("z", "<f4")])
+    points["x"], points["y"] = 2.0, -1.0
+    fields = [PointField(name=n, offset=4 * i, datatype=7, count=1) for i, n in enumerate("xyz")]
+    cloud = PointCloud2(height=1, width=1, fields=fields, point_step=12, row_step=12, data=points.tobytes())
+    cloud.header.frame_id = "map"
+    return displays.PointCloud2(options={"Color": "255; 255; 0", "Size (m)": 0.3}), [cloud]
 
 
 def _rgb_cloud() -> tuple[Display, list[Any]]:
@@ -76,7 +95,7 @@ def _rgb_cloud() -> tuple[Display, list[Any]]:
     fields = [PointField(name=n, offset=4 * i, datatype=7, count=1) for i, n in enumerate(("x", "y", "z", "rgb"))]
     cloud = PointCloud2(height=1, width=25, fields=fields, point_step=16, row_step=400, data=points.tobytes())
     cloud.header.frame_id = "map"
-    return displays.PointCloud2(options={"Size (Pixels)": 6}), [cloud]
+    return displays.PointCloud2(options={"Style": "Points", "Size (Pixels)": 6}), [cloud]
 
 
 def _grid() -> tuple[Display, list[Any]]:
@@ -211,7 +230,9 @@ def _mesh() -> tuple[Display, list[Any]]:
 
 CASES = [
     Case("LaserScan", _scan, (2.0, 1.0, 0.0), (255, 0, 0)),
+    Case("LaserScan intensity", _intensity_scan, (1.9, 2.0, 0.0), (255, 0, 255)),
     Case("PointCloud2", _cloud, (-2.0, -1.0, 0.0), (0, 255, 255)),
+    Case("PointCloud2 squares", _square_cloud, (2.0, -1.0, 0.0), (255, 255, 0), (6, 0)),
     Case("PointCloud2 rgb", _rgb_cloud, (-1.0, 0.5, 0.0), (255, 128, 0)),
     Case("Map", _grid, (-2.5, 1.5, 0.0), (255, 255, 255)),
     Case("Marker cube", _marker_case(markers.CUBE), (1.0, -2.0, 0.0), (0, 0, 255)),

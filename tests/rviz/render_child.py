@@ -52,6 +52,24 @@ def main() -> int:
         assert best is not None
         print(f"case {case.name.replace(' ', '_')} {display.status.level} {','.join(map(str, best[1]))} "
               f"{','.join(map(str, empty))}", flush=True)
+    # Measure picks what is drawn: on the cube (0.5 m, centred on the ground) its top, beside it the ground
+    cube = next(case for case in CASES if case.name == "Marker cube")
+    display, messages = cube.make()
+    display.receive(messages, 0.0)
+    settings.displays = [display]
+    window.draw(0.0, Frames())
+    for name, (x, y) in (("on", cube.probe[:2]), ("beside", (cube.probe[0] + 1.0, cube.probe[1]))):
+        px, py = view.camera.project([[x, y, 0.0]], view.width(), view.height())[0]
+        picked = view.pick(float(px), float(py))
+        assert picked is not None
+        print(f"pick {name} {','.join(f'{v:.3f}' for v in picked)}", flush=True)
+    # Select marks what it selected over everything: the cube's centre, inside the cube
+    px, py = view.camera.project([list(cube.probe)], view.width(), view.height())[0]
+    window._select((float(px), float(py)), (float(px), float(py)))
+    image = view.grabFramebuffer()
+    ratio = image.width() / max(1, view.width())
+    marked = image.pixelColor(round(float(px) * ratio), round(float(py) * ratio)).getRgb()[:3]
+    print(f"selected {len(window.selection.selected)} {','.join(map(str, marked))}", flush=True)
     if len(sys.argv) > 1:
         settings.displays = [case.make()[0] for case in CASES]
         for case, display in zip(CASES, settings.displays, strict=True):

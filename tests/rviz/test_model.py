@@ -11,7 +11,7 @@ import pytest
 
 from geometry_msgs.msg import Point, PointStamped, Pose, PoseArray, PoseStamped, Quaternion
 from kame.rviz import config, displays, markers
-from kame.rviz.camera import TOP_DOWN, Camera
+from kame.rviz.camera import FPS, TOP_DOWN, Camera
 from kame.rviz.display import OK, WARN
 from kame.rviz.scene import Scene, apply, box_triangles, cylinder_triangles, pose_matrix, sphere_triangles
 from nav_msgs.msg import OccupancyGrid, Odometry, Path
@@ -54,6 +54,21 @@ def build(display, *messages, now=0.0):  # type: ignore[no-untyped-def]
     display.receive(list(messages), now)
     display.build(scene, TREE, now)
     return scene
+
+
+def unwound(vertices: np.ndarray) -> np.ndarray:
+    """Triangles with each one's corners in one order, whichever way it was wound."""
+    triangles = np.asarray(vertices, dtype=float).reshape(-1, 3, 3)
+    order = np.array([np.lexsort((t[:, 2].round(4), t[:, 1].round(4), t[:, 0].round(4))) for t in triangles])
+    return np.take_along_axis(triangles, order[:, :, None], axis=1)
+
+
+def without_flat(vertices: np.ndarray) -> np.ndarray:
+    """The triangles that have an area."""
+    triangles = np.asarray(vertices, dtype=float).reshape(-1, 3, 3)
+    areas = np.linalg.norm(np.cross(triangles[:, 1] - triangles[:, 0], triangles[:, 2] - triangles[:, 0]), axis=1)
+    kept: np.ndarray = triangles[areas > 1e-9].reshape(-1, 3)
+    return kept
 
 
 def all_vertices(scene: Scene) -> np.ndarray:
@@ -181,7 +196,8 @@ def test_every_marker_type_draws_and_markers_are_replaced_deleted_and_expire() -
     assert [label.text for label in scene.labels] == ["hello"]
     kinds = {b.kind for b in scene.batches}
     assert kinds == {"triangles", "lines", "points"}
-    assert len(scene.batches) == 3  # one batch a kind: 2,000 markers are one draw call each kind
+    # one batch a kind (closed solids' triangles apart from the rest): 2,000 markers, a few draw calls
+    assert len(scene.batches) == 4 and sum(b.closed for b in scene.batches) == 1
     cube = build(markers.Marker(), _marker("one", 1, markers.CUBE)).batches[0].vertices
     assert cube.min(axis=0) == pytest.approx([0.5, -0.5, -0.5]) and cube.max(axis=0) == pytest.approx([1.5, 0.5, 0.5])
     build(display, MarkerArray(markers=[_marker("shapes", 1, 1, action=markers.DELETE)]))
@@ -189,8 +205,8 @@ def test_every_marker_type_draws_and_markers_are_replaced_deleted_and_expire() -
     build(display, MarkerArray(markers=[_marker("", 0, 0, action=markers.DELETEALL)]))
     assert display.markers == {}
     single = markers.Marker()
-    build(single, _marker("brief", 0, markers.SPHERE, lifetime=1.0), now=10.0)
-    assert build(single, now=10.5).batches
+    first = build(single, _marker("brief", 0, markers.SPHERE, lifetime=1.0), now=10.0).batches[0]
+    assert build(single, now=10.5).batches[0] is first  # alive a while yet: the same scene, not redrawn
     assert not build(single, now=11.5).batches and single.markers == {}
 
 
@@ -273,7 +289,46 @@ def test_an_rviz_file_loads_and_saves_back_what_it_had() -> None:
         config.parse("- just a list")
 
 
-@pytest.mark.parametrize("kind", ["rviz/Orbit", TOP_DOWN])
+def test_first_person_view_looks_from_its_eye_and_moves_as_rvizs() -> None:
+    camera = Camera(kind=FPS, position=np.array([0.0, 0.0, 1.0]), yaw=0.0, pitch=0.0)
+    ahead, left, behind = camera.project([[5.0, 0.0, 1.0], [5.0, 1.0, 1.0], [-5.0, 0.0, 1.0]], 640, 480)
+    assert ahead == pytest.approx([320, 240]) and left[0] < 320 and np.isnan(behind).all()
+    camera.rotate(0, 100)  # dragging down looks down
+    assert camera.project([[5.0, 0.0, 1.0]], 640, 480)[0][1] < 240
+    camera.pitch = 0.0
+    camera.zoom(1)  # a wheel notch: 1.2 m forward
+    assert camera.eye() == pytest.approx([1.2, 0.0, 1.0])
+    camera.pan(100, 0, 480)  # 1 cm a pixel, to the right (the view's -y)
+    assert camera.eye() == pytest.approx([1.2, -1.0, 1.0])
+
+
+def test_switching_views_keeps_what_is_seen() -> None:
+    camera = Camera(focal_point=np.array([1.0, 2.0, 0.0]))
+    seen = camera.project([[1.0, 2.0, 0.0], [2.0, 2.0, 0.5]], 640, 480)
+    camera.become(FPS)
+    assert camera.kind == FPS and camera.project([[1.0, 2.0, 0.0], [2.0, 2.0, 0.5]], 640, 480) == pytest.approx(seen)
+    camera.position = camera.position + np.array([0.5, 0.0, 0.0])
+    camera.become("rviz/Orbit")
+    assert camera.project([[1.5, 2.0, 0.0]], 640, 480)[0] == pytest.approx([320, 240])
+
+
+def test_a_first_person_view_loads_and_saves() -> None:
+    text = """Visualization Manager:
+  Views:
+    Current:
+      Class: rviz/FPS
+      Name: Current View
+      Pitch: 0.4
+      Position: {X: -5, Y: 1, Z: 3}
+      Yaw: 0.2
+"""
+    camera = config.parse(text).camera
+    assert camera.kind == FPS and camera.position == pytest.approx([-5, 1, 3])
+    assert (camera.pitch, camera.yaw) == pytest.approx((0.4, 0.2))
+    assert config.view_entry(camera)["Position"] == {"X": -5.0, "Y": 1.0, "Z": 3.0}
+
+
+@pytest.mark.parametrize("kind", ["rviz/Orbit", TOP_DOWN, FPS])
 def test_a_click_finds_the_ground_point_the_camera_projects_there(kind: str) -> None:
     camera = Camera(kind=kind, focal_point=np.array([2.0, -1.0, 0.0]), scale=50.0)
     ground = np.array([[3.0, 0.5, 0.0]])
@@ -426,7 +481,7 @@ def test_solid_markers_drawn_together_match_each_drawn_alone() -> None:
             for i, marker in enumerate(array.markers):
                 m = TREE.transform(marker.header.frame_id) @ pose_matrix(marker.pose)
                 tail, tip = m[:3, 3], m[:3, 3] + m[:3, 0] * marker.scale.x
-                arrow = together.vertices[96 * i:96 * (i + 1)]
+                arrow = together.vertices[120 * i:120 * (i + 1)]  # 8 sides of 4 triangles, a cap of 8
                 along = (arrow - tail) @ m[:3, 0]
                 across = np.linalg.norm(arrow - tail - np.outer(along, m[:3, 0]), axis=1)
                 assert along.min() == pytest.approx(0, abs=1e-5) and along.max() == pytest.approx(marker.scale.x)
@@ -438,5 +493,16 @@ def test_solid_markers_drawn_together_match_each_drawn_alone() -> None:
         alone = [apply(TREE.transform(m.header.frame_id) @ pose_matrix(m.pose), shape((m.scale.x, m.scale.y,
                                                                                       m.scale.z)))
                  for m in array.markers]
-        assert together.vertices == pytest.approx(np.concatenate(alone), abs=1e-5)
-        assert together.colors[::len(alone[0])] == pytest.approx(np.array([(i / 6, 0, 0, 1) for i in range(6)]))
+        alone = [without_flat(shape) for shape in alone]  # the sphere's at its poles are not drawn
+        assert unwound(together.vertices) == pytest.approx(unwound(np.concatenate(alone)), abs=1e-5)
+        assert together.float_colors()[::len(alone[0])] == pytest.approx(
+            np.array([(i / 6, 0, 0, 1) for i in range(6)]), abs=1 / 255)  # bytes
+        # drawn with the faces turned away culled: each must wind counter-clockwise seen from outside
+        assert together.closed
+        triangles = together.vertices.reshape(-1, 3, 3).astype(float)
+        centres = np.repeat([apply(TREE.transform(m.header.frame_id), [[m.pose.position.x, m.pose.position.y,
+                                                                        m.pose.position.z]])[0]
+                             for m in array.markers], len(alone[0]) // 3, axis=0)
+        facing = np.cross(triangles[:, 1] - triangles[:, 0], triangles[:, 2] - triangles[:, 0])
+        assert ((facing * (triangles.mean(axis=1) - centres)).sum(axis=1) >= -1e-6).all()
+        assert (np.einsum("ij,ij->i", together.normals, np.repeat(facing, 3, axis=0)) >= -1e-6).all()

@@ -44,3 +44,10 @@ def test_every_display_colours_its_place_in_the_frame_buffer(tmp_path: Path) -> 
         assert sum(abs(a - b) for a, b in zip(probe, case.color, strict=True)) <= TOLERANCE, (case.name, probe)
         assert empty == BACKGROUND, (case.name, empty)
     assert screenshot.stat().st_size > 0
+    picks = {line.split()[1]: [float(v) for v in line.split()[2].split(",")]
+             for line in done.stdout.splitlines() if line.startswith("pick ")}
+    assert picks["on"] == pytest.approx([1.0, -2.0, 0.25], abs=0.03)  # the cube's top, read from the depth buffer
+    assert picks["beside"] == pytest.approx([2.0, -2.0, 0.0], abs=0.03)
+    selected = next(line.split() for line in done.stdout.splitlines() if line.startswith("selected "))
+    marked = tuple(map(int, selected[2].split(",")))
+    assert selected[1] == "1" and sum(abs(a - b) for a, b in zip(marked, (255, 89, 255), strict=True)) <= TOLERANCE

@@ -69,3 +69,33 @@ def test_a_burst_of_scans_is_one_message_and_markers_are_each_kept(tmp_path: Pat
         rviz.shutdown("test over")
         talker.shutdown("test over")
         graph.stop()
+
+
+def test_scans_and_maps_are_decoded_into_arrays_and_drawn_as_from_tuples() -> None:
+    from kame.rviz import displays
+    from kame.rviz.source import decode
+    from nav_msgs.msg import OccupancyGrid
+    from tests.rviz.test_model import build
+
+    def payload(message: Any) -> bytes:
+        return b"".join(bytes(part) for part in serialize_frame(message))[4:]
+
+    grid = OccupancyGrid(data=[0, 100, -1, 50])
+    grid.header.frame_id = "map"
+    grid.info.width, grid.info.height, grid.info.resolution = 2, 2, 0.5
+    grid.info.origin.orientation.w = 1.0
+    scan = LaserScan(angle_min=0.0, angle_increment=0.5, range_min=0.1, range_max=10.0, ranges=[1.0, 2.0, 99.0],
+                     intensities=[1.0, 2.0, 3.0])
+    scan.header.frame_id = "laser"
+    for message, display_class, array in ((grid, displays.OccupancyGrid, "data"), (scan, displays.LaserScan, "ranges")):
+        fast = decode(type(message), payload(message))
+        assert isinstance(getattr(fast, array), np.ndarray)
+        plain = type(message)._from_buffer(memoryview(payload(message)))
+        ours, theirs = build(display_class(), fast), build(display_class(), plain)
+        for a, b in zip(ours.batches + ours.textures, theirs.batches + theirs.textures, strict=True):
+            for field in ("vertices", "colors", "rgba", "corners"):
+                if hasattr(a, field):
+                    assert np.array_equal(getattr(a, field), getattr(b, field)), (display_class, field)
+        assert len(ours.batches) + len(ours.textures) == 1
+    marker = decode(Marker, payload(Marker(ns="n")))  # no numbers to speak of: decoded as usual
+    assert marker.ns == "n"

@@ -95,3 +95,83 @@ def test_mouse_moves_the_camera_and_the_tools_publish(tmp_path: Path, qtbot: Any
         rviz.shutdown("test over")
         listener.shutdown("test over")
         graph.stop()
+
+
+def test_measure_and_select_in_the_window(qtbot: Any) -> None:
+    """Offscreen there is no OpenGL to read depth from: Measure's clicks meet the ground."""
+    from kame.rviz import displays
+    from kame.rviz.camera import TOP_DOWN, Camera
+    from kame.rviz.window import MEASURE, SELECT
+    from tests.rviz.test_colors import cloud_of
+    from tests.rviz.test_model import TREE
+
+    cloud = displays.PointCloud2()
+    window = RvizWindow(config.Config(fixed_frame="map", camera=Camera(kind=TOP_DOWN, scale=50.0),
+                                      displays=[cloud]), None)
+    qtbot.addWidget(window)
+    window.timer.stop()
+    window.resize(800, 600)
+    window.show()
+    view = window.view
+    cloud.receive([cloud_of(x=[0, 2], y=[0, 0], z=[0, 0], intensity=[1, 2])], 0.0)  # map x 1 and 3
+    window.draw(0.0, TREE)
+
+    def at(x: float, y: float) -> QPoint:
+        px, py = view.camera.project([[x, y, 0.0]], view.width(), view.height())[0]
+        return QPoint(round(float(px)), round(float(py)))
+
+    window.set_tool(MEASURE)
+    assert window.statusBar().currentMessage().startswith("[Left-Click] Select start point")
+    QTest.mouseClick(view, Qt.MouseButton.LeftButton, Qt.KeyboardModifier.NoModifier, at(0.0, 0.0))
+    QTest.mouseClick(view, Qt.MouseButton.LeftButton, Qt.KeyboardModifier.NoModifier, at(3.0, 4.0))
+    assert window.measure.length == pytest.approx(5.0, abs=0.05)
+    assert "length: 5.0" in window.statusBar().currentMessage()
+    assert any(b is window.measure.overlay.batches[0] for b in view.scene.batches)  # the line is drawn
+    QTest.mouseClick(view, Qt.MouseButton.RightButton, Qt.KeyboardModifier.NoModifier, at(3.0, 4.0))
+    assert window.measure.start is None and window.measure.overlay.batches == []
+
+    window.set_tool(SELECT)
+    assert window.selection_dock.isVisible()
+    yaw = view.camera.yaw
+    QTest.mousePress(view, Qt.MouseButton.LeftButton, Qt.KeyboardModifier.NoModifier, at(0.5, 0.5))
+    QTest.mouseMove(view, at(2.0, -0.5))
+    QTest.mouseRelease(view, Qt.MouseButton.LeftButton, Qt.KeyboardModifier.NoModifier, at(2.0, -0.5))
+    assert view.camera.yaw == yaw  # a drag selects, it does not turn the view
+    tree = window.selected_tree
+    assert tree.topLevelItemCount() == 1 and tree.topLevelItem(0).text(0) == "Point 0"
+    shown = {tree.topLevelItem(0).child(i).text(0): tree.topLevelItem(0).child(i).text(1)
+             for i in range(tree.topLevelItem(0).childCount())}
+    assert shown == {"Position": "1; 0; 0", "intensity": "1"}
+    assert any(b is window.selection.overlay.batches[0] for b in view.scene.batches)  # the point is marked
+    window.close()
+
+
+def test_add_a_display_by_topic(tmp_path: Path, qtbot: Any) -> None:
+    """Add > By topic offers each published topic a display shows; choosing one adds and subscribes it."""
+    from sensor_msgs.msg import LaserScan
+    from visualization_msgs.msg import MarkerArray
+
+    graph = Graph(tmp_path)
+    rviz = Node(NodeConfig("/rviz_by_topic_test", graph.uri, "127.0.0.1", "127.0.0.1"))
+    talker = Node(NodeConfig("/talker", graph.uri, "127.0.0.1", "127.0.0.1"))
+    source = RvizSource(rviz, lambda: None)
+    try:
+        for topic, cls in (("/scan", LaserScan), ("/boxes", MarkerArray), ("/chatter", PointStamped)):
+            talker.advertise(topic, cls._type, cls._md5sum, cls._full_text)
+        window = RvizWindow(config.Config(fixed_frame="odom", displays=[]), source)
+        qtbot.addWidget(window)
+        window.timer.stop()
+        window.by_topic.aboutToShow.emit()
+        offered = [action.text() for action in window.by_topic.actions()]
+        assert "/scan (rviz/LaserScan)" in offered and "/boxes (rviz/MarkerArray)" in offered
+        assert "/chatter (rviz/PointStamped)" in offered and not any("/rosout" in text for text in offered)
+        next(a for a in window.by_topic.actions() if a.text() == "/boxes (rviz/MarkerArray)").trigger()
+        added = window.config.displays[-1]
+        assert (added.class_name, added.name, added.options["Marker Topic"]) == ("rviz/MarkerArray", "/boxes", "/boxes")
+        assert "/boxes" in source.watched()
+        window.close()
+    finally:
+        source.close()
+        rviz.shutdown("test over")
+        talker.shutdown("test over")
+        graph.stop()

@@ -1,7 +1,9 @@
-"""rviz's two views as numbers: the orbit camera (a focal point, distance, yaw and pitch; left
-drag rotates, middle drag pans, the wheel zooms) and the top-down orthographic one (a centre
-and a scale). Both give the 4x4 view and projection matrices OpenGL takes and project a point
-of the fixed frame to a pixel, so a test can say where geometry must appear."""
+"""rviz's three views as numbers: the orbit camera (a focal point, distance, yaw and pitch; left
+drag rotates, middle drag pans, the wheel zooms), the top-down orthographic one (a centre and a
+scale) and the first-person one (rviz/FPS: an eye position, yaw and pitch; left drag turns the
+head, middle drag moves sideways and up, the wheel moves forward). Each gives the 4x4 view and
+projection matrices OpenGL takes and projects a point of the fixed frame to a pixel, so a test
+can say where geometry must appear."""
 
 from __future__ import annotations
 
@@ -12,6 +14,7 @@ import numpy as np
 
 ORBIT = "rviz/Orbit"
 TOP_DOWN = "rviz/TopDownOrtho"
+FPS = "rviz/FPS"
 MIN_DISTANCE = 0.01
 PITCH_LIMIT = math.pi / 2 - 0.001
 
@@ -40,6 +43,25 @@ class Camera:
     angle: float = 0.0  # top-down: the view's rotation about z
     near: float = 0.01
     far: float = 1000.0
+    position: np.ndarray = field(default_factory=lambda: np.array([-10.0, 0.0, 10.0]))  # first-person: the eye
+
+    def become(self, kind: str) -> None:
+        """Switch to view `kind` seeing what this one sees, as rviz's view chooser does (the
+        top-down view keeps its own centre and scale)."""
+        if kind == self.kind:
+            return
+        if kind == FPS and self.kind == ORBIT:  # from the orbit's eye towards its focal point
+            self.position = self.eye()
+            self.yaw, self.pitch = self.yaw + math.pi, self.pitch
+        elif kind == ORBIT and self.kind == FPS:  # the focal point `distance` ahead of the eye
+            self.focal_point = np.asarray(self.position, dtype=float) + self.distance * self.forward()
+            self.yaw = self.yaw - math.pi
+        self.kind = kind
+
+    def forward(self) -> np.ndarray:
+        """First-person: the unit vector the eye looks along (a positive pitch looks down)."""
+        cp = math.cos(self.pitch)
+        return np.array([cp * math.cos(self.yaw), cp * math.sin(self.yaw), -math.sin(self.pitch)])
 
     # -------------------------------------------------------------- mouse
 
@@ -47,6 +69,10 @@ class Camera:
         """A left drag of (dx, dy) pixels, as rviz's orbit view turns (0.005 rad a pixel)."""
         if self.kind == TOP_DOWN:
             self.angle += dx * 0.005
+            return
+        if self.kind == FPS:  # rviz's FPS view: the head turns the other way up and down
+            self.yaw -= dx * 0.005
+            self.pitch = min(PITCH_LIMIT, max(-PITCH_LIMIT, self.pitch + dy * 0.005))
             return
         self.yaw -= dx * 0.005
         self.pitch = min(PITCH_LIMIT, max(-PITCH_LIMIT, self.pitch + dy * 0.005))
@@ -58,6 +84,10 @@ class Camera:
             mx, my = -dx / self.scale, dy / self.scale
             self.focal_point = self.focal_point + np.array([c * mx - s * my, s * mx + c * my, 0.0])
             return
+        if self.kind == FPS:  # rviz's: 1 cm a pixel, right and up
+            view = self.view_matrix()
+            self.position = np.asarray(self.position, dtype=float) + (dx * view[0, :3] - dy * view[1, :3]) * 0.01
+            return
         metres_per_pixel = 2 * self.distance * math.tan(self.fov_y / 2) / max(1, height)
         view = self.view_matrix()
         right, up = view[0, :3], view[1, :3]
@@ -66,6 +96,9 @@ class Camera:
     def zoom(self, steps: float) -> None:
         """Wheel steps (one notch = 1; forward zooms in), 10 % a notch as rviz does."""
         factor = 0.9 ** steps
+        if self.kind == FPS:  # rviz's: 1.2 m forward a notch
+            self.position = np.asarray(self.position, dtype=float) + 1.2 * steps * self.forward()
+            return
         if self.kind == TOP_DOWN:
             self.scale /= factor
         else:
@@ -74,6 +107,8 @@ class Camera:
     # -------------------------------------------------------------- matrices
 
     def eye(self) -> np.ndarray:
+        if self.kind == FPS:
+            return np.asarray(self.position, dtype=float)
         cp = math.cos(self.pitch)
         offset = np.array([cp * math.cos(self.yaw), cp * math.sin(self.yaw), math.sin(self.pitch)])
         return np.asarray(self.focal_point, dtype=float) + self.distance * offset
@@ -86,6 +121,8 @@ class Camera:
             view[:3, :3] = rotation
             view[:3, 3] = -rotation @ (np.asarray(self.focal_point, dtype=float) + np.array([0.0, 0.0, 500.0]))
             return view
+        if self.kind == FPS:
+            return _look_at(self.eye(), self.eye() + self.forward(), np.array([0.0, 0.0, 1.0]))
         return _look_at(self.eye(), np.asarray(self.focal_point, dtype=float), np.array([0.0, 0.0, 1.0]))
 
     def projection_matrix(self, width: int, height: int) -> np.ndarray:
@@ -113,6 +150,13 @@ class Camera:
         with np.errstate(divide="ignore", invalid="ignore"):
             ndc = np.where(w > 0, clip[:, :3] / w, np.nan)
         return np.column_stack([(ndc[:, 0] + 1) * width / 2, (1 - ndc[:, 1]) * height / 2])
+
+    def unproject(self, x: float, y: float, depth: float, width: int, height: int) -> np.ndarray:
+        """The fixed-frame point at pixel (x, y) whose depth buffer value (0 near .. 1 far) is `depth`."""
+        inverse = np.linalg.inv(self.projection_matrix(width, height) @ self.view_matrix())
+        point = inverse @ np.array([2 * x / max(1, width) - 1, 1 - 2 * y / max(1, height), 2 * depth - 1, 1.0])
+        found: np.ndarray = point[:3] / point[3]
+        return found
 
     def ground_point(self, x: float, y: float, width: int, height: int) -> np.ndarray | None:
         """Where the ray through pixel (x, y) meets the fixed frame's z = 0 plane (the tools'

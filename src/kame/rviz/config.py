@@ -1,6 +1,6 @@
 """The .rviz file (YAML, as rviz writes it): Visualization Manager's Displays (Class, Name,
 Enabled, and each display's own keys), Global Options (Fixed Frame, Background Color, Frame
-Rate) and Views (Current: rviz/Orbit or rviz/TopDownOrtho). Keys kame does not use are kept and
+Rate) and Views (Current: rviz/Orbit, rviz/TopDownOrtho or rviz/FPS). Keys kame does not use are kept and
 written back, so a file saved by kame still opens in rviz with what rviz had put there."""
 
 from __future__ import annotations
@@ -12,7 +12,7 @@ from typing import Any
 import numpy as np
 import yaml
 
-from kame.rviz.camera import ORBIT, TOP_DOWN, Camera
+from kame.rviz.camera import FPS, ORBIT, TOP_DOWN, Camera
 from kame.rviz.display import Display, format_color, parse_color
 from kame.rviz.displays import (
     TF,
@@ -38,6 +38,18 @@ DISPLAY_CLASSES: dict[str, type[Display]] = {cls.class_name: cls for cls in (
     Grid, Axes, TF, LaserScan, PointCloud2, Odometry, Pose, PoseArray, PointStamped, Path, Polygon, OccupancyGrid,
     Marker, MarkerArray, RobotModel, Range, WrenchStamped, Image, CameraDisplay)}
 COMMON_KEYS = ("Class", "Name", "Enabled")
+
+
+def displays_by_topic(topics: list[tuple[str, str]]) -> list[tuple[str, str]]:
+    """rviz's Add > By topic: (topic, display class) for each published topic a display shows."""
+    return [(topic, class_name) for topic, type_name in sorted(topics)
+            for class_name, cls in DISPLAY_CLASSES.items() if type_name in cls.message_types]
+
+
+def display_for_topic(class_name: str, topic: str) -> Display:
+    """A new display of `class_name` showing `topic`, named after the topic."""
+    cls = DISPLAY_CLASSES[class_name]
+    return cls(name=topic, options={cls.topic_key: topic})
 
 
 @dataclass
@@ -68,7 +80,8 @@ def display_from(entry: dict[str, Any]) -> Display | None:
 
 def camera_from(view: dict[str, Any]) -> Camera:
     camera = Camera()
-    camera.kind = TOP_DOWN if view.get("Class") == TOP_DOWN else ORBIT
+    kind = str(view.get("Class"))
+    camera.kind = kind if kind in (TOP_DOWN, FPS) else ORBIT
     focal = view.get("Focal Point") or {}
     camera.focal_point = np.array([_float(focal.get(axis), 0.0) for axis in "XYZ"])
     camera.distance = _float(view.get("Distance"), camera.distance)
@@ -77,6 +90,9 @@ def camera_from(view: dict[str, Any]) -> Camera:
     camera.angle = _float(view.get("Angle"), camera.angle)
     if camera.kind == TOP_DOWN:
         camera.focal_point = np.array([_float(view.get("X"), 0.0), _float(view.get("Y"), 0.0), 0.0])
+    if camera.kind == FPS:
+        position = view.get("Position") or {}
+        camera.position = np.array([_float(position.get(axis), 0.0) for axis in "XYZ"])
     return camera
 
 
@@ -120,6 +136,11 @@ def view_entry(camera: Camera) -> dict[str, Any]:
     if camera.kind == TOP_DOWN:
         return {"Class": TOP_DOWN, "Name": "Current View", "Angle": camera.angle, "Scale": camera.scale,
                 "X": float(camera.focal_point[0]), "Y": float(camera.focal_point[1]), "Target Frame": "<Fixed Frame>"}
+    if camera.kind == FPS:
+        x, y, z = (float(v) for v in camera.position)
+        return {"Class": FPS, "Name": "Current View", "Invert Z Axis": False, "Near Clip Distance": camera.near,
+                "Pitch": camera.pitch, "Position": {"X": x, "Y": y, "Z": z}, "Target Frame": "<Fixed Frame>",
+                "Yaw": camera.yaw}
     x, y, z = (float(v) for v in camera.focal_point)
     return {"Class": ORBIT, "Name": "Current View", "Distance": camera.distance,
             "Focal Point": {"X": x, "Y": y, "Z": z}, "Pitch": camera.pitch, "Yaw": camera.yaw,

@@ -6,7 +6,8 @@ frames it asks of tf."""
 from __future__ import annotations
 
 import abc
-from collections.abc import Iterable
+import math
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass
 from typing import Any, ClassVar, Protocol
 
@@ -48,6 +49,19 @@ def parse_color(value: Any, default: Color = (1.0, 1.0, 1.0, 1.0)) -> Color:
     if len(parts) < 3:
         return default
     return parts[0] / 255, parts[1] / 255, parts[2] / 255, 1.0
+
+
+@dataclass
+class Selectable:
+    """What of a display rviz's Select tool can pick: the objects' fixed-frame positions
+    (N x 3), and for the i-th its name and properties."""
+    positions: np.ndarray
+    describe: Callable[[int], tuple[str, dict[str, str]]]
+
+
+def coordinates(values: Sequence[float] | np.ndarray) -> str:
+    """A position as rviz's panels write one: "x; y; z"."""
+    return "; ".join(f"{float(v):.4g}" for v in values)
 
 
 def format_color(color: Color) -> str:
@@ -99,6 +113,7 @@ class Display(abc.ABC):
     message_types: ClassVar[tuple[str, ...]] = ()  # the first is what a new display subscribes as
     defaults: ClassVar[dict[str, Any]] = {}
     keeps_every_message: ClassVar[bool] = False  # markers: each message adds or deletes some
+    topic_key: ClassVar[str] = "Topic"  # the option rviz keeps the display's topic under
 
     def __init__(self, name: str = "", enabled: bool = True, options: dict[str, Any] | None = None) -> None:
         self.name = name or self.class_name.split("/")[-1]
@@ -107,13 +122,14 @@ class Display(abc.ABC):
         self.status = Status()
         self.message: Any = None
         self.version = 0  # counts what receive() changed: the cached scene is for one version
+        self.expires_at = math.inf  # when the first thing drawn last is gone by time alone (draw sets it)
         self._cached: tuple[Any, RecordingFrames, Scene, Status] | None = None
 
     # ------------------------------------------------------------------ options
 
     @property
     def topic(self) -> str:
-        return str(self.options.get("Topic", ""))
+        return str(self.options.get(self.topic_key, ""))
 
     def color(self, key: str = "Color") -> Color:
         r, g, b, _ = parse_color(self.options.get(key), parse_color(self.defaults.get(key, "255; 255; 255")))
@@ -158,9 +174,10 @@ class Display(abc.ABC):
         self.version += 1
         self.status = Status()
 
-    def time_dependent(self) -> bool:
-        """Whether the scene changes with `now` alone (markers whose lifetime runs)."""
-        return False
+    def expired(self, now: float) -> bool:
+        """Whether the scene last drawn has something that is gone by `now` alone (a marker
+        whose lifetime ran out, a decayed cloud): it is drawn again then, not every frame."""
+        return now > self.expires_at
 
     def build(self, scene: Scene, frames: Frames, now: float) -> None:
         if not self.enabled:
@@ -171,17 +188,22 @@ class Display(abc.ABC):
             return
         key = (self.version, repr(self.options))
         cached = self._cached
-        if cached is not None and cached[0] == key and not self.time_dependent() and cached[1].unchanged(frames):
+        if cached is not None and cached[0] == key and not self.expired(now) and cached[1].unchanged(frames):
             scene.extend(cached[2])
             self.status = cached[3]
             return
         self.status = Status()
+        self.expires_at = math.inf
         recording = RecordingFrames(frames)
         own = Scene()
         self.draw(own, recording, now)
         own = own.merged()
         self._cached = (key, recording, own, self.status)
         scene.extend(own)
+
+    def selectable(self) -> Selectable | None:
+        """What the Select tool can pick of the scene last drawn (None: nothing)."""
+        return None
 
     @abc.abstractmethod
     def draw(self, scene: Scene, frames: Frames, now: float) -> None:

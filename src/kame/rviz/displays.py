@@ -9,10 +9,12 @@ from typing import Any
 
 import numpy as np
 
-from kame.rviz.display import WARN, Display, Frames, Status, parse_color
-from kame.rviz.scene import Scene, apply, arrow_triangles, axes_lines, pose_matrix, sphere_triangles
+from kame.rviz.colors import point_colors
+from kame.rviz.display import WARN, Display, Frames, Selectable, Status, coordinates, parse_color
+from kame.rviz.scene import Scene, apply, arrow_triangles, axes_lines, pose_matrix, spatial_order, sphere_triangles
 
 FLOAT32 = 7
+SPATIAL_ORDER_FROM = 10_000  # points: a cloud this big is drawn box by box (scene.spatial_order)
 FIELD_DTYPES = {1: "i1", 2: "u1", 3: "i2", 4: "u2", 5: "i4", 6: "u4", 7: "f4", 8: "f8"}
 
 
@@ -74,21 +76,114 @@ class TF(Display):
             self.status = Status(WARN, f"no transform to {frames.fixed_frame} from {', '.join(sorted(missing))}")
 
 
-class LaserScan(Display):
-    class_name = "rviz/LaserScan"
-    message_types = ("sensor_msgs/LaserScan",)
-    defaults = {"Topic": "/scan", "Size (Pixels)": 3, "Color": "255; 0; 0", "Alpha": 1}
+class PointCloudCommon(Display):
+    """What rviz's LaserScan and PointCloud2 share: the points of each message in the fixed
+    frame, coloured by a colour transformer (kame.rviz.colors), "Size (Pixels)" wide in the
+    Points style, else (Squares, Flat Squares and, drawn as those, Spheres and Boxes) "Size (m)"
+    wide where they are; with a
+    "Decay Time" (seconds) every message received in that time stays drawn, each through tf
+    as it is now."""
+    defaults = {"Style": "Flat Squares", "Size (m)": 0.01, "Size (Pixels)": 3, "Color": "255; 255; 255", "Alpha": 1,
+                "Color Transformer": "",
+                "Decay Time": 0, "Channel Name": "intensity", "Use rainbow": True, "Invert Rainbow": False,
+                "Min Color": "0; 0; 0", "Max Color": "255; 255; 255", "Autocompute Intensity Bounds": True,
+                "Axis": "Z", "Use Fixed Frame": True}
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        super().__init__(*args, **kwargs)
+        self.kept: list[tuple[float, Any]] = []  # (received, message), oldest first, while they decay
+        # each message's points drawn last (fixed frame), their indices in it (None: all), its fields
+        self._drawn: list[tuple[np.ndarray, np.ndarray | None, dict[str, np.ndarray]]] = []
+
+    def receive(self, messages: Any, now: float) -> None:
+        decay = self.number("Decay Time", 0.0)
+        for message in messages:
+            self.message = message
+            self.version += 1
+            self.kept = [*self.kept, (now, message)] if decay > 0 else [(now, message)]
+
+    def reset(self) -> None:
+        super().reset()
+        self.kept = []
+        self._drawn = []
+
+    def points(self, message: Any) -> tuple[np.ndarray, dict[str, np.ndarray]] | str:
+        """The message's points (N x 3 float32, its own frame, NaN where none) and its fields,
+        one value a point; or why it has none."""
+        raise NotImplementedError
 
     def draw(self, scene: Scene, frames: Frames, now: float) -> None:
-        scan = self.message
-        placed = self.placed(frames, scan.header.frame_id)
-        if placed is None:
-            return
-        ranges = np.asarray(scan.ranges, dtype=float)
-        angles = scan.angle_min + scan.angle_increment * np.arange(len(ranges))
-        valid = np.isfinite(ranges) & (ranges >= scan.range_min) & (ranges <= scan.range_max)
-        points = np.column_stack([ranges * np.cos(angles), ranges * np.sin(angles), np.zeros_like(ranges)])[valid]
-        scene.add("points", apply(placed, points), self.color(), self.number("Size (Pixels)", 3))
+        decay = self.number("Decay Time", 0.0)
+        if decay > 0:  # rviz drops every cloud older than the decay time, the newest too
+            self.kept = [(at, m) for at, m in self.kept if now - at <= decay]
+            self.expires_at = min((at + decay for at, _ in self.kept), default=math.inf)
+        self._drawn = []
+        for _, message in self.kept if decay > 0 else [(now, self.message)]:
+            placed = self.placed(frames, message.header.frame_id)
+            if placed is None:
+                continue
+            found = self.points(message)
+            if isinstance(found, str):
+                self.status = Status(WARN, found)
+                continue
+            local, fields = found
+            colors = point_colors(self.options, fields, placed, local, self.color())
+            # a NaN or infinite coordinate makes the sum one: 30x faster than all(axis=1) over 3 columns
+            finite = np.isfinite(local[:, 0] + local[:, 1] + local[:, 2])
+            indices = None
+            if not finite.all():
+                local, indices = local[finite], np.flatnonzero(finite)
+                colors = colors[finite] if isinstance(colors, np.ndarray) else colors
+            fixed = apply(placed, local)
+            if len(fixed) >= SPATIAL_ORDER_FROM:
+                order = spatial_order(fixed)
+                fixed = np.take(fixed, order, axis=0)  # take: 8x faster than fancy indexing here
+                colors = np.take(colors, order, axis=0) if isinstance(colors, np.ndarray) else colors
+                indices = order if indices is None else indices[order]
+            if self.options.get("Style") == "Points":
+                scene.add("points", fixed, colors, self.number("Size (Pixels)", 3))
+            else:
+                scene.add("points", fixed, colors, self.number("Size (m)", 0.01), metres=True)
+            self._drawn.append((fixed, indices, fields))
+
+    def selectable(self) -> Selectable | None:
+        """Every point drawn: "Point <its index in the message>", its position and fields."""
+        if not self._drawn:
+            return None
+        parts = self._drawn
+        starts = np.cumsum([0] + [len(fixed) for fixed, _, _ in parts])
+
+        def describe(i: int) -> tuple[str, dict[str, str]]:
+            part = int(np.searchsorted(starts, i, side="right")) - 1
+            fixed, indices, fields = parts[part]
+            row = i - int(starts[part])
+            index = row if indices is None else int(indices[row])
+            properties = {"Position": coordinates(fixed[row])}
+            properties.update({name: f"{values[index]:.6g}" for name, values in fields.items()
+                               if name not in ("x", "y", "z")})
+            return f"Point {index}", properties
+
+        return Selectable(np.concatenate([fixed for fixed, _, _ in parts]), describe)
+
+
+class LaserScan(PointCloudCommon):
+    """A scan's ranges as points; its intensities (when it has one a range) are the
+    "intensity" channel, as laser_geometry makes it for rviz."""
+    class_name = "rviz/LaserScan"
+    message_types = ("sensor_msgs/LaserScan",)
+    defaults = {**PointCloudCommon.defaults, "Topic": "/scan", "Color": "255; 0; 0"}
+
+    def points(self, message: Any) -> tuple[np.ndarray, dict[str, np.ndarray]] | str:
+        ranges = np.asarray(message.ranges, dtype=np.float32)
+        angles = message.angle_min + message.angle_increment * np.arange(len(ranges))
+        valid = np.isfinite(ranges) & (ranges >= message.range_min) & (ranges <= message.range_max)
+        shown = np.where(valid, ranges, np.nan).astype(np.float32)
+        local = np.column_stack([shown * np.cos(angles), shown * np.sin(angles), np.where(valid, 0.0, np.nan)])
+        fields = {}
+        if len(message.intensities) == len(ranges):
+            # a ray out of range is no point: its intensity bounds nothing (laser_geometry drops it)
+            fields["intensity"] = np.where(valid, np.asarray(message.intensities, dtype=np.float32), np.nan)
+        return local.astype(np.float32), fields
 
 
 def cloud_array(cloud: Any) -> np.ndarray:
@@ -101,41 +196,27 @@ def cloud_array(cloud: Any) -> np.ndarray:
             formats.append(endian + FIELD_DTYPES[point_field.datatype])
             offsets.append(point_field.offset)
     dtype = np.dtype({"names": names, "formats": formats, "offsets": offsets, "itemsize": cloud.point_step})
-    rows = np.frombuffer(bytes(cloud.data), dtype=np.uint8)[: cloud.row_step * cloud.height]
+    data = cloud.data  # bytes, or a numpy array over the received ones (kame.rviz.source.decode)
+    rows = (np.asarray(data, dtype=np.uint8) if isinstance(data, (list, tuple)) else
+            np.frombuffer(data, dtype=np.uint8))[: cloud.row_step * cloud.height]
     rows = rows.reshape(cloud.height, cloud.row_step)[:, : cloud.point_step * cloud.width]
     return np.ascontiguousarray(rows).view(dtype).reshape(-1)
 
 
-class PointCloud2(Display):
+class PointCloud2(PointCloudCommon):
     class_name = "rviz/PointCloud2"
     message_types = ("sensor_msgs/PointCloud2",)
-    defaults = {"Topic": "/points", "Size (Pixels)": 3, "Color": "255; 255; 255", "Alpha": 1,
-                "Color Transformer": "RGB8"}
+    defaults = {**PointCloudCommon.defaults, "Topic": "/points"}
 
-    def draw(self, scene: Scene, frames: Frames, now: float) -> None:
-        cloud = self.message
-        placed = self.placed(frames, cloud.header.frame_id)
-        if placed is None:
-            return
-        points = cloud_array(cloud)
-        if not {"x", "y", "z"} <= set(points.dtype.names or ()):
-            self.status = Status(WARN, "the cloud has no x, y, z fields")
-            return
+    def points(self, message: Any) -> tuple[np.ndarray, dict[str, np.ndarray]] | str:
+        points = cloud_array(message)
+        names = points.dtype.names or ()
+        if not {"x", "y", "z"} <= set(names):
+            return "the cloud has no x, y, z fields"
         xyz = np.empty((len(points), 3), dtype=np.float32)  # float32 throughout: what GL draws
         for axis, name in enumerate("xyz"):
             xyz[:, axis] = points[name]
-        finite = np.isfinite(xyz).all(axis=1)
-        if not finite.all():
-            xyz = xyz[finite]
-        colors: Any = self.color()
-        # "": rviz had seen no cloud to choose a transformer for; it takes rgb when the cloud has it
-        if "rgb" in (points.dtype.names or ()) and self.options.get("Color Transformer") in ("RGB8", ""):
-            packed = np.ascontiguousarray(points["rgb"]).view(np.uint32)[finite]
-            colors = np.empty((len(packed), 4), dtype=np.uint8)  # 4 bytes a point, not 16
-            for channel, shift in enumerate((16, 8, 0)):
-                colors[:, channel] = (packed >> shift) & 255
-            colors[:, 3] = round(255 * min(1.0, max(0.0, self.number("Alpha", 1.0))))
-        scene.add("points", apply(placed, xyz), colors, self.number("Size (Pixels)", 3))
+        return xyz, {name: points[name] for name in names}
 
 
 def _arrow(scene: Scene, matrix: np.ndarray, length: float, color: Any) -> None:
@@ -310,9 +391,10 @@ class OccupancyGrid(Display):
         if self._coloured is not None and self._coloured[:3] == (grid, scheme, alpha):
             return self._coloured[3]
         palette = costmap_palette() if scheme == "costmap" else map_palette()
+        palette[:, 3] = (palette[:, 3] * alpha).astype(np.uint8)  # 256 entries, not 4 M cells
         cells = np.asarray(grid.data, dtype=np.int8).view(np.uint8).reshape(grid.info.height, grid.info.width)
-        rgba = palette[cells]
-        rgba[..., 3] = (rgba[..., 3] * alpha).astype(np.uint8)
+        # each cell's 4 bytes gathered as one 32-bit word
+        rgba = palette.view(np.uint32)[:, 0][cells].view(np.uint8).reshape(grid.info.height, grid.info.width, 4)
         self._coloured = (grid, scheme, alpha, rgba)
         return rgba
 

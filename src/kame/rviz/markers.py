@@ -10,7 +10,7 @@ from typing import Any
 
 import numpy as np
 
-from kame.rviz.display import WARN, Display, Frames, Status
+from kame.rviz.display import WARN, Display, Frames, Selectable, Status, coordinates
 from kame.rviz.meshes import MeshLibrary, add_mesh
 from kame.rviz.scene import (
     Scene,
@@ -25,6 +25,8 @@ from kame.rviz.scene import (
 
 ARROW, CUBE, SPHERE, CYLINDER, LINE_STRIP, LINE_LIST, CUBE_LIST, SPHERE_LIST, POINTS, TEXT, MESH, TRIANGLES = range(12)
 ADD, DELETE, DELETEALL = 0, 2, 3
+TYPE_NAMES = dict(enumerate(("Arrow", "Cube", "Sphere", "Cylinder", "Line Strip", "Line List", "Cube List",
+                             "Sphere List", "Points", "Text View Facing", "Mesh Resource", "Triangle List")))
 
 
 def _rgba(color: Any) -> tuple[float, float, float, float]:
@@ -41,17 +43,35 @@ SOLIDS = (CUBE, SPHERE, CYLINDER, ARROW)
 
 
 @functools.cache
-def solid_template(kind: int) -> np.ndarray:
-    """The kind's shape at scale 1 (an arrow: length 1 along x, shaft 1 and head 2 wide)."""
+def solid_template(kind: int) -> tuple[np.ndarray, np.ndarray]:
+    """The kind's shape at scale 1 (an arrow: length 1 along x, shaft 1 and head 2 wide, its
+    shaft's end closed) as a closed surface: its triangles wound counter-clockwise seen from
+    outside, and their normals (one a triangle), float32."""
     if kind == ARROW:
-        return arrow_triangles(np.zeros(3), np.array([1.0, 0.0, 0.0]), 1.0, 2.0, 0.23)
-    return {CUBE: box_triangles, SPHERE: sphere_triangles, CYLINDER: cylinder_triangles}[kind]((1.0, 1.0, 1.0))
+        triangles = arrow_triangles(np.zeros(3), np.array([1.0, 0.0, 0.0]), 1.0, 2.0, 0.23).reshape(-1, 3, 3)
+        rim = triangles[0::4, :2]  # each side's shaft triangle begins with two points of the start's rim
+        cap = np.stack([np.zeros_like(rim[:, 0]), rim[:, 1], rim[:, 0]], axis=1)
+        triangles = np.concatenate([triangles, cap])
+        flat = np.ptp(triangles[:, :, 0], axis=1) < 1e-9  # the caps: facing back along x
+        centres = triangles.mean(axis=1)
+        outward = np.where(flat[:, None], (-1.0, 0.0, 0.0), centres * (0.0, 1.0, 1.0))
+    else:
+        shape = {CUBE: box_triangles, SPHERE: sphere_triangles, CYLINDER: cylinder_triangles}[kind]
+        triangles = shape((1.0, 1.0, 1.0)).reshape(-1, 3, 3)
+        outward = triangles.mean(axis=1)  # centred on the origin and convex
+    normals = np.cross(triangles[:, 1] - triangles[:, 0], triangles[:, 2] - triangles[:, 0])
+    solid = np.linalg.norm(normals, axis=1) > 1e-12  # a sphere's rows at its poles have corners in one point
+    triangles, normals, outward = triangles[solid], normals[solid], outward[solid]
+    inward = (normals * outward).sum(axis=1) < 0
+    triangles[inward] = triangles[inward][:, ::-1]
+    normals[inward] = -normals[inward]
+    normals /= np.linalg.norm(normals, axis=1, keepdims=True)
+    return triangles.reshape(-1, 3).astype(np.float32), normals.astype(np.float32)
 
 
-def draw_solids(scene: Scene, kind: int, placed: list[tuple[Any, np.ndarray]]) -> None:
-    """Markers of one solid kind (each with the matrix of its frame) in one batch: their poses,
-    scales and colours gathered into arrays and every vertex placed in one numpy expression, the
-    same geometry draw_marker gives each alone."""
+def _solid_arrays(kind: int, placed: list[tuple[Any, np.ndarray]]) -> tuple[np.ndarray, ...]:
+    """Markers of one solid kind (each with the matrix of its frame) as arrays: rotations
+    (N x 3 x 3), origins and scales (N x 3) in float32 and colours (N x 4 bytes)."""
     count = len(placed)
     fields = np.empty((count, 14))
     for row, (marker, _) in enumerate(placed):
@@ -65,14 +85,58 @@ def draw_solids(scene: Scene, kind: int, placed: list[tuple[Any, np.ndarray]]) -
         scales[:, 2] = scales[:, 1]
     else:
         scales = np.abs(scales)
-    template = solid_template(kind)
-    scaled = [template[None, :, axis] * scales[:, axis, None] for axis in range(3)]  # N x V each
-    vertices = np.empty((count, len(template), 3))
-    for row in range(3):  # written out, as scene.apply: a batched matmul is slower here
+    colors = np.clip(fields[:, 10:14] * 255 + 0.5, 0, 255).astype(np.uint8)
+    return rotations.astype(np.float32), origins.astype(np.float32), scales.astype(np.float32), colors
+
+
+def draw_solids(scene: Scene, solids: dict[int, list[tuple[Any, np.ndarray]]]) -> None:
+    """Solid markers (by kind, each with the matrix of its frame) in one batch: their poses,
+    scales and colours gathered into arrays and every vertex placed by numpy straight into the
+    batch's arrays, the same geometry draw_marker gives each alone. A marker mirrored by a
+    negative scale turns its winding over: those go in a batch drawn from both sides."""
+    pieces = []
+    for kind, placed in solids.items():
+        rotations, origins, scales, colors = _solid_arrays(kind, placed)
+        closed = (scales > 0).all(axis=1)
+        for mask, is_closed in ((closed, True), (~closed, False)):
+            if mask.any():
+                pieces.append((is_closed, kind, rotations[mask], origins[mask], scales[mask], colors[mask]))
+    for is_closed in (True, False):
+        chosen = [piece for piece in pieces if piece[0] == is_closed]
+        if not chosen:
+            continue
+        total = sum(len(piece[4]) * len(solid_template(piece[1])[0]) for piece in chosen)
+        vertices = np.empty((total, 3), dtype=np.float32)
+        normals = np.empty((total, 3), dtype=np.float32)
+        colors = np.empty((total, 4), dtype=np.uint8)
+        start = 0
+        for _, kind, rotations, origins, scales, piece_colors in chosen:
+            template, template_normals = solid_template(kind)
+            count, size = len(scales), len(template)
+            block = _placed(template, scales, rotations, vertices[start:start + count * size].reshape(count, size, 3))
+            block += origins[:, None, :]
+            # a normal goes through the inverse of the scaling (a flattened sphere's stay perpendicular)
+            inverse = 1 / np.where(np.abs(scales) > 1e-12, scales, np.float32(1e-12))
+            faces = _placed(template_normals, inverse, rotations)
+            faces /= np.sqrt(np.maximum((faces * faces).sum(axis=2, keepdims=True), np.float32(1e-24)))
+            normals[start:start + count * size].reshape(count, size // 3, 3, 3)[...] = faces[:, :, None, :]
+            colors[start:start + count * size].reshape(count, size, 4)[...] = piece_colors[:, None, :]
+            start += count * size
+        scene.add("triangles", vertices, colors, closed=is_closed, normals=normals)
+
+
+def _placed(points: np.ndarray, scales: np.ndarray, rotations: np.ndarray, out: np.ndarray | None = None,
+            ) -> np.ndarray:
+    """`points` (V x 3) scaled and turned by each of N scales (N x 3) and rotations (N x 3 x 3):
+    N x V x 3 float32 (into `out` when given), written out per row (a batched matmul is slower
+    here, as in scene.apply)."""
+    scaled = [points[None, :, axis] * scales[:, axis, None] for axis in range(3)]  # N x V each
+    if out is None:
+        out = np.empty((len(scales), len(points), 3), dtype=np.float32)
+    for row in range(3):
         r = rotations[:, row, :, None]
-        vertices[:, :, row] = r[:, 0] * scaled[0] + r[:, 1] * scaled[1] + r[:, 2] * scaled[2] + origins[:, row, None]
-    colors = np.repeat(fields[:, 10:14].astype(np.float32), len(template), axis=0)
-    scene.add("triangles", vertices.reshape(-1, 3), colors)
+        out[:, :, row] = r[:, 0] * scaled[0] + r[:, 1] * scaled[1] + r[:, 2] * scaled[2]
+    return out
 
 
 def draw_marker(scene: Scene, marker: Any, placed: np.ndarray, meshes: MeshLibrary | None = None) -> str:
@@ -83,7 +147,7 @@ def draw_marker(scene: Scene, marker: Any, placed: np.ndarray, meshes: MeshLibra
     points = np.array([[p.x, p.y, p.z] for p in marker.points], dtype=float).reshape(-1, 3)
     kind = marker.type
     if kind in SOLIDS and (kind != ARROW or len(points) < 2):
-        draw_solids(scene, kind, [(marker, placed)])
+        draw_solids(scene, {kind: [(marker, placed)]})
     elif kind == ARROW:  # from the first point to the second
         start, end = apply(matrix, points[:2])
         head_length = scale[2] if scale[2] > 0 else 0.23 * float(np.linalg.norm(end - start))
@@ -129,19 +193,18 @@ class Marker(Display):
     defaults = {"Marker Topic": "/visualization_marker", "Queue Size": 100, "Namespaces": {}}
     keeps_every_message = True
 
-    @property
-    def topic(self) -> str:
-        """rviz keeps a marker display's topic under "Marker Topic"."""
-        return str(self.options.get("Marker Topic", ""))
+    topic_key = "Marker Topic"
 
     def __init__(self, *args: Any, **kwargs: Any) -> None:
         super().__init__(*args, **kwargs)
         self.markers: dict[tuple[str, int], tuple[Any, float]] = {}
         self.meshes = MeshLibrary()  # the window gives it kame's package finder
+        self._drawn: list[tuple[Any, np.ndarray]] = []  # (marker, its frame's matrix) as last drawn
 
     def reset(self) -> None:
         super().reset()
         self.markers = {}
+        self._drawn = []
 
     def receive(self, messages: Any, now: float) -> None:
         for message in messages:
@@ -149,9 +212,6 @@ class Marker(Display):
             self.version += 1
             for marker in self.unpack(message):
                 self.apply(marker, now)
-
-    def time_dependent(self) -> bool:
-        return any(m.lifetime.secs or m.lifetime.nsecs for m, _ in self.markers.values())
 
     def unpack(self, message: Any) -> list[Any]:
         return [message]
@@ -169,28 +229,53 @@ class Marker(Display):
         shown = self.options.get("Namespaces") or {}
         return bool(shown.get(namespace, True)) if isinstance(shown, dict) else True
 
+    def selectable(self) -> Selectable | None:
+        """Each marker drawn, at its pose: "<ns>/<id>" and what rviz's Selection panel shows of it."""
+        drawn = self._drawn
+        if not drawn:
+            return None
+
+        def describe(i: int) -> tuple[str, dict[str, str]]:
+            marker, _ = drawn[i]
+            q, s, c = marker.pose.orientation, marker.scale, marker.color
+            return f"{marker.ns}/{marker.id}", {
+                "Type": TYPE_NAMES.get(marker.type, str(marker.type)), "Frame": marker.header.frame_id,
+                "Position": coordinates(positions[i]), "Orientation": coordinates((q.x, q.y, q.z, q.w)),
+                "Scale": coordinates((s.x, s.y, s.z)), "Color": coordinates((c.r, c.g, c.b, c.a))}
+
+        positions = np.array([(placed @ [m.pose.position.x, m.pose.position.y, m.pose.position.z, 1.0])[:3]
+                              for m, placed in drawn])
+        return Selectable(positions, describe)
+
     def draw(self, scene: Scene, frames: Frames, now: float) -> None:
         problems = []
+        self._drawn = []
         solids: dict[int, list[tuple[Any, np.ndarray]]] = {}  # drawn together, by kind
+        placements: dict[str, np.ndarray | str] = {}
         for key, (marker, received) in list(self.markers.items()):
             lifetime = marker.lifetime.secs + marker.lifetime.nsecs * 1e-9
             if lifetime > 0 and now - received > lifetime:
                 del self.markers[key]
                 continue
+            if lifetime > 0:
+                self.expires_at = min(self.expires_at, received + lifetime)
             if not self.namespace_shown(marker.ns):
                 continue
-            found = frames.transform(marker.header.frame_id)
+            found = placements.get(marker.header.frame_id)
+            if found is None:  # one lookup a frame, not one a marker: 2,000 markers share a few frames
+                found = placements[marker.header.frame_id] = frames.transform(marker.header.frame_id)
             if isinstance(found, str):
                 problems.append(f"{marker.ns}/{marker.id}: {found}")
                 continue
+            self._drawn.append((marker, found))
             if marker.type in SOLIDS and (marker.type != ARROW or len(marker.points) < 2):
                 solids.setdefault(marker.type, []).append((marker, found))
                 continue
             problem = draw_marker(scene, marker, found, self.meshes)
             if problem:
                 problems.append(f"{marker.ns}/{marker.id}: {problem}")
-        for kind, placed in solids.items():
-            draw_solids(scene, kind, placed)
+        if solids:
+            draw_solids(scene, solids)
         if problems:
             self.status = Status(WARN, "; ".join(problems[:3]) + (" ..." if len(problems) > 3 else ""))
 

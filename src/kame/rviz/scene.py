@@ -19,11 +19,19 @@ class Batch:
     """One draw call: `kind` is "lines" (vertex pairs), "points" or "triangles" (vertex triples).
     `colors` is N x 4: float32 0..1, or uint8 0..255 (a cloud's packed rgb: a quarter of the
     bytes); one colour for every vertex is a broadcast view (stride 0), drawn without a colour
-    array at all."""
+    array at all. `closed` triangles wind counter-clockwise seen from outside a closed surface,
+    so the faces turned away from the camera need not be drawn; `normals` (N x 3 float32, one a
+    vertex) spare the window working them out from the triangles. `metres`: points `size`
+    metres wide where they are (rviz's Squares styles), smaller as they are farther away.
+    `overlay`: drawn over everything, hidden by nothing (the tools' marks)."""
     kind: str
     vertices: np.ndarray  # N x 3 float32, fixed frame
     colors: np.ndarray  # N x 4 float32 or uint8
     size: float = 1.0  # line width or point size in pixels
+    closed: bool = False
+    normals: np.ndarray | None = None
+    metres: bool = False
+    overlay: bool = False
 
     @property
     def uniform(self) -> bool:
@@ -60,7 +68,8 @@ class Scene:
     def texture(self, corners: Any, rgba: np.ndarray) -> None:
         self.textures.append(Texture(np.asarray(corners, dtype=np.float32).reshape(4, 3), rgba))
 
-    def add(self, kind: str, vertices: Any, colors: Any, size: float = 1.0) -> None:
+    def add(self, kind: str, vertices: Any, colors: Any, size: float = 1.0, closed: bool = False,
+            normals: np.ndarray | None = None, metres: bool = False, overlay: bool = False) -> None:
         vertices = np.asarray(vertices, dtype=np.float32).reshape(-1, 3)
         if not len(vertices):
             return
@@ -71,17 +80,28 @@ class Scene:
             colors = np.broadcast_to(colors, (len(vertices), 4))
         else:
             colors = np.ascontiguousarray(colors)
-        self.batches.append(Batch(kind, np.ascontiguousarray(vertices), colors, size))
+        if normals is not None:
+            normals = np.ascontiguousarray(normals, dtype=np.float32).reshape(-1, 3)
+        self.batches.append(Batch(kind, np.ascontiguousarray(vertices), colors, size, closed, normals, metres,
+                                  overlay))
 
     def merged(self) -> Scene:
-        """The same scene with batches of one kind and size joined: one draw call for 2,000 markers."""
-        groups: dict[tuple[str, float], list[Batch]] = {}
+        """The same scene with batches of one kind, size and closedness joined: one draw call
+        for 2,000 markers (colours stay bytes when all are)."""
+        groups: dict[tuple[str, float, bool, bool, bool], list[Batch]] = {}
         for batch in self.batches:
-            groups.setdefault((batch.kind, batch.size), []).append(batch)
-        batches = [group[0] if len(group) == 1 else
-                   Batch(kind, np.concatenate([b.vertices for b in group]),
-                         np.concatenate([b.float_colors() for b in group]), size)
-                   for (kind, size), group in groups.items()]
+            groups.setdefault((batch.kind, batch.size, batch.closed, batch.metres, batch.overlay), []).append(batch)
+        batches = []
+        for (kind, size, closed, metres, overlay), group in groups.items():
+            if len(group) == 1:
+                batches.append(group[0])
+                continue
+            as_bytes = all(b.colors.dtype == np.uint8 for b in group)
+            colors = np.concatenate([b.colors if as_bytes else b.float_colors() for b in group])
+            normals = (np.concatenate([b.normals for b in group if b.normals is not None])
+                       if all(b.normals is not None for b in group) else None)
+            batches.append(Batch(kind, np.concatenate([b.vertices for b in group]), colors, size, closed, normals,
+                                 metres, overlay))
         return Scene(batches, self.labels, self.textures)
 
     def extend(self, other: Scene) -> None:
@@ -144,6 +164,19 @@ def apply(matrix: np.ndarray, points: Any) -> np.ndarray:
         r = matrix[row]
         result[:, row] = x * r[0] + y * r[1] + z * r[2] + r[3]
     return result
+
+
+def spatial_order(points: np.ndarray, cells: int = 40) -> np.ndarray:
+    """An order of `points` (N x 3) that visits them box by box of a cells^3 grid over their
+    bounds. llvmpipe rasterises a point cloud twice as fast in it as in a random one (300k
+    points: 28 against 59 ms of CPU): each screen tile's points sit together in memory. About
+    5 ms for 300k points (a radix sort of 16-bit box numbers)."""
+    low = np.array([points[:, axis].min() for axis in range(3)], dtype=np.float32)  # per column: 20x faster
+    high = np.array([points[:, axis].max() for axis in range(3)], dtype=np.float32)
+    boxes = ((points - low) * ((cells - 1) / np.maximum(high - low, np.float32(1e-9)))).astype(np.uint16)
+    key = (boxes[:, 0] * cells + boxes[:, 1]) * cells + boxes[:, 2]  # < 40^3: 16 bits
+    order: np.ndarray = np.argsort(key, kind="stable")
+    return order
 
 
 # ------------------------------------------------------------------ shapes

@@ -108,9 +108,7 @@ class Image(Display):
         # JPEG/PNG bytes -> H x W x 4 uint8 (ValueError when they are not an image); the window's
         self.decode_compressed: Callable[[bytes], np.ndarray] | None = None
 
-    @property
-    def topic(self) -> str:
-        return str(self.options.get("Image Topic", ""))
+    topic_key = "Image Topic"
 
     def subscription(self) -> tuple[str, str] | None:
         """image_transport's: Transport Hint "compressed" reads `<Image Topic>/compressed`."""

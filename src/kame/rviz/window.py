@@ -1,6 +1,7 @@
 """rviz's window: the Displays panel (Global Options and each display with its options and
 status), the 3-D view (OpenGL through PyOpenGL in a QOpenGLWidget, drawing the model's Scene),
-the tool bar (Interact, 2D Pose Estimate, 2D Nav Goal, Publish Point) and the view chooser.
+the tool bar (Interact, Select, Measure, 2D Pose Estimate, 2D Nav Goal, Publish Point), the
+Selection panel and the view chooser.
 A frame timer at the Frame Rate takes the waiting messages, rebuilds the scene and repaints;
 the displays and the camera are kame.rviz's Qt-free model."""
 
@@ -15,7 +16,7 @@ from typing import Any
 
 import numpy as np
 from OpenGL import GL
-from PySide6.QtCore import QPointF, Qt, QTimer, Signal
+from PySide6.QtCore import QPointF, QRectF, Qt, QTimer, Signal
 from PySide6.QtGui import QAction, QActionGroup, QBrush, QColor, QMouseEvent, QPainter, QWheelEvent
 from PySide6.QtOpenGLWidgets import QOpenGLWidget
 from PySide6.QtWidgets import (
@@ -32,7 +33,7 @@ from PySide6.QtWidgets import (
 )
 
 from kame.rviz import config as rviz_config
-from kame.rviz.camera import ORBIT, TOP_DOWN, Camera
+from kame.rviz.camera import FPS, ORBIT, TOP_DOWN, Camera
 from kame.rviz.display import ERROR, OK, WARN, Display, Status, format_color, parse_color
 from kame.rviz.image_panels import ImagePanels, decode_compressed
 from kame.rviz.markers import Marker
@@ -41,9 +42,11 @@ from kame.rviz.robot import RobotModel
 from kame.rviz.scene import Batch, Scene
 from kame.rviz.sensors import Image
 from kame.rviz.source import RvizSource
+from kame.rviz.tools import Measure, Selection
 
 PRIMITIVES = {"lines": GL.GL_LINES, "points": GL.GL_POINTS, "triangles": GL.GL_TRIANGLES}
 INTERACT, POSE_ESTIMATE, NAV_GOAL, PUBLISH_POINT = "Interact", "2D Pose Estimate", "2D Nav Goal", "Publish Point"
+SELECT, MEASURE = "Select", "Measure"
 
 
 @dataclass
@@ -105,6 +108,9 @@ class RenderView(QOpenGLWidget):
     """Draws a Scene through a Camera; the mouse moves the camera as rviz's does, or drives a tool."""
 
     clicked = Signal(object, object)  # ground point pressed, ground point released (numpy arrays)
+    picked = Signal(object)  # Measure: the point under a left click (on the geometry there, else the ground)
+    unpicked = Signal()  # Measure: a right click
+    area = Signal(object, object)  # Select: the corners (x, y pixels) of the rectangle dragged
 
     def __init__(self, parent: QWidget | None = None) -> None:
         super().__init__(parent)
@@ -116,6 +122,7 @@ class RenderView(QOpenGLWidget):
         self._buffers: list[GpuBatch] = []  # the buffers of the scene's batches, by their place in it
         self._last: QPointF | None = None
         self._pressed_at: np.ndarray | None = None
+        self._band: tuple[QPointF, QPointF] | None = None  # Select's rectangle while dragged
         self.setMinimumSize(320, 240)
         self.setFocusPolicy(Qt.FocusPolicy.StrongFocus)
 
@@ -131,6 +138,11 @@ class RenderView(QOpenGLWidget):
             self.update()
 
     def paintGL(self) -> None:
+        self._paint(overlays=True)
+
+    def _paint(self, overlays: bool) -> None:
+        """The scene; with `overlays`, the labels and Select's rectangle over it (Qt's painter,
+        only within a paint: a pick draws the scene alone, for its depth)."""
         ratio = self.devicePixelRatioF()
         width, height = int(self.width() * ratio), int(self.height() * ratio)
         GL.glViewport(0, 0, width, height)
@@ -158,6 +170,8 @@ class RenderView(QOpenGLWidget):
         for slot, batch in enumerate(self.scene.batches):
             GL.glLineWidth(max(1.0, batch.size))
             GL.glPointSize(max(1.0, batch.size))
+            if batch.metres:
+                self._point_metres(batch.size, height)
             vertices, colors = self._uploaded(slot, batch)
             GL.glBindBuffer(GL.GL_ARRAY_BUFFER, vertices)
             GL.glVertexPointer(3, GL.GL_FLOAT, 0, None)
@@ -168,12 +182,20 @@ class RenderView(QOpenGLWidget):
                 GL.glBindBuffer(GL.GL_ARRAY_BUFFER, colors)
                 GL.glColorPointer(4, GL.GL_UNSIGNED_BYTE if batch.colors.dtype == np.uint8 else GL.GL_FLOAT, 0, None)
             lit = batch.kind == "triangles"
+            if batch.overlay:
+                GL.glDisable(GL.GL_DEPTH_TEST)
+            if batch.closed:  # the far side of a closed surface is hidden: llvmpipe need not fill it
+                GL.glEnable(GL.GL_CULL_FACE)
             if lit:  # surfaces are shaded by their facing; lines, points and labels are not
                 GL.glEnable(GL.GL_LIGHTING)
                 GL.glEnableClientState(GL.GL_NORMAL_ARRAY)
                 GL.glBindBuffer(GL.GL_ARRAY_BUFFER, self._buffers[slot].normals)
                 GL.glNormalPointer(GL.GL_FLOAT, 0, None)
             GL.glDrawArrays(PRIMITIVES[batch.kind], 0, len(batch.vertices))
+            GL.glDisable(GL.GL_CULL_FACE)
+            GL.glEnable(GL.GL_DEPTH_TEST)
+            if batch.metres:
+                GL.glPointParameterfv(GL.GL_POINT_DISTANCE_ATTENUATION, (1.0, 0.0, 0.0))
             if lit:
                 GL.glDisableClientState(GL.GL_NORMAL_ARRAY)
                 GL.glDisable(GL.GL_LIGHTING)
@@ -183,22 +205,40 @@ class RenderView(QOpenGLWidget):
             GL.glDeleteBuffers(3, [unused.vertices, unused.colors, unused.normals])
         del self._buffers[len(self.scene.batches):]
         GL.glDisableClientState(GL.GL_VERTEX_ARRAY)
+        if not overlays:
+            return
         self._draw_labels()
+        if self._band is not None:
+            painter = QPainter(self)
+            painter.setPen(QColor(255, 90, 255))
+            painter.drawRect(QRectF(*self._band).normalized())
+            painter.end()
+
+    def _point_metres(self, metres: float, height: int) -> None:
+        """Points `metres` wide where they are: so many pixels in the top-down view; in a
+        perspective one the pixels a metre covers 1 m from the eye, divided by each point's
+        distance (GL's point distance attenuation, 1 / sqrt(d^2))."""
+        camera = self.camera
+        if camera.kind == TOP_DOWN:
+            GL.glPointSize(max(1.0, metres * camera.scale * height / max(1, self.height())))
+            return
+        GL.glPointSize(max(1.0, metres * height / (2 * math.tan(camera.fov_y / 2))))
+        GL.glPointParameterfv(GL.GL_POINT_DISTANCE_ATTENUATION, (0.0, 0.0, 1.0))
 
     def _uploaded(self, slot: int, batch: Batch) -> tuple[int, int]:
         """The batch's vertex and colour buffers on the GPU, the slot-th of the scene's: an
         unchanged batch is not uploaded again; a new one goes into the slot's buffers
         (glBufferSubData while it fits, so a cloud's buffers are allocated once)."""
         if slot == len(self._buffers):
-            vertices, colors, normals = (int(b) for b in GL.glGenBuffers(3))
-            self._buffers.append(GpuBatch(None, vertices, colors, normals))
+            self._buffers.append(GpuBatch(None, *(int(b) for b in GL.glGenBuffers(3))))
         known = self._buffers[slot]
         if known.batch is not batch:
             known.vertex_bytes = _upload(known.vertices, batch.vertices, known.vertex_bytes)
             if not batch.uniform:
                 known.color_bytes = _upload(known.colors, batch.colors, known.color_bytes)
             if batch.kind == "triangles":
-                known.normal_bytes = _upload(known.normals, face_normals(batch.vertices), known.normal_bytes)
+                normals = face_normals(batch.vertices) if batch.normals is None else batch.normals
+                known.normal_bytes = _upload(known.normals, normals, known.normal_bytes)
             known.batch = batch
         return known.vertices, known.colors
 
@@ -254,13 +294,45 @@ class RenderView(QOpenGLWidget):
         p = event.position()
         return self.camera.ground_point(p.x(), p.y(), self.width(), self.height())
 
+    def pick(self, x: float, y: float) -> np.ndarray | None:
+        """The fixed-frame point drawn at pixel (x, y): the scene is drawn again and its depth
+        there read back; where nothing is drawn (or with no OpenGL), the ground's."""
+        depth = 1.0
+        context = self.context()
+        if context is not None and context.isValid():
+            self.makeCurrent()
+            self._paint(overlays=False)  # the frame buffer's depth may have been discarded after it was shown
+            ratio = self.devicePixelRatioF()
+            row = int(self.height() * ratio) - 1 - int(y * ratio)
+            value = GL.glReadPixels(int(x * ratio), row, 1, 1, GL.GL_DEPTH_COMPONENT, GL.GL_FLOAT)
+            self.doneCurrent()
+            depth = float(np.asarray(value, dtype=np.float32).reshape(-1)[0])
+        if depth < 1.0:
+            return self.camera.unproject(x, y, depth, self.width(), self.height())
+        return self.camera.ground_point(x, y, self.width(), self.height())
+
     def mousePressEvent(self, event: QMouseEvent) -> None:
         self._last = event.position()
-        if self.tool != INTERACT and event.button() == Qt.MouseButton.LeftButton:
+        left = event.button() == Qt.MouseButton.LeftButton
+        if self.tool == SELECT and left:
+            self._band = (event.position(), event.position())
+        elif self.tool == MEASURE and left:
+            point = self.pick(event.position().x(), event.position().y())
+            if point is not None:
+                self.picked.emit(point)
+        elif self.tool == MEASURE and event.button() == Qt.MouseButton.RightButton:
+            self.unpicked.emit()
+        elif self.tool != INTERACT and left:
             self._pressed_at = self._ground(event)
 
     def mouseMoveEvent(self, event: QMouseEvent) -> None:
+        if self._band is not None:
+            self._band = (self._band[0], event.position())
+            self.update()
+            return
         if self._last is None or self._pressed_at is not None:
+            return
+        if self.tool == MEASURE and event.buttons() & Qt.MouseButton.LeftButton:
             return
         dx, dy = event.position().x() - self._last.x(), event.position().y() - self._last.y()
         self._last = event.position()
@@ -274,6 +346,11 @@ class RenderView(QOpenGLWidget):
         self.update()
 
     def mouseReleaseEvent(self, event: QMouseEvent) -> None:
+        if self._band is not None:
+            start = self._band[0]
+            self._band = None
+            self.area.emit((start.x(), start.y()), (event.position().x(), event.position().y()))
+            self.update()
         if self._pressed_at is not None:
             released = self._ground(event)
             self.clicked.emit(self._pressed_at, released if released is not None else self._pressed_at)
@@ -301,7 +378,19 @@ class RvizWindow(QMainWindow):
         self.view.camera = config.camera
         self.view.background = config.background
         self.view.clicked.connect(self._tool_used)
+        self.measure, self.selection = Measure(), Selection()
+        self._displays_scene = Scene()  # what the displays drew last, without the tools' marks
+        self.view.picked.connect(self._measured)
+        self.view.unpicked.connect(self._measure_reset)
+        self.view.area.connect(self._select)
         self.setCentralWidget(self.view)
+        self.selected_tree = QTreeWidget()
+        self.selected_tree.setHeaderLabels(["Property", "Value"])
+        self.selection_dock = QDockWidget("Selection")
+        self.selection_dock.setObjectName("Selection")
+        self.selection_dock.setWidget(self.selected_tree)
+        self.addDockWidget(Qt.DockWidgetArea.RightDockWidgetArea, self.selection_dock)
+        self.selection_dock.hide()  # rviz's Selection panel shows once Select is used
         self.image_panels = ImagePanels(self)
         self.tree = QTreeWidget()
         self.tree.setHeaderLabels(["Property", "Value"])
@@ -316,6 +405,8 @@ class RvizWindow(QMainWindow):
         menu = QMenu(add)
         for class_name in rviz_config.DISPLAY_CLASSES:
             menu.addAction(class_name, functools.partial(self.add_display, class_name))
+        self.by_topic = menu.addMenu("By topic")  # filled with the master's topics as it opens
+        self.by_topic.aboutToShow.connect(self._offer_topics)
         add.setMenu(menu)
         remove = QPushButton("Remove")
         remove.clicked.connect(self._remove_selected)
@@ -340,14 +431,14 @@ class RvizWindow(QMainWindow):
         bar = self.addToolBar("Tools")
         bar.setObjectName("Tools")
         group = QActionGroup(self)
-        for name in (INTERACT, POSE_ESTIMATE, NAV_GOAL, PUBLISH_POINT):
+        for name in (INTERACT, SELECT, MEASURE, POSE_ESTIMATE, NAV_GOAL, PUBLISH_POINT):
             action = QAction(name, self, checkable=True)
             action.setChecked(name == INTERACT)
             action.triggered.connect(lambda _checked=False, tool=name: self.set_tool(tool))
             group.addAction(action)
             bar.addAction(action)
         self.views = QComboBox()
-        self.views.addItems([ORBIT, TOP_DOWN])
+        self.views.addItems([ORBIT, TOP_DOWN, FPS])
         self.views.setCurrentText(self.config.camera.kind)
         self.views.currentTextChanged.connect(self.set_view)
         bar.addWidget(self.views)
@@ -390,14 +481,29 @@ class RvizWindow(QMainWindow):
         self.setWindowTitle(rviz_config.window_title(path))
 
     def set_view(self, kind: str) -> None:
-        self.view.camera.kind = kind
+        self.view.camera.become(kind)
         self.view.update()
 
     def set_tool(self, tool: str) -> None:
         self.view.tool = tool
+        if tool == SELECT:
+            self.selection_dock.show()
+        self.statusBar().showMessage(self.measure.status() if tool == MEASURE else "")
 
     def add_display(self, class_name: str) -> Display:
         display = rviz_config.DISPLAY_CLASSES[class_name]()
+        self.config.displays.append(display)
+        self.rebuild_tree()
+        return display
+
+    def _offer_topics(self) -> None:
+        self.by_topic.clear()
+        topics = self.source.published_topics() if self.source is not None else []
+        for topic, class_name in rviz_config.displays_by_topic(topics):
+            self.by_topic.addAction(f"{topic} ({class_name})", functools.partial(self.add_topic, class_name, topic))
+
+    def add_topic(self, class_name: str, topic: str) -> Display:
+        display = rviz_config.display_for_topic(class_name, topic)
         self.config.displays.append(display)
         self.rebuild_tree()
         return display
@@ -543,8 +649,15 @@ class RvizWindow(QMainWindow):
             if id(display) in self._topic_errors:
                 display.status = Status(ERROR, self._topic_errors[id(display)])
             self._show_status(display)
-        self.view.show_scene(scene)
+        self._displays_scene = scene
+        self._show_with_tools()
         self.image_panels.sync(self.config.displays, scene)
+
+    def _show_with_tools(self) -> None:
+        scene = Scene()
+        for part in (self._displays_scene, self.measure.overlay, self.selection.overlay):
+            scene.extend(part)
+        self.view.show_scene(scene)
 
     def _show_status(self, display: Display) -> None:
         item = self._items.get(id(display))
@@ -596,6 +709,29 @@ class RvizWindow(QMainWindow):
             publish("/initialpose", pose)
         else:
             publish("/move_base_simple/goal", pose)
+
+    def _measured(self, point: np.ndarray) -> None:
+        self.measure.click(point)
+        self.statusBar().showMessage(self.measure.status())
+        self._show_with_tools()
+
+    def _measure_reset(self) -> None:
+        self.measure.reset()
+        self.statusBar().showMessage(self.measure.status())
+        self._show_with_tools()
+
+    def _select(self, corner: tuple[float, float], other: tuple[float, float]) -> None:
+        self.selection.select(self.config.displays, self.view.camera, self.view.width(), self.view.height(),
+                              corner, other)
+        self.selected_tree.clear()
+        for selected in self.selection.selected:
+            item = QTreeWidgetItem(self.selected_tree, [selected.name, selected.display])
+            for key, value in selected.properties.items():
+                QTreeWidgetItem(item, [key, value])
+        if self.selection.total > len(self.selection.selected):
+            QTreeWidgetItem(self.selected_tree, [f"... {self.selection.total - len(self.selection.selected)} more", ""])
+        self.selected_tree.expandToDepth(0)
+        self._show_with_tools()
 
     def closeEvent(self, event: Any) -> None:
         self.timer.stop()
