@@ -119,8 +119,8 @@ class Ring:
     `release()` frees the oldest placed message. A message takes the lowest gap that holds
     it, at 0 first: those bytes were the last read by the subscriber, so they are likely
     still in the CPU's cache, where a ring that always moved on would come back to bytes last
-    touched a whole ring ago (a 1080p image is copied 1.2-1.9x as fast from two or three
-    reused slots as from a 32 MiB ring's five: bench/RESULTS.md). Then right after the newest
+    touched a whole ring ago (a 1080p image is copied 1.2-1.5x as fast through three or two
+    reused slots as through a 32 MiB ring's five: bench/RESULTS.md). Then right after the newest
     message, as a ring would; only when neither has room are all the gaps searched.
     """
 
