@@ -130,9 +130,12 @@ class Ring:
         self._starts: list[int] = []  # the same, by address
         self._ends: dict[int, int] = {}  # start -> end of each placed message
         self._head = 0  # where the newest placed message ends
+        self._taken = 0  # bytes placed and not released
 
     def place(self, length: int) -> int | None:
         size = -(-max(length, 1) // ALIGN) * ALIGN
+        if size > self.capacity - self._taken:  # full: said without a search, however many it holds
+            return None
         start = 0
         if not self._fits(start, size):
             start = self._head
@@ -143,6 +146,7 @@ class Ring:
         self._order.append(start)
         bisect.insort(self._starts, start)
         self._ends[start] = self._head = start + size
+        self._taken += size
         return start
 
     def _fits(self, start: int, size: int) -> bool:
@@ -157,7 +161,7 @@ class Ring:
     def release(self) -> None:
         start = self._order.popleft()
         del self._starts[bisect.bisect_left(self._starts, start)]
-        del self._ends[start]
+        self._taken -= self._ends.pop(start) - start
 
     @property
     def used(self) -> int:
