@@ -404,7 +404,7 @@ class PublisherLink:
         self.callerid = header.get("callerid", "")
         self.latching = reply.latching
         if offer and shmros.accepted(header):
-            self._shm = shm.ShmReceiver(sub.max_frame)
+            self._shm = shm.ShmReceiver(sub.max_frame, sub.queue_size)
             # records are one byte longer than the message, and a MAP names a segment
             consumer = _Frames(self._deliver_shm, trailing, sub.queue_size, max(sub.max_frame + 1, 256))
         else:
@@ -429,10 +429,7 @@ class PublisherLink:
     def _deliver_shm(self, frames: list[memoryview]) -> None:
         receiver, sock = self._shm, self.sock
         assert receiver is not None and sock is not None
-        payloads = receiver.payloads(frames)
-        if payloads:
-            self._deliver(payloads)
-        receiver.acknowledge(sock)
+        receiver.deliver(frames, self._deliver, sock)
 
     def _ended(self, exc: BaseException | None) -> None:
         self.connected = False
