@@ -118,6 +118,13 @@ def host_addresses(env: Mapping[str, str], special: Mapping[str, str] | None = N
     return HostAddresses(advertised_host(override, ipv6), bind_host(override, ipv6))
 
 
+def resolvable(host: str) -> str | bytes:
+    """`host` as getaddrinfo takes it without the idna codec: bytes when it is ASCII. A str
+    always goes through the codec, whose module loads stringprep and unicodedata (half a
+    megabyte) at every node's first connection."""
+    return host.encode("ascii") if host.isascii() else host
+
+
 def is_this_host(address: str) -> bool:
     """Whether `address` (a name or an address) names this machine: its host name, its fully
     qualified name, or an address its host name resolves to."""

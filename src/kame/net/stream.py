@@ -31,6 +31,7 @@ from collections.abc import Callable, Sequence
 from typing import Any, Protocol
 
 from kame.net import peers
+from kame.net.address import resolvable
 
 log = logging.getLogger("kame.net.stream")
 
@@ -570,7 +571,8 @@ def peer_of(sock: socket.socket) -> str:
 
 
 def connect(host: str, port: int, timeout: float) -> socket.socket:
-    sock = socket.create_connection((host, port), timeout=timeout)
+    # typeshed says str; the address goes to getaddrinfo, which takes bytes as well (see resolvable)
+    sock = socket.create_connection((resolvable(host), port), timeout=timeout)  # type: ignore[arg-type]
     sock.settimeout(None)
     return sock
 

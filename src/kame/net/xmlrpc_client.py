@@ -18,6 +18,7 @@ import socket
 import threading
 from urllib.parse import urlsplit
 
+from kame.net.address import resolvable
 from kame.protocol.http import HttpError, ResponseReader, encode_request
 from kame.protocol.xmlrpc import Value, decode_response
 from kame.protocol.xmlrpc import encode_request as encode_call
@@ -75,7 +76,9 @@ class XmlRpcProxy:
             self._drop()
 
     def _connect(self, timeout: float | None) -> socket.socket:
-        sock = socket.create_connection((self.host, self.port), timeout=timeout or self.timeout)
+        # typeshed says str; the address goes to getaddrinfo, which takes bytes as well (see resolvable)
+        sock = socket.create_connection((resolvable(self.host), self.port),  # type: ignore[arg-type]
+                                        timeout=timeout or self.timeout)
         sock.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
         self._sock = sock
         return sock
