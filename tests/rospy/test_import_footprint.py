@@ -2,7 +2,8 @@
 the asyncio event loop (with ssl), the message parser (dataclasses, inspect) or hashlib
 (OpenSSL): together they were a third of an idle talker's memory (bench/RESULTS.md). Nor,
 once it runs and serves a subscriber, for PyYAML, the email package, the idna codec, base64,
-datetime or the shared-memory transport (with ctypes) that it does not use: another 6 MB."""
+datetime, urllib.parse (with ipaddress) or the shared-memory transport (with ctypes) that it does
+not use: another 6 MB."""
 
 from __future__ import annotations
 
@@ -37,7 +38,8 @@ def test_fixed_size_still_reads_definitions_when_asked() -> None:
     assert fixed_size("std_msgs/String", "string data\n") is None
 
 
-RUNNING_HEAVY = (*HEAVY, "yaml", "email", "encodings.idna", "base64", "datetime", "ctypes", "kame.net.shm")
+RUNNING_HEAVY = (*HEAVY, "yaml", "email", "encodings.idna", "base64", "datetime", "ctypes", "kame.net.shm",
+                 "urllib.parse", "ipaddress")
 
 _TALKER = """
 import json, sys, time
