@@ -73,3 +73,30 @@ def test_a_hook_without_arguments_gets_none() -> None:
     done = threading.Event()
     _call_hook(done.set, "bye")
     assert done.is_set()
+
+
+def _keyword_defaulted(a: int, *, b: int = 0) -> None: ...
+
+
+def _positional_only(a: int, /, b: int = 1, *rest: int, c: int = 2, **more: int) -> None: ...
+
+
+@functools.wraps(_two)
+def _wraps_two(*args: Any) -> None: ...
+
+
+@pytest.mark.parametrize("function", [
+    _two, _defaulted, _star, _keyword_only, _keyword_defaulted, _positional_only, _wraps_two, _Hooks().with_reason,
+    _Hooks.with_reason, lambda a, b=1, *c: None, lambda *, a: None,
+])
+def test_plain_functions_are_read_as_inspect_reads_them(function: Any) -> None:
+    import inspect  # accepts reads plain functions without it: the answers must be the same
+
+    def by_inspect(count: int) -> bool:
+        try:
+            inspect.signature(function).bind(*range(count))
+        except TypeError:
+            return False
+        return True
+
+    assert [accepts(function, count) for count in range(5)] == [by_inspect(count) for count in range(5)]

@@ -5,7 +5,6 @@ from __future__ import annotations
 from typing import Any
 
 from kame import names as _names
-from kame import param_yaml as _param_yaml
 from kame.client.errors import ROSInitException
 from kame.client.process import (
     DEFAULT_MASTER_URI,
@@ -45,9 +44,11 @@ __all__ = [
 
 def load_command_line_node_params(argv: list[str]) -> dict[str, Any]:
     """The private parameters of a command line (`_rate:=10` -> {'rate': 10}, values read as YAML)."""
+    from kame import param_yaml  # here: PyYAML is 2.5 MB that a node without such parameters never needs
+
     try:
         params = _names.parse_args(argv).params
-        return {key[len(_names.PRIVATE_PREFIX):]: _param_yaml.safe_load(text) for key, text in params.items()
+        return {key[len(_names.PRIVATE_PREFIX):]: param_yaml.safe_load(text) for key, text in params.items()
                 if key != _names.PRIVATE_PREFIX}  # `_:=x` names no parameter
     except Exception as exc:
         raise ROSInitException(f"invalid command-line parameters: {exc}") from exc

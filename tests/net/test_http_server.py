@@ -213,3 +213,21 @@ def test_answers_carry_the_servers_date_and_the_client_reads_it(server: tuple[Ht
         assert date is not None and before <= date <= after
     finally:
         proxy.close()
+
+
+def test_uris_are_read_as_urlsplit_reads_them() -> None:
+    from urllib.parse import urlsplit
+
+    from kame.net.xmlrpc_client import _split
+
+    for uri in ("http://127.0.0.1:11311/", "http://127.0.0.1:11311", "http://Robot-1.local:40123/",
+                "http://[::1]:11311/", "http://[FE80::1]:80/RPC2", "http://host:0/", "http://h_1:65535/a/b;c",
+                "http://robot:11311/path%20x", "HTTP://ROBOT:11311/", "http://robot/", "http://user@robot:1/",
+                "http://robot:11311/?q=1", "http://robot:11311/#f", "http://robot:011311/"):
+        parts = urlsplit(uri)
+        assert _split(uri) == (parts.hostname, parts.port or 80, parts.path or "/"), uri
+    for bad in ("http://robot:99999/", "http://robot:x1/"):
+        with pytest.raises(ValueError):
+            _ = urlsplit(bad).port
+        with pytest.raises(ValueError):
+            _split(bad)

@@ -6,7 +6,7 @@ import socket
 import threading
 import time
 
-from kame.net.stream import Flusher, Receiver, Sender
+from kame.net.stream import Flusher, Receiver, Sender, Stalled
 
 
 def wait_until(condition, timeout: float = 5.0) -> bool:  # type: ignore[no-untyped-def]
@@ -157,6 +157,39 @@ def test_closing_a_receiver_ourselves_reports_nothing() -> None:
     assert ended == []
     a.close()
     b.close()
+
+
+class _Halves(_Collect):
+    """Two-byte messages: in the middle of one after an odd count of bytes."""
+
+    @property
+    def mid_frame(self) -> bool:
+        return len(self.data) % 2 == 1
+
+
+def test_a_stall_timeout_ends_a_stream_stalled_mid_message_only() -> None:
+    a, b = socket.socketpair()
+    ended: list[BaseException | None] = []
+    done = threading.Event()
+    consumer = _Halves()
+
+    def on_end(exc: BaseException | None) -> None:
+        ended.append(exc)
+        done.set()
+
+    receiver = Receiver(a, consumer, on_end, name="test-receiver", stall_timeout=0.2)
+    receiver.start()
+    try:
+        b.sendall(b"ab")
+        assert not done.wait(0.7)  # idle between messages, several timeouts long: fine
+        b.sendall(b"c")  # half a message, and then nothing
+        assert done.wait(5)
+        assert bytes(consumer.data) == b"abc"
+        assert len(ended) == 1 and isinstance(ended[0], Stalled)
+    finally:
+        receiver.close()
+        a.close()
+        b.close()
 
 
 class _CountReads(_Collect):

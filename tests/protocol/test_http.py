@@ -174,3 +174,13 @@ def test_a_response_carries_the_date_it_is_given_and_the_reader_keeps_it() -> No
     assert plain.feed(encode_response(200, b"")) == b"" and plain.date is None
     for bad in ("", "yesterday", "Sun, 06 Nov 1994 08:49:37"):  # the last: no zone
         assert parse_date(bad) is None
+
+
+def test_the_date_line_is_what_the_standard_library_writes() -> None:
+    from email.utils import formatdate  # what Python's http.server (so rosmaster and rospy) sends
+
+    leap_days = (951782400, 951868799.5, 1709164800, 4107542400)  # 2000-02-29 (twice), 2024-02-29, 2100-03-01
+    spread = range(0, 4_200_000_000, 7_777_777)  # 1970 to 2103, every weekday, month and hour
+    for seconds in (0, 59.999, 4102444799, 784111777 + 86400 * 7 * 13, *leap_days, *spread):
+        assert date_header(seconds) == f"Date: {formatdate(seconds, usegmt=True)}\r\n".encode()
+        assert parse_date(date_header(seconds)[6:-2].decode()) == int(seconds)

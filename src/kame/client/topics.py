@@ -182,7 +182,23 @@ class _Callbacks:
         self.undeserializable: dict[str, int] = {}  # publisher callerid -> messages skipped
 
     def deliver(self, frames: list[memoryview], header: dict[str, str]) -> None:
-        self.deliver_to(self.entries, frames, header)
+        entries = self.entries
+        if len(frames) != 1 or len(entries) != 1 or entries[0][2]:
+            self.deliver_to(entries, frames, header)
+            return
+        # The usual case in full, without deliver_to's and _run's loops and calls (this is on
+        # every message's path): one message, one callback without arguments.
+        try:
+            msg = self.data_class._from_buffer(frames[0])
+        except Exception as exc:
+            self._undeserializable(header.get("callerid", "?"), exc)
+            return
+        msg._connection_header = header
+        callback = entries[0][0]
+        try:
+            callback(msg)
+        except Exception:
+            self._callback_failed(callback)
 
     def deliver_messages(self, msgs: list[Any], header: dict[str, str]) -> None:
         """Messages published in this process, as published (kame.node.local): shared with the
@@ -215,13 +231,18 @@ class _Callbacks:
                 else:
                     callback(msg)
             except Exception:
-                if core.is_shutdown():
-                    # as rospy: a callback that was running as the node shut down (publishing
-                    # to a topic just closed) is no error for the console; the log file keeps it
-                    _file_log.warning("during shutdown, bad callback: %s\n%s", callback, traceback.format_exc())
-                    continue
-                _log.emit(_log.ERROR, "bad callback: %s\n%s", (callback, traceback.format_exc()),
-                          caller=("topics.py", 0, "deliver", None))
+                _Callbacks._callback_failed(callback)
+
+    @staticmethod
+    def _callback_failed(callback: Callable[..., Any]) -> None:
+        """Log the exception being handled, raised by `callback`."""
+        if core.is_shutdown():
+            # as rospy: a callback that was running as the node shut down (publishing to a
+            # topic just closed) is no error for the console; the log file keeps it
+            _file_log.warning("during shutdown, bad callback: %s\n%s", callback, traceback.format_exc())
+            return
+        _log.emit(_log.ERROR, "bad callback: %s\n%s", (callback, traceback.format_exc()),
+                  caller=("topics.py", 0, "deliver", None))
 
     def _undeserializable(self, callerid: str, exc: Exception) -> None:
         count = self.undeserializable.get(callerid, 0)

@@ -26,7 +26,6 @@ from typing import TYPE_CHECKING, Any, NamedTuple
 
 from kame import names
 from kame.arity import accepts
-from kame.net import shm
 from kame.net.address import bind_host
 from kame.net.handshake import ClosedBeforeHeader, HandshakeError, MalformedHeader, read_header, write_header
 from kame.net.rpc_server import RpcServer
@@ -254,7 +253,12 @@ class Node:
                 if pub is None:
                     self._refuse(sock, f"[{self.name}] is not a publisher of [{accepted.topic}]", header)
                     return
-                pub.attach(sock, accepted, shmros.accept(header, shm.local_token()))
+                use_shm = False
+                if shmros.HEADER_FIELD in header:  # a kame subscriber's offer: nobody else loads kame.net.shm
+                    from kame.net import shm
+
+                    use_shm = shmros.accept(header, shm.local_token())
+                pub.attach(sock, accepted, use_shm)
             elif kind == "service":
                 with self._lock:
                     service_specs = {name: server.spec for name, server in self.services.items()}

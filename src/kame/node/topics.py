@@ -28,7 +28,6 @@ from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 from kame.msg.size import fixed_size
-from kame.net import shm
 from kame.net.address import DOES_NOT_RESOLVE, unreachable_reason
 from kame.net.handshake import HandshakeError, read_header_and_rest, write_header
 from kame.net.stream import Receiver, Sender, connect, peer_of, set_keepalive, set_nodelay, shut_down
@@ -40,6 +39,9 @@ from kame.protocol import shmros, tcpros
 if TYPE_CHECKING:
     import socket
 
+    from kame.net import shm  # imported where used: with ctypes and mmap, nearly a megabyte a node
+
+    # without a shared-memory connection never needs
     from kame.node.local import LocalPublisherLink, LocalSender
     from kame.node.node import Node
 
@@ -161,9 +163,17 @@ class Publication:
         (kame.node.local), serialized once for the others and for latching. A message that
         cannot be serialized raises before anyone gets it, when anyone needs its bytes."""
         if not self.local_links:  # the usual case: no subscriber in this node
-            self.publish_frame(serialize_frame(msg))
+            parts = serialize_frame(msg)
             if self.latch:
+                self.latched = parts
                 self.latched_object = msg
+            if len(parts) == 1:
+                data = parts[0]
+                for link in self.links:
+                    link.sender.send(data)
+            else:
+                for link in self.links:
+                    link.sender.send_parts(parts)
             return
         links = self.links
         frame: list[Any] | None = None
@@ -205,7 +215,11 @@ class Publication:
             if link_box:
                 self.drop_link(link_box[0])
 
-        kind = shm.ShmSender if use_shm else Sender
+        kind: type[Sender | shm.ShmSender] = Sender
+        if use_shm:
+            from kame.net import shm
+
+            kind = shm.ShmSender
         if self.queue_size:
             sender = kind(sock, self.node.flusher, self.queue_size, broken)
         else:  # no queue_size: any number of frames, within UNQUEUED_BACKLOG bytes
@@ -379,6 +393,8 @@ class PublisherLink:
                 sock.close()
                 return
             self.sock = sock
+        from kame.net import shm
+
         try:
             may_share = sub.shared_memory and self.publisher_uri not in sub.no_shm
             offer = shmros.offer(shm.local_token() if may_share else None)
@@ -435,7 +451,7 @@ class PublisherLink:
         self.connected = False
         if self._shm is not None:
             self._shm.close()
-        if isinstance(exc, shm.ShmUnavailable):
+        if self._shm is not None and isinstance(exc, _shm_unavailable()):
             log.warning("%s on %s; connecting again without shared memory", exc, self.subscription.topic)
             self.subscription.no_shm.add(self.publisher_uri)
             exc = OSError(str(exc))
@@ -477,6 +493,12 @@ class _Refused(Exception):
     pass
 
 
+def _shm_unavailable() -> type[Exception]:
+    from kame.net import shm
+
+    return shm.ShmUnavailable
+
+
 class _Frames:
     """A Receiver consumer: TCPROS frames out of the stream, handed on in batches.
 
@@ -493,6 +515,9 @@ class _Frames:
         self._trailing = trailing
         self._queue_size = queue_size
         self._mean_frame = 64.0
+        self._last_frame = -1  # the size of the last frame, while it keeps the mean where it is
+        self._queue_bytes = 1 << 62  # what a read may ask for: about queue_size frames' worth
+        self._size_reads()
 
     def get_buffer(self, sizehint: int) -> memoryview:
         if self._trailing:  # bytes that came with the publisher's header (a latched message)
@@ -500,9 +525,7 @@ class _Frames:
             self._trailing = b""
             if frames:
                 self._deliver(frames)
-        if self._queue_size:
-            sizehint = max(4096, min(sizehint, int(self._queue_size * (self._mean_frame + 4))))
-        return self._reader.get_buffer(sizehint)
+        return self._reader.get_buffer(min(sizehint, self._queue_bytes))
 
     @property
     def mid_frame(self) -> bool:
@@ -511,8 +534,19 @@ class _Frames:
     def buffer_updated(self, nbytes: int) -> None:
         frames = self._reader.buffer_updated(nbytes)
         if frames:
-            self._mean_frame = 0.9 * self._mean_frame + 0.1 * len(frames[-1])
+            size = len(frames[-1])
+            if size != self._last_frame:  # messages of one size (most topics) leave the mean alone
+                self._update_mean(size)
             self._deliver(frames)
+
+    def _update_mean(self, size: int) -> None:
+        mean = self._mean_frame = 0.9 * self._mean_frame + 0.1 * size
+        self._last_frame = size if abs(mean - size) < 1.0 else -1  # close enough: rest until it changes
+        self._size_reads()
+
+    def _size_reads(self) -> None:
+        if self._queue_size:
+            self._queue_bytes = max(4096, int(self._queue_size * (self._mean_frame + 4)))
 
 
 class Subscription:

@@ -183,8 +183,8 @@ class FrameReader:
     A length above `max_frame` raises TcprosError before anything is allocated for it.
     """
 
-    __slots__ = ("_body", "_direct", "_eager", "_filled", "_head", "_need", "_reuse", "_scratch", "_spare",
-                 "max_frame")
+    __slots__ = ("_body", "_direct", "_eager", "_filled", "_head", "_need", "_reuse", "_scratch", "_scratch_read",
+                 "_scratch_write", "_spare", "max_frame")
 
     def __init__(self, max_frame: int = DEFAULT_MAX_FRAME, reuse: bool = False) -> None:
         self.max_frame = max_frame
@@ -196,6 +196,9 @@ class FrameReader:
         self._need = 0
         self._filled = 0
         self._scratch: bytearray | None = None
+        # with reuse: the views of _scratch that every read hands out and parses, made once
+        self._scratch_write = memoryview(b"")
+        self._scratch_read = memoryview(b"")
         self._direct = False
 
     @property
@@ -218,8 +221,13 @@ class FrameReader:
             return memoryview(body)[self._filled : self._need]
         self._direct = False
         size = max(sizehint, 4096)
-        if not (self._reuse and self._scratch is not None and len(self._scratch) == size):
-            self._scratch = bytearray(size)
+        if self._reuse:
+            if len(self._scratch_write) != size:
+                self._scratch = bytearray(size)
+                self._scratch_write = memoryview(self._scratch)
+                self._scratch_read = self._scratch_write.toreadonly()
+            return self._scratch_write
+        self._scratch = bytearray(size)
         return memoryview(self._scratch)
 
     def buffer_updated(self, nbytes: int) -> list[memoryview]:
@@ -236,7 +244,13 @@ class FrameReader:
         if nbytes > len(buf):
             raise TcprosError("buffer_updated reports more bytes than the buffer held", remote=False)
         if self._reuse:
-            return self._feed(memoryview(buf).toreadonly()[:nbytes])
+            view = self._scratch_read
+            if nbytes >= 4 and self._body is None and not self._head:
+                # the usual read of small messages: exactly one whole frame
+                (length,) = _unpack_u32(view, 0)
+                if length + 4 == nbytes and length <= self.max_frame:
+                    return [view[4:nbytes]]
+            return self._feed(view[:nbytes])
         self._scratch = None
         if nbytes * _PIN_RATIO < len(buf):
             return self._feed(bytes(memoryview(buf)[:nbytes]))

@@ -21,7 +21,6 @@ loop over expat callbacks with a value stack, no per-element objects.
 
 from __future__ import annotations
 
-import base64
 import binascii
 import re
 from collections.abc import Callable, Sequence
@@ -120,6 +119,8 @@ def _encode_value(v: object, out: list[str]) -> None:
     elif t is float:
         out.append(f"<value><double>{v!r}</double></value>\n")
     elif t is bytes or t is bytearray or t is memoryview:
+        import base64  # here: few calls carry binary values (see _base64)
+
         encoded = base64.encodebytes(v).decode("ascii")  # type: ignore[arg-type]
         out.append(f"<value><base64>\n{encoded}</base64></value>\n")
     elif t is DateTime:
@@ -247,6 +248,8 @@ def _boolean(text: str) -> bool:
 
 
 def _base64(text: str) -> bytes:
+    import base64  # here: 0.15 MB in every node, for values that the ROS APIs seldom carry
+
     return base64.decodebytes(text.encode("ascii"))
 
 
