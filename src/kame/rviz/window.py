@@ -36,6 +36,8 @@ from kame.rviz import config as rviz_config
 from kame.rviz.camera import FPS, ORBIT, TOP_DOWN, Camera
 from kame.rviz.display import ERROR, OK, WARN, Display, Status, format_color, parse_color
 from kame.rviz.image_panels import ImagePanels, decode_compressed
+from kame.rviz.interact_view import InteractRouter
+from kame.rviz.interactive import InteractiveMarkers
 from kame.rviz.markers import Marker
 from kame.rviz.meshes import MeshLibrary
 from kame.rviz.robot import RobotModel
@@ -123,6 +125,8 @@ class RenderView(QOpenGLWidget):
         self._last: QPointF | None = None
         self._pressed_at: np.ndarray | None = None
         self._band: tuple[QPointF, QPointF] | None = None  # Select's rectangle while dragged
+        self.interact: Callable[[str, float, float, bool], bool] | None = None  # the Interact tool's mouse
+        self._interacting = False  # a control is being dragged
         self.setMinimumSize(320, 240)
         self.setFocusPolicy(Qt.FocusPolicy.StrongFocus)
 
@@ -314,6 +318,11 @@ class RenderView(QOpenGLWidget):
     def mousePressEvent(self, event: QMouseEvent) -> None:
         self._last = event.position()
         left = event.button() == Qt.MouseButton.LeftButton
+        right = event.button() == Qt.MouseButton.RightButton
+        if self.tool == INTERACT and self.interact is not None and (left or right):
+            self._interacting = self.interact("press", event.position().x(), event.position().y(), right)
+            if self._interacting:
+                return
         if self.tool == SELECT and left:
             self._band = (event.position(), event.position())
         elif self.tool == MEASURE and left:
@@ -326,6 +335,9 @@ class RenderView(QOpenGLWidget):
             self._pressed_at = self._ground(event)
 
     def mouseMoveEvent(self, event: QMouseEvent) -> None:
+        if self._interacting and self.interact is not None:
+            self.interact("move", event.position().x(), event.position().y(), False)
+            return
         if self._band is not None:
             self._band = (self._band[0], event.position())
             self.update()
@@ -346,6 +358,11 @@ class RenderView(QOpenGLWidget):
         self.update()
 
     def mouseReleaseEvent(self, event: QMouseEvent) -> None:
+        if self._interacting and self.interact is not None:
+            self._interacting = False
+            self.interact("release", event.position().x(), event.position().y(), False)
+            self._last = None
+            return
         if self._band is not None:
             start = self._band[0]
             self._band = None
@@ -383,6 +400,10 @@ class RvizWindow(QMainWindow):
         self.view.picked.connect(self._measured)
         self.view.unpicked.connect(self._measure_reset)
         self.view.area.connect(self._select)
+        self.view.interact = InteractRouter(self.view, lambda: self.config.displays,
+                                            source.publish if source is not None else None,
+                                            source.node.name if source is not None else "/rviz",
+                                            lambda: self.draw(time.monotonic()))
         self.setCentralWidget(self.view)
         self.selected_tree = QTreeWidget()
         self.selected_tree.setHeaderLabels(["Property", "Value"])
@@ -563,7 +584,7 @@ class RvizWindow(QMainWindow):
         display = self.config.displays[self.tree.indexOfTopLevelItem(parent) - 1]
         old = display.options.get(key)
         display.options[key] = type(old)(value) if isinstance(old, (int, float)) and _is_number(value) else value
-        if key in ("Topic", "Marker Topic", "Image Topic"):
+        if key in ("Topic", "Marker Topic", "Image Topic", "Update Topic"):
             display.reset()
             self._rewatch()
 
@@ -590,7 +611,7 @@ class RvizWindow(QMainWindow):
     def _rewatch(self) -> None:
         """Subscribes to what the displays show, and leaves what none shows any more."""
         for display in self.config.displays:
-            if isinstance(display, (RobotModel, Marker)):
+            if isinstance(display, (RobotModel, Marker, InteractiveMarkers)):
                 display.meshes = self.meshes  # one cache of mesh files for the window
             if isinstance(display, Image):
                 display.decode_compressed = decode_compressed
