@@ -114,8 +114,8 @@ LAYERS: dict[str, int] = {
     "kame.rviz": 1,  # rviz's model: camera, scene, displays, .rviz files; no Qt, no ROS I/O
     "kame.rviz.source": 4,  # the rviz node: subscriptions, the tf Buffer
     "kame.rviz.window": 4,  # Qt and OpenGL
-    "kame.rviz.image_panels": 4,
-    "kame.rviz.interact_view": 4,  # Qt: the Interact tool's mouse and menus  # Qt: the Image and Camera displays' panels
+    "kame.rviz.image_panels": 4,  # Qt: the Image and Camera displays' panels
+    "kame.rviz.interact_view": 4,  # Qt: the Interact tool's mouse and menus
     "kame.rviz.main": 4,
     "kame.robot": 1,  # a URDF's joints and joint_state_publisher's positions: no ROS, no Qt
     "kame.robot.programs": 4,  # robot_state_publisher and joint_state_publisher

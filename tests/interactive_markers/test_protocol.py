@@ -5,6 +5,9 @@ from __future__ import annotations
 
 from typing import Any
 
+from kame.interactive_markers.client_state import ClientState
+from kame.interactive_markers.menu import MenuHandler
+from kame.interactive_markers.server_state import ServerState
 from visualization_msgs.msg import (
     InteractiveMarker,
     InteractiveMarkerFeedback,
@@ -12,10 +15,6 @@ from visualization_msgs.msg import (
     InteractiveMarkerUpdate,
     MenuEntry,
 )
-
-from kame.interactive_markers.client_state import ClientState
-from kame.interactive_markers.menu import MenuHandler
-from kame.interactive_markers.server_state import ServerState
 
 
 def _marker(name: str, x: float = 0.0) -> Any:

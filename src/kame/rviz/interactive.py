@@ -46,11 +46,11 @@ class Handle:
         on the marker's header frame (FIXED; VIEW_FACING is treated so too)."""
         q = self.control.orientation
         norm = float(np.sqrt(q.x ** 2 + q.y ** 2 + q.z ** 2 + q.w ** 2))
-        turn = quaternion_matrix(q.x / norm, q.y / norm, q.z / norm, q.w / norm) if norm > 1e-9 else np.eye(4)
+        turn = quaternion_matrix(q.x / norm, q.y / norm, q.z / norm, q.w / norm) if norm > 1e-9 else np.eye(3)
         pose = self.pose
-        base = pose if self.control.orientation_mode == InteractiveMarkerControl.INHERIT else self.reference.copy()
-        frame: np.ndarray = base @ turn
-        frame[:3, 3] = pose[:3, 3]
+        base = pose if self.control.orientation_mode == InteractiveMarkerControl.INHERIT else self.reference
+        frame: np.ndarray = pose.copy()
+        frame[:3, :3] = base[:3, :3] @ turn
         return frame
 
 
@@ -63,7 +63,7 @@ def default_markers(control: Any, scale: float) -> list[Any]:
     """rviz's markers for a control that has none, in the interactive marker's frame."""
     q = control.orientation
     norm = float(np.sqrt(q.x ** 2 + q.y ** 2 + q.z ** 2 + q.w ** 2))
-    turn = quaternion_matrix(q.x / norm, q.y / norm, q.z / norm, q.w / norm) if norm > 1e-9 else np.eye(4)
+    turn = quaternion_matrix(q.x / norm, q.y / norm, q.z / norm, q.w / norm) if norm > 1e-9 else np.eye(3)
     r, g, b, a = _axis_color(turn, 1.0)
     made = []
     if control.interaction_mode == MOVE_AXIS:
