@@ -22,7 +22,7 @@ SQRT_HALF = math.sqrt(0.5)
 
 
 class Identity:
-    fixed_frame = "base_link"
+    fixed_frame = "fixed"
 
     def transform(self, frame_id: str) -> np.ndarray:
         return np.eye(4)
@@ -97,7 +97,7 @@ def test_each_mode_drags_by_its_geometry() -> None:
     assert dragged(InteractiveMarkerControl.MOVE_PLANE, start, np.eye(4), grab, np.zeros(3), down) is None
 
 
-def test_a_drag_in_the_view_sends_mouse_down_pose_updates_and_mouse_up() -> None:
+def test_a_drag_in_the_view_sends_rvizs_feedback_in_its_order() -> None:
     display = _display_with(_control("move_x", InteractiveMarkerControl.MOVE_AXIS, 1, 1, 0, 0))
     camera = Camera(scale=100.0)
     camera.become(TOP_DOWN)
@@ -105,8 +105,9 @@ def test_a_drag_in_the_view_sends_mouse_down_pose_updates_and_mouse_up() -> None
     tip = camera.project([[0.9, 0.0, 0.0]], width, height)[0]  # on the +x arrow, seen from above
     interaction = Interaction("/rviz_123")
     pressed = interaction.press(display.handles, *mouse_ray(camera, tip[0], tip[1], width, height))
-    assert pressed.consumed and [f.event_type for f in pressed.feedback] == [InteractiveMarkerFeedback.MOUSE_DOWN]
-    down = pressed.feedback[0]
+    assert pressed.consumed and [f.event_type for f in pressed.feedback] == [InteractiveMarkerFeedback.POSE_UPDATE,
+                                                                             InteractiveMarkerFeedback.MOUSE_DOWN]
+    down = pressed.feedback[1]
     assert (down.client_id, down.marker_name, down.control_name) == ("/rviz_123/InteractiveMarkers", "box", "move_x")
     assert down.mouse_point_valid and down.mouse_point.x == pytest.approx(0.9, abs=0.02)
     # 50 px to the right and 30 down: half a metre along x, nothing across it
@@ -115,8 +116,16 @@ def test_a_drag_in_the_view_sends_mouse_down_pose_updates_and_mouse_up() -> None
     pose = sent[0].pose
     assert (pose.position.x, pose.position.y, pose.position.z) == pytest.approx((0.5, 0.0, 0.0), abs=1e-6)
     assert sent[0].header.frame_id == "base_link"
+    marker = display.handles[0].marker
+    marker.header.stamp.secs = 7  # stamped: not locked to its frame, answered in the fixed frame
+    display.handles[0].reference = np.array([[1.0, 0, 0, 10], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]])
+    stamped = interaction.feedback(display.handles[0], InteractiveMarkerFeedback.POSE_UPDATE, None)
+    assert (stamped.header.frame_id, stamped.header.stamp.secs, stamped.pose.position.x) == ("fixed", 7, 10.5)
+    marker.header.stamp.secs = 0
+    display.handles[0].reference = np.eye(4)
     assert display.handles[0].marker.pose.position.x == pytest.approx(0.5)  # moved in the view at once
-    assert [f.event_type for f in interaction.release()] == [InteractiveMarkerFeedback.MOUSE_UP]
+    assert [f.event_type for f in interaction.release()] == [InteractiveMarkerFeedback.POSE_UPDATE,
+                                                             InteractiveMarkerFeedback.MOUSE_UP]
     empty = interaction.press(display.handles, *mouse_ray(camera, 10, 10, width, height))
     assert not empty.consumed and interaction.drag is None
 
@@ -135,8 +144,9 @@ def test_a_button_click_and_a_menu() -> None:
     interaction = Interaction("/rviz")
     origin, direction = np.array([0.0, 0.0, 5.0]), np.array([0.0, 0.0, -1.0])
     interaction.press(display.handles, origin, direction)
-    assert [f.event_type for f in interaction.release()] == [InteractiveMarkerFeedback.MOUSE_UP,
-                                                             InteractiveMarkerFeedback.BUTTON_CLICK]
+    assert [f.event_type for f in interaction.release()] == [InteractiveMarkerFeedback.BUTTON_CLICK,
+                                                             InteractiveMarkerFeedback.POSE_UPDATE,
+                                                             InteractiveMarkerFeedback.MOUSE_UP]
     pressed = interaction.press(display.handles, origin, direction, right=True)
     assert pressed.menu is display.handles[0] and interaction.drag is None
     chosen = interaction.menu_select(pressed.menu, 1)

@@ -2,8 +2,9 @@
 the ray through the pixel meets), the drag of its marker by the control's interaction mode,
 and the InteractiveMarkerFeedback rviz publishes for it on <ns>/feedback:
 
-- MOUSE_DOWN when a control is pressed, MOUSE_UP when released; BUTTON_CLICK on release of a
-  BUTTON control; MENU_SELECT with the entry chosen from the marker's menu.
+- As rviz 1.14: a press on a control sends POSE_UPDATE (the pose as it is) then MOUSE_DOWN; the
+  release BUTTON_CLICK (a BUTTON control's), POSE_UPDATE and MOUSE_UP; MENU_SELECT carries the
+  entry chosen from the marker's menu (a right click, or a left one on a MENU control).
 - POSE_UPDATE as the marker is dragged. The drag works in the control's frame (its x axis,
   the control's orientation on the marker's): MOVE_AXIS slides the marker along the axis to
   the point of the axis nearest the mouse's ray; MOVE_PLANE moves it with the point where the
@@ -155,7 +156,8 @@ class Interaction:
         if right or mode == MENU:
             return Pressed(menu=handle if handle.marker.menu_entries else None, consumed=True)
         self.drag = Drag(handle, handle.pose, handle.control_frame(), point)
-        return Pressed([self.feedback(handle, InteractiveMarkerFeedback.MOUSE_DOWN, point)], consumed=True)
+        return Pressed([self.feedback(handle, InteractiveMarkerFeedback.POSE_UPDATE, point),
+                        self.feedback(handle, InteractiveMarkerFeedback.MOUSE_DOWN, point)], consumed=True)
 
     def move(self, origin: np.ndarray, direction: np.ndarray) -> list[Any]:
         drag = self.drag
@@ -165,22 +167,17 @@ class Interaction:
         if pose is None:
             return []
         drag.moved = True
-        marker = drag.handle.marker
-        local = np.linalg.inv(drag.handle.reference) @ pose
-        marker.pose.position.x, marker.pose.position.y, marker.pose.position.z = (float(v) for v in local[:3, 3])
-        q = quaternion_from_matrix(local)
-        (marker.pose.orientation.x, marker.pose.orientation.y, marker.pose.orientation.z,
-         marker.pose.orientation.w) = (float(v) for v in q)
+        _set_pose(drag.handle.marker.pose, np.linalg.inv(drag.handle.reference) @ pose)
         return [self.feedback(drag.handle, InteractiveMarkerFeedback.POSE_UPDATE, None)]
 
     def release(self) -> list[Any]:
         drag, self.drag = self.drag, None
         if drag is None:
             return []
-        sent = [self.feedback(drag.handle, InteractiveMarkerFeedback.MOUSE_UP, drag.grab)]
-        if drag.handle.control.interaction_mode == BUTTON:
-            sent.append(self.feedback(drag.handle, InteractiveMarkerFeedback.BUTTON_CLICK, drag.grab))
-        return sent
+        sent = [self.feedback(drag.handle, InteractiveMarkerFeedback.BUTTON_CLICK, drag.grab)] \
+            if drag.handle.control.interaction_mode == BUTTON else []
+        return [*sent, self.feedback(drag.handle, InteractiveMarkerFeedback.POSE_UPDATE, drag.grab),
+                self.feedback(drag.handle, InteractiveMarkerFeedback.MOUSE_UP, drag.grab)]
 
     def menu_select(self, handle: Handle, entry_id: int) -> Any:
         feedback = self.feedback(handle, InteractiveMarkerFeedback.MENU_SELECT, None)
@@ -192,13 +189,25 @@ class Interaction:
         feedback = InteractiveMarkerFeedback(client_id=f"{self.node_name}/{handle.display_name}",
                                              marker_name=marker.name, control_name=handle.control.name,
                                              event_type=event_type)
-        feedback.header.frame_id, feedback.header.stamp = marker.header.frame_id, marker.header.stamp
-        feedback.pose = marker.pose
+        stamp = marker.header.stamp
+        # rviz: a marker stamped 0 is locked to its frame and answered in it; a stamped one in the fixed frame
+        locked = stamp.secs == 0 and stamp.nsecs == 0
+        into = np.linalg.inv(handle.reference) if locked else np.eye(4)
+        feedback.header.frame_id = marker.header.frame_id if locked else handle.fixed_frame
+        feedback.header.stamp = stamp
+        _set_pose(feedback.pose, into @ handle.pose)
         if point is not None:
-            local = np.linalg.inv(handle.reference) @ np.append(point, 1.0)
+            local = into @ np.append(point, 1.0)
             feedback.mouse_point.x, feedback.mouse_point.y, feedback.mouse_point.z = (float(v) for v in local[:3])
             feedback.mouse_point_valid = True
         return feedback
+
+
+def _set_pose(target: Any, matrix: np.ndarray) -> None:
+    """A geometry_msgs/Pose set to the 4x4 `matrix`."""
+    target.position.x, target.position.y, target.position.z = (float(v) for v in matrix[:3, 3])
+    q = quaternion_from_matrix(matrix)
+    target.orientation.x, target.orientation.y, target.orientation.z, target.orientation.w = (float(v) for v in q)
 
 
 def menu_tree(entries: list[Any]) -> dict[int, list[Any]]:

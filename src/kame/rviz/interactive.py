@@ -33,6 +33,7 @@ class Handle:
     marker: Any  # visualization_msgs/InteractiveMarker (the client's own copy)
     control: Any  # visualization_msgs/InteractiveMarkerControl
     reference: np.ndarray  # 4x4: the marker's header frame in the fixed frame
+    fixed_frame: str
     triangles: np.ndarray  # T x 3 x 3: the control's surfaces in the fixed frame
 
     @property
@@ -168,7 +169,7 @@ class InteractiveMarkers(Display):
                 surfaces = [b.vertices for b in own.batches if b.kind == "triangles"]
                 triangles = np.concatenate(surfaces).reshape(-1, 3, 3) if surfaces else np.zeros((0, 3, 3))
                 self.handles.append(Handle(server_id, self.name, f"{update_namespace(self.topic)}/feedback", marker,
-                                           control, reference, triangles.astype(float)))
+                                           control, reference, frames.fixed_frame, triangles.astype(float)))
                 scene.extend(own)
             if self.flag("Show Descriptions") and marker.description:
                 scene.label(pose[:3, 3] + np.array([0.0, 0.0, 0.6 * scale]), marker.description, (1, 1, 1, 1))
