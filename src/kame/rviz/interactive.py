@@ -123,6 +123,9 @@ class InteractiveMarkers(Display):
         topic = self.topic
         return {f"{update_namespace(topic)}/update_full": "visualization_msgs/InteractiveMarkerInit"} if topic else {}
 
+    def feedback_topic(self) -> str:
+        return f"{update_namespace(self.topic)}/feedback"
+
     def receive(self, messages: Any, now: float) -> None:
         for message in messages:
             self.message = message
@@ -168,7 +171,7 @@ class InteractiveMarkers(Display):
                         problems.append(f"{name}/{control.name}: {problem}")
                 surfaces = [b.vertices for b in own.batches if b.kind == "triangles"]
                 triangles = np.concatenate(surfaces).reshape(-1, 3, 3) if surfaces else np.zeros((0, 3, 3))
-                self.handles.append(Handle(server_id, self.name, f"{update_namespace(self.topic)}/feedback", marker,
+                self.handles.append(Handle(server_id, self.name, self.feedback_topic(), marker,
                                            control, reference, frames.fixed_frame, triangles.astype(float)))
                 scene.extend(own)
             if self.flag("Show Descriptions") and marker.description:

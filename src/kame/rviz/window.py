@@ -45,6 +45,7 @@ from kame.rviz.scene import Batch, Scene
 from kame.rviz.sensors import Image
 from kame.rviz.source import RvizSource
 from kame.rviz.tools import Measure, Selection
+from visualization_msgs.msg import InteractiveMarkerFeedback
 
 PRIMITIVES = {"lines": GL.GL_LINES, "points": GL.GL_POINTS, "triangles": GL.GL_TRIANGLES}
 INTERACT, POSE_ESTIMATE, NAV_GOAL, PUBLISH_POINT = "Interact", "2D Pose Estimate", "2D Nav Goal", "Publish Point"
@@ -627,6 +628,8 @@ class RvizWindow(QMainWindow):
                 if problem:
                     self._topic_errors[id(display)] = problem
                 wanted[self.source.node.resolve(topic)] = display
+            if isinstance(display, InteractiveMarkers) and display.topic:  # its feedback: connected before a drag
+                self.source.advertise(display.feedback_topic(), InteractiveMarkerFeedback)
             for topic, type_name in display.side_topics().items():
                 problem = self.source.watch(topic, type_name, False)
                 if problem:
