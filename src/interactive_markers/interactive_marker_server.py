@@ -6,15 +6,21 @@ kame.interactive_markers.server_state; this holds the node's side and a lock."""
 
 from __future__ import annotations
 
-import threading
 import time
 from collections.abc import Callable
+from threading import Lock
 from typing import Any
 
 import rospy
 from kame.interactive_markers.server_state import DEFAULT_FEEDBACK_CB, ServerState
 from std_msgs.msg import Header
-from visualization_msgs.msg import InteractiveMarkerFeedback, InteractiveMarkerInit, InteractiveMarkerUpdate
+from visualization_msgs.msg import (
+    InteractiveMarker,
+    InteractiveMarkerFeedback,
+    InteractiveMarkerInit,
+    InteractiveMarkerPose,
+    InteractiveMarkerUpdate,
+)
 
 KEEP_ALIVE_SECONDS = 0.5
 
@@ -26,7 +32,7 @@ class InteractiveMarkerServer:
         self.topic_ns = topic_ns
         self.server_id = rospy.get_name() + (server_id or "")
         self._state = ServerState(self.server_id)
-        self._lock = threading.Lock()
+        self._lock = Lock()
         self.init_pub = rospy.Publisher(topic_ns + "/update_full", InteractiveMarkerInit, latch=True, queue_size=100)
         self.update_pub = rospy.Publisher(topic_ns + "/update", InteractiveMarkerUpdate, queue_size=100)
         self.feedback_sub = rospy.Subscriber(topic_ns + "/feedback", InteractiveMarkerFeedback, self.processFeedback,
@@ -108,4 +114,7 @@ class InteractiveMarkerServer:
         self.init_pub.unregister()
 
 
-__all__ = ["InteractiveMarkerServer"]
+# what `from interactive_markers.interactive_marker_server import *` gives in ROS (its module has no
+# __all__), which scripts written for it may use: its imports, but for ROS's private helper classes
+__all__ = ["Header", "InteractiveMarker", "InteractiveMarkerFeedback", "InteractiveMarkerInit", "InteractiveMarkerPose",
+           "InteractiveMarkerServer", "InteractiveMarkerUpdate", "Lock", "rospy"]

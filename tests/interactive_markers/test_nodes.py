@@ -164,3 +164,68 @@ def test_debians_server_feeds_kames_display_model(env: dict[str, str]) -> None:
         assert "/debian_server second 1.0 4.0 []" in out
     finally:
         server.stop()
+
+
+def test_a_debian_client_moves_kames_marker_and_sees_shutdown_erase_it(env: dict[str, str]) -> None:
+    """Debian's rospy (ROS's own visualization_msgs) as rviz's side of the wire: kame's update_full
+    read, a POSE_UPDATE published to kame's server, the erase of shutdown() seen."""
+    if not have_debian_ros():
+        pytest.skip("Debian's ROS 1 is not installed")
+    probe = subprocess.run([SYSTEM_PYTHON, "-c", "import visualization_msgs.msg"], capture_output=True, env=env)
+    if probe.returncode != 0:
+        pytest.skip("Debian's python3-visualization-msgs is not installed (scripts/install-ros-peers.sh)")
+    server = Proc([sys.executable, "-c", textwrap.dedent("""
+        import rospy
+        from interactive_markers.interactive_marker_server import *
+        from visualization_msgs.msg import InteractiveMarkerControl
+        rospy.init_node('kame_server')
+        server = InteractiveMarkerServer('kame_markers')
+        marker = InteractiveMarker(name='m', scale=1.0)
+        marker.header.frame_id = 'base_link'
+        marker.pose.orientation.w = 1.0
+        marker.controls.append(InteractiveMarkerControl(name='move_x', interaction_mode=3))
+        moved = []
+        server.insert(marker, lambda f: moved.append(f) if f.event_type == f.POSE_UPDATE else None)
+        server.applyChanges()
+        print('serving', server.size(), server.empty(), flush=True)
+        while not rospy.is_shutdown() and not moved:
+            rospy.sleep(0.05)
+        server.applyChanges()
+        print('moved', moved[0].client_id, server.get('m').pose.position.y, flush=True)
+        rospy.sleep(0.5)
+        server.shutdown()
+        print('shut down', server.empty(), flush=True)
+        rospy.sleep(2.0)
+    """)], env)
+    try:
+        server.wait_line("serving 1 False", timeout=30)
+        out = _finish(Proc([SYSTEM_PYTHON, "-c", textwrap.dedent("""
+            import rospy
+            from visualization_msgs.msg import InteractiveMarkerFeedback, InteractiveMarkerInit
+            from visualization_msgs.msg import InteractiveMarkerUpdate
+            rospy.init_node('debian_rviz')
+            updates = []
+            rospy.Subscriber('/kame_markers/update', InteractiveMarkerUpdate, updates.append)
+            init = rospy.wait_for_message('/kame_markers/update_full', InteractiveMarkerInit, 30)
+            print('init', init.server_id, [m.name for m in init.markers], flush=True)
+            pub = rospy.Publisher('/kame_markers/feedback', InteractiveMarkerFeedback, queue_size=10)
+            while pub.get_num_connections() == 0:
+                rospy.sleep(0.05)
+            feedback = InteractiveMarkerFeedback(client_id='/debian_rviz/InteractiveMarkers', marker_name='m',
+                                                 control_name='move_x', event_type=1)
+            feedback.header.frame_id = 'base_link'
+            feedback.pose.position.y, feedback.pose.orientation.w = 1.5, 1.0
+            pub.publish(feedback)
+            deadline = rospy.get_time() + 20
+            while rospy.get_time() < deadline and not any(u.erases for u in updates):
+                rospy.sleep(0.05)
+            print('poses', [(p.name, p.pose.position.y) for u in updates for p in u.poses], flush=True)
+            print('erases', [e for u in updates for e in u.erases], flush=True)
+            print('keep alive', any(u.type == u.KEEP_ALIVE for u in updates), flush=True)
+        """)], env))
+        assert "init /kame_server ['m']" in out, out
+        assert "poses [('m', 1.5)]" in out and "erases ['m']" in out and "keep alive True" in out, out
+        server.wait_line("moved /debian_rviz/InteractiveMarkers 1.5", timeout=10)
+        server.wait_line("shut down True", timeout=10)
+    finally:
+        server.stop()
