@@ -151,3 +151,31 @@ def test_a_button_click_and_a_menu() -> None:
     assert pressed.menu is display.handles[0] and interaction.drag is None
     chosen = interaction.menu_select(pressed.menu, 1)
     assert (chosen.event_type, chosen.menu_entry_id) == (InteractiveMarkerFeedback.MENU_SELECT, 1)
+
+
+def test_the_display_loads_and_saves_in_a_rviz_file(tmp_path: Any) -> None:
+    from kame.rviz import config
+
+    path = tmp_path / "im.rviz"
+    path.write_text("""\
+Visualization Manager:
+  Displays:
+    - Class: rviz/InteractiveMarkers
+      Enable Transparency: true
+      Enabled: true
+      Name: InteractiveMarkers
+      Show Axes: false
+      Show Descriptions: true
+      Show Visual Aids: false
+      Update Topic: /basic_controls/update
+      Value: true
+  Global Options:
+    Fixed Frame: base_link
+""")
+    loaded = config.load(str(path))
+    display = loaded.displays[0]
+    assert isinstance(display, InteractiveMarkers) and display.topic == "/basic_controls/update"
+    config.save(loaded, str(tmp_path / "again.rviz"))
+    again = config.load(str(tmp_path / "again.rviz")).displays[0]
+    assert again.class_name == "rviz/InteractiveMarkers" and again.options["Update Topic"] == "/basic_controls/update"
+    assert "Update Topic: /basic_controls/update" in (tmp_path / "again.rviz").read_text()
