@@ -141,7 +141,30 @@ def test_basic_controls_serves_every_marker(env: dict[str, str]) -> None:
             by_name = {m.name: m for m in init.markers}
             print(sorted(by_name))
             print([e.title for e in by_name['context_menu'].menu_entries])
+            import numpy as np
+            from kame.rviz.interactive import InteractiveMarkers
+            from kame.rviz.scene import Scene
+
+            class Frames:  # base_link and moving_frame where they are at the start
+                fixed_frame = 'base_link'
+                def transform(self, frame_id):
+                    return np.eye(4)
+                def names(self):
+                    return ['base_link', 'moving_frame']
+                def parent(self, frame_id):
+                    return None
+
+            display = InteractiveMarkers(options={'Update Topic': '/basic_controls/update'})
+            display.receive_side('/basic_controls/update_full', [init], 0.0)
+            scene = Scene()
+            display.build(scene, Frames(), 0.0)
+            print('status', display.status.level, display.status.text)
+            print('drawn', sum(1 for h in display.handles if len(h.triangles)), 'of', len(display.handles))
         """)], env))
+        assert "status Ok" in out, out
+        # 45 controls; all but the menu-only one (no markers: nothing to draw) have something to grab
+        drawn, total = (int(n) for n in out.split("drawn ")[1].split()[::2])
+        assert (drawn, total) == (44, 45), out
         assert "'button', 'chess_piece', 'context_menu', 'moving', 'pan_tilt', 'quadrocopter'" in out, out
         assert "['First Entry', 'Second Entry', 'Submenu', 'First Entry', 'Second Entry']" in out
     finally:
