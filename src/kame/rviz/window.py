@@ -285,12 +285,17 @@ class RenderView(QOpenGLWidget):
         GL.glMatrixMode(GL.GL_MODELVIEW)
         GL.glLoadIdentity()
         painter = QPainter(self)
+        line_height = painter.fontMetrics().height()
         for label, (x, y) in zip(self.scene.labels, pixels, strict=True):
-            if math.isfinite(x) and math.isfinite(y):
+            if not (math.isfinite(x) and math.isfinite(y)):
+                continue
+            lines = label.text.split("\n")  # drawText keeps to one line: an interactive marker's description has more
+            for row, line in enumerate(lines):
+                below = y - 4 - (len(lines) - 1 - row) * line_height
                 painter.setPen(QColor(0, 0, 0, 160))  # a shadow keeps white names readable on a free map
-                painter.drawText(QPointF(x + 5, y - 3), label.text)
+                painter.drawText(QPointF(x + 5, below + 1), line)
                 painter.setPen(QColor.fromRgbF(*label.color))
-                painter.drawText(QPointF(x + 4, y - 4), label.text)
+                painter.drawText(QPointF(x + 4, below), line)
         painter.end()
 
     # -------------------------------------------------------------- mouse
