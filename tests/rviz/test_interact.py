@@ -140,9 +140,10 @@ def test_a_button_click_and_a_menu() -> None:
     box.color.r = box.color.a = 1.0
     button.markers = [box]
     display = _display_with(button)
-    display.handles[0].marker.menu_entries = [MenuEntry(id=1, parent_id=0, title="First Entry")]
     interaction = Interaction("/rviz")
     origin, direction = np.array([0.0, 0.0, 5.0]), np.array([0.0, 0.0, -1.0])
+    assert not interaction.press(display.handles, origin, direction, right=True).consumed  # no menu: the camera's
+    display.handles[0].marker.menu_entries = [MenuEntry(id=1, parent_id=0, title="First Entry")]
     interaction.press(display.handles, origin, direction)
     assert [f.event_type for f in interaction.release()] == [InteractiveMarkerFeedback.BUTTON_CLICK,
                                                              InteractiveMarkerFeedback.POSE_UPDATE,

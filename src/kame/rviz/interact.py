@@ -153,8 +153,8 @@ class Interaction:
             return Pressed()
         handle, point = found
         mode = handle.control.interaction_mode
-        if right or mode == MENU:
-            return Pressed(menu=handle if handle.marker.menu_entries else None, consumed=True)
+        if right or mode == MENU:  # a marker without a menu leaves the right button to the camera
+            return Pressed(menu=handle, consumed=True) if handle.marker.menu_entries else Pressed()
         self.drag = Drag(handle, handle.pose, handle.control_frame(), point)
         return Pressed([self.feedback(handle, InteractiveMarkerFeedback.POSE_UPDATE, point),
                         self.feedback(handle, InteractiveMarkerFeedback.MOUSE_DOWN, point)], consumed=True)
