@@ -9,6 +9,7 @@ packages=(
   ros-core python3-genpy python3-genmsg python3-numpy
   python3-geometry-msgs python3-sensor-msgs python3-nav-msgs python3-std-srvs python3-tf2-msgs
   python3-actionlib
+  python3-interactive-markers python3-visualization-msgs  # Debian's InteractiveMarkerServer feeding kame's rviz model (tests/interactive_markers)
   python3-dynamic-reconfigure  # dynparam, Client and Server against kame's (tests/dynamic_reconfigure)
   python3-tf2-ros python3-tf python3-tf2-geometry-msgs tf2-tools tf-tools  # tf/tf2 interop (tests/tf)
   # image_transport's republish (raw only: Debian has no compressed plugin) and cv_bridge with OpenCV,

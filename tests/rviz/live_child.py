@@ -4,9 +4,11 @@ display puts each frame it names on the command line, whether the view's pixel t
 and each display's status; with --click it also uses the Publish Point tool on the ground point
 (X, Y) of the fixed frame each time (its subscriber may connect after the first click); with
 --colour it also counts the view's pixels of that colour, lit or not (a display's, to see it
-drawn).
+drawn); with --drag it drags once, with the Interact tool, from the fixed frame's ground point
+(X0, Y0) to (X1, Y1), once something of the --colour is drawn.
 
     python -m tests.rviz.live_child MASTER_URI FILE.rviz FRAME... [--click X,Y] [--colour R,G,B]
+        [--drag X0,Y0,X1,Y1]
 """
 
 from __future__ import annotations
@@ -21,7 +23,7 @@ from PySide6.QtWidgets import QApplication
 from kame.node.node import Node, NodeConfig
 from kame.rviz import config
 from kame.rviz.source import RvizSource
-from kame.rviz.window import PUBLISH_POINT, RvizWindow
+from kame.rviz.window import INTERACT, PUBLISH_POINT, RvizWindow
 
 
 def _shades_of(pixels: np.ndarray, colour: tuple[int, ...]) -> int:
@@ -45,6 +47,11 @@ def main() -> int:
         at = args.index("--colour")
         colour = tuple(int(v) for v in args[at + 1].split(","))
         del args[at:at + 2]
+    drag = None
+    if "--drag" in args:
+        at = args.index("--drag")
+        drag = [float(v) for v in args[at + 1].split(",")]
+        del args[at:at + 2]
     master_uri, path, *frames = args
     app = QApplication(["rviz"])
     node = Node(NodeConfig("/rviz_test", master_uri, "127.0.0.1", "127.0.0.1"))
@@ -56,6 +63,11 @@ def main() -> int:
         print("never exposed", flush=True)
         return 1
     view = window.view
+    dragged = []
+
+    def pixel(x: float, y: float) -> QPoint:
+        at = view.camera.project([[x, y, 0.0]], view.width(), view.height())[0]
+        return QPoint(round(float(at[0])), round(float(at[1])))
 
     def report() -> None:
         image = view.grabFramebuffer()
@@ -77,7 +89,17 @@ def main() -> int:
             pixels = image.convertToFormat(image.Format.Format_RGB888)
             rgb = np.frombuffer(pixels.constBits(), np.uint8, pixels.sizeInBytes())
             rows = rgb.reshape(pixels.height(), pixels.bytesPerLine())[:, : pixels.width() * 3]
-            counted = f" colour {_shades_of(rows.reshape(-1, 3), colour)}"
+            count = _shades_of(rows.reshape(-1, 3), colour)
+            counted = f" colour {count}"
+            if drag is not None and count and not dragged:
+                dragged.append(True)
+                window.set_tool(INTERACT)
+                left, none = Qt.MouseButton.LeftButton, Qt.KeyboardModifier.NoModifier
+                QTest.mousePress(view, left, none, pixel(drag[0], drag[1]))
+                for step in range(1, 6):
+                    QTest.mouseMove(view, pixel(drag[0] + (drag[2] - drag[0]) * step / 5,
+                                                drag[1] + (drag[3] - drag[1]) * step / 5))
+                QTest.mouseRelease(view, left, none, pixel(drag[2], drag[3]))
         print("frames", " ".join(parts), "status", statuses + counted, flush=True)
         if click is not None:
             window.set_tool(PUBLISH_POINT)

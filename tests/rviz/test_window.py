@@ -32,3 +32,61 @@ def test_a_still_scene_is_not_repainted(qtbot: Any) -> None:
     assert window.view.scene is shown  # the same batches: nothing to repaint
     window.draw(0.2, TreeOf("map", {"odom": ("map", (5.0, 0.0, 0.0))}))  # odom moved: the point with it
     assert window.view.scene is not shown and window.view.scene.batches[0] is shown.batches[0]
+
+
+def test_the_interact_tool_routes_a_drag_and_a_menu_to_the_feedback_topic(qtbot: Any) -> None:
+    """The view's mouse on an interactive marker's control (no drawing: the model's geometry):
+    a left drag publishes rviz's feedback on <ns>/feedback, a right click opens the marker's
+    menu and its entry is sent as MENU_SELECT; a press beside the marker moves the camera."""
+    from PySide6.QtCore import QPoint, Qt
+    from PySide6.QtTest import QTest
+    from PySide6.QtWidgets import QApplication, QMenu
+
+    from kame.rviz.camera import TOP_DOWN
+    from kame.rviz.window import RvizWindow
+    from tests.rviz.test_interact import Identity, _control, _display_with
+    from visualization_msgs.msg import InteractiveMarkerFeedback, MenuEntry
+
+    display = _display_with(_control("move_x", 3, 1, 1, 0, 0))
+    display.client.markers[("/basic_controls", "box")].menu_entries = [
+        MenuEntry(id=1, parent_id=0, title="Submenu"), MenuEntry(id=2, parent_id=1, title="Inner")]
+    window = RvizWindow(config.Config(fixed_frame="fixed", displays=[display]), None)
+    qtbot.addWidget(window)
+    window.timer.stop()
+    window.resize(800, 600)
+    sent: list[tuple[str, Any]] = []
+    window.view.interact.publish = lambda topic, message: sent.append((topic, message))
+    window.view.interact.redraw = lambda: window.draw(0.0, Identity())  # no node: tf is the test's
+    window.view.camera.become(TOP_DOWN)
+    window.view.camera.scale = 100.0
+    window.draw(0.0, Identity())
+    view = window.view
+
+    def pixel(x: float, y: float) -> QPoint:
+        at = view.camera.project([[x, y, 0.0]], view.width(), view.height())[0]
+        return QPoint(round(float(at[0])), round(float(at[1])))
+
+    left, none = Qt.MouseButton.LeftButton, Qt.KeyboardModifier.NoModifier
+    QTest.mousePress(view, left, none, pixel(0.8, 0.0))
+    QTest.mouseMove(view, pixel(1.1, 0.0))
+    QTest.mouseRelease(view, left, none, pixel(1.1, 0.0))
+    events = [(topic, m.event_type) for topic, m in sent]
+    assert events[:2] == [("/basic_controls/feedback", InteractiveMarkerFeedback.POSE_UPDATE),
+                          ("/basic_controls/feedback", InteractiveMarkerFeedback.MOUSE_DOWN)]
+    assert events[-1] == ("/basic_controls/feedback", InteractiveMarkerFeedback.MOUSE_UP)
+    moved = [m for _, m in sent if m.event_type == InteractiveMarkerFeedback.POSE_UPDATE][-1]
+    assert abs(moved.pose.position.x - 0.3) < 0.02
+    sent.clear()
+    QTest.mousePress(view, Qt.MouseButton.RightButton, none, pixel(1.1, 0.0))  # the arrow, moved with the marker
+    menus = [w for w in QApplication.topLevelWidgets() if isinstance(w, QMenu) and w.isVisible()]
+    assert len(menus) == 1 and [a.text() for a in menus[0].actions()] == ["Submenu"]
+    inner = menus[0].actions()[0].menu().actions()[0]
+    assert inner.text() == "Inner"
+    inner.trigger()
+    assert [(m.event_type, m.menu_entry_id) for _, m in sent] == [(InteractiveMarkerFeedback.MENU_SELECT, 2)]
+    menus[0].close()
+    before = (view.camera.angle, tuple(view.camera.focal_point))
+    QTest.mousePress(view, left, none, pixel(-3.0, 2.0))  # nothing there: the camera's
+    QTest.mouseMove(view, pixel(-2.0, 2.0))
+    QTest.mouseRelease(view, left, none, pixel(-2.0, 2.0))
+    assert len(sent) == 1 and (view.camera.angle, tuple(view.camera.focal_point)) != before

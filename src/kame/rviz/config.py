@@ -28,6 +28,7 @@ from kame.rviz.displays import (
     Pose,
     PoseArray,
 )
+from kame.rviz.interactive import InteractiveMarkers
 from kame.rviz.markers import Marker, MarkerArray
 from kame.rviz.robot import RobotModel
 from kame.rviz.scene import Color
@@ -36,7 +37,7 @@ from kame.rviz.sensors import Image, Range, WrenchStamped
 
 DISPLAY_CLASSES: dict[str, type[Display]] = {cls.class_name: cls for cls in (
     Grid, Axes, TF, LaserScan, PointCloud2, Odometry, Pose, PoseArray, PointStamped, Path, Polygon, OccupancyGrid,
-    Marker, MarkerArray, RobotModel, Range, WrenchStamped, Image, CameraDisplay)}
+    Marker, MarkerArray, InteractiveMarkers, RobotModel, Range, WrenchStamped, Image, CameraDisplay)}
 COMMON_KEYS = ("Class", "Name", "Enabled")
 
 

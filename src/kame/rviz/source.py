@@ -192,11 +192,17 @@ class RvizSource:
         package = executables.packages(os.environ).get(name)
         return str(package.path) if package is not None else None
 
-    def publish(self, topic: str, message: Any) -> None:
+    def advertise(self, topic: str, cls: type[Any]) -> str:
+        """Publishes `topic` from now on (a tool's first message then finds its subscribers
+        connected); the resolved name."""
         topic = self.node.resolve(topic)
         if topic not in self._publishers:
-            self.node.advertise(topic, message._type, message._md5sum, message._full_text)
+            self.node.advertise(topic, cls._type, cls._md5sum, cls._full_text)
             self._publishers.add(topic)
+        return topic
+
+    def publish(self, topic: str, message: Any) -> None:
+        topic = self.advertise(topic, type(message))
         self.node.publications[topic].publish_frame(serialize_frame(message))
 
     def close(self) -> None:

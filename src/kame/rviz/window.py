@@ -36,6 +36,8 @@ from kame.rviz import config as rviz_config
 from kame.rviz.camera import FPS, ORBIT, TOP_DOWN, Camera
 from kame.rviz.display import ERROR, OK, WARN, Display, Status, format_color, parse_color
 from kame.rviz.image_panels import ImagePanels, decode_compressed
+from kame.rviz.interact_view import InteractRouter
+from kame.rviz.interactive import InteractiveMarkers
 from kame.rviz.markers import Marker
 from kame.rviz.meshes import MeshLibrary
 from kame.rviz.robot import RobotModel
@@ -43,6 +45,7 @@ from kame.rviz.scene import Batch, Scene
 from kame.rviz.sensors import Image
 from kame.rviz.source import RvizSource
 from kame.rviz.tools import Measure, Selection
+from visualization_msgs.msg import InteractiveMarkerFeedback
 
 PRIMITIVES = {"lines": GL.GL_LINES, "points": GL.GL_POINTS, "triangles": GL.GL_TRIANGLES}
 INTERACT, POSE_ESTIMATE, NAV_GOAL, PUBLISH_POINT = "Interact", "2D Pose Estimate", "2D Nav Goal", "Publish Point"
@@ -123,6 +126,8 @@ class RenderView(QOpenGLWidget):
         self._last: QPointF | None = None
         self._pressed_at: np.ndarray | None = None
         self._band: tuple[QPointF, QPointF] | None = None  # Select's rectangle while dragged
+        self.interact: Callable[[str, float, float, bool], bool] | None = None  # the Interact tool's mouse
+        self._interacting = False  # a control is being dragged
         self.setMinimumSize(320, 240)
         self.setFocusPolicy(Qt.FocusPolicy.StrongFocus)
 
@@ -280,12 +285,17 @@ class RenderView(QOpenGLWidget):
         GL.glMatrixMode(GL.GL_MODELVIEW)
         GL.glLoadIdentity()
         painter = QPainter(self)
+        line_height = painter.fontMetrics().height()
         for label, (x, y) in zip(self.scene.labels, pixels, strict=True):
-            if math.isfinite(x) and math.isfinite(y):
+            if not (math.isfinite(x) and math.isfinite(y)):
+                continue
+            lines = label.text.split("\n")  # drawText keeps to one line: an interactive marker's description has more
+            for row, line in enumerate(lines):
+                below = y - 4 - (len(lines) - 1 - row) * line_height
                 painter.setPen(QColor(0, 0, 0, 160))  # a shadow keeps white names readable on a free map
-                painter.drawText(QPointF(x + 5, y - 3), label.text)
+                painter.drawText(QPointF(x + 5, below + 1), line)
                 painter.setPen(QColor.fromRgbF(*label.color))
-                painter.drawText(QPointF(x + 4, y - 4), label.text)
+                painter.drawText(QPointF(x + 4, below), line)
         painter.end()
 
     # -------------------------------------------------------------- mouse
@@ -314,6 +324,11 @@ class RenderView(QOpenGLWidget):
     def mousePressEvent(self, event: QMouseEvent) -> None:
         self._last = event.position()
         left = event.button() == Qt.MouseButton.LeftButton
+        right = event.button() == Qt.MouseButton.RightButton
+        if self.tool == INTERACT and self.interact is not None and (left or right):
+            self._interacting = self.interact("press", event.position().x(), event.position().y(), right)
+            if self._interacting:
+                return
         if self.tool == SELECT and left:
             self._band = (event.position(), event.position())
         elif self.tool == MEASURE and left:
@@ -326,6 +341,9 @@ class RenderView(QOpenGLWidget):
             self._pressed_at = self._ground(event)
 
     def mouseMoveEvent(self, event: QMouseEvent) -> None:
+        if self._interacting and self.interact is not None:
+            self.interact("move", event.position().x(), event.position().y(), False)
+            return
         if self._band is not None:
             self._band = (self._band[0], event.position())
             self.update()
@@ -346,6 +364,11 @@ class RenderView(QOpenGLWidget):
         self.update()
 
     def mouseReleaseEvent(self, event: QMouseEvent) -> None:
+        if self._interacting and self.interact is not None:
+            self._interacting = False
+            self.interact("release", event.position().x(), event.position().y(), False)
+            self._last = None
+            return
         if self._band is not None:
             start = self._band[0]
             self._band = None
@@ -383,6 +406,10 @@ class RvizWindow(QMainWindow):
         self.view.picked.connect(self._measured)
         self.view.unpicked.connect(self._measure_reset)
         self.view.area.connect(self._select)
+        self.view.interact = InteractRouter(self.view, lambda: self.config.displays,
+                                            source.publish if source is not None else None,
+                                            source.node.name if source is not None else "/rviz",
+                                            lambda: self.draw(time.monotonic()))
         self.setCentralWidget(self.view)
         self.selected_tree = QTreeWidget()
         self.selected_tree.setHeaderLabels(["Property", "Value"])
@@ -563,7 +590,7 @@ class RvizWindow(QMainWindow):
         display = self.config.displays[self.tree.indexOfTopLevelItem(parent) - 1]
         old = display.options.get(key)
         display.options[key] = type(old)(value) if isinstance(old, (int, float)) and _is_number(value) else value
-        if key in ("Topic", "Marker Topic", "Image Topic"):
+        if key in ("Topic", "Marker Topic", "Image Topic", "Update Topic"):
             display.reset()
             self._rewatch()
 
@@ -590,7 +617,7 @@ class RvizWindow(QMainWindow):
     def _rewatch(self) -> None:
         """Subscribes to what the displays show, and leaves what none shows any more."""
         for display in self.config.displays:
-            if isinstance(display, (RobotModel, Marker)):
+            if isinstance(display, (RobotModel, Marker, InteractiveMarkers)):
                 display.meshes = self.meshes  # one cache of mesh files for the window
             if isinstance(display, Image):
                 display.decode_compressed = decode_compressed
@@ -606,6 +633,8 @@ class RvizWindow(QMainWindow):
                 if problem:
                     self._topic_errors[id(display)] = problem
                 wanted[self.source.node.resolve(topic)] = display
+            if isinstance(display, InteractiveMarkers) and display.topic:  # its feedback: connected before a drag
+                self.source.advertise(display.feedback_topic(), InteractiveMarkerFeedback)
             for topic, type_name in display.side_topics().items():
                 problem = self.source.watch(topic, type_name, False)
                 if problem:

@@ -1,0 +1,71 @@
+"""The Interact tool in rviz's window: the view's mouse events on an interactive marker's
+control go to kame.rviz.interact (which drags and makes the feedback), the feedback is
+published on the display's <ns>/feedback, and a marker's menu shows as a context menu whose
+choice is sent back as MENU_SELECT. Everything else about the tool is Qt-free."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Any
+
+from PySide6.QtCore import QPoint
+from PySide6.QtWidgets import QMenu, QWidget
+
+from kame.rviz.interact import Interaction, menu_tree, mouse_ray
+from kame.rviz.interactive import Handle, InteractiveMarkers
+
+
+class InteractRouter:
+    def __init__(self, view: Any, displays: Callable[[], list[Any]], publish: Callable[[str, Any], None] | None,
+                 node_name: str, redraw: Callable[[], None]) -> None:
+        self.view = view
+        self.displays = displays
+        self.publish = publish
+        self.redraw = redraw
+        self.interaction = Interaction(node_name)
+
+    def _markers(self) -> list[InteractiveMarkers]:
+        return [d for d in self.displays() if isinstance(d, InteractiveMarkers) and d.enabled]
+
+    def _send(self, handle: Handle, feedback: list[Any]) -> None:
+        if self.publish is not None:
+            for message in feedback:
+                self.publish(handle.feedback_topic, message)
+
+    def __call__(self, kind: str, x: float, y: float, right: bool) -> bool:
+        """A mouse event at pixel (x, y) of the view ("press", "move", "release"); whether the
+        tool took it (False: nothing interactive was pressed, the camera moves)."""
+        origin, direction = mouse_ray(self.view.camera, x, y, self.view.width(), self.view.height())
+        drag = self.interaction.drag
+        if kind == "press":
+            pressed = self.interaction.press([h for d in self._markers() for h in d.handles], origin, direction, right)
+            if self.interaction.drag is not None:
+                self._send(self.interaction.drag.handle, pressed.feedback)
+            if pressed.menu is not None:
+                self._menu(pressed.menu, QPoint(round(x), round(y)))
+            return pressed.consumed
+        if drag is None:
+            return False
+        sent = self.interaction.move(origin, direction) if kind == "move" else self.interaction.release()
+        self._send(drag.handle, sent)
+        if sent and kind == "move":
+            for display in self._markers():
+                display.moved()
+            self.redraw()
+        return True
+
+    def _menu(self, handle: Handle, at: QPoint) -> None:
+        tree = menu_tree(list(handle.marker.menu_entries))
+        menu = QMenu(self.view if isinstance(self.view, QWidget) else None)
+
+        def fill(parent: QMenu, parent_id: int) -> None:
+            for entry in tree.get(parent_id, []):
+                if entry.id in tree:
+                    fill(parent.addMenu(entry.title), entry.id)
+                else:
+                    action = parent.addAction(entry.title)
+                    action.triggered.connect(lambda _checked=False, entry_id=entry.id: self._send(
+                        handle, [self.interaction.menu_select(handle, entry_id)]))
+
+        fill(menu, 0)
+        menu.popup(self.view.mapToGlobal(at))
