@@ -19,6 +19,7 @@ from __future__ import annotations
 import traceback
 from collections.abc import Callable
 from dataclasses import dataclass
+from typing import NamedTuple
 
 from kame import names
 from kame.master.notifications import Notification
@@ -29,9 +30,8 @@ from kame.protocol.xmlrpc import Fault, Value
 Reply = tuple[int, str, object]
 
 
-@dataclass(frozen=True)
-class CallResult:
-    """What one XML-RPC call produced."""
+class CallResult(NamedTuple):
+    """What one XML-RPC call produced (a NamedTuple: a frozen dataclass costs a microsecond more per call)."""
 
     value: object  # the response value (for ROS methods the [code, message, value] triple)
     notifications: tuple[Notification, ...] = ()
