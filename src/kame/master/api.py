@@ -81,6 +81,8 @@ def _name(param: str) -> Validator:
             raise _Invalid(f"ERROR: parameter [{param}] must be a non-empty string")
         if ":" in v or " " in v:
             raise _Invalid(f"ERROR: parameter [{param}] contains illegal chars")
+        if v[0] == "/" and v[-1] != "/" and "//" not in v:
+            return v  # already global and canonical, as clients send most names: resolves to itself
         return names.resolve(v, caller)
 
     return check
