@@ -119,7 +119,7 @@ def _type_name(param: str) -> Validator:
             return v
         if not v or not isinstance(v, str):
             raise _Invalid(f"ERROR: parameter [{param}] must be a non-empty string")
-        if len(v.split("/")) != 2:
+        if v.count("/") != 1:
             raise _Invalid(f"ERROR: parameter [{param}] is not a valid package resource name")
         return v
 
