@@ -12,7 +12,7 @@ window common to all of them (CLOCK_MONOTONIC). `--client threads` is the old cl
 per connection, all in this process).
 
   python3 bench/master_bench.py [--window 2] [--client procs|threads] [--procs 2]
-                                [--kame-python .venv/bin/python]
+                                [--kame-python .venv/bin/python] [--kame-before PYTHON] [--reps N]
 
 Metrics: XML-RPC calls/s for registerPublisher, lookupNode and getSystemState with 1, 10 and 50
 concurrent clients, with the master's and the client's CPU time per call; ms to register 100
@@ -511,36 +511,52 @@ def main() -> int:
                     help="client worker processes with --client procs (at most N; default: cpu count, %(default)s)")
     ap.add_argument("--only", action="append", default=[], metavar="PREFIX",
                     help="measure only the metrics whose label starts with PREFIX (repeatable)")
+    ap.add_argument("--reps", type=int, default=1,
+                    help="repetitions of each measurement, the masters taking turns; medians are shown, and "
+                         "the spread of kame's ratio to the rosmaster of the same turn")
+    ap.add_argument("--kame-before", metavar="PYTHON", default=None,
+                    help="also measure kame's master run by this interpreter (e.g. a wrapper putting an older "
+                         "tree on PYTHONPATH): a 'before' column")
     args = ap.parse_args()
     compile_kame()
     masters = {"rosmaster": ["/usr/bin/python3", args.rosmaster],
                "kame": [args.kame_python, "-m", "kame.cli.rosmaster"]}
-    rows: list[tuple[str, str, dict[str, float]]] = []
+    if args.kame_before:
+        masters["before"] = [args.kame_before, "-m", "kame.cli.rosmaster"]
+    # label, unit, median per master, [min, max] of each kame column's ratio to rosmaster per turn
+    rows: list[tuple[str, str, dict[str, float], dict[str, tuple[float, float]]]] = []
 
     def measure(label: str, unit: str, fn) -> None:  # type: ignore[no-untyped-def]
         if args.only and not any(label.startswith(prefix) for prefix in args.only):
             return
-        values: dict[str, float] = {}
-        cpu: dict[str, float] = {}
-        own: dict[str, float] = {}
-        for name, cmd in masters.items():
-            m = Master(name, cmd)
-            try:
-                result = fn(m)
-            finally:
-                m.stop()
-            values[name], cpu[name], own[name] = result if isinstance(result, tuple) else (result, 0.0, 0.0)
-            extra = ""
-            if own[name]:
-                extra = " (master %.1f us/call, client %.1f us/call = %.2f cores)" % (
-                    cpu[name], own[name], own[name] * values[name] / 1e6)
-            print(f"  {label} [{name}]: {values[name]:,.1f} {unit}{extra}", file=sys.stderr, flush=True)
-        rows.append((label, unit, values))
-        if all(cpu.values()):
-            # on a shared machine the client and neighbours take CPU too: this is the master's own cost
-            rows.append(("  master CPU per call", "us", cpu))
-        if all(own.values()):
-            rows.append(("  client CPU per call", "us", own))
+        runs: list[dict[str, tuple[float, float, float]]] = []
+        for _ in range(max(1, args.reps)):
+            turn: dict[str, tuple[float, float, float]] = {}
+            for name, cmd in masters.items():
+                m = Master(name, cmd)
+                try:
+                    result = fn(m)
+                finally:
+                    m.stop()
+                value, cpu, own = result if isinstance(result, tuple) else (result, 0.0, 0.0)
+                turn[name] = (value, cpu, own)
+                extra = ""
+                if own:
+                    extra = " (master %.1f us/call, client %.1f us/call = %.2f cores)" % (cpu, own, own * value / 1e6)
+                print(f"  {label} [{name}]: {value:,.1f} {unit}{extra}", file=sys.stderr, flush=True)
+            runs.append(turn)
+        for index, (row, row_unit) in enumerate(((label, unit), ("  master CPU per call", "us"),
+                                                 ("  client CPU per call", "us"))):
+            per_turn = [{name: r[index] for name, r in turn.items()} for turn in runs]
+            if not all(all(v.values()) for v in per_turn):
+                continue  # on a shared machine the client and neighbours take CPU too: the master's own cost
+            medians = {name: statistics.median(t[name] for t in per_turn) for name in masters}
+            spread = {}
+            for name in masters:
+                if name != "rosmaster":
+                    ratios = [t[name] / t["rosmaster"] for t in per_turn]
+                    spread[name] = (min(ratios), max(ratios))
+            rows.append((row, row_unit, medians, spread))
 
     for method in ("registerPublisher", "lookupNode", "getSystemState"):
         for clients in (1, 10, 50):
@@ -560,12 +576,20 @@ def main() -> int:
     else:
         how = (f"client: --client procs, N connections spread over min(N, {args.procs}) worker processes "
                "(epoll loop each, one call in flight per connection)")
-    print(f"window {args.window:g} s; {how}; fresh master per measurement")
-    print(f"{'metric':<40} {'unit':<7} {'rosmaster':>12} {'kame':>12} {'kame/rosmaster':>15}")
-    print("-" * 90)
-    for label, unit, v in rows:
-        ratio = v["kame"] / v["rosmaster"] if v["rosmaster"] else float("nan")
-        print(f"{label:<40} {unit:<7} {v['rosmaster']:>12,.1f} {v['kame']:>12,.1f} {ratio:>14.2f}x")
+    reps = f"median of {args.reps} turns, [min-max] of the per-turn ratio; " if args.reps > 1 else ""
+    print(f"window {args.window:g} s; {how}; fresh master per measurement; {reps}ratio = x/rosmaster")
+    names = [n for n in masters if n != "rosmaster"]
+    print(f"{'metric':<40} {'unit':<7} {'rosmaster':>12} " + " ".join(
+        f"{n:>12} {n + '/rosmaster':>22}" for n in names))
+    print("-" * (62 + 35 * len(names)))
+    for label, unit, v, spread in rows:
+        cells = []
+        for n in names:
+            ratio = v[n] / v["rosmaster"] if v["rosmaster"] else float("nan")
+            low, high = spread[n]
+            shown = f"{ratio:.2f}x" + (f" [{low:.2f}-{high:.2f}]" if args.reps > 1 else "")
+            cells.append(f"{v[n]:>12,.1f} {shown:>22}")
+        print(f"{label:<40} {unit:<7} {v['rosmaster']:>12,.1f} " + " ".join(cells))
     return 0
 
 

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import logging
 import logging.handlers
+import sys
 from pathlib import Path
 
 from kame.cli import rosmaster
@@ -43,3 +44,22 @@ def test_batched_log_writes_what_logging_writes(tmp_path: Path) -> None:
     want = (tmp_path / "b.log").read_text()
     assert len(got.splitlines()) == 2503
     assert _strip_time(got) == _strip_time(want)
+
+
+def test_formatter_writes_what_logging_formatter_writes() -> None:
+    ours, stock = rosmaster._Formatter(rosmaster.LOG_FORMAT), logging.Formatter(rosmaster.LOG_FORMAT)
+    try:
+        raise ValueError("boom")
+    except ValueError:
+        exc_info = sys.exc_info()
+    records = [
+        logging.LogRecord("kame.master", logging.INFO, "f.py", 1, "registerPublisher %s -> %s",
+                          (["/n", "/t", "t/T"], [1, "ok"]), None),
+        logging.LogRecord("kame.master", logging.WARNING, "f.py", 1, "no args: 100%", (), None),
+        logging.LogRecord("kame.master", logging.ERROR, "f.py", 1, "%(who)s failed", ({"who": "x"},), None),
+        logging.LogRecord("kame.master", logging.ERROR, "f.py", 1, "failed", (), exc_info),
+        logging.LogRecord("kame.master", logging.INFO, "f.py", 1, "here", (), None, sinfo="Stack (most recent):"),
+    ]
+    for record in records:
+        assert ours.format(record) == stock.format(record)
+    assert ours.format(records[0]).startswith("[kame.master][INFO] ")

@@ -62,6 +62,15 @@ class _Formatter(logging.Formatter):
     _second = -1
     _stamp = ""
 
+    def format(self, record: logging.LogRecord) -> str:
+        # logging.Formatter.format's steps for LOG_FORMAT, as one f-string: its %-style pass over
+        # the record's __dict__ was a third of the cost of a registration's log line
+        if record.exc_info or record.exc_text or record.stack_info or self._fmt != LOG_FORMAT:
+            return super().format(record)
+        record.message = record.getMessage()
+        record.asctime = self.formatTime(record)
+        return f"[{record.name}][{record.levelname}] {record.asctime}: {record.message}"
+
     def formatTime(self, record: logging.LogRecord, datefmt: str | None = None) -> str:
         second = int(record.created)
         if second != self._second:

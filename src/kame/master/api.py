@@ -19,6 +19,7 @@ from __future__ import annotations
 import traceback
 from collections.abc import Callable
 from dataclasses import dataclass
+from typing import NamedTuple
 
 from kame import names
 from kame.master.notifications import Notification
@@ -29,9 +30,8 @@ from kame.protocol.xmlrpc import Fault, Value
 Reply = tuple[int, str, object]
 
 
-@dataclass(frozen=True)
-class CallResult:
-    """What one XML-RPC call produced."""
+class CallResult(NamedTuple):
+    """What one XML-RPC call produced (a NamedTuple: a frozen dataclass costs a microsecond more per call)."""
 
     value: object  # the response value (for ROS methods the [code, message, value] triple)
     notifications: tuple[Notification, ...] = ()
@@ -81,6 +81,8 @@ def _name(param: str) -> Validator:
             raise _Invalid(f"ERROR: parameter [{param}] must be a non-empty string")
         if ":" in v or " " in v:
             raise _Invalid(f"ERROR: parameter [{param}] contains illegal chars")
+        if v[0] == "/" and v[-1] != "/" and "//" not in v:
+            return v  # already global and canonical, as clients send most names: resolves to itself
         return names.resolve(v, caller)
 
     return check
@@ -117,7 +119,7 @@ def _type_name(param: str) -> Validator:
             return v
         if not v or not isinstance(v, str):
             raise _Invalid(f"ERROR: parameter [{param}] must be a non-empty string")
-        if len(v.split("/")) != 2:
+        if v.count("/") != 1:
             raise _Invalid(f"ERROR: parameter [{param}] is not a valid package resource name")
         return v
 

@@ -99,6 +99,8 @@ class Registry:
         return self._unregister(self._subscribers, "subscriptions", topic, caller_id, caller_api)
 
     def _publisher_updates(self, topic: str, subscriber_apis: list[str]) -> list[Notification]:
+        if not subscriber_apis:
+            return []
         publishers = tuple(self._publishers.get(topic, {}).values())
         return [PublisherUpdate(api, topic, publishers) for api in subscriber_apis]
 
