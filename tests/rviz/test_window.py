@@ -90,3 +90,46 @@ def test_the_interact_tool_routes_a_drag_and_a_menu_to_the_feedback_topic(qtbot:
     QTest.mouseMove(view, pixel(-2.0, 2.0))
     QTest.mouseRelease(view, left, none, pixel(-2.0, 2.0))
     assert len(sent) == 1 and (view.camera.angle, tuple(view.camera.focal_point)) != before
+
+
+def test_the_interact_tool_takes_shift_and_ctrl_from_the_mouse_events(qtbot: Any) -> None:
+    """A MOVE_ROTATE_3D box dragged in the view moves it; dragged with Ctrl held, it turns
+    (rviz's Ctrl + left drag) and stays where it is."""
+    from PySide6.QtCore import QPointF, Qt
+    from PySide6.QtGui import QMouseEvent
+    from PySide6.QtWidgets import QApplication
+
+    from kame.rviz.window import RvizWindow
+    from tests.rviz.test_interact import Identity, _display_with
+    from tests.rviz.test_interact_3d import _box_control
+    from visualization_msgs.msg import InteractiveMarkerControl
+
+    display = _display_with(_box_control(InteractiveMarkerControl.MOVE_ROTATE_3D))
+    window = RvizWindow(config.Config(fixed_frame="fixed", displays=[display]), None)
+    qtbot.addWidget(window)
+    window.timer.stop()
+    window.resize(800, 600)
+    window.view.interact.publish = lambda topic, message: None
+    window.view.interact.redraw = lambda: window.draw(0.0, Identity())
+    window.draw(0.0, Identity())
+    view = window.view
+    at = view.camera.project([[0.0, 0.0, 0.0]], view.width(), view.height())[0]
+    left = Qt.MouseButton.LeftButton
+
+    def send(kind: Any, dx: float, keys: Any) -> None:
+        point = QPointF(float(at[0]) + dx, float(at[1]))
+        buttons = Qt.MouseButton.NoButton if kind == QMouseEvent.Type.MouseButtonRelease else left
+        QApplication.sendEvent(view, QMouseEvent(kind, point, view.mapToGlobal(point), left, buttons, keys))
+
+    def drag(keys: Any) -> None:
+        send(QMouseEvent.Type.MouseButtonPress, 0, keys)
+        send(QMouseEvent.Type.MouseMove, 75, keys)
+        send(QMouseEvent.Type.MouseButtonRelease, 75, keys)
+
+    handle = display.handles[0]
+    drag(Qt.KeyboardModifier.ControlModifier)
+    assert handle.pose[:3, 3] == pytest.approx([0, 0, 0], abs=1e-9) and abs(handle.pose[0, 0]) < 0.99
+    turned = handle.pose[:3, :3].copy()
+    drag(Qt.KeyboardModifier.NoModifier)
+    assert float(abs(display.handles[0].pose[:3, 3]).max()) > 0.3
+    assert display.handles[0].pose[:3, :3] == pytest.approx(turned)

@@ -11,7 +11,7 @@ from typing import Any
 from PySide6.QtCore import QPoint
 from PySide6.QtWidgets import QMenu, QWidget
 
-from kame.rviz.interact import Interaction, menu_tree, mouse_ray
+from kame.rviz.interact import Interaction, menu_tree, mouse_ray, pointer
 from kame.rviz.interactive import Handle, InteractiveMarkers
 
 
@@ -32,13 +32,16 @@ class InteractRouter:
             for message in feedback:
                 self.publish(handle.feedback_topic, message)
 
-    def __call__(self, kind: str, x: float, y: float, right: bool) -> bool:
-        """A mouse event at pixel (x, y) of the view ("press", "move", "release"); whether the
-        tool took it (False: nothing interactive was pressed, the camera moves)."""
-        origin, direction = mouse_ray(self.view.camera, x, y, self.view.width(), self.view.height())
+    def __call__(self, kind: str, x: float, y: float, right: bool, shift: bool = False, control: bool = False) -> bool:
+        """A mouse event at pixel (x, y) of the view ("press", "move", "release"), Shift and Ctrl
+        held or not; whether the tool took it (False: nothing interactive was pressed, the camera moves)."""
+        size = self.view.width(), self.view.height()
+        origin, direction = mouse_ray(self.view.camera, x, y, *size)
+        at = pointer(self.view.camera, x, y, *size, shift, control)
         drag = self.interaction.drag
         if kind == "press":
-            pressed = self.interaction.press([h for d in self._markers() for h in d.handles], origin, direction, right)
+            pressed = self.interaction.press([h for d in self._markers() for h in d.handles], origin, direction, right,
+                                             at)
             if self.interaction.drag is not None:
                 self._send(self.interaction.drag.handle, pressed.feedback)
             if pressed.menu is not None:
@@ -46,7 +49,7 @@ class InteractRouter:
             return pressed.consumed
         if drag is None:
             return False
-        sent = self.interaction.move(origin, direction) if kind == "move" else self.interaction.release()
+        sent = self.interaction.move(origin, direction, at) if kind == "move" else self.interaction.release()
         self._send(drag.handle, sent)
         if sent and kind == "move":
             for display in self._markers():

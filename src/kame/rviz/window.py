@@ -107,6 +107,12 @@ def _upload(buffer: int, data: np.ndarray, capacity: int) -> int:
     return data.nbytes
 
 
+def _keys(event: QMouseEvent) -> tuple[bool, bool]:
+    """Shift and Ctrl held (the Interact tool's 3-D modes)."""
+    held = event.modifiers()
+    return bool(held & Qt.KeyboardModifier.ShiftModifier), bool(held & Qt.KeyboardModifier.ControlModifier)
+
+
 class RenderView(QOpenGLWidget):
     """Draws a Scene through a Camera; the mouse moves the camera as rviz's does, or drives a tool."""
 
@@ -126,7 +132,7 @@ class RenderView(QOpenGLWidget):
         self._last: QPointF | None = None
         self._pressed_at: np.ndarray | None = None
         self._band: tuple[QPointF, QPointF] | None = None  # Select's rectangle while dragged
-        self.interact: Callable[[str, float, float, bool], bool] | None = None  # the Interact tool's mouse
+        self.interact: Callable[..., bool] | None = None  # the Interact tool's mouse
         self._interacting = False  # a control is being dragged
         self.setMinimumSize(320, 240)
         self.setFocusPolicy(Qt.FocusPolicy.StrongFocus)
@@ -326,7 +332,8 @@ class RenderView(QOpenGLWidget):
         left = event.button() == Qt.MouseButton.LeftButton
         right = event.button() == Qt.MouseButton.RightButton
         if self.tool == INTERACT and self.interact is not None and (left or right):
-            self._interacting = self.interact("press", event.position().x(), event.position().y(), right)
+            self._interacting = self.interact("press", event.position().x(), event.position().y(), right,
+                                              *_keys(event))
             if self._interacting:
                 return
         if self.tool == SELECT and left:
@@ -342,7 +349,7 @@ class RenderView(QOpenGLWidget):
 
     def mouseMoveEvent(self, event: QMouseEvent) -> None:
         if self._interacting and self.interact is not None:
-            self.interact("move", event.position().x(), event.position().y(), False)
+            self.interact("move", event.position().x(), event.position().y(), False, *_keys(event))
             return
         if self._band is not None:
             self._band = (self._band[0], event.position())
