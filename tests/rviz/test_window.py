@@ -133,3 +133,20 @@ def test_the_interact_tool_takes_shift_and_ctrl_from_the_mouse_events(qtbot: Any
     drag(Qt.KeyboardModifier.NoModifier)
     assert float(abs(display.handles[0].pose[:3, 3]).max()) > 0.3
     assert display.handles[0].pose[:3, :3] == pytest.approx(turned)
+
+
+def test_the_window_turns_view_facing_controls_to_its_camera(qtbot: Any) -> None:
+    from kame.rviz.window import RvizWindow
+    from tests.rviz.test_interact import Identity, _display_with
+    from tests.rviz.test_view_facing import _plate_control
+    from visualization_msgs.msg import InteractiveMarkerControl
+
+    display = _display_with(_plate_control(InteractiveMarkerControl.MOVE_PLANE, independent=False))
+    window = RvizWindow(config.Config(fixed_frame="fixed", displays=[display]), None)
+    qtbot.addWidget(window)
+    window.timer.stop()
+    for dx in (0, 200):
+        window.view.camera.rotate(dx, 0)
+        window.draw(0.0, Identity())
+        forward = -window.view.camera.view_matrix()[2, :3]
+        assert display.handles[0].control_frame()[:3, 0] == pytest.approx(forward)

@@ -678,6 +678,8 @@ class RvizWindow(QMainWindow):
             if frames is None:
                 display.status = Status(ERROR, "no tf: rviz has no node")
                 continue
+            if isinstance(display, InteractiveMarkers):  # its VIEW_FACING controls turn to the camera
+                display.face(self.view.camera.view_matrix())
             try:
                 display.build(scene, frames, now)
             except Exception as exc:  # a message the display cannot draw must not stop the window
