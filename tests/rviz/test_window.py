@@ -78,6 +78,8 @@ def test_the_interact_tool_routes_a_drag_and_a_menu_to_the_feedback_topic(qtbot:
     assert abs(moved.pose.position.x - 0.3) < 0.02
     sent.clear()
     QTest.mousePress(view, Qt.MouseButton.RightButton, none, pixel(1.1, 0.0))  # the arrow, moved with the marker
+    assert not [w for w in QApplication.topLevelWidgets() if isinstance(w, QMenu) and w.isVisible()]
+    QTest.mouseRelease(view, Qt.MouseButton.RightButton, none, pixel(1.1, 0.0))  # rviz opens it on the release
     menus = [w for w in QApplication.topLevelWidgets() if isinstance(w, QMenu) and w.isVisible()]
     assert len(menus) == 1 and [a.text() for a in menus[0].actions()] == ["Submenu"]
     inner = menus[0].actions()[0].menu().actions()[0]
@@ -150,3 +152,36 @@ def test_the_window_turns_view_facing_controls_to_its_camera(qtbot: Any) -> None
         window.draw(0.0, Identity())
         forward = -window.view.camera.view_matrix()[2, :3]
         assert display.handles[0].control_frame()[:3, 0] == pytest.approx(forward)
+
+
+def test_a_left_click_on_a_menu_control_opens_the_menu_on_the_release(qtbot: Any) -> None:
+    from PySide6.QtCore import QPoint, Qt
+    from PySide6.QtTest import QTest
+    from PySide6.QtWidgets import QApplication, QMenu
+
+    from kame.rviz.window import RvizWindow
+    from tests.rviz.test_interact import Identity, _display_with
+    from tests.rviz.test_interact_3d import _box_control
+    from visualization_msgs.msg import InteractiveMarkerControl, InteractiveMarkerFeedback, MenuEntry
+
+    display = _display_with(_box_control(InteractiveMarkerControl.MENU))
+    display.client.markers[("/basic_controls", "box")].menu_entries = [MenuEntry(id=1, parent_id=0, title="Reset")]
+    window = RvizWindow(config.Config(fixed_frame="fixed", displays=[display]), None)
+    qtbot.addWidget(window)
+    window.timer.stop()
+    window.resize(800, 600)
+    sent: list[Any] = []
+    window.view.interact.publish = lambda topic, message: sent.append(message.event_type)
+    window.draw(0.0, Identity())
+    view = window.view
+    at = view.camera.project([[0.0, 0.0, 0.0]], view.width(), view.height())[0]
+    centre = QPoint(round(float(at[0])), round(float(at[1])))
+
+    def shown() -> list[QMenu]:
+        return [w for w in QApplication.topLevelWidgets() if isinstance(w, QMenu) and w.isVisible()]
+
+    QTest.mousePress(view, Qt.MouseButton.LeftButton, Qt.KeyboardModifier.NoModifier, centre)
+    assert not shown() and sent == [InteractiveMarkerFeedback.POSE_UPDATE, InteractiveMarkerFeedback.MOUSE_DOWN]
+    QTest.mouseRelease(view, Qt.MouseButton.LeftButton, Qt.KeyboardModifier.NoModifier, centre)
+    assert [a.text() for a in shown()[0].actions()] == ["Reset"] and sent[-1] == InteractiveMarkerFeedback.MOUSE_UP
+    shown()[0].close()

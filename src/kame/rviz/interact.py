@@ -2,9 +2,10 @@
 the ray through the pixel meets), the drag of its marker by the control's interaction mode,
 and the InteractiveMarkerFeedback rviz publishes for it on <ns>/feedback:
 
-- As rviz 1.14: a press on a control sends POSE_UPDATE (the pose as it is) then MOUSE_DOWN; the
-  release BUTTON_CLICK (a BUTTON control's), POSE_UPDATE and MOUSE_UP; MENU_SELECT carries the
-  entry chosen from the marker's menu (a right click, or a left one on a MENU control).
+- As rviz 1.14: a left press on a control sends POSE_UPDATE (the pose as it is) then MOUSE_DOWN;
+  the release BUTTON_CLICK (a BUTTON control's), POSE_UPDATE and MOUSE_UP; the marker's menu opens
+  on the release of a right click, or of a left one on a MENU control; MENU_SELECT carries the
+  entry chosen from it.
 - POSE_UPDATE as the marker is dragged. The drag works in the control's frame (its x axis,
   the control's orientation on the marker's): MOVE_AXIS slides the marker along the axis to
   the point of the axis nearest the mouse's ray; MOVE_PLANE moves it with the point where the
@@ -222,7 +223,6 @@ class Drag:
 @dataclass
 class Pressed:
     feedback: list[Any] = field(default_factory=list)
-    menu: Handle | None = None  # a marker whose menu is to be shown
     consumed: bool = False  # False: nothing interactive there (the camera moves)
 
 
@@ -230,6 +230,8 @@ class Interaction:
     def __init__(self, node_name: str) -> None:
         self.node_name = node_name  # rviz's client_id: "<node name>/<display name>"
         self.drag: Drag | None = None
+        self.right_pressed: Handle | None = None  # a marker with a menu, right-pressed
+        self.menu: Handle | None = None  # a marker whose menu the last release opens
 
     def press(self, handles: list[Handle], origin: np.ndarray, direction: np.ndarray, right: bool = False,
               at: Pointer | None = None) -> Pressed:
@@ -237,9 +239,9 @@ class Interaction:
         if found is None:
             return Pressed()
         handle, point = found
-        mode = handle.control.interaction_mode
-        if right or mode == MENU:  # a marker without a menu leaves the right button to the camera
-            return Pressed(menu=handle, consumed=True) if handle.marker.menu_entries else Pressed()
+        if right:  # a marker without a menu leaves the right button to the camera
+            self.right_pressed = handle if handle.marker.menu_entries else None
+            return Pressed(consumed=self.right_pressed is not None)
         self.drag = Drag(handle, handle.pose, handle.control_frame(), point)
         if at is not None:
             self.drag.last, self.drag.keys, self.drag.ray = (at.x, at.y), (at.shift, at.control), direction
@@ -264,9 +266,13 @@ class Interaction:
         return [self.feedback(drag.handle, InteractiveMarkerFeedback.POSE_UPDATE, None)]
 
     def release(self) -> list[Any]:
+        """The feedback of a release; `menu`: the marker whose menu it opens, if any."""
         drag, self.drag = self.drag, None
+        self.menu, self.right_pressed = self.right_pressed, None
         if drag is None:
             return []
+        if drag.handle.control.interaction_mode == MENU and drag.handle.marker.menu_entries:
+            self.menu = drag.handle
         sent = [self.feedback(drag.handle, InteractiveMarkerFeedback.BUTTON_CLICK, drag.grab)] \
             if drag.handle.control.interaction_mode == BUTTON else []
         return [*sent, self.feedback(drag.handle, InteractiveMarkerFeedback.POSE_UPDATE, drag.grab),

@@ -44,14 +44,19 @@ class InteractRouter:
                                              at)
             if self.interaction.drag is not None:
                 self._send(self.interaction.drag.handle, pressed.feedback)
-            if pressed.menu is not None:
-                self._menu(pressed.menu, QPoint(round(x), round(y)))
             return pressed.consumed
+        if kind == "release":
+            sent = self.interaction.release()
+            if drag is not None:
+                self._send(drag.handle, sent)
+            if self.interaction.menu is not None:  # rviz opens a menu on the release
+                self._menu(self.interaction.menu, QPoint(round(x), round(y)))
+            return drag is not None or self.interaction.menu is not None
         if drag is None:
             return False
-        sent = self.interaction.move(origin, direction, at) if kind == "move" else self.interaction.release()
+        sent = self.interaction.move(origin, direction, at)
         self._send(drag.handle, sent)
-        if sent and kind == "move":
+        if sent:
             for display in self._markers():
                 display.moved()
             self.redraw()
