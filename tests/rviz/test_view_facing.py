@@ -33,9 +33,11 @@ def _plate_control(mode: int, independent: bool) -> Any:
     return control
 
 
-def _facing(display: InteractiveMarkers, camera: Camera) -> None:
+def _facing(display: InteractiveMarkers, camera: Camera) -> Scene:
     display.face(camera.view_matrix())
-    display.build(Scene(), Identity(), 0.0)
+    scene = Scene()
+    display.build(scene, Identity(), 0.0)
+    return scene
 
 
 def _forward(camera: Camera) -> np.ndarray:
@@ -88,3 +90,30 @@ def test_a_view_facing_ring_turns_about_the_views_direction() -> None:
     axis = np.array([turned[2, 1] - turned[1, 2], turned[0, 2] - turned[2, 0], turned[1, 0] - turned[0, 1]])
     assert float(np.trace(turned)) < 0  # more than a quarter turn
     assert abs(float(axis @ forward)) == pytest.approx(float(np.linalg.norm(axis)), rel=1e-6)  # about the view
+
+
+def test_a_menu_control_without_markers_is_rvizs_view_facing_button_and_opens_the_menu() -> None:
+    """interactive_markers' autoComplete gives such a control its description as white text
+    1.2 scales above the marker (basic_controls' "Options"); a click on it opens the menu."""
+    from visualization_msgs.msg import InteractiveMarkerFeedback, MenuEntry
+
+    control = _control("menu_only_control", InteractiveMarkerControl.MENU, 1, 0, 0, 0)
+    control.description = "Options"
+    display = _display_with(control)
+    display.handles[0].marker.menu_entries = [MenuEntry(id=1, parent_id=0, title="First Entry")]
+    camera = Camera()
+    for turn in (0, 150):
+        camera.rotate(turn, 0)
+        label = _facing(display, camera).labels[0]
+        assert label.text == "Options"
+        assert label.position == pytest.approx([-0.025, 0.0, 1.2 - 0.025])
+        interaction = Interaction("/rviz")
+        on_text = camera.project([label.position], WIDTH, HEIGHT)[0] + [12, 0]  # in its second letter or so
+        pressed = interaction.press(display.handles, *mouse_ray(camera, on_text[0], on_text[1], WIDTH, HEIGHT))
+        assert [f.event_type for f in pressed.feedback][-1] == InteractiveMarkerFeedback.MOUSE_DOWN
+        interaction.release()
+        assert interaction.menu is display.handles[0]
+        beside = camera.project([label.position], WIDTH, HEIGHT)[0] + [0, 40]
+        assert not interaction.press(display.handles, *mouse_ray(camera, beside[0], beside[1], WIDTH, HEIGHT)).consumed
+    control.description = ""  # nothing to show: as in rviz, nothing to click
+    assert not _display_with(control).handles[0].triangles.size

@@ -2,7 +2,9 @@
 ("Update Topic": <ns>/update, and the latched <ns>/update_full), kept in step as a client
 does (kame.interactive_markers.client_state), each drawn where its pose puts it: every
 control's markers, or, for a control without any, rviz's defaults (arrows for MOVE_AXIS, a
-ring for ROTATE_AXIS, MOVE_PLANE and MOVE_ROTATE), coloured by the control's axis. A VIEW_FACING
+ring for ROTATE_AXIS, MOVE_PLANE and MOVE_ROTATE, coloured by the control's axis; a MENU
+control's description as a white view-facing button above the marker, which a click opens
+the menu on: its text's box facing the camera is what the Interact tool hits). A VIEW_FACING
 control's frame turns as rviz's does to face the camera (its x axis the view's direction, its z
 the camera's up), its markers with it unless independent_marker_orientation keeps them the
 marker's. What each control covers is kept (Handle) for the Interact tool (kame.rviz.interact)."""
@@ -21,9 +23,11 @@ from kame.rviz.meshes import MeshLibrary
 from kame.rviz.scene import Scene, pose_matrix, quaternion_matrix
 from visualization_msgs.msg import InteractiveMarkerControl, Marker
 
+MENU = InteractiveMarkerControl.MENU
 MOVE_AXIS, MOVE_PLANE = InteractiveMarkerControl.MOVE_AXIS, InteractiveMarkerControl.MOVE_PLANE
 ROTATE_AXIS, MOVE_ROTATE = InteractiveMarkerControl.ROTATE_AXIS, InteractiveMarkerControl.MOVE_ROTATE
 RING_SEGMENTS = 36
+GLYPH_ASPECT = 0.6  # a character's width to its height, about (rviz's MovableText in its default font)
 
 
 @dataclass
@@ -120,13 +124,40 @@ def default_markers(control: Any, scale: float) -> list[Any]:
             ring.points += [_point(p) for p in (a0, b0, b1, a0, b1, a1)]
         ring.color.r, ring.color.g, ring.color.b, ring.color.a = r, g, b, 0.8
         made.append(ring)
+    elif control.interaction_mode == MENU and control.description:  # interactive_markers' makeViewFacingButton
+        button = Marker(type=Marker.TEXT_VIEW_FACING, text=control.description)
+        size = 0.25 * scale
+        button.pose.orientation.w = 1.0
+        button.pose.position.x, button.pose.position.z = -0.1 * size, 1.2 * scale - 0.1 * size
+        button.scale.x = button.scale.y = button.scale.z = size
+        button.color.r = button.color.g = button.color.b = button.color.a = 1.0
+        made.append(button)
     return made
+
+
+def text_box(marker: Any, placed: np.ndarray, view: np.ndarray) -> np.ndarray:
+    """Two triangles (2 x 3 x 3, fixed frame) covering a TEXT_VIEW_FACING marker's text as the
+    camera (`view`) sees it: its lines' height and its longest line's width, about its centre."""
+    lines = marker.text.split("\n")
+    half_up = 0.5 * marker.scale.z * len(lines) * view[1, :3]
+    half_right = 0.5 * GLYPH_ASPECT * marker.scale.z * max(len(line) for line in lines) * view[0, :3]
+    centre = (placed @ pose_matrix(marker.pose))[:3, 3]
+    corners = [centre - half_right - half_up, centre + half_right - half_up,
+               centre + half_right + half_up, centre - half_right + half_up]
+    return np.array([[corners[0], corners[1], corners[2]], [corners[0], corners[2], corners[3]]])
 
 
 def _point(values: np.ndarray) -> Any:
     from geometry_msgs.msg import Point
 
     return Point(x=float(values[0]), y=float(values[1]), z=float(values[2]))
+
+
+def _faces_camera(control: Any) -> bool:
+    """Whether what the control draws, or the box of its text, turns with the camera."""
+    return bool(control.orientation_mode == InteractiveMarkerControl.VIEW_FACING
+                or (control.interaction_mode == MENU and not control.markers)
+                or any(m.type == Marker.TEXT_VIEW_FACING for m in control.markers))
 
 
 def update_namespace(topic: str) -> str:
@@ -155,8 +186,7 @@ class InteractiveMarkers(Display):
     def face(self, view: np.ndarray) -> None:
         """The camera is now `view`: draw again if a control faces it and it turned."""
         if not np.allclose(view[:3, :3], self.view[:3, :3]) and any(
-                c.orientation_mode == InteractiveMarkerControl.VIEW_FACING
-                for m in self.client.markers.values() for c in m.controls):
+                _faces_camera(c) for m in self.client.markers.values() for c in m.controls):
             self.version += 1
         self.view = view
 
@@ -202,6 +232,7 @@ class InteractiveMarkers(Display):
             scale = marker.scale if marker.scale > 0 else 1.0
             for control in marker.controls:
                 own = Scene()
+                texts: list[np.ndarray] = []
                 facing = view_facing(control, self.view) \
                     if control.orientation_mode == InteractiveMarkerControl.VIEW_FACING else None
                 markers_pose = pose.copy()
@@ -213,10 +244,12 @@ class InteractiveMarkers(Display):
                         problems.append(f"{name}: {placed}")
                         continue
                     problem = draw_marker(own, shown, placed, self.meshes)
+                    if shown.type == Marker.TEXT_VIEW_FACING and shown.text:
+                        texts.append(text_box(shown, placed, self.view))
                     if problem:
                         problems.append(f"{name}/{control.name}: {problem}")
-                surfaces = [b.vertices for b in own.batches if b.kind == "triangles"]
-                triangles = np.concatenate(surfaces).reshape(-1, 3, 3) if surfaces else np.zeros((0, 3, 3))
+                surfaces = [b.vertices.reshape(-1, 3, 3) for b in own.batches if b.kind == "triangles"] + texts
+                triangles = np.concatenate(surfaces) if surfaces else np.zeros((0, 3, 3))
                 self.handles.append(Handle(server_id, self.name, self.feedback_topic(), marker,
                                            control, reference, frames.fixed_frame, triangles.astype(float),
                                            facing))
