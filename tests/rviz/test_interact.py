@@ -204,3 +204,23 @@ Visualization Manager:
     again = config.load(str(tmp_path / "again.rviz")).displays[0]
     assert again.class_name == "rviz/InteractiveMarkers" and again.options["Update Topic"] == "/basic_controls/update"
     assert "Update Topic: /basic_controls/update" in (tmp_path / "again.rviz").read_text()
+
+
+def test_a_highlit_control_is_drawn_brighter_and_the_others_not() -> None:
+    """rviz adds 0.3 to the colour of the control under the mouse (0.5 pressed), clamped at 1."""
+    display = _display_with(_control("move_x", InteractiveMarkerControl.MOVE_AXIS, 1, 1, 0, 0),
+                            _control("move_y", InteractiveMarkerControl.MOVE_AXIS, SQRT_HALF, 0, 0, SQRT_HALF))
+
+    def colours() -> list[list[float]]:
+        scene = Scene()
+        display.build(scene, Identity(), 0.0)
+        drawn = np.concatenate([b.float_colors() for b in scene.batches]).astype(float)
+        return sorted(np.unique(drawn.round(3), axis=0).tolist())
+
+    assert colours() == [[0.0, 1.0, 0.0, 1.0], [1.0, 0.0, 0.0, 1.0]]  # y: green arrows, x: red
+    display.highlight(display.handles[1], 0.3)
+    assert colours() == [[0.3, 1.0, 0.3, 1.0], [1.0, 0.0, 0.0, 1.0]]  # move_y brighter, move_x as it was
+    display.highlight(display.handles[0], 0.5)
+    assert colours() == [[0.0, 1.0, 0.0, 1.0], [1.0, 0.5, 0.5, 1.0]]
+    display.highlight(None, 0.3)
+    assert colours() == [[0.0, 1.0, 0.0, 1.0], [1.0, 0.0, 0.0, 1.0]]

@@ -185,3 +185,50 @@ def test_a_left_click_on_a_menu_control_opens_the_menu_on_the_release(qtbot: Any
     QTest.mouseRelease(view, Qt.MouseButton.LeftButton, Qt.KeyboardModifier.NoModifier, centre)
     assert [a.text() for a in shown()[0].actions()] == ["Reset"] and sent[-1] == InteractiveMarkerFeedback.MOUSE_UP
     shown()[0].close()
+
+
+def test_the_interact_tool_highlights_the_control_under_the_mouse(qtbot: Any) -> None:
+    """rviz brightens the control the mouse is over (0.3), more while pressed (0.5), and none
+    once the mouse has left it; the view is drawn again each time."""
+    from PySide6.QtCore import QPoint, QPointF, Qt
+    from PySide6.QtGui import QMouseEvent
+    from PySide6.QtTest import QTest
+    from PySide6.QtWidgets import QApplication
+
+    from kame.rviz.window import RvizWindow
+    from tests.rviz.test_interact import Identity, _display_with
+    from tests.rviz.test_interact_3d import _box_control
+    from visualization_msgs.msg import InteractiveMarkerControl
+
+    display = _display_with(_box_control(InteractiveMarkerControl.BUTTON))
+    window = RvizWindow(config.Config(fixed_frame="fixed", displays=[display]), None)
+    qtbot.addWidget(window)
+    window.timer.stop()
+    window.resize(800, 600)
+    window.view.interact.publish = lambda topic, message: None
+    window.view.interact.redraw = lambda: window.draw(0.0, Identity())
+    window.draw(0.0, Identity())
+    view = window.view
+    at = view.camera.project([[0.0, 0.0, 0.0]], view.width(), view.height())[0]
+    centre = QPoint(round(float(at[0])), round(float(at[1])))
+
+    def hover(point: QPoint) -> None:  # a move with no button down (the view tracks the mouse)
+        where = QPointF(point)
+        QApplication.sendEvent(view, QMouseEvent(QMouseEvent.Type.MouseMove, where, view.mapToGlobal(where),
+                                                 Qt.MouseButton.NoButton, Qt.MouseButton.NoButton,
+                                                 Qt.KeyboardModifier.NoModifier))
+
+    def darkest() -> float:
+        return float(min(b.float_colors()[:, :3].min() for b in view.scene.batches))
+
+    hover(QPoint(5, 5))
+    plain = darkest()
+    hover(centre)
+    assert display.highlit is not None and display.highlit[3] == 0.3
+    assert darkest() == pytest.approx(plain + 0.3)  # drawn again, brighter
+    QTest.mousePress(view, Qt.MouseButton.LeftButton, Qt.KeyboardModifier.NoModifier, centre)
+    assert display.highlit[3] == 0.5
+    QTest.mouseRelease(view, Qt.MouseButton.LeftButton, Qt.KeyboardModifier.NoModifier, centre)
+    assert display.highlit[3] == 0.3
+    hover(QPoint(5, 5))
+    assert display.highlit is None and darkest() == pytest.approx(plain)

@@ -1,7 +1,8 @@
 """The Interact tool in rviz's window: the view's mouse events on an interactive marker's
 control go to kame.rviz.interact (which drags and makes the feedback), the feedback is
 published on the display's <ns>/feedback, and a marker's menu shows as a context menu whose
-choice is sent back as MENU_SELECT. Everything else about the tool is Qt-free."""
+choice is sent back as MENU_SELECT; the control under the mouse is brightened as rviz's is
+(more while pressed). Everything else about the tool is Qt-free."""
 
 from __future__ import annotations
 
@@ -11,8 +12,10 @@ from typing import Any
 from PySide6.QtCore import QPoint
 from PySide6.QtWidgets import QMenu, QWidget
 
-from kame.rviz.interact import Interaction, menu_tree, mouse_ray, pointer
+from kame.rviz.interact import Interaction, menu_tree, mouse_ray, pick, pointer
 from kame.rviz.interactive import Handle, InteractiveMarkers
+
+HOVER, ACTIVE = 0.3, 0.5  # rviz's highlights: a control under the mouse, one pressed
 
 
 class InteractRouter:
@@ -39,16 +42,22 @@ class InteractRouter:
         origin, direction = mouse_ray(self.view.camera, x, y, *size)
         at = pointer(self.view.camera, x, y, *size, shift, control)
         drag = self.interaction.drag
+        if kind == "hover":  # no button down: rviz brightens the control under the mouse
+            found = pick([h for d in self._markers() for h in d.handles], origin, direction)
+            self._highlight(found[0] if found else None, HOVER)
+            return False
         if kind == "press":
             pressed = self.interaction.press([h for d in self._markers() for h in d.handles], origin, direction, right,
                                              at)
             if self.interaction.drag is not None:
                 self._send(self.interaction.drag.handle, pressed.feedback)
+                self._highlight(self.interaction.drag.handle, ACTIVE)
             return pressed.consumed
         if kind == "release":
             sent = self.interaction.release()
             if drag is not None:
                 self._send(drag.handle, sent)
+                self._highlight(drag.handle, HOVER)
             if self.interaction.menu is not None:  # rviz opens a menu on the release
                 self._menu(self.interaction.menu, QPoint(round(x), round(y)))
             return drag is not None or self.interaction.menu is not None
@@ -61,6 +70,17 @@ class InteractRouter:
                 display.moved()
             self.redraw()
         return True
+
+    def _highlight(self, handle: Handle | None, amount: float) -> None:
+        changed = False
+        for display in self._markers():
+            before = display.version
+            mine = handle is not None and (handle.display_name, handle.feedback_topic) == (
+                display.name, display.feedback_topic())
+            display.highlight(handle if mine else None, amount)
+            changed = changed or display.version != before
+        if changed:
+            self.redraw()
 
     def _menu(self, handle: Handle, at: QPoint) -> None:
         tree = menu_tree(list(handle.marker.menu_entries))

@@ -182,6 +182,17 @@ class InteractiveMarkers(Display):
         self.meshes = MeshLibrary()
         self.handles: list[Handle] = []
         self.view = np.eye(4)  # the camera's view matrix, which VIEW_FACING controls face
+        self.highlit: tuple[str, str, int, float] | None = None  # server, marker, control's index, how much
+
+    def highlight(self, handle: Handle | None, amount: float) -> None:
+        """Brighten `handle`'s control by `amount` as rviz does (0.3 under the mouse, 0.5 pressed),
+        the others not."""
+        highlit = None if handle is None else (
+            handle.server_id, handle.marker.name,
+            next((i for i, c in enumerate(handle.marker.controls) if c is handle.control), -1), amount)
+        if highlit != self.highlit:
+            self.highlit = highlit
+            self.version += 1
 
     def face(self, view: np.ndarray) -> None:
         """The camera is now `view`: draw again if a control faces it and it turned."""
@@ -230,7 +241,7 @@ class InteractiveMarkers(Display):
                 continue
             pose = reference @ pose_matrix(marker.pose)
             scale = marker.scale if marker.scale > 0 else 1.0
-            for control in marker.controls:
+            for index, control in enumerate(marker.controls):
                 own = Scene()
                 texts: list[np.ndarray] = []
                 facing = view_facing(control, self.view) \
@@ -248,6 +259,10 @@ class InteractiveMarkers(Display):
                         texts.append(text_box(shown, placed, self.view))
                     if problem:
                         problems.append(f"{name}/{control.name}: {problem}")
+                if self.highlit is not None and self.highlit[:3] == (server_id, name, index):
+                    added = np.array([self.highlit[3]] * 3 + [0.0], dtype=np.float32)
+                    for batch in own.batches:  # rviz adds the highlight to the lit colour
+                        batch.colors = np.minimum(batch.float_colors() + added, np.float32(1.0))
                 surfaces = [b.vertices.reshape(-1, 3, 3) for b in own.batches if b.kind == "triangles"] + texts
                 triangles = np.concatenate(surfaces) if surfaces else np.zeros((0, 3, 3))
                 self.handles.append(Handle(server_id, self.name, self.feedback_topic(), marker,

@@ -133,6 +133,7 @@ class RenderView(QOpenGLWidget):
         self._pressed_at: np.ndarray | None = None
         self._band: tuple[QPointF, QPointF] | None = None  # Select's rectangle while dragged
         self.interact: Callable[..., bool] | None = None  # the Interact tool's mouse
+        self.setMouseTracking(True)  # moves without a button: the Interact tool's hover highlight
         self._interacting = False  # a control is being dragged
         self.setMinimumSize(320, 240)
         self.setFocusPolicy(Qt.FocusPolicy.StrongFocus)
@@ -350,6 +351,10 @@ class RenderView(QOpenGLWidget):
     def mouseMoveEvent(self, event: QMouseEvent) -> None:
         if self._interacting and self.interact is not None:
             self.interact("move", event.position().x(), event.position().y(), False, *_keys(event))
+            return
+        if event.buttons() == Qt.MouseButton.NoButton:  # tracked: the control under the mouse is highlit
+            if self.tool == INTERACT and self.interact is not None:
+                self.interact("hover", event.position().x(), event.position().y(), False)
             return
         if self._band is not None:
             self._band = (self._band[0], event.position())
