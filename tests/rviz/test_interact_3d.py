@@ -116,3 +116,16 @@ def _rotation(axis: np.ndarray, angle: float) -> np.ndarray:
     return np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
                      [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
                      [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]])
+
+
+def test_the_wheel_during_a_move_3d_drag_moves_along_the_grabbing_ray() -> None:
+    """rviz's moveZAxisWheel: 2 m along the ray a notch (Qt's 120), forward away from the camera."""
+    interaction, _, handle, _ = _grabbed(InteractiveMarkerControl.MOVE_ROTATE_3D)
+    ray = interaction.drag.ray.copy() if interaction.drag else np.zeros(3)
+    assert len(interaction.wheel(120)) == 1
+    assert handle.pose[:3, 3] == pytest.approx(2 * ray)
+    interaction.wheel(-60)
+    assert handle.pose[:3, 3] == pytest.approx(1 * ray)
+    interaction.release()
+    interaction, _, handle, _ = _grabbed(InteractiveMarkerControl.ROTATE_3D)
+    assert interaction.wheel(120) == [] and handle.pose == pytest.approx(np.eye(4))

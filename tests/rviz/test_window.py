@@ -5,6 +5,7 @@ from __future__ import annotations
 
 from typing import Any
 
+import numpy as np
 import pytest
 
 pytest.importorskip("OpenGL", reason="rviz's window needs PyOpenGL (pip install 'kame[gui]')")
@@ -95,10 +96,10 @@ def test_the_interact_tool_routes_a_drag_and_a_menu_to_the_feedback_topic(qtbot:
 
 
 def test_the_interact_tool_takes_shift_and_ctrl_from_the_mouse_events(qtbot: Any) -> None:
-    """A MOVE_ROTATE_3D box dragged in the view moves it; dragged with Ctrl held, it turns
-    (rviz's Ctrl + left drag) and stays where it is."""
-    from PySide6.QtCore import QPointF, Qt
-    from PySide6.QtGui import QMouseEvent
+    """A MOVE_ROTATE_3D box: the wheel turned while it is held moves it along the ray; dragged
+    in the view it moves; dragged with Ctrl held, it turns (rviz's Ctrl + left drag) and stays."""
+    from PySide6.QtCore import QPoint, QPointF, Qt
+    from PySide6.QtGui import QMouseEvent, QWheelEvent
     from PySide6.QtWidgets import QApplication
 
     from kame.rviz.window import RvizWindow
@@ -128,6 +129,16 @@ def test_the_interact_tool_takes_shift_and_ctrl_from_the_mouse_events(qtbot: Any
         send(QMouseEvent.Type.MouseMove, 75, keys)
         send(QMouseEvent.Type.MouseButtonRelease, 75, keys)
 
+    handle = display.handles[0]
+    eye = view.camera.eye()
+    send(QMouseEvent.Type.MouseButtonPress, 0, Qt.KeyboardModifier.NoModifier)
+    point = QPointF(float(at[0]), float(at[1]))
+    QApplication.sendEvent(view, QWheelEvent(point, view.mapToGlobal(point), QPoint(), QPoint(0, 120), left,
+                                             Qt.KeyboardModifier.NoModifier, Qt.ScrollPhase.NoScrollPhase, False))
+    send(QMouseEvent.Type.MouseButtonRelease, 0, Qt.KeyboardModifier.NoModifier)
+    assert float(np.linalg.norm(handle.pose[:3, 3] - eye)) == pytest.approx(float(np.linalg.norm(eye)) + 2)  # away
+    handle.marker.pose.position.x = handle.marker.pose.position.y = handle.marker.pose.position.z = 0.0
+    window.draw(0.0, Identity())
     handle = display.handles[0]
     drag(Qt.KeyboardModifier.ControlModifier)
     assert handle.pose[:3, 3] == pytest.approx([0, 0, 0], abs=1e-9) and abs(handle.pose[0, 0]) < 0.99

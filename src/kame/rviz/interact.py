@@ -18,7 +18,8 @@ and the InteractiveMarkerFeedback rviz publishes for it on <ns>/feedback:
   larger of the mouse's x and y moves, down or left bringing it nearer); ROTATE_3D turns it about
   the camera's up axis by x and its right axis by y (300 pixels a turn), with Shift about the
   view's direction; MOVE_ROTATE_3D moves as MOVE_3D and with Ctrl rotates as ROTATE_3D. A change
-  of Shift or Ctrl mid-drag restarts the relative motion, as rviz's does.
+  of Shift or Ctrl mid-drag restarts the relative motion, as rviz's does; the wheel turned during
+  a MOVE_3D or MOVE_ROTATE_3D drag moves the marker along the grabbing ray (away: forward).
 Every pose is the marker's in its header frame, as rviz sends it."""
 
 from __future__ import annotations
@@ -43,6 +44,7 @@ THREE_D = (MOVE_3D, ROTATE_3D, MOVE_ROTATE_3D)
 PARALLEL = 1e-9
 TURN_PER_PIXEL = 2 * 3.14 / 300  # rviz's: 300 pixels a turn
 Z_SCALE_DEFAULT = 0.001  # rviz's metres a pixel when the control's plane gives none
+WHEEL_TO_METRES = (1 / 8) * (2 / 15)  # rviz's: 2 m along the ray a notch (an angle delta of 120)
 
 
 def mouse_ray(camera: Camera, x: float, y: float, width: int, height: int) -> tuple[np.ndarray, np.ndarray]:
@@ -261,6 +263,18 @@ class Interaction:
             pose = dragged(mode, drag.start, drag.frame, drag.grab, origin, direction)
         if pose is None:
             return []
+        drag.moved = True
+        _set_pose(drag.handle.marker.pose, np.linalg.inv(drag.handle.reference) @ pose)
+        return [self.feedback(drag.handle, InteractiveMarkerFeedback.POSE_UPDATE, None)]
+
+    def wheel(self, delta: float) -> list[Any]:
+        """The wheel turned by `delta` (Qt's angle delta) while dragging."""
+        drag = self.drag
+        if drag is None or drag.handle.control.interaction_mode not in (MOVE_3D, MOVE_ROTATE_3D) or not delta:
+            return []
+        pose = drag.handle.pose
+        pose[:3, 3] += delta * WHEEL_TO_METRES * drag.ray
+        drag.anchor = pose[:3, 3].copy()
         drag.moved = True
         _set_pose(drag.handle.marker.pose, np.linalg.inv(drag.handle.reference) @ pose)
         return [self.feedback(drag.handle, InteractiveMarkerFeedback.POSE_UPDATE, None)]

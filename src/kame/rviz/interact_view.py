@@ -35,9 +35,11 @@ class InteractRouter:
             for message in feedback:
                 self.publish(handle.feedback_topic, message)
 
-    def __call__(self, kind: str, x: float, y: float, right: bool, shift: bool = False, control: bool = False) -> bool:
-        """A mouse event at pixel (x, y) of the view ("press", "move", "release"), Shift and Ctrl
-        held or not; whether the tool took it (False: nothing interactive was pressed, the camera moves)."""
+    def __call__(self, kind: str, x: float, y: float, right: bool, shift: bool = False, control: bool = False,
+                 wheel: float = 0.0) -> bool:
+        """A mouse event at pixel (x, y) of the view ("hover", "press", "move", "wheel": turned by
+        `wheel`, "release"), Shift and Ctrl held or not; whether the tool took it (False: nothing
+        interactive was pressed, the camera moves)."""
         size = self.view.width(), self.view.height()
         origin, direction = mouse_ray(self.view.camera, x, y, *size)
         at = pointer(self.view.camera, x, y, *size, shift, control)
@@ -63,7 +65,7 @@ class InteractRouter:
             return drag is not None or self.interaction.menu is not None
         if drag is None:
             return False
-        sent = self.interaction.move(origin, direction, at)
+        sent = self.interaction.wheel(wheel) if kind == "wheel" else self.interaction.move(origin, direction, at)
         self._send(drag.handle, sent)
         if sent:
             for display in self._markers():

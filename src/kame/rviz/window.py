@@ -393,6 +393,9 @@ class RenderView(QOpenGLWidget):
         self._last = None
 
     def wheelEvent(self, event: QWheelEvent) -> None:
+        if self._interacting and self.interact is not None:  # a 3-D drag: rviz moves the marker along the ray
+            self.interact("wheel", event.position().x(), event.position().y(), False, wheel=event.angleDelta().y())
+            return
         self.camera.zoom(event.angleDelta().y() / 120)
         self.update()
 
