@@ -148,10 +148,34 @@ def test_a_button_click_and_a_menu() -> None:
     assert [f.event_type for f in interaction.release()] == [InteractiveMarkerFeedback.BUTTON_CLICK,
                                                              InteractiveMarkerFeedback.POSE_UPDATE,
                                                              InteractiveMarkerFeedback.MOUSE_UP]
+    assert interaction.menu is None  # a left click on a BUTTON opens no menu
     pressed = interaction.press(display.handles, origin, direction, right=True)
-    assert pressed.menu is display.handles[0] and interaction.drag is None
-    chosen = interaction.menu_select(pressed.menu, 1)
+    assert pressed.consumed and interaction.drag is None and interaction.menu is None  # rviz: not yet
+    assert interaction.release() == [] and interaction.menu is display.handles[0]  # on the release
+    chosen = interaction.menu_select(interaction.menu, 1)
     assert (chosen.event_type, chosen.menu_entry_id) == (InteractiveMarkerFeedback.MENU_SELECT, 1)
+
+
+def test_a_menu_control_opens_its_menu_on_the_left_release_after_rvizs_mouse_down() -> None:
+    from visualization_msgs.msg import Marker, MenuEntry
+
+    menu = _control("menu_only_control", InteractiveMarkerControl.MENU, 1, 0, 0, 0)
+    box = Marker(type=Marker.CUBE)
+    box.pose.orientation.w = 1.0
+    box.scale.x = box.scale.y = box.scale.z = 0.45
+    box.color.a = 1.0
+    menu.markers = [box]
+    display = _display_with(menu)
+    display.handles[0].marker.menu_entries = [MenuEntry(id=1, parent_id=0, title="First Entry")]
+    interaction = Interaction("/rviz")
+    origin, direction = np.array([0.0, 0.0, 5.0]), np.array([0.0, 0.0, -1.0])
+    pressed = interaction.press(display.handles, origin, direction)
+    assert [f.event_type for f in pressed.feedback] == [InteractiveMarkerFeedback.POSE_UPDATE,
+                                                        InteractiveMarkerFeedback.MOUSE_DOWN]
+    assert interaction.menu is None and interaction.move(origin + 0.1, direction) == []  # it does not drag
+    assert [f.event_type for f in interaction.release()] == [InteractiveMarkerFeedback.POSE_UPDATE,
+                                                             InteractiveMarkerFeedback.MOUSE_UP]
+    assert interaction.menu is display.handles[0]
 
 
 def test_the_display_loads_and_saves_in_a_rviz_file(tmp_path: Any) -> None:
@@ -180,3 +204,23 @@ Visualization Manager:
     again = config.load(str(tmp_path / "again.rviz")).displays[0]
     assert again.class_name == "rviz/InteractiveMarkers" and again.options["Update Topic"] == "/basic_controls/update"
     assert "Update Topic: /basic_controls/update" in (tmp_path / "again.rviz").read_text()
+
+
+def test_a_highlit_control_is_drawn_brighter_and_the_others_not() -> None:
+    """rviz adds 0.3 to the colour of the control under the mouse (0.5 pressed), clamped at 1."""
+    display = _display_with(_control("move_x", InteractiveMarkerControl.MOVE_AXIS, 1, 1, 0, 0),
+                            _control("move_y", InteractiveMarkerControl.MOVE_AXIS, SQRT_HALF, 0, 0, SQRT_HALF))
+
+    def colours() -> list[list[float]]:
+        scene = Scene()
+        display.build(scene, Identity(), 0.0)
+        drawn = np.concatenate([b.float_colors() for b in scene.batches]).astype(float)
+        return sorted(np.unique(drawn.round(3), axis=0).tolist())
+
+    assert colours() == [[0.0, 1.0, 0.0, 1.0], [1.0, 0.0, 0.0, 1.0]]  # y: green arrows, x: red
+    display.highlight(display.handles[1], 0.3)
+    assert colours() == [[0.3, 1.0, 0.3, 1.0], [1.0, 0.0, 0.0, 1.0]]  # move_y brighter, move_x as it was
+    display.highlight(display.handles[0], 0.5)
+    assert colours() == [[0.0, 1.0, 0.0, 1.0], [1.0, 0.5, 0.5, 1.0]]
+    display.highlight(None, 0.3)
+    assert colours() == [[0.0, 1.0, 0.0, 1.0], [1.0, 0.0, 0.0, 1.0]]

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 from typing import Any
 
+import numpy as np
 import pytest
 
 pytest.importorskip("OpenGL", reason="rviz's window needs PyOpenGL (pip install 'kame[gui]')")
@@ -78,6 +79,8 @@ def test_the_interact_tool_routes_a_drag_and_a_menu_to_the_feedback_topic(qtbot:
     assert abs(moved.pose.position.x - 0.3) < 0.02
     sent.clear()
     QTest.mousePress(view, Qt.MouseButton.RightButton, none, pixel(1.1, 0.0))  # the arrow, moved with the marker
+    assert not [w for w in QApplication.topLevelWidgets() if isinstance(w, QMenu) and w.isVisible()]
+    QTest.mouseRelease(view, Qt.MouseButton.RightButton, none, pixel(1.1, 0.0))  # rviz opens it on the release
     menus = [w for w in QApplication.topLevelWidgets() if isinstance(w, QMenu) and w.isVisible()]
     assert len(menus) == 1 and [a.text() for a in menus[0].actions()] == ["Submenu"]
     inner = menus[0].actions()[0].menu().actions()[0]
@@ -90,3 +93,153 @@ def test_the_interact_tool_routes_a_drag_and_a_menu_to_the_feedback_topic(qtbot:
     QTest.mouseMove(view, pixel(-2.0, 2.0))
     QTest.mouseRelease(view, left, none, pixel(-2.0, 2.0))
     assert len(sent) == 1 and (view.camera.angle, tuple(view.camera.focal_point)) != before
+
+
+def test_the_interact_tool_takes_shift_and_ctrl_from_the_mouse_events(qtbot: Any) -> None:
+    """A MOVE_ROTATE_3D box: the wheel turned while it is held moves it along the ray; dragged
+    in the view it moves; dragged with Ctrl held, it turns (rviz's Ctrl + left drag) and stays."""
+    from PySide6.QtCore import QPoint, QPointF, Qt
+    from PySide6.QtGui import QMouseEvent, QWheelEvent
+    from PySide6.QtWidgets import QApplication
+
+    from kame.rviz.window import RvizWindow
+    from tests.rviz.test_interact import Identity, _display_with
+    from tests.rviz.test_interact_3d import _box_control
+    from visualization_msgs.msg import InteractiveMarkerControl
+
+    display = _display_with(_box_control(InteractiveMarkerControl.MOVE_ROTATE_3D))
+    window = RvizWindow(config.Config(fixed_frame="fixed", displays=[display]), None)
+    qtbot.addWidget(window)
+    window.timer.stop()
+    window.resize(800, 600)
+    window.view.interact.publish = lambda topic, message: None
+    window.view.interact.redraw = lambda: window.draw(0.0, Identity())
+    window.draw(0.0, Identity())
+    view = window.view
+    at = view.camera.project([[0.0, 0.0, 0.0]], view.width(), view.height())[0]
+    left = Qt.MouseButton.LeftButton
+
+    def send(kind: Any, dx: float, keys: Any) -> None:
+        point = QPointF(float(at[0]) + dx, float(at[1]))
+        buttons = Qt.MouseButton.NoButton if kind == QMouseEvent.Type.MouseButtonRelease else left
+        QApplication.sendEvent(view, QMouseEvent(kind, point, view.mapToGlobal(point), left, buttons, keys))
+
+    def drag(keys: Any) -> None:
+        send(QMouseEvent.Type.MouseButtonPress, 0, keys)
+        send(QMouseEvent.Type.MouseMove, 75, keys)
+        send(QMouseEvent.Type.MouseButtonRelease, 75, keys)
+
+    handle = display.handles[0]
+    eye = view.camera.eye()
+    send(QMouseEvent.Type.MouseButtonPress, 0, Qt.KeyboardModifier.NoModifier)
+    point = QPointF(float(at[0]), float(at[1]))
+    QApplication.sendEvent(view, QWheelEvent(point, view.mapToGlobal(point), QPoint(), QPoint(0, 120), left,
+                                             Qt.KeyboardModifier.NoModifier, Qt.ScrollPhase.NoScrollPhase, False))
+    send(QMouseEvent.Type.MouseButtonRelease, 0, Qt.KeyboardModifier.NoModifier)
+    assert float(np.linalg.norm(handle.pose[:3, 3] - eye)) == pytest.approx(float(np.linalg.norm(eye)) + 2)  # away
+    handle.marker.pose.position.x = handle.marker.pose.position.y = handle.marker.pose.position.z = 0.0
+    window.draw(0.0, Identity())
+    handle = display.handles[0]
+    drag(Qt.KeyboardModifier.ControlModifier)
+    assert handle.pose[:3, 3] == pytest.approx([0, 0, 0], abs=1e-9) and abs(handle.pose[0, 0]) < 0.99
+    turned = handle.pose[:3, :3].copy()
+    drag(Qt.KeyboardModifier.NoModifier)
+    assert float(abs(display.handles[0].pose[:3, 3]).max()) > 0.3
+    assert display.handles[0].pose[:3, :3] == pytest.approx(turned)
+
+
+def test_the_window_turns_view_facing_controls_to_its_camera(qtbot: Any) -> None:
+    from kame.rviz.window import RvizWindow
+    from tests.rviz.test_interact import Identity, _display_with
+    from tests.rviz.test_view_facing import _plate_control
+    from visualization_msgs.msg import InteractiveMarkerControl
+
+    display = _display_with(_plate_control(InteractiveMarkerControl.MOVE_PLANE, independent=False))
+    window = RvizWindow(config.Config(fixed_frame="fixed", displays=[display]), None)
+    qtbot.addWidget(window)
+    window.timer.stop()
+    for dx in (0, 200):
+        window.view.camera.rotate(dx, 0)
+        window.draw(0.0, Identity())
+        forward = -window.view.camera.view_matrix()[2, :3]
+        assert display.handles[0].control_frame()[:3, 0] == pytest.approx(forward)
+
+
+def test_a_left_click_on_a_menu_control_opens_the_menu_on_the_release(qtbot: Any) -> None:
+    from PySide6.QtCore import QPoint, Qt
+    from PySide6.QtTest import QTest
+    from PySide6.QtWidgets import QApplication, QMenu
+
+    from kame.rviz.window import RvizWindow
+    from tests.rviz.test_interact import Identity, _display_with
+    from tests.rviz.test_interact_3d import _box_control
+    from visualization_msgs.msg import InteractiveMarkerControl, InteractiveMarkerFeedback, MenuEntry
+
+    display = _display_with(_box_control(InteractiveMarkerControl.MENU))
+    display.client.markers[("/basic_controls", "box")].menu_entries = [MenuEntry(id=1, parent_id=0, title="Reset")]
+    window = RvizWindow(config.Config(fixed_frame="fixed", displays=[display]), None)
+    qtbot.addWidget(window)
+    window.timer.stop()
+    window.resize(800, 600)
+    sent: list[Any] = []
+    window.view.interact.publish = lambda topic, message: sent.append(message.event_type)
+    window.draw(0.0, Identity())
+    view = window.view
+    at = view.camera.project([[0.0, 0.0, 0.0]], view.width(), view.height())[0]
+    centre = QPoint(round(float(at[0])), round(float(at[1])))
+
+    def shown() -> list[QMenu]:
+        return [w for w in QApplication.topLevelWidgets() if isinstance(w, QMenu) and w.isVisible()]
+
+    QTest.mousePress(view, Qt.MouseButton.LeftButton, Qt.KeyboardModifier.NoModifier, centre)
+    assert not shown() and sent == [InteractiveMarkerFeedback.POSE_UPDATE, InteractiveMarkerFeedback.MOUSE_DOWN]
+    QTest.mouseRelease(view, Qt.MouseButton.LeftButton, Qt.KeyboardModifier.NoModifier, centre)
+    assert [a.text() for a in shown()[0].actions()] == ["Reset"] and sent[-1] == InteractiveMarkerFeedback.MOUSE_UP
+    shown()[0].close()
+
+
+def test_the_interact_tool_highlights_the_control_under_the_mouse(qtbot: Any) -> None:
+    """rviz brightens the control the mouse is over (0.3), more while pressed (0.5), and none
+    once the mouse has left it; the view is drawn again each time."""
+    from PySide6.QtCore import QPoint, QPointF, Qt
+    from PySide6.QtGui import QMouseEvent
+    from PySide6.QtTest import QTest
+    from PySide6.QtWidgets import QApplication
+
+    from kame.rviz.window import RvizWindow
+    from tests.rviz.test_interact import Identity, _display_with
+    from tests.rviz.test_interact_3d import _box_control
+    from visualization_msgs.msg import InteractiveMarkerControl
+
+    display = _display_with(_box_control(InteractiveMarkerControl.BUTTON))
+    window = RvizWindow(config.Config(fixed_frame="fixed", displays=[display]), None)
+    qtbot.addWidget(window)
+    window.timer.stop()
+    window.resize(800, 600)
+    window.view.interact.publish = lambda topic, message: None
+    window.view.interact.redraw = lambda: window.draw(0.0, Identity())
+    window.draw(0.0, Identity())
+    view = window.view
+    at = view.camera.project([[0.0, 0.0, 0.0]], view.width(), view.height())[0]
+    centre = QPoint(round(float(at[0])), round(float(at[1])))
+
+    def hover(point: QPoint) -> None:  # a move with no button down (the view tracks the mouse)
+        where = QPointF(point)
+        QApplication.sendEvent(view, QMouseEvent(QMouseEvent.Type.MouseMove, where, view.mapToGlobal(where),
+                                                 Qt.MouseButton.NoButton, Qt.MouseButton.NoButton,
+                                                 Qt.KeyboardModifier.NoModifier))
+
+    def darkest() -> float:
+        return float(min(b.float_colors()[:, :3].min() for b in view.scene.batches))
+
+    hover(QPoint(5, 5))
+    plain = darkest()
+    hover(centre)
+    assert display.highlit is not None and display.highlit[3] == 0.3
+    assert darkest() == pytest.approx(plain + 0.3)  # drawn again, brighter
+    QTest.mousePress(view, Qt.MouseButton.LeftButton, Qt.KeyboardModifier.NoModifier, centre)
+    assert display.highlit[3] == 0.5
+    QTest.mouseRelease(view, Qt.MouseButton.LeftButton, Qt.KeyboardModifier.NoModifier, centre)
+    assert display.highlit[3] == 0.3
+    hover(QPoint(5, 5))
+    assert display.highlit is None and darkest() == pytest.approx(plain)

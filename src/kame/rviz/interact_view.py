@@ -1,7 +1,8 @@
 """The Interact tool in rviz's window: the view's mouse events on an interactive marker's
 control go to kame.rviz.interact (which drags and makes the feedback), the feedback is
 published on the display's <ns>/feedback, and a marker's menu shows as a context menu whose
-choice is sent back as MENU_SELECT. Everything else about the tool is Qt-free."""
+choice is sent back as MENU_SELECT; the control under the mouse is brightened as rviz's is
+(more while pressed). Everything else about the tool is Qt-free."""
 
 from __future__ import annotations
 
@@ -11,8 +12,10 @@ from typing import Any
 from PySide6.QtCore import QPoint
 from PySide6.QtWidgets import QMenu, QWidget
 
-from kame.rviz.interact import Interaction, menu_tree, mouse_ray
+from kame.rviz.interact import Interaction, menu_tree, mouse_ray, pick, pointer
 from kame.rviz.interactive import Handle, InteractiveMarkers
+
+HOVER, ACTIVE = 0.3, 0.5  # rviz's highlights: a control under the mouse, one pressed
 
 
 class InteractRouter:
@@ -32,27 +35,54 @@ class InteractRouter:
             for message in feedback:
                 self.publish(handle.feedback_topic, message)
 
-    def __call__(self, kind: str, x: float, y: float, right: bool) -> bool:
-        """A mouse event at pixel (x, y) of the view ("press", "move", "release"); whether the
-        tool took it (False: nothing interactive was pressed, the camera moves)."""
-        origin, direction = mouse_ray(self.view.camera, x, y, self.view.width(), self.view.height())
+    def __call__(self, kind: str, x: float, y: float, right: bool, shift: bool = False, control: bool = False,
+                 wheel: float = 0.0) -> bool:
+        """A mouse event at pixel (x, y) of the view ("hover", "press", "move", "wheel": turned by
+        `wheel`, "release"), Shift and Ctrl held or not; whether the tool took it (False: nothing
+        interactive was pressed, the camera moves)."""
+        size = self.view.width(), self.view.height()
+        origin, direction = mouse_ray(self.view.camera, x, y, *size)
+        at = pointer(self.view.camera, x, y, *size, shift, control)
         drag = self.interaction.drag
+        if kind == "hover":  # no button down: rviz brightens the control under the mouse
+            found = pick([h for d in self._markers() for h in d.handles], origin, direction)
+            self._highlight(found[0] if found else None, HOVER)
+            return False
         if kind == "press":
-            pressed = self.interaction.press([h for d in self._markers() for h in d.handles], origin, direction, right)
+            pressed = self.interaction.press([h for d in self._markers() for h in d.handles], origin, direction, right,
+                                             at)
             if self.interaction.drag is not None:
                 self._send(self.interaction.drag.handle, pressed.feedback)
-            if pressed.menu is not None:
-                self._menu(pressed.menu, QPoint(round(x), round(y)))
+                self._highlight(self.interaction.drag.handle, ACTIVE)
             return pressed.consumed
+        if kind == "release":
+            sent = self.interaction.release()
+            if drag is not None:
+                self._send(drag.handle, sent)
+                self._highlight(drag.handle, HOVER)
+            if self.interaction.menu is not None:  # rviz opens a menu on the release
+                self._menu(self.interaction.menu, QPoint(round(x), round(y)))
+            return drag is not None or self.interaction.menu is not None
         if drag is None:
             return False
-        sent = self.interaction.move(origin, direction) if kind == "move" else self.interaction.release()
+        sent = self.interaction.wheel(wheel) if kind == "wheel" else self.interaction.move(origin, direction, at)
         self._send(drag.handle, sent)
-        if sent and kind == "move":
+        if sent:
             for display in self._markers():
                 display.moved()
             self.redraw()
         return True
+
+    def _highlight(self, handle: Handle | None, amount: float) -> None:
+        changed = False
+        for display in self._markers():
+            before = display.version
+            mine = handle is not None and (handle.display_name, handle.feedback_topic) == (
+                display.name, display.feedback_topic())
+            display.highlight(handle if mine else None, amount)
+            changed = changed or display.version != before
+        if changed:
+            self.redraw()
 
     def _menu(self, handle: Handle, at: QPoint) -> None:
         tree = menu_tree(list(handle.marker.menu_entries))

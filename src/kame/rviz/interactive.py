@@ -2,8 +2,12 @@
 ("Update Topic": <ns>/update, and the latched <ns>/update_full), kept in step as a client
 does (kame.interactive_markers.client_state), each drawn where its pose puts it: every
 control's markers, or, for a control without any, rviz's defaults (arrows for MOVE_AXIS, a
-ring for ROTATE_AXIS, MOVE_PLANE and MOVE_ROTATE), coloured by the control's axis. What each
-control covers is kept (Handle) for the Interact tool (kame.rviz.interact)."""
+ring for ROTATE_AXIS, MOVE_PLANE and MOVE_ROTATE, coloured by the control's axis; a MENU
+control's description as a white view-facing button above the marker, which a click opens
+the menu on: its text's box facing the camera is what the Interact tool hits). A VIEW_FACING
+control's frame turns as rviz's does to face the camera (its x axis the view's direction, its z
+the camera's up), its markers with it unless independent_marker_orientation keeps them the
+marker's. What each control covers is kept (Handle) for the Interact tool (kame.rviz.interact)."""
 
 from __future__ import annotations
 
@@ -19,9 +23,11 @@ from kame.rviz.meshes import MeshLibrary
 from kame.rviz.scene import Scene, pose_matrix, quaternion_matrix
 from visualization_msgs.msg import InteractiveMarkerControl, Marker
 
+MENU = InteractiveMarkerControl.MENU
 MOVE_AXIS, MOVE_PLANE = InteractiveMarkerControl.MOVE_AXIS, InteractiveMarkerControl.MOVE_PLANE
 ROTATE_AXIS, MOVE_ROTATE = InteractiveMarkerControl.ROTATE_AXIS, InteractiveMarkerControl.MOVE_ROTATE
 RING_SEGMENTS = 36
+GLYPH_ASPECT = 0.6  # a character's width to its height, about (rviz's MovableText in its default font)
 
 
 @dataclass
@@ -35,6 +41,7 @@ class Handle:
     reference: np.ndarray  # 4x4: the marker's header frame in the fixed frame
     fixed_frame: str
     triangles: np.ndarray  # T x 3 x 3: the control's surfaces in the fixed frame
+    facing: np.ndarray | None = None  # VIEW_FACING: the frame's rotation (fixed frame) facing the camera
 
     @property
     def pose(self) -> np.ndarray:
@@ -43,16 +50,45 @@ class Handle:
         return pose
 
     def control_frame(self) -> np.ndarray:
-        """The control's frame in the fixed frame: its orientation on the marker's (INHERIT), or
-        on the marker's header frame (FIXED; VIEW_FACING is treated so too)."""
+        """The control's frame in the fixed frame: its orientation on the marker's (INHERIT), on
+        the marker's header frame (FIXED), or on the rotation facing the camera (VIEW_FACING)."""
         q = self.control.orientation
         norm = float(np.sqrt(q.x ** 2 + q.y ** 2 + q.z ** 2 + q.w ** 2))
         turn = quaternion_matrix(q.x / norm, q.y / norm, q.z / norm, q.w / norm) if norm > 1e-9 else np.eye(3)
         pose = self.pose
         base = pose if self.control.orientation_mode == InteractiveMarkerControl.INHERIT else self.reference
+        if self.facing is not None:
+            base = np.eye(4)
+            base[:3, :3] = self.facing
         frame: np.ndarray = pose.copy()
         frame[:3, :3] = base[:3, :3] @ turn
         return frame
+
+
+def _rotation_to(start: np.ndarray, end: np.ndarray) -> np.ndarray:
+    """The shortest turn taking unit `start` to unit `end` (Ogre's getRotationTo)."""
+    axis, cosine = np.cross(start, end), float(start @ end)
+    if cosine < -1 + 1e-9:  # opposite: half a turn about any axis across them
+        across = np.cross(start, [1.0, 0, 0] if abs(start[0]) < 0.9 else [0, 1.0, 0])
+        across /= np.linalg.norm(across)
+        turn: np.ndarray = 2 * np.outer(across, across) - np.eye(3)
+        return turn
+    k = np.array([[0, -axis[2], axis[1]], [axis[2], 0, -axis[0]], [-axis[1], axis[0], 0]])
+    turn = np.eye(3) + k + (k @ k) / (1 + cosine)
+    return turn
+
+
+def view_facing(control: Any, view: np.ndarray) -> np.ndarray:
+    """rviz's VIEW_FACING frame (3x3, fixed frame) for the camera's `view` matrix: the control's
+    x axis turned onto the view's direction, then about it until the control's z is the camera's up."""
+    q = control.orientation
+    norm = float(np.sqrt(q.x ** 2 + q.y ** 2 + q.z ** 2 + q.w ** 2))
+    turn = quaternion_matrix(q.x / norm, q.y / norm, q.z / norm, q.w / norm) if norm > 1e-9 else np.eye(3)
+    forward, up = -view[2, :3], view[1, :3]
+    onto_view = _rotation_to(turn[:3, 0], forward)
+    upright = _rotation_to(onto_view @ turn[:3, 2], up)
+    facing: np.ndarray = upright @ onto_view
+    return facing
 
 
 def _axis_color(turn: np.ndarray, alpha: float) -> tuple[float, float, float, float]:
@@ -88,13 +124,40 @@ def default_markers(control: Any, scale: float) -> list[Any]:
             ring.points += [_point(p) for p in (a0, b0, b1, a0, b1, a1)]
         ring.color.r, ring.color.g, ring.color.b, ring.color.a = r, g, b, 0.8
         made.append(ring)
+    elif control.interaction_mode == MENU and control.description:  # interactive_markers' makeViewFacingButton
+        button = Marker(type=Marker.TEXT_VIEW_FACING, text=control.description)
+        size = 0.25 * scale
+        button.pose.orientation.w = 1.0
+        button.pose.position.x, button.pose.position.z = -0.1 * size, 1.2 * scale - 0.1 * size
+        button.scale.x = button.scale.y = button.scale.z = size
+        button.color.r = button.color.g = button.color.b = button.color.a = 1.0
+        made.append(button)
     return made
+
+
+def text_box(marker: Any, placed: np.ndarray, view: np.ndarray) -> np.ndarray:
+    """Two triangles (2 x 3 x 3, fixed frame) covering a TEXT_VIEW_FACING marker's text as the
+    camera (`view`) sees it: its lines' height and its longest line's width, about its centre."""
+    lines = marker.text.split("\n")
+    half_up = 0.5 * marker.scale.z * len(lines) * view[1, :3]
+    half_right = 0.5 * GLYPH_ASPECT * marker.scale.z * max(len(line) for line in lines) * view[0, :3]
+    centre = (placed @ pose_matrix(marker.pose))[:3, 3]
+    corners = [centre - half_right - half_up, centre + half_right - half_up,
+               centre + half_right + half_up, centre - half_right + half_up]
+    return np.array([[corners[0], corners[1], corners[2]], [corners[0], corners[2], corners[3]]])
 
 
 def _point(values: np.ndarray) -> Any:
     from geometry_msgs.msg import Point
 
     return Point(x=float(values[0]), y=float(values[1]), z=float(values[2]))
+
+
+def _faces_camera(control: Any) -> bool:
+    """Whether what the control draws, or the box of its text, turns with the camera."""
+    return bool(control.orientation_mode == InteractiveMarkerControl.VIEW_FACING
+                or (control.interaction_mode == MENU and not control.markers)
+                or any(m.type == Marker.TEXT_VIEW_FACING for m in control.markers))
 
 
 def update_namespace(topic: str) -> str:
@@ -118,6 +181,25 @@ class InteractiveMarkers(Display):
         self.client = ClientState()
         self.meshes = MeshLibrary()
         self.handles: list[Handle] = []
+        self.view = np.eye(4)  # the camera's view matrix, which VIEW_FACING controls face
+        self.highlit: tuple[str, str, int, float] | None = None  # server, marker, control's index, how much
+
+    def highlight(self, handle: Handle | None, amount: float) -> None:
+        """Brighten `handle`'s control by `amount` as rviz does (0.3 under the mouse, 0.5 pressed),
+        the others not."""
+        highlit = None if handle is None else (
+            handle.server_id, handle.marker.name,
+            next((i for i, c in enumerate(handle.marker.controls) if c is handle.control), -1), amount)
+        if highlit != self.highlit:
+            self.highlit = highlit
+            self.version += 1
+
+    def face(self, view: np.ndarray) -> None:
+        """The camera is now `view`: draw again if a control faces it and it turned."""
+        if not np.allclose(view[:3, :3], self.view[:3, :3]) and any(
+                _faces_camera(c) for m in self.client.markers.values() for c in m.controls):
+            self.version += 1
+        self.view = view
 
     def side_topics(self) -> dict[str, str]:
         topic = self.topic
@@ -159,20 +241,33 @@ class InteractiveMarkers(Display):
                 continue
             pose = reference @ pose_matrix(marker.pose)
             scale = marker.scale if marker.scale > 0 else 1.0
-            for control in marker.controls:
+            for index, control in enumerate(marker.controls):
                 own = Scene()
+                texts: list[np.ndarray] = []
+                facing = view_facing(control, self.view) \
+                    if control.orientation_mode == InteractiveMarkerControl.VIEW_FACING else None
+                markers_pose = pose.copy()
+                if facing is not None and not control.independent_marker_orientation:
+                    markers_pose[:3, :3] = facing
                 for shown in control.markers or default_markers(control, scale):
-                    placed = frames.transform(shown.header.frame_id) if shown.header.frame_id else pose
+                    placed = frames.transform(shown.header.frame_id) if shown.header.frame_id else markers_pose
                     if isinstance(placed, str):
                         problems.append(f"{name}: {placed}")
                         continue
                     problem = draw_marker(own, shown, placed, self.meshes)
+                    if shown.type == Marker.TEXT_VIEW_FACING and shown.text:
+                        texts.append(text_box(shown, placed, self.view))
                     if problem:
                         problems.append(f"{name}/{control.name}: {problem}")
-                surfaces = [b.vertices for b in own.batches if b.kind == "triangles"]
-                triangles = np.concatenate(surfaces).reshape(-1, 3, 3) if surfaces else np.zeros((0, 3, 3))
+                if self.highlit is not None and self.highlit[:3] == (server_id, name, index):
+                    added = np.array([self.highlit[3]] * 3 + [0.0], dtype=np.float32)
+                    for batch in own.batches:  # rviz adds the highlight to the lit colour
+                        batch.colors = np.minimum(batch.float_colors() + added, np.float32(1.0))
+                surfaces = [b.vertices.reshape(-1, 3, 3) for b in own.batches if b.kind == "triangles"] + texts
+                triangles = np.concatenate(surfaces) if surfaces else np.zeros((0, 3, 3))
                 self.handles.append(Handle(server_id, self.name, self.feedback_topic(), marker,
-                                           control, reference, frames.fixed_frame, triangles.astype(float)))
+                                           control, reference, frames.fixed_frame, triangles.astype(float),
+                                           facing))
                 scene.extend(own)
             if self.flag("Show Descriptions") and marker.description:
                 scene.label(pose[:3, 3] + np.array([0.0, 0.0, 0.6 * scale]), marker.description, (1, 1, 1, 1))

@@ -107,6 +107,12 @@ def _upload(buffer: int, data: np.ndarray, capacity: int) -> int:
     return data.nbytes
 
 
+def _keys(event: QMouseEvent) -> tuple[bool, bool]:
+    """Shift and Ctrl held (the Interact tool's 3-D modes)."""
+    held = event.modifiers()
+    return bool(held & Qt.KeyboardModifier.ShiftModifier), bool(held & Qt.KeyboardModifier.ControlModifier)
+
+
 class RenderView(QOpenGLWidget):
     """Draws a Scene through a Camera; the mouse moves the camera as rviz's does, or drives a tool."""
 
@@ -126,7 +132,8 @@ class RenderView(QOpenGLWidget):
         self._last: QPointF | None = None
         self._pressed_at: np.ndarray | None = None
         self._band: tuple[QPointF, QPointF] | None = None  # Select's rectangle while dragged
-        self.interact: Callable[[str, float, float, bool], bool] | None = None  # the Interact tool's mouse
+        self.interact: Callable[..., bool] | None = None  # the Interact tool's mouse
+        self.setMouseTracking(True)  # moves without a button: the Interact tool's hover highlight
         self._interacting = False  # a control is being dragged
         self.setMinimumSize(320, 240)
         self.setFocusPolicy(Qt.FocusPolicy.StrongFocus)
@@ -326,7 +333,8 @@ class RenderView(QOpenGLWidget):
         left = event.button() == Qt.MouseButton.LeftButton
         right = event.button() == Qt.MouseButton.RightButton
         if self.tool == INTERACT and self.interact is not None and (left or right):
-            self._interacting = self.interact("press", event.position().x(), event.position().y(), right)
+            self._interacting = self.interact("press", event.position().x(), event.position().y(), right,
+                                              *_keys(event))
             if self._interacting:
                 return
         if self.tool == SELECT and left:
@@ -342,7 +350,11 @@ class RenderView(QOpenGLWidget):
 
     def mouseMoveEvent(self, event: QMouseEvent) -> None:
         if self._interacting and self.interact is not None:
-            self.interact("move", event.position().x(), event.position().y(), False)
+            self.interact("move", event.position().x(), event.position().y(), False, *_keys(event))
+            return
+        if event.buttons() == Qt.MouseButton.NoButton:  # tracked: the control under the mouse is highlit
+            if self.tool == INTERACT and self.interact is not None:
+                self.interact("hover", event.position().x(), event.position().y(), False)
             return
         if self._band is not None:
             self._band = (self._band[0], event.position())
@@ -381,6 +393,9 @@ class RenderView(QOpenGLWidget):
         self._last = None
 
     def wheelEvent(self, event: QWheelEvent) -> None:
+        if self._interacting and self.interact is not None:  # a 3-D drag: rviz moves the marker along the ray
+            self.interact("wheel", event.position().x(), event.position().y(), False, wheel=event.angleDelta().y())
+            return
         self.camera.zoom(event.angleDelta().y() / 120)
         self.update()
 
@@ -671,6 +686,8 @@ class RvizWindow(QMainWindow):
             if frames is None:
                 display.status = Status(ERROR, "no tf: rviz has no node")
                 continue
+            if isinstance(display, InteractiveMarkers):  # its VIEW_FACING controls turn to the camera
+                display.face(self.view.camera.view_matrix())
             try:
                 display.build(scene, frames, now)
             except Exception as exc:  # a message the display cannot draw must not stop the window
