@@ -144,8 +144,10 @@ def with_display(main: Callable[[], int]) -> int:
     os.close(write)
     try:
         with os.fdopen(read) as pipe:
-            os.environ["DISPLAY"] = ":" + pipe.readline().strip()
-        return main()
+            display = ":" + pipe.readline().strip()
+        # the bench runs in a child that ends, Qt application and all, before the X server does
+        # (a QApplication outliving its server ends the process with an X I/O error)
+        return subprocess.run([sys.executable, *sys.argv], env={**os.environ, "DISPLAY": display}).returncode
     finally:
         os.kill(server.pid, signal.SIGTERM)
         server.wait()
