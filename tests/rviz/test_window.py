@@ -35,6 +35,22 @@ def test_a_still_scene_is_not_repainted(qtbot: Any) -> None:
     assert window.view.scene is not shown and window.view.scene.batches[0] is shown.batches[0]
 
 
+def _window_on(qtbot: Any, display: Any, publish: Any = lambda topic, message: None) -> Any:
+    """An offscreen rviz window showing one InteractiveMarkers display, drawn once: its feedback
+    goes to `publish`, and tf is the test's (no node)."""
+    from kame.rviz.window import RvizWindow
+    from tests.rviz.test_interact import Identity
+
+    window = RvizWindow(config.Config(fixed_frame="fixed", displays=[display]), None)
+    qtbot.addWidget(window)
+    window.timer.stop()
+    window.resize(800, 600)
+    window.view.interact.publish = publish
+    window.view.interact.redraw = lambda: window.draw(0.0, Identity())
+    window.draw(0.0, Identity())
+    return window
+
+
 def test_the_interact_tool_routes_a_drag_and_a_menu_to_the_feedback_topic(qtbot: Any) -> None:
     """The view's mouse on an interactive marker's control (no drawing: the model's geometry):
     a left drag publishes rviz's feedback on <ns>/feedback, a right click opens the marker's
@@ -44,20 +60,14 @@ def test_the_interact_tool_routes_a_drag_and_a_menu_to_the_feedback_topic(qtbot:
     from PySide6.QtWidgets import QApplication, QMenu
 
     from kame.rviz.camera import TOP_DOWN
-    from kame.rviz.window import RvizWindow
     from tests.rviz.test_interact import Identity, _control, _display_with
     from visualization_msgs.msg import InteractiveMarkerFeedback, MenuEntry
 
     display = _display_with(_control("move_x", 3, 1, 1, 0, 0))
     display.client.markers[("/basic_controls", "box")].menu_entries = [
         MenuEntry(id=1, parent_id=0, title="Submenu"), MenuEntry(id=2, parent_id=1, title="Inner")]
-    window = RvizWindow(config.Config(fixed_frame="fixed", displays=[display]), None)
-    qtbot.addWidget(window)
-    window.timer.stop()
-    window.resize(800, 600)
     sent: list[tuple[str, Any]] = []
-    window.view.interact.publish = lambda topic, message: sent.append((topic, message))
-    window.view.interact.redraw = lambda: window.draw(0.0, Identity())  # no node: tf is the test's
+    window = _window_on(qtbot, display, lambda topic, message: sent.append((topic, message)))
     window.view.camera.become(TOP_DOWN)
     window.view.camera.scale = 100.0
     window.draw(0.0, Identity())
@@ -102,19 +112,12 @@ def test_the_interact_tool_takes_shift_and_ctrl_from_the_mouse_events(qtbot: Any
     from PySide6.QtGui import QMouseEvent, QWheelEvent
     from PySide6.QtWidgets import QApplication
 
-    from kame.rviz.window import RvizWindow
     from tests.rviz.test_interact import Identity, _display_with
     from tests.rviz.test_interact_3d import _box_control
     from visualization_msgs.msg import InteractiveMarkerControl
 
     display = _display_with(_box_control(InteractiveMarkerControl.MOVE_ROTATE_3D))
-    window = RvizWindow(config.Config(fixed_frame="fixed", displays=[display]), None)
-    qtbot.addWidget(window)
-    window.timer.stop()
-    window.resize(800, 600)
-    window.view.interact.publish = lambda topic, message: None
-    window.view.interact.redraw = lambda: window.draw(0.0, Identity())
-    window.draw(0.0, Identity())
+    window = _window_on(qtbot, display)
     view = window.view
     at = view.camera.project([[0.0, 0.0, 0.0]], view.width(), view.height())[0]
     left = Qt.MouseButton.LeftButton
@@ -170,20 +173,14 @@ def test_a_left_click_on_a_menu_control_opens_the_menu_on_the_release(qtbot: Any
     from PySide6.QtTest import QTest
     from PySide6.QtWidgets import QApplication, QMenu
 
-    from kame.rviz.window import RvizWindow
-    from tests.rviz.test_interact import Identity, _display_with
+    from tests.rviz.test_interact import _display_with
     from tests.rviz.test_interact_3d import _box_control
     from visualization_msgs.msg import InteractiveMarkerControl, InteractiveMarkerFeedback, MenuEntry
 
     display = _display_with(_box_control(InteractiveMarkerControl.MENU))
     display.client.markers[("/basic_controls", "box")].menu_entries = [MenuEntry(id=1, parent_id=0, title="Reset")]
-    window = RvizWindow(config.Config(fixed_frame="fixed", displays=[display]), None)
-    qtbot.addWidget(window)
-    window.timer.stop()
-    window.resize(800, 600)
     sent: list[Any] = []
-    window.view.interact.publish = lambda topic, message: sent.append(message.event_type)
-    window.draw(0.0, Identity())
+    window = _window_on(qtbot, display, lambda topic, message: sent.append(message.event_type))
     view = window.view
     at = view.camera.project([[0.0, 0.0, 0.0]], view.width(), view.height())[0]
     centre = QPoint(round(float(at[0])), round(float(at[1])))
@@ -206,19 +203,12 @@ def test_the_interact_tool_highlights_the_control_under_the_mouse(qtbot: Any) ->
     from PySide6.QtTest import QTest
     from PySide6.QtWidgets import QApplication
 
-    from kame.rviz.window import RvizWindow
-    from tests.rviz.test_interact import Identity, _display_with
+    from tests.rviz.test_interact import _display_with
     from tests.rviz.test_interact_3d import _box_control
     from visualization_msgs.msg import InteractiveMarkerControl
 
     display = _display_with(_box_control(InteractiveMarkerControl.BUTTON))
-    window = RvizWindow(config.Config(fixed_frame="fixed", displays=[display]), None)
-    qtbot.addWidget(window)
-    window.timer.stop()
-    window.resize(800, 600)
-    window.view.interact.publish = lambda topic, message: None
-    window.view.interact.redraw = lambda: window.draw(0.0, Identity())
-    window.draw(0.0, Identity())
+    window = _window_on(qtbot, display)
     view = window.view
     at = view.camera.project([[0.0, 0.0, 0.0]], view.width(), view.height())[0]
     centre = QPoint(round(float(at[0])), round(float(at[1])))
