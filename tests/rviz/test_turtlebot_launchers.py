@@ -36,7 +36,8 @@ def test_the_shipped_configs_load_with_every_display_known() -> None:
     assert navigation.fixed_frame == "map"
     shown = _displays(PACKAGE / "rviz" / "navigation.rviz")
     assert {topic for _, topic in shown.values()} >= {
-        "/map", "/scan", "/particlecloud", "/move_base/global_costmap/costmap", "/move_base/NavfnROS/plan"}
+        "/map", "/scan", "/particlecloud", "/move_base/global_costmap/costmap", "/move_base/NavfnROS/plan",
+        "/move_base/local_costmap/costmap", "/move_base/DWAPlannerROS/local_plan"}
     assert shown["Amcl Particles"][0] == "rviz/PoseArray" and shown["RobotModel"][0] == "rviz/RobotModel"
     tools = {tool["Class"]: tool.get("Topic") for tool in navigation.raw["Visualization Manager"]["Tools"]}
     assert tools["rviz/SetInitialPose"] == "/initialpose" and tools["rviz/SetGoal"] == "/move_base_simple/goal"
@@ -114,7 +115,7 @@ def test_view_navigation_shows_amcl_demo(tmp_path: Path) -> None:
         rviz = Proc([sys.executable, "-m", "tests.rviz.live_child", sim.uri, str(PACKAGE / "rviz" / "navigation.rviz"),
                      "base_link"], windowed, cwd=REPO)
         sim.procs.append(rviz)
-        wanted = ("Grid", "RobotModel", "LaserScan", "Map", "Global Costmap", "Amcl Particles")
+        wanted = ("Grid", "RobotModel", "LaserScan", "Map", "Global Costmap", "Local Costmap", "Amcl Particles")
         line = ""
         deadline = time.monotonic() + 70
         while time.monotonic() < deadline:
