@@ -27,7 +27,8 @@ def test_change_records_equal_log_info_records(monkeypatch: pytest.MonkeyPatch, 
         monkeypatch.setattr(logging, "_srcfile", None)  # as in the rosmaster process
     keep = _Keep()
     server.log.addHandler(keep)
-    monkeypatch.setattr(server.log, "level", logging.DEBUG)
+    level = server.log.level
+    server.log.setLevel(logging.DEBUG)  # setLevel, not the attribute: it also clears the logger's cache
     server._change_template.clear()
     try:
         args = ("registerPublisher", ["/n", "/t", "t/T"], [1, "Registered [/n] as publisher of [/t]"])
@@ -36,6 +37,7 @@ def test_change_records_equal_log_info_records(monkeypatch: pytest.MonkeyPatch, 
         server.log.info(server._CHANGE, *args)
     finally:
         server.log.removeHandler(keep)
+        server.log.setLevel(level)
     first, second, stock = keep.records
     # with source lines on, the line is log.info's own, named by where it is called
     skip = _TIMES if srcfile is None else _TIMES + _SOURCE
@@ -50,3 +52,19 @@ def test_change_records_equal_log_info_records(monkeypatch: pytest.MonkeyPatch, 
         if srcfile is None:
             assert formatter.format(record) == formatter.format(stock)
     assert first is not second and first.args is not None
+
+
+@pytest.mark.parametrize("srcfile", [None, "keep"])
+def test_no_change_record_when_info_is_off(monkeypatch: pytest.MonkeyPatch, srcfile: str | None) -> None:
+    if srcfile is None:
+        monkeypatch.setattr(logging, "_srcfile", None)
+    keep = _Keep()
+    server.log.addHandler(keep)
+    level = server.log.level
+    server.log.setLevel(logging.WARNING)
+    try:
+        server._log_change("registerPublisher", ["/n", "/t", "t/T"], [1, "Registered [/n] as publisher of [/t]"])
+    finally:
+        server.log.removeHandler(keep)
+        server.log.setLevel(level)
+    assert keep.records == []

@@ -52,6 +52,8 @@ def _log_change(method: str, params: list[Value], value: object) -> None:
     cheaper: the record is a copy of one the logger made itself, with this call's arguments and
     time. Only where records name no source line (the rosmaster process turns that lookup off)
     and come from logging's own factory; elsewhere it is `log.info`."""
+    if not log.isEnabledFor(logging.INFO):  # log.handle below does not look at levels
+        return
     if logging._srcfile is not None or logging.getLogRecordFactory() is not logging.LogRecord:
         log.info(_CHANGE, method, params, value)
         return
