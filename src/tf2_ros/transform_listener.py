@@ -19,9 +19,9 @@ class TransformListener:
 
     def _receive(self, data, is_static):
         who = (getattr(data, "_connection_header", None) or {}).get("callerid", "default_authority")
-        receive = getattr(self.buffer, "receive", None)
-        if receive is not None:
-            receive(data.transforms, who, is_static, rospy.Time.now().to_nsec())
+        receive_at = getattr(self.buffer, "receive_at", None)  # kame's Buffer; a user's buffer has the setters
+        if receive_at is not None:
+            receive_at(data.transforms, who, is_static, _now_ns)
             return
         setter = self.buffer.set_transform_static if is_static else self.buffer.set_transform
         for transform in data.transforms:
@@ -32,3 +32,7 @@ class TransformListener:
 
     def static_callback(self, data):
         self._receive(data, True)
+
+
+def _now_ns():
+    return rospy.Time.now().to_nsec()

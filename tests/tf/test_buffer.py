@@ -98,6 +98,33 @@ def test_a_clock_that_jumps_back_clears_all_but_static_data() -> None:
     assert buffer.lookup_transform("map", "robot", Time()).header.stamp == Time(1)
 
 
+
+def test_messages_of_two_threads_are_never_taken_for_the_clock_going_back() -> None:
+    """/tf and /tf_static arrive on threads of their own. One thread reads the clock, the other
+    reads a later time and hands its message over first: handed over with the earlier time,
+    the first message would look like a jump back and clear the buffer."""
+    warnings: list[str] = []
+    buffer = Buffer(warn=warnings.append)
+    now = time.time_ns()
+    first_has_read, second_done = threading.Event(), threading.Event()
+
+    def first_clock() -> int:
+        first_has_read.set()
+        second_done.wait(0.5)  # held by the buffer's input order, the second cannot overtake
+        return now
+
+    def second() -> None:
+        first_has_read.wait(5)
+        buffer.receive_at([transform("map", "odom", 100.0)], "/s", True, lambda: now + 1000)
+        second_done.set()
+
+    overtaking = threading.Thread(target=second)
+    overtaking.start()
+    buffer.receive_at([transform("odom", "robot", 100.0)], "/d", False, first_clock)
+    overtaking.join(5)
+    assert warnings == []
+    assert buffer.lookup_transform("map", "robot", Time()).header.stamp == Time(100)
+
 def test_tf2_ros_buffer_core_is_tf2_pys() -> None:
     import rospy
     import tf2_ros

@@ -103,16 +103,17 @@ def pdf_is_well_formed(data: bytes) -> bool:
 
 @pytest.mark.parametrize(("function", "first_line"), [("main_tf", "digraph G {"), ("main_tf2", "digraph G {")])
 def test_view_frames_writes_gv_and_pdf(graph: Graph, tmp_path: Path, function: str, first_line: str) -> None:
-    graph.start([*STATIC_TF2, "1", "0", "0", "0", "0", "0", "world", "base"])
-    graph.start([*STATIC_TF, "0", "1", "0", "0", "0", "0", "base", "(camera)", "100"])
+    publishers = [graph.start([*STATIC_TF2, "1", "0", "0", "0", "0", "0", "world", "base"]),
+                  graph.start([*STATIC_TF, "0", "1", "0", "0", "0", "0", "base", "(camera)", "100"])]
     here = tmp_path / "out"
     here.mkdir()
     proc = Proc(kame_tool("kame.cli.view_frames", function), graph.env, cwd=here)
     graph.procs.append(proc)
-    graph.finish(proc, timeout=40)
+    out = graph.finish(proc, timeout=40)
     dot = (here / "frames.gv").read_text()
     assert dot.splitlines()[0] == first_line
-    assert '"world" -> "base"' in dot and '"base" -> "(camera)"' in dot
+    heard = [(p.popen.poll(), "".join(p.out), "".join(p.err)) for p in publishers]
+    assert '"world" -> "base"' in dot and '"base" -> "(camera)"' in dot, f"{dot}\n{out}\npublishers: {heard}"
     assert "view_frames Result" in dot
     pdf = (here / "frames.pdf").read_bytes()
     assert pdf_is_well_formed(pdf)

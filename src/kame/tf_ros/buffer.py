@@ -39,6 +39,7 @@ class Buffer:
         self._time_type = time_type
         self._last_report: dict[str, float] = {}
         self._latest_input = 0
+        self._input_order = threading.Lock()
 
     def _warn(self, text: str) -> None:
         if text.startswith("TF_DENORMALIZED_QUATERNION"):  # normalized and stored: a warning
@@ -95,6 +96,13 @@ class Buffer:
         if now:
             self._latest_input = now
         self._store(transforms, authority, is_static)
+
+    def receive_at(self, transforms: list[Any], authority: str, is_static: bool, clock: Callable[[], int]) -> None:
+        """receive() at the time `clock` gives (ns), read while no other message is handed over:
+        /tf and /tf_static arrive on threads of their own, and a time read before another
+        message's but handed over after it would look like the clock going back (a clear)."""
+        with self._input_order:
+            self.receive(transforms, authority, is_static, clock())
 
     def clear(self) -> None:
         with self._changed:

@@ -51,7 +51,10 @@ class TransformListener:
                 except Exception as exc:  # a bad frame is skipped; the connection stays
                     self.buffer.warn(f"cannot deserialize a tf2_msgs/TFMessage from {authority}: {exc}")
                     continue
-                self.buffer.receive(msg.transforms, authority, is_static, self._now() if self._now else 0)
+                if self._now is None:
+                    self.buffer.receive(msg.transforms, authority, is_static)
+                else:
+                    self.buffer.receive_at(msg.transforms, authority, is_static, self._now)
                 if self._on_message is not None:
                     self._on_message(msg, authority, is_static)
         return deliver
