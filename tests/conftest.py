@@ -13,7 +13,10 @@
 
 from __future__ import annotations
 
+import gc
 import os
+import sys
+from collections.abc import Iterator
 
 import pytest
 from hypothesis import HealthCheck, settings
@@ -41,3 +44,29 @@ def pytest_configure(config: pytest.Config) -> None:
 
 def pytest_report_header(config: pytest.Config) -> str:
     return f"kame shared memory: KAME_SHM={os.environ.get('KAME_SHM', '1 (default)')}"
+
+
+@pytest.hookimpl(hookwrapper=True, tryfirst=True)
+def pytest_runtest_teardown(item: pytest.Item) -> Iterator[None]:
+    yield
+    _delete_what_qt_tests_left()
+
+
+def _delete_what_qt_tests_left() -> None:
+    """Every window a test leaves is deleted now, on the main thread, and its garbage collected here.
+
+    A closed window's `deleteLater` waits for an event loop (a plain processEvents does not run it:
+    one test left 100 such widgets), and a top-level widget belongs to its Python wrapper, so the
+    cyclic collector run by any later test's thread (a process' output reader) could destroy it
+    there while the main thread processed Qt events. The suite once died of a segmentation fault
+    inside pytest-qt's processEvents with only such threads running."""
+    widgets = sys.modules.get("PySide6.QtWidgets")
+    if widgets is None or widgets.QApplication.instance() is None:
+        return
+    from PySide6.QtCore import QCoreApplication, QEvent
+
+    for window in widgets.QApplication.topLevelWidgets():
+        window.close()
+        window.deleteLater()
+    QCoreApplication.sendPostedEvents(None, QEvent.Type.DeferredDelete)
+    gc.collect()

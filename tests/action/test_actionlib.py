@@ -85,8 +85,11 @@ def test_fibonacci_tutorial_pair_runs_unchanged(graph: ActionGraph) -> None:
 
 
 def test_averaging_tutorial(graph: ActionGraph) -> None:
+    """The client waits 30 s of ROS time for 101 samples, one every 0.05 s. The clock runs at 5x, one
+    sample per tick: at 10x a starved CI machine gave the number source too few ticks (3 s of wall
+    time) and the client timed out."""
     graph.run(kame_command("kame.cli.rosparam", "set", "/use_sim_time", "true"))
-    graph.start([sys.executable, str(PEERS / "sim_clock.py")])
+    graph.start([sys.executable, str(PEERS / "sim_clock.py"), "0.05"])
     graph.start([sys.executable, str(TUTORIAL_SCRIPTS / "averaging_server")])
     graph.start([sys.executable, str(TUTORIAL_SCRIPTS / "gen_numbers.py")])
     out, err = graph.run([sys.executable, str(TUTORIAL_SCRIPTS / "averaging_client")], timeout=30)

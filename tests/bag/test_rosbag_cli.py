@@ -115,7 +115,8 @@ seq = 0
 while not rospy.is_shutdown():
     now = time.time()
     pub.publish(String(data=f"{seq:08d} {now:.6f}".ljust(96)))  # 100 bytes serialized
-    print(seq, now, flush=True)
+    sys.stdout.write(f"{seq} {now}\\n")  # one write: SIGINT between print's pieces left a line without its stamp
+    sys.stdout.flush()
     seq += 1
     rate.sleep()
 """
