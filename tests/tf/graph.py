@@ -7,6 +7,8 @@ import os
 import subprocess
 import sys
 import textwrap
+import time
+import xmlrpc.client
 from pathlib import Path
 
 import pytest
@@ -44,6 +46,17 @@ class Graph:
 
     def real(self, code: str, *args: str) -> Proc:
         return self.start([SYSTEM_PYTHON, "-c", textwrap.dedent(code), *args])
+
+    def wait_for_publishers(self, *topics: str, timeout: float = 30.0) -> None:
+        """Until each topic has a publisher registered with the master."""
+        master = xmlrpc.client.ServerProxy(self.uri)
+        deadline = time.monotonic() + timeout
+        while True:
+            published = {topic for topic, nodes in master.getSystemState("/test")[2][0] if nodes}
+            if published.issuperset(topics):
+                return
+            assert time.monotonic() < deadline, f"no publisher of {set(topics) - published}"
+            time.sleep(0.05)
 
     def finish(self, proc: Proc, timeout: float = 30) -> str:
         """Wait for a program that ends by itself; its stdout (it must exit 0)."""

@@ -105,6 +105,7 @@ def pdf_is_well_formed(data: bytes) -> bool:
 def test_view_frames_writes_gv_and_pdf(graph: Graph, tmp_path: Path, function: str, first_line: str) -> None:
     publishers = [graph.start([*STATIC_TF2, "1", "0", "0", "0", "0", "0", "world", "base"]),
                   graph.start([*STATIC_TF, "0", "1", "0", "0", "0", "0", "base", "(camera)", "100"])]
+    graph.wait_for_publishers("/tf", "/tf_static")  # view_frames listens 5 s: a publisher still starting misses it
     here = tmp_path / "out"
     here.mkdir()
     proc = Proc(kame_tool("kame.cli.view_frames", function), graph.env, cwd=here)
