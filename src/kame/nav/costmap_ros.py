@@ -140,7 +140,8 @@ class CostmapROS:
         grid.info.height, grid.info.width = costs.shape
         grid.info.origin.position.x, grid.info.origin.position.y = origin
         grid.info.origin.orientation.w = 1.0
-        grid.data = _TRANSLATION[costs].reshape(-1).tolist()
+        # int8[] fields take numpy arrays whole; a list of every cell cost more than the publish itself.
+        grid.data = _TRANSLATION[costs].reshape(-1)
         self.grid_pub.publish(grid)
 
     def _publish_footprint(self, pose: tuple[float, float, float]) -> None:

@@ -129,7 +129,7 @@ class SlamGmapping:
         info.height, info.width = view.cells.shape
         info.origin.position.x, info.origin.position.y = view.origin
         info.origin.orientation.w = 1.0
-        grid.data = view.cells.reshape(-1).tolist()
+        grid.data = view.cells.reshape(-1).copy()  # a copy: the filter keeps updating its cells
         with self.lock:
             self.map_msg = grid
         self.map_pub.publish(grid)

@@ -59,7 +59,7 @@ def grid_message(grid: Grid, frame_id: str, stamp: Any) -> Any:
     msg.header.frame_id = frame_id
     msg.header.stamp = stamp
     msg.info = info
-    msg.data = grid.cells.reshape(-1).tolist()
+    msg.data = grid.cells.reshape(-1)  # int8[] fields take numpy arrays whole
     return msg
 
 

@@ -317,7 +317,7 @@ class Simulator:
         msg.time_increment = 0.0
         msg.scan_time = 1.0 / laser.rate
         msg.range_min, msg.range_max = laser.range_min, laser.range_max
-        msg.ranges = ranges.tolist()
+        msg.ranges = ranges.astype("float32")  # float32[] takes the array whole: no list per scan
         return msg
 
     # ---------------------------------------------------------------- time
