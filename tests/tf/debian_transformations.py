@@ -22,8 +22,26 @@ def plain(value):
     return value
 
 
+def arcball_drag(initial, center, radius, axes, constrain, down, drag, accelerations):
+    """An Arcball driven as a viewer drives it: the matrices after a drag and after each next()."""
+    ball = transformations.Arcball(initial)
+    ball.place(center, radius)
+    if axes:
+        ball.setaxes(*axes)
+    ball.setconstrain(constrain)
+    ball.down(down)
+    ball.drag(drag)
+    matrices = [ball.matrix()]
+    for acceleration in accelerations:
+        ball.next(acceleration)
+        matrices.append(ball.matrix())
+    return matrices
+
+
 def call(name, args, kwargs):
     try:
+        if name == "Arcball":
+            return plain(arcball_drag(*args))
         return plain(getattr(transformations, name)(*args, **kwargs))
     except Exception as exc:  # the type is compared
         return {"error": type(exc).__name__}

@@ -11,6 +11,7 @@ from __future__ import annotations
 import json
 import math
 import subprocess
+import warnings
 from pathlib import Path
 from typing import Any
 
@@ -93,6 +94,10 @@ def batch(rng: numpy.random.Generator) -> tuple[list[list[Any]], set[int]]:
         add("is_same_transform", tr.rotation_matrix(angles[0], vec), tr.rotation_matrix(angles[0], vec))
         add("arcball_map_to_sphere", rng.normal(size=2), [0.1, 0.2], 2.0)
         add("arcball_constrain_to_axis", rng.normal(size=3), tr.unit_vector(vec))
+        add("arcball_nearest_axis", rng.normal(size=3), [tr.unit_vector(rng.normal(size=3)) for _ in range(3)])
+        add("Arcball", rng.normal(size=4), rng.normal(size=2) * 100, 100.0 + rng.random() * 50,
+            [tr.unit_vector(rng.normal(size=3)) for _ in range(2)] if rng.random() > 0.5 else [],
+            bool(rng.random() > 0.5), rng.normal(size=2) * 60, rng.normal(size=2) * 60, [0.0, 0.2])
         # numpy.linalg-based inverses
         rot = tr.rotation_matrix(angles[1], vec, point)
         add("rotation_from_matrix", rot, tolerant=True)
@@ -104,6 +109,12 @@ def batch(rng: numpy.random.Generator) -> tuple[list[list[Any]], set[int]]:
         add("superimposition_matrix", rng.normal(size=(3, 6)), rng.normal(size=(3, 6)), scaling=True,
             usesvd=False, tolerant=True)
         add("inverse_matrix", rot, tolerant=True)
+        normal = tr.unit_vector(rng.normal(size=3))
+        add("projection_from_matrix", tr.projection_matrix(point, normal), tolerant=True)
+        add("projection_from_matrix", tr.projection_matrix(point, normal, perspective=rng.normal(size=3) * 3),
+            tolerant=True)
+        add("projection_from_matrix", tr.projection_matrix(point, normal, perspective=rng.normal(size=3) * 3,
+                                                           pseudo=True), pseudo=True, tolerant=True)
     # bad input: the same errors
     add("euler_matrix", 0.0, 0.0, 0.0, axes="nope")
     add("shear_matrix", 0.3, [1, 0, 0], [0, 0, 0], [1, 0, 0])
@@ -114,11 +125,32 @@ def batch(rng: numpy.random.Generator) -> tuple[list[list[Any]], set[int]]:
 
 
 REBUILD = {"rotation_from_matrix": tr.rotation_matrix, "reflection_from_matrix": tr.reflection_matrix,
-           "scale_from_matrix": tr.scale_matrix, "decompose_matrix": tr.compose_matrix}
+           "scale_from_matrix": tr.scale_matrix, "decompose_matrix": tr.compose_matrix,
+           "projection_from_matrix": tr.projection_matrix}
+
+
+
+def arcball_drag(initial: Any, center: Any, radius: float, axes: list[Any], constrain: bool, down: Any,
+                 drag: Any, accelerations: list[float]) -> list[Any]:
+    """An Arcball driven as a viewer drives it: the matrices after a drag and after each next()."""
+    ball = tr.Arcball(initial)
+    ball.place(center, radius)
+    if axes:
+        ball.setaxes(*axes)
+    ball.setconstrain(constrain)
+    ball.down(down)
+    ball.drag(drag)
+    matrices = [ball.matrix()]
+    for acceleration in accelerations:
+        ball.next(acceleration)
+        matrices.append(ball.matrix())
+    return matrices
 
 
 def kame_call(name: str, args: list[Any], kwargs: dict[str, Any]) -> Any:
     try:
+        if name == "Arcball":
+            return plain(arcball_drag(*args))
         return plain(getattr(tr, name)(*args, **kwargs))
     except Exception as exc:
         return {"error": type(exc).__name__}
@@ -180,3 +212,30 @@ def test_quaternions_are_x_y_z_w() -> None:
 def test_unknown_axes_is_a_key_error() -> None:
     with pytest.raises(KeyError):
         tr.quaternion_from_euler(0, 0, 0, "xyz")
+
+
+DEBIAN_SOURCE = Path("/usr/lib/python3/dist-packages/tf/transformations.py")
+
+
+@pytest.mark.skipif(not DEBIAN_SOURCE.exists(), reason="Debian's python3-tf is not installed")
+def test_the_numpy_linalg_inverses_are_upstreams_to_the_bit_on_one_numpy() -> None:
+    """A shear matrix is defective (eigenvalue 1 three times), so what shear_from_matrix recovers
+    from LAPACK's eigenvectors changes in its third digit between numpy builds: it cannot be
+    compared with Debian's process. Upstream's own source, run on this interpreter's numpy, must
+    give kame's answers bit for bit, for it and the other eig/svd-based inverses."""
+    upstream: dict[str, Any] = {}
+    with warnings.catch_warnings():  # its docstrings' escapes are Python 2's
+        warnings.simplefilter("ignore", DeprecationWarning)
+        exec(compile(DEBIAN_SOURCE.read_text(), str(DEBIAN_SOURCE), "exec"), upstream)
+    rng = numpy.random.default_rng(5)
+    for _ in range(50):
+        vec, point = rng.normal(size=3), rng.normal(size=3)
+        normal = tr.unit_vector(numpy.cross(vec, rng.normal(size=3)))
+        angle = float(rng.uniform(-1.2, 1.2))
+        cases = [("shear_from_matrix", tr.shear_matrix(angle, tr.unit_vector(numpy.cross(normal, vec)), point, normal)),
+                 ("projection_from_matrix", tr.projection_matrix(point, normal, perspective=rng.normal(size=3))),
+                 ("rotation_from_matrix", tr.rotation_matrix(angle, vec, point)),
+                 ("scale_from_matrix", tr.scale_matrix(angle + 2.0, point, vec)),
+                 ("reflection_from_matrix", tr.reflection_matrix(point, vec))]
+        for name, matrix in cases:
+            assert plain(getattr(tr, name)(matrix)) == plain(upstream[name](matrix)), name

@@ -30,6 +30,7 @@ out.append(tr.lookupTransform("arm", "world", rospy.Time(0)))
 out.append([tr.canTransform("world", "arm", stamp), tr.canTransform("world", "arm", rospy.Time(9)),
             tr.frameExists("arm"), tr.frameExists("ghost"), sorted(tr.getFrameStrings())])
 out.append(tr.getLatestCommonTime("world", "arm").to_sec())
+out.append(sorted(tr.allFramesAsString().splitlines()))  # tf2 lists frames in no fixed order
 p = PointStamped()
 p.header.frame_id, p.header.stamp = "arm", stamp
 p.point.x, p.point.y, p.point.z = 1.0, 2.0, 3.0
