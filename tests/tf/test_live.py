@@ -5,7 +5,9 @@ process is stopped by its PID."""
 
 from __future__ import annotations
 
+import subprocess
 import sys
+import xmlrpc.client
 from pathlib import Path
 
 from .graph import DEBIAN_STATIC, DEBIAN_TF_ECHO, Graph, debian
@@ -203,3 +205,53 @@ def test_buffer_client_and_server_with_debian(graph: Graph) -> None:
     graph.procs.pop().stop()
     graph.start([sys.executable, BUFFER_SERVER])
     assert graph.finish(graph.real(BUFFER_CLIENT)).splitlines() == EXPECTED_ANSWERS
+
+
+SIM_CLOCK_THAT_JUMPS_BACK = """
+    import threading, rospy
+    from geometry_msgs.msg import TransformStamped
+    from rosgraph_msgs.msg import Clock
+    from tf2_msgs.msg import TFMessage
+    rospy.init_node('looping_bag')
+    clock = rospy.Publisher('/clock', Clock, queue_size=100)
+    tf = rospy.Publisher('/tf', TFMessage, queue_size=100)
+    pause = threading.Event()
+    while not (clock.get_num_connections() and tf.get_num_connections()):
+        pause.wait(0.05)
+    # rosbag play --loop: sim time runs 100 -> 101 s, then starts again at 50 s
+    for start in (100.0, 50.0):
+        for step in range(21):
+            now = rospy.Time.from_sec(start + 0.05 * step)
+            clock.publish(Clock(clock=now))
+            t = TransformStamped()
+            t.header.stamp, t.header.frame_id, t.child_frame_id = now, 'odom', 'base'
+            t.transform.translation.x, t.transform.rotation.w = start, 1.0
+            tf.publish(TFMessage(transforms=[t]))
+            pause.wait(0.05)
+    pause.wait(60)
+"""
+
+
+def test_a_clock_jumping_back_clears_the_listeners_buffer(graph: Graph) -> None:
+    """Sim time going back (a bag played in a loop) clears a live TransformListener's buffer, as
+    tf2_ros's does, with its warning: the old stamps are gone and the new ones are looked up."""
+    xmlrpc.client.ServerProxy(graph.uri).setParam("/test", "/use_sim_time", True)
+    listener = graph.kame("""
+        import rospy, tf2_ros
+        rospy.init_node('looker')
+        buffer = tf2_ros.Buffer()
+        tf2_ros.TransformListener(buffer)
+        first = buffer.lookup_transform('odom', 'base', rospy.Time.from_sec(100.5), rospy.Duration(30))
+        print('before', first.transform.translation.x, flush=True)
+        later = buffer.lookup_transform('odom', 'base', rospy.Time.from_sec(50.5), rospy.Duration(30))
+        print('after', later.transform.translation.x, flush=True)
+        print('old stamp', buffer.can_transform('odom', 'base', rospy.Time.from_sec(100.5)), flush=True)
+    """)
+    graph.kame(SIM_CLOCK_THAT_JUMPS_BACK)
+    try:
+        listener.popen.wait(60)
+    except subprocess.TimeoutExpired:
+        pass
+    out, err = listener.stop()
+    assert out.splitlines() == ["before 100.0", "after 50.0", "old stamp False"], err
+    assert "Detected jump back in time" in err
