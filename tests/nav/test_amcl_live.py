@@ -69,3 +69,20 @@ def test_amcl_tracks_the_turtlebot_from_a_wrong_initial_pose(tmp_path: Path) -> 
         assert amcl.popen.returncode == 0  # Ctrl-C ends it, no SIGKILL needed
         # a scan's callback still running as it shut down is no "bad callback" on the console
         assert not [line for line in amcl.out + amcl.err if "bad callback" in line or "Traceback" in line]
+
+
+def test_a_laser_model_amcl_does_not_run_is_named_once_at_start_up(tmp_path: Path) -> None:
+    """`beam` and `likelihood_field_prob` (amcl's other two models) run the likelihood field, and
+    each amcl says so once, naming the value; the TurtleBot's likelihood_field says nothing."""
+    with master(tmp_path) as sim:
+        started = {model: sim.start("amcl", "amcl", f"__name:=amcl_{model}", f"_laser_model_type:={model}",
+                                    wait="Requesting the map")  # past reading its parameters, no map served
+                   for model in ("beam", "likelihood_field_prob", "likelihood_field")}
+        for model, amcl in started.items():
+            out, err = amcl.stop()  # all it printed, both streams read to their ends
+            said = [line for line in (out + err).splitlines() if "laser_model_type" in line]
+            if model == "likelihood_field":
+                assert said == [], said
+            else:
+                assert len(said) == 1 and said[0].startswith("[ WARN]") and said[0] in err, said
+                assert f'"{model}" is not implemented here; using the likelihood_field model instead' in said[0], said

@@ -9,7 +9,10 @@ As navigation's amcl: the map from the `static_map` service (or the `map` topic 
 (stamped transform_tolerance ahead); listens to `initialpose`; serves `global_localization`
 and `request_nomotion_update` (std_srvs/Empty). The filter updates when the odometry moved
 ~update_min_d metres or turned ~update_min_a radians, resamples every ~resample_interval updates.
-Parameters are amcl's, with its defaults; the filter itself is kame.nav.amcl.
+Parameters are amcl's, with its defaults; the filter itself is kame.nav.amcl. Its laser model is
+the likelihood field (~laser_model_type's default, the TurtleBot's): amcl's `beam` and
+`likelihood_field_prob` models are not implemented, and asking for either (or for a model amcl
+does not know) says so once at start-up, naming the value, and runs the likelihood field.
 """
 
 from __future__ import annotations
@@ -31,6 +34,8 @@ from kame.tf_ros.buffer import Buffer
 from kame.tf_ros.node_io import TransformBroadcaster, TransformListener
 
 _FILTER_FIELDS = FilterParams.__dataclass_fields__
+LASER_MODEL = "likelihood_field"
+UNIMPLEMENTED_LASER_MODELS = ("beam", "likelihood_field_prob")
 
 
 def _param(name: str, default: Any) -> Any:
@@ -43,6 +48,16 @@ def filter_params() -> FilterParams:
         kind = int if spec.type in ("int", int) else str if spec.type in ("str", str) else float
         values[name] = kind(_param(name, spec.default))
     return FilterParams(**values)
+
+
+def laser_model_warning(model: str) -> str | None:
+    """What to tell a user whose ~laser_model_type is not the model this amcl runs (None when it is)."""
+    if model == LASER_MODEL:
+        return None
+    if model in UNIMPLEMENTED_LASER_MODELS:
+        return (f'~laser_model_type "{model}" is not implemented here; using the {LASER_MODEL} model instead '
+                f'(its laser_z_hit, laser_z_rand, laser_sigma_hit and laser_likelihood_max_dist)')
+    return f'Unknown laser model type "{model}"; defaulting to {LASER_MODEL} model'  # amcl's own words
 
 
 def yaw_of(q: Any) -> float:
@@ -63,6 +78,11 @@ def inverse(a: tuple[float, float, float]) -> tuple[float, float, float]:
 class Amcl:
     def __init__(self) -> None:
         self.params = filter_params()
+        # said once here: amcl reads the parameter only at start-up (and on dynamic_reconfigure,
+        # which this amcl does not serve), so a beam-model launch file would otherwise run unnoticed
+        warning = laser_model_warning(str(_param("laser_model_type", LASER_MODEL)))
+        if warning is not None:
+            _log.emit(_log.WARN, "%s", (warning,))
         self.global_frame = str(_param("global_frame_id", "map"))
         self.odom_frame = str(_param("odom_frame_id", "odom"))
         self.base_frame = str(_param("base_frame_id", "base_link"))
