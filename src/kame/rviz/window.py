@@ -34,7 +34,7 @@ from PySide6.QtWidgets import (
 
 from kame.rviz import config as rviz_config
 from kame.rviz.camera import FPS, ORBIT, TOP_DOWN, Camera
-from kame.rviz.display import ERROR, OK, WARN, Display, Status, format_color, parse_color
+from kame.rviz.display import ERROR, OK, WARN, Display, Status, edited_option, format_color, parse_color
 from kame.rviz.image_panels import ImagePanels, decode_compressed
 from kame.rviz.interact_view import InteractRouter
 from kame.rviz.interactive import InteractiveMarkers
@@ -603,8 +603,7 @@ class RvizWindow(QMainWindow):
             self.set_global(key, value)
             return
         display = self.config.displays[self.tree.indexOfTopLevelItem(parent) - 1]
-        old = display.options.get(key)
-        display.options[key] = type(old)(value) if isinstance(old, (int, float)) and _is_number(value) else value
+        display.options[key] = edited_option(display.options.get(key), value)
         if key in ("Topic", "Marker Topic", "Image Topic", "Update Topic"):
             display.reset()
             self._rewatch()
