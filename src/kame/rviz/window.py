@@ -44,6 +44,7 @@ from kame.rviz.robot import RobotModel
 from kame.rviz.scene import Batch, Scene
 from kame.rviz.sensors import Image
 from kame.rviz.source import RvizSource
+from kame.rviz.stats import FrameStats
 from kame.rviz.tools import Measure, Selection
 from visualization_msgs.msg import InteractiveMarkerFeedback
 
@@ -466,6 +467,8 @@ class RvizWindow(QMainWindow):
         self.timer.timeout.connect(self.frame)
         self.timer.start(max(1, 1000 // max(1, config.frame_rate)))
         self.started = time.monotonic()
+        self.stats = FrameStats(self.started)
+        self.view.frameSwapped.connect(self.stats.frame_shown)  # drawn and shown: a grab is neither
 
     # -------------------------------------------------------------- building
 
@@ -664,6 +667,7 @@ class RvizWindow(QMainWindow):
 
     def frame(self) -> None:
         now = time.monotonic()
+        self.stats.turned(now)
         if self.source is not None:
             taken = self.source.take()
             for display in self.config.displays:
