@@ -15,7 +15,8 @@ from kame.cli.roslaunch import load_config
 from kame.launch.errors import LaunchError
 from kame.launch.model import Executable, LaunchConfig
 from kame.launch.model import Node as ModelNode
-from roslaunch.core import Machine, Master, Node, Param, RLException, Test
+from kame.launch.remote import ENV_LOADER
+from roslaunch.core import Machine, Master, Node, Param, RLException, Test, is_machine_local
 
 __all__ = ["ROSLaunchConfig", "load_config_default", "replay"]
 
@@ -35,6 +36,8 @@ class ROSLaunchConfig:
         self.roslaunch_files: list[str] = []
         self.config_errors: list[str] = []
         self.machines[""] = Machine("", "localhost")  # where nodes without a machine run, as roslaunch has it
+        self._assign_machines_complete = False
+        self._remote_nodes_present = False
 
     def add_roslaunch_file(self, f: str) -> None:
         if f not in self.roslaunch_files:
@@ -56,7 +59,10 @@ class ROSLaunchConfig:
         self.params[p.key] = p
 
     def add_machine(self, m: Machine, verbose: bool = True) -> bool:
-        """False when a machine of that name is there already, the same; RLException when different."""
+        """False when a machine of that name is there already, the same; RLException when different.
+        A machine without an env-loader gets the one kame's roslaunch runs its nodes with."""
+        if not m.env_loader:
+            m.env_loader = str(ENV_LOADER)
         known = self.machines.get(m.name)
         if known is not None:
             if known.config_key() != m.config_key():
@@ -80,8 +86,31 @@ class ROSLaunchConfig:
         (self.nodes_core if core else self.nodes).append(node)
 
     def has_remote_nodes(self) -> bool:
-        return any(n.machine_name and self.machines[n.machine_name].address not in ("localhost", "127.0.0.1")
-                   for n in self.nodes)
+        """Whether a node runs on another machine; RLException before assign_machines()."""
+        if not self._assign_machines_complete:
+            raise RLException("ERROR: has_remote_nodes() cannot be called until prelaunch check is complete")
+        return self._remote_nodes_present
+
+    def _select_machine(self, node: Node) -> Machine:
+        if not node.machine_name:
+            return self.machines[""]
+        if node.machine_name not in self.machines:
+            raise RLException(f"ERROR: unknown machine [{node.machine_name}]")
+        return self.machines[node.machine_name]
+
+    def assign_machines(self) -> None:
+        """Set each node's `machine` (core nodes: this one); machines alike but for their name are
+        taken as one, the first named. Once only."""
+        if self._assign_machines_complete:
+            return
+        self._assign_machines_complete = True
+        for node in self.nodes_core:
+            node.machine = self.machines[""]
+        unified: dict[str, Machine] = {}
+        for node in (*self.nodes, *self.tests):
+            machine = self._select_machine(node)
+            node.machine = unified.setdefault(machine.config_key(), machine)
+        self._remote_nodes_present = any(not is_machine_local(m) for m in unified.values())
 
     def summary(self, local: bool = False) -> str:
         """The PARAMETERS and NODES summary roslaunch prints before starting."""
@@ -157,4 +186,6 @@ def load_config_default(roslaunch_files: Sequence[Any], port: int | None, roslau
     if port:
         ros_config.master = Master(uri=f"http://{ros_config.master.get_host()}:{port}/")
     replay(config, ros_config, verbose)
+    if assign_machines:
+        ros_config.assign_machines()
     return ros_config

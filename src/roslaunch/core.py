@@ -6,10 +6,17 @@ from __future__ import annotations
 from typing import Any
 
 import rosgraph
+from kame.launch.runner import address_is_local
 from kame.launch.scripting import Node, RLException
 from rosgraph.network import parse_http_host_and_port
 
-__all__ = ["Machine", "Master", "Node", "Param", "RLException", "Test"]
+__all__ = ["Machine", "Master", "Node", "Param", "RLException", "Test", "is_machine_local"]
+
+
+def is_machine_local(machine: Machine) -> bool:
+    """True when `machine`'s address is this host, where kame's roslaunch runs its nodes itself
+    (kame does not, as roslaunch does, also send a machine with another `user` over SSH)."""
+    return address_is_local(machine.address)
 
 
 class Param:
@@ -70,9 +77,9 @@ class Machine:
         return hash(self.config_key())
 
     def config_key(self) -> str:
-        """What makes two machines the same place to run (not their names)."""
-        env_loader = self.env_loader or "$ROS_ENV_LOADER"
-        return f"Machine(address[{self.address}] env_loader[{env_loader}] user[{self.user}] ssh_port[{self.ssh_port}])"
+        """What makes two machines the same place to run (not their names), as roslaunch writes it."""
+        return (f"Machine(address[{self.address}] env_loader[{self.env_loader}] ssh_port[{self.ssh_port}] "
+                f"user[{self.user or ''}] password[{self.password or ''}] timeout[{self.timeout}])")
 
     def __repr__(self) -> str:
         return f"[{self.name}] <user>{self.user}</user><address>{self.address}</address>"

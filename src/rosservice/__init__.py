@@ -68,11 +68,16 @@ def get_service_class_by_name(service_name: str) -> Any:
     return service_class
 
 
-def get_service_list(node: str | None = None, namespace: str | None = None) -> list[str]:
-    """The services the master knows, sorted; only those of `node` / under `namespace` if given."""
+def get_service_list(node: str | None = None, namespace: str | None = None,
+                     include_nodes: bool = False) -> list[str] | list[tuple[str, list[str]]]:
+    """The services the master knows, sorted; only those of `node` / under `namespace` if given;
+    `include_nodes`: (service, [providing node]) pairs."""
     with _tool() as t:
-        services = t.services(namespace)
-    return sorted(name for name, providers in services if node is None or node in providers)
+        services = sorted((name, providers) for name, providers in t.services(namespace)
+                          if node is None or node in providers)
+    if include_nodes:
+        return [(name, list(providers)) for name, providers in services]
+    return [name for name, _ in services]
 
 
 def get_service_node(service_name: str) -> str | None:

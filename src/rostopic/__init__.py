@@ -14,15 +14,15 @@ from typing import Any
 
 from kame.cli.rostopic import _common
 from kame.cli.rostopic.info import info_text
-from kame.cli.topic_stats import BandwidthStats, RateStats, format_rate, format_rate_table
-from kame.client import clock, core
+from kame.cli.topic_stats import BandwidthStats, DelayStats, RateStats, format_rate, format_rate_table
+from kame.client import clock, core, log
 from kame.msg import lookup
 from kame.msg.errors import MessageError
 from kame.msg.fieldpath import FieldPath, FieldPathError
 from kame.rostime import Time
 
-__all__ = ["ROSTopicBandwidth", "ROSTopicException", "ROSTopicHz", "ROSTopicIOException", "get_info_text",
-           "get_topic_class", "get_topic_type", "msgevalgen"]
+__all__ = ["ROSTopicBandwidth", "ROSTopicDelay", "ROSTopicException", "ROSTopicHz", "ROSTopicIOException",
+           "get_info_text", "get_topic_class", "get_topic_list", "get_topic_type", "msgevalgen"]
 
 
 class ROSTopicException(Exception):
@@ -107,6 +107,15 @@ def get_topic_class(topic: str, blocking: bool = False) -> tuple[Any, str | None
     return msg_class, real_topic, msg_eval
 
 
+def get_topic_list(master: Any = None) -> tuple[list[tuple[str, str, list[str]]], list[tuple[str, str, list[str]]]]:
+    """(publications, subscriptions), each a list of (topic, type, nodes); the type is
+    `unknown type` when the master has none. `master`: a rosgraph.Master to ask instead."""
+    if master is not None:
+        return _common.typed_topics(master.getSystemState(), master.getTopicTypes())
+    with _master_session():
+        return _common.topic_list()
+
+
 def get_info_text(topic: str) -> str:
     """What `rostopic info` prints for `topic`."""
     with _master_session():
@@ -184,5 +193,45 @@ class ROSTopicBandwidth:
         """`average: 1.27KB/s` and its details; nothing before two messages arrived."""
         with self.lock:
             report = self._stats.report(time.time())
+        if report is not None:
+            print(report)
+
+
+class ROSTopicDelay:
+    """The delay of messages with a header (arrival in ROS time minus header.stamp), fed by a
+    subscription callback (`callback_delay`)."""
+
+    def __init__(self, window_size: int) -> None:
+        self.lock = threading.Lock()
+        self._stats = DelayStats(window_size)
+        self.window_size = self._stats.window
+
+    @property
+    def delays(self) -> list[float]:
+        return list(self._stats.delays)
+
+    def callback_delay(self, msg: Any) -> None:
+        if not msg._has_header:
+            log.emit(log.ERROR, "msg does not have header", (), depth=2)
+            return
+        with self.lock:
+            now = clock.get_rostime()
+            notice = self._stats.add(0.0, 0.0) if now.is_zero() else self._stats.add(
+                now.to_sec(), msg.header.stamp.to_sec())
+        if notice:
+            print(notice)
+
+    def get_delay(self) -> tuple[float, float, float, float, int] | None:
+        """(mean delay, min, max, std dev, window) since the last call; None when nothing new arrived."""
+        with self.lock:
+            summary = self._stats.summary()
+        if summary is None:
+            return None
+        return summary.mean, summary.min, summary.max, summary.std_dev, summary.window
+
+    def print_delay(self) -> None:
+        """`average delay: 0.012` and its details; nothing before a delay was measured."""
+        with self.lock:
+            report = self._stats.report()
         if report is not None:
             print(report)

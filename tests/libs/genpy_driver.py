@@ -1,5 +1,6 @@
-"""genpy's base, generate_struct, generate_numpy, check_type and MsgGenerator/SrvGenerator on
-one JSON request; prints the answers as JSON. Run by kame's interpreter and Debian's (real genpy)."""
+"""genpy's base, generate_struct, generate_numpy, check_type, MsgGenerator/SrvGenerator, the
+generator's helpers (default_value, compute_import, ...) and msg_generator/srv_generator on one
+JSON request; prints the answers as JSON. Run by kame's interpreter and Debian's (real genpy)."""
 
 from __future__ import annotations
 
@@ -8,6 +9,7 @@ import io
 import json
 import sys
 import tempfile
+import types
 from pathlib import Path
 from typing import Any
 
@@ -110,7 +112,77 @@ def generated(package: dict[str, Any]) -> dict[str, Any]:
     return answer
 
 
+class Context:
+    """The two questions genpy's helpers ask of genmsg's MsgContext, over specs registered here."""
+
+    def __init__(self, specs: dict[str, Any]) -> None:
+        self.specs = specs
+
+    def is_registered(self, full_msg_type: str) -> bool:
+        return full_msg_type in self.specs
+
+    def get_registered(self, full_msg_type: str) -> Any:
+        return self.specs[full_msg_type]
+
+
+def attempt(function: Any, *args: Any) -> Any:
+    try:
+        return function(*args)
+    except Exception as exc:  # the answer is which exception, compared with upstream's
+        return "raises " + type(exc).__name__
+
+
+def helpers(request: dict[str, Any]) -> dict[str, Any]:
+    import roslib.msgs
+
+    context = Context({full: roslib.msgs.load_from_string(text, full.split("/")[0], full, full.split("/")[1])
+                       for full, text in request["registered"].items()})
+    safe = generator.make_python_safe(roslib.msgs.load_from_string(request["unsafe"], "pkg", "pkg/Unsafe", "Unsafe"))
+    return {"pkg_type": [list(p) if isinstance(p := attempt(generator.compute_pkg_type, *case), tuple) else p
+                         for case in request["pkg_type"]],
+            "defaults": [attempt(generator.default_value, context, t, p) for t, p in request["defaults"]],
+            "constructors": [attempt(generator.compute_constructor, context, p, t) for p, t in request["defaults"]],
+            "imports": [attempt(generator.compute_import, context, p, t) for p, t in request["imports"]],
+            "safe": [safe.types, safe.names, [[c.type, c.name, c.val, c.val_text] for c in safe.constants],
+                     safe.full_name, safe.text]}
+
+
+def _spec(kind: str, path: Path, full_name: str) -> Any:
+    try:  # Debian's genpy asks genmsg's loader for the spec
+        import genmsg
+        import genmsg.msg_loader as loader
+    except ImportError:  # kame's generator reads the text and name
+        return None, types.SimpleNamespace(text=path.read_text(), full_name=full_name)
+    context = genmsg.MsgContext.create_default()
+    load = loader.load_msg_from_file if kind == "msg" else loader.load_srv_from_file
+    return context, load(context, str(path), full_name)
+
+
+def generated_by_functions(package: dict[str, Any]) -> dict[str, Any]:
+    """msg_generator/srv_generator's module text run: the classes it defines, used."""
+    answer: dict[str, Any] = {}
+    with tempfile.TemporaryDirectory() as tmp:
+        search = dict(package["search_path"])
+        for kind, function in (("msg", generator.msg_generator), ("srv", generator.srv_generator)):
+            folder = Path(tmp) / package["name"] / kind
+            folder.mkdir(parents=True)
+            search.setdefault(package["name"], [str(Path(tmp) / package["name"] / "msg")])
+            for name, text in sorted(package[kind].items()):
+                (folder / f"{name}.{kind}").write_text(text)
+            for name in sorted(package[kind]):
+                context, spec = _spec(kind, folder / f"{name}.{kind}", f"{package['name']}/{name}")
+                namespace: dict[str, Any] = {}
+                exec("\n".join(function(context, spec, search)), namespace)  # run as its import would
+                cls = namespace[name + "Request" if kind == "srv" else name]
+                buff = io.BytesIO()
+                cls().serialize(buff)
+                answer[name] = [cls._type, cls._md5sum, cls.__slots__, buff.getvalue().hex(),
+                                namespace[name]._md5sum]
+    return answer
+
+
 if __name__ == "__main__":
     request = json.load(sys.stdin)
     print(json.dumps({"struct": struct_helpers(request["patterns"]), "check_type": type_checks(request["check_type"]),
-                      "generated": generated(request["package"])}))
+                      "generated": generated(request["package"]), "helpers": helpers(request["helpers"]),
+                      "by_functions": generated_by_functions(request["package"])}))

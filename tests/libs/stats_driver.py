@@ -1,5 +1,5 @@
-"""Feeds rostopic.ROSTopicHz and ROSTopicBandwidth scripted arrival times and prints what they
-report. Run by kame's interpreter and by Debian's /usr/bin/python3 (its real rostopic)."""
+"""Feeds rostopic.ROSTopicHz, ROSTopicBandwidth and ROSTopicDelay scripted arrival times and
+prints what they report. Run by kame's interpreter and by Debian's /usr/bin/python3 (its real rostopic)."""
 
 from __future__ import annotations
 
@@ -56,6 +56,43 @@ def run(request: dict[str, Any]) -> list[Any]:
                     clock.now = at + 0.25
                     bw.print_bw()
         answers.append(out.getvalue())
+    answers.extend(_delays(request["delay"]))
+    return answers
+
+
+def _delays(cases: list[dict[str, Any]]) -> list[Any]:
+    """ROSTopicDelay reads ROS time: set as /clock would, then back to the wall clock."""
+    import rospy.rostime
+    from geometry_msgs.msg import PointStamped
+    from std_msgs.msg import String
+
+    initialized = rospy.rostime.is_rostime_initialized()
+    rospy.rostime.set_rostime_initialized(True)
+    answers: list[Any] = []
+    try:
+        for case in cases:
+            delay = rostopic.ROSTopicDelay(case["window"])
+            out = io.StringIO()
+            reports = []
+            with redirect_stdout(out):
+                delay.print_delay()  # nothing measured yet: prints nothing
+                for step, (at, stamp) in enumerate(case["arrivals"]):
+                    rospy.rostime._set_rostime(rospy.rostime.Time.from_sec(at))
+                    msg: Any = String()  # no header (stamp -1): not counted
+                    if stamp >= 0:
+                        msg = PointStamped()
+                        msg.header.stamp = rospy.rostime.Time.from_sec(stamp)
+                    delay.callback_delay(msg)
+                    if step % 6 == 2:
+                        reports.append(repr(delay.get_delay()))
+                    elif step % 6 == 5:
+                        delay.print_delay()
+                delay.print_delay()
+                delay.print_delay()  # straight after a report: no new messages
+            answers.append([reports, out.getvalue()])
+    finally:
+        rospy.rostime.switch_to_wallclock()
+        rospy.rostime.set_rostime_initialized(initialized)
     return answers
 
 

@@ -1,5 +1,7 @@
 """rospy.impl and rospy's internals that programs and upstream's tests reach for (the TCPROS
-names, rospy.impl.tcpros_service's ServiceProxy, the topic manager, validators, simtime,
+names and headers, tcpros_pubsub's TCPROSHandler, masterslave's ROSHandler (the node's slave
+API), rosout's RosOutHandler and load_rosout_handlers, rospy.impl.tcpros_service's
+ServiceProxy, the topic manager, validators, simtime,
 rospy.rostime's switch_to_wallclock and _set_rostime, rospy.client.load_command_line_node_params):
 the same answers as Debian's real rospy, from a node on a kame master."""
 
@@ -57,6 +59,53 @@ SCRIPT = textwrap.dedent("""
     out["has"] = [manager.has_publication("/chat"), manager.has_subscription("/chat"),
                   manager.has_subscription("/heard")]
     out["use_simtime"] = rospy.impl.simtime._is_use_simtime()
+    from rospy.impl import masterslave, rosout, tcpros_pubsub
+    import logging, os, threading, rosgraph
+    from rosgraph_msgs.msg import Log
+    sub_side = tcpros_pubsub.TCPROSSub("/chat", String, tcp_nodelay=True)
+    pub_side = tcpros_pubsub.TCPROSPub("/chat", String, is_latch=True, headers={"extra": "1", "type": "mine"})
+    out["headers"] = [sub_side.get_header_fields(), pub_side.get_header_fields(), sub_side.direction,
+                      pub_side.direction]
+    try:
+        tcpros_pubsub.TCPROSSub("/chat", dict)
+    except rospy.exceptions.TransportInitError as exc:
+        out["bad_class"] = str(exc)
+    tcpros = tcpros_pubsub.TCPROSHandler()
+    code, msg, where = tcpros.init_publisher("/chat", ["TCPROS"])
+    handler = masterslave.ROSHandler(rospy.get_name(), rosgraph.get_master_uri())
+    caller = "/tester"
+    requested = handler.requestTopic(caller, "/chat", [["UDPROS"], ["TCPROS"]])
+    out["tcpros"] = [tcpros.supports("TCPROS"), tcpros.supports("UDPROS"), tcpros.get_supported(), code,
+                     msg == "ready on %s:%s" % (where[1], where[2]), where[0], list(requested[2]) == where,
+                     tcpros.init_publisher("/chat", ["UDPROS"])[0]]
+    pid = handler.getPid(caller)
+    out["slave"] = [[pid[0], pid[2] == os.getpid()], handler.getName(caller), handler.getMasterUri(caller),
+                    sorted(handler.getPublications(caller)[2]), handler.getSubscriptions(caller),
+                    requested[0], handler.requestTopic(caller, "/nope", [["TCPROS"]])[0],
+                    handler.requestTopic(caller, "/chat", [["UDPROS"]])[0], handler.getBusInfo(caller),
+                    handler.getBusStats(caller)[0], handler.publisherUpdate(caller, "/heard", [])[0],
+                    handler.paramUpdate(caller, "/not_subscribed", 1)[0]]
+    logged, linked, done = [], threading.Event(), threading.Event()
+    def heard_log(m):
+        if m.msg == "probe":
+            linked.set()
+        if m.msg.startswith("impl:"):
+            logged.append([m.level, m.msg, m.name, m.file, m.function])
+            if m.msg == "impl: user warning":
+                done.set()
+    rospy.Subscriber("/rosout", Log, heard_log)
+    user = logging.getLogger("impl_user")
+    user.addHandler(rosout.RosOutHandler())
+    user.propagate = False
+    deadline = time.time() + 30
+    while not linked.wait(0.1) and time.time() < deadline:
+        user.warning("probe")  # until our own /rosout reaches us: then nothing published is lost
+    rosout.load_rosout_handlers(Log.ERROR)
+    rospy.logwarn("impl: below the level")
+    rospy.logerr("impl: error")
+    user.warning("impl: user warning")
+    done.wait(30)
+    out["rosout"] = logged
     rospy.rostime._set_rostime(rospy.Time(5, 6))
     out["set"] = [rospy.get_rostime().secs, rospy.get_rostime().nsecs, rospy.rostime.is_wallclock()]
     rospy.rostime.switch_to_wallclock()
@@ -96,8 +145,22 @@ def test_rospy_impl_answers(master_env: dict[str, str]) -> None:
     assert ours["pubs"] == [["/chat", "std_msgs/String"]] and ours["subs"] == [["/heard", "std_msgs/Int32"]]
     assert ours["has"] == [True, False, True] and ours["use_simtime"] is False
     assert ours["set"] == [5, 6, False] and ours["wall"] == [True, True]
+    sub_fields, pub_fields, sub_direction, pub_direction = ours["headers"]  # type: ignore[misc]
+    assert sub_fields["tcp_nodelay"] == "1" and sub_fields["callerid"] == "/impl_driver" and sub_direction == "i"
+    assert (pub_fields["latching"], pub_fields["type"], pub_fields["extra"], pub_direction) == ("1", "mine", "1", "o")
+    assert ours["bad_class"] == "Unable to initialize transport: data class is not a message data class"
+    assert ours["tcpros"] == [True, False, [["TCPROS"]], 1, True, "TCPROS", True, 0]
+    assert ours["slave"][:2] == [[1, True], [1, "", "/impl_driver"]]  # type: ignore[index]
+    assert ours["slave"][5:10] == [1, -1, 0, [1, "bus info", []], 1]  # type: ignore[index]
+    assert ours["rosout"] == [[8, "impl: error", "/impl_driver", "<string>", "<module>"],
+                              [4, "impl: user warning", "/impl_driver", "<string>", "<module>"]]
 
 
 @pytest.mark.skipif(not debian.has("rospy", "std_srvs.srv"), reason="Debian's rospy is not installed")
 def test_rospy_impl_answers_as_debians_rospy(master_env: dict[str, str]) -> None:
-    assert run(sys.executable, master_env) == run(str(debian.SYSTEM_PYTHON), master_env)
+    ours, theirs = run(sys.executable, master_env), run(str(debian.SYSTEM_PYTHON), master_env)
+    # rospy's load_rosout_handlers adds a second handler to a logger that has one: each line of
+    # rospy's own then reaches /rosout twice; kame's publishes it once
+    theirs["rosout"] = [line for i, line in enumerate(theirs["rosout"])  # type: ignore[arg-type]
+                        if i == 0 or line != theirs["rosout"][i - 1]]  # type: ignore[index]
+    assert ours == theirs

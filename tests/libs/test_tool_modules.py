@@ -3,6 +3,7 @@ against Debian's real modules where they run (the same calls, the same answers).
 
 from __future__ import annotations
 
+import json
 import random
 import sys
 from collections.abc import Iterator
@@ -64,6 +65,12 @@ def test_rostopic_types_and_classes(on_graph: dict[str, str]) -> None:
     assert rostopic.get_topic_class("/pose")[:2] == (PoseStamped, "/pose")
     assert rostopic.get_topic_type("/nothing") == (None, None, None)
     assert rostopic.get_topic_class("/nothing") == (None, None, None)
+    pubs, subs = rostopic.get_topic_list()
+    assert sorted(pubs) == [("/chatter", "std_msgs/String", ["/tools_node"]),
+                            ("/pose", "geometry_msgs/PoseStamped", ["/tools_node"]),
+                            ("/rosout", "rosgraph_msgs/Log", ["/tools_node"])]
+    assert subs == []  # no rosout node on this master
+    assert rostopic.get_topic_list(master=rosgraph.Master("/test")) == (pubs, subs)
     assert "Publishers: \n * /tools_node (" in rostopic.get_info_text("/chatter")
     with pytest.raises(rostopic.ROSTopicException, match="Unknown topic /nothing"):
         rostopic.get_info_text("/nothing")
@@ -86,6 +93,10 @@ def test_rosservice_type_call_and_listing(on_graph: dict[str, str]) -> None:
     assert "/add_two_ints" in rosservice.get_service_list()
     assert rosservice.get_service_list(node="/tools_node") == ["/add_two_ints", "/tools_node/get_loggers",
                                                                 "/tools_node/set_logger_level"]
+    assert rosservice.get_service_list(node="/tools_node", include_nodes=True) == [
+        ("/add_two_ints", ["/tools_node"]), ("/tools_node/get_loggers", ["/tools_node"]),
+        ("/tools_node/set_logger_level", ["/tools_node"])]
+    assert ("/add_two_ints", ["/tools_node"]) in rosservice.get_service_list(include_nodes=True)
     assert rosservice.get_service_node("/add_two_ints") == "/tools_node"
     assert str(rosservice.get_service_uri("/add_two_ints")).startswith("rosrpc://")
     request, response = rosservice.call_service("/add_two_ints", [3, 4])
@@ -156,11 +167,21 @@ def stats_request() -> dict[str, Any]:
             at += rng.choice([0.001, 0.01, 0.3])
             arrivals.append([round(at, 3), rng.choice([10, 900, 5000, 2_000_000])])
         bw_cases.append({"window": window, "arrivals": arrivals})
-    return {"hz": hz_cases, "bw": bw_cases}
+    delay_cases = []
+    for window in (-1, 2, 8):
+        at, arrivals = 200.0, []
+        for _ in range(50):
+            at += rng.choice([0.01, 0.1, 0.3])
+            arrivals.append([round(at, 3), round(at - rng.choice([0.0, 0.002, 0.05, 1.5]), 3)])
+        arrivals.insert(10, [at, -1.0])  # a message without a header
+        arrivals.insert(20, [0.0, 1.0])  # a clock reset
+        arrivals.insert(30, [50.0, 49.0])  # time going back: starts over
+        delay_cases.append({"window": window, "arrivals": arrivals})
+    return {"hz": hz_cases, "bw": bw_cases, "delay": delay_cases}
 
 
 @pytest.mark.skipif(not debian.has("rostopic"), reason="Debian's rostopic is not installed")
-def test_hz_and_bw_report_as_debians_rostopic() -> None:
+def test_hz_bw_and_delay_report_as_debians_rostopic() -> None:
     request = stats_request()
     theirs = debian.run(STATS, request)
     original = rostopic.time  # type: ignore[attr-defined]
@@ -168,7 +189,9 @@ def test_hz_and_bw_report_as_debians_rostopic() -> None:
         ours = run_stats(request)
     finally:
         rostopic.time = original  # type: ignore[attr-defined]
-    assert "average rate" in theirs[0][1] and "average: " in theirs[-1]
+    assert "average rate" in theirs[0][1] and "average: " in theirs[-4]
+    assert "average delay: " in theirs[-1][1] and "time has reset" in theirs[-1][1]
+    assert "no new messages" in theirs[-1][1]
     assert ours == theirs
 
 
@@ -180,16 +203,17 @@ def test_debians_modules_see_the_kame_graph_as_kames_do(on_graph: dict[str, str]
         "t = rostopic.get_topic_type('/pose/pose/position')\n"
         "print(json.dumps([t[0], t[1], rostopic.get_topic_type('/chatter')[:2],"
         " rosservice.get_service_type('/add_two_ints'), rosservice.get_service_node('/add_two_ints'),"
-        " '/tools_node' in rosnode.get_node_names()]))\n")
+        " '/tools_node' in rosnode.get_node_names(), [sorted(side) for side in rostopic.get_topic_list()],"
+        " sorted(rosservice.get_service_list(include_nodes=True))]))\n")
     theirs = _run_with_env(script, on_graph)
     t = rostopic.get_topic_type("/pose/pose/position")
     ours = [t[0], t[1], list(rostopic.get_topic_type("/chatter")[:2]), rosservice.get_service_type("/add_two_ints"),
-            rosservice.get_service_node("/add_two_ints"), "/tools_node" in rosnode.get_node_names()]
-    assert ours == theirs
+            rosservice.get_service_node("/add_two_ints"), "/tools_node" in rosnode.get_node_names(),
+            [sorted(side) for side in rostopic.get_topic_list()], rosservice.get_service_list(include_nodes=True)]
+    assert json.loads(json.dumps(ours)) == theirs  # tuples as JSON lists, as theirs come
 
 
 def _run_with_env(script: Path, env: dict[str, str]) -> Any:
-    import json
     import subprocess
 
     result = subprocess.run([str(debian.SYSTEM_PYTHON), str(script)], capture_output=True, text=True, timeout=60,

@@ -166,13 +166,19 @@ class DelayStats:
             self.delays.popleft()
         return None
 
+    def summary(self) -> Summary | None:
+        """The statistics since the last report, or None when nothing new arrived."""
+        if self.tn == self.last_tn or not self.delays:
+            return None
+        self.last_tn = self.tn
+        return _summary(self.delays)
+
     def report(self) -> str | None:
         """The report to print each second; None prints nothing (no delays measured yet)."""
         if not self.delays:
             return None
-        if self.tn == self.last_tn:
+        s = self.summary()
+        if s is None:
             return "no new messages"
-        self.last_tn = self.tn
-        s = _summary(self.delays)
         return (f"average delay: {s.mean:.3f}\n\tmin: {s.min:.3f}s max: {s.max:.3f}s "
                 f"std dev: {s.std_dev:.5f}s window: {s.window}")

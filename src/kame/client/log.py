@@ -134,11 +134,17 @@ def emit(level: int, msg: Any, args: tuple[Any, ...], depth: int = 3, caller: tu
     file, line, function, _ = caller or _caller(depth)
     _console(level, text, file, line, function)
     _file_logger.log(PY_LEVELS[level], text)
+    to_rosout(level, text, file, function, line)
+
+
+def to_rosout(level: int, text: str, file: str, function: str, line: int) -> None:
+    """Publish a log line on /rosout only (not the console or log file); nothing before the
+    node's /rosout publisher is up."""
     publish = _rosout_publish
     if publish is not None:
         try:
             publish(level, text, file, function, line)
-        except Exception:
+        except Exception:  # logging must never fail the caller; /rosout may be shutting down
             pass
 
 
@@ -146,12 +152,17 @@ _FROM_PY = {logging.DEBUG: DEBUG, logging.INFO: INFO, logging.WARNING: WARN, log
             logging.CRITICAL: FATAL}
 
 
+def level_of(levelno: int) -> int:
+    """The ROS level of a Python logging level (ERROR for one between them)."""
+    return _FROM_PY.get(levelno, ERROR)
+
+
 class _RuntimeRecords(logging.Handler):
     """Warnings and errors of kame's runtime (a refused connection, a bad peer) reach the
     console and /rosout like rospy's own internal messages do."""
 
     def emit(self, record: logging.LogRecord) -> None:
-        level = _FROM_PY.get(record.levelno, ERROR)
+        level = level_of(record.levelno)
         try:
             text = record.getMessage()
         except Exception:

@@ -25,6 +25,7 @@ from kame.launch.model import LOCAL_ADDRESSES, LaunchConfig, Node, Param
 from kame.launch.remote import RemoteChild
 from kame.launch.server import LaunchServer, ProcessState
 from kame.launch.supervisor import Child, Monitor, say, say_bold, say_error
+from kame.net import interfaces
 from kame.net.address import is_this_host
 from kame.node.master_proxy import MasterError, MasterProxy
 from kame.node.remote_poll import REMOTE_POLL_PERIOD
@@ -246,7 +247,7 @@ class LaunchRun:
 
     def is_local(self, node: Node) -> bool:
         machine = self.config.machines.get(node.machine_name or "")
-        return machine is None or machine.address in LOCAL_ADDRESSES or is_this_host(machine.address)
+        return machine is None or address_is_local(machine.address)
 
     def remote_nodes(self) -> dict[str, list[Node]]:
         """The nodes to run on other machines, by machine name (none with --local)."""
@@ -285,6 +286,16 @@ class LaunchRun:
         await self.monitor.shutdown()
         say("shutting down processing monitor...")
         say("... shutting down processing monitor complete")
+
+
+def address_is_local(address: str) -> bool:
+    """Whether a <machine> at `address` is this host, so its nodes run here, not over SSH: this
+    host's name, or a name or address resolving to a loopback address (127.0.1.1 too) or to one
+    of this host's interfaces, as roslaunch decides."""
+    if address in LOCAL_ADDRESSES or is_this_host(address):
+        return True
+    local = set(interfaces.local_addresses(ipv6=True))
+    return any(a.startswith("127.") or a == "::1" or a in local for a in interfaces.resolve(address) or ())
 
 
 def run_dir_of(env: Mapping[str, str], run_id: str) -> Path:

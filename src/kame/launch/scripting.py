@@ -39,6 +39,7 @@ class Node:
         self.name = name
         self.namespace = names.make_global_ns(namespace or "/")
         self.machine_name = machine_name
+        self.machine: Any = None  # the roslaunch.core.Machine ROSLaunchConfig.assign_machines picks
         self.args = args
         self.respawn = respawn
         self.respawn_delay = respawn_delay

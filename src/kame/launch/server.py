@@ -8,6 +8,8 @@ Rules (ros1-interop spec §11, roslaunch's server.py):
   are, as roslaunch's process monitor gives them, the running processes' names.
 - Its URI is announced as `started roslaunch server http://<host>:<port>/` and stored as
   `/roslaunch/uris/host_<host>__<port>` (roswtf checks those servers are still there).
+- RpcHandlerServer is the same server calling any handler by method name (roslaunch.server
+  serves roslaunch's handler objects on it).
 - The processes are read through a callable, at call time, from whatever runs them (the
   launch supervisor, or roscore's own core nodes): the server owns no process state.
 """
@@ -17,12 +19,14 @@ from __future__ import annotations
 import logging
 import os
 from collections.abc import Callable
+from types import MethodType
+from typing import Any
 
 from kame.arity import accepts
 from kame.net.rpc_server import RpcServer
 from kame.protocol.xmlrpc import Fault, MalformedError, decode_request, encode_fault, encode_response
 
-__all__ = ["LaunchServer", "ProcessState", "uri_param"]
+__all__ = ["LaunchServer", "ProcessState", "RpcHandlerServer", "uri_param"]
 
 log = logging.getLogger("kame.launch.server")
 
@@ -57,9 +61,13 @@ def uri_param(host: str, port: int) -> str:
     return "/roslaunch/uris/host_" + "".join(c if c.isalnum() else "_" for c in host.lower()) + f"__{port}"
 
 
-class LaunchServer:
-    def __init__(self, bind_host: str, advertised_host: str, processes: Callable[[], list[ProcessState]]) -> None:
-        self._processes = processes
+class RpcHandlerServer:
+    """An XML-RPC server calling, for each method, what `lookup` returns for its name (None: not
+    supported); the answer is sent as returned. A failing method answers a fault, the server stays."""
+
+    def __init__(self, bind_host: str, advertised_host: str,
+                 lookup: Callable[[str], Callable[..., Any] | None]) -> None:
+        self._lookup = lookup
         self._rpc = RpcServer(bind_host, 0, self._handle, name="roslaunch-server")
         self.host = advertised_host
         self.port = self._rpc.port
@@ -80,16 +88,26 @@ class LaunchServer:
             method, params = decode_request(body)
         except (MalformedError, Fault) as exc:
             return encode_fault(1, f"<class 'Exception'>:malformed request: {exc}")
-        handler = _METHODS.get(method)
+        handler = self._lookup(method)
         if handler is None:
             return encode_fault(1, f"<class 'Exception'>:method \"{method}\" is not supported")
-        if not accepts(handler, 1 + len(params)):
+        if not accepts(handler, len(params)):
             return encode_fault(1, f"<class 'TypeError'>:{method}: wrong number or type of arguments")
         try:
-            return encode_response(handler(self, *params))
-        except Exception as exc:  # a bug reading the process table must not end the server
+            return encode_response(handler(*params))
+        except Exception as exc:  # a bug in one method must not end the server
             log.exception("roslaunch server: %s failed", method)
             return encode_fault(1, f"<class 'Exception'>:{exc}")
+
+
+class LaunchServer(RpcHandlerServer):
+    def __init__(self, bind_host: str, advertised_host: str, processes: Callable[[], list[ProcessState]]) -> None:
+        self._processes = processes
+        super().__init__(bind_host, advertised_host, self._method)
+
+    def _method(self, name: str) -> Callable[..., list[object]] | None:
+        handler = _METHODS.get(name)
+        return None if handler is None else MethodType(handler, self)
 
     def _get_pid(self) -> list[object]:
         return [1, "", os.getpid()]

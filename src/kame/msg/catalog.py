@@ -123,6 +123,12 @@ class MsgCatalog:
         """Make a spec known that no package file provides (e.g. from a message_definition)."""
         self._msgs.setdefault(spec.full_name, spec)
 
+    def add_srv_spec(self, spec: SrvSpec) -> None:
+        """Make a service spec (and its request and response) known that no package file provides."""
+        self._srvs.setdefault(spec.full_name, spec)
+        self.add_spec(spec.request)
+        self.add_spec(spec.response)
+
     def _package(self, package: str, short: str) -> Package:
         found = self.packages.get(package)
         if found is None:

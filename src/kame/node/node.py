@@ -293,24 +293,32 @@ class Node:
             method, params = decode_request(body)
         except (MalformedError, Fault) as exc:
             return encode_fault(1, f"<class 'Exception'>:malformed request: {exc}")
+        answer = self.slave_call(method, params)
+        if answer is None:
+            return encode_fault(1, f"<class 'Exception'>:method \"{method}\" is not supported")
+        return encode_response(answer)
+
+    def slave_call(self, method: str, params: list[Any]) -> list[Any] | None:
+        """The slave API's answer to `method` with `params` (caller_id first), checked as
+        rospy checks them; None for a method the API does not have."""
         handler = _SLAVE_METHODS.get(method)
         if handler is None:
-            return encode_fault(1, f"<class 'Exception'>:method \"{method}\" is not supported")
+            return None
         if not params:
-            return encode_response([-1, "missing required caller_id parameter", 0])
+            return [-1, "missing required caller_id parameter", 0]
         if not isinstance(params[0], str):
-            return encode_response([-1, "caller_id must be a string", 0])
+            return [-1, "caller_id must be a string", 0]
         invalid = _invalid_param(method, params)
         if invalid is not None:
             log.warning("slave API %s from [%s] refused: %s", method, params[0], invalid)
-            return encode_response([-1, invalid, _ERROR_VALUE.get(method, 0)])
+            return [-1, invalid, _ERROR_VALUE.get(method, 0)]
         if not accepts(handler, 1 + len(params)):
-            return encode_response([-1, "Error: bad call arity", 0])
+            return [-1, "Error: bad call arity", 0]
         try:
-            return encode_response(handler(self, *params))
+            return handler(self, *params)
         except Exception as exc:
             log.exception("slave API %s failed", method)
-            return encode_response([0, f"internal failure: {exc}", 0])
+            return [0, f"internal failure: {exc}", 0]
 
     def _get_bus_info(self, caller_id: str) -> list[Any]:
         info: list[Any] = []

@@ -239,14 +239,22 @@ def write(text: str) -> None:
     sys.stdout.flush()
 
 
-def topic_list() -> tuple[list[tuple[str, str, list[str]]], list[tuple[str, str, list[str]]]]:
-    state = master().call("getSystemState")
-    types = dict(reversed(topic_types()))
+TypedTopics = tuple[list[tuple[str, str, list[str]]], list[tuple[str, str, list[str]]]]
+
+
+def typed_topics(state: Any, topic_types: list[Any]) -> TypedTopics:
+    """(publications, subscriptions) of a getSystemState answer as (topic, type, nodes), the
+    type the first getTopicTypes names for the topic, or `unknown type`."""
+    types = {str(t): str(ty) for t, ty in reversed(topic_types)}
 
     def typed(entries: list[Any]) -> list[tuple[str, str, list[str]]]:
         return [(str(t), types.get(str(t), "unknown type"), [str(n) for n in nodes]) for t, nodes in entries]
 
     return typed(state[0]), typed(state[1])
+
+
+def topic_list() -> TypedTopics:
+    return typed_topics(master().call("getSystemState"), topic_types())
 
 
 def open_bag(path: str) -> Any:
