@@ -6,7 +6,7 @@ from __future__ import annotations
 from typing import Any
 
 import rosgraph
-from kame.launch.runner import address_is_local
+from kame.launch.runner import machine_is_local
 from kame.launch.scripting import Node, RLException
 from rosgraph.network import parse_http_host_and_port
 
@@ -14,9 +14,9 @@ __all__ = ["Machine", "Master", "Node", "Param", "RLException", "Test", "is_mach
 
 
 def is_machine_local(machine: Machine) -> bool:
-    """True when `machine`'s address is this host, where kame's roslaunch runs its nodes itself
-    (kame does not, as roslaunch does, also send a machine with another `user` over SSH)."""
-    return address_is_local(machine.address)
+    """True when `machine`'s nodes run on this host: its address is this host's and it names no
+    other user (another user on this host is reached over SSH)."""
+    return machine_is_local(machine.address, machine.user)
 
 
 class Param:

@@ -106,8 +106,8 @@ def assigned(case: dict[str, Any]) -> Any:
 
 def run(request: dict[str, Any]) -> dict[str, Any]:
     return {"served": served(request["calls"]), "assigned": [assigned(case) for case in request["configs"]],
-            "local": [roslaunch.core.is_machine_local(roslaunch.core.Machine("m", address))
-                      for address in request["addresses"]]}
+            "local": [roslaunch.core.is_machine_local(roslaunch.core.Machine("m", address, user=user))
+                      for address, user in request["addresses"]]}
 
 
 if __name__ == "__main__":

@@ -4,6 +4,7 @@ ROSLaunchConfig.assign_machines: the same answers as Debian's real roslaunch on 
 
 from __future__ import annotations
 
+import getpass
 import json
 import socket
 import subprocess
@@ -31,7 +32,9 @@ REQUEST: dict[str, Any] = {
          "nodes": [None, "a", "b", "c", "far", "pw"], "test": "b"},
         {"machines": [["a", "localhost", None], ["b", "localhost", None]], "nodes": ["b", "a", None], "test": None},
     ],
-    "addresses": ["localhost", "127.0.0.1", "127.0.1.1", "10.255.255.1", socket.gethostname()],
+    "addresses": [["localhost", None], ["127.0.0.1", None], ["127.0.1.1", None], ["10.255.255.1", None],
+                  [socket.gethostname(), None], ["localhost", getpass.getuser()], ["127.0.0.1", "someone_else"],
+                  ["10.255.255.1", getpass.getuser()]],
 }
 
 
@@ -61,7 +64,7 @@ def test_parent_server_and_machines_on_kame() -> None:
     assert ours["assigned"][0] == ["RLException", ["", "a", "a", "c", "far", "pw", "a"], True]
     assert ours["assigned"][1] == ["RLException", ["b", "b", "", ""], False]
     assert served["after"] is None
-    assert ours["local"] == [True, True, True, False, True]
+    assert ours["local"] == [True, True, True, False, True, True, False, False]  # another user: over SSH
 
 
 @pytest.mark.skipif(not debian.has("roslaunch.server", "roslaunch.config", "rosgraph_msgs.msg"),

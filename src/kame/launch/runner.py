@@ -9,6 +9,7 @@ declaration order. A node that cannot be started is reported and the rest run.
 from __future__ import annotations
 
 import asyncio
+import getpass
 import sys
 import time
 from collections.abc import Callable, Mapping
@@ -247,7 +248,7 @@ class LaunchRun:
 
     def is_local(self, node: Node) -> bool:
         machine = self.config.machines.get(node.machine_name or "")
-        return machine is None or address_is_local(machine.address)
+        return machine is None or machine_is_local(machine.address, machine.user)
 
     def remote_nodes(self) -> dict[str, list[Node]]:
         """The nodes to run on other machines, by machine name (none with --local)."""
@@ -289,13 +290,19 @@ class LaunchRun:
 
 
 def address_is_local(address: str) -> bool:
-    """Whether a <machine> at `address` is this host, so its nodes run here, not over SSH: this
-    host's name, or a name or address resolving to a loopback address (127.0.1.1 too) or to one
-    of this host's interfaces, as roslaunch decides."""
+    """Whether a <machine> at `address` is this host: this host's name, or a name or address
+    resolving to a loopback address (127.0.1.1 too) or to one of this host's interfaces."""
     if address in LOCAL_ADDRESSES or is_this_host(address):
         return True
     local = set(interfaces.local_addresses(ipv6=True))
     return any(a.startswith("127.") or a == "::1" or a in local for a in interfaces.resolve(address) or ())
+
+
+def machine_is_local(address: str, user: str | None) -> bool:
+    """Whether a <machine>'s nodes run here rather than over SSH, as roslaunch decides: its
+    address is this host and it names no other user (roslaunch's #491: another user on this host
+    is reached over SSH, to run as that user)."""
+    return address_is_local(address) and (not user or user == getpass.getuser())
 
 
 def run_dir_of(env: Mapping[str, str], run_id: str) -> Path:
