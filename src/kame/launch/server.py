@@ -19,6 +19,7 @@ import os
 from collections.abc import Callable
 
 from kame.arity import accepts
+from kame.net.address import uri_host
 from kame.net.rpc_server import RpcServer
 from kame.protocol.xmlrpc import Fault, MalformedError, decode_request, encode_fault, encode_response
 
@@ -63,7 +64,7 @@ class LaunchServer:
         self._rpc = RpcServer(bind_host, 0, self._handle, name="roslaunch-server")
         self.host = advertised_host
         self.port = self._rpc.port
-        self.uri = f"http://{advertised_host}:{self.port}/"
+        self.uri = f"http://{uri_host(advertised_host)}:{self.port}/"
 
     def start(self) -> None:
         self._rpc.start()
