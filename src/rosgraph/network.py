@@ -1,6 +1,7 @@
 """rosgraph.network: which address a ROS process uses, URIs, and the TCPROS handshake header.
 
-Over kame.net (addresses) and kame.protocol.header (the header codec). The socket helpers
+Over kame.net.address (the override, bind and advertised-host rules every kame process follows)
+and kame.protocol.header (the header codec). The socket helpers
 read_/write_ros_handshake_header are not offered: kame's own connections do that in kame.net.
 """
 
@@ -12,10 +13,9 @@ import sys
 from collections.abc import Mapping
 from urllib.parse import urlparse
 
-from kame.net.interfaces import hostname, local_addresses, resolve
+from kame.net import address as _address
+from kame.net.interfaces import local_addresses
 from kame.protocol.header import TcprosError, decode_header_fields, encode_header
-
-from .rosenv import ROS_HOSTNAME, ROS_IP, ROS_IPV6
 
 __all__ = ["ROSHandshakeException", "create_local_xmlrpc_uri", "decode_ros_handshake_header",
            "encode_ros_handshake_header", "get_address_override", "get_bind_address", "get_host_name",
@@ -36,45 +36,20 @@ def parse_http_host_and_port(url: str) -> tuple[str, int]:
     return parts.hostname, parts.port or 80
 
 
-def _warn(message: str) -> None:
-    sys.stderr.write(message + "\n")
-
-
 def get_address_override() -> str | None:
-    """`__hostname:=`/`__ip:=`, else ROS_HOSTNAME, else ROS_IP (warning on stderr about a value
-    with a protocol or port in it, as rosgraph does), else None."""
+    """The first `__hostname:=`/`__ip:=` argument in sys.argv, else ROS_HOSTNAME, else ROS_IP
+    (warning on stderr about a malformed value), else None."""
     for arg in sys.argv:
         if arg.startswith(("__hostname:=", "__ip:=")):
             parts = arg.split(":=")
             if len(parts) != 2:
                 raise ValueError(f"invalid ROS command-line remapping argument '{arg}'")
             return parts[1]
-    if ROS_HOSTNAME in os.environ:
-        name = os.environ[ROS_HOSTNAME]
-        parsed = urlparse(name)
-        if name == "":
-            _warn("invalid ROS_HOSTNAME (an empty string)")
-        elif parsed.scheme:
-            _warn("invalid ROS_HOSTNAME (protocol " + ("and port " if parsed.port else "") + "should not be included)")
-        elif ":" in name:
-            _warn("invalid ROS_HOSTNAME (port should not be included)")
-        return name
-    if ROS_IP in os.environ:
-        ip = os.environ[ROS_IP]
-        if ip == "":
-            _warn("invalid ROS_IP (an empty string)")
-        elif "://" in ip:
-            _warn("invalid ROS_IP (protocol should not be included)")
-        elif "." in ip and ip.rfind(":") > ip.rfind("."):
-            _warn("invalid ROS_IP (port should not be included)")
-        elif "." not in ip and ":" not in ip:
-            _warn("invalid ROS_IP (must be a valid IPv4 or IPv6 address)")
-        return ip
-    return None
+    return _address.environment_override(os.environ)
 
 
 def use_ipv6() -> bool:
-    return os.environ.get(ROS_IPV6) == "on"
+    return _address.use_ipv6(os.environ)
 
 
 def get_local_addresses() -> list[str]:
@@ -84,55 +59,27 @@ def get_local_addresses() -> list[str]:
 
 def is_local_address(hostname: str) -> bool:
     """True when `hostname` resolves to a loopback address or one of this machine's."""
-    found = resolve(hostname, use_ipv6())
-    if found is None:
-        return False
-    local = {"localhost", *get_local_addresses()}
-    return any(ip.startswith("127.") or ip == "::1" for ip in found) or bool(set(found) & local)
+    return _address.is_local_address(hostname, use_ipv6())
 
 
 def get_local_address() -> str:
     """The override, else this machine's address (the only one, else the first not loopback)."""
-    override = get_address_override()
-    if override:
-        return override
-    addresses = get_local_addresses()
-    if len(addresses) == 1:
-        return addresses[0]
-    for address in addresses:
-        if not address.startswith("127.") and address != "::1":
-            return address
-    return "::1" if use_ipv6() else "127.0.0.1"
+    return get_address_override() or _address.local_address(use_ipv6())
 
 
 def get_bind_address(address: str | None = None) -> str:
     """Where to bind: a loopback `address` (default: the override) binds loopback only."""
-    if address is None:
-        address = get_address_override()
-    if address and (address == "localhost" or address.startswith("127.") or address == "::1"):
-        if use_ipv6():
-            return "::1"
-        return address if address.startswith("127.") else "127.0.0.1"
-    return "::" if use_ipv6() else "0.0.0.0"
+    return _address.bind_host(get_address_override() if address is None else address, use_ipv6())
 
 
 def get_host_name() -> str:
     """The host name to put in URIs: the override, else the host name unless it is loopback,
     else get_local_address()."""
-    override = get_address_override()
-    if override:
-        return override
-    name = hostname()
-    if not name or name == "localhost" or name.startswith("127."):
-        return get_local_address()
-    return name
+    return _address.advertised_host(get_address_override(), use_ipv6())
 
 
 def create_local_xmlrpc_uri(port: int) -> str:
-    host = get_host_name()
-    if ":" in host:  # an IPv6 address
-        host = f"[{host}]"
-    return f"http://{host}:{port}/"
+    return f"http://{_address.uri_host(get_host_name())}:{port}/"
 
 
 def decode_ros_handshake_header(header_str: bytes) -> dict[str, str]:

@@ -2,7 +2,9 @@
 
 laptop runs a real OpenSSH server (tests/support/sshd.py) that knows our key; robot's roslaunch
 runs with a HOME whose .ssh holds that key and laptop's host key, as a lab's laptop would. The
-env-loader on laptop names the host (ROS_HOSTNAME) and hands over to kame's env.sh.
+env-loader on laptop names the host (ROS_HOSTNAME) and hands over to kame's env.sh. A password
+login (sshd takes passwords but not for root) is made with a throwaway local user, deleted at
+the end of its test.
 
 Needs root and openssh-server (skips without them); every process is stopped by its PID.
 """
@@ -10,11 +12,17 @@ Needs root and openssh-server (skips without them); every process is stopped by 
 from __future__ import annotations
 
 import os
+import pwd
+import secrets
+import shutil
 import signal
 import subprocess
+import sys
+import sysconfig
 import time
 from collections.abc import Iterator
 from pathlib import Path
+from typing import NamedTuple
 
 import pytest
 
@@ -189,4 +197,89 @@ def test_a_lost_connection_stops_the_remote_nodes_and_is_reported(lab: Lab) -> N
         out, err = launch.stop(timeout=40)
     assert "[laptop-0] process has died [the connection to laptop was lost]." in err, out + err
     lab.wait_sessions_end()  # the remote roslaunch saw its input end and stopped its talker
+    assert not Path(f"/proc/{talker}").exists()
+
+
+class User(NamedTuple):
+    name: str
+    password: str
+    home: Path
+
+
+@pytest.fixture
+def throwaway_user() -> Iterator[User]:
+    """A local user with a password (laptop's sshd reads this machine's /etc/shadow), deleted with
+    its home at the end whatever happened; the only change to this machine's accounts."""
+    if shutil.which("useradd") is None or shutil.which("chpasswd") is None:
+        pytest.skip("useradd and chpasswd (passwd) are not installed")
+    name = f"kame{os.getpid()}"
+    subprocess.run(["useradd", "--create-home", "--shell", "/bin/sh", name], check=True, capture_output=True)
+    try:
+        password = secrets.token_urlsafe(16)
+        subprocess.run(["chpasswd"], input=f"{name}:{password}\n", check=True, capture_output=True, text=True)
+        yield User(name, password, Path(pwd.getpwnam(name).pw_dir))
+    finally:
+        # --force: even while a process of the user's is left (a failed test's remote node)
+        subprocess.run(["userdel", "--remove", "--force", name], capture_output=True)
+    with pytest.raises(KeyError):
+        pwd.getpwnam(name)
+
+
+def user_kame(user: User) -> Path:
+    """An env-loader in the user's home running kame as the user. This test's interpreter may lie
+    where the user cannot go (a home of root's), so the user gets a venv of a python3 it can run
+    (of this one's version: the compiled packages are shared) that adds this venv's packages, and
+    its own `roslaunch`, the one program a remote machine runs (its nodes run on the python3 first
+    on PATH: the user's venv)."""
+    version = f"{sys.version_info.major}.{sys.version_info.minor}"
+    base = None
+    for candidate in (os.path.realpath(sys.executable), "/usr/bin/python3"):
+        probe = subprocess.run(["runuser", "-u", user.name, "--", candidate, "-c",
+                                "import sys; print(f'{sys.version_info.major}.{sys.version_info.minor}')"],
+                               capture_output=True, text=True)
+        if probe.returncode == 0 and probe.stdout.strip() == version:
+            base = candidate
+            break
+    if base is None:
+        pytest.skip(f"no python{version} that user {user.name} may run")
+    venv = user.home / "venv"
+    subprocess.run([base, "-m", "venv", "--without-pip", str(venv)], check=True, capture_output=True)
+    (venv / "lib" / f"python{version}" / "site-packages" / "kame-test.pth").write_text(
+        f"import site; site.addsitedir({sysconfig.get_paths()['purelib']!r})\n")
+    ours = (Path(sys.executable).parent / "roslaunch").read_text().split("\n", 1)[1]
+    (venv / "bin" / "roslaunch").write_text(f"#!{venv / 'bin' / 'python'}\n{ours}")
+    (venv / "bin" / "roslaunch").chmod(0o755)
+    loader = user.home / "env.sh"
+    loader.write_text("#!/bin/sh\n"
+                      f"export ROS_HOSTNAME=laptop ROS_HOME={user.home / '.ros'} ROS_LOG_DIR={user.home / 'log'} "
+                      f"KAME_PYTHON={venv / 'bin' / 'python'}\n"
+                      f'exec {ENV_SH} "$@"\n')
+    loader.chmod(0o755)
+    subprocess.run(["chown", "-R", f"{user.name}:", str(user.home)], check=True, capture_output=True)
+    return loader
+
+
+def test_a_machine_with_a_password_logs_in_with_it_and_runs_the_node_as_that_user(lab: Lab,
+                                                                                   throwaway_user: User) -> None:
+    hosts, user = lab.hosts, throwaway_user
+    loader = user_kame(user)
+    path = lab.launch_file("password-ok.launch",
+                           lab.machine(user=user.name, password=user.password, **{"env-loader": str(loader)}),
+                           '  <node machine="laptop" pkg="rospy_tutorials" type="talker.py" name="t6"/>\n'
+                           '  <node pkg="rospy_tutorials" type="listener.py" name="l6" output="screen"/>\n')
+    launch = Proc(hosts.host("robot").command([str(BIN / "roslaunch"), str(path)]),
+                  {**hosts.env("robot"), "HOME": str(lab.client_home)}, cwd=hosts.home)
+    try:
+        launch.wait_line(f"remote[laptop-0]: creating ssh connection to laptop:2222, user[{user.name}]", timeout=30)
+        launch.wait_line("remote[laptop-0]: ssh connection created", timeout=60)
+        launch.wait_line("I heard hello world", timeout=60)
+        talker = node_pid(hosts, "/t6")
+        assert talker in lab.sshd.sessions()
+        assert os.stat(f"/proc/{talker}").st_uid == pwd.getpwnam(user.name).pw_uid  # run as the user logged in
+    finally:
+        out, err = launch.stop(timeout=40)
+    assert launch.popen.returncode == 0, out + err
+    # with a password, no key is offered (the client's HOME has one sshd takes): sshd took the password
+    assert any(f"Accepted password for {user.name} " in line for line in lab.sshd.proc.err), "".join(lab.sshd.proc.err)
+    lab.wait_sessions_end()
     assert not Path(f"/proc/{talker}").exists()

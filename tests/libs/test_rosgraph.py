@@ -4,6 +4,10 @@ Master handle against a live kame master."""
 from __future__ import annotations
 
 import itertools
+import json
+import os
+import subprocess
+import sys
 from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
@@ -69,6 +73,44 @@ def test_names_and_network_answer_as_debians_rosgraph() -> None:
     differing = [(call, mine, reference) for call, mine, reference in zip(request, ours, theirs, strict=True)
                  if mine != reference]
     assert differing == []
+
+
+ADDRESS_ENVIRONMENTS = [{}, {"ROS_HOSTNAME": "robot"}, {"ROS_HOSTNAME": ""}, {"ROS_HOSTNAME": "localhost"},
+                        {"ROS_HOSTNAME": "http://h:1"}, {"ROS_HOSTNAME": "h:5"}, {"ROS_IP": "127.0.0.5"},
+                        {"ROS_IP": ""}, {"ROS_IP": "10.0.0.1:80"}, {"ROS_IP": "nodots"}, {"ROS_IP": "::1"},
+                        {"ROS_HOSTNAME": "robot", "ROS_IP": "10.0.0.1"}, {"ROS_IPV6": "on"},
+                        {"ROS_IPV6": "on", "ROS_IP": "::1"}, {"ROS_IPV6": "on", "ROS_HOSTNAME": "localhost"}]
+
+
+@pytest.mark.skipif(not debian.has("rosgraph"), reason="Debian's rosgraph is not installed")
+@pytest.mark.parametrize("variables", ADDRESS_ENVIRONMENTS, ids=lambda v: ",".join(f"{k}={v[k]}" for k in v) or "none")
+def test_the_address_rules_answer_as_debians_rosgraph_in_each_environment(variables: dict[str, str]) -> None:
+    """The override, bind address, advertised host and URI that rosgraph.network derives from the
+    environment, over kame.net.address, as Debian's rosgraph derives them (its warnings too)."""
+    request = [["rosgraph.network", function, args] for function, args in (
+        ("get_address_override", []), ("use_ipv6", []), ("get_bind_address", []), ("get_host_name", []),
+        ("get_local_address", []), ("get_local_addresses", []), ("is_local_address", ["localhost"]),
+        ("is_local_address", ["127.0.0.1"]), ("is_local_address", ["no-such-host.invalid"]))]
+    env = {k: v for k, v in debian.debian_env().items() if not k.startswith("ROS_")} | variables
+
+    def answers(python: str) -> tuple[list[str], list[str]]:
+        done = subprocess.run([python, str(DRIVER)], input=json.dumps(request), capture_output=True, text=True,
+                              timeout=120, env=env if python == str(debian.SYSTEM_PYTHON) else os.environ | env)
+        assert done.returncode == 0, done.stderr
+        return json.loads(done.stdout), [line for line in done.stderr.splitlines() if "invalid ROS_" in line]
+
+    theirs, ours = answers(str(debian.SYSTEM_PYTHON)), answers(sys.executable)
+    assert ours == theirs
+    # kame puts a host with a colon (an IPv6 address) in brackets, where rosgraph's URI is invalid
+    if not any(":" in value for value in variables.values()):
+        assert answers_uri(sys.executable, os.environ | env) == answers_uri(str(debian.SYSTEM_PYTHON), env)
+
+
+def answers_uri(python: str, env: dict[str, str]) -> str:
+    done = subprocess.run([python, "-c", "import rosgraph.network as n; print(n.create_local_xmlrpc_uri(1234))"],
+                          capture_output=True, text=True, timeout=60, env=env)
+    assert done.returncode == 0, done.stderr
+    return done.stdout
 
 
 def test_myargv_drops_remappings() -> None:

@@ -3,11 +3,13 @@
 from __future__ import annotations
 
 import socket
+from pathlib import Path
 
 import pytest
 
 from kame import environ
-from kame.net.address import address_override, advertised_host, bind_host, host_addresses, local_address
+from kame.net import interfaces
+from kame.net.address import address_override, advertised_host, bind_host, host_addresses, local_address, uri_host
 from kame.node.config import node_config
 
 
@@ -119,3 +121,21 @@ def test_unreachable_reason_names_what_a_wrong_advertised_address_causes() -> No
     assert unreachable_reason(OSError(errno.EHOSTUNREACH, "No route to host")) == "there is no route to it"
     assert unreachable_reason(ValueError("bad header")) is None
     assert unreachable_reason(ConnectionResetError()) is None
+
+
+def test_ipv6_addresses_are_listed_by_interface_global_first_link_local_with_its_interface(
+        monkeypatch: pytest.MonkeyPatch, tmp_path: Path) -> None:
+    """In getifaddrs' order, as rosgraph (netifaces) lists them: /proc/net/if_inet6 is in hash order."""
+    table = tmp_path / "if_inet6"
+    table.write_text("fe8000000000000000fc00fffe000001 04 40 20 80     eth0\n"
+                     "00000000000000000000000000000001 01 80 10 80       lo\n"
+                     "fd000000000000000000000000000002 04 40 00 82     eth0\n")
+    monkeypatch.setattr(interfaces, "_IF_INET6", str(table))
+    monkeypatch.setattr(interfaces, "_ipv4_addresses", lambda: ["127.0.0.1", "192.0.2.2"])
+    assert interfaces.local_addresses(ipv6=True) == ["::1", "fd00::2", "fe80::fc:ff:fe00:1%eth0", "127.0.0.1",
+                                                     "192.0.2.2"]
+    assert local_address(ipv6=True) == "fd00::2"
+
+
+def test_uri_host_brackets_an_ipv6_address() -> None:
+    assert uri_host("::1") == "[::1]" and uri_host("robot") == "robot" and uri_host("10.0.0.1") == "10.0.0.1"

@@ -26,7 +26,7 @@ from kame.cli.rosmaster import DEFAULT_PORT, flush_periodically, log_dir, ros_ho
 from kame.launch.server import LaunchServer, ProcessState
 from kame.master.server import NOTIFY_TIMEOUT, MasterServer
 from kame.net import interfaces, peers
-from kame.net.address import host_addresses
+from kame.net.address import host_addresses, uri_host
 from kame.net.process import SupervisedProcess
 from kame.net.xmlrpc_client import XmlRpcProxy
 from kame.protocol.xmlrpc import XmlRpcError
@@ -154,7 +154,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     local_uri = f"http://localhost:{port}/"
     # what roslaunch calls the master in its refusal: the advertised host (ROS_HOSTNAME, ROS_IP or hostname)
     host = host_addresses(env)
-    named_uri = f"http://{host.advertised}:{port}/"
+    named_uri = f"http://{uri_host(host.advertised)}:{port}/"
 
     existing = _running_master(local_uri)
     run_id = str(uuid.uuid1())

@@ -23,6 +23,7 @@ from types import MethodType
 from typing import Any
 
 from kame.arity import accepts
+from kame.net.address import uri_host
 from kame.net.rpc_server import RpcServer
 from kame.protocol.xmlrpc import Fault, MalformedError, decode_request, encode_fault, encode_response
 
@@ -71,7 +72,7 @@ class RpcHandlerServer:
         self._rpc = RpcServer(bind_host, 0, self._handle, name="roslaunch-server")
         self.host = advertised_host
         self.port = self._rpc.port
-        self.uri = f"http://{advertised_host}:{self.port}/"
+        self.uri = f"http://{uri_host(advertised_host)}:{self.port}/"
 
     def start(self) -> None:
         self._rpc.start()

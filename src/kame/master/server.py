@@ -22,6 +22,7 @@ import time
 
 from kame.master.api import CallResult, MasterApi
 from kame.master.notifications import Notification
+from kame.net.address import uri_host
 from kame.net.http_server import HttpRequest, HttpResponse, HttpServer, ServerLimits
 from kame.net.xmlrpc_client import post
 from kame.protocol.xmlrpc import (
@@ -144,7 +145,7 @@ class MasterServer:
         self._stopped = asyncio.Event()
         self.notifier = Notifier(self._notify_timeout)
         port = await self._http.start()
-        uri = f"http://{self._advertise}:{port}/"
+        uri = f"http://{uri_host(self._advertise)}:{port}/"
         self.api = MasterApi(uri, os.getpid())
         log.info("Master initialized: port[%d], uri[%s]", port, uri)
         return uri

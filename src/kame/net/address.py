@@ -21,7 +21,7 @@ import sys
 from collections.abc import Mapping
 from typing import NamedTuple
 
-from kame.net.interfaces import local_addresses
+from kame.net.interfaces import local_addresses, resolve
 
 log = logging.getLogger("kame.net.address")
 
@@ -36,13 +36,19 @@ def address_override(env: Mapping[str, str], special: Mapping[str, str] | None =
     for value in (special.get("hostname"), special.get("ip")):
         if value:
             return value
+    return environment_override(env) or None
+
+
+def environment_override(env: Mapping[str, str]) -> str | None:
+    """ROS_HOSTNAME when it is set, else ROS_IP when it is set, else None; a variable set to ''
+    gives '' (rosgraph's get_address_override answers it). A malformed value is warned about."""
     for variable in ("ROS_HOSTNAME", "ROS_IP"):
         if variable in env:
             problem = override_problem(variable, env[variable])
             if problem:
                 sys.stderr.write(problem + "\n")
                 log.warning(problem)
-            return env[variable] or None
+            return env[variable]
     return None
 
 
@@ -106,6 +112,21 @@ def bind_host(override: str | None, ipv6: bool = False) -> str:
             return "::1"
         return override if override.startswith("127.") else "127.0.0.1"
     return "::" if ipv6 else "0.0.0.0"
+
+
+def uri_host(host: str) -> str:
+    """`host` as it stands in a URI: an IPv6 address in brackets."""
+    return f"[{host}]" if ":" in host else host
+
+
+def is_local_address(host: str, ipv6: bool = False) -> bool:
+    """rosgraph's is_local_address: whether `host` resolves (to IPv4 only unless `ipv6`) to a
+    loopback address or one of this machine's; a name that does not resolve is not local."""
+    found = resolve(host, ipv6)
+    if found is None:
+        return False
+    local = {"localhost", *local_addresses(ipv6)}
+    return any(_is_loopback(ip) for ip in found) or bool(set(found) & local)
 
 
 class HostAddresses(NamedTuple):

@@ -36,7 +36,8 @@ class PeerAllowlist:
     def __init__(self, networks: list[Network], text: str) -> None:
         self.networks = networks
         self.text = text
-        self._local = set(local_addresses()) | set(local_addresses(ipv6=True))
+        # a link-local address is listed with its interface (fe80::1%eth0); allows() compares without
+        self._local = {a.split("%", 1)[0] for a in local_addresses(ipv6=True)}
 
     def allows(self, address: str) -> bool:
         import ipaddress

@@ -26,7 +26,7 @@ from typing import TYPE_CHECKING, Any, NamedTuple
 
 from kame import names
 from kame.arity import accepts
-from kame.net.address import bind_host
+from kame.net.address import bind_host, uri_host
 from kame.net.handshake import ClosedBeforeHeader, HandshakeError, MalformedHeader, read_header, write_header
 from kame.net.rpc_server import RpcServer
 from kame.net.stream import Flusher, Listener, peer_of, shut_down
@@ -89,7 +89,7 @@ class Node:
         self.unreachable_reported = ReportedOnce()  # publishers whose address we said we cannot use
         self.listener = Listener(bind, config.tcpros_port, self._accept, name="kame-tcpros")
         self.rpc = RpcServer(bind, config.xmlrpc_port, self._rpc, name="kame-xmlrpc")
-        self.uri = f"http://{_uri_host(config.host)}:{self.rpc.port}/"
+        self.uri = f"http://{uri_host(config.host)}:{self.rpc.port}/"
         self.tcpros_port = self.listener.port
         self.rpc.start()
         self.master_watch = MasterWatch(config.master_uri, config.name, self._has_registrations,
@@ -203,7 +203,7 @@ class Node:
 
     @property
     def service_uri(self) -> str:
-        return f"rosrpc://{_uri_host(self.config.host)}:{self.tcpros_port}"
+        return f"rosrpc://{uri_host(self.config.host)}:{self.tcpros_port}"
 
     def service_client(self, name: str, type: str, md5sum: str, persistent: bool = False,
                        headers: dict[str, str] | None = None) -> ServiceClient:
@@ -524,10 +524,6 @@ def _subvalue(value: Any, path: str) -> Any:
             return {}
         value = value[part]
     return value
-
-
-def _uri_host(host: str) -> str:
-    return f"[{host}]" if ":" in host else host
 
 
 # rospy's argument validators (rospy.impl.masterslave / validators), with their texts: a bad
