@@ -12,11 +12,23 @@ from pathlib import Path
 import numpy as np
 from PIL import Image
 
+from kame.nav.slam import MapView
+from kame.stage.mapfile import load, parse_description
+from tests.nav.mapscore import AGREEMENT, DRAWN_NEAR_WALLS, WALLS_DRAWN, score
 from tests.nav.test_amcl_live import OFFICE, pose_of
+from tests.nav.worlds import load_world_map
 from tests.stage.sim import echo
 from tests.stage.test_stageros import drive
 from tests.support import Proc
 from tests.turtlesim.sim import BIN, master, wait_until
+
+
+def _saved_view(yaml_path: Path) -> MapView:
+    """map_saver's files read back as map_server reads them: 0 occupied, 254 free, 205 unknown."""
+    description = parse_description(yaml_path.read_text())
+    image = Path(description.image_path(str(yaml_path)))
+    grid = load(description, image.read_bytes(), image.name)
+    return MapView(grid.cells, grid.origin[:2], grid.resolution)
 
 
 def test_gmapping_demo_maps_the_corridor_and_map_saver_keeps_it(tmp_path: Path) -> None:
@@ -81,6 +93,12 @@ def test_gmapping_demo_maps_the_corridor_and_map_saver_keeps_it(tmp_path: Path) 
         box = [min(cell(x, -4.225 + dy) for dy in (-0.1, -0.05, 0.0, 0.05, 0.1)) for x in np.arange(1.2, 2.8, 0.05)]
         assert sum(v == 0 for v in box) >= 0.5 * len(box), box
         assert cell(2.0, -3.0) == 254  # the room's floor before the box
+        # the whole saved map against the world's, by the SLAM test's metric and thresholds
+        found = score(_saved_view(tmp_path / "mymap.yaml"), load_world_map("office"))
+        assert found.known > 6000, found  # the corridor's 2 m and what the turn saw of the rooms
+        assert found.agreement >= AGREEMENT, found
+        assert found.drawn_near_walls >= DRAWN_NEAR_WALLS, found
+        assert found.walls_drawn >= WALLS_DRAWN, found
         demo.stop()
         assert demo.popen.returncode == 0
 
