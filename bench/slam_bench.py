@@ -35,8 +35,9 @@ OFFICE = REPO / "src" / "kame" / "share" / "turtlebot_gazebo" / "worlds" / "offi
 def sweep(seeds: int) -> None:
     from kame.nav.slam import Gmapping
     from kame.stage.world import LaserModel, OdometryModel, Walls, World
+    from tests.nav.mapscore import AGREEMENT, DRAWN_NEAR_WALLS, WALLS_DRAWN, score
     from tests.nav.test_amcl import OFFICE_DRIVE
-    from tests.nav.test_slam import TURTLEBOT, score
+    from tests.nav.test_slam import TURTLEBOT
     from tests.nav.worlds import load_world_map
 
     truth = load_world_map("office")
@@ -69,7 +70,8 @@ def sweep(seeds: int) -> None:
                     agreements.append(found.agreement)
                     near.append(found.drawn_near_walls)
                     drawn.append(found.walls_drawn)
-                    passed += found.agreement >= 0.9 and found.drawn_near_walls >= 0.8 and found.walls_drawn >= 0.85
+                    passed += (found.agreement >= AGREEMENT and found.drawn_near_walls >= DRAWN_NEAR_WALLS
+                               and found.walls_drawn >= WALLS_DRAWN)
             print(f"| {label} | {particles} | {passed}/{2 * seeds} | {statistics.median(agreements):.3f} | "
                   f"{min(near):.3f} | {min(drawn):.3f} | {1000 * cpu / processed:.0f} | {1000 * cpu / scans:.1f} |",
                   flush=True)

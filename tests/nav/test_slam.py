@@ -1,30 +1,19 @@
 """gmapping's filter (kame.nav.slam) on the office world, without ROS: a scripted drive with
 drifting odometry builds a map that matches the ground truth's.
 
-The map's frame is where the robot starts, as gmapping's, and the simulated robot starts at the
-world's origin facing along x, so the built map and the world's map share their frame. The
-metric, over the world's cells (each looked up at its centre in the built map):
-- agreement: of the cells the built map knows (free or occupied), the share whose state is the
-  world's (a wall cell being occupied);
-- walls within 2 cells, both ways: the share of the built map's occupied cells within 2 cells of
-  a wall of the world (none drawn where there is no wall), and the share of the world's wall
-  cells that the built map knows that have an occupied cell within 2 cells (the walls it saw are
-  drawn, not left free).
-Agreement alone is weak (most known cells are free), hence the two wall figures.
+The metric and its thresholds: tests/nav/mapscore.py.
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
 import pytest
-from scipy import ndimage
 
-from kame.nav.slam import Gmapping, GmappingParams, MapView
-from kame.stage.mapfile import Grid
+from kame.nav.slam import Gmapping, GmappingParams
 from kame.stage.world import LaserModel, OdometryModel, Walls, World
+from tests.nav.mapscore import AGREEMENT, DRAWN_NEAR_WALLS, WALLS_DRAWN, score
 from tests.nav.test_amcl import OFFICE_DRIVE
 from tests.nav.worlds import load_world_map
 
@@ -33,32 +22,6 @@ from tests.nav.worlds import load_world_map
 TURTLEBOT = GmappingParams(maxUrange=6.0, maxRange=8.0, minimumScore=200, srr=0.01, srt=0.02, str=0.01, stt=0.02,
                            linearUpdate=0.5, angularUpdate=0.436, particles=30, xmin=-1.0, ymin=-1.0, xmax=1.0,
                            ymax=1.0)
-
-
-@dataclass(frozen=True)
-class MapScore:
-    known: int
-    agreement: float
-    drawn_near_walls: float
-    walls_drawn: float
-
-
-def score(view: MapView, truth_grid: Grid) -> MapScore:
-    truth = np.asarray(truth_grid.cells) >= 65
-    rows, columns = truth.shape
-    x = truth_grid.origin[0] + (np.arange(columns) + 0.5) * truth_grid.resolution
-    y = truth_grid.origin[1] + (np.arange(rows) + 0.5) * truth_grid.resolution
-    column = np.floor((x - view.origin[0]) / view.resolution).astype(np.int64)
-    row = np.floor((y - view.origin[1]) / view.resolution).astype(np.int64)
-    built = np.full(truth.shape, -1, dtype=np.int8)
-    in_columns = (column >= 0) & (column < view.cells.shape[1])
-    in_rows = (row >= 0) & (row < view.cells.shape[0])
-    built[np.ix_(in_rows, in_columns)] = view.cells[np.ix_(row[in_rows], column[in_columns])]
-    known, occupied = built != -1, built == 100
-    to_wall = ndimage.distance_transform_edt(~truth)
-    to_drawn = ndimage.distance_transform_edt(~occupied)
-    return MapScore(int(known.sum()), float((occupied == truth)[known].mean()),
-                    float((to_wall[occupied] <= 2).mean()), float((to_drawn[truth & known] <= 2).mean()))
 
 
 def build_map(drift: OdometryModel, seed: int, filter_seed: int) -> tuple[Gmapping, World]:
@@ -86,9 +49,9 @@ def test_the_built_map_matches_the_office(drift: OdometryModel, seed: int, filte
     slam, world = build_map(drift, seed, filter_seed)
     found = score(slam.occupancy(), load_world_map("office"))
     assert found.known > 20000  # the corridor and two rooms: a quarter of the office
-    assert found.agreement >= 0.9
-    assert found.drawn_near_walls >= 0.8
-    assert found.walls_drawn >= 0.85
+    assert found.agreement >= AGREEMENT
+    assert found.drawn_near_walls >= DRAWN_NEAR_WALLS
+    assert found.walls_drawn >= WALLS_DRAWN
     robot = world.robot("bot")
     x, y, theta = slam.best_pose()
     slam_error = math.dist((x, y), (robot.pose.x, robot.pose.y))
@@ -115,7 +78,7 @@ def test_the_odometry_alone_draws_a_worse_map() -> None:
                 slam.add_scan((odom.x, odom.y, odom.theta), world.scans(["bot"])["bot"], world.laser.angles(),
                               world.laser.range_max)
     found = score(slam.occupancy(), load_world_map("office"))
-    assert found.drawn_near_walls < 0.8 or found.walls_drawn < 0.85
+    assert found.drawn_near_walls < DRAWN_NEAR_WALLS or found.walls_drawn < WALLS_DRAWN
 
 
 def test_the_grid_grows_and_reports_at_least_its_bounds() -> None:

@@ -112,6 +112,22 @@ def test_view_navigation_shows_amcl_demo(tmp_path: Path) -> None:
         sim.procs.append(Proc([str(BIN / "roslaunch"), "turtlebot_gazebo", "amcl_demo.launch"], sim.env, cwd=sim.home))
         windowed = dict(sim.env, DISPLAY=display)
         windowed.pop("QT_QPA_PLATFORM", None)
+        launched = Proc([str(BIN / "roslaunch"), "turtlebot_rviz_launchers", "view_navigation.launch"], windowed,
+                        cwd=sim.home)
+        sim.procs.append(launched)
+        # the launched window's node subscribes to every display's topic of the navigation file
+        topics = {topic for _, topic in _displays(PACKAGE / "rviz" / "navigation.rviz").values() if topic}
+        subscribed: set[str] = set()
+
+        def rviz_subscribes() -> bool:
+            info = sim.run("rosnode", "info", "/rviz", check=False).stdout  # the launch file's name="rviz"
+            listed = info.split("Subscriptions:", 1)[-1].split("Services:", 1)[0]
+            subscribed.update(line.split()[1] for line in listed.splitlines() if line.startswith(" * "))
+            return subscribed >= topics
+
+        wait_until(rviz_subscribes, timeout=90, what=f"view_navigation's rviz to subscribe to {sorted(topics)}")
+
+        # the same file in a window the test can read: each display's status
         rviz = Proc([sys.executable, "-m", "tests.rviz.live_child", sim.uri, str(PACKAGE / "rviz" / "navigation.rviz"),
                      "base_link"], windowed, cwd=REPO)
         sim.procs.append(rviz)

@@ -51,6 +51,39 @@ def test_map_saver_reproduces_the_served_map(tmp_path: Path) -> None:
         assert "width: 60" in call and "height: 40" in call
 
 
+# a raw-mode map serves each pixel as its cell's value (255 wraps to -1, unknown): every value
+# either side of map_saver's thresholds, the defaults' (65, 25) and the ones given (70, 30)
+RAW_CELLS = [0, 10, 25, 26, 30, 31, 50, 64, 65, 69, 70, 100, -1]
+
+
+def test_map_saver_classifies_cells_by_its_occ_and_free_options(tmp_path: Path) -> None:
+    Image.fromarray(np.array([RAW_CELLS], dtype=np.int16).astype(np.uint8), "L").save(tmp_path / "raw.pgm")
+    (tmp_path / "raw.yaml").write_text("image: raw.pgm\nresolution: 0.1\norigin: [2.0, -3.0, 0.0]\nnegate: 0\n"
+                                       "occupied_thresh: 0.65\nfree_thresh: 0.196\nmode: raw\n")
+    with master(tmp_path / "home") as sim:
+        sim.start("map_server", "map_server", str(tmp_path / "raw.yaml"), wait="Read a 13 X 1 map")
+        assert sim.echo("/map")["data"] == RAW_CELLS
+        sim.run("rosrun", "map_server", "map_saver", "--occ", "70", "--free", "30", "-f", str(tmp_path / "given"))
+        sim.run("rosrun", "map_server", "map_saver", "-f", str(tmp_path / "default"))
+    free, occupied, unknown = 254, 0, 205
+    given = np.asarray(Image.open(tmp_path / "given.pgm"))[0].tolist()
+    assert dict(zip(RAW_CELLS, given, strict=True)) == {
+        0: free, 10: free, 25: free, 26: free, 30: free,  # up to --free, inclusive
+        31: unknown, 50: unknown, 64: unknown, 65: unknown, 69: unknown,  # between the two
+        70: occupied, 100: occupied,  # from --occ, inclusive
+        -1: unknown}
+    default = np.asarray(Image.open(tmp_path / "default.pgm"))[0].tolist()
+    assert dict(zip(RAW_CELLS, default, strict=True)) == {
+        0: free, 10: free, 25: free, 26: unknown, 30: unknown, 31: unknown, 50: unknown, 64: unknown,
+        65: occupied, 69: occupied, 70: occupied, 100: occupied, -1: unknown}
+    assert (tmp_path / "given.pgm").read_bytes().startswith(b"P5\n# CREATOR: map_saver.cpp 0.100 m/pix\n13 1\n255\n")
+    # the YAML names the thresholds map_server should read the image with, whatever --occ and
+    # --free were: map_saver writes 0.65 and 0.196 always
+    assert (tmp_path / "given.yaml").read_text() == (
+        f"image: {tmp_path}/given.pgm\nresolution: 0.100000\norigin: [2.000000, -3.000000, 0.000000]\n"
+        "negate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n\n")
+
+
 def test_bad_maps_are_errors_not_crashes(tmp_path: Path) -> None:
     _write_map(tmp_path)
     (tmp_path / "missing.yaml").write_text((tmp_path / "room.yaml").read_text().replace("room.pgm", "gone.pgm"))

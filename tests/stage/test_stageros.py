@@ -4,12 +4,16 @@
 from __future__ import annotations
 
 import math
+import struct
+import threading
+import time
 from pathlib import Path
 
 import numpy as np
 import pytest
 import yaml
 
+from kame.node.node import Node, NodeConfig
 from tests.stage.sim import echo
 from tests.support import Proc
 from tests.turtlesim.sim import BIN, Sim, master, wait_until
@@ -61,6 +65,36 @@ def test_cmd_vel_drives_the_robot_and_every_topic_flows(tmp_path: Path) -> None:
         assert pose["position"]["y"] != -1.0 and math.isclose(pose["orientation"]["z"] ** 2
                                                               + pose["orientation"]["w"] ** 2, 1.0)
         assert node.popen.poll() is None
+
+
+@pytest.mark.parametrize("factor", [1.0, 2.0, 0.5])
+def test_the_clock_runs_at_the_real_time_factor(tmp_path: Path, factor: float) -> None:
+    """/clock against the wall's monotonic clock over 3 s of wall time, read as each message
+    arrives; 25% either way, for a loaded 2-core machine (a late step is not made up for)."""
+    from rosgraph_msgs.msg import Clock
+
+    ticks: list[tuple[float, float]] = []  # (wall, simulated) seconds
+    arrived = threading.Condition()
+
+    def on_clock(frames: list[memoryview], header: dict[str, str]) -> None:
+        now = time.monotonic()
+        with arrived:
+            ticks.extend((now, secs + nsecs * 1e-9) for secs, nsecs in (struct.unpack_from("<II", f) for f in frames))
+            arrived.notify_all()
+
+    with master(tmp_path) as sim:
+        sim.start("stage_ros", "stageros", "-g", PLAYGROUND, f"_real_time_factor:={factor}",
+                  wait="Simulating [robot_0]")
+        node = Node(NodeConfig("/clock_watch", sim.uri, "127.0.0.1", "127.0.0.1"))
+        try:
+            node.subscribe("/clock", "rosgraph_msgs/Clock", Clock._md5sum, Clock._full_text, on_clock)
+            with arrived:
+                spanned = arrived.wait_for(lambda: bool(ticks) and ticks[-1][0] - ticks[0][0] >= 3.0, timeout=60)
+                assert spanned, f"/clock for 3 s of wall time: {len(ticks)} messages"
+                (wall0, sim0), (wall1, sim1) = ticks[0], ticks[-1]
+        finally:
+            node.shutdown("test over")
+    assert (sim1 - sim0) / (wall1 - wall0) == pytest.approx(factor, rel=0.25)
 
 
 def test_nan_commands_are_refused_and_the_robot_goes_on(tmp_path: Path) -> None:
