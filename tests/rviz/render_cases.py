@@ -10,11 +10,12 @@ from typing import Any
 
 import numpy as np
 
-from geometry_msgs.msg import Point, Point32, PointStamped, Pose, PoseArray, PoseStamped, Quaternion
+from geometry_msgs.msg import Point, Point32, PointStamped, Pose, PoseArray, PoseStamped, Quaternion, Vector3
 from kame.rviz import displays, markers
 from kame.rviz.display import Display
 from nav_msgs.msg import OccupancyGrid, Odometry, Path
 from sensor_msgs.msg import LaserScan, PointCloud2, PointField
+from std_msgs.msg import ColorRGBA
 from visualization_msgs.msg import Marker, MarkerArray
 
 IDENTITY = Quaternion(0, 0, 0, 1)
@@ -119,6 +120,33 @@ def _marker(kind: int, **extra: Any) -> Marker:
 
 def _marker_case(kind: int, **extra: Any) -> Callable[[], tuple[Display, list[Any]]]:
     return lambda: (markers.Marker(), [_marker(kind, **extra)])
+
+
+QUARTER_TURN = Quaternion(0, 0, math.sin(math.pi / 4), math.cos(math.pi / 4))
+
+
+def _cube_list() -> tuple[Display, list[Any]]:
+    """The cubes' points are in the marker's frame: turned a quarter, (0.5, 0) is 0.5 m along
+    the map's y from the pose at (1, -2); none is at the pose itself."""
+    cubes = _marker(markers.CUBE_LIST, pose=Pose(position=Point(1, -2, 0), orientation=QUARTER_TURN),
+                    points=[Point(-0.5, 0, 0), Point(0.5, 0, 0)], scale=Vector3(0.3, 0.3, 0.3))
+    return markers.Marker(), [cubes]
+
+
+def _sphere_list() -> tuple[Display, list[Any]]:
+    """Each sphere in its own colour (colors, one a point): the second one green, 0.5 m right of the pose."""
+    spheres = _marker(markers.SPHERE_LIST, points=[Point(-0.5, 0, 0), Point(0.5, 0, 0)], scale=Vector3(0.3, 0.3, 0.3),
+                      colors=[ColorRGBA(1, 0, 0, 1), ColorRGBA(0, 1, 0, 1)])
+    return markers.Marker(), [spheres]
+
+
+# two segments, one a pair of points, 20 pixels wide: the lower from (0.5, -2.5) to (1.5, -2.5)
+# and the upper from (0.5, -1.5) to (1.5, -1.5); a strip would also join (1.5, -2.5) to (0.5, -1.5)
+LINE_LIST_POINTS = [Point(-0.5, -0.5, 0), Point(0.5, -0.5, 0), Point(-0.5, 0.5, 0), Point(0.5, 0.5, 0)]
+
+
+def _line_list() -> tuple[Display, list[Any]]:
+    return markers.Marker(), [_marker(markers.LINE_LIST, points=LINE_LIST_POINTS, scale=Vector3(0.2, 0, 0))]
 
 
 def _text_over_a_cube() -> tuple[Display, list[Any]]:
@@ -245,6 +273,11 @@ CASES = [
     Case("Marker triangle list", _marker_case(markers.TRIANGLES, points=[Point(-0.5, -0.5, 0), Point(0.5, -0.5, 0),
                                                                          Point(0, 0.5, 0)]),
          (1.0, -2.0, 0.0), (0, 0, 255)),
+    Case("Marker cube list", _cube_list, (1.0, -1.5, 0.0), (0, 0, 255)),
+    Case("Marker sphere list", _sphere_list, (1.5, -2.0, 0.0), (0, 255, 0)),
+    Case("Marker line list", _line_list, (1.25, -1.5, 0.0), (0, 0, 255)),
+    Case("Marker line list lower", _line_list, (0.75, -2.5, 0.0), (0, 0, 255)),
+    Case("Marker line list gap", _line_list, (1.0, -2.0, 0.0), (51, 51, 51)),  # nothing between the pairs
     Case("Marker text", _text_over_a_cube, (1.0, -2.0, 0.0), (255, 255, 255), (6, -8)),
     Case("MarkerArray", _marker_array, (-1.6, 2.0, 0.0), (0, 0, 255)),
     Case("Pose", _pose, (0.0, 0.5, 0.0), (255, 255, 0)),

@@ -12,7 +12,7 @@ import pytest
 from geometry_msgs.msg import Point, PointStamped, Pose, PoseArray, PoseStamped, Quaternion
 from kame.rviz import config, displays, markers
 from kame.rviz.camera import FPS, TOP_DOWN, Camera
-from kame.rviz.display import OK, WARN
+from kame.rviz.display import OK, WARN, edited_option
 from kame.rviz.scene import Scene, apply, box_triangles, cylinder_triangles, pose_matrix, sphere_triangles
 from nav_msgs.msg import OccupancyGrid, Odometry, Path
 from sensor_msgs.msg import LaserScan, PointCloud2, PointField
@@ -506,3 +506,13 @@ def test_solid_markers_drawn_together_match_each_drawn_alone() -> None:
         facing = np.cross(triangles[:, 1] - triangles[:, 0], triangles[:, 2] - triangles[:, 0])
         assert ((facing * (triangles.mean(axis=1) - centres)).sum(axis=1) >= -1e-6).all()
         assert (np.einsum("ij,ij->i", together.normals, np.repeat(facing, 3, axis=0)) >= -1e-6).all()
+
+
+def test_an_option_typed_into_the_panel_keeps_the_kind_of_value_it_had() -> None:
+    assert edited_option(1, "0.5") == 0.5  # a Cell Size of 1 made half as big
+    assert edited_option(10, "4") == 4 and isinstance(edited_option(10, "4"), int)
+    assert edited_option(10, "4.0") == 4 and isinstance(edited_option(10, "4.0"), int)
+    assert edited_option(0.5, "2") == 2.0 and isinstance(edited_option(0.5, "2"), float)
+    assert edited_option(1, "many") == "many"  # kept as typed: the display reads its default then
+    assert edited_option(True, "0") == "0" and not displays.Grid(options={"Show": "0"}).flag("Show")
+    assert edited_option("/scan", "/base_scan") == "/base_scan"

@@ -68,6 +68,19 @@ def format_color(color: Color) -> str:
     return "; ".join(str(round(c * 255)) for c in color[:3])
 
 
+def edited_option(old: Any, text: str) -> Any:
+    """An option's value typed into the Displays panel: a number where the option held one
+    (whole only when the text is: 0.5 typed over a Cell Size of 1 is 0.5), else the text as
+    typed (a flag's "false" included: Display.flag reads it)."""
+    if isinstance(old, bool) or not isinstance(old, (int, float)):
+        return text
+    try:
+        number = float(text)
+    except ValueError:
+        return text
+    return int(number) if isinstance(old, int) and number.is_integer() else number
+
+
 class RecordingFrames:
     """Frames that remember every lookup, so a display's last scene can be reused while its
     message, options and every transform it used are the same."""

@@ -1,7 +1,7 @@
-"""`rviz [-d FILE.rviz] [-f FIXED_FRAME]` (also `rosrun rviz rviz`): the window on a node named
-/rviz_<pid> (rviz's anonymous name) or its `__name:=` (a launch file's name="rviz"), with ROS
-remappings, __ns and __master honoured. Without
-PySide6/PyOpenGL it says which extra to install."""
+"""`rviz [-d FILE.rviz] [-f FIXED_FRAME] [--stats]` (also `rosrun rviz rviz`): the window on a node
+named /rviz_<pid> (rviz's anonymous name) or its `__name:=` (a launch file's name="rviz"), with
+ROS remappings, __ns and __master honoured; --stats prints how well the window keeps up
+(kame.rviz.stats) each second. Without PySide6/PyOpenGL it says which extra to install."""
 
 from __future__ import annotations
 
@@ -10,6 +10,7 @@ import gc
 import os
 import signal
 import sys
+import time
 from collections.abc import Sequence
 
 from kame import names
@@ -20,6 +21,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="rviz", description="3-D visualisation of ROS topics and tf")
     parser.add_argument("-d", "--display-config", default="", help="a .rviz file to load")
     parser.add_argument("-f", "--fixed-frame", default="", help="the fixed frame (overrides the file's)")
+    parser.add_argument("--stats", action="store_true",
+                        help="print each second the frames drawn and the longest the window was busy")
     options = parser.parse_args(ros.argv)
     try:
         from PySide6.QtWidgets import QApplication
@@ -51,6 +54,12 @@ def main(argv: Sequence[str] | None = None) -> int:
         window = RvizWindow(config, source, options.display_config)
         window.resize(*rviz_config.window_size(config))
         window.show()
+        if options.stats:
+            from PySide6.QtCore import QTimer
+
+            reporter = QTimer(window)
+            reporter.timeout.connect(lambda: print(window.stats.report(time.monotonic()), flush=True))
+            reporter.start(1000)
         # what is alive now (Qt, numpy, the message classes) lives as long as the window: kept
         # out of the collector's full passes, which otherwise walk it all while a 2,000-marker
         # array is decoded (40 ms more of a message's latency, every third array or so)

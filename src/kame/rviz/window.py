@@ -34,7 +34,7 @@ from PySide6.QtWidgets import (
 
 from kame.rviz import config as rviz_config
 from kame.rviz.camera import FPS, ORBIT, TOP_DOWN, Camera
-from kame.rviz.display import ERROR, OK, WARN, Display, Status, format_color, parse_color
+from kame.rviz.display import ERROR, OK, WARN, Display, Status, edited_option, format_color, parse_color
 from kame.rviz.image_panels import ImagePanels, decode_compressed
 from kame.rviz.interact_view import InteractRouter
 from kame.rviz.interactive import InteractiveMarkers
@@ -44,6 +44,7 @@ from kame.rviz.robot import RobotModel
 from kame.rviz.scene import Batch, Scene
 from kame.rviz.sensors import Image
 from kame.rviz.source import RvizSource
+from kame.rviz.stats import FrameStats
 from kame.rviz.tools import Measure, Selection
 from visualization_msgs.msg import InteractiveMarkerFeedback
 
@@ -466,6 +467,8 @@ class RvizWindow(QMainWindow):
         self.timer.timeout.connect(self.frame)
         self.timer.start(max(1, 1000 // max(1, config.frame_rate)))
         self.started = time.monotonic()
+        self.stats = FrameStats(self.started)
+        self.view.frameSwapped.connect(self.stats.frame_shown)  # drawn and shown: a grab is neither
 
     # -------------------------------------------------------------- building
 
@@ -603,8 +606,7 @@ class RvizWindow(QMainWindow):
             self.set_global(key, value)
             return
         display = self.config.displays[self.tree.indexOfTopLevelItem(parent) - 1]
-        old = display.options.get(key)
-        display.options[key] = type(old)(value) if isinstance(old, (int, float)) and _is_number(value) else value
+        display.options[key] = edited_option(display.options.get(key), value)
         if key in ("Topic", "Marker Topic", "Image Topic", "Update Topic"):
             display.reset()
             self._rewatch()
@@ -665,6 +667,7 @@ class RvizWindow(QMainWindow):
 
     def frame(self) -> None:
         now = time.monotonic()
+        self.stats.turned(now)
         if self.source is not None:
             taken = self.source.take()
             for display in self.config.displays:
