@@ -4,18 +4,22 @@ rviz's do, and .rviz files load and save."""
 
 from __future__ import annotations
 
+import io
 import math
+import random
+from typing import Any
 
 import numpy as np
 import pytest
 
 from geometry_msgs.msg import Point, PointStamped, Pose, PoseArray, PoseStamped, Quaternion
-from kame.rviz import config, displays, markers
+from kame.rviz import backlog, config, displays, markers
 from kame.rviz.camera import FPS, TOP_DOWN, Camera
 from kame.rviz.display import OK, WARN, edited_option
 from kame.rviz.scene import Scene, apply, box_triangles, cylinder_triangles, pose_matrix, sphere_triangles
 from nav_msgs.msg import OccupancyGrid, Odometry, Path
 from sensor_msgs.msg import LaserScan, PointCloud2, PointField
+from std_msgs.msg import ColorRGBA
 from visualization_msgs.msg import Marker, MarkerArray
 
 
@@ -209,6 +213,70 @@ def test_every_marker_type_draws_and_markers_are_replaced_deleted_and_expire() -
     assert build(single, now=10.5).batches[0] is first  # alive a while yet: the same scene, not redrawn
     assert not build(single, now=11.5).batches and single.markers == {}
 
+
+
+def _serialized(message: Any) -> bytes:
+    out = io.BytesIO()
+    message.serialize(out)
+    return out.getvalue()
+
+
+def _random_marker(rng: random.Random) -> Marker:
+    """A marker whose every variable-length part (frame, ns, points, colours, text, mesh) varies,
+    so reading its keys off the bytes must step over each; its x says which message it came in."""
+    marker = Marker(ns=rng.choice(["a", "b", "ü"]), id=rng.randrange(4), type=rng.randrange(12),
+                    action=rng.choice([markers.ADD, markers.ADD, 1, markers.DELETE, markers.DELETEALL]),
+                    text="t" * rng.randrange(3), mesh_resource="m" * rng.randrange(3))
+    marker.header.frame_id = rng.choice(["", "map", "base_link"])
+    marker.points = [Point(rng.random(), 0.0, 0.0) for _ in range(rng.randrange(3))]
+    marker.colors = [ColorRGBA(rng.random(), 0.0, 0.0, 1.0) for _ in range(rng.randrange(3))]
+    marker.pose.position.x = rng.random()
+    return marker
+
+
+@pytest.mark.parametrize("array", [True, False])
+def test_the_marker_messages_a_backlog_needs_leave_the_markers_every_message_would(array: bool) -> None:
+    rng = random.Random(18)
+    dropped = 0
+    for _ in range(400):
+        if array:
+            messages: list[Any] = [MarkerArray(markers=[_random_marker(rng) for _ in range(rng.randrange(4))])
+                                   for _ in range(rng.randrange(1, 7))]
+        else:
+            messages = [_random_marker(rng) for _ in range(rng.randrange(1, 7))]
+        payloads = [_serialized(message) for message in messages]
+        for message, payload in zip(messages, payloads, strict=True):
+            shown = message.markers if array else [message]
+            assert backlog.marker_keys(payload, array) == [(m.ns.encode(), m.id, m.action) for m in shown]
+        kept = backlog.still_needed(payloads, array)
+        assert kept[-1] is payloads[-1]  # the newest is the display's message
+        dropped += len(payloads) - len(kept)
+        every, reduced = (markers.MarkerArray() if array else markers.Marker() for _ in range(2))
+        before = [_random_marker(rng) for _ in range(6)]  # what the display had: a DELETEALL must clear it
+        for display in (every, reduced):
+            display.receive([MarkerArray(markers=before)] if array else before, 0.0)
+        every.receive(messages, 1.0)
+        cls = MarkerArray if array else Marker
+        reduced.receive([cls().deserialize(payload) for payload in kept], 1.0)
+        assert {key: _serialized(m) for key, (m, _) in reduced.markers.items()} == \
+            {key: _serialized(m) for key, (m, _) in every.markers.items()}
+    assert dropped > 200  # the backlogs were thinned, not all kept
+
+
+def test_a_backlog_of_repeated_arrays_is_one_array_and_a_delete_or_deleteall_is_never_skipped() -> None:
+    def array(*markers_: Marker) -> bytes:
+        return _serialized(MarkerArray(markers=list(markers_)))
+
+    same = [array(*(_marker("flood", i, markers.CUBE) for i in range(10))) for _ in range(5)]
+    assert backlog.still_needed(same, True) == same[-1:]
+    delete = array(_marker("flood", 3, markers.CUBE, action=markers.DELETE))
+    clear = array(_marker("", 0, 0, action=markers.DELETEALL))
+    later = array(*(_marker("flood", i, markers.CUBE) for i in range(10) if i != 3))
+    assert backlog.still_needed([*same, delete, *same], True) == same[-1:]  # 3 is added again after
+    assert backlog.still_needed([*same, delete, later], True) == [delete, later]
+    assert backlog.still_needed([*same, clear, later], True) == [clear, later]
+    assert backlog.still_needed([*same, clear, later, clear, later], True) == [clear, later]
+    assert backlog.still_needed([same[0], b"\x05\x00\x00\x00", same[0]], True) == [b"\x05\x00\x00\x00", same[0]]
 
 def test_hidden_namespace_and_unknown_frame() -> None:
     display = markers.Marker(options={"Namespaces": {"hidden": False}})

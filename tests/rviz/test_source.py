@@ -5,19 +5,20 @@ through the Buffer, and the tools' publishers reach a subscriber."""
 from __future__ import annotations
 
 import threading
+import time
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 import pytest
 
-from geometry_msgs.msg import TransformStamped
+from geometry_msgs.msg import Point, Pose, TransformStamped
 from kame.node.node import Node, NodeConfig
 from kame.node.topics import serialize_frame
 from kame.rviz.source import RvizSource
 from sensor_msgs.msg import LaserScan
 from tests.tf.graph import Graph
-from visualization_msgs.msg import Marker
+from visualization_msgs.msg import Marker, MarkerArray
 
 
 def test_a_burst_of_scans_is_one_message_and_markers_are_each_kept(tmp_path: Path) -> None:
@@ -70,6 +71,52 @@ def test_a_burst_of_scans_is_one_message_and_markers_are_each_kept(tmp_path: Pat
         talker.shutdown("test over")
         graph.stop()
 
+
+
+def test_marker_arrays_wait_as_bytes_while_the_window_is_busy_and_only_those_that_matter_are_decoded(
+        tmp_path: Path) -> None:
+    from kame.rviz import markers
+
+    def array(index: int, action: int = markers.ADD, ids: range = range(10), skip: int = -1) -> MarkerArray:
+        return MarkerArray(markers=[Marker(ns="flood", id=i, action=action, pose=Pose(position=Point(x=index)))
+                                    for i in ids if i != skip])
+
+    graph = Graph(tmp_path)
+    rviz = Node(NodeConfig("/rviz_source_test", graph.uri, "127.0.0.1", "127.0.0.1"))
+    talker = Node(NodeConfig("/talker", graph.uri, "127.0.0.1", "127.0.0.1"))
+    woken = threading.Event()
+    source = RvizSource(rviz, woken.set)
+    try:
+        assert source.watch("/markers", "visualization_msgs/MarkerArray", keep_every=True) == ""
+        connected = threading.Event()
+        arrays = talker.advertise("/markers", MarkerArray._type, MarkerArray._md5sum, MarkerArray._full_text,
+                                  on_connect=lambda link: connected.set())
+        assert connected.wait(10)
+        arrays.publish_frame(serialize_frame(array(0)))
+        assert woken.wait(10)  # decoded; the window has not taken it yet
+        woken.clear()
+        backlog = [array(i) for i in range(1, 11)] + [array(11, markers.DELETE, range(3, 4)), array(12, skip=3)]
+        for message in backlog:
+            arrays.publish_frame(serialize_frame(message))
+        deadline = time.monotonic() + 30
+        while len(source._waiting.get("/markers", [])) < len(backlog):  # nothing decoded meanwhile
+            assert time.monotonic() < deadline and not woken.is_set(), source._waiting
+            time.sleep(0.01)
+        display = markers.MarkerArray()
+        first = source.take()["/markers"]
+        assert [m.markers[0].pose.position.x for m in first] == [0.0]
+        display.receive(first, 0.0)
+        assert woken.wait(10)  # taking woke the decoder: of the backlog, the DELETE and the newest
+        last = source.take()["/markers"]
+        assert [m.markers[0].pose.position.x for m in last] == [11.0, 12.0]
+        display.receive(last, 1.0)
+        assert sorted(display.markers) == [("flood", i) for i in range(10) if i != 3]
+        assert {m.pose.position.x for m, _ in display.markers.values()} == {12.0}
+    finally:
+        source.close()
+        rviz.shutdown("test over")
+        talker.shutdown("test over")
+        graph.stop()
 
 def test_scans_and_maps_are_decoded_into_arrays_and_drawn_as_from_tuples() -> None:
     from kame.rviz import displays

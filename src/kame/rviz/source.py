@@ -1,9 +1,10 @@
 """rviz's node: the tf Buffer fed from /tf and /tf_static (kame.tf_ros), one subscription per
 topic the displays show, and the publishers of the tools. Subscriber threads only store bytes:
 the newest message of a topic (latest wins), or for marker topics every message up to a bound,
-and the source's own decoding thread decodes what arrived (a burst of clouds: the newest only)
-and wakes the window once (`on_ready`) when nothing decoded was waiting, so a 30 Hz 1 MB cloud
-is never a queue the window falls behind on, and the window's turn only takes messages."""
+and the source's own decoding thread decodes what arrived (a burst of clouds: the newest only;
+of marker messages, those a newer one does not supersede) once the window has taken what it
+decoded before, and wakes it (`on_ready`), so a 30 Hz 1 MB cloud or 1,000-marker array is never
+a queue the window falls behind on, and the window's turn only takes messages."""
 
 from __future__ import annotations
 
@@ -18,6 +19,7 @@ from kame.catkin import executables
 from kame.msg.lookup import message_class
 from kame.node.node import Node
 from kame.node.topics import serialize_frame
+from kame.rviz import backlog
 from kame.rviz.scene import pose_matrix
 from kame.tf.errors import TransformException
 from kame.tf_ros.buffer import Buffer
@@ -130,20 +132,27 @@ class RvizSource:
         return deliver
 
     def _decode_loop(self) -> None:
-        """Decodes what arrived (the newest of a topic, or every marker message) and wakes the
-        window when it had nothing to take; a burst arriving while it decodes is one more turn."""
+        """Decodes what arrived (the newest of a topic; of marker messages those whose markers
+        no newer waiting one replaces) once the window has taken what was decoded before, and
+        wakes it: while the window is busy, arrivals wait as bytes, where a backlog is cheap to
+        thin out, instead of each being decoded (an array of 1,000 markers: 10-20 ms holding
+        the GIL the window needs) and then superseded unseen."""
         while True:
             self._pending.wait()
             self._pending.clear()
             if self._closing:
                 return
             with self._lock:
+                if any(self._decoded.values()):  # take() wakes this loop again
+                    continue
                 waiting, self._waiting = self._waiting, {}
             decoded: dict[str, list[Any]] = {}
             for topic, payloads in waiting.items():
                 cls = self._classes.get(topic)
                 if cls is None:
                     continue
+                if len(payloads) > 1 and cls._type in (backlog.MARKER, backlog.MARKER_ARRAY):
+                    payloads = backlog.still_needed(payloads, cls._type == backlog.MARKER_ARRAY)
                 messages = []
                 for payload in payloads:
                     try:
@@ -154,24 +163,22 @@ class RvizSource:
             if not any(decoded.values()):
                 continue
             with self._lock:
-                was_empty = not any(self._decoded.values())
                 for topic, messages in decoded.items():
                     if topic not in self._classes:  # unwatched while it was decoded
                         continue
                     if self._keep_every.get(topic):
-                        kept = self._decoded.setdefault(topic, [])
-                        kept.extend(messages)
-                        del kept[:-KEPT_PER_TOPIC]
+                        self._decoded[topic] = messages
                     elif messages:
                         self._decoded[topic] = messages[-1:]
-            if was_empty:
-                self.on_ready()
+            self.on_ready()
 
     def take(self) -> dict[str, list[Any]]:
-        """Every decoded message waiting, by resolved topic (the newest of a topic, every marker
-        message in order)."""
+        """Every decoded message waiting, by resolved topic (the newest of a topic; the marker
+        messages that change what is shown, in order)."""
         with self._lock:
             taken, self._decoded = self._decoded, {}
+            if self._waiting:  # the decoder waited for this
+                self._pending.set()
         return taken
 
     def published_topics(self) -> list[tuple[str, str]]:
