@@ -8,6 +8,8 @@ import math
 from pathlib import Path
 from typing import Any
 
+import pytest
+
 from tests.stage.sim import echo
 from tests.stage.test_stageros import drive
 from tests.support import Proc
@@ -86,3 +88,52 @@ def test_a_laser_model_amcl_does_not_run_is_named_once_at_start_up(tmp_path: Pat
             else:
                 assert len(said) == 1 and said[0].startswith("[ WARN]") and said[0] in err, said
                 assert f'"{model}" is not implemented here; using the likelihood_field model instead' in said[0], said
+
+
+def test_an_initial_pose_must_be_in_the_map_frame_and_is_carried_forward_from_its_stamp(tmp_path: Path) -> None:
+    """amcl's handleInitialPoseMessage: a pose in another frame is ignored with its warning; one
+    stamped in the past has the odometry's motion since added (the robot at its start when the
+    stamp was taken, then driven: the pose set is where it is now); one tf cannot place (a stamp
+    in the future) is set as given, with a warning. The world runs at 0.4 times real time so that
+    the stamp stays within the 10 s amcl's tf keeps, however slow the machine's tools are."""
+    with master(tmp_path) as sim:
+        sim.run("rosparam", "set", "/use_sim_time", "true")
+        sim.start("stage_ros", "stageros", "-g", OFFICE, "base_scan:=scan", "_odom_drift_linear:=0.0",
+                  "_odom_drift_angular:=0.0", "_real_time_factor:=0.4", wait="Simulating [robot_0]")
+        sim.start("map_server", "map_server", OFFICE, wait="Read a")
+        amcl = sim.start("amcl", "amcl", "_base_frame_id:=base_footprint", wait="Received a 320 X 240 map")
+        echo(sim, "/tf", "--filter", "m.transforms[0].header.frame_id == 'map'")  # amcl has sent its transform
+        at_start = echo(sim, "/odom")
+        assert pose_of(at_start) == (0.0, 0.0, 0.0)
+        stamp = at_start["header"]["stamp"]
+
+        def set_pose(frame: str, secs: int, nsecs: int, x: float) -> None:
+            sim.run("rostopic", "pub", "-1", "/initialpose", "geometry_msgs/PoseWithCovarianceStamped",
+                    f"{{header: {{stamp: {{secs: {secs}, nsecs: {nsecs}}}, frame_id: '{frame}'}}, "
+                    f"pose: {{pose: {{position: {{x: {x}}}, orientation: {{w: 1.0}}}}, "
+                    f"covariance: [0.01, 0, 0, 0, 0, 0, 0, 0.01, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, "
+                    f"0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0.01]}}}}")
+
+        def said(text: str) -> list[str]:
+            return [line for line in amcl.out + amcl.err if text in line]
+
+        set_pose("odom", 0, 0, 3.0)
+        wait_until(lambda: said('Ignoring initial pose in frame "odom"; initial poses must be in the global '
+                                'frame, "map"'), what="amcl to refuse a pose in odom")
+        assert not said("Setting pose")
+        ahead = drive(sim, "/cmd_vel", 0.5)
+        wait_until(lambda: pose_of(echo(sim, "/base_pose_ground_truth"))[0] > 0.5, timeout=30,
+                   what="the robot to drive 0.5 m")
+        ahead.stop()
+        wait_until(lambda: echo(sim, "/odom")["twist"]["twist"]["linear"]["x"] == 0.0, timeout=20,
+                   what="the robot to stop")
+        now = pose_of(echo(sim, "/base_pose_ground_truth"))
+        set_pose("/map", stamp["secs"], stamp["nsecs"], 0.0)  # where the robot was at that stamp
+        wait_until(lambda: said("Setting pose"), what="amcl to set the pose")
+        x, y, yaw = (float(v) for v in said("Setting pose")[0].split(":")[-1].split())
+        assert (x, y, yaw) == pytest.approx(now, abs=0.002)  # exact odometry: the truth, to the printed mm
+
+        set_pose("map", stamp["secs"] + 1000, 0, 0.5)
+        wait_until(lambda: said("Failed to transform initial pose in time"), what="amcl to say tf cannot place it")
+        wait_until(lambda: len(said("Setting pose")) == 2, what="amcl to set the pose as given")
+        assert said("Setting pose")[1].split(":")[-1].split() == ["0.500", "0.000", "0.000"]

@@ -1,11 +1,13 @@
 """rviz's mouse and tools on a live master, offscreen (no drawing needed): a left drag turns the
 orbit camera, the wheel zooms, a middle drag pans; 2D Pose Estimate, 2D Nav Goal and Publish
-Point publish where the mouse met the ground, facing the drag's direction, in the fixed frame."""
+Point publish where the mouse met the ground, facing the drag's direction, in the fixed frame,
+stamped with ROS time now (the wall clock, or /clock under /use_sim_time)."""
 
 from __future__ import annotations
 
 import math
 import threading
+import time
 from pathlib import Path
 from typing import Any
 
@@ -20,17 +22,41 @@ from PySide6.QtTest import QTest
 
 from geometry_msgs.msg import PointStamped, PoseStamped, PoseWithCovarianceStamped
 from kame.node.node import Node, NodeConfig
+from kame.node.topics import serialize_frame
+from kame.rostime import Time
 from kame.rviz import config
 from kame.rviz.source import RvizSource
 from kame.rviz.window import NAV_GOAL, POSE_ESTIMATE, PUBLISH_POINT, RvizWindow
+from rosgraph_msgs.msg import Clock
 from tests.tf.graph import Graph
 
+SIM_NOW = Time(42, 500_000_000)
 
-def test_mouse_moves_the_camera_and_the_tools_publish(tmp_path: Path, qtbot: Any) -> None:
+
+def follow_sim_clock(publisher: Node, source: RvizSource) -> None:
+    """Publishes SIM_NOW on /clock until rviz's clock reads it (its subscription connects first)."""
+    connected = threading.Event()
+    clock = publisher.advertise("/clock", Clock._type, Clock._md5sum, Clock._full_text,
+                                on_connect=lambda link: connected.set())
+    assert connected.wait(10)
+    assert source.clock.is_sim_time and source.clock.now() == Time(0, 0)  # roscpp's 0 until the first /clock
+    clock.publish_frame(serialize_frame(Clock(SIM_NOW)))
+    deadline = time.monotonic() + 10
+    while source.clock.now() != SIM_NOW:
+        assert time.monotonic() < deadline, "rviz's clock never read /clock"
+        time.sleep(0.01)
+
+
+@pytest.mark.parametrize("sim_time", [False, True], ids=["wall_clock", "sim_time"])
+def test_mouse_moves_the_camera_and_the_tools_publish(tmp_path: Path, qtbot: Any, sim_time: bool) -> None:
     graph = Graph(tmp_path)
     rviz = Node(NodeConfig("/rviz_tools_test", graph.uri, "127.0.0.1", "127.0.0.1"))
     listener = Node(NodeConfig("/listener", graph.uri, "127.0.0.1", "127.0.0.1"))
+    if sim_time:
+        listener.master.call("setParam", "/use_sim_time", True)  # as rviz starts: rospy and roscpp read it then
     source = RvizSource(rviz, lambda: None)
+    if sim_time:
+        follow_sim_clock(listener, source)
     received: dict[str, Any] = {}
     arrived = threading.Condition()
 
@@ -64,6 +90,16 @@ def test_mouse_moves_the_camera_and_the_tools_publish(tmp_path: Path, qtbot: Any
         assert view.camera.distance == pytest.approx(distance * 0.9)
 
         def use(tool: str, start: tuple[float, float], end: tuple[float, float], topic: str) -> Any:
+            before = time.time_ns()
+            message = published(tool, start, end, topic)
+            stamp = message.header.stamp.to_nsec()
+            if sim_time:
+                assert stamp == SIM_NOW.to_nsec()
+            else:  # ros::Time::now() on the wall clock, taken as the tool was used
+                assert before <= stamp <= time.time_ns()
+            return message
+
+        def published(tool: str, start: tuple[float, float], end: tuple[float, float], topic: str) -> Any:
             window.set_tool(tool)
             with arrived:
                 received.pop(topic, None)

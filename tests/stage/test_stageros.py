@@ -127,6 +127,29 @@ def test_a_box_placed_while_running_is_seen_and_one_on_the_robot_is_refused(tmp_
         assert x_of(sim, "/base_pose_ground_truth") < 4.0 - 0.177 + 0.01
 
 
+def test_reset_positions_puts_the_robot_back_at_its_start_pose(tmp_path: Path) -> None:
+    """stageros's reset_positions service (std_srvs/Empty, in its namespace): ground truth at the
+    initial pose, odometry at its origin again."""
+    with master(tmp_path) as sim:
+        node = sim.start("stage_ros", "stageros", PLAYGROUND, "_initial_pose_x:=3.5", "_initial_pose_y:=-1.0",
+                         "_initial_pose_a:=0.3", wait="Simulating [robot_0]")
+        backwards = drive(sim, "/cmd_vel", -0.4, 0.3)
+        wait_until(lambda: x_of(sim, "/base_pose_ground_truth") < 3.0, timeout=20, what="the robot to back away")
+        backwards.stop()
+        wait_until(lambda: echo(sim, "/odom")["twist"]["twist"]["linear"]["x"] == 0.0, timeout=20,
+                   what="the command to time out and the robot to stop")
+        assert x_of(sim, "/odom") < -0.4
+        sim.run("rosservice", "call", "/reset_positions")
+        node.wait_line("Resetting stage!")
+        pose = echo(sim, "/base_pose_ground_truth")["pose"]["pose"]
+        assert (pose["position"]["x"], pose["position"]["y"]) == (3.5, -1.0)
+        assert 2 * math.atan2(pose["orientation"]["z"], pose["orientation"]["w"]) == pytest.approx(0.3)
+        odom = echo(sim, "/odom")["pose"]["pose"]
+        assert (odom["position"]["x"], odom["position"]["y"], odom["orientation"]["z"]) == (0.0, 0.0, 0.0)
+        tf = echo(sim, "/tf")["transforms"][0]["transform"]["translation"]
+        assert (tf["x"], tf["y"]) == (0.0, 0.0)
+
+
 def test_several_robots_have_namespaces(tmp_path: Path) -> None:
     with master(tmp_path) as sim:
         sim.run("rosparam", "set", "/stageros/robots", "[{name: r1, x: 0, y: 0}, {name: r2, x: 0, y: 1.5, a: 1.57}]")

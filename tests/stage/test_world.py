@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from kame.stage.mapfile import Grid
-from kame.stage.world import LaserModel, OdometryModel, Walls, World, WorldError
+from kame.stage.world import LaserModel, OdometryModel, Pose, Walls, World, WorldError
 
 RES = 0.05
 
@@ -104,6 +104,27 @@ def test_odometry_drifts_from_the_truth_reproducibly() -> None:
     drive(exact, "bot", 0.3, 0.5, 4.0)
     state = exact.robot("bot")
     assert state.odom.x == pytest.approx(state.pose.x) and state.odom.theta == pytest.approx(state.pose.theta)
+
+
+def test_reset_positions_puts_every_robot_back_as_at_start() -> None:
+    """stageros's reset_positions: truth at the start pose, odometry at its origin, at rest, the
+    bumper released; a command still fresh is followed on from there, as Stage's SetPose leaves
+    the speed set; the odometry drifts as before (the same wheels)."""
+    world = World(Walls(room(pillar=False)), odometry=OdometryModel(0.02, 0.03), seed=3)
+    world.spawn("a", 3.0, 1.0, 0.0)
+    world.spawn("b", 0.0, -0.5, math.pi / 2)
+    drive(world, "a", 0.5, 0.0, 3.0)  # into the east wall
+    drive(world, "b", 0.4, 0.6, 2.0)
+    assert world.robot("a").stalled and world.robot("b").odom != world.robot("b").pose
+    states = {s.name: s for s in world.reset_positions()}
+    assert states["a"].pose == Pose(3.0, 1.0, 0.0) and states["b"].pose == Pose(0.0, -0.5, math.pi / 2)
+    for state in states.values():
+        assert state.odom == Pose(0.0, 0.0, 0.0) and (state.linear, state.angular, state.stalled) == (0.0, 0.0, False)
+    before = world.robot("b").odom
+    world.command("b", 0.4, 0.0)
+    world.step(0.1)
+    moved = world.robot("b")
+    assert moved.pose.y > -0.5 and moved.odom != before and moved.odom.x != moved.pose.y + 0.5  # still drifting
 
 
 @pytest.mark.parametrize(("x", "y", "why"), [

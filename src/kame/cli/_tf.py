@@ -11,6 +11,7 @@ from typing import Any
 
 from kame import names
 from kame.cli._node import ToolNode
+from kame.node.clock import NodeClock
 from kame.tf_ros.buffer import Buffer
 from kame.tf_ros.node_io import TransformListener
 
@@ -36,40 +37,25 @@ class TfTool(ToolNode):
                  params: dict[str, str]) -> None:
         super().__init__(special, default_name, remappings)
         self.params = params
-        self._sim_time: int | None = None  # ns; None: the wall clock
+        self.clock: NodeClock | None = None  # once the master answers
 
     def wait_for_master(self) -> bool:
         if not super().wait_for_master():
             return False
         for key, text in self.params.items():
             self.node.master.call("setParam", self.node.resolve(key), roscpp_value(text))
-        if self._use_sim_time():
-            self._sim_time = 0
-            from rosgraph_msgs.msg import Clock
-
-            def on_clock(frames: list[memoryview], header: dict[str, str]) -> None:
-                clock = Clock._from_buffer(frames[-1]).clock
-                self._sim_time = int(clock.secs) * 1_000_000_000 + int(clock.nsecs)
-                self.notify()
-
-            self.node.subscribe(self.node.resolve("/clock"), Clock._type, Clock._md5sum, Clock._full_text,
-                                on_clock, queue_size=1)
+        self.clock = NodeClock(self.node, on_change=self.notify)
         return True
 
-    def _use_sim_time(self) -> bool:
-        try:
-            return self.node.master.call("getParam", "/use_sim_time") is True
-        except Exception:  # not set
-            return False
-
     def now_ns(self) -> int:
-        """ROS time in ns (0 under sim time until the first /clock, as roscpp)."""
-        return time.time_ns() if self._sim_time is None else self._sim_time
+        """ROS time in ns (0 under sim time until the first /clock, as roscpp); the wall clock
+        until the master answers."""
+        return time.time_ns() if self.clock is None else self.clock.now_ns()
 
     def sleep_ns(self, duration: int) -> bool:
         """ros::Duration::sleep: `duration` of ROS time (under sim time, until /clock has moved
         that far); False when the tool was stopped first."""
-        if self._sim_time is None:
+        if self.clock is None or not self.clock.is_sim_time:
             return not self.stop.wait(duration / 1e9)
         until = self.now_ns() + duration
         return self.wait_until(lambda: self.now_ns() >= until)

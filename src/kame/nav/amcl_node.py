@@ -6,7 +6,9 @@ As navigation's amcl: the map from the `static_map` service (or the `map` topic 
 ~use_map_topic); `scan` (sensor_msgs/LaserScan), the odometry from tf (~odom_frame_id ->
 ~base_frame_id); publishes `amcl_pose` (geometry_msgs/PoseWithCovarianceStamped),
 `particlecloud` (geometry_msgs/PoseArray) and the transform ~global_frame_id -> ~odom_frame_id
-(stamped transform_tolerance ahead); listens to `initialpose`; serves `global_localization`
+(stamped transform_tolerance ahead); listens to `initialpose` (a pose in ~global_frame_id, its
+stamp's pose carried forward by the odometry since; one in another frame is ignored, as amcl's
+handleInitialPoseMessage does); serves `global_localization`
 and `request_nomotion_update` (std_srvs/Empty). The filter updates when the odometry moved
 ~update_min_d metres or turned ~update_min_a radians, resamples every ~resample_interval updates.
 Parameters are amcl's, with its defaults; the filter itself is kame.nav.amcl. Its laser model is
@@ -104,6 +106,7 @@ class Amcl:
         self.force_update = True
         self.updates = 0
         self.map_to_odom: tuple[float, float, float] | None = None
+        self.sent_first_transform = False
         node = core.get_node()
         assert node is not None
         self.buffer = Buffer(warn=lambda text: _log.emit(_log.WARN, text, ()),
@@ -130,15 +133,42 @@ class Amcl:
         _log.emit(_log.INFO, "Received a %d X %d map @ %.3f m/pix", (info.width, info.height, info.resolution))
 
     def on_initial_pose(self, msg: Any) -> None:
+        frame = msg.header.frame_id
+        frame = frame[1:] if frame.startswith("/") else frame  # amcl's stripSlash: one leading slash
+        if not frame:
+            _log.emit(_log.WARN, "Received initial pose with empty frame_id.  You should always supply a frame_id.",
+                      ())
+        elif frame != self.global_frame:
+            _log.emit(_log.WARN, 'Ignoring initial pose in frame "%s"; initial poses must be in the global frame, '
+                      '"%s"', (frame, self.global_frame))
+            return
         pose = msg.pose.pose
-        mean = (pose.position.x, pose.position.y, yaw_of(pose.orientation))
+        mean = compose((pose.position.x, pose.position.y, yaw_of(pose.orientation)),
+                       self._moved_since(msg.header.stamp))
         cov = np.asarray(msg.pose.covariance, dtype=float).reshape(6, 6)
         covariance = cov[np.ix_([0, 1, 5], [0, 1, 5])]
-        _log.emit(_log.INFO, "Setting pose: %.3f %.3f %.3f", mean)
+        _log.emit(_log.INFO, "Setting pose (%.6f): %.3f %.3f %.3f", (clock.get_rostime().to_sec(), *mean))
         with self.lock:
             if self.filter is not None:
                 self.filter.set_gaussian(mean, covariance)
                 self.force_update = True
+
+    def _moved_since(self, stamp: Any) -> tuple[float, float, float]:
+        """The base's motion in odom from `stamp` to now, as a pose in the base at `stamp`: a pose
+        estimate made in the past (an rviz click, then the robot drove on) is carried forward by
+        it. Identity for a zero stamp (no time given) or when tf cannot say (amcl's fallback; a
+        failure before amcl has sent its own transform is start-up, not worth a warning)."""
+        if stamp.secs == 0 and stamp.nsecs == 0:
+            return 0.0, 0.0, 0.0
+        try:
+            found = self.buffer.lookup_transform_full(self.base_frame, stamp, self.base_frame, clock.get_rostime(),
+                                                      self.odom_frame, clock.Duration(0.5))
+        except tf_errors.TransformException as exc:
+            if self.sent_first_transform:
+                _log.emit(_log.WARN, "Failed to transform initial pose in time (%s)", (exc,))
+            return 0.0, 0.0, 0.0
+        t = found.transform.translation
+        return t.x, t.y, yaw_of(found.transform.rotation)
 
     def global_localization(self, _request: Any) -> Any:
         from std_srvs.srv import EmptyResponse
@@ -225,6 +255,7 @@ class Amcl:
         t.transform.rotation.x, t.transform.rotation.y, t.transform.rotation.z, t.transform.rotation.w = \
             (float(v) for v in q)
         self.broadcaster.send_transform(t)
+        self.sent_first_transform = True
 
 
 def _pose(x: float, y: float, theta: float, pose_class: type[Any]) -> Any:

@@ -1,10 +1,12 @@
 """rviz's node: the tf Buffer fed from /tf and /tf_static (kame.tf_ros), one subscription per
-topic the displays show, and the publishers of the tools. Subscriber threads only store bytes:
-the newest message of a topic (latest wins), or for marker topics every message up to a bound,
-and the source's own decoding thread decodes what arrived (a burst of clouds: the newest only;
-of marker messages, those a newer one does not supersede) once the window has taken what it
-decoded before, and wakes it (`on_ready`), so a 30 Hz 1 MB cloud or 1,000-marker array is never
-a queue the window falls behind on, and the window's turn only takes messages."""
+topic the displays show, the publishers of the tools and the ROS time that stamps their messages
+(kame.node.clock: /clock when /use_sim_time is true as rviz starts, as ros::Time::now()).
+Subscriber threads only store bytes: the newest message of a topic (latest wins), or for marker
+topics every message up to a bound, and the source's own decoding thread decodes what arrived (a
+burst of clouds: the newest only; of marker messages, those a newer one does not supersede) once
+the window has taken what it decoded before, and wakes it (`on_ready`), so a 30 Hz 1 MB cloud or
+1,000-marker array is never a queue the window falls behind on, and the window's turn only takes
+messages."""
 
 from __future__ import annotations
 
@@ -17,6 +19,7 @@ import numpy as np
 
 from kame.catkin import executables
 from kame.msg.lookup import message_class
+from kame.node.clock import NodeClock
 from kame.node.node import Node
 from kame.node.topics import serialize_frame
 from kame.rviz import backlog
@@ -75,6 +78,7 @@ class RvizSource:
         # tf's complaints show as display statuses
         self.buffer = Buffer(warn=lambda text: None, error=lambda text: None)
         self.listener = TransformListener(node, self.buffer)
+        self.clock = NodeClock(node)
         self._lock = threading.Lock()
         self._waiting: dict[str, list[bytes]] = {}  # received, not yet decoded
         self._decoded: dict[str, list[Any]] = {}  # decoded, not yet taken by the window
@@ -212,7 +216,14 @@ class RvizSource:
         topic = self.advertise(topic, type(message))
         self.node.publications[topic].publish_frame(serialize_frame(message))
 
+    def publish_stamped(self, topic: str, message: Any) -> None:
+        """A tool's message (2D Pose Estimate, 2D Nav Goal, Publish Point), stamped with ROS time
+        now as rviz's tools stamp theirs."""
+        message.header.stamp = self.clock.now()
+        self.publish(topic, message)
+
     def close(self) -> None:
+        self.clock.close()
         self._closing = True
         self._pending.set()
         self._decoder.join()

@@ -731,7 +731,7 @@ class RvizWindow(QMainWindow):
     # -------------------------------------------------------------- tools
 
     def _tool_used(self, pressed: np.ndarray, released: np.ndarray) -> None:
-        publish: Callable[[str, Any], None] | None = self.source.publish if self.source is not None else None
+        publish: Callable[[str, Any], None] | None = self.source.publish_stamped if self.source is not None else None
         if publish is None or self.view.tool == INTERACT:
             return
         from geometry_msgs.msg import PointStamped, PoseStamped, PoseWithCovarianceStamped

@@ -19,6 +19,8 @@ Private params: ~initial_pose_x/y/a (one robot) or ~robots ([{name, x, y, a}, ..
 ~odom_drift_linear/angular, ~seed; ~boxes ([[x, y, width, depth], ...]: obstacles added to the
 world that its map does not show, as one places a box in Gazebo); the service ~add_box
 (kame_stage_msgs/AddBox: x, y, width, depth -> success, message) places one while it runs;
+the service reset_positions (std_srvs/Empty, in the node's namespace as stageros's) puts every
+robot back at its start pose, its ground truth and odometry as at start (World.reset_positions);
 ~step (seconds of simulated time, 0.01), ~odom_rate (Hz, 50);
 ~real_time_factor (1.0; 0 runs as fast as it can); ~odom_frame_id, ~base_frame_id, ~laser_frame_id.
 The window (as Stage's: the world from above, robots, laser hits) is a process of its own fed
@@ -265,6 +267,17 @@ class Simulator:
         from kame_stage_msgs.srv import AddBox
 
         runtime.Service("~add_box", AddBox, self._on_add_box)
+        from std_srvs.srv import Empty
+
+        runtime.Service("reset_positions", Empty, self._on_reset_positions)
+
+    def _on_reset_positions(self, _request: Any) -> Any:
+        from std_srvs.srv import EmptyResponse
+
+        runtime.info("Resetting stage!")  # stageros's words
+        with self.lock:
+            self.world.reset_positions()
+        return EmptyResponse()
 
     def _on_add_box(self, request: Any) -> Any:
         from kame_stage_msgs.srv import AddBoxResponse

@@ -112,6 +112,7 @@ class Robot:
     command_time: float = -math.inf
     stalled: bool = False
     odometry_errors: tuple[float, float, float] = (0.0, 0.0, 0.0)  # left wheel, right wheel, turns
+    start: Pose = Pose(0.0, 0.0, 0.0)  # where it was spawned: reset_positions puts it back there
 
 
 @dataclass(frozen=True)
@@ -349,10 +350,24 @@ class World:
         theta = math.atan2(math.sin(theta), math.cos(theta))
         left, right, turns = self._rng.normal(0.0, 1.0, 3) * (self.odometry.linear, self.odometry.linear,
                                                                 self.odometry.angular)
-        robot = Robot(name, Pose(float(x), float(y), theta), Pose(0.0, 0.0, 0.0),
-                      odometry_errors=(float(left), float(right), float(turns)))
+        start = Pose(float(x), float(y), theta)
+        robot = Robot(name, start, Pose(0.0, 0.0, 0.0), odometry_errors=(float(left), float(right), float(turns)),
+                      start=start)
         self._robots[name] = robot
         return self._state(robot)
+
+    def reset_positions(self) -> list[RobotState]:
+        """Every robot back where it was spawned, as stageros's reset_positions: ground truth at
+        its start pose, odometry at its origin again, at rest and no longer stalled. Its command
+        stays (Stage's SetPose leaves the speed set): a driver still publishing drives on, one
+        that stopped is timed out as before. The wheels keep their miscalibration: the same robot.
+        A start pose is not checked again (Stage does not either): a box placed there since
+        leaves the robot inside it, stalled on its first move."""
+        for robot in self._robots.values():
+            robot.pose, robot.odom = robot.start, Pose(0.0, 0.0, 0.0)
+            robot.linear = robot.angular = 0.0
+            robot.stalled = False
+        return [self._state(r) for r in self._robots.values()]
 
     def remove(self, name: str) -> None:
         self._robot(name)
