@@ -114,6 +114,8 @@ LAYERS: dict[str, int] = {
     "kame.rviz": 1,  # rviz's model: camera, scene, displays, .rviz files; no Qt, no ROS I/O
     "kame.rviz.source": 4,  # the rviz node: subscriptions, the tf Buffer
     "kame.rviz.window": 4,  # Qt and OpenGL
+    "kame.rviz.pacing": 4,  # Qt: when the window takes a frame
+    "kame.rviz.stats": 4,  # KAME_RVIZ_STATS: wall clock and a file
     "kame.rviz.image_panels": 4,  # Qt: the Image and Camera displays' panels
     "kame.rviz.interact_view": 4,  # Qt: the Interact tool's mouse and menus
     "kame.rviz.main": 4,
