@@ -102,6 +102,7 @@ LAYERS: dict[str, int] = {
     "kame.rqt.gui_window": 4,
     "kame.rqt.asking": 4,  # Qt: a window whose calls run on its worker thread
     "kame.rqt.gui_main": 4,
+    "kame.rqt.quitting": 4,  # Qt: Ctrl-C and SIGTERM close a tool
     "kame.rqt.console_source": 4,
     "kame.rqt.console_window": 4,
     "kame.rqt.console_main": 4,
