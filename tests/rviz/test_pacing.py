@@ -19,13 +19,19 @@ from sensor_msgs.msg import PointCloud2
 from visualization_msgs.msg import Marker, MarkerArray
 
 
-def _pacer(rate: int) -> tuple[Any, list[float]]:
+def _pacer(rate: int, took: bool = True) -> tuple[Any, list[float]]:
+    """A pacer whose every frame takes messages (`took`) or none, each frame's time noted."""
     from PySide6.QtWidgets import QApplication
 
     from kame.rviz.pacing import FramePacer
 
     frames: list[float] = []
-    return FramePacer(QApplication.instance(), lambda: frames.append(time.monotonic()), rate), frames
+
+    def frame() -> bool:
+        frames.append(time.monotonic())
+        return took
+
+    return FramePacer(QApplication.instance(), frame, rate), frames
 
 
 def _from_a_thread(emit: Any, times: int = 1, stop: threading.Event | None = None) -> threading.Thread:
@@ -47,6 +53,19 @@ def test_a_message_is_taken_without_waiting_for_the_frame_rate(qtbot: Any) -> No
     pacer.timer.start()
     _from_a_thread(pacer.ready.emit).join()
     qtbot.waitUntil(lambda: len(frames) == 1, timeout=60_000)
+    pacer.stop()
+
+
+def test_a_frame_that_took_nothing_holds_no_message_back(qtbot: Any) -> None:
+    """The frame rate's ticks find nothing new most of the time: a message after one is taken at
+    once, not a period after the tick (which, at 30 ticks a second, would be every message's wait)."""
+    pacer, frames = _pacer(30, took=False)
+    pacer.timer.setInterval(600_000)
+    pacer.timer.start()
+    pacer.ready.emit()
+    qtbot.waitUntil(lambda: len(frames) == 1, timeout=60_000)
+    pacer.ready.emit()  # a period after a frame that took messages would be 10 minutes away
+    qtbot.waitUntil(lambda: len(frames) == 2, timeout=60_000)
     pacer.stop()
 
 

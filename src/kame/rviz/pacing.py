@@ -1,9 +1,10 @@
 """When rviz's window takes its frames: a timer at the Frame Rate (tf moves frames with no message,
 and a display's lifetimes end), and soon after the source has decoded a message, so a message
 reaching an idle window is drawn within milliseconds instead of waiting for the next tick (up
-to a whole period at 30 fps: 33 ms of its latency). At most one frame per period whatever
-arrives: a message due sooner waits for the period's end, and every message waiting then is
-taken by that one frame (the newest of each topic)."""
+to a whole period at 30 fps: 33 ms of its latency). At most one frame that took messages per
+period whatever arrives: a message due sooner waits for that period's end, and every message
+waiting then is taken by that one frame (the newest of each topic). The ticks between, which
+find nothing new and paint nothing, hold no message back."""
 
 from __future__ import annotations
 
@@ -18,7 +19,8 @@ class FramePacer(QObject):
     # emitted from the source's decoding thread: queued into the window's thread
     ready = Signal()
 
-    def __init__(self, parent: QObject, frame: Callable[[], None], rate: int) -> None:
+    def __init__(self, parent: QObject, frame: Callable[[], bool], rate: int) -> None:
+        """`frame` takes a frame; True when it took messages."""
         super().__init__(parent)
         self._frame = frame
         self.timer = QTimer(self)  # the frame rate's tick; stopped, the window draws only when told to
@@ -26,7 +28,7 @@ class FramePacer(QObject):
         self._soon = QTimer(self)
         self._soon.setSingleShot(True)
         self._soon.timeout.connect(self._tick)
-        self._last = -math.inf  # monotonic time of the last frame
+        self._last = -math.inf  # monotonic time of the last frame that took messages
         self.ready.connect(self._message_ready)
         self.set_rate(rate)
         self.timer.start()
@@ -40,10 +42,11 @@ class FramePacer(QObject):
 
     def _tick(self) -> None:
         self._soon.stop()
-        self._last = time.monotonic()
+        started = time.monotonic()
         if self.timer.isActive():  # the next tick a whole period after this frame, however it came
             self.timer.start()
-        self._frame()
+        if self._frame():
+            self._last = started
 
     def _message_ready(self) -> None:
         if not self.timer.isActive() or self._soon.isActive():  # stopped, or a frame is already due

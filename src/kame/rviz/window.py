@@ -660,8 +660,10 @@ class RvizWindow(QMainWindow):
 
     # -------------------------------------------------------------- each frame
 
-    def frame(self) -> None:
+    def frame(self) -> bool:
+        """Takes the waiting messages and draws; True when there were any."""
         now = time.monotonic()
+        taken: dict[str, list[Any]] = {}
         if self.source is not None:
             taken = self.source.take()
             if self.shown_log is not None:
@@ -673,6 +675,7 @@ class RvizWindow(QMainWindow):
                 for topic in display.side_topics():
                     display.receive_side(topic, taken.get(self.source.node.resolve(topic), []), now)
         self.draw(now)
+        return any(taken.values())
 
     def draw(self, now: float, frames: Any = None) -> None:
         """Rebuilds the scene from the displays (`frames`: the tf tree; the source's by default)."""
