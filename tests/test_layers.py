@@ -102,6 +102,7 @@ LAYERS: dict[str, int] = {
     "kame.rqt.gui_window": 4,
     "kame.rqt.asking": 4,  # Qt: a window whose calls run on its worker thread
     "kame.rqt.gui_main": 4,
+    "kame.rqt.quitting": 4,  # Qt: Ctrl-C and SIGTERM close a tool
     "kame.rqt.console_source": 4,
     "kame.rqt.console_window": 4,
     "kame.rqt.console_main": 4,
@@ -114,6 +115,8 @@ LAYERS: dict[str, int] = {
     "kame.rviz": 1,  # rviz's model: camera, scene, displays, .rviz files; no Qt, no ROS I/O
     "kame.rviz.source": 4,  # the rviz node: subscriptions, the tf Buffer
     "kame.rviz.window": 4,  # Qt and OpenGL
+    "kame.rviz.pacing": 4,  # Qt: when the window takes a frame
+    "kame.rviz.shown_log": 4,  # KAME_RVIZ_STATS: wall clock and a file
     "kame.rviz.image_panels": 4,  # Qt: the Image and Camera displays' panels
     "kame.rviz.interact_view": 4,  # Qt: the Interact tool's mouse and menus
     "kame.rviz.main": 4,

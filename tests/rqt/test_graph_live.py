@@ -207,6 +207,36 @@ def test_the_window_draws_refreshes_and_highlights(lesson: Sim, source: GraphSou
     assert (tmp_path / "w.png").stat().st_size > 0
 
 
+def test_auto_refresh_shows_a_node_coming_and_going_by_itself(lesson: Sim, source: GraphSource, qtbot) -> None:  # type: ignore[no-untyped-def]
+    """With Auto refresh on, the window's timer asks the graph again: rostopic echo's node appears,
+    then leaves, with no refresh pressed; off, the timer stops."""
+    from kame.rqt.graph_window import GraphWindow
+
+    window = GraphWindow(source.fetch)
+    qtbot.addWidget(window)
+    window.show()
+    with qtbot.waitSignal(window.refreshed, timeout=10_000):
+        window.refresh()
+    assert window.scene_model is not None and window.scene_model.edge_names() == LESSON
+    assert not window.timer.isActive()  # off until the box is ticked, as in rqt_graph
+    window.auto_period.setValue(1)
+    window.auto_refresh.setChecked(True)
+
+    def echoing() -> bool:
+        return window.scene_model is not None and any(edge[1].startswith("/rostopic_")
+                                                      for edge in window.scene_model.edge_names())
+
+    echo = start(lesson, "rostopic", "echo", "/turtle1/cmd_vel")
+    try:
+        qtbot.waitUntil(echoing, timeout=60_000)
+    finally:
+        echo.stop()
+    qtbot.waitUntil(lambda: not echoing(), timeout=60_000)
+    assert window.scene_model.edge_names() == LESSON
+    window.auto_refresh.setChecked(False)
+    assert not window.timer.isActive()
+
+
 def test_mimic_with_two_turtlesims(tmp_path: Path) -> None:
     """The lesson's question: with mimic between two simulators, how many nodes and edges?"""
     with master(tmp_path) as sim:

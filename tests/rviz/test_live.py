@@ -148,3 +148,57 @@ def test_rviz_and_rosrun_rviz_rviz_start_and_refuse_a_bad_config(tmp_path: Path)
     bad.write_text("- not: a mapping\n")
     refused = subprocess.run([str(BIN / "rviz"), "-d", str(bad)], capture_output=True, text=True, timeout=60, env=env)
     assert refused.returncode == 1 and "cannot load" in refused.stderr and "a YAML mapping" in refused.stderr
+
+
+STAMPED_MARKERS = """
+    import rospy, tf2_ros
+    from geometry_msgs.msg import TransformStamped
+    from visualization_msgs.msg import Marker, MarkerArray
+    rospy.init_node('stamped_markers')
+    world = TransformStamped()
+    world.header.frame_id, world.child_frame_id = 'world', 'base'
+    world.transform.rotation.w = 1.0
+    tf2_ros.StaticTransformBroadcaster().sendTransform(world)
+    pub = rospy.Publisher('/markers', MarkerArray, queue_size=1)
+    marker = Marker(ns='test', id=1, type=Marker.CUBE)
+    marker.header.frame_id = 'world'
+    marker.pose.orientation.w = 1.0
+    marker.scale.x = marker.scale.y = marker.scale.z = 0.5
+    marker.color.g = marker.color.a = 1.0
+    rate = rospy.Rate(5)
+    while not rospy.is_shutdown():
+        marker.header.stamp = rospy.Time.now()
+        marker.pose.position.x = (marker.pose.position.x + 1.0) % 10  # a new place: a new frame to swap
+        pub.publish(MarkerArray(markers=[marker]))
+        rate.sleep()
+"""
+
+
+def test_rviz_stats_log_each_message_when_its_frame_reaches_the_screen(tmp_path: Path) -> None:
+    """KAME_RVIZ_STATS in the real `rviz` on Xvfb: a line for each stamped MarkerArray drawn, written
+    after its frame's buffer swap (what bench/rviz_e2e_bench.py measures latency by)."""
+    from tests.turtlesim.sim import BIN
+    from tests.turtlesim.xserver import xvfb
+
+    graph = Graph(tmp_path)
+    try:
+        rviz_file, shown = tmp_path / "stats.rviz", tmp_path / "shown"
+        rviz_file.write_text(RVIZ_FILE)
+        graph.kame(STAMPED_MARKERS)
+        with xvfb() as display:
+            env = {k: v for k, v in graph.env.items() if k not in ("WAYLAND_DISPLAY", "QT_QPA_PLATFORM")}
+            rviz = Proc([str(BIN / "rviz"), "-d", str(rviz_file)],
+                        dict(env, DISPLAY=display, KAME_RVIZ_STATS=str(shown)), cwd=tmp_path)
+            graph.procs.append(rviz)
+            deadline = time.monotonic() + 90
+            while time.monotonic() < deadline and len(shown.read_text().splitlines() if shown.exists() else []) < 3:
+                assert rviz.popen.poll() is None, "".join(rviz.err)
+                time.sleep(0.05)
+            rows = [line.split() for line in shown.read_text().splitlines()]
+            assert len(rows) >= 3, "".join(rviz.err)
+            stamps = [float(stamp) for _, stamp, _, _ in rows]
+            assert {topic for topic, _, _, _ in rows} == {"/markers"} and stamps == sorted(set(stamps))
+            for _, stamp, taken, swapped in rows:  # one clock on one host: published, taken, then on the screen
+                assert float(stamp) <= float(taken) <= float(swapped) < float(stamp) + 60
+    finally:
+        graph.stop()

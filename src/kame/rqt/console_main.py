@@ -9,7 +9,6 @@ Messages are kept up to the capacity (20,000 unless set; the oldest go first).
 from __future__ import annotations
 
 import argparse
-import signal
 import sys
 from collections.abc import Sequence
 
@@ -27,13 +26,14 @@ def main(argv: Sequence[str] | None = None) -> int:
         parser.error("--capacity must be at least 1")
     try:
         from kame.rqt.console_window import ConsoleWindow, application
+        from kame.rqt.quitting import quit_on_signals
     except ImportError as exc:
         print(f"rqt_console needs PySide6 (pip install 'kame[gui]'): {exc}", file=sys.stderr)
         return 1
     from kame.rqt.ros_node import start_node
 
-    signal.signal(signal.SIGINT, signal.SIG_DFL)  # Qt's loop never lets a Python handler run
     app = application("rqt_console")
+    quit_on_signals(app)  # Ctrl-C closes the tool as its window does
     window = ConsoleWindow(LogView(args.capacity))
     node = start_node("console", ros.special)
     try:

@@ -13,7 +13,6 @@ from __future__ import annotations
 
 import argparse
 import os
-import signal
 import sys
 from collections.abc import Sequence
 from pathlib import Path
@@ -91,12 +90,13 @@ def _write(source: GraphSource, options: GraphOptions, output: Path) -> int:
 def _window(source: GraphSource, options: GraphOptions) -> int:
     try:
         from kame.rqt.graph_window import GraphWindow, application
+        from kame.rqt.quitting import quit_on_signals
     except ImportError as exc:
         print(f"rqt_graph needs PySide6 for its window (pip install 'kame[gui]'), or use --output: {exc}",
               file=sys.stderr)
         return 1
-    signal.signal(signal.SIGINT, signal.SIG_DFL)  # Qt's loop never lets a Python handler run
     app = application()
+    quit_on_signals(app)  # Ctrl-C closes the tool as its window does
     window = GraphWindow(source.fetch, options)
     window.show()
     window.refresh()

@@ -15,7 +15,6 @@ from __future__ import annotations
 
 import argparse
 import os
-import signal
 import sys
 from collections.abc import Sequence
 from pathlib import Path
@@ -49,14 +48,15 @@ def main(argv: Sequence[str] | None = None) -> int:
     try:
         from kame.rqt.console_window import application
         from kame.rqt.gui_window import RqtWindow
+        from kame.rqt.quitting import quit_on_signals
     except ImportError as exc:
         print(f"rqt needs PySide6, grandalf and pyqtgraph (pip install 'kame[gui]'): {exc}", file=sys.stderr)
         return 1
     from kame.rqt.plugins import PluginContext
     from kame.rqt.ros_node import master_uri
 
-    signal.signal(signal.SIGINT, signal.SIG_DFL)  # Qt's loop never lets a Python handler run
     app = application("rqt")
+    quit_on_signals(app)  # Ctrl-C closes the tool as its window does
     context = PluginContext(master_uri(ros.special), ros.special)
     if standalone is not None:
         window = RqtWindow(context, None)

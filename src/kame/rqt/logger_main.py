@@ -8,7 +8,6 @@ offer them too), a node's loggers, and sets the chosen level.
 
 from __future__ import annotations
 
-import signal
 import sys
 from collections.abc import Sequence
 
@@ -23,6 +22,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     try:
         from kame.rqt.console_window import application
         from kame.rqt.logger_window import LoggerWindow
+        from kame.rqt.quitting import quit_on_signals
     except ImportError as exc:
         print(f"rqt_logger_level needs PySide6 (pip install 'kame[gui]'): {exc}", file=sys.stderr)
         return 1
@@ -31,8 +31,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     from kame.rqt.logger_source import LoggerLevels
     from kame.rqt.ros_node import master_uri
 
-    signal.signal(signal.SIGINT, signal.SIG_DFL)  # Qt's loop never lets a Python handler run
     app = application("rqt_logger_level")
+    quit_on_signals(app)  # Ctrl-C closes the tool as its window does
     levels = LoggerLevels(master_uri(ros.special), f"/rqt_logger_level_{os.getpid()}")
     window = LoggerWindow(levels)
     try:

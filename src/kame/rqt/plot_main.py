@@ -10,7 +10,6 @@ runs as node /rqt_plot_<pid> and keeps the last `--history` seconds (60 unless s
 from __future__ import annotations
 
 import argparse
-import signal
 import sys
 from collections.abc import Sequence
 
@@ -29,14 +28,15 @@ def main(argv: Sequence[str] | None = None) -> int:
     try:
         from kame.rqt.console_window import application
         from kame.rqt.plot_window import PlotWindow
+        from kame.rqt.quitting import quit_on_signals
     except ImportError as exc:
         print(f"rqt_plot needs PySide6 and pyqtgraph (pip install 'kame[gui]'): {exc}", file=sys.stderr)
         return 1
     from kame.rqt.plot_source import PlotSource
     from kame.rqt.ros_node import start_node
 
-    signal.signal(signal.SIGINT, signal.SIG_DFL)  # Qt's loop never lets a Python handler run
     app = application("rqt_plot")
+    quit_on_signals(app)  # Ctrl-C closes the tool as its window does
     node = start_node("plot", ros.special)
     source = PlotSource(node, args.history)
     try:

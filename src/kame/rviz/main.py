@@ -50,7 +50,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     node = Node(node_config(f"rviz_{os.getpid()}", ros.special, os.environ, ros.remappings))
     source: RvizSource | None = None
     try:
-        source = RvizSource(node, lambda: None)
+        source = RvizSource(node, lambda: None)  # the window hooks its frame pacer in
         window = RvizWindow(config, source, options.display_config)
         window.resize(*rviz_config.window_size(config))
         window.show()

@@ -249,3 +249,14 @@ def cylinder_triangles(scale: Sequence[float], segments: int = 16) -> np.ndarray
         triangles += [[x0, y0, -hz], [x1, y1, -hz], [x1, y1, hz], [x0, y0, -hz], [x1, y1, hz], [x0, y0, hz]]
         triangles += [[0, 0, hz], [x0, y0, hz], [x1, y1, hz], [0, 0, -hz], [x1, y1, -hz], [x0, y0, -hz]]
     return np.array(triangles)
+
+
+def face_normals(vertices: np.ndarray) -> np.ndarray:
+    """Each triangle's unit normal, once per vertex (N x 3 float32); a degenerate one's is z."""
+    corners = vertices.reshape(-1, 3, 3)
+    normals = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
+    lengths = np.linalg.norm(normals, axis=1)
+    flat = lengths < 1e-12
+    normals[flat] = (0.0, 0.0, 1.0)
+    normals[~flat] /= lengths[~flat, None]
+    return np.repeat(normals.astype(np.float32), 3, axis=0)

@@ -2,13 +2,15 @@
 status), the 3-D view (OpenGL through PyOpenGL in a QOpenGLWidget, drawing the model's Scene),
 the tool bar (Interact, Select, Measure, 2D Pose Estimate, 2D Nav Goal, Publish Point), the
 Selection panel and the view chooser.
-A frame timer at the Frame Rate takes the waiting messages, rebuilds the scene and repaints;
-the displays and the camera are kame.rviz's Qt-free model."""
+A frame (kame.rviz.pacing: at the Frame Rate, and soon after a message arrives) takes the waiting
+messages, rebuilds the scene and repaints; the displays and the camera are kame.rviz's Qt-free
+model."""
 
 from __future__ import annotations
 
 import functools
 import math
+import os
 import time
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -16,7 +18,7 @@ from typing import Any
 
 import numpy as np
 from OpenGL import GL
-from PySide6.QtCore import QPointF, QRectF, Qt, QTimer, Signal
+from PySide6.QtCore import QPointF, QRectF, Qt, Signal
 from PySide6.QtGui import QAction, QActionGroup, QBrush, QColor, QMouseEvent, QPainter, QWheelEvent
 from PySide6.QtOpenGLWidgets import QOpenGLWidget
 from PySide6.QtWidgets import (
@@ -40,9 +42,11 @@ from kame.rviz.interact_view import InteractRouter
 from kame.rviz.interactive import InteractiveMarkers
 from kame.rviz.markers import Marker
 from kame.rviz.meshes import MeshLibrary
+from kame.rviz.pacing import FramePacer
 from kame.rviz.robot import RobotModel
-from kame.rviz.scene import Batch, Scene
+from kame.rviz.scene import Batch, Scene, face_normals
 from kame.rviz.sensors import Image
+from kame.rviz.shown_log import from_environment
 from kame.rviz.source import RvizSource
 from kame.rviz.stats import FrameStats
 from kame.rviz.tools import Measure, Selection
@@ -65,17 +69,6 @@ class GpuBatch:
 
 
 STATUS_COLOURS = {WARN: (205, 153, 51), ERROR: (192, 32, 32)}  # as Debian's rviz 1.14 draws them
-
-
-def face_normals(vertices: np.ndarray) -> np.ndarray:
-    """Each triangle's unit normal, once per vertex (N x 3 float32); a degenerate one's is z."""
-    corners = vertices.reshape(-1, 3, 3)
-    normals = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
-    lengths = np.linalg.norm(normals, axis=1)
-    flat = lengths < 1e-12
-    normals[flat] = (0.0, 0.0, 1.0)
-    normals[~flat] /= lengths[~flat, None]
-    return np.repeat(normals.astype(np.float32), 3, axis=0)
 
 
 def _headlight() -> None:
@@ -463,9 +456,13 @@ class RvizWindow(QMainWindow):
         self._menus()
         self._topic_errors: dict[int, str] = {}
         self.rebuild_tree()
-        self.timer = QTimer(self)
-        self.timer.timeout.connect(self.frame)
-        self.timer.start(max(1, 1000 // max(1, config.frame_rate)))
+        self.pacer = FramePacer(self, self.frame, config.frame_rate)
+        self.timer = self.pacer.timer  # stopped, the window draws when told to (the tests, the bench)
+        if source is not None:
+            source.on_ready = self.pacer.ready.emit
+        self.shown_log = from_environment(os.environ)  # KAME_RVIZ_STATS: when each message reached the screen
+        if self.shown_log is not None:
+            self.view.frameSwapped.connect(self.shown_log.swapped)
         self.started = time.monotonic()
         self.stats = FrameStats(self.started)
         self.view.frameSwapped.connect(self.stats.frame_shown)  # drawn and shown: a grab is neither
@@ -516,7 +513,7 @@ class RvizWindow(QMainWindow):
         self.config_path = path
         self.view.camera, self.view.background = self.config.camera, self.config.background
         self.views.setCurrentText(self.config.camera.kind)
-        self.timer.setInterval(max(1, 1000 // max(1, self.config.frame_rate)))
+        self.pacer.set_rate(self.config.frame_rate)
         self.rebuild_tree()
 
     def save(self, path: str) -> None:
@@ -629,7 +626,7 @@ class RvizWindow(QMainWindow):
             self.view.update()
         elif key == "Frame Rate" and _is_number(value):
             self.config.frame_rate = max(1, int(float(value)))
-            self.timer.setInterval(max(1, 1000 // self.config.frame_rate))
+            self.pacer.set_rate(self.config.frame_rate)
 
     def _rewatch(self) -> None:
         """Subscribes to what the displays show, and leaves what none shows any more."""
@@ -665,11 +662,15 @@ class RvizWindow(QMainWindow):
 
     # -------------------------------------------------------------- each frame
 
-    def frame(self) -> None:
+    def frame(self) -> bool:
+        """Takes the waiting messages and draws; True when there were any."""
         now = time.monotonic()
         self.stats.turned(now)
+        taken: dict[str, list[Any]] = {}
         if self.source is not None:
             taken = self.source.take()
+            if self.shown_log is not None:
+                self.shown_log.taken(taken)
             for display in self.config.displays:
                 subscription = display.subscription()
                 if subscription is not None:
@@ -677,6 +678,7 @@ class RvizWindow(QMainWindow):
                 for topic in display.side_topics():
                     display.receive_side(topic, taken.get(self.source.node.resolve(topic), []), now)
         self.draw(now)
+        return any(taken.values())
 
     def draw(self, now: float, frames: Any = None) -> None:
         """Rebuilds the scene from the displays (`frames`: the tf tree; the source's by default)."""
@@ -783,7 +785,7 @@ class RvizWindow(QMainWindow):
         self._show_with_tools()
 
     def closeEvent(self, event: Any) -> None:
-        self.timer.stop()
+        self.pacer.stop()
         super().closeEvent(event)
 
 
