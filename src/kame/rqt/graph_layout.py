@@ -162,7 +162,8 @@ def _clusters(members: Sequence[str], boxes: dict[str, Box]) -> tuple[Box, ...]:
         box = boxes[member]
         for i, hull in enumerate(hulls):
             merged = hull.united(box)
-            if not any(_overlaps(_framed(merged), other) for other in others):
+            framed = _framed(merged)
+            if not any(_overlaps(framed, other) for other in others):
                 hulls[i] = merged
                 break
         else:
