@@ -1,10 +1,14 @@
 """ParameterGenerator as dynamic_reconfigure's parameter_generator_catkin defines it, evaluated in process.
 
 A .cfg file is a Python script that describes parameters and ends with
-`exit(gen.generate(PACKAGE, node, name))`. catkin runs it at build time to write a Config
-module; kame runs it when the module is imported, and generate() hands the description to
-whoever is evaluating the file (see kame.reconfigure.importer) instead of writing files.
-The dictionaries have the keys and values catkin's generated modules carry.
+`exit(gen.generate(PACKAGE, node, name))`. catkin runs it at build time with four
+arguments (the dynamic_reconfigure folder, the package's devel share, include and Python
+folders) to write the Config module, the C++ header and the docs; kame writes the same
+files when run so (kame.reconfigure.catkin_files), and when it evaluates the file on import
+(kame.reconfigure.importer) generate() hands the description over instead.
+The dictionaries have the keys and values catkin's generator makes, down to the double
+limits' C++ spellings (replaced by infinities in the Python module) and the srcline and
+srcfile of what upstream's own module created (its groups, and gen.add's parameters).
 """
 
 from __future__ import annotations
@@ -13,6 +17,7 @@ import inspect
 import math
 import os
 import re
+import sys
 from contextvars import ContextVar
 from typing import Any
 
@@ -24,9 +29,16 @@ double_t = "double"
 _PYTYPES: dict[str, Any] = {"str": str, "int": int, "double": float, "bool": bool}
 _CTYPES = {"str": "std::string", "int": "int", "double": "double", "bool": "bool"}
 _CCONSTTYPES = {"str": "const char * const", "int": "const int", "double": "const double", "bool": "const bool"}
-MINIMUM: dict[str, Any] = {"int": -0x80000000, "double": -math.inf, "str": "", "bool": False}
-MAXIMUM: dict[str, Any] = {"int": 0x7FFFFFFF, "double": math.inf, "str": "", "bool": True}
-DEFAULT: dict[str, Any] = {"int": 0, "double": 0.0, "str": "", "bool": False}
+CPP_INFINITY = "std::numeric_limits<double>::infinity()"
+MINIMUM: dict[str, Any] = {"int": -0x80000000, "double": "-" + CPP_INFINITY, "str": "", "bool": False}
+MAXIMUM: dict[str, Any] = {"int": 0x7FFFFFFF, "double": CPP_INFINITY, "str": "", "bool": True}
+DEFAULT: dict[str, Any] = {"int": 0, "double": 0, "str": "", "bool": False}
+# Where upstream's parameter_generator_catkin.py (1.7.3) makes the Default group, the other
+# groups, and the parameters of gen.add: catkin's outputs name these lines.
+UPSTREAM_FILE = "parameter_generator_catkin.py"
+UPSTREAM_DEFAULT_GROUP_LINE = 246
+UPSTREAM_GROUP_LINE = 124
+UPSTREAM_ADD_LINE = 291
 _NAME = re.compile(r"^[a-zA-Z][a-zA-Z0-9_]*$")
 
 _collecting: ContextVar[list[GeneratedConfig] | None] = ContextVar("_collecting", default=None)
@@ -86,7 +98,8 @@ class Group:
         self.parent = parent
         self.groups: list[Group] = []
         self.parameters: list[dict[str, Any]] = []
-        self.srcline, self.srcfile = _caller()
+        self.srcline = UPSTREAM_DEFAULT_GROUP_LINE if id == 0 else UPSTREAM_GROUP_LINE
+        self.srcfile = UPSTREAM_FILE
 
     def add_group(self, name: str, type: str = "", state: bool = True) -> Group:
         group = Group(self.gen, name, type, state, self.gen.next_group_id(), self.id)
@@ -96,12 +109,17 @@ class Group:
 
     def add(self, name: str, paramtype: str, level: int, description: str, default: Any = None,
             min: Any = None, max: Any = None, edit_method: str = "") -> None:
+        self.add_from(_caller(), name, paramtype, level, description, default, min, max, edit_method)
+
+    def add_from(self, source: tuple[int, str], name: str, paramtype: str, level: int, description: str,
+                 default: Any = None, min: Any = None, max: Any = None, edit_method: str = "") -> None:
+        """add(), recording `source` (line, file name) as where the parameter was added."""
         if paramtype not in _PYTYPES:
             raise ValueError(f"'{name}' has unknown type {paramtype!r}: use int_t, double_t, str_t or bool_t")
         if paramtype in (str_t, bool_t) and (max is not None or min is not None):
             raise ValueError(f"Max or min specified for {name}, which is of '{paramtype}' type")
         _check_name(name)
-        srcline, srcfile = _caller()
+        srcline, srcfile = source
         param: dict[str, Any] = {"name": name, "type": paramtype, "default": default, "level": level,
                                  "description": description, "min": min, "max": max,
                                  "srcline": srcline, "srcfile": srcfile, "edit_method": edit_method,
@@ -163,7 +181,8 @@ class ParameterGenerator:
 
     def add(self, name: str, paramtype: str, level: int, description: str, default: Any = None,
             min: Any = None, max: Any = None, edit_method: str = "") -> None:
-        self.group.add(name, paramtype, level, description, default, min, max, edit_method)
+        self.group.add_from((UPSTREAM_ADD_LINE, UPSTREAM_FILE), name, paramtype, level, description, default,
+                            min, max, edit_method)
 
     def add_group(self, name: str, type: str = "", state: bool = True) -> Group:
         return self.group.add_group(name, type=type, state=state)
@@ -171,12 +190,18 @@ class ParameterGenerator:
     def generate(self, pkgname: str, nodename: str, name: str) -> int:
         results = _collecting.get()
         generated = GeneratedConfig(pkgname, nodename, name, self.group.to_dict(), self.constants)
-        if results is None:
-            print(f"{name}Config for {pkgname}: kame loads it on `from {pkgname}.cfg import {name}Config`;"
-                  " no files are generated")
-        else:
+        if results is not None:
             results.append(generated)
-        return 0
+            return 0
+        if len(sys.argv) < 5:
+            print(f"{name}Config for {pkgname}: kame loads it on `from {pkgname}.cfg import {name}Config`;"
+                  " no files are generated (catkin_make, or running this file with catkin's four arguments,"
+                  " writes them)")
+            return 0
+        # Imported here: catkin_files renders the descriptions this module makes.
+        from kame.reconfigure.catkin_files import write_from_arguments
+
+        return write_from_arguments(generated, sys.argv[2:5])
 
 
 def flat_parameters(group: dict[str, Any]) -> list[dict[str, Any]]:
@@ -187,15 +212,29 @@ def flat_parameters(group: dict[str, Any]) -> list[dict[str, Any]]:
     return params
 
 
+def with_infinities(value: Any) -> Any:
+    """A copy of a description with the C++ infinities as floats (upstream's replace_infinity for the Config module)."""
+    if isinstance(value, dict):
+        return {k: with_infinities(v) for k, v in value.items()}
+    if isinstance(value, list):
+        return [with_infinities(v) for v in value]
+    if value == CPP_INFINITY:
+        return math.inf
+    if value == "-" + CPP_INFINITY:
+        return -math.inf
+    return value
+
+
 def module_names(generated: GeneratedConfig) -> dict[str, Any]:
     """The names a catkin-generated <Name>Config module defines."""
-    params = flat_parameters(generated.description)
+    description = with_infinities(generated.description)
+    params = flat_parameters(description)
     all_level = 0
     for param in params:
         all_level |= param["level"]
     names: dict[str, Any] = {
         "inf": math.inf,
-        "config_description": generated.description,
+        "config_description": description,
         "min": {p["name"]: p["min"] for p in params},
         "max": {p["name"]: p["max"] for p in params},
         "defaults": {p["name"]: p["default"] for p in params},
