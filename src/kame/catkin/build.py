@@ -6,6 +6,8 @@ Rules:
   work, and the other packages go on building.
 - Messages, services and actions need no generation step (kame's import hook reads them
   from ROS_PACKAGE_PATH); the result counts them.
+- dynamic_reconfigure .cfg files are run as catkin runs them and write catkin's files; a
+  .cfg that fails is an error of its package, as it fails catkin's build.
 """
 
 from __future__ import annotations
@@ -21,6 +23,7 @@ from kame.catkin.workspace import (
     WorkspacePackage,
     install_python_programs,
 )
+from kame.reconfigure.importer import evaluate_cfg
 
 
 @dataclass
@@ -31,10 +34,14 @@ class PackageResult:
     scripts: list[str] = field(default_factory=list)
     interfaces: dict[str, list[str]] = field(default_factory=dict)
     warnings: list[str] = field(default_factory=list)
+    errors: list[str] = field(default_factory=list)
 
     @property
     def failed(self) -> bool:
-        return bool(self.cpp_targets)
+        return bool(self.cpp_targets or self.errors)
+
+    def failure_messages(self) -> list[str]:
+        return [*self.errors, *([self.cpp_message()] if self.cpp_targets else [])]
 
     def cpp_message(self) -> str:
         names = ", ".join(t.name for t in self.cpp_targets)
@@ -65,6 +72,11 @@ def build_package(devel: Devel, package: WorkspacePackage, python: str) -> Packa
         by_destination.setdefault(destination, []).append(script)
     for destination, scripts in by_destination.items():
         result.scripts += devel.scripts(destination, package.path, scripts, python)
+    for cfg in package.reconfigure_options():
+        try:
+            devel.reconfigure(package.name, evaluate_cfg(cfg))
+        except Exception as exc:  # whatever the user's .cfg script raises fails its package
+            result.errors.append(f"package '{package.name}': {cfg.name} failed: {type(exc).__name__}: {exc}")
     return result
 
 

@@ -27,6 +27,7 @@ CPP_SUFFIXES = (".c", ".cc", ".cpp", ".cxx", ".c++", ".C", ".cu", ".m", ".mm")
 _TARGET_CALL = re.compile(r"\b(?:cuda_)?add_(executable|library)\s*\(", re.IGNORECASE)
 _BRACKET_COMMENT = re.compile(r"#\[(=*)\[.*?\]\1\]", re.DOTALL)
 _LINE_COMMENT = re.compile(r"#[^\n]*")
+_RECONFIGURE_CALL = re.compile(r"\bgenerate_dynamic_reconfigure_options\s*\(", re.IGNORECASE)
 _TARGET_KEYWORDS = {"STATIC", "SHARED", "MODULE", "OBJECT", "WIN32", "MACOSX_BUNDLE", "EXCLUDE_FROM_ALL"}
 
 
@@ -83,6 +84,15 @@ class WorkspacePackage:
         if not setup_py.is_file():
             return None
         return read_setup_py(setup_py)
+
+    def reconfigure_options(self) -> list[Path]:
+        """The .cfg files of generate_dynamic_reconfigure_options(), as catkin resolves them."""
+        text = strip_cmake_comments(self.cmake_text)
+        found = []
+        for match in _RECONFIGURE_CALL.finditer(text):
+            for arg in _call_arguments(text, match.end()).split():
+                found.append(self.path / arg.strip('"').replace("${PROJECT_SOURCE_DIR}", str(self.path)))
+        return found
 
     def interface_files(self) -> dict[str, list[str]]:
         found: dict[str, list[str]] = {}

@@ -126,8 +126,10 @@ def cmd_build(args: argparse.Namespace) -> int:
             print(f"Warnings   << {result.name}\n{warning}")
         if result.failed:
             failed.append(result)
-            print(f"Errors     << {result.name}\nkame: {result.cpp_message()}", file=sys.stderr)
-            print(f"Failed     << {result.name}                [ C++ not built ]")
+            messages = "\n".join(f"kame: {m}" for m in result.failure_messages())
+            print(f"Errors     << {result.name}\n{messages}", file=sys.stderr)
+            status = "C++ not built" if result.cpp_targets else "failed"
+            print(f"Failed     << {result.name}                [ {status} ]")
         else:
             print(f"Finished  <<< {result.name}                [ 0.0 seconds ]")
 

@@ -251,15 +251,17 @@ def run(argv: Sequence[str]) -> int:
             print(f"WARNING: {warning}", file=sys.stderr)
         if result.failed:
             failed.append(result)
-            line = f"kame: {result.cpp_message()}"
-            print(f"{RED}{line}{RESET}" if color else line, file=sys.stderr, flush=True)
+            for message in result.failure_messages():
+                line = f"kame: {message}"
+                print(f"{RED}{line}{RESET}" if color else line, file=sys.stderr, flush=True)
         say(f"[{percent:3d}%] Built target {result.name}" + (" (Python parts only)" if result.failed else ""))
 
     build(chosen, devel, [source], underlays, python, shell_dir(), progress)
     if failed:
-        failed_names = ", ".join(r.name for r in failed)
-        raise BuildError(f"Not built by kame (C++): {failed_names}. The other packages were built; "
-                         "source devel/setup.bash to use them.")
+        cpp = ", ".join(r.name for r in failed if r.cpp_targets)
+        broken = ", ".join(r.name for r in failed if r.errors)
+        causes = ([f"Not built by kame (C++): {cpp}."] if cpp else []) + ([f"Failed: {broken}."] if broken else [])
+        raise BuildError(" ".join(causes) + " The other packages were built; source devel/setup.bash to use them.")
     return 0
 
 
