@@ -13,6 +13,7 @@ packages=(
   python3-dynamic-reconfigure  # dynparam, Client and Server against kame's (tests/dynamic_reconfigure)
   libdynamic-reconfigure-config-init-mutex-dev  # the generator's templates: catkin's cfg outputs compared with kame's
   python3-tf2-ros python3-tf python3-tf2-geometry-msgs tf2-tools tf-tools  # tf/tf2 interop (tests/tf)
+  python3-tf-conversions python3-pykdl  # posemath and PyKDL compared with kame's (tests/tf/test_posemath.py)
   # image_transport's republish (raw only: Debian has no compressed plugin) and cv_bridge with OpenCV,
   # which decode and make the compressed images kame's republish reads and writes (tests/libs/test_image_transport.py)
   image-transport-tools python3-cv-bridge

@@ -1,6 +1,5 @@
-"""tf_conversions, the parts courses use: `tf_conversions.transformations` (tf.transformations).
-posemath's PyKDL frames are not provided."""
+"""tf_conversions: posemath's conversions (also importable from the package, as upstream's
+`from .posemath import *` makes them) and `tf_conversions.transformations` (tf.transformations)."""
 
-from kame.tf import transformations
-
-__all__ = ["transformations"]
+from .posemath import *  # noqa: F403 -- the package re-exports its module, as upstream's does
+from .posemath import __all__ as __all__
