@@ -8,7 +8,16 @@ import math
 import numpy as np
 import pytest
 
-from kame.nav.amcl import FilterParams, LikelihoodField, ParticleFilter, angle_diff, kld_limit
+from kame.nav.amcl import (
+    FilterParams,
+    LikelihoodField,
+    ParticleFilter,
+    angle_diff,
+    filter_covariance,
+    initial_hypothesis,
+    kld_limit,
+    message_covariance,
+)
 from kame.stage.world import LaserModel, OdometryModel, Walls, World
 from tests.nav.worlds import load_world_map
 
@@ -172,3 +181,37 @@ def test_the_estimate_joins_a_cluster_across_the_half_turn() -> None:
 def test_bad_parameters_are_refused() -> None:
     with pytest.raises(ValueError, match="min_particles"):
         FilterParams(min_particles=10, max_particles=5)
+
+
+def test_an_initial_pose_covariance_keeps_the_xy_block_and_the_yaw_variance_only() -> None:
+    """amcl's handleInitialPoseMessage reads covariance[6i+j] for i, j in {x, y} and [35]: the
+    x-yaw and y-yaw terms a 6x6 covariance carries (and z, roll, pitch) do not shape the particles."""
+    full = np.arange(36, dtype=float).reshape(6, 6) + 100.0
+    assert filter_covariance(list(full.reshape(-1))).tolist() == [[100.0, 101.0, 0.0], [106.0, 107.0, 0.0],
+                                                                  [0.0, 0.0, 135.0]]
+    params = FilterParams(min_particles=100, max_particles=4000)
+    pf = office_filter(params, seed=3)
+    correlated = np.zeros((6, 6))
+    correlated[0, 0] = correlated[5, 5] = 0.04
+    correlated[0, 5] = correlated[5, 0] = 0.039  # x and yaw almost one variable
+    pf.set_gaussian((0.0, 0.0, 0.0), filter_covariance(list(correlated.reshape(-1))))
+    assert abs(np.corrcoef(pf.particles[:, 0], pf.particles[:, 2])[0, 1]) < 0.1
+
+
+def test_amcl_pose_carries_the_terms_an_initial_pose_is_read_from() -> None:
+    """amcl_pose's 6x6 covariance, as amcl fills it: the x-y block and the yaw variance, the rest
+    zero; read back as an initial pose it is the same 3x3 without the yaw cross terms."""
+    estimate = np.array([[0.04, 0.01, 0.02], [0.01, 0.09, 0.03], [0.02, 0.03, 0.05]])
+    full = np.asarray(message_covariance(estimate)).reshape(6, 6)
+    assert np.count_nonzero(full) == 5 and full[5, 5] == 0.05 and full[0, 1] == full[1, 0] == 0.01
+    assert filter_covariance(list(full.reshape(-1))).tolist() == [[0.04, 0.01, 0.0], [0.01, 0.09, 0.0],
+                                                                  [0.0, 0.0, 0.05]]
+
+
+def test_initial_pose_parameters_ignore_a_nan_as_amcl_does() -> None:
+    mean, covariance, warnings = initial_hypothesis([1.0, math.nan, 0.5, 0.1, 0.2, math.nan])
+    assert mean == (1.0, 0.0, 0.5)
+    assert np.diag(covariance).tolist() == [0.1, 0.2, (math.pi / 12) ** 2]
+    assert np.count_nonzero(covariance - np.diag(np.diag(covariance))) == 0
+    assert warnings == ["ignoring NAN in initial pose Y position", "ignoring NAN in initial covariance AA"]
+    assert initial_hypothesis([0.0] * 6)[2] == []

@@ -9,6 +9,7 @@ from pathlib import Path
 from typing import Any
 
 import pytest
+import yaml
 
 from tests.stage.sim import echo
 from tests.stage.test_stageros import drive
@@ -137,3 +138,84 @@ def test_an_initial_pose_must_be_in_the_map_frame_and_is_carried_forward_from_it
         wait_until(lambda: said("Failed to transform initial pose in time"), what="amcl to say tf cannot place it")
         wait_until(lambda: len(said("Setting pose")) == 2, what="amcl to set the pose as given")
         assert said("Setting pose")[1].split(":")[-1].split() == ["0.500", "0.000", "0.000"]
+
+
+def amcl_params(sim: Sim) -> dict[str, Any]:
+    found = yaml.safe_load(sim.run("rosparam", "get", "/amcl").stdout)
+    assert isinstance(found, dict)
+    return found
+
+
+def office_with_stage(sim: Sim) -> None:
+    sim.start("stage_ros", "stageros", "-g", OFFICE, "base_scan:=scan", wait="Simulating [robot_0]")
+
+
+def test_an_initial_pose_sent_before_the_map_is_set_once_the_map_is_here(tmp_path: Path) -> None:
+    """amcl's initial_pose_hyp_: a pose that comes while amcl waits for static_map is kept, and the
+    map's arrival places the particles there rather than at ~initial_pose_* (here the robot's true
+    start, so that only the kept pose can put the estimate half a metre away)."""
+    with master(tmp_path) as sim:
+        office_with_stage(sim)
+        amcl = sim.start("amcl", "amcl", "_base_frame_id:=base_footprint", wait="Requesting the map")
+        sim.run("rostopic", "pub", "-1", "/initialpose", "geometry_msgs/PoseWithCovarianceStamped",
+                "{header: {frame_id: map}, pose: {pose: {position: {x: 0.5, y: 0.3}, orientation: {w: 1.0}}, "
+                "covariance: [0.0025, 0, 0, 0, 0, 0, 0, 0.0025, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, "
+                "0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0.0025]}}")
+        amcl.wait_line("Setting pose")
+        sim.start("map_server", "map_server", OFFICE, wait="Read a")
+        amcl.wait_line("Received a 320 X 240 map")
+        x, y, yaw = pose_of(echo(sim, "/amcl_pose"))  # the forced first update's, latched
+        assert math.hypot(x - 0.5, y - 0.3) < 0.15 and abs(yaw) < 0.15, (x, y, yaw)
+
+
+def test_amcl_saves_its_pose_for_a_restart_every_2_s_and_on_ctrl_c(tmp_path: Path) -> None:
+    """~save_pose_rate (0.5 Hz by default): amcl writes its pose and variances to ~initial_pose_*
+    and ~initial_cov_*; an amcl started again begins there. With the rate at -1 only Ctrl-C saves."""
+    with master(tmp_path) as sim:
+        office_with_stage(sim)
+        sim.start("map_server", "map_server", OFFICE, wait="Read a")
+        amcl = sim.start("amcl", "amcl", "_base_frame_id:=base_footprint", "_initial_pose_x:=0.4",
+                         "_initial_pose_y:=-0.3", "_initial_pose_a:=0.3", wait="Received a 320 X 240 map")
+        ahead = drive(sim, "/cmd_vel", 0.3)
+        wait_until(lambda: pose_of(echo(sim, "/base_pose_ground_truth"))[0] > 1.0, timeout=60,
+                   what="the robot to drive 1 m")
+        ahead.stop()
+        wait_until(lambda: echo(sim, "/odom")["twist"]["twist"]["linear"]["x"] == 0.0, timeout=20,
+                   what="the robot to stop")
+        # an update where the robot stands: amcl_pose is then the pose amcl saves there
+        sim.run("rosservice", "call", "/request_nomotion_update")
+        seen: list[tuple[Any, Any]] = []
+
+        def saved_what_it_published() -> bool:
+            published, saved = echo(sim, "/amcl_pose"), amcl_params(sim)
+            seen.append((pose_of(published), saved))
+            return (saved["initial_pose_x"], saved["initial_pose_y"], saved["initial_pose_a"]) \
+                == pytest.approx(pose_of(published), abs=1e-3) \
+                and (saved["initial_cov_xx"], saved["initial_cov_yy"], saved["initial_cov_aa"]) \
+                == pytest.approx([published["pose"]["covariance"][i] for i in (0, 7, 35)], rel=1e-6)
+
+        try:
+            wait_until(saved_what_it_published, timeout=30, what="amcl to save the pose it published")
+        except AssertionError as exc:
+            raise AssertionError(f"{exc}; last seen: {seen[-2:]}") from None
+        saved = amcl_params(sim)
+        assert saved["initial_pose_x"] > 1.0
+        amcl.stop()
+        assert amcl.popen.returncode == 0
+
+        again = sim.start("amcl", "amcl", "_base_frame_id:=base_footprint", "_save_pose_rate:=-1.0",
+                          wait="Received a 320 X 240 map")
+        x, y, _ = pose_of(echo(sim, "/amcl_pose"))
+        assert math.hypot(x - saved["initial_pose_x"], y - saved["initial_pose_y"]) < 0.2, (x, y, saved)
+        ahead = drive(sim, "/cmd_vel", 0.3)
+        wait_until(lambda: pose_of(echo(sim, "/base_pose_ground_truth"))[0] > 1.6, timeout=60,
+                   what="the robot to drive on")
+        ahead.stop()
+        wait_until(lambda: echo(sim, "/odom")["twist"]["twist"]["linear"]["x"] == 0.0, timeout=20,
+                   what="the robot to stop")
+        # scans go on arriving; with no rate, nothing was written since the restart
+        assert {k: v for k, v in amcl_params(sim).items() if k.startswith("initial_")} == \
+            {k: v for k, v in saved.items() if k.startswith("initial_")}
+        again.stop()
+        assert again.popen.returncode == 0
+        assert amcl_params(sim)["initial_pose_x"] > saved["initial_pose_x"] + 0.4  # Ctrl-C saved it

@@ -21,6 +21,7 @@ As navigation's amcl 1.17 (pf.c, amcl_odom.cpp, amcl_laser.cpp), on numpy arrays
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -61,6 +62,50 @@ class FilterParams:
         if self.laser_sigma_hit <= 0 or self.laser_max_beams < 2 or self.laser_likelihood_max_dist <= 0:
             raise ValueError("laser_sigma_hit and laser_likelihood_max_dist must be above 0, "
                              "laser_max_beams at least 2")
+
+
+# amcl's ~initial_pose_* and ~initial_cov_* with their defaults, and the words its warning uses
+# for each when the parameter server holds a NaN there (updatePoseFromServer)
+INITIAL_POSE_PARAMS = (("initial_pose_x", 0.0, "initial pose X position"),
+                       ("initial_pose_y", 0.0, "initial pose Y position"),
+                       ("initial_pose_a", 0.0, "initial pose Yaw"),
+                       ("initial_cov_xx", 0.5 * 0.5, "initial covariance XX"),
+                       ("initial_cov_yy", 0.5 * 0.5, "initial covariance YY"),
+                       ("initial_cov_aa", (math.pi / 12.0) ** 2, "initial covariance AA"))
+
+
+def initial_hypothesis(values: Sequence[float]) -> tuple[tuple[float, float, float], np.ndarray, list[str]]:
+    """The filter's starting mean and covariance from the six INITIAL_POSE_PARAMS' values, as
+    amcl's updatePoseFromServer: a NaN keeps that parameter's default, with a warning."""
+    kept: list[float] = []
+    warnings: list[str] = []
+    for value, (_, default, words) in zip(values, INITIAL_POSE_PARAMS, strict=True):
+        if math.isnan(value):
+            warnings.append(f"ignoring NAN in {words}")
+            kept.append(default)
+        else:
+            kept.append(value)
+    return (kept[0], kept[1], kept[2]), np.diag(kept[3:]), warnings
+
+
+def filter_covariance(covariance: Sequence[float]) -> np.ndarray:
+    """A PoseWithCovariance's 6x6 covariance (row-major) as the filter's 3x3 (x, y, yaw), as amcl
+    reads /initialpose: the x-y block and the yaw variance. amcl leaves the x-yaw and y-yaw terms
+    out, so an rviz or user pose carrying them spreads the particles as it would in amcl."""
+    full = np.asarray(covariance, dtype=float).reshape(6, 6)
+    found = np.zeros((3, 3))
+    found[:2, :2] = full[:2, :2]
+    found[2, 2] = full[5, 5]
+    return found
+
+
+def message_covariance(covariance: np.ndarray) -> list[float]:
+    """The filter's 3x3 covariance as amcl_pose's 6x6 (row-major): the same terms
+    filter_covariance reads back, the rest zero."""
+    full = np.zeros((6, 6))
+    full[:2, :2] = covariance[:2, :2]
+    full[5, 5] = covariance[2, 2]
+    return [float(v) for v in full.reshape(-1)]
 
 
 def angle_diff(a: np.ndarray | float, b: np.ndarray | float) -> np.ndarray:

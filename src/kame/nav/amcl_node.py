@@ -8,8 +8,13 @@ As navigation's amcl: the map from the `static_map` service (or the `map` topic 
 `particlecloud` (geometry_msgs/PoseArray) and the transform ~global_frame_id -> ~odom_frame_id
 (stamped transform_tolerance ahead); listens to `initialpose` (a pose in ~global_frame_id, its
 stamp's pose carried forward by the odometry since; one in another frame is ignored, as amcl's
-handleInitialPoseMessage does); serves `global_localization`
-and `request_nomotion_update` (std_srvs/Empty). The filter updates when the odometry moved
+handleInitialPoseMessage does; one that comes before the map is kept and set once the map is
+here; its covariance's x-y block and yaw variance place the particles, as amcl reads it); serves
+`global_localization` and `request_nomotion_update` (std_srvs/Empty). Each map (the first only
+with ~first_map_only) places the particles by ~initial_pose_* and ~initial_cov_* as the parameter
+server holds them then; every 1/~save_pose_rate seconds (default 0.5 Hz, none when not above 0),
+on a scan that did not update the filter, and on Ctrl-C, amcl writes its pose and variances back
+there, so an amcl restarted (or a new map) resumes where the robot was. The filter updates when the odometry moved
 ~update_min_d metres or turned ~update_min_a radians, resamples every ~resample_interval updates.
 Parameters are amcl's, with its defaults; the filter itself is kame.nav.amcl. Its laser model is
 the likelihood field (~laser_model_type's default, the TurtleBot's): amcl's `beam` and
@@ -29,7 +34,16 @@ import numpy as np
 
 from kame.client import clock, core, process, services, topics
 from kame.client import log as _log
-from kame.nav.amcl import FilterParams, LikelihoodField, ParticleFilter, angle_diff
+from kame.nav.amcl import (
+    INITIAL_POSE_PARAMS,
+    FilterParams,
+    LikelihoodField,
+    ParticleFilter,
+    angle_diff,
+    filter_covariance,
+    initial_hypothesis,
+    message_covariance,
+)
 from kame.tf import errors as tf_errors
 from kame.tf.transformations import euler_from_quaternion, quaternion_from_euler
 from kame.tf_ros.buffer import Buffer
@@ -95,14 +109,17 @@ class Amcl:
         self.laser_min_range = float(_param("laser_min_range", -1.0))
         self.laser_max_range = float(_param("laser_max_range", -1.0))
         self.tf_broadcast = bool(_param("tf_broadcast", True))
-        self.initial = (float(_param("initial_pose_x", 0.0)), float(_param("initial_pose_y", 0.0)),
-                        float(_param("initial_pose_a", 0.0)))
-        self.initial_cov = np.diag([float(_param("initial_cov_xx", 0.5 * 0.5)),
-                                    float(_param("initial_cov_yy", 0.5 * 0.5)),
-                                    float(_param("initial_cov_aa", (math.pi / 12) ** 2))])
+        save_pose_rate = float(_param("save_pose_rate", 0.5))
+        self.save_pose_period = 1.0 / save_pose_rate if save_pose_rate > 0 else -1.0
+        self.last_save = 0.0  # ROS time, seconds: as amcl, the first chance to save takes it
+        self.first_map_only = bool(_param("first_map_only", False))
         self.lock = threading.Lock()
         self.filter: ParticleFilter | None = None
-        self.last_odom: tuple[float, float, float] | None = None
+        # an /initialpose that came before the map, set once the map is here (initial_pose_hyp_)
+        self.pending_pose: tuple[tuple[float, float, float], np.ndarray] | None = None
+        self.last_covariance: np.ndarray | None = None  # of the last amcl_pose published
+        self.last_odom: tuple[float, float, float] | None = None  # at the last filter update
+        self.latest_odom: tuple[float, float, float] | None = None  # at the latest scan
         self.force_update = True
         self.updates = 0
         self.map_to_odom: tuple[float, float, float] | None = None
@@ -119,6 +136,22 @@ class Amcl:
 
     # ---------------------------------------------------------------- inputs
 
+    def on_map(self, msg: Any) -> None:
+        """The `map` topic's callback (~use_map_topic); ~first_map_only keeps the first."""
+        if self.first_map_only and self.filter is not None:
+            return
+        self.set_map(msg)
+
+    def _initial_from_server(self) -> tuple[tuple[float, float, float], np.ndarray]:
+        """~initial_pose_* and ~initial_cov_*, read afresh each time a map arrives as amcl does: what
+        this amcl saved there (~save_pose_rate) or a user set since it started places a new map's
+        particles."""
+        mean, covariance, warnings = initial_hypothesis([float(_param(name, default))
+                                                         for name, default, _ in INITIAL_POSE_PARAMS])
+        for warning in warnings:
+            _log.emit(_log.WARN, "%s", (warning,))
+        return mean, covariance
+
     def set_map(self, msg: Any) -> None:
         info = msg.info
         data = msg.data
@@ -126,11 +159,28 @@ class Amcl:
         cells = cells.reshape(info.height, info.width)
         field = LikelihoodField(cells, info.resolution, (info.origin.position.x, info.origin.position.y),
                                 self.params.laser_likelihood_max_dist)
+        mean, covariance = self._initial_from_server()
         with self.lock:
             self.filter = ParticleFilter(self.params, field, seed=int(_param("seed", 0)))
-            self.filter.set_gaussian(self.initial, self.initial_cov)
-            self.force_update = True
+            self.filter.set_gaussian(mean, covariance)
+            self._restart_filter()
+            self._apply_pending_pose()
         _log.emit(_log.INFO, "Received a %d X %d map @ %.3f m/pix", (info.width, info.height, info.resolution))
+
+    def _restart_filter(self) -> None:
+        """After the particles are placed anew (amcl's pf_init_ = false): the next scan weighs them
+        where they are, without the odometry's motion since the last update (an initial pose
+        already carries it), and restarts the resampling count."""
+        self.last_odom = None
+        self.force_update = True
+        self.updates = 0
+
+    def _apply_pending_pose(self) -> None:
+        """amcl's applyInitialPose: the waiting initial pose, once there is a map to place it on."""
+        if self.pending_pose is not None and self.filter is not None:
+            self.filter.set_gaussian(*self.pending_pose)
+            self.pending_pose = None
+            self._restart_filter()
 
     def on_initial_pose(self, msg: Any) -> None:
         frame = msg.header.frame_id
@@ -145,13 +195,10 @@ class Amcl:
         pose = msg.pose.pose
         mean = compose((pose.position.x, pose.position.y, yaw_of(pose.orientation)),
                        self._moved_since(msg.header.stamp))
-        cov = np.asarray(msg.pose.covariance, dtype=float).reshape(6, 6)
-        covariance = cov[np.ix_([0, 1, 5], [0, 1, 5])]
         _log.emit(_log.INFO, "Setting pose (%.6f): %.3f %.3f %.3f", (clock.get_rostime().to_sec(), *mean))
         with self.lock:
-            if self.filter is not None:
-                self.filter.set_gaussian(mean, covariance)
-                self.force_update = True
+            self.pending_pose = (mean, filter_covariance(msg.pose.covariance))
+            self._apply_pending_pose()
 
     def _moved_since(self, stamp: Any) -> tuple[float, float, float]:
         """The base's motion in odom from `stamp` to now, as a pose in the base at `stamp`: a pose
@@ -176,7 +223,7 @@ class Amcl:
             if self.filter is not None:
                 _log.emit(_log.INFO, "Initializing with uniform distribution", ())
                 self.filter.set_uniform()
-                self.force_update = True
+                self._restart_filter()
         return EmptyResponse()
 
     def nomotion_update(self, _request: Any) -> Any:
@@ -205,10 +252,12 @@ class Amcl:
             else float(scan.range_max)
         range_min = max(self.laser_min_range, float(scan.range_min))
         ranges = np.where(ranges < range_min, np.nan, ranges)
+        save: dict[str, float] | None = None
         with self.lock:
             pf = self.filter
             if pf is None:
                 return
+            self.latest_odom = odom
             moved = self.last_odom is None or math.hypot(odom[0] - self.last_odom[0], odom[1] - self.last_odom[1]) \
                 >= self.update_min_d or abs(float(angle_diff(odom[2], self.last_odom[2]))) >= self.update_min_a
             if moved or self.force_update:
@@ -224,8 +273,42 @@ class Amcl:
                 base = (estimate.x, estimate.y, estimate.theta)
                 self.map_to_odom = compose(base, inverse(odom))
                 self._publish_estimate(scan.header.stamp, estimate, pf.particles)
+            elif self.map_to_odom is not None and self.save_pose_period > 0:
+                # as amcl: saved from a scan that did not update the filter, at most every period
+                now = clock.get_rostime().to_sec()
+                if now - self.last_save >= self.save_pose_period:
+                    self.last_save = now
+                    save = self._pose_to_save(odom)
             if self.map_to_odom is not None and self.tf_broadcast:
                 self._publish_transform(scan.header.stamp)
+        if save is not None:
+            self._save(save)
+
+    # ---------------------------------------------------------------- the pose kept for a restart
+
+    def _pose_to_save(self, odom: tuple[float, float, float]) -> dict[str, float] | None:
+        """amcl's savePoseToServer: the robot's pose in the map now (the last map -> odom transform
+        applied to the odometry of the latest scan) with the last amcl_pose's variances."""
+        if self.map_to_odom is None or self.last_covariance is None:
+            return None
+        x, y, yaw = compose(self.map_to_odom, odom)
+        cov = self.last_covariance
+        return {"initial_pose_x": x, "initial_pose_y": y, "initial_pose_a": yaw,
+                "initial_cov_xx": float(cov[0, 0]), "initial_cov_yy": float(cov[1, 1]),
+                "initial_cov_aa": float(cov[2, 2])}
+
+    def _save(self, values: dict[str, float]) -> None:
+        for name, value in values.items():
+            process.set_param("~" + name, value)
+
+    def save_on_interrupt(self, reason: str) -> None:
+        """amcl saves its pose once more when Ctrl-C (or roslaunch's SIGINT) stops it."""
+        if reason not in ("signal-2", "keyboard interrupt"):
+            return
+        with self.lock:
+            save = None if self.latest_odom is None else self._pose_to_save(self.latest_odom)
+        if save is not None:
+            self._save(save)
 
     # ---------------------------------------------------------------- outputs
 
@@ -234,9 +317,8 @@ class Amcl:
         msg = PoseWithCovarianceStamped()
         msg.header.stamp, msg.header.frame_id = stamp, self.global_frame
         msg.pose.pose = _pose(estimate.x, estimate.y, estimate.theta, Pose)
-        cov = np.zeros((6, 6))
-        cov[np.ix_([0, 1, 5], [0, 1, 5])] = estimate.covariance
-        msg.pose.covariance = [float(v) for v in cov.reshape(-1)]
+        msg.pose.covariance = message_covariance(estimate.covariance)
+        self.last_covariance = estimate.covariance
         self.pose_pub.publish(msg)
         cloud = PoseArray()
         cloud.header.stamp, cloud.header.frame_id = stamp, self.global_frame
@@ -276,8 +358,12 @@ def main(argv: Sequence[str] | None = None) -> int:
     from std_srvs.srv import Empty
 
     amcl = Amcl()
+    core.add_preshutdown_hook(amcl.save_on_interrupt)
+    # before the map: amcl keeps a pose that comes while it waits and places it on the map
+    topics.Subscriber("initialpose", PoseWithCovarianceStamped, amcl.on_initial_pose, queue_size=2)
     if bool(_param("use_map_topic", False)):
-        topics.Subscriber("map", OccupancyGrid, amcl.set_map, queue_size=1)
+        topics.Subscriber("map", OccupancyGrid, amcl.on_map, queue_size=1)
+        _log.emit(_log.INFO, "Subscribed to map topic.", ())
     else:
         _log.emit(_log.INFO, "Requesting the map...", ())
         try:
@@ -288,7 +374,6 @@ def main(argv: Sequence[str] | None = None) -> int:
                 return 0
             _log.emit(_log.ERROR, "Could not get the map from static_map: %s", (exc,))
             return 1
-    topics.Subscriber("initialpose", PoseWithCovarianceStamped, amcl.on_initial_pose, queue_size=2)
     topics.Subscriber("scan", LaserScan, amcl.on_scan, queue_size=1)
     services.Service("global_localization", Empty, amcl.global_localization)
     services.Service("request_nomotion_update", Empty, amcl.nomotion_update)
