@@ -103,7 +103,6 @@ LAYERS: dict[str, int] = {
     "kame.rqt.gui_window": 4,
     "kame.rqt.asking": 4,  # Qt: a window whose calls run on its worker thread
     "kame.rqt.gui_main": 4,
-    "kame.rqt.quitting": 4,  # Qt: Ctrl-C and SIGTERM close a tool
     "kame.rqt.console_source": 4,
     "kame.rqt.console_window": 4,
     "kame.rqt.console_main": 4,
@@ -127,6 +126,7 @@ LAYERS: dict[str, int] = {
     "kame.stage.runtime": 4,  # the simulator's and map tools' one way to the ROS runtime
     "kame.stage.node": 4,
     "kame.stage.gui": 4,
+    "kame.qt_quit": 4,  # Qt: Ctrl-C and SIGTERM close a tool's windows
     "kame.fed_window": 4,  # Qt: a simulation's window process  # Qt; knows only the simulator's frames
     "kame.stage.map_server": 4,
     "kame.stage.map_saver": 4,

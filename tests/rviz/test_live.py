@@ -4,8 +4,10 @@ click arriving on /clicked_point. The window runs in its own process on a privat
 
 from __future__ import annotations
 
+import signal
 import sys
 import time
+import xmlrpc.client
 from pathlib import Path
 
 import pytest
@@ -200,5 +202,37 @@ def test_rviz_stats_log_each_message_when_its_frame_reaches_the_screen(tmp_path:
             assert {topic for topic, _, _, _ in rows} == {"/markers"} and stamps == sorted(set(stamps))
             for _, stamp, taken, swapped in rows:  # one clock on one host: published, taken, then on the screen
                 assert float(stamp) <= float(taken) <= float(swapped) < float(stamp) + 60
+    finally:
+        graph.stop()
+
+
+@pytest.mark.parametrize("how", [signal.SIGINT, signal.SIGTERM], ids=["SIGINT", "SIGTERM"])
+def test_rviz_ends_on_ctrl_c_and_sigterm_and_leaves_the_master(tmp_path: Path, how: signal.Signals) -> None:
+    """rviz on Xvfb, drawing (its --stats lines come), ends on SIGINT or SIGTERM as its window's
+    close does: exit 0, and its node's subscriptions gone from the master (a killed rviz left a
+    dead node in rosnode list and rqt_graph)."""
+    from tests.turtlesim.sim import BIN
+    from tests.turtlesim.xserver import xvfb
+
+    graph = Graph(tmp_path)
+    try:
+        rviz_file = tmp_path / "quit.rviz"
+        rviz_file.write_text(RVIZ_FILE)
+        with xvfb() as display:
+            env = {k: v for k, v in graph.env.items() if k not in ("WAYLAND_DISPLAY", "QT_QPA_PLATFORM")}
+            rviz = Proc([str(BIN / "rviz"), "-d", str(rviz_file), "--stats", "__name:=rviz_quit"],
+                        dict(env, DISPLAY=display), cwd=tmp_path)
+            graph.procs.append(rviz)
+            rviz.wait_line("rviz stats:", timeout=90)
+            master = xmlrpc.client.ServerProxy(graph.uri)
+
+            def subscribed() -> set[str]:
+                return {topic for topic, nodes in master.getSystemState("/test")[2][1] if "/rviz_quit" in nodes}
+
+            assert "/tf" in subscribed()
+            rviz.popen.send_signal(how)
+            assert rviz.popen.wait(30) == 0, "".join(rviz.err)
+            assert "Traceback" not in "".join(rviz.err)
+            assert subscribed() == set()
     finally:
         graph.stop()

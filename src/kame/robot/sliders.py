@@ -5,12 +5,12 @@ only moves them and shows them."""
 from __future__ import annotations
 
 import random
-import signal
 import threading
 from typing import Any
 
 from PySide6 import QtCore, QtWidgets
 
+from kame.qt_quit import quit_on_signals
 from kame.robot.programs import JointStatePublisher
 
 
@@ -78,7 +78,7 @@ class SliderWindow(QtWidgets.QWidget):
 def run_window(publisher: JointStatePublisher, stop: Any) -> int:
     """The window until it is closed, Ctrl-C, or `stop` is set (the master's shutdown request)."""
     app = QtWidgets.QApplication.instance() or QtWidgets.QApplication(["joint_state_publisher_gui"])
-    signal.signal(signal.SIGINT, signal.SIG_DFL)  # Qt's loop never lets a Python handler run (as rqt's tools)
+    quit_on_signals(app)
     window = SliderWindow(publisher)
     window.show()
 

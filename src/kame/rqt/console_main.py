@@ -25,8 +25,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     if args.capacity < 1:
         parser.error("--capacity must be at least 1")
     try:
+        from kame.qt_quit import quit_on_signals
         from kame.rqt.console_window import ConsoleWindow, application
-        from kame.rqt.quitting import quit_on_signals
     except ImportError as exc:
         print(f"rqt_console needs PySide6 (pip install 'kame[gui]'): {exc}", file=sys.stderr)
         return 1

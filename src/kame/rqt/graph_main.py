@@ -89,8 +89,8 @@ def _write(source: GraphSource, options: GraphOptions, output: Path) -> int:
 
 def _window(source: GraphSource, options: GraphOptions) -> int:
     try:
+        from kame.qt_quit import quit_on_signals
         from kame.rqt.graph_window import GraphWindow, application
-        from kame.rqt.quitting import quit_on_signals
     except ImportError as exc:
         print(f"rqt_graph needs PySide6 for its window (pip install 'kame[gui]'), or use --output: {exc}",
               file=sys.stderr)

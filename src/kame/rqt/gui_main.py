@@ -46,9 +46,9 @@ def main(argv: Sequence[str] | None = None) -> int:
         print(f"rqt: {exc}", file=sys.stderr)
         return 2
     try:
+        from kame.qt_quit import quit_on_signals
         from kame.rqt.console_window import application
         from kame.rqt.gui_window import RqtWindow
-        from kame.rqt.quitting import quit_on_signals
     except ImportError as exc:
         print(f"rqt needs PySide6, grandalf and pyqtgraph (pip install 'kame[gui]'): {exc}", file=sys.stderr)
         return 1

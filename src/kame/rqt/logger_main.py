@@ -20,9 +20,9 @@ def main(argv: Sequence[str] | None = None) -> int:
         print(__doc__.strip())
         return 0
     try:
+        from kame.qt_quit import quit_on_signals
         from kame.rqt.console_window import application
         from kame.rqt.logger_window import LoggerWindow
-        from kame.rqt.quitting import quit_on_signals
     except ImportError as exc:
         print(f"rqt_logger_level needs PySide6 (pip install 'kame[gui]'): {exc}", file=sys.stderr)
         return 1

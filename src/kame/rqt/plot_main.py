@@ -26,9 +26,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     if args.history <= 0:
         parser.error("--history must be positive")
     try:
+        from kame.qt_quit import quit_on_signals
         from kame.rqt.console_window import application
         from kame.rqt.plot_window import PlotWindow
-        from kame.rqt.quitting import quit_on_signals
     except ImportError as exc:
         print(f"rqt_plot needs PySide6 and pyqtgraph (pip install 'kame[gui]'): {exc}", file=sys.stderr)
         return 1

@@ -8,7 +8,6 @@ from __future__ import annotations
 import argparse
 import gc
 import os
-import signal
 import sys
 import time
 from collections.abc import Sequence
@@ -27,6 +26,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     try:
         from PySide6.QtWidgets import QApplication
 
+        from kame.qt_quit import quit_on_signals
         from kame.rviz.window import RvizWindow
     except ImportError as exc:
         print(f"rviz needs the gui extra (pip install 'kame[gui]'): {exc}", file=sys.stderr)
@@ -46,7 +46,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     if options.fixed_frame:
         config.fixed_frame = options.fixed_frame
     app = QApplication.instance() or QApplication(["rviz"])
-    signal.signal(signal.SIGINT, signal.SIG_DFL)  # Qt's loop never lets a Python handler run
+    quit_on_signals(app)
     node = Node(node_config(f"rviz_{os.getpid()}", ros.special, os.environ, ros.remappings))
     source: RvizSource | None = None
     try:
