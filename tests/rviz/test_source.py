@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import threading
 import time
+import xmlrpc.client
 from pathlib import Path
 from typing import Any
 
@@ -15,6 +16,7 @@ import pytest
 from geometry_msgs.msg import Point, Pose, TransformStamped
 from kame.node.node import Node, NodeConfig
 from kame.node.topics import serialize_frame
+from kame.rostime import Duration, Time
 from kame.rviz.source import RvizSource
 from sensor_msgs.msg import LaserScan
 from tests.tf.graph import Graph
@@ -146,3 +148,52 @@ def test_scans_and_maps_are_decoded_into_arrays_and_drawn_as_from_tuples() -> No
         assert len(ours.batches) + len(ours.textures) == 1
     marker = decode(Marker, payload(Marker(ns="n")))  # no numbers to speak of: decoded as usual
     assert marker.ns == "n"
+
+
+def test_sim_time_going_back_clears_rvizs_tf_buffer(tmp_path: Path) -> None:
+    """Under /use_sim_time, /clock going back (a bag played in a loop with --clock) clears the
+    source's tf buffer, as rviz's does, so the fixed frame's old transforms do not linger."""
+    from rosgraph_msgs.msg import Clock
+    from tf2_msgs.msg import TFMessage
+
+    graph = Graph(tmp_path)
+    xmlrpc.client.ServerProxy(graph.uri).setParam("/test", "/use_sim_time", True)
+    rviz = Node(NodeConfig("/rviz_clock_test", graph.uri, "127.0.0.1", "127.0.0.1"))
+    player = Node(NodeConfig("/player", graph.uri, "127.0.0.1", "127.0.0.1"))
+    source = RvizSource(rviz, lambda: None)
+    try:
+        connected = {"/clock": threading.Event(), "/tf": threading.Event()}
+        clock = player.advertise("/clock", Clock._type, Clock._md5sum, Clock._full_text,
+                                 on_connect=lambda link: connected["/clock"].set())
+        tf = player.advertise("/tf", TFMessage._type, TFMessage._md5sum, TFMessage._full_text,
+                              on_connect=lambda link: connected["/tf"].set())
+        assert all(event.wait(10) for event in connected.values())
+
+        def play(seconds: float) -> None:
+            """/clock at `seconds`, and once rviz's clock reads it a transform stamped then (on
+            their two connections a transform could overtake its clock: received at the clock's
+            previous time, as a bag's first message before the first /clock is in ROS too)."""
+            now = Time.from_sec(seconds)
+            clock.publish_frame(serialize_frame(Clock(clock=now)))
+            deadline = time.monotonic() + 20
+            while source.clock.now_ns() != now.to_nsec():
+                assert time.monotonic() < deadline, f"rviz's clock never read {seconds} s"
+                time.sleep(0.01)
+            moved = TransformStamped()
+            moved.header.stamp, moved.header.frame_id, moved.child_frame_id = now, "map", "base"
+            moved.transform.rotation.w = 1.0
+            tf.publish_frame(serialize_frame(TFMessage(transforms=[moved])))
+
+        def known(seconds: float, wait: float = 0.0) -> bool:
+            return bool(source.buffer.can_transform("map", "base", Time.from_sec(seconds), Duration.from_sec(wait)))
+
+        play(100.0)
+        assert known(100.0, wait=20.0), "the first transform never arrived"
+        play(50.0)
+        assert known(50.0, wait=20.0), "the transform after the jump never arrived"
+        assert not known(100.0)  # cleared when time went back
+    finally:
+        source.close()
+        player.shutdown("test over")
+        rviz.shutdown("test over")
+        graph.stop()

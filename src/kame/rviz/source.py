@@ -77,8 +77,10 @@ class RvizSource:
         self.on_ready = on_ready
         # tf's complaints show as display statuses
         self.buffer = Buffer(warn=lambda text: None, error=lambda text: None)
-        self.listener = TransformListener(node, self.buffer)
         self.clock = NodeClock(node)
+        # ROS time read as each transform arrives: sim time going back (a bag played with --loop
+        # --clock) clears the buffer, as rviz's does
+        self.listener = TransformListener(node, self.buffer, now=self.clock.now_ns)
         self._lock = threading.Lock()
         self._waiting: dict[str, list[bytes]] = {}  # received, not yet decoded
         self._decoded: dict[str, list[Any]] = {}  # decoded, not yet taken by the window
