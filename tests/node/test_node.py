@@ -592,3 +592,32 @@ def test_a_publisher_killed_mid_frame_costs_only_its_half_message(make_node: Any
     assert wait_until(lambda: any(link.callerid == "/mid_listener" for link in pub.links), 10)
     pub.publish_frame(serialize_frame(String("still heard")))
     assert wait_until(lambda: got == ["whole", "still heard"], 10)
+
+
+def test_a_publisher_update_during_registration_is_not_undone_by_its_answer(make_node: Any, master_uri: str,
+                                                                            monkeypatch: pytest.MonkeyPatch) -> None:
+    """A latched publisher registering while a subscriber's registerSubscriber is on its way: the
+    master answers the subscriber with the publishers it had (not that one) and sends it a
+    publisherUpdate with both, which may arrive first. The older answer must not drop the newer
+    publisher (it did: tf_echo never heard a static_transform_publisher started beside it)."""
+    early, late = make_node("/early"), make_node("/late_static")
+    early_pub = early.advertise("/tf_static_like", *STRING, latch=True)
+    early_pub.publish_frame(serialize_frame(String("from early")))
+    listener = make_node("/echo")
+    real_call = listener.master.call
+
+    def racing_call(method: str, *args: Any) -> Any:
+        answer = real_call(method, *args)
+        if method == "registerSubscriber":  # the answer is on its way back when the latecomer registers
+            late_pub = late.advertise("/tf_static_like", *STRING, latch=True)
+            late_pub.publish_frame(serialize_frame(String("from late")))
+            # ... and the master's publisherUpdate (both publishers) reaches the node first
+            sub = listener.subscriptions["/tf_static_like"]
+            assert wait_until(lambda: sub.updates == 1, timeout=10)
+            assert late.uri not in [str(uri) for uri in answer]
+        return answer
+
+    monkeypatch.setattr(listener.master, "call", racing_call)
+    got, _ = collect(listener, "/tf_static_like")
+    assert wait_until(lambda: sorted(got) == ["from early", "from late"], timeout=10), got
+    assert set(listener.subscriptions["/tf_static_like"].links) == {early.uri, late.uri}

@@ -171,7 +171,7 @@ class Node:
                                max_frame, message_class, deliver_messages, shared_memory, read_interval)
             self.subscriptions[topic] = sub
         publishers = self.master.call("registerSubscriber", topic, type, self.uri)
-        sub.set_publishers([str(uri) for uri in publishers])
+        sub.registered([str(uri) for uri in publishers], updates_before=0)
         return sub
 
     def unsubscribe(self, topic: str) -> None:
@@ -380,13 +380,16 @@ class Node:
         for topic, type in publications:
             self.master.call("registerPublisher", topic, type, self.uri)
         for topic, type in subscriptions:
+            sub = self.subscriptions.get(topic)
+            updates = sub.updates if sub is not None else 0
             publishers = self.master.call("registerSubscriber", topic, type, self.uri)
-            self._publisher_update("/master", topic, publishers)
+            if sub is not None:
+                sub.registered([str(uri) for uri in publishers], updates)
 
     def _publisher_update(self, caller_id: str, topic: str, publishers: list[Any]) -> list[Any]:
         sub = self.subscriptions.get(topic)
         if sub is not None:
-            sub.set_publishers([str(uri) for uri in publishers])
+            sub.publisher_update([str(uri) for uri in publishers])
         return [1, "", 0]
 
     def cached_param(self, key: str) -> Any:

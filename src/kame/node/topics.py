@@ -594,6 +594,25 @@ class Subscription:
         self.closed = False
         self._lock = threading.Lock()
         self.callback_lock = threading.Lock()
+        # publisher lists are applied in the master's order: a publisherUpdate that arrives while
+        # registerSubscriber is on its way is newer than that call's answer (the master notifies
+        # only subscribers it has registered), so the answer must not undo it
+        self._lists_lock = threading.Lock()
+        self.updates = 0  # publisherUpdates applied
+
+    def publisher_update(self, uris: list[str]) -> None:
+        """A publisherUpdate's list: the master's newest."""
+        with self._lists_lock:
+            self.updates += 1
+            self.set_publishers(uris)
+
+    def registered(self, uris: list[str], updates_before: int) -> None:
+        """registerSubscriber's answer, asked when `updates` was `updates_before`: applied unless a
+        newer publisherUpdate came meanwhile (a publisher registering just then would otherwise
+        be dropped again, and its latched message never heard)."""
+        with self._lists_lock:
+            if self.updates == updates_before:
+                self.set_publishers(uris)
 
     def add_connect_callback(self, callback: Callable[[PublisherLink], None]) -> None:
         with self._lock:
