@@ -41,16 +41,11 @@ import time
 import xmlrpc.client
 from pathlib import Path
 
+from bench_procs import cpu_seconds, free_port
 from kame_bytecode import compile_kame
 
 REPO = Path(__file__).resolve().parents[1]
 NODE_API = "http://127.0.0.1:1/"  # never contacted: no subscriber is ever registered for these topics
-
-
-def free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
 
 
 class Master:
@@ -145,12 +140,6 @@ def request(method: str, *params: object) -> bytes:
 
 def ok(body: bytes) -> bool:
     return b"<int>1</int>" in body[:160] or b"<i4>1</i4>" in body[:160]
-
-
-def cpu_seconds(pid: int) -> float:
-    """User + system CPU time the process has used (Linux /proc)."""
-    fields = Path(f"/proc/{pid}/stat").read_text().rpartition(")")[2].split()
-    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
 
 
 def requests_for(method: str, i: int) -> list[bytes]:

@@ -15,40 +15,17 @@ from __future__ import annotations
 
 import argparse
 import os
-import signal
-import socket
 import subprocess
 import sys
 import time
 from pathlib import Path
 
+from bench_procs import cpu_seconds, free_port, stop
+
 REPO = Path(__file__).resolve().parents[1]
 BIN = Path(sys.executable).parent
 OFFICE = REPO / "src" / "kame" / "share" / "turtlebot_gazebo" / "worlds" / "office.yaml"
 GOALS = [(2.0, -3.0), (-2.0, 3.0), (-6.0, 0.2), (0.0, 0.0)]
-TICK = os.sysconf("SC_CLK_TCK")
-
-
-def free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return int(s.getsockname()[1])
-
-
-def stop(proc: subprocess.Popen[str]) -> None:
-    if proc.poll() is None:
-        proc.send_signal(signal.SIGINT)
-        try:
-            proc.wait(15)
-        except subprocess.TimeoutExpired:
-            proc.kill()
-            proc.wait()
-
-
-def cpu_seconds(pid: int) -> float:
-    with open(f"/proc/{pid}/stat") as f:
-        fields = f.read().rsplit(")", 1)[1].split()
-    return (int(fields[11]) + int(fields[12])) / TICK  # utime, stime
 
 
 def descendants(root: int) -> dict[int, str]:
@@ -154,7 +131,7 @@ def main() -> int:
         print(f"| amcl + move_base | {together:.1f} | {100 * together / wall:.0f}% |")
     finally:
         for proc in reversed(procs):
-            stop(proc)
+            stop(proc, grace=15)
     return 0
 
 

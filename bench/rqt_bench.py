@@ -34,6 +34,7 @@ import threading
 import time
 from pathlib import Path
 
+from bench_procs import free_port
 from kame_bytecode import compile_kame
 
 REPO = Path(__file__).resolve().parents[1]
@@ -129,14 +130,6 @@ class Procs:
                 except subprocess.TimeoutExpired:
                     os.kill(proc.pid, signal.SIGKILL)
                     proc.wait(5)
-
-
-def free_port() -> int:
-    import socket
-
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return int(s.getsockname()[1])
 
 
 def with_master(run):  # type: ignore[no-untyped-def]

@@ -19,12 +19,13 @@ from __future__ import annotations
 import argparse
 import os
 import signal
-import socket
 import statistics
 import subprocess
 import sys
 import time
 from pathlib import Path
+
+from bench_procs import free_port
 
 REPO = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(REPO))
@@ -75,12 +76,6 @@ def sweep(seeds: int) -> None:
             print(f"| {label} | {particles} | {passed}/{2 * seeds} | {statistics.median(agreements):.3f} | "
                   f"{min(near):.3f} | {min(drawn):.3f} | {1000 * cpu / processed:.0f} | {1000 * cpu / scans:.1f} |",
                   flush=True)
-
-
-def free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return int(s.getsockname()[1])
 
 
 def tree_cpu(pid: int) -> float:

@@ -21,6 +21,8 @@ import textwrap
 import time
 from pathlib import Path
 
+from bench_procs import free_port
+
 PUBLISHER = """
 import os, sys, time, rospy
 from std_msgs.msg import String
@@ -61,12 +63,6 @@ rospy.spin()
 span = got[-1] - got[0] if len(got) > 1 else 0.0
 print('received', len(got), 'rate', round((len(got) - 1) / span) if span else 0, flush=True)
 """
-
-
-def free_port() -> int:
-    with socket.socket() as sock:
-        sock.bind(("127.0.0.1", 0))
-        return int(sock.getsockname()[1])
 
 
 def python(code: str, *args: str, env: dict[str, str]) -> subprocess.Popen[str]:

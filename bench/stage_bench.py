@@ -15,12 +15,12 @@ from __future__ import annotations
 import argparse
 import math
 import os
-import signal
-import socket
 import subprocess
 import sys
 import time
 from pathlib import Path
+
+from bench_procs import free_port, stop
 
 REPO = Path(__file__).resolve().parents[1]
 BIN = Path(sys.executable).parent
@@ -54,22 +54,6 @@ def world_rate(count: int, beams: int, seconds: float) -> float:
         if steps % SCAN_EVERY == 0:
             world.scans()
     return steps * STEP / (time.perf_counter() - start)
-
-
-def free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return int(s.getsockname()[1])
-
-
-def stop(proc: subprocess.Popen[str]) -> None:
-    if proc.poll() is None:
-        proc.send_signal(signal.SIGINT)
-        try:
-            proc.wait(10)
-        except subprocess.TimeoutExpired:
-            proc.kill()
-            proc.wait()
 
 
 def clock(env: dict[str, str]) -> float:

@@ -32,6 +32,8 @@ import xmlrpc.client
 from pathlib import Path
 from typing import Any
 
+from bench_procs import cpu_seconds
+
 SYSTEM_PYTHON = "/usr/bin/python3"
 
 PUBLISHER = """
@@ -115,11 +117,6 @@ def wakeups(count: int) -> dict[str, float]:
     latencies.sort()
     return {"wake-up p50 ms": statistics.median(latencies), "wake-up p90 ms": latencies[int(0.9 * len(latencies))],
             "wake-up max ms": latencies[-1]}
-
-
-def cpu_seconds(pid: int) -> float:
-    fields = Path(f"/proc/{pid}/stat").read_text().rpartition(")")[2].split()
-    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
 
 
 def start(python: str, code: str, env: dict[str, str], *args: str) -> subprocess.Popen[str]:

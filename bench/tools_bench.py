@@ -21,7 +21,6 @@ import itertools
 import os
 import re
 import signal
-import socket
 import subprocess
 import sys
 import tempfile
@@ -29,6 +28,7 @@ import time
 import xmlrpc.client
 from pathlib import Path
 
+from bench_procs import free_port
 from kame_bytecode import compile_kame
 
 REPO = Path(__file__).resolve().parents[1]
@@ -54,12 +54,6 @@ while not rospy.is_shutdown() and time.monotonic() - start < seconds:
 print('SENT %d %.6f' % (n, time.monotonic() - start), flush=True)
 time.sleep(1.0)
 """
-
-
-def free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
 
 
 class Impl:
