@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import ast
 import io
+import sys
 import traceback
 from collections.abc import Sequence
 from pathlib import Path
@@ -20,6 +21,7 @@ from string import Template
 from typing import Any
 
 from kame.msg.catalog import SHARE_DIR
+from kame.reconfigure import generator
 from kame.reconfigure.generator import GeneratedConfig, flat_parameters, with_infinities
 
 TEMPLATES = SHARE_DIR / "dynamic_reconfigure" / "templates"
@@ -187,3 +189,13 @@ def write_from_arguments(generated: GeneratedConfig, folders: Sequence[str]) -> 
         raise SystemExit(1) from None
     print(f"Wrote header file in {include / (generated.name + 'Config.h')}")
     return 0
+
+
+class ParameterGenerator(generator.ParameterGenerator):
+    """The generator .cfg files import (dynamic_reconfigure.parameter_generator_catkin): run by
+    catkin's command with its four arguments, generate() writes catkin's files."""
+
+    def write(self, generated: GeneratedConfig) -> int:
+        if len(sys.argv) < 5:
+            return super().write(generated)
+        return write_from_arguments(generated, sys.argv[2:5])

@@ -4,7 +4,8 @@ A .cfg file is a Python script that describes parameters and ends with
 `exit(gen.generate(PACKAGE, node, name))`. catkin runs it at build time with four
 arguments (the dynamic_reconfigure folder, the package's devel share, include and Python
 folders) to write the Config module, the C++ header and the docs; kame writes the same
-files when run so (kame.reconfigure.catkin_files), and when it evaluates the file on import
+files when run so (kame.reconfigure.catkin_files' ParameterGenerator, which .cfg files
+import), and when it evaluates the file on import
 (kame.reconfigure.importer) generate() hands the description over instead.
 The dictionaries have the keys and values catkin's generator makes, down to the double
 limits' C++ spellings (replaced by infinities in the Python module) and the srcline and
@@ -17,7 +18,6 @@ import inspect
 import math
 import os
 import re
-import sys
 from contextvars import ContextVar
 from typing import Any
 
@@ -193,15 +193,15 @@ class ParameterGenerator:
         if results is not None:
             results.append(generated)
             return 0
-        if len(sys.argv) < 5:
-            print(f"{name}Config for {pkgname}: kame loads it on `from {pkgname}.cfg import {name}Config`;"
-                  " no files are generated (catkin_make, or running this file with catkin's four arguments,"
-                  " writes them)")
-            return 0
-        # Imported here: catkin_files renders the descriptions this module makes.
-        from kame.reconfigure.catkin_files import write_from_arguments
+        return self.write(generated)
 
-        return write_from_arguments(generated, sys.argv[2:5])
+    def write(self, generated: GeneratedConfig) -> int:
+        """The .cfg run as a program: catkin's files are kame.reconfigure.catkin_files' (its
+        ParameterGenerator, which .cfg files import, writes them when given catkin's arguments)."""
+        print(f"{generated.name}Config for {generated.package}: kame loads it on `from {generated.package}.cfg "
+              f"import {generated.name}Config`; no files are generated (catkin_make, or running this file with "
+              "catkin's four arguments, writes them)")
+        return 0
 
 
 def flat_parameters(group: dict[str, Any]) -> list[dict[str, Any]]:
