@@ -67,7 +67,7 @@ def test_debian_rviz_draws_kames_interactive_marker(tmp_path: Path) -> None:
     if not os.path.exists(DEBIAN_RVIZ):
         pytest.skip("Debian's rviz is not installed (apt-get install rviz; scripts/install-ros-peers.sh)")
     from tests.stage.test_debian_rviz import pixels
-    from tests.turtlesim.xserver import find_window, screenshot, xvfb
+    from tests.turtlesim.xserver import find_shown_window, screenshot, xvfb
 
     config = tmp_path / "simple_marker.rviz"
     config.write_text(CONFIG)
@@ -82,7 +82,7 @@ def test_debian_rviz_draws_kames_interactive_marker(tmp_path: Path) -> None:
         deadline, window, count = time.monotonic() + 120, None, 0
         while time.monotonic() < deadline:
             assert rviz.popen.poll() is None, f"rviz exited:\n{''.join(rviz.out)}\n{''.join(rviz.err)}"
-            window = window or find_window(display, f"{config.name} - RViz")
+            window = window or find_shown_window(display, f"{config.name} - RViz")
             if window is not None:
                 count = int(teal(pixels(screenshot(display, window.id))).sum())
                 if count > 500:

@@ -98,7 +98,7 @@ def viewer_command(viewer: str) -> list[str]:
 def test_rviz_shows_the_robot_scan_and_map(tmp_path: Path, viewer: str) -> None:
     command = viewer_command(viewer)
     from kame.stage import mapfile
-    from tests.turtlesim.xserver import find_window, screenshot, xvfb
+    from tests.turtlesim.xserver import find_shown_window, screenshot, xvfb
 
     description = mapfile.parse_description(WORLD.read_text())
     image_file = Path(description.image_path(str(WORLD)))
@@ -125,7 +125,7 @@ def test_rviz_shows_the_robot_scan_and_map(tmp_path: Path, viewer: str) -> None:
                 time.sleep(0.5)
             raise AssertionError(f"timed out waiting for {what}:\n{''.join(rviz.out)}\n{''.join(rviz.err)}")
 
-        window = wait_for("rviz's window", lambda: find_window(display, f"{CONFIG.name} - RViz"), timeout=120)
+        window = wait_for("rviz's window", lambda: find_shown_window(display, f"{CONFIG.name} - RViz"), timeout=120)
 
         def shown() -> Any:
             return pixels(screenshot(display, window.id))

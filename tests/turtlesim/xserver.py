@@ -73,6 +73,13 @@ def find_window(display: str, title: str) -> XWindow | None:
     return XWindow(match.group(1), title, width, height, "Map State: IsViewable" in info)
 
 
+def find_shown_window(display: str, title: str) -> XWindow | None:
+    """The window called `title` once it is mapped and viewable: xwd cannot read a window that a
+    program has named but not shown yet."""
+    window = find_window(display, title)
+    return window if window is not None and window.viewable else None
+
+
 @dataclass(frozen=True)
 class Screenshot:
     """An xwd dump of a window (ZPixmap, 24/32 bits per pixel, TrueColor)."""
