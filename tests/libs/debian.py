@@ -25,8 +25,9 @@ def debian_env() -> dict[str, str]:
     return {key: value for key, value in os.environ.items() if key not in ("PYTHONPATH", "VIRTUAL_ENV")}
 
 
-def run(script: Path, request: Any) -> Any:
-    result = subprocess.run([str(SYSTEM_PYTHON), str(script)], input=json.dumps(request), capture_output=True,
+def run(script: Path, request: Any, python: str | Path = SYSTEM_PYTHON) -> Any:
+    """`script` under `python` (Debian's by default; kame's as sys.executable) fed `request` as JSON."""
+    result = subprocess.run([str(python), str(script)], input=json.dumps(request), capture_output=True,
                             text=True, timeout=120, env=debian_env())
     assert result.returncode == 0, result.stderr
     return json.loads(result.stdout)

@@ -5,7 +5,6 @@ kame's codegen) and message.check_type: the same answers as Debian's real genpy 
 from __future__ import annotations
 
 import json
-import subprocess
 import sys
 from pathlib import Path
 from typing import Any
@@ -62,10 +61,7 @@ REQUEST: dict[str, Any] = {
 
 
 def run(python: str) -> dict[str, Any]:
-    result = subprocess.run([python, str(DRIVER)], input=json.dumps(REQUEST), capture_output=True, text=True,
-                            timeout=120, env=debian.debian_env())
-    assert result.returncode == 0, result.stderr
-    answer: dict[str, Any] = json.loads(result.stdout)
+    answer: dict[str, Any] = debian.run(DRIVER, REQUEST, python)
     return answer
 
 

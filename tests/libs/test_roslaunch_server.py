@@ -5,9 +5,7 @@ ROSLaunchConfig.assign_machines: the same answers as Debian's real roslaunch on 
 from __future__ import annotations
 
 import getpass
-import json
 import socket
-import subprocess
 import sys
 from pathlib import Path
 from typing import Any
@@ -39,10 +37,7 @@ REQUEST: dict[str, Any] = {
 
 
 def run(python: str) -> dict[str, Any]:
-    result = subprocess.run([python, str(DRIVER)], input=json.dumps(REQUEST), capture_output=True, text=True,
-                            timeout=120, env=debian.debian_env())
-    assert result.returncode == 0, result.stderr
-    answer: dict[str, Any] = json.loads(result.stdout)
+    answer: dict[str, Any] = debian.run(DRIVER, REQUEST, python)
     return answer
 
 

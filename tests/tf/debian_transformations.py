@@ -1,4 +1,5 @@
-"""Run under Debian's /usr/bin/python3: evaluates a JSON batch of tf.transformations calls.
+"""Run under Debian's /usr/bin/python3: evaluates a JSON batch of tf.transformations calls (its
+arcball_drag is imported by the test too, where `tf` is kame's).
 
 stdin: [[function, args, kwargs], ...]; stdout: [result or {"error": type name}, ...], where
 numpy arrays become nested lists and tuples lists.
@@ -47,4 +48,5 @@ def call(name, args, kwargs):
         return {"error": type(exc).__name__}
 
 
-json.dump([call(*item) for item in json.load(sys.stdin)], sys.stdout)
+if __name__ == "__main__":
+    json.dump([call(*item) for item in json.load(sys.stdin)], sys.stdout)

@@ -21,6 +21,7 @@ import pytest
 from kame.tf import transformations as tr
 
 from ..support import SYSTEM_PYTHON
+from .debian_transformations import arcball_drag
 
 PEER = Path(__file__).with_name("debian_transformations.py")
 AXES = sorted(tr._AXES2TUPLE)
@@ -129,22 +130,6 @@ REBUILD = {"rotation_from_matrix": tr.rotation_matrix, "reflection_from_matrix":
            "projection_from_matrix": tr.projection_matrix}
 
 
-
-def arcball_drag(initial: Any, center: Any, radius: float, axes: list[Any], constrain: bool, down: Any,
-                 drag: Any, accelerations: list[float]) -> list[Any]:
-    """An Arcball driven as a viewer drives it: the matrices after a drag and after each next()."""
-    ball = tr.Arcball(initial)
-    ball.place(center, radius)
-    if axes:
-        ball.setaxes(*axes)
-    ball.setconstrain(constrain)
-    ball.down(down)
-    ball.drag(drag)
-    matrices = [ball.matrix()]
-    for acceleration in accelerations:
-        ball.next(acceleration)
-        matrices.append(ball.matrix())
-    return matrices
 
 
 def kame_call(name: str, args: list[Any], kwargs: dict[str, Any]) -> Any:

@@ -6,22 +6,17 @@ For cfg/<Name>.cfg of package <pkg> (catkin's folders in the devel space):
   kame/share/dynamic_reconfigure/templates (with their BSD licence);
 - lib/python3/dist-packages/<pkg>/cfg/<Name>Config.py and an empty cfg/__init__.py.
 The docs and the header show the double limits as upstream's C++ expressions; the Python
-module has them as infinities.
+module has them as infinities. Texts only: kame.catkin writes them.
 """
 
 from __future__ import annotations
 
 import ast
 import io
-import sys
-import traceback
-from collections.abc import Sequence
-from pathlib import Path
 from string import Template
 from typing import Any
 
 from kame.msg.catalog import SHARE_DIR
-from kame.reconfigure import generator
 from kame.reconfigure.generator import GeneratedConfig, flat_parameters, with_infinities
 
 TEMPLATES = SHARE_DIR / "dynamic_reconfigure" / "templates"
@@ -166,36 +161,3 @@ def outputs(generated: GeneratedConfig) -> list[tuple[str, str, str]]:
         ("python", f"cfg/{msgname}.py", python_module(generated)),
     ]
 
-
-def write_files(generated: GeneratedConfig, share: Path, include: Path, python: Path) -> None:
-    """Write catkin's five files (and cfg/__init__.py when missing) into the package's devel folders."""
-    folders = {"share": share, "include": include, "python": python}
-    for folder, name, text in outputs(generated):
-        target = folders[folder] / name
-        target.parent.mkdir(parents=True, exist_ok=True)
-        target.write_text(text)
-    (python / "cfg" / "__init__.py").touch()
-
-
-def write_from_arguments(generated: GeneratedConfig, folders: Sequence[str]) -> int:
-    """generate() run by catkin's command: `<cfg> <dynamic_reconfigure dir> <share> <include> <python>`."""
-    share, include, python = (Path(folder) for folder in folders)
-    print(f"Generating reconfiguration files for {generated.name} in {generated.package}")
-    try:
-        write_files(generated, share, include, python)
-    except (OSError, KeyError, ValueError, TypeError):
-        print(f"Error building srv {generated.name}.srv")
-        traceback.print_exc()
-        raise SystemExit(1) from None
-    print(f"Wrote header file in {include / (generated.name + 'Config.h')}")
-    return 0
-
-
-class ParameterGenerator(generator.ParameterGenerator):
-    """The generator .cfg files import (dynamic_reconfigure.parameter_generator_catkin): run by
-    catkin's command with its four arguments, generate() writes catkin's files."""
-
-    def write(self, generated: GeneratedConfig) -> int:
-        if len(sys.argv) < 5:
-            return super().write(generated)
-        return write_from_arguments(generated, sys.argv[2:5])

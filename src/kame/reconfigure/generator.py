@@ -4,7 +4,7 @@ A .cfg file is a Python script that describes parameters and ends with
 `exit(gen.generate(PACKAGE, node, name))`. catkin runs it at build time with four
 arguments (the dynamic_reconfigure folder, the package's devel share, include and Python
 folders) to write the Config module, the C++ header and the docs; kame writes the same
-files when run so (kame.reconfigure.catkin_files' ParameterGenerator, which .cfg files
+files when run so (kame.catkin.reconfigure_files' ParameterGenerator, which .cfg files
 import), and when it evaluates the file on import
 (kame.reconfigure.importer) generate() hands the description over instead.
 The dictionaries have the keys and values catkin's generator makes, down to the double
@@ -196,7 +196,7 @@ class ParameterGenerator:
         return self.write(generated)
 
     def write(self, generated: GeneratedConfig) -> int:
-        """The .cfg run as a program: catkin's files are kame.reconfigure.catkin_files' (its
+        """The .cfg run as a program: catkin's files are kame.catkin.reconfigure_files' (its
         ParameterGenerator, which .cfg files import, writes them when given catkin's arguments)."""
         print(f"{generated.name}Config for {generated.package}: kame loads it on `from {generated.package}.cfg "
               f"import {generated.name}Config`; no files are generated (catkin_make, or running this file with "
