@@ -544,7 +544,7 @@ def test_solid_markers_drawn_together_match_each_drawn_alone() -> None:
             marker.scale.x, marker.scale.y, marker.scale.z = rng.uniform(0.1, 2, 3)
             marker.color.r, marker.color.a = i / 6, 1.0
             array.markers.append(marker)
-        together = build(markers.MarkerArray(), array).batches[0]
+        together = build(markers.MarkerArray(), array).batches[0].unindexed()  # shared vertices written out
         if kind == markers.ARROW:  # a shaft and head about the pose's x, scale.x long, tip at the end
             for i, marker in enumerate(array.markers):
                 m = TREE.transform(marker.header.frame_id) @ pose_matrix(marker.pose)
@@ -574,6 +574,34 @@ def test_solid_markers_drawn_together_match_each_drawn_alone() -> None:
         facing = np.cross(triangles[:, 1] - triangles[:, 0], triangles[:, 2] - triangles[:, 0])
         assert ((facing * (triangles.mean(axis=1) - centres)).sum(axis=1) >= -1e-6).all()
         assert (np.einsum("ij,ij->i", together.normals, np.repeat(facing, 3, axis=0)) >= -1e-6).all()
+
+
+def test_solids_share_their_vertices_and_stay_so_when_merged() -> None:
+    for kind in markers.SOLIDS:
+        vertices, normals, indices = markers.solid_template(kind)
+        assert len(vertices) <= indices.size * 2 / 3  # a cube's 24 corners for 36: a face's two triangles share 2
+        assert set(indices.ravel().tolist()) == set(range(len(vertices)))  # each vertex used
+        assert np.linalg.norm(normals, axis=1) == pytest.approx(1, abs=1e-6)
+    sphere = markers.solid_template(markers.SPHERE)
+    assert (np.einsum("ij,ij->i", sphere[0], sphere[1]) > 0.49).all()  # smooth: each normal along its radius
+    array = MarkerArray()
+    for i, kind in enumerate((markers.CUBE, markers.SPHERE)):
+        marker = Marker(ns="n", id=i, type=kind, action=markers.ADD)
+        marker.header.frame_id = "odom"
+        marker.pose.position.x, marker.pose.orientation.w = 3.0 * i, 1.0
+        marker.scale.x = marker.scale.y = marker.scale.z = 1.0
+        marker.color.g = marker.color.a = 1.0
+        array.markers.append(marker)
+    apart = Scene()
+    for marker in array.markers:  # drawn alone: a batch each
+        apart.extend(build(markers.Marker(), marker))
+    assert len(apart.batches) == 2 and all(b.indices is not None for b in apart.batches)
+    merged = apart.merged()
+    assert len(merged.batches) == 1
+    written = np.concatenate([b.unindexed().vertices for b in apart.batches])
+    assert merged.batches[0].unindexed().vertices == pytest.approx(written)
+    assert merged.batches[0].unindexed().normals == pytest.approx(
+        np.concatenate([b.unindexed().normals for b in apart.batches]))
 
 
 def test_an_option_typed_into_the_panel_keeps_the_kind_of_value_it_had() -> None:

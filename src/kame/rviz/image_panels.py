@@ -72,7 +72,7 @@ class ImagePanel(QWidget):
         layer = QImage(self.width(), self.height(), QImage.Format.Format_ARGB32_Premultiplied)
         layer.fill(Qt.GlobalColor.transparent)
         painter = QPainter(layer)
-        for batch in self.scene.batches:
+        for batch in (batch.unindexed() for batch in self.scene.batches):
             pixels, in_front = camera.project(batch.vertices)
             spots = pixels * scale + (left, top)
             colors = np.clip(batch.float_colors() * 255, 0, 255).astype(int).tolist()

@@ -263,7 +263,8 @@ class InteractiveMarkers(Display):
                     added = np.array([self.highlit[3]] * 3 + [0.0], dtype=np.float32)
                     for batch in own.batches:  # rviz adds the highlight to the lit colour
                         batch.colors = np.minimum(batch.float_colors() + added, np.float32(1.0))
-                surfaces = [b.vertices.reshape(-1, 3, 3) for b in own.batches if b.kind == "triangles"] + texts
+                surfaces = [b.unindexed().vertices.reshape(-1, 3, 3) for b in own.batches if b.kind == "triangles"]
+                surfaces += texts
                 triangles = np.concatenate(surfaces) if surfaces else np.zeros((0, 3, 3))
                 self.handles.append(Handle(server_id, self.name, self.feedback_topic(), marker,
                                            control, reference, frames.fixed_frame, triangles.astype(float),

@@ -42,11 +42,10 @@ def _point_colors(marker: Any, count: int) -> np.ndarray:
 SOLIDS = (CUBE, SPHERE, CYLINDER, ARROW)
 
 
-@functools.cache
-def solid_template(kind: int) -> tuple[np.ndarray, np.ndarray]:
+def _solid_triangles(kind: int) -> tuple[np.ndarray, np.ndarray]:
     """The kind's shape at scale 1 (an arrow: length 1 along x, shaft 1 and head 2 wide, its
-    shaft's end closed) as a closed surface: its triangles wound counter-clockwise seen from
-    outside, and their normals (one a triangle), float32."""
+    shaft's end closed) as a closed surface: its triangles (T x 3 x 3) wound counter-clockwise
+    seen from outside, and their normals (T x 3)."""
     if kind == ARROW:
         triangles = arrow_triangles(np.zeros(3), np.array([1.0, 0.0, 0.0]), 1.0, 2.0, 0.23).reshape(-1, 3, 3)
         rim = triangles[0::4, :2]  # each side's shaft triangle begins with two points of the start's rim
@@ -65,8 +64,32 @@ def solid_template(kind: int) -> tuple[np.ndarray, np.ndarray]:
     inward = (normals * outward).sum(axis=1) < 0
     triangles[inward] = triangles[inward][:, ::-1]
     normals[inward] = -normals[inward]
-    normals /= np.linalg.norm(normals, axis=1, keepdims=True)
-    return triangles.reshape(-1, 3).astype(np.float32), normals.astype(np.float32)
+    return triangles, normals / np.linalg.norm(normals, axis=1, keepdims=True)
+
+
+@functools.cache
+def solid_template(kind: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The kind's shape at scale 1 (see _solid_triangles) as vertices and their normals (V x 3
+    float32) and its triangles as indices into them (T x 3 uint32). A sphere and the round
+    sides of a cylinder or an arrow's shaft are shaded smooth, as rviz's meshes are (a vertex's
+    normal points away from the axis), so their triangles share vertices; flat faces share
+    the corners they have in common."""
+    triangles, faces = _solid_triangles(kind)
+    corners = triangles.reshape(-1, 3)
+    normals = np.repeat(faces, 3, axis=0)
+    axis = {SPHERE: None, CYLINDER: 2, ARROW: 0}.get(kind, -1)
+    if axis != -1:
+        # a sphere's every face, a round side's (its normal across the axis): from the axis out
+        round_side = np.ones(len(corners), bool) if axis is None else np.abs(normals[:, axis]) < 1e-9
+        away = corners.copy()
+        if axis is not None:
+            away[:, axis] = 0.0
+        lengths = np.linalg.norm(away, axis=1, keepdims=True)
+        normals = np.where(round_side[:, None] & (lengths > 1e-12), away / np.maximum(lengths, 1e-12), normals)
+    welded = np.round(np.hstack([corners, normals]), 6)
+    _, first, inverse = np.unique(welded, axis=0, return_index=True, return_inverse=True)
+    return (corners[first].astype(np.float32), normals[first].astype(np.float32),
+            inverse.reshape(-1, 3).astype(np.uint32))
 
 
 def _solid_arrays(kind: int, placed: list[tuple[Any, np.ndarray]]) -> tuple[np.ndarray, ...]:
@@ -109,20 +132,23 @@ def draw_solids(scene: Scene, solids: dict[int, list[tuple[Any, np.ndarray]]]) -
         vertices = np.empty((total, 3), dtype=np.float32)
         normals = np.empty((total, 3), dtype=np.float32)
         colors = np.empty((total, 4), dtype=np.uint8)
+        indices = []
         start = 0
         for _, kind, rotations, origins, scales, piece_colors in chosen:
-            template, template_normals = solid_template(kind)
+            template, template_normals, template_indices = solid_template(kind)
             count, size = len(scales), len(template)
-            block = _placed(template, scales, rotations, vertices[start:start + count * size].reshape(count, size, 3))
+            rows = slice(start, start + count * size)
+            block = _placed(template, scales, rotations, vertices[rows].reshape(count, size, 3))
             block += origins[:, None, :]
             # a normal goes through the inverse of the scaling (a flattened sphere's stay perpendicular)
             inverse = 1 / np.where(np.abs(scales) > 1e-12, scales, np.float32(1e-12))
-            faces = _placed(template_normals, inverse, rotations)
-            faces /= np.sqrt(np.maximum((faces * faces).sum(axis=2, keepdims=True), np.float32(1e-24)))
-            normals[start:start + count * size].reshape(count, size // 3, 3, 3)[...] = faces[:, :, None, :]
-            colors[start:start + count * size].reshape(count, size, 4)[...] = piece_colors[:, None, :]
+            turned = _placed(template_normals, inverse, rotations, normals[rows].reshape(count, size, 3))
+            turned /= np.sqrt(np.maximum((turned * turned).sum(axis=2, keepdims=True), np.float32(1e-24)))
+            colors[rows].reshape(count, size, 4)[...] = piece_colors[:, None, :]
+            firsts = np.arange(start, start + count * size, size, dtype=np.uint32)
+            indices.append((template_indices.reshape(1, -1) + firsts[:, None]).reshape(-1))
             start += count * size
-        scene.add("triangles", vertices, colors, closed=is_closed, normals=normals)
+        scene.add("triangles", vertices, colors, closed=is_closed, normals=normals, indices=np.concatenate(indices))
 
 
 def _placed(points: np.ndarray, scales: np.ndarray, rotations: np.ndarray, out: np.ndarray | None = None,

@@ -23,7 +23,9 @@ class Batch:
     so the faces turned away from the camera need not be drawn; `normals` (N x 3 float32, one a
     vertex) spare the window working them out from the triangles. `metres`: points `size`
     metres wide where they are (rviz's Squares styles), smaller as they are farther away.
-    `overlay`: drawn over everything, hidden by nothing (the tools' marks)."""
+    `overlay`: drawn over everything, hidden by nothing (the tools' marks). `indices`: the
+    primitives' vertices as indices into `vertices` (uint32), where solids share their corners:
+    a third to a sixth of the vertices to place, upload and light."""
     kind: str
     vertices: np.ndarray  # N x 3 float32, fixed frame
     colors: np.ndarray  # N x 4 float32 or uint8
@@ -32,6 +34,7 @@ class Batch:
     normals: np.ndarray | None = None
     metres: bool = False
     overlay: bool = False
+    indices: np.ndarray | None = None
 
     @property
     def uniform(self) -> bool:
@@ -42,6 +45,15 @@ class Batch:
         if self.colors.dtype == np.uint8:
             return self.colors.astype(np.float32) / 255
         return np.asarray(self.colors, dtype=np.float32)
+
+    def unindexed(self) -> Batch:
+        """The same primitives with each vertex written out where it is used (an indexed
+        batch's shared ones repeated): what works on the triangles, not the GPU, reads."""
+        if self.indices is None:
+            return self
+        normals = None if self.normals is None else self.normals[self.indices]
+        return Batch(self.kind, self.vertices[self.indices], self.colors[self.indices], self.size, self.closed,
+                     normals, self.metres, self.overlay)
 
 
 @dataclass
@@ -69,7 +81,8 @@ class Scene:
         self.textures.append(Texture(np.asarray(corners, dtype=np.float32).reshape(4, 3), rgba))
 
     def add(self, kind: str, vertices: Any, colors: Any, size: float = 1.0, closed: bool = False,
-            normals: np.ndarray | None = None, metres: bool = False, overlay: bool = False) -> None:
+            normals: np.ndarray | None = None, metres: bool = False, overlay: bool = False,
+            indices: np.ndarray | None = None) -> None:
         vertices = np.asarray(vertices, dtype=np.float32).reshape(-1, 3)
         if not len(vertices):
             return
@@ -82,17 +95,20 @@ class Scene:
             colors = np.ascontiguousarray(colors)
         if normals is not None:
             normals = np.ascontiguousarray(normals, dtype=np.float32).reshape(-1, 3)
+        if indices is not None:
+            indices = np.ascontiguousarray(indices, dtype=np.uint32).reshape(-1)
         self.batches.append(Batch(kind, np.ascontiguousarray(vertices), colors, size, closed, normals, metres,
-                                  overlay))
+                                  overlay, indices))
 
     def merged(self) -> Scene:
         """The same scene with batches of one kind, size and closedness joined: one draw call
         for 2,000 markers (colours stay bytes when all are)."""
-        groups: dict[tuple[str, float, bool, bool, bool], list[Batch]] = {}
+        groups: dict[tuple[str, float, bool, bool, bool, bool], list[Batch]] = {}
         for batch in self.batches:
-            groups.setdefault((batch.kind, batch.size, batch.closed, batch.metres, batch.overlay), []).append(batch)
+            key = (batch.kind, batch.size, batch.closed, batch.metres, batch.overlay, batch.indices is not None)
+            groups.setdefault(key, []).append(batch)
         batches = []
-        for (kind, size, closed, metres, overlay), group in groups.items():
+        for (kind, size, closed, metres, overlay, indexed), group in groups.items():
             if len(group) == 1:
                 batches.append(group[0])
                 continue
@@ -100,8 +116,13 @@ class Scene:
             colors = np.concatenate([b.colors if as_bytes else b.float_colors() for b in group])
             normals = (np.concatenate([b.normals for b in group if b.normals is not None])
                        if all(b.normals is not None for b in group) else None)
+            indices = None
+            if indexed:  # each batch's indices moved past the vertices of those before it
+                starts = np.cumsum([0] + [len(b.vertices) for b in group[:-1]])
+                indices = np.concatenate([b.indices + np.uint32(start) for b, start in zip(group, starts, strict=True)
+                                          if b.indices is not None])
             batches.append(Batch(kind, np.concatenate([b.vertices for b in group]), colors, size, closed, normals,
-                                 metres, overlay))
+                                 metres, overlay, indices))
         return Scene(batches, self.labels, self.textures)
 
     def extend(self, other: Scene) -> None:

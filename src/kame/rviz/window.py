@@ -13,7 +13,6 @@ import math
 import os
 import time
 from collections.abc import Callable
-from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -37,6 +36,7 @@ from PySide6.QtWidgets import (
 from kame.rviz import config as rviz_config
 from kame.rviz.camera import FPS, ORBIT, TOP_DOWN, Camera
 from kame.rviz.display import ERROR, OK, WARN, Display, Status, edited_option, format_color, parse_color
+from kame.rviz.gpu_batches import GpuBatches
 from kame.rviz.image_panels import ImagePanels, decode_compressed
 from kame.rviz.interact_view import InteractRouter
 from kame.rviz.interactive import InteractiveMarkers
@@ -44,7 +44,7 @@ from kame.rviz.markers import Marker
 from kame.rviz.meshes import MeshLibrary
 from kame.rviz.pacing import FramePacer
 from kame.rviz.robot import RobotModel
-from kame.rviz.scene import Batch, Scene, face_normals
+from kame.rviz.scene import Scene
 from kame.rviz.sensors import Image
 from kame.rviz.shown_log import from_environment
 from kame.rviz.source import RvizSource
@@ -55,17 +55,6 @@ from visualization_msgs.msg import InteractiveMarkerFeedback
 PRIMITIVES = {"lines": GL.GL_LINES, "points": GL.GL_POINTS, "triangles": GL.GL_TRIANGLES}
 INTERACT, POSE_ESTIMATE, NAV_GOAL, PUBLISH_POINT = "Interact", "2D Pose Estimate", "2D Nav Goal", "Publish Point"
 SELECT, MEASURE = "Select", "Measure"
-
-
-@dataclass
-class GpuBatch:
-    batch: Batch | None  # what the buffers hold now
-    vertices: int
-    colors: int
-    normals: int  # triangles' only
-    vertex_bytes: int = 0  # the buffers' sizes
-    color_bytes: int = 0
-    normal_bytes: int = 0
 
 
 STATUS_COLOURS = {WARN: (205, 153, 51), ERROR: (192, 32, 32)}  # as Debian's rviz 1.14 draws them
@@ -90,17 +79,6 @@ def _same(these: list[Any], those: list[Any]) -> bool:
     return len(these) == len(those) and all(a is b for a, b in zip(these, those, strict=True))
 
 
-def _upload(buffer: int, data: np.ndarray, capacity: int) -> int:
-    """`data` into the GL buffer, reusing its storage when it fits; the buffer's size after."""
-    data = np.ascontiguousarray(data)
-    GL.glBindBuffer(GL.GL_ARRAY_BUFFER, buffer)
-    if data.nbytes <= capacity:
-        GL.glBufferSubData(GL.GL_ARRAY_BUFFER, 0, data.nbytes, data)
-        return capacity
-    GL.glBufferData(GL.GL_ARRAY_BUFFER, data.nbytes, data, GL.GL_DYNAMIC_DRAW)
-    return data.nbytes
-
-
 def _keys(event: QMouseEvent) -> tuple[bool, bool]:
     """Shift and Ctrl held (the Interact tool's 3-D modes)."""
     held = event.modifiers()
@@ -122,7 +100,7 @@ class RenderView(QOpenGLWidget):
         self.background = (48 / 255, 48 / 255, 48 / 255, 1.0)
         self.tool = INTERACT
         self._textures: dict[int, tuple[np.ndarray, int]] = {}  # GL textures by their image's id, kept while drawn
-        self._buffers: list[GpuBatch] = []  # the buffers of the scene's batches, by their place in it
+        self._gpu = GpuBatches()
         self._last: QPointF | None = None
         self._pressed_at: np.ndarray | None = None
         self._band: tuple[QPointF, QPointF] | None = None  # Select's rectangle while dragged
@@ -178,14 +156,14 @@ class RenderView(QOpenGLWidget):
             GL.glPointSize(max(1.0, batch.size))
             if batch.metres:
                 self._point_metres(batch.size, height)
-            vertices, colors = self._uploaded(slot, batch)
-            GL.glBindBuffer(GL.GL_ARRAY_BUFFER, vertices)
+            gpu = self._gpu.uploaded(slot, batch)
+            GL.glBindBuffer(GL.GL_ARRAY_BUFFER, gpu.vertices)
             GL.glVertexPointer(3, GL.GL_FLOAT, 0, None)
             if batch.uniform:  # one colour for all: no colour array to upload or read
                 GL.glColor4f(*(float(c) for c in batch.float_colors()[0]))
             else:
                 GL.glEnableClientState(GL.GL_COLOR_ARRAY)
-                GL.glBindBuffer(GL.GL_ARRAY_BUFFER, colors)
+                GL.glBindBuffer(GL.GL_ARRAY_BUFFER, gpu.colors)
                 GL.glColorPointer(4, GL.GL_UNSIGNED_BYTE if batch.colors.dtype == np.uint8 else GL.GL_FLOAT, 0, None)
             lit = batch.kind == "triangles"
             if batch.overlay:
@@ -195,9 +173,14 @@ class RenderView(QOpenGLWidget):
             if lit:  # surfaces are shaded by their facing; lines, points and labels are not
                 GL.glEnable(GL.GL_LIGHTING)
                 GL.glEnableClientState(GL.GL_NORMAL_ARRAY)
-                GL.glBindBuffer(GL.GL_ARRAY_BUFFER, self._buffers[slot].normals)
+                GL.glBindBuffer(GL.GL_ARRAY_BUFFER, gpu.normals)
                 GL.glNormalPointer(GL.GL_FLOAT, 0, None)
-            GL.glDrawArrays(PRIMITIVES[batch.kind], 0, len(batch.vertices))
+            if batch.indices is None:
+                GL.glDrawArrays(PRIMITIVES[batch.kind], 0, len(batch.vertices))
+            else:
+                GL.glBindBuffer(GL.GL_ELEMENT_ARRAY_BUFFER, gpu.indices)
+                GL.glDrawElements(PRIMITIVES[batch.kind], len(batch.indices), GL.GL_UNSIGNED_INT, None)
+                GL.glBindBuffer(GL.GL_ELEMENT_ARRAY_BUFFER, 0)
             GL.glDisable(GL.GL_CULL_FACE)
             GL.glEnable(GL.GL_DEPTH_TEST)
             if batch.metres:
@@ -207,9 +190,7 @@ class RenderView(QOpenGLWidget):
                 GL.glDisable(GL.GL_LIGHTING)
             GL.glDisableClientState(GL.GL_COLOR_ARRAY)
         GL.glBindBuffer(GL.GL_ARRAY_BUFFER, 0)
-        for unused in self._buffers[len(self.scene.batches):]:
-            GL.glDeleteBuffers(3, [unused.vertices, unused.colors, unused.normals])
-        del self._buffers[len(self.scene.batches):]
+        self._gpu.keep(len(self.scene.batches))
         GL.glDisableClientState(GL.GL_VERTEX_ARRAY)
         if not overlays:
             return
@@ -230,23 +211,6 @@ class RenderView(QOpenGLWidget):
             return
         GL.glPointSize(max(1.0, metres * height / (2 * math.tan(camera.fov_y / 2))))
         GL.glPointParameterfv(GL.GL_POINT_DISTANCE_ATTENUATION, (0.0, 0.0, 1.0))
-
-    def _uploaded(self, slot: int, batch: Batch) -> tuple[int, int]:
-        """The batch's vertex and colour buffers on the GPU, the slot-th of the scene's: an
-        unchanged batch is not uploaded again; a new one goes into the slot's buffers
-        (glBufferSubData while it fits, so a cloud's buffers are allocated once)."""
-        if slot == len(self._buffers):
-            self._buffers.append(GpuBatch(None, *(int(b) for b in GL.glGenBuffers(3))))
-        known = self._buffers[slot]
-        if known.batch is not batch:
-            known.vertex_bytes = _upload(known.vertices, batch.vertices, known.vertex_bytes)
-            if not batch.uniform:
-                known.color_bytes = _upload(known.colors, batch.colors, known.color_bytes)
-            if batch.kind == "triangles":
-                normals = face_normals(batch.vertices) if batch.normals is None else batch.normals
-                known.normal_bytes = _upload(known.normals, normals, known.normal_bytes)
-            known.batch = batch
-        return known.vertices, known.colors
 
     def _draw_texture(self, corners: np.ndarray, rgba: np.ndarray) -> None:
         known = self._textures.get(id(rgba))
