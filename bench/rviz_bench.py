@@ -97,7 +97,7 @@ def run(name: str, display: Any, cls: type[Any], payload: bytes, new_every: int,
     QApplication.instance() or QApplication(["bench"])
     window = RvizWindow(config.Config(displays=[display]), None)
     window.timer.stop()
-    window.view.setFixedSize(1280, 720)
+    window.view_widget.setFixedSize(1280, 720)
     window.show()
     # a window not yet exposed paints nothing: frames timed before that measure no drawing at all
     if not QTest.qWaitForWindowExposed(window, 10_000):

@@ -45,6 +45,8 @@ def _window_on(qtbot: Any, display: Any, publish: Any = lambda topic, message: N
     qtbot.addWidget(window)
     window.timer.stop()
     window.resize(800, 600)
+    window.show()  # the view is a native window of its own: laid out (sized) once shown
+    qtbot.waitExposed(window)
     window.view.interact.publish = publish
     window.view.interact.redraw = lambda: window.draw(0.0, Identity())
     window.draw(0.0, Identity())

@@ -128,7 +128,8 @@ class Camera:
     def projection_matrix(self, width: int, height: int) -> np.ndarray:
         aspect = max(1, width) / max(1, height)
         if self.kind == TOP_DOWN:
-            half_w, half_h = width / (2 * self.scale), height / (2 * self.scale)
+            # a view not yet laid out is 0 pixels wide
+            half_w, half_h = max(1, width) / (2 * self.scale), max(1, height) / (2 * self.scale)
             projection = np.eye(4)
             projection[0, 0], projection[1, 1] = 1 / half_w, 1 / half_h
             projection[2, 2], projection[2, 3] = -2 / self.far, -1.0

@@ -10,7 +10,7 @@ from collections.abc import Callable
 from typing import Any
 
 from PySide6.QtCore import QPoint
-from PySide6.QtWidgets import QMenu, QWidget
+from PySide6.QtWidgets import QMenu
 
 from kame.rviz.interact import Interaction, menu_tree, mouse_ray, pick, pointer
 from kame.rviz.interactive import Handle, InteractiveMarkers
@@ -26,6 +26,7 @@ class InteractRouter:
         self.publish = publish
         self.redraw = redraw
         self.interaction = Interaction(node_name)
+        self.menu: QMenu | None = None  # the marker's menu open now: a window of its own, kept alive here
 
     def _markers(self) -> list[InteractiveMarkers]:
         return [d for d in self.displays() if isinstance(d, InteractiveMarkers) and d.enabled]
@@ -86,7 +87,7 @@ class InteractRouter:
 
     def _menu(self, handle: Handle, at: QPoint) -> None:
         tree = menu_tree(list(handle.marker.menu_entries))
-        menu = QMenu(self.view if isinstance(self.view, QWidget) else None)
+        menu = self.menu = QMenu()  # the view is a window, not a widget: no parent to own the menu
 
         def fill(parent: QMenu, parent_id: int) -> None:
             for entry in tree.get(parent_id, []):

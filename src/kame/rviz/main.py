@@ -45,6 +45,9 @@ def main(argv: Sequence[str] | None = None) -> int:
         config.displays = [rviz_config.DISPLAY_CLASSES["rviz/Grid"]()]
     if options.fixed_frame:
         config.fixed_frame = options.fixed_frame
+    # X11 Qt holds a window's update request 5 ms for more to join it: the view's frames are
+    # paced already (kame.rviz.pacing), and a message would wait those 5 ms more for its pixels
+    os.environ.setdefault("QT_QPA_UPDATE_IDLE_TIME", "0")
     app = QApplication.instance() or QApplication(["rviz"])
     quit_on_signals(app)
     node = Node(node_config(f"rviz_{os.getpid()}", ros.special, os.environ, ros.remappings))
