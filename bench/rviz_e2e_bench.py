@@ -2,7 +2,7 @@
 window (its own process, on a private Xvfb when no DISPLAY is set, Mesa's software GL) and a
 publisher process stamping each message's header with the wall time just before publish().
 Scenes: one marker at 7 Hz (the floor), a 2,000-marker MarkerArray at 3 Hz, a 300k-point
-PointCloud2 at 10 Hz, and both of those at once.
+PointCloud2 at 10 Hz, both of those at once, and a 2,000x2,000 map at 1 Hz.
 rviz writes when each message's first frame was swapped to the screen (KAME_RVIZ_STATS, see
 kame.rviz.shown_log), so a latency here is serialization and TCPROS (or shared memory) transport,
 decoding, the wait for the window's frame, building the scene, drawing and Qt's composition
@@ -11,7 +11,7 @@ of each topic, which allocates its display's GL buffers, separately), messages s
 published (a newer one replaces one not yet taken), frames swapped per second (rviz paints
 only when something changed: at most the message rate) and rviz's CPU (% of one core).
 
-    .venv/bin/python bench/rviz_e2e_bench.py [--seconds 20] [--runs 3] [--scene one|markers|cloud|both]
+    .venv/bin/python bench/rviz_e2e_bench.py [--seconds 20] [--runs 3] [--scene one|markers|cloud|both|map]
 """
 
 from __future__ import annotations
@@ -32,10 +32,10 @@ from kame_bytecode import compile_kame
 from rviz_bench import with_display
 
 BIN = Path(sys.executable).parent
-MARKERS, CLOUD, ONE = "/e2e/markers", "/e2e/cloud", "/e2e/one"
+MARKERS, CLOUD, ONE, MAP = "/e2e/markers", "/e2e/cloud", "/e2e/one", "/e2e/map"
 # one marker at 7 Hz (not a divisor of the frame rate): the floor, where waiting for a frame shows
-RATES = {MARKERS: 3.0, CLOUD: 10.0, ONE: 7.0}
-SCENES = {"one": (ONE,), "markers": (MARKERS,), "cloud": (CLOUD,), "both": (MARKERS, CLOUD)}
+RATES = {MARKERS: 3.0, CLOUD: 10.0, ONE: 7.0, MAP: 1.0}
+SCENES = {"one": (ONE,), "markers": (MARKERS,), "cloud": (CLOUD,), "both": (MARKERS, CLOUD), "map": (MAP,)}
 # the view 1280x720 beside rviz's Displays panel, tool bar, menus and status bar (as Qt lays them out offscreen)
 CONFIG = """Visualization Manager:
   Global Options:
@@ -52,6 +52,7 @@ DISPLAYS = {
              f"      Marker Topic: {MARKERS}\n",
     CLOUD: f"    - Class: rviz/PointCloud2\n      Name: PointCloud2\n      Enabled: true\n      Topic: {CLOUD}\n",
     ONE: f"    - Class: rviz/MarkerArray\n      Name: One\n      Enabled: true\n      Marker Topic: {ONE}\n",
+    MAP: f"    - Class: rviz/Map\n      Name: Map\n      Enabled: true\n      Topic: {MAP}\n",
 }
 
 
@@ -61,10 +62,11 @@ def publish(topics: list[str], seconds: float) -> int:
     import rospy
     import tf2_ros
     from geometry_msgs.msg import TransformStamped
+    from nav_msgs.msg import OccupancyGrid
     from sensor_msgs.msg import PointCloud2
     from visualization_msgs.msg import MarkerArray
 
-    from rviz_bench import cloud, marker_array
+    from rviz_bench import cloud, grid_map, marker_array
 
     rospy.init_node("rviz_e2e_publisher")
     static = TransformStamped()  # rviz's fixed frame must exist in tf
@@ -72,8 +74,9 @@ def publish(topics: list[str], seconds: float) -> int:
     static.transform.rotation.w = 1.0
     broadcaster = tf2_ros.StaticTransformBroadcaster()
     broadcaster.sendTransform(static)
-    messages = {MARKERS: marker_array(2000), CLOUD: cloud(300_000), ONE: marker_array(1)}
-    publishers = {topic: rospy.Publisher(topic, PointCloud2 if topic == CLOUD else MarkerArray, queue_size=1)
+    messages = {MARKERS: marker_array(2000), CLOUD: cloud(300_000), ONE: marker_array(1), MAP: grid_map(2000)}
+    types = {MARKERS: MarkerArray, CLOUD: PointCloud2, ONE: MarkerArray, MAP: OccupancyGrid}
+    publishers = {topic: rospy.Publisher(topic, types[topic], queue_size=1)
                   for topic in topics}
     deadline = time.monotonic() + 60
     while any(p.get_num_connections() == 0 for p in publishers.values()):
@@ -93,11 +96,8 @@ def publish(topics: list[str], seconds: float) -> int:
         time.sleep(max(0.0, due[topic] - time.monotonic()))
         message = messages[topic]
         stamp = rospy.Time.from_sec(time.time())
-        if topic != CLOUD:
-            for marker in message.markers:
-                marker.header.stamp = stamp
-        else:
-            message.header.stamp = stamp
+        for stamped in getattr(message, "markers", [message]):
+            stamped.header.stamp = stamp
         publishers[topic].publish(message)
         sent[topic] += 1
         due[topic] += 1 / RATES[topic]
