@@ -114,7 +114,9 @@ LAYERS: dict[str, int] = {
     "kame.rqt.plot_main": 4,
     "kame.rviz": 1,  # rviz's model: camera, scene, displays, .rviz files; no Qt, no ROS I/O
     "kame.rviz.source": 4,  # the rviz node: subscriptions, the tf Buffer
-    "kame.rviz.window": 4,  # Qt and OpenGL
+    "kame.rviz.window": 4,  # Qt
+    "kame.rviz.view": 4,  # Qt and OpenGL: the 3-D view's window
+    "kame.rviz.gpu_batches": 4,  # OpenGL: the view's buffers
     "kame.rviz.pacing": 4,  # Qt: when the window takes a frame
     "kame.rviz.shown_log": 4,  # KAME_RVIZ_STATS: wall clock and a file
     "kame.rviz.image_panels": 4,  # Qt: the Image and Camera displays' panels
@@ -149,8 +151,9 @@ LAYERS: dict[str, int] = {
 }
 ONLY_ITSELF = frozenset({"kame"})  # entries that do not cover their submodules
 
+# datetime is allowed (YAML dates are values); Qt and OpenGL are not: a GUI tool's model is drawn, it does not draw
 PURE_FORBIDDEN = frozenset({"socket", "select", "selectors", "asyncio", "threading", "subprocess", "signal", "time",
-                            "multiprocessing", "concurrent"})  # datetime is allowed: YAML dates are values
+                            "multiprocessing", "concurrent", "PySide6", "OpenGL"})
 # `select` is left out: kame's tools use select.select to wait on the terminal, not on sockets
 SOCKET_MODULES = frozenset({"socket", "selectors", "ssl", "socketserver", "asyncio.streams",
                             "http.client", "http.server", "xmlrpc.client", "xmlrpc.server", "urllib.request"})
