@@ -124,6 +124,7 @@ LAYERS: dict[str, int] = {
     "kame.rviz.main": 4,
     "kame.robot": 1,  # a URDF's joints and joint_state_publisher's positions: no ROS, no Qt
     "kame.robot.programs": 4,  # robot_state_publisher and joint_state_publisher
+    "kame.robot.joint_states": 4,  # joint_state_publisher's publisher, the node's parameters and clock
     "kame.robot.sliders": 4,  # joint_state_publisher_gui's Qt window
     "kame.stage.runtime": 4,  # the simulator's and map tools' one way to the ROS runtime
     "kame.stage.node": 4,

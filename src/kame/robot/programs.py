@@ -15,29 +15,22 @@ from __future__ import annotations
 
 import sys
 import threading
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Sequence
 from typing import Any
 
 from kame.cli._node import ToolNode
 from kame.cli._tf import console, start_node
-from kame.node.topics import serialize_frame
-from kame.robot.model import JointPositions, RobotTree, Transform
+from kame.robot.joint_states import JointStatePublisher, ros_now, ros_param
+from kame.robot.model import RobotTree, Transform
 from kame.rostime import Time
 from kame.tf_ros.node_io import StaticTransformBroadcaster, TransformBroadcaster
-
-
-def _param(tool: ToolNode, name: str, default: Any) -> Any:
-    try:
-        return tool.node.master.call("getParam", tool.node.resolve(name))
-    except Exception:  # not set
-        return default
 
 
 def _description(tool: ToolNode, key: str = "robot_description") -> str | None:
     code, _, found = tool.node.master.call_raw("searchParam", key)
     if code != 1:
         return None
-    text = _param(tool, str(found), None)
+    text = ros_param(tool, str(found), None)
     return text if isinstance(text, str) else None
 
 
@@ -67,11 +60,6 @@ def _stamped(transform: Transform, stamp: Time, prefix: str) -> Any:
     return msg
 
 
-def _now(tool: Any) -> Time:
-    ns = tool.now_ns()
-    return Time(ns // 1_000_000_000, ns % 1_000_000_000)
-
-
 def state_publisher_main(argv: Sequence[str] | None = None) -> int:
     from sensor_msgs.msg import JointState
 
@@ -83,13 +71,13 @@ def state_publisher_main(argv: Sequence[str] | None = None) -> int:
         tree = _load_tree(tool)
         if tree is None:
             return 1
-        prefix = str(_param(tool, "~tf_prefix", "")).strip("/")
-        frequency = float(_param(tool, "~publish_frequency", 50.0))
-        ignore_timestamp = bool(_param(tool, "~ignore_timestamp", False))
+        prefix = str(ros_param(tool, "~tf_prefix", "")).strip("/")
+        frequency = float(ros_param(tool, "~publish_frequency", 50.0))
+        ignore_timestamp = bool(ros_param(tool, "~ignore_timestamp", False))
         period_ns = int(1e9 / frequency) if frequency > 0 else 0
-        if bool(_param(tool, "~use_tf_static", True)):
+        if bool(ros_param(tool, "~use_tf_static", True)):
             StaticTransformBroadcaster(node).send_transform(
-                [_stamped(t, _now(tool), prefix) for t in tree.static_transforms()])
+                [_stamped(t, ros_now(tool), prefix) for t in tree.static_transforms()])
         broadcaster = TransformBroadcaster(node)
         last_published: dict[str, int] = {}
         lock = threading.Lock()
@@ -100,7 +88,7 @@ def state_publisher_main(argv: Sequence[str] | None = None) -> int:
                 if len(message.name) != len(message.position):
                     console("ERROR", "Robot state publisher ignored an invalid JointState message")
                     continue
-                stamp = _now(tool) if ignore_timestamp else message.header.stamp
+                stamp = ros_now(tool) if ignore_timestamp else message.header.stamp
                 stamp_ns = stamp.secs * 1_000_000_000 + stamp.nsecs
                 with lock:  # several publishers' callbacks may run at once
                     due = {name: position for name, position in zip(message.name, message.position, strict=True)
@@ -124,49 +112,6 @@ def deprecated_state_publisher_main(argv: Sequence[str] | None = None) -> int:
     return state_publisher_main(argv)
 
 
-class JointStatePublisher:
-    """The publishing half of joint_state_publisher; the window (if any) changes `positions`
-    under `lock`."""
-
-    def __init__(self, tool: Any, tree: RobotTree) -> None:
-        from sensor_msgs.msg import JointState
-
-        self.tool = tool
-        self.lock = threading.Lock()
-        zeros = _param(tool, "~zeros", {})
-        self.positions = JointPositions(tree, zeros if isinstance(zeros, Mapping) else {})
-        rate = float(_param(tool, "~rate", 10.0))
-        self.period = 1.0 / rate if rate > 0 else 0.1
-        self.message = JointState
-        node = tool.node
-        self.publication = node.advertise(node.resolve("joint_states"), JointState._type, JointState._md5sum,
-                                          JointState._full_text, queue_size=5)
-        sources = _param(tool, "~source_list", [])
-        for topic in sources if isinstance(sources, list) else []:
-            node.subscribe(node.resolve(str(topic)), JointState._type, JointState._md5sum, JointState._full_text,
-                           self._on_source, queue_size=1)
-
-    def _on_source(self, frames: list[memoryview], header: dict[str, str]) -> None:
-        message = self.message._from_buffer(frames[-1])
-        with self.lock:
-            self.positions.update(list(message.name), list(message.position))
-
-    def publish(self) -> None:
-        with self.lock:
-            names, positions = self.positions.names_and_positions()
-        message = self.message()
-        message.header.stamp = _now(self.tool)
-        message.name, message.position = names, positions
-        self.publication.publish_frame(serialize_frame(message))
-
-    def run(self, stopped: Callable[[float], bool]) -> None:
-        """Publish every period until `stopped(timeout)` says the program ends."""
-        while True:
-            self.publish()
-            if stopped(self.period):
-                return
-
-
 def joint_state_publisher_main(argv: Sequence[str] | None = None, window: bool = False) -> int:
     tool, _ = start_node(sys.argv[1:] if argv is None else argv, "joint_state_publisher", anonymous=False)
     node = tool.node
@@ -177,7 +122,7 @@ def joint_state_publisher_main(argv: Sequence[str] | None = None, window: bool =
         if tree is None:
             return 1
         publisher = JointStatePublisher(tool, tree)
-        if not window and bool(_param(tool, "~use_gui", False)):
+        if not window and bool(ros_param(tool, "~use_gui", False)):
             console("WARN", "The 'use_gui' parameter was specified, which is deprecated.  We'll attempt to find and "
                             "run the GUI, but if this fails you should install the 'joint_state_publisher_gui' "
                             "package instead and run that.  This backwards compatibility option will be removed in "

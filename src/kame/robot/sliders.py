@@ -11,7 +11,7 @@ from typing import Any
 from PySide6 import QtCore, QtWidgets
 
 from kame.qt_quit import quit_on_signals
-from kame.robot.programs import JointStatePublisher
+from kame.robot.joint_states import JointStatePublisher
 
 
 class SliderWindow(QtWidgets.QWidget):
