@@ -8,15 +8,18 @@ those found by the RosPack asking. Only package.xml is read (rosbuild manifest.x
 from __future__ import annotations
 
 import os
-from typing import TYPE_CHECKING, Any
+from typing import Any, Protocol
 
 from .common import MANIFEST_FILE, PACKAGE_FILE, STACK_FILE
 
-if TYPE_CHECKING:
-    from .rospack import ManifestManager
-
 __all__ = ["MANIFEST_FILE", "PACKAGE_FILE", "STACK_FILE", "Depend", "Export", "InvalidManifest", "Manifest",
            "RosDep", "parse_manifest_file"]
+
+
+class PackageLister(Protocol):
+    """What parse_manifest_file asks of the RosPack (rospkg.rospack's ManifestManager) asking."""
+
+    def list(self) -> list[str]: ...
 
 
 class InvalidManifest(Exception):
@@ -94,7 +97,7 @@ class Manifest:
         return [value for e in self.exports if e.tag == tag and (value := e.get(attr)) is not None]
 
 
-def parse_manifest_file(dirpath: str, manifest_name: str, rospack: ManifestManager | None = None) -> Manifest:
+def parse_manifest_file(dirpath: str, manifest_name: str, rospack: PackageLister | None = None) -> Manifest:
     """The manifest of the package in `dirpath`; IOError without a package.xml; catkin_pkg's
     InvalidPackage for one it refuses, as upstream."""
     from catkin_pkg.package import parse_package
