@@ -16,6 +16,7 @@ from typing import Any
 
 from kame import environ, names
 from kame.arity import accepts
+from kame.client.errors import ROSInitException
 from kame.net.signal_wake import main_thread_wait
 from kame.node.node import Node
 
@@ -219,3 +220,13 @@ atexit.register(_at_exit)
 def get_remappings() -> dict[str, str]:
     """The node's name remappings, both sides resolved (empty before init_node)."""
     return dict(_remappings)
+
+
+def spin() -> None:
+    """Block until the node is shut down (Ctrl-C, rosnode kill, signal_shutdown)."""
+    if not is_initialized():
+        raise ROSInitException("client code must call rospy.init_node() first")
+    try:
+        wait_for_shutdown(None)
+    except KeyboardInterrupt:
+        signal_shutdown("keyboard interrupt")

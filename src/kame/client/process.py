@@ -12,6 +12,7 @@ from typing import Any
 from kame import environ, names
 from kame.client import clock, core
 from kame.client import log as _log
+from kame.client.core import spin as spin  # rospy.spin: the services' spin() uses it too, so it lives in core
 from kame.client.errors import ROSException, ROSInitException, ROSInterruptException
 from kame.net.signal_wake import SignalSafeEvent
 from kame.node.config import node_config
@@ -189,16 +190,6 @@ def _start_logger_services() -> None:
 
     Service("~get_loggers", GetLoggers, get_loggers)
     Service("~set_logger_level", SetLoggerLevel, set_logger_level)
-
-
-def spin() -> None:
-    """Block until the node is shut down (Ctrl-C, rosnode kill, signal_shutdown)."""
-    if not core.is_initialized():
-        raise ROSInitException("client code must call rospy.init_node() first")
-    try:
-        core.wait_for_shutdown(None)
-    except KeyboardInterrupt:
-        core.signal_shutdown("keyboard interrupt")
 
 
 def _node() -> Any:

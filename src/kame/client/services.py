@@ -104,9 +104,7 @@ class ServiceImpl:
             node.unadvertise_service(self.resolved_name)
 
     def spin(self) -> None:
-        from kame.client.process import spin
-
-        spin()
+        core.spin()
 
 
 class Service(ServiceImpl):
