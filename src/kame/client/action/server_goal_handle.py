@@ -5,7 +5,8 @@ Transitions follow kame.action.server_transition; a refused one is logged and ch
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
+from contextlib import AbstractContextManager
+from typing import TYPE_CHECKING, Any, Protocol
 
 from actionlib_msgs.msg import GoalID, GoalStatus
 from kame.action import TERMINAL, ServerEvent, Status, server_transition
@@ -13,7 +14,6 @@ from kame.client import clock
 from kame.client.action._log import logerr
 
 if TYPE_CHECKING:
-    from kame.client.action.action_server import ActionServer
     from kame.client.action.status_tracker import StatusTracker
 
 _REFUSED = {
@@ -26,8 +26,24 @@ _REFUSED = {
 }
 
 
+class GoalsServer(Protocol):
+    """What a goal handle asks of the ActionServer (kame.client.action.action_server) it came from."""
+
+    @property
+    def lock(self) -> AbstractContextManager[Any]: ...
+
+    @property
+    def ActionResultType(self) -> Any: ...  # actionlib's name
+
+    def publish_result(self, status: GoalStatus, result: Any) -> None: ...
+
+    def publish_feedback(self, status: GoalStatus, feedback: Any) -> None: ...
+
+    def publish_status(self) -> None: ...
+
+
 class ServerGoalHandle:
-    def __init__(self, status_tracker: StatusTracker | None = None, action_server: ActionServer | None = None,
+    def __init__(self, status_tracker: StatusTracker | None = None, action_server: GoalsServer | None = None,
                  handle_tracker: Any = None) -> None:
         self.status_tracker = status_tracker
         self.action_server = action_server
