@@ -188,7 +188,7 @@ class Node:
         with self._lock:
             if name in self.services:
                 raise ValueError(f"service [{name}] already registered")
-            server = ServiceServer(self, name, type, md5sum, handler)
+            server = ServiceServer(name, type, md5sum, handler)
             self.services[name] = server
         self.master.call("registerService", name, self.service_uri, self.uri)
         return server

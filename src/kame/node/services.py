@@ -21,8 +21,6 @@ from kame.protocol import tcpros
 if TYPE_CHECKING:
     import socket
 
-    from kame.node.node import Node
-
 log = logging.getLogger("kame.services")
 
 MAX_REQUEST = 1 << 30
@@ -38,8 +36,7 @@ class ServiceError(Exception):
 
 
 class ServiceServer:
-    def __init__(self, node: Node, name: str, type: str, md5sum: str, handler: ServiceHandler) -> None:
-        self.node = node
+    def __init__(self, name: str, type: str, md5sum: str, handler: ServiceHandler) -> None:
         self.name = name
         self.type = type
         self.md5sum = md5sum
