@@ -160,7 +160,7 @@ class LocalPublisherLink:
         if not pub.add_link(link, sender.send_message if sender._takes is not None else None):
             return
         for callback in sub.on_connect:
-            callback(self)  # type: ignore[arg-type]  # PublisherLink's shape
+            callback(self)
 
     def deliver(self, items: collections.deque[tuple[bool, Any]]) -> None:
         sub = self.subscription

@@ -31,10 +31,19 @@ from kame.net.handshake import ClosedBeforeHeader, HandshakeError, MalformedHead
 from kame.net.rpc_server import RpcServer
 from kame.net.stream import Flusher, Listener, peer_of, shut_down
 from kame.net.workers import WorkerPool
+from kame.node import local
 from kame.node.master_proxy import MasterError, MasterProxy
 from kame.node.master_watch import MasterWatch
 from kame.node.services import ServiceClient, ServiceHandler, ServiceServer
-from kame.node.topics import Callback, MessagesCallback, Publication, SubscriberLink, Subscription
+from kame.node.topics import (
+    Callback,
+    IncomingLink,
+    MessagesCallback,
+    Publication,
+    PublisherLink,
+    SubscriberLink,
+    Subscription,
+)
 from kame.node.unreachable import ReportedOnce
 from kame.protocol import shmros, tcpros
 from kame.protocol.xmlrpc import Fault, MalformedError, decode_request, encode_fault, encode_response
@@ -100,6 +109,13 @@ class Node:
 
     def next_connection_id(self) -> int:
         return next(self._ids)
+
+    def publisher_link(self, subscription: Subscription, uri: str) -> IncomingLink:
+        """A new link of `subscription` to the publisher at `uri`: straight to our own
+        publication when the publisher is this node (kame.node.local), else over TCPROS."""
+        if uri == self.uri and local.enabled():
+            return local.LocalPublisherLink(subscription, uri, self.next_connection_id())
+        return PublisherLink(subscription, uri, self.next_connection_id())
 
     def spawn(self, target: Callable[[], None], name: str) -> threading.Thread:
         """Run `target` on a thread the node owns: shutdown() joins it. The target must end

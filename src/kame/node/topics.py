@@ -25,7 +25,7 @@ import logging
 import struct
 import threading
 from collections.abc import Callable
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Protocol
 
 from kame.msg.size import fixed_size
 from kame.net.address import DOES_NOT_RESOLVE, unreachable_reason
@@ -38,12 +38,14 @@ from kame.protocol import shmros, tcpros
 
 if TYPE_CHECKING:
     import socket
+    from collections.abc import Sequence
 
-    from kame.net import shm  # imported where used: with ctypes and mmap, nearly a megabyte a node
-
-    # without a shared-memory connection never needs
-    from kame.node.local import LocalPublisherLink, LocalSender
-    from kame.node.node import Node
+    # imported where used: with ctypes and mmap, nearly a megabyte a node without a
+    # shared-memory connection never needs
+    from kame.net import shm
+    from kame.net.stream import Buffer, Flusher
+    from kame.node.master_proxy import MasterProxy
+    from kame.node.unreachable import ReportedOnce
 
 log = logging.getLogger("kame.topics")
 
@@ -57,6 +59,80 @@ STALL_TIMEOUT = 30.0
 
 
 _pack_frame_length = struct.Struct("<I").pack
+
+
+class TopicsNode(Protocol):
+    """What publications, subscriptions and their links ask of their node: kame.node.node's
+    Node, which makes them (typed here so that this module does not import it back)."""
+
+    name: str
+    uri: str
+    is_shutdown: bool
+    master: MasterProxy
+    flusher: Flusher
+    unreachable_reported: ReportedOnce
+    publications: dict[str, Publication]
+
+    def next_connection_id(self) -> int: ...
+
+    def spawn(self, target: Callable[[], None], name: str) -> threading.Thread: ...
+
+    def publisher_link(self, subscription: Subscription, uri: str) -> IncomingLink:
+        """A new link of `subscription` to the publisher at `uri`: kame.node.local's to a
+        publication of this node, else a PublisherLink."""
+        ...
+
+
+class FrameSender(Protocol):
+    """Where a publication's frames go for one subscriber: a socket (kame.net.stream's Sender),
+    shared memory (kame.net.shm's ShmSender) or this node (kame.node.local's LocalSender)."""
+
+    bytes_sent: int
+    frames_sent: int
+
+    def send(self, frame: Buffer) -> None: ...
+
+    def send_parts(self, parts: Sequence[Buffer], borrowed: bool = False) -> None: ...
+
+    def close(self) -> None: ...
+
+
+class LocalDelivery(FrameSender, Protocol):
+    """A subscriber in this node (kame.node.local's LocalSender): published objects go to it as
+    they are, when it takes their class."""
+
+    def takes(self, msg: Any) -> bool: ...
+
+    def send_message(self, msg: Any) -> None: ...
+
+
+class IncomingLink(Protocol):
+    """A subscription's link to one publisher: a PublisherLink (TCPROS or shared memory) or
+    kame.node.local's LocalPublisherLink (a publication of this node)."""
+
+    publisher_uri: str
+    connection_id: int
+    transport: str
+    callerid: str
+    header: dict[str, str]
+    bytes_received: int
+    connected: bool
+    ended: bool  # the publication is gone for good: a new one needs a new link
+    latching: bool
+    latched: bytes | None  # a latching publisher's last message, as bytes
+
+    def run(self) -> None: ...
+
+    def close(self) -> None: ...
+
+    def latched_payload(self) -> bytes | None: ...
+
+
+class ObjectLatch(Protocol):
+    """A link that brings published objects (kame.node.local's): a latching publisher's last one."""
+
+    latching: bool
+    latched_object: Any
 
 
 class _Chunks(list[Any]):
@@ -95,7 +171,7 @@ class SubscriberLink:
 
     __slots__ = ("callerid", "connection_id", "local", "peer", "sender", "sock", "transport")
 
-    def __init__(self, connection_id: int, callerid: str, sender: Sender | shm.ShmSender | LocalSender, peer: str,
+    def __init__(self, connection_id: int, callerid: str, sender: FrameSender, peer: str,
                  sock: socket.socket | None = None, transport: str = "TCPROS") -> None:
         self.connection_id = connection_id
         self.callerid = callerid
@@ -103,7 +179,7 @@ class SubscriberLink:
         self.peer = peer
         self.sock = sock
         self.transport = transport
-        self.local: LocalSender | None = None  # a subscriber in this node: objects go here
+        self.local: LocalDelivery | None = None  # a subscriber in this node: objects go here
 
     def close(self, shut: bool = False) -> None:
         self.sender.close()
@@ -117,7 +193,7 @@ class SubscriberLink:
 
 
 class Publication:
-    def __init__(self, node: Node, topic: str, type: str, md5sum: str, definition: str, latch: bool,
+    def __init__(self, node: TopicsNode, topic: str, type: str, md5sum: str, definition: str, latch: bool,
                  queue_size: int, extra_headers: dict[str, str] | None = None, tcp_nodelay: bool = False) -> None:
         self.node = node
         self.topic = topic
@@ -562,7 +638,7 @@ class Subscription:
     then cost one wake-up of the receiving thread instead of one each.
     """
 
-    def __init__(self, node: Node, topic: str, type: str, md5sum: str, definition: str, queue_size: int | None,
+    def __init__(self, node: TopicsNode, topic: str, type: str, md5sum: str, definition: str, queue_size: int | None,
                  tcp_nodelay: bool, deliver_frames: Callback, buff_size: int | None = None,
                  max_frame: int | None = None, message_class: type[Any] | None = None,
                  deliver_messages: MessagesCallback | None = None, shared_memory: bool = True,
@@ -588,9 +664,9 @@ class Subscription:
         self.tcp_nodelay = tcp_nodelay
         self.buff_size = buff_size or READ_SIZE
         self.deliver_frames = deliver_frames
-        self.links: dict[str, PublisherLink | LocalPublisherLink] = {}
+        self.links: dict[str, IncomingLink] = {}
         # called with each publisher link once its handshake is done (replaced, never changed in place)
-        self.on_connect: list[Callable[[PublisherLink], None]] = []
+        self.on_connect: list[Callable[[IncomingLink], None]] = []
         self.closed = False
         self._lock = threading.Lock()
         self.callback_lock = threading.Lock()
@@ -614,16 +690,16 @@ class Subscription:
             if self.updates == updates_before:
                 self.set_publishers(uris)
 
-    def add_connect_callback(self, callback: Callable[[PublisherLink], None]) -> None:
+    def add_connect_callback(self, callback: Callable[[IncomingLink], None]) -> None:
         with self._lock:
             self.on_connect = [*self.on_connect, callback]
 
-    def remove_connect_callback(self, callback: Callable[[PublisherLink], None]) -> None:
+    def remove_connect_callback(self, callback: Callable[[IncomingLink], None]) -> None:
         with self._lock:
             self.on_connect = [c for c in self.on_connect if c is not callback]
 
     def deliver(self, frames: list[memoryview], header: dict[str, str],
-                link: PublisherLink | LocalPublisherLink | None = None) -> None:
+                link: IncomingLink | None = None) -> None:
         if self.queue_size and len(frames) > self.queue_size:
             frames = frames[-self.queue_size:]  # a slow callback keeps the newest, as queue_size promises
         with self.callback_lock:
@@ -632,7 +708,7 @@ class Subscription:
             if not self.closed:
                 self.deliver_frames(frames, header)
 
-    def deliver_objects(self, msgs: list[Any], header: dict[str, str], link: LocalPublisherLink) -> None:
+    def deliver_objects(self, msgs: list[Any], header: dict[str, str], link: ObjectLatch) -> None:
         """Messages from a publication of this node, as published (kame.node.local)."""
         deliver = self.deliver_messages
         assert deliver is not None
@@ -652,8 +728,6 @@ class Subscription:
 
     def set_publishers(self, uris: list[str]) -> None:
         """The master's complete list of publishers: connect to new ones, drop the gone."""
-        from kame.node import local  # it builds on this module: imported when first needed
-
         wanted = set(uris)
         with self._lock:
             if self.closed:
@@ -661,15 +735,11 @@ class Subscription:
             gone = [link for uri, link in self.links.items() if uri not in wanted]
             for link in gone:
                 del self.links[link.publisher_uri]
-            new: list[PublisherLink | LocalPublisherLink] = []
+            new: list[IncomingLink] = []
             for uri in uris:
                 old = self.links.get(uri)
                 if old is None or old.ended:
-                    fresh: PublisherLink | LocalPublisherLink
-                    if uri == self.node.uri and local.enabled():
-                        fresh = local.LocalPublisherLink(self, uri, self.node.next_connection_id())
-                    else:
-                        fresh = PublisherLink(self, uri, self.node.next_connection_id())
+                    fresh = self.node.publisher_link(self, uri)
                     self.links[uri] = fresh
                     new.append(fresh)
         for link in gone:
@@ -677,7 +747,7 @@ class Subscription:
         for link in new:
             self.node.spawn(link.run, f"kame-connect{self.topic}")
 
-    def reconnect(self, old: PublisherLink | LocalPublisherLink) -> None:
+    def reconnect(self, old: IncomingLink) -> None:
         with self._lock:
             if self.closed or self.links.get(old.publisher_uri) is not old:
                 return
