@@ -39,8 +39,6 @@ INTERACT, POSE_ESTIMATE, NAV_GOAL, PUBLISH_POINT = "Interact", "2D Pose Estimate
 SELECT, MEASURE = "Select", "Measure"
 
 
-
-
 def _headlight() -> None:
     """One light at the eye, shining where it looks, lighting both sides of every face (the
     displays do not wind their triangles one way): a face turned to the camera shows its
@@ -139,15 +137,15 @@ class RenderView(QOpenGLWindow):
         self._paint(overlays=True)
 
     def _paint(self, overlays: bool) -> None:
-        """The scene; with `overlays`, the labels and Select's rectangle over it (Qt's painter,
-        only within a paint: a pick draws the scene alone, for its depth)."""
+        """The scene, into the view's context (current); with `overlays`, the labels and Select's
+        rectangle over it with Qt's painter (a pick draws the scene alone, for its depth)."""
         ratio = self.devicePixelRatio()
         width, height = int(self.width() * ratio), int(self.height() * ratio)
         GL.glViewport(0, 0, width, height)
         GL.glClearColor(*self.background)
         GL.glClear(GL.GL_COLOR_BUFFER_BIT | GL.GL_DEPTH_BUFFER_BIT)
         GL.glEnable(GL.GL_DEPTH_TEST)  # set each frame: the labels' QPainter leaves GL as it likes
-        GL.glEnable(GL.GL_BLEND)  # the frame buffer's alpha stays 1: Qt composes the widget by it
+        GL.glEnable(GL.GL_BLEND)  # translucent colours; the frame buffer's own alpha stays 1 (opaque to a compositor)
         GL.glBlendFuncSeparate(GL.GL_SRC_ALPHA, GL.GL_ONE_MINUS_SRC_ALPHA, GL.GL_ONE, GL.GL_ONE_MINUS_SRC_ALPHA)
         GL.glUseProgram(0)
         GL.glMatrixMode(GL.GL_PROJECTION)
