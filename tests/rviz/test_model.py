@@ -602,6 +602,8 @@ def test_solids_share_their_vertices_and_stay_so_when_merged() -> None:
     assert merged.batches[0].unindexed().vertices == pytest.approx(written)
     assert merged.batches[0].unindexed().normals == pytest.approx(
         np.concatenate([b.unindexed().normals for b in apart.batches]))
+    with pytest.raises(ValueError, match="normals"):  # the window could not work them out from shared vertices
+        Scene().add("triangles", np.eye(3), (1.0, 1.0, 1.0, 1.0), indices=np.array([0, 1, 2]))
 
 
 def test_an_option_typed_into_the_panel_keeps_the_kind_of_value_it_had() -> None:

@@ -25,7 +25,7 @@ class Batch:
     metres wide where they are (rviz's Squares styles), smaller as they are farther away.
     `overlay`: drawn over everything, hidden by nothing (the tools' marks). `indices`: the
     primitives' vertices as indices into `vertices` (uint32), where solids share their corners:
-    a third to a sixth of the vertices to place, upload and light."""
+    a third to a sixth of the vertices to place, upload and light (such a batch has normals)."""
     kind: str
     vertices: np.ndarray  # N x 3 float32, fixed frame
     colors: np.ndarray  # N x 4 float32 or uint8
@@ -96,6 +96,8 @@ class Scene:
         if normals is not None:
             normals = np.ascontiguousarray(normals, dtype=np.float32).reshape(-1, 3)
         if indices is not None:
+            if normals is None:  # the window works out a triangle soup's normals, not shared vertices'
+                raise ValueError("indexed triangles need their normals")
             indices = np.ascontiguousarray(indices, dtype=np.uint32).reshape(-1)
         self.batches.append(Batch(kind, np.ascontiguousarray(vertices), colors, size, closed, normals, metres,
                                   overlay, indices))
