@@ -1,7 +1,7 @@
 """The OpenGL buffers behind the 3-D view's Scene: a set for each batch, by its place in the
 scene. An unchanged batch is not uploaded again; a new one goes into its slot's buffers
 (glBufferSubData while it fits, so a cloud's buffers are allocated once). Needs the view's GL
-context current: the window calls it from its paint."""
+context current: the view calls it from its paint."""
 
 from __future__ import annotations
 
