@@ -151,7 +151,7 @@ def office_with_stage(sim: Sim) -> None:
 
 
 def test_an_initial_pose_sent_before_the_map_is_set_once_the_map_is_here(tmp_path: Path) -> None:
-    """amcl's initial_pose_hyp_: a pose that comes while amcl waits for static_map is kept, and the
+    """amcl's initial_pose_hyp_: a pose that comes while amcl asks for static_map is kept, and the
     map's arrival places the particles there rather than at ~initial_pose_* (here the robot's true
     start, so that only the kept pose can put the estimate half a metre away)."""
     with master(tmp_path) as sim:
@@ -162,6 +162,9 @@ def test_an_initial_pose_sent_before_the_map_is_set_once_the_map_is_here(tmp_pat
                 "covariance: [0.0025, 0, 0, 0, 0, 0, 0, 0.0025, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, "
                 "0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0.0025]}}")
         amcl.wait_line("Setting pose")
+        # no static_map yet: amcl asks again every 0.5 s, warning (on stderr) each time
+        wait_until(lambda: sum("Request for map failed; trying again..." in line for line in amcl.err) >= 2,
+                   what="amcl's warnings while static_map is missing")
         sim.start("map_server", "map_server", OFFICE, wait="Read a")
         amcl.wait_line("Received a 320 X 240 map")
         x, y, yaw = pose_of(echo(sim, "/amcl_pose"))  # the forced first update's, latched

@@ -366,14 +366,18 @@ def main(argv: Sequence[str] | None = None) -> int:
         _log.emit(_log.INFO, "Subscribed to map topic.", ())
     else:
         _log.emit(_log.INFO, "Requesting the map...", ())
-        try:
-            services.wait_for_service("static_map")
-            amcl.set_map(services.ServiceProxy("static_map", GetMap)().map)
-        except Exception as exc:  # shutdown while waiting, or map_server failing the call
-            if core.is_shutdown():
-                return 0
-            _log.emit(_log.ERROR, "Could not get the map from static_map: %s", (exc,))
-            return 1
+        get_map = services.ServiceProxy("static_map", GetMap)
+        while True:
+            try:
+                answer = get_map()
+                break
+            except Exception:  # no static_map yet, or map_server failing the call: amcl asks again
+                if core.is_shutdown():
+                    return 0
+                _log.emit(_log.WARN, "Request for map failed; trying again...", ())
+                if core.wait_for_shutdown(0.5):
+                    return 0
+        amcl.set_map(answer.map)
     topics.Subscriber("scan", LaserScan, amcl.on_scan, queue_size=1)
     services.Service("global_localization", Empty, amcl.global_localization)
     services.Service("request_nomotion_update", Empty, amcl.nomotion_update)
