@@ -171,7 +171,9 @@ class LikelihoodField:
 
 @dataclass(frozen=True)
 class Estimate:
-    """The heaviest cluster's mean pose, its 3x3 covariance (x, y, theta) and its weight."""
+    """The heaviest cluster's mean pose and weight, and the whole particle set's 3x3 covariance
+    (x, y, theta), as amcl publishes them (pf_cluster_stats' set statistics: the weighted x-y
+    block and the headings' circular variance, -2 ln R, with no cross terms to theta)."""
 
     x: float
     y: float
@@ -347,10 +349,21 @@ class ParticleFilter:
         pts = self.particles[members]
         mean_theta = math.atan2(float(np.sum(w * np.sin(pts[:, 2]))), float(np.sum(w * np.cos(pts[:, 2]))))
         mean = np.array([float(np.sum(w * pts[:, 0])), float(np.sum(w * pts[:, 1])), mean_theta])
-        offsets = pts - mean
-        offsets[:, 2] = angle_diff(offsets[:, 2], 0.0)
-        covariance = (offsets * w[:, None]).T @ offsets
-        return Estimate(float(mean[0]), float(mean[1]), mean_theta, covariance, float(cluster_weight[best]))
+        return Estimate(float(mean[0]), float(mean[1]), mean_theta, self._set_covariance(),
+                        float(cluster_weight[best]))
+
+    def _set_covariance(self) -> np.ndarray:
+        """The covariance amcl publishes: of every particle, not of the heaviest cluster (while
+        the belief is split, it stays as wide as the particles are spread)."""
+        w = self.weights / self.weights.sum()
+        xy = self.particles[:, :2]
+        mean = w @ xy
+        offsets = xy - mean
+        covariance = np.zeros((3, 3))
+        covariance[:2, :2] = (offsets * w[:, None]).T @ offsets
+        resultant = math.hypot(float(w @ np.cos(self.particles[:, 2])), float(w @ np.sin(self.particles[:, 2])))
+        covariance[2, 2] = -2.0 * math.log(max(resultant, 1e-300))
+        return covariance
 
 
 def _join_wrapped_headings(labels: np.ndarray, keys: np.ndarray, low: np.ndarray) -> np.ndarray:
