@@ -39,6 +39,7 @@ LAYERS: dict[str, int] = {
     "kame.environ": 0,  # ROS_MASTER_URI, ROS_NAMESPACE and their remaps, read from what it is given
     "kame.rostime": 0,
     "kame.arity": 0,
+    "kame.console": 1,  # roscpp's console line, formatted
     # L1 pure logic
     "kame.protocol": 1,
     "kame.param_yaml": 1,

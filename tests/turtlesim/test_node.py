@@ -27,9 +27,10 @@ def log(sim: Sim) -> str:
 
 def test_start_up_graph_and_params(sim: Sim) -> None:
     out = "".join(sim.node.out)  # type: ignore[attr-defined]
-    assert "]: Starting turtlesim with node name /turtlesim\n" in out
-    assert "]: Spawning turtle [turtle1] at x=[5.544445], y=[5.544445], theta=[0.000000]\n" in out
-    assert out.startswith("[ INFO] [")
+    # roscpp's lines, wrapped in INFO's colour (the reset code) also when not on a terminal
+    assert "]: Starting turtlesim with node name /turtlesim\033[0m\n" in out
+    assert "]: Spawning turtle [turtle1] at x=[5.544445], y=[5.544445], theta=[0.000000]\033[0m\n" in out
+    assert out.startswith("\033[0m[ INFO] [")
     assert out.count("runs headless") + out.count("runs without a window") == 1
     topics = sim.run("rostopic", "list").stdout.split()
     assert {"/turtle1/cmd_vel", "/turtle1/pose", "/turtle1/color_sensor"} <= set(topics)
@@ -117,7 +118,7 @@ def test_wall_warning_and_bad_commands(sim: Sim) -> None:
     sim.run("rostopic", "pub", "-1", "/turtle1/cmd_vel", "geometry_msgs/Twist", "--", "[20,0,0]", "[0,0,0]")
     # pub -1 latches for 3 s: turtlesim may connect late in that window on a loaded machine
     wait_until(lambda: sim.pose()["x"] == pytest.approx(11.088889, abs=1e-5), what="the turtle at the wall")
-    assert "]: Oh no! I hit the wall! (Clamping from [x=11.408889, y=5.544444])\n" in log(sim)
+    assert "]: Oh no! I hit the wall! (Clamping from [x=11.408889, y=5.544444])\033[0m\n" in log(sim)
     assert "[ WARN] [" in log(sim)  # the window-frame y: 11.088889 - 5.544445
     sim.run("rostopic", "pub", "-1", "/turtle1/cmd_vel", "geometry_msgs/Twist", "--", "[.nan,0,0]", "[0,0,0]")
     wait_until(lambda: "Ignoring a cmd_vel for [turtle1]" in log(sim))

@@ -4,28 +4,16 @@ Buffer fed by /tf and /tf_static."""
 
 from __future__ import annotations
 
-import sys
 import time
 from collections.abc import Callable, Sequence
 from typing import Any
 
 from kame import names
+from kame.cli._console import console
 from kame.cli._node import ToolNode
 from kame.node.clock import NodeClock
 from kame.tf_ros.buffer import Buffer
 from kame.tf_ros.node_io import TransformListener
-
-RED, YELLOW, RESET = "\033[31m", "\033[33m", "\033[0m"
-
-
-def console(level: str, text: str) -> None:
-    """One roscpp console line: INFO on stdout, the rest on stderr in colour."""
-    if level == "INFO":
-        print(f"[ INFO] [{time.time():.9f}]: {text}", flush=True)
-        return
-    colour = RED if level in ("ERROR", "FATAL") else YELLOW
-    sys.stderr.write(f"{colour}[{level:>5}] [{time.time():.9f}]: {text}{RESET}\n")
-    sys.stderr.flush()
 
 
 class TfTool(ToolNode):

@@ -25,15 +25,10 @@ from typing import Any
 from kame import names
 from kame.bag.errors import BagError
 from kame.bag.reader import BagReader, MessageView
+from kame.cli._console import console
 from kame.cli._node import ToolNode
 from kame.cli._options import OptionParser
 from kame.node.topics import Publication, serialize_payload
-
-
-def _log(level: str, text: str, color: str = "0") -> None:
-    stream = sys.stdout if level == "INFO" else sys.stderr
-    stream.write(f"\033[{color}m[{level:>5}] [{time.time():.9f}]: {text}\033[0m\n")
-    stream.flush()
 
 
 def parser() -> OptionParser:
@@ -280,11 +275,11 @@ def main(argv: list[str]) -> int:
         p.error("Invalid rate")
     readers = []
     for path in bags:
-        _log("INFO", f"Opening {path}")
+        console("INFO", f"Opening {path}")
         try:
             readers.append(BagReader(path))
         except (BagError, OSError) as exc:
-            _log("FATAL", f"Error opening file: {path}" if isinstance(exc, OSError) else str(exc), "31")
+            console("FATAL", f"Error opening file: {path}" if isinstance(exc, OSError) else str(exc))
             return 1
     tool = ToolNode(ros.special, f"play_{int(time.time() * 1000)}")
     node = tool.node
@@ -294,7 +289,7 @@ def main(argv: list[str]) -> int:
         Player(tool, options, readers).run()
     except BagError as exc:  # damage past the index, found while playing: rosbag's player says it and ends
         sys.stdout.write("\n")
-        _log("FATAL", str(exc), "31")
+        console("FATAL", str(exc))
         return 1
     finally:
         node.shutdown("rosbag play exiting")

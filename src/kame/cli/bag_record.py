@@ -28,33 +28,17 @@ import contextlib
 import datetime
 import os
 import re
-import sys
 import threading
 import time
 from typing import Any
 
 from kame import names
 from kame.bag.writer import BagWriter
+from kame.cli._console import console
 from kame.cli._node import ToolNode
 from kame.cli._options import OptionParser
 from kame.node.master_proxy import MasterError
 from kame.node.node import Node
-
-
-def log_info(text: str) -> None:
-    sys.stdout.write(f"\033[0m[ INFO] [{time.time():.9f}]: {text}\033[0m\n")
-    sys.stdout.flush()
-
-
-def log_warn(text: str) -> None:
-    sys.stderr.write(f"\033[33m[ WARN] [{time.time():.9f}]: {text}\033[0m\n")
-    sys.stderr.flush()
-
-
-def log_error(text: str) -> None:
-    sys.stderr.write(f"\033[31m[ERROR] [{time.time():.9f}]: {text}\033[0m\n")
-    sys.stderr.flush()
-
 
 FLUSH_INTERVAL = 0.5  # seconds: at most this much is lost when the recorder is killed
 
@@ -181,7 +165,7 @@ class Recorder:
             return
         self.subscribed.add(topic)
         if not self.options.quiet:
-            log_info(f"Subscribing to {topic}")
+            console("INFO", f"Subscribing to {topic}")
         def deliver(frames: list[memoryview], header: dict[str, str]) -> None:
             self.deliver(topic, frames, header)
 
@@ -229,7 +213,7 @@ class Recorder:
                     self.queued_bytes -= len(old)
                     self.dropped += 1
                     if self.dropped == 1 or self.dropped % 100 == 0:
-                        log_warn(f"rosbag record buffer exceeded.  Dropping oldest queued message ({self.dropped} so far).")
+                        console("WARN", f"rosbag record buffer exceeded.  Dropping oldest queued message ({self.dropped} so far).")
             self.cond.notify()
         if limit and self.explicit and all(t in self.done_topics for t in self.explicit):
             self.stop.set()
@@ -244,7 +228,7 @@ class Recorder:
         except OSError as exc:
             raise RecordingFailed(f"Error opening file: {path}.active") from exc
         if not self.options.quiet:
-            log_info(f"Recording to '{path}'.")
+            console("INFO", f"Recording to '{path}'.")
         return writer, path
 
     def _close(self, writer: BagWriter, path: str) -> None:
@@ -260,7 +244,7 @@ class Recorder:
         try:
             self._write_until_stopped()
         except RecordingFailed as exc:
-            log_error(f"Error writing: {exc}")
+            console("ERROR", f"Error writing: {exc}")
             self.failed = True
             self.stop.set()
         finally:

@@ -15,7 +15,8 @@ import sys
 from collections.abc import Sequence
 from typing import Any
 
-from kame.cli._tf import console, start_node
+from kame.cli._console import console
+from kame.cli._tf import start_node
 from kame.tf import rotation
 from kame.tf.transformations import quaternion_from_euler
 

@@ -9,8 +9,9 @@ import math
 import sys
 from collections.abc import Sequence
 
+from kame.cli._console import console
 from kame.cli._node import ToolNode
-from kame.cli._tf import console, listening_buffer, start_node, wall_seconds_text
+from kame.cli._tf import listening_buffer, start_node, wall_seconds_text
 from kame.tf import errors, rotation
 from kame.tf.buffer_core import strip_slash
 

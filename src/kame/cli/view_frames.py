@@ -17,8 +17,9 @@ from typing import Any
 
 import yaml
 
+from kame.cli._console import console
 from kame.cli._node import MASTER_POLL_PERIOD
-from kame.cli._tf import console, listening_buffer, start_node
+from kame.cli._tf import listening_buffer, start_node
 from kame.msg.catalog import SHARE_DIR, MsgCatalog, find_packages
 from kame.node.master_proxy import MasterError
 from kame.node.remote_poll import poll_remote

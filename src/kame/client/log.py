@@ -1,7 +1,8 @@
 """Logging of a program's node: the console lines ROS users know, a log file per node, /rosout.
 
 Console: `[INFO] [1795311282.956206]: text` (ROSCONSOLE_FORMAT overrides the template),
-DEBUG and INFO to stdout, WARN and above to stderr, coloured on a tty only. Every record
+DEBUG and INFO to stdout, WARN and above to stderr, coloured on a tty only; a port of a C++
+program prints roscpp's lines instead (use_roscpp_console, kame.console). Every record
 at or above the node's level is also published on /rosout (rosgraph_msgs/Log) straight to
 the connected subscribers: no master round trip per call. The file gets Python logging's
 lines in rospy's format under ROS_LOG_DIR (or ROS_HOME/log, or ~/.ros/log).
@@ -18,6 +19,7 @@ from collections.abc import Callable
 from typing import Any
 
 from kame.client import core
+from kame.console import RESET, coloured, roscpp_colour, roscpp_stamp
 
 DEBUG, INFO, WARN, ERROR, FATAL = 1, 2, 4, 8, 16
 LEVEL_NAMES = {DEBUG: "DEBUG", INFO: "INFO", WARN: "WARN", ERROR: "ERROR", FATAL: "FATAL"}
@@ -91,8 +93,7 @@ def _console(level: int, text: str, file: str, line: int, function: str) -> None
     template = os.environ.get("ROSCONSOLE_FORMAT", DEFAULT_FORMAT)
     severity, stamp = LEVEL_NAMES[level], _time_text()
     if _roscpp_console:
-        ns = time.time_ns()
-        severity, stamp = f"{severity:>5}", f"{ns // 1_000_000_000}.{ns % 1_000_000_000:09d}"
+        severity, stamp = f"{severity:>5}", roscpp_stamp(time.time_ns())
     fields = {
         "severity": severity, "time": stamp, "message": text, "node": core.get_caller_id(),
         "logger": "rosout", "file": file, "line": str(line), "function": function,
@@ -102,10 +103,14 @@ def _console(level: int, text: str, file: str, line: int, function: str) -> None
     for key, value in fields.items():
         out = out.replace("${" + key + "}", value)
     stream = sys.stdout if level <= INFO else sys.stderr
-    if level in _COLOURS and stream.isatty():
-        out = _COLOURS[level] + out + "\033[0m"
+    if _roscpp_console:  # rosconsole colours every line, to a terminal or not
+        out = coloured(LEVEL_NAMES[level], out, roscpp_colour(os.environ)) + "\n"
+    elif level in _COLOURS and stream.isatty():  # rospy only on a terminal, its reset after the newline
+        out = _COLOURS[level] + out + "\n" + RESET
+    else:
+        out += "\n"
     try:
-        stream.write(out + "\n")
+        stream.write(out)
         stream.flush()
     except (OSError, ValueError):
         pass

@@ -18,8 +18,9 @@ import threading
 from collections.abc import Sequence
 from typing import Any
 
+from kame.cli._console import console
 from kame.cli._node import ToolNode
-from kame.cli._tf import console, start_node
+from kame.cli._tf import start_node
 from kame.robot.joint_states import JointStatePublisher, ros_now, ros_param
 from kame.robot.model import RobotTree, Transform
 from kame.rostime import Time

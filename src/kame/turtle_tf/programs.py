@@ -17,8 +17,9 @@ import math
 import sys
 from collections.abc import Sequence
 
+from kame.cli._console import console
 from kame.cli._node import ToolNode
-from kame.cli._tf import console, listening_buffer, start_node
+from kame.cli._tf import listening_buffer, start_node
 from kame.node.services import ServiceError, probe_service
 from kame.node.topics import serialize_frame, serialize_payload
 from kame.tf import errors
