@@ -112,7 +112,8 @@ class Node:
 
     def publisher_link(self, subscription: Subscription, uri: str) -> IncomingLink:
         """A new link of `subscription` to the publisher at `uri`: straight to our own
-        publication when the publisher is this node (kame.node.local), else over TCPROS."""
+        publication when the publisher is this node (kame.node.local), else a PublisherLink
+        (TCPROS, or shared memory with a kame publisher on this host)."""
         if uri == self.uri and local.enabled():
             return local.LocalPublisherLink(subscription, uri, self.next_connection_id())
         return PublisherLink(subscription, uri, self.next_connection_id())
