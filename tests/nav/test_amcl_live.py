@@ -26,6 +26,18 @@ def pose_of(data: dict[str, Any]) -> tuple[float, float, float]:
     return p["x"], p["y"], 2 * math.atan2(q["z"], q["w"])
 
 
+def drive_to(sim: Sim, x: float, speed: float, still: bool = True, timeout: float = 60) -> None:
+    """Drive the robot forward at `speed` until its true x passes `x`, then stop it (and, with
+    `still`, wait until its odometry says it stands)."""
+    ahead = drive(sim, "/cmd_vel", speed)
+    wait_until(lambda: pose_of(echo(sim, "/base_pose_ground_truth"))[0] > x, timeout=timeout,
+               what=f"the robot to drive past x = {x} m")
+    ahead.stop()
+    if still:
+        wait_until(lambda: echo(sim, "/odom")["twist"]["twist"]["linear"]["x"] == 0.0, timeout=20,
+                   what="the robot to stop")
+
+
 def error(sim: Sim) -> tuple[float, float]:
     found, truth = pose_of(echo(sim, "/amcl_pose")), pose_of(echo(sim, "/base_pose_ground_truth"))
     turn = math.remainder(found[2] - truth[2], 2 * math.pi)
@@ -48,10 +60,7 @@ def test_amcl_tracks_the_turtlebot_from_a_wrong_initial_pose(tmp_path: Path) -> 
         tf = echo(sim, "/tf", "--filter", "m.transforms[0].header.frame_id == 'map'")["transforms"][0]
         assert tf["child_frame_id"] == "odom"
 
-        ahead = drive(sim, "/cmd_vel", 0.3)
-        wait_until(lambda: pose_of(echo(sim, "/base_pose_ground_truth"))[0] > 1.5, timeout=60,
-                   what="the robot to drive 1.5 m")
-        ahead.stop()
+        drive_to(sim, 1.5, 0.3, still=False)
         samples: list[tuple[float, float]] = []
 
         def found_the_robot() -> bool:
@@ -123,12 +132,7 @@ def test_an_initial_pose_must_be_in_the_map_frame_and_is_carried_forward_from_it
         wait_until(lambda: said('Ignoring initial pose in frame "odom"; initial poses must be in the global '
                                 'frame, "map"'), what="amcl to refuse a pose in odom")
         assert not said("Setting pose")
-        ahead = drive(sim, "/cmd_vel", 0.5)
-        wait_until(lambda: pose_of(echo(sim, "/base_pose_ground_truth"))[0] > 0.5, timeout=30,
-                   what="the robot to drive 0.5 m")
-        ahead.stop()
-        wait_until(lambda: echo(sim, "/odom")["twist"]["twist"]["linear"]["x"] == 0.0, timeout=20,
-                   what="the robot to stop")
+        drive_to(sim, 0.5, 0.5, timeout=30)
         now = pose_of(echo(sim, "/base_pose_ground_truth"))
         set_pose("/map", stamp["secs"], stamp["nsecs"], 0.0)  # where the robot was at that stamp
         wait_until(lambda: said("Setting pose"), what="amcl to set the pose")
@@ -180,12 +184,7 @@ def test_amcl_saves_its_pose_for_a_restart_every_2_s_and_on_ctrl_c(tmp_path: Pat
         sim.start("map_server", "map_server", OFFICE, wait="Read a")
         amcl = sim.start("amcl", "amcl", "_base_frame_id:=base_footprint", "_initial_pose_x:=0.4",
                          "_initial_pose_y:=-0.3", "_initial_pose_a:=0.3", wait="Received a 320 X 240 map")
-        ahead = drive(sim, "/cmd_vel", 0.3)
-        wait_until(lambda: pose_of(echo(sim, "/base_pose_ground_truth"))[0] > 1.0, timeout=60,
-                   what="the robot to drive 1 m")
-        ahead.stop()
-        wait_until(lambda: echo(sim, "/odom")["twist"]["twist"]["linear"]["x"] == 0.0, timeout=20,
-                   what="the robot to stop")
+        drive_to(sim, 1.0, 0.3)
         # an update where the robot stands: amcl_pose is then the pose amcl saves there
         sim.run("rosservice", "call", "/request_nomotion_update")
         seen: list[tuple[Any, Any]] = []
@@ -211,12 +210,7 @@ def test_amcl_saves_its_pose_for_a_restart_every_2_s_and_on_ctrl_c(tmp_path: Pat
                           wait="Received a 320 X 240 map")
         x, y, _ = pose_of(echo(sim, "/amcl_pose"))
         assert math.hypot(x - saved["initial_pose_x"], y - saved["initial_pose_y"]) < 0.2, (x, y, saved)
-        ahead = drive(sim, "/cmd_vel", 0.3)
-        wait_until(lambda: pose_of(echo(sim, "/base_pose_ground_truth"))[0] > 1.6, timeout=60,
-                   what="the robot to drive on")
-        ahead.stop()
-        wait_until(lambda: echo(sim, "/odom")["twist"]["twist"]["linear"]["x"] == 0.0, timeout=20,
-                   what="the robot to stop")
+        drive_to(sim, 1.6, 0.3)
         # scans go on arriving; with no rate, nothing was written since the restart
         assert {k: v for k, v in amcl_params(sim).items() if k.startswith("initial_")} == \
             {k: v for k, v in saved.items() if k.startswith("initial_")}

@@ -15,7 +15,7 @@ from xmlrpc.server import SimpleXMLRPCRequestHandler, SimpleXMLRPCServer
 import pytest
 
 from tests.support import Proc, sending_to
-from tests.turtlesim.sim import BIN, Sim, master, wait_until
+from tests.turtlesim.sim import BIN, Sim, turtlesim_with_rosout, wait_until
 
 pytest.importorskip("PySide6")
 pytest.importorskip("pyqtgraph")
@@ -61,9 +61,7 @@ class RecordingMaster:
 
 @pytest.fixture(scope="module")
 def sim(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Sim]:
-    with master(tmp_path_factory.mktemp("rqt_commands")) as live:
-        live.procs.append(Proc([str(BIN / "rosout")], live.env))
-        live.start("turtlesim", "turtlesim_node", "--headless", wait="runs without a window")
+    with turtlesim_with_rosout(tmp_path_factory.mktemp("rqt_commands")) as live:
         yield live
 
 

@@ -16,16 +16,14 @@ from kame.rqt.console_source import LogFeed
 from kame.rqt.logger_source import LoggerError, LoggerLevels
 from kame.rqt.ros_node import start_node
 from tests.support import SYSTEM_PYTHON, Proc, have_debian_ros
-from tests.turtlesim.sim import BIN, Sim, master, wait_until
+from tests.turtlesim.sim import BIN, Sim, turtlesim_with_rosout, wait_until
 
 WALL = "Oh no! I hit the wall!"
 
 
 @pytest.fixture(scope="module")
 def sim(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Sim]:
-    with master(tmp_path_factory.mktemp("rqt_console")) as live:
-        live.procs.append(Proc([str(BIN / "rosout")], live.env))
-        live.start("turtlesim", "turtlesim_node", "--headless", wait="runs without a window")
+    with turtlesim_with_rosout(tmp_path_factory.mktemp("rqt_console")) as live:
         yield live
 
 

@@ -10,6 +10,7 @@ import xml.etree.ElementTree as ET
 import xmlrpc.client
 from collections.abc import Iterator
 from pathlib import Path
+from typing import Any
 
 import pytest
 
@@ -176,9 +177,8 @@ def test_a_hung_node_leaves_the_graph_window_responsive(lesson: Sim, qtbot) -> N
         hung.close()
 
 
-def test_the_window_draws_refreshes_and_highlights(lesson: Sim, source: GraphSource, qtbot, tmp_path: Path) -> None:  # type: ignore[no-untyped-def]
-    from PySide6.QtCore import QPoint
-
+def shown_window(source: GraphSource, qtbot: Any) -> Any:
+    """rqt_graph's window on the lesson's graph, shown and refreshed once."""
     from kame.rqt.graph_window import GraphWindow
 
     window = GraphWindow(source.fetch)
@@ -187,6 +187,13 @@ def test_the_window_draws_refreshes_and_highlights(lesson: Sim, source: GraphSou
     with qtbot.waitSignal(window.refreshed, timeout=10_000):
         window.refresh()
     assert window.scene_model is not None and window.scene_model.edge_names() == LESSON
+    return window
+
+
+def test_the_window_draws_refreshes_and_highlights(lesson: Sim, source: GraphSource, qtbot, tmp_path: Path) -> None:  # type: ignore[no-untyped-def]
+    from PySide6.QtCore import QPoint
+
+    window = shown_window(source, qtbot)
     assert "2 nodes, 0 topics, 1 edges" in window.status.text()
     window.mode_box.setCurrentIndex(list(Mode).index(Mode.NODES_TOPICS_ACTIVE))  # redraws from the same snapshot
     assert window.scene_model.names(Kind.TOPIC) == ["/turtle1/cmd_vel"]
@@ -210,14 +217,7 @@ def test_the_window_draws_refreshes_and_highlights(lesson: Sim, source: GraphSou
 def test_auto_refresh_shows_a_node_coming_and_going_by_itself(lesson: Sim, source: GraphSource, qtbot) -> None:  # type: ignore[no-untyped-def]
     """With Auto refresh on, the window's timer asks the graph again: rostopic echo's node appears,
     then leaves, with no refresh pressed; off, the timer stops."""
-    from kame.rqt.graph_window import GraphWindow
-
-    window = GraphWindow(source.fetch)
-    qtbot.addWidget(window)
-    window.show()
-    with qtbot.waitSignal(window.refreshed, timeout=10_000):
-        window.refresh()
-    assert window.scene_model is not None and window.scene_model.edge_names() == LESSON
+    window = shown_window(source, qtbot)
     assert not window.timer.isActive()  # off until the box is ticked, as in rqt_graph
     window.auto_period.setValue(1)
     window.auto_refresh.setChecked(True)

@@ -7,6 +7,8 @@ from __future__ import annotations
 import threading
 import time
 import xmlrpc.client
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
 
@@ -23,13 +25,29 @@ from tests.tf.graph import Graph
 from visualization_msgs.msg import Marker, MarkerArray
 
 
-def test_a_burst_of_scans_is_one_message_and_markers_are_each_kept(tmp_path: Path) -> None:
+@contextmanager
+def rviz_with(tmp_path: Path, peer: str, on_ready: Callable[[], None], sim_time: bool = False,
+              ) -> Iterator[tuple[RvizSource, Node]]:
+    """rviz's source on a node of its own and a peer node (named `peer`) on a fresh master,
+    all stopped at the end."""
     graph = Graph(tmp_path)
+    if sim_time:
+        xmlrpc.client.ServerProxy(graph.uri).setParam("/test", "/use_sim_time", True)
     rviz = Node(NodeConfig("/rviz_source_test", graph.uri, "127.0.0.1", "127.0.0.1"))
-    talker = Node(NodeConfig("/talker", graph.uri, "127.0.0.1", "127.0.0.1"))
-    woken = threading.Event()
-    source = RvizSource(rviz, woken.set)
+    other = Node(NodeConfig(peer, graph.uri, "127.0.0.1", "127.0.0.1"))
+    source = RvizSource(rviz, on_ready)
     try:
+        yield source, other
+    finally:
+        source.close()
+        other.shutdown("test over")
+        rviz.shutdown("test over")
+        graph.stop()
+
+
+def test_a_burst_of_scans_is_one_message_and_markers_are_each_kept(tmp_path: Path) -> None:
+    woken = threading.Event()
+    with rviz_with(tmp_path, "/talker", woken.set) as (source, talker):
         assert source.watch("/scan", "sensor_msgs/LaserScan", keep_every=False) == ""
         assert source.watch("/marker", "visualization_msgs/Marker", keep_every=True) == ""
         assert "already shown as" in source.watch("/scan", "nav_msgs/Path", keep_every=False)
@@ -67,11 +85,6 @@ def test_a_burst_of_scans_is_one_message_and_markers_are_each_kept(tmp_path: Pat
         assert frames.transform("laser")[:3, 3] == pytest.approx(np.array([2.0, 0.0, 0.0]))  # type: ignore[index]
         assert "no transform from base_link to map" in str(frames.transform("base_link"))
         assert frames.names() == ["laser", "map"] and frames.parent("laser") == "map"
-    finally:
-        source.close()
-        rviz.shutdown("test over")
-        talker.shutdown("test over")
-        graph.stop()
 
 
 
@@ -83,12 +96,8 @@ def test_marker_arrays_wait_as_bytes_while_the_window_is_busy_and_only_those_tha
         return MarkerArray(markers=[Marker(ns="flood", id=i, action=action, pose=Pose(position=Point(x=index)))
                                     for i in ids if i != skip])
 
-    graph = Graph(tmp_path)
-    rviz = Node(NodeConfig("/rviz_source_test", graph.uri, "127.0.0.1", "127.0.0.1"))
-    talker = Node(NodeConfig("/talker", graph.uri, "127.0.0.1", "127.0.0.1"))
     woken = threading.Event()
-    source = RvizSource(rviz, woken.set)
-    try:
+    with rviz_with(tmp_path, "/talker", woken.set) as (source, talker):
         assert source.watch("/markers", "visualization_msgs/MarkerArray", keep_every=True) == ""
         connected = threading.Event()
         arrays = talker.advertise("/markers", MarkerArray._type, MarkerArray._md5sum, MarkerArray._full_text,
@@ -114,11 +123,6 @@ def test_marker_arrays_wait_as_bytes_while_the_window_is_busy_and_only_those_tha
         display.receive(last, 1.0)
         assert sorted(display.markers) == [("flood", i) for i in range(10) if i != 3]
         assert {m.pose.position.x for m, _ in display.markers.values()} == {12.0}
-    finally:
-        source.close()
-        rviz.shutdown("test over")
-        talker.shutdown("test over")
-        graph.stop()
 
 def test_scans_and_maps_are_decoded_into_arrays_and_drawn_as_from_tuples() -> None:
     from kame.rviz import displays
@@ -156,12 +160,7 @@ def test_sim_time_going_back_clears_rvizs_tf_buffer(tmp_path: Path) -> None:
     from rosgraph_msgs.msg import Clock
     from tf2_msgs.msg import TFMessage
 
-    graph = Graph(tmp_path)
-    xmlrpc.client.ServerProxy(graph.uri).setParam("/test", "/use_sim_time", True)
-    rviz = Node(NodeConfig("/rviz_clock_test", graph.uri, "127.0.0.1", "127.0.0.1"))
-    player = Node(NodeConfig("/player", graph.uri, "127.0.0.1", "127.0.0.1"))
-    source = RvizSource(rviz, lambda: None)
-    try:
+    with rviz_with(tmp_path, "/player", lambda: None, sim_time=True) as (source, player):
         connected = {"/clock": threading.Event(), "/tf": threading.Event()}
         clock = player.advertise("/clock", Clock._type, Clock._md5sum, Clock._full_text,
                                  on_connect=lambda link: connected["/clock"].set())
@@ -192,8 +191,3 @@ def test_sim_time_going_back_clears_rvizs_tf_buffer(tmp_path: Path) -> None:
         play(50.0)
         assert known(50.0, wait=20.0), "the transform after the jump never arrived"
         assert not known(100.0)  # cleared when time went back
-    finally:
-        source.close()
-        player.shutdown("test over")
-        rviz.shutdown("test over")
-        graph.stop()

@@ -75,6 +75,15 @@ def master(home: Path) -> Iterator[Sim]:
 
 
 @contextmanager
+def turtlesim_with_rosout(home: Path) -> Iterator[Sim]:
+    """A master with rosout and a headless turtlesim: a graph that logs, as the rqt tools see one."""
+    with master(home) as sim:
+        sim.procs.append(Proc([str(BIN / "rosout")], sim.env))
+        sim.start("turtlesim", "turtlesim_node", "--headless", wait="runs without a window")
+        yield sim
+
+
+@contextmanager
 def turtlesim(home: Path) -> Iterator[tuple[Sim, Proc]]:
     with master(home) as sim:
         node = sim.start("turtlesim", "turtlesim_node", "--headless", wait="runs without a window")
