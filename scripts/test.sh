@@ -2,15 +2,31 @@
 # Sets up everything the tests need and runs all of them: lint, types, unit and interop tests,
 # and turtlesim's window offscreen and on a real X server (Xvfb).
 # Usage: scripts/test.sh [pytest args...]
+# KAME_VENV (default .venv) and KAME_DEPS (newest, oldest) are set by scripts/dependency-sweep.sh.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-ros-peers.sh
 bash scripts/install-gui-libs.sh --xvfb  # turtlesim's window, tested under Xvfb
 python=${KAME_PYTHON:-python3}
-if [ ! -x .venv/bin/python ]; then
-  "$python" -m venv .venv
+venv=${KAME_VENV:-.venv}
+if [ ! -x "$venv/bin/python" ]; then
+  "$python" -m venv "$venv"
 fi
-.venv/bin/python -m pip install -q --disable-pip-version-check -e '.[test]'
-.venv/bin/python -m ruff check src tests bench
-.venv/bin/python -m mypy
-.venv/bin/python -m pytest -q "$@"
+pip=("$venv/bin/python" -m pip install -q --disable-pip-version-check)
+case ${KAME_DEPS:-} in
+  "") "${pip[@]}" -e '.[test]' ;;
+  newest) "${pip[@]}" --upgrade --upgrade-strategy eager -e '.[test,gui,robot,sim,image]' ;;
+  oldest)
+    # pip cannot pick the lowest versions; uv can. Direct dependencies at their floors, as wheels
+    # for this interpreter where the package has compiled code (numpy 1.22 has none for 3.11, so
+    # the floor there is the first that installs: 1.23.2); the pure-Python ones from source
+    "${pip[@]}" uv
+    "$venv/bin/uv" pip install -q --python "$venv/bin/python" --resolution lowest-direct --only-binary :all: \
+      --no-binary urdf-parser-py --no-binary pycollada --no-binary xacro -e '.[test,gui,robot,sim,image]'
+    ;;
+  *) echo "KAME_DEPS must be newest or oldest, not '$KAME_DEPS'" >&2; exit 2 ;;
+esac
+"$venv/bin/python" -m pip list --format=freeze 2>/dev/null | sed 's/^/  /' > "$venv/installed.txt"
+"$venv/bin/python" -m ruff check src tests bench
+"$venv/bin/python" -m mypy
+"$venv/bin/python" -m pytest -q "$@"
