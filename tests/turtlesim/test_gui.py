@@ -1,5 +1,5 @@
 """turtlesim's window, offscreen and on a real X server (Xvfb): a screenshot of the widget checked
-pixel by pixel; 20,000 frames painted in one process (a Qt binding that loses references
+pixel by pixel; 3,000 frames painted in one process (a Qt binding that loses references
 aborts Python within them); the node opening its window when Qt can, and running headless
 with the reason when it cannot; on Xvfb, the mapped window, its screenshot, and teleop moving
 the turtle in it."""
@@ -92,17 +92,19 @@ def qt_env(request: pytest.FixtureRequest) -> Iterator[dict[str, str]]:
         yield dict(env, DISPLAY=display)
 
 
-def test_twenty_thousand_frames_in_one_process(qt_env: dict[str, str]) -> None:
+def test_three_thousand_frames_in_one_process(qt_env: dict[str, str]) -> None:
+    """The bad binding aborts within a few thousand calls, and loses a reference per call well
+    before: 3,000 frames show both. The window left running for hours is bench/turtlesim_soak.py's."""
     from tests.support import REPO
 
-    run = subprocess.run([sys.executable, "-m", "tests.turtlesim.many_frames", "20000"], env=qt_env, cwd=REPO,
+    run = subprocess.run([sys.executable, "-m", "tests.turtlesim.many_frames", "3000"], env=qt_env, cwd=REPO,
                          capture_output=True, text=True, timeout=300)
     said = run.stdout + run.stderr
     assert "Fatal Python error" not in said, said[-2000:]
     assert run.returncode == 0, said[-2000:]
     match = re.search(r"painted (\d+) lost (-?\d+)", run.stdout)
     assert match is not None, said
-    assert int(match.group(1)) >= 20000
+    assert int(match.group(1)) >= 3000
     # the bad binding loses one per call (several per frame); a few come and go with whatever
     # else the interpreter holds (an X event in flight, a frame object), so allow a margin
     assert abs(int(match.group(2))) < 1000, "the Qt binding loses a reference to None per call"
