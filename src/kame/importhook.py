@@ -54,9 +54,42 @@ class _RosPackageFinder:
             _busy.active = False
 
 
+class _XacroFinder:
+    """xacro's `$(find pkg)` answered by kame's package finder in any process, so whichever `xacro`
+    command runs: the xacro distribution's console script and kame's have one name, and the one
+    installed last (an installer's order, a later `pip install -U xacro`) is the one on PATH."""
+
+    def find_spec(
+        self, fullname: str, path: Sequence[str] | None, target: ModuleType | None = None
+    ) -> ModuleSpec | None:
+        if fullname != "xacro.substitution_args":
+            return None
+        from importlib.machinery import PathFinder
+
+        spec = PathFinder.find_spec(fullname, path, target)
+        if spec is not None and spec.loader is not None:
+            spec.loader = _ThenKamesFind(spec.loader)  # type: ignore[assignment]
+        return spec
+
+
+class _ThenKamesFind:
+    def __init__(self, loader: object) -> None:
+        self.loader = loader
+
+    def create_module(self, spec: ModuleSpec) -> ModuleType | None:
+        return self.loader.create_module(spec)  # type: ignore[attr-defined,no-any-return]
+
+    def exec_module(self, module: ModuleType) -> None:
+        self.loader.exec_module(module)  # type: ignore[attr-defined]
+        from kame.cli.xacro import use_kame_packages
+
+        use_kame_packages()
+
+
 def install() -> None:
     if not any(isinstance(f, _RosPackageFinder) for f in sys.meta_path):
         sys.meta_path.insert(0, _RosPackageFinder(submodules=True))
+        sys.meta_path.insert(1, _XacroFinder())
         sys.meta_path.append(_RosPackageFinder(submodules=False))
 
 

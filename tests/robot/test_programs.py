@@ -84,6 +84,17 @@ def test_xacro_expands_macros_args_and_find(tmp_path: Path) -> None:
         assert failed.returncode != 0 and reason in failed.stderr and "Traceback" not in failed.stderr, failed.stderr
 
 
+def test_the_xacro_distributions_own_command_finds_kames_packages_too(tmp_path: Path) -> None:
+    """Its console script and kame's are both `xacro`; an installer that puts the distribution's
+    last (uv's parallel install, `pip install -U xacro`) must not bring back ament's $(find)."""
+    (tmp_path / "arm.urdf.xacro").write_text(ARM_XACRO)
+    their_script = "import sys, xacro; sys.argv[0] = 'xacro'; xacro.main()"
+    done = subprocess.run([sys.executable, "-c", their_script, str(tmp_path / "arm.urdf.xacro")], capture_output=True,
+                          text=True, timeout=60)
+    assert done.returncode == 0, done.stderr
+    assert '<link name="base_scan">' in done.stdout  # the included turtlebot.urdf, found through $(find)
+
+
 def test_a_launched_xacro_robot_shows_up_in_tf(tmp_path: Path) -> None:
     (tmp_path / "arm.urdf.xacro").write_text(ARM_XACRO)
     (tmp_path / "arm.launch").write_text(LAUNCH)
