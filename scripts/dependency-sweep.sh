@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# The whole test run against the newest versions of every dependency and extra that pip resolves
-# today, or against the oldest that pyproject.toml allows (each in its own venv, .venv-newest or
-# .venv-oldest, listed in its installed.txt). Run both before widening or narrowing a bound.
+# The whole test run (scripts/test.sh) against the newest versions of every dependency and extra
+# that pip resolves today, or against the oldest that pyproject.toml allows. Like CI, it runs on a
+# fresh clone of the committed HEAD (in build/sweep/newest or build/sweep/oldest, with its own
+# .venv, whose installed.txt lists what was tested). Run both before moving a bound.
 # Usage: scripts/dependency-sweep.sh newest|oldest [pytest args...]
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -11,4 +12,8 @@ case ${1:-} in
 esac
 deps=$1
 shift
-KAME_VENV=".venv-$deps" KAME_DEPS=$deps exec bash scripts/test.sh "$@"
+clone="build/sweep/$deps"
+rm -rf "$clone"
+git clone -q . "$clone"
+cd "$clone"
+KAME_DEPS=$deps exec bash scripts/test.sh "$@"

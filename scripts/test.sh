@@ -2,13 +2,13 @@
 # Sets up everything the tests need and runs all of them: lint, types, unit and interop tests,
 # and turtlesim's window offscreen and on a real X server (Xvfb).
 # Usage: scripts/test.sh [pytest args...]
-# KAME_VENV (default .venv) and KAME_DEPS (newest, oldest) are set by scripts/dependency-sweep.sh.
+# KAME_DEPS (newest, oldest) is set by scripts/dependency-sweep.sh.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-ros-peers.sh
 bash scripts/install-gui-libs.sh --xvfb  # turtlesim's window, tested under Xvfb
 python=${KAME_PYTHON:-python3}
-venv=${KAME_VENV:-.venv}
+venv=.venv
 if [ ! -x "$venv/bin/python" ]; then
   "$python" -m venv "$venv"
 fi
