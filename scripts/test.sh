@@ -28,5 +28,11 @@ case ${KAME_DEPS:-} in
 esac
 "$venv/bin/python" -m pip list --format=freeze 2>/dev/null | sed 's/^/  /' > "$venv/installed.txt"
 "$venv/bin/python" -m ruff check src tests bench
-"$venv/bin/python" -m mypy
+if [ "${KAME_DEPS:-}" = oldest ]; then
+  # mypy reads numpy's own annotations: before numpy 2.0 ndarray's type parameters have no
+  # defaults, so every bare numpy.ndarray is an error there. The types are checked in the other runs
+  echo "test.sh: mypy skipped with the oldest dependencies (numpy $("$venv/bin/python" -c 'import numpy; print(numpy.__version__)'))"
+else
+  "$venv/bin/python" -m mypy
+fi
 "$venv/bin/python" -m pytest -q "$@"
