@@ -269,7 +269,7 @@ def get_master(env: dict[str, str] | None = None) -> Any:
     return _master()
 
 
-def wait_for_message(topic: str, topic_type: type[Any], timeout: float | None = None) -> Any:
+def wait_for_message(topic: str, topic_type: type[Any], timeout: Any = None) -> Any:
     """Subscribe, wait for one message, unsubscribe; ROSException on timeout."""
     from kame.client.topics import Subscriber
 
@@ -281,9 +281,13 @@ def wait_for_message(topic: str, topic_type: type[Any], timeout: float | None = 
             got.append(msg)
             event.set()
 
+    if timeout is not None and not isinstance(timeout, (int, float)):
+        timeout = float(timeout.to_sec())  # a rospy.Duration, as rospy takes too
     subscriber = Subscriber(topic, topic_type, callback)
     try:
-        with core.woken_at_shutdown(event):  # the message, or shutdown, sets it
+        # the message, or shutdown, sets it; a Ctrl-C meanwhile shuts down without raising into
+        # the wait, which then raises rospy's "rospy shutdown"
+        with core.woken_at_shutdown(event), core.main_thread_waiting():
             event.wait(timeout)
     finally:
         subscriber.unregister()
