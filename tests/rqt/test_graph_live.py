@@ -72,12 +72,7 @@ def test_the_lessons_graph_in_each_mode(source: GraphSource) -> None:
         everything.names(Kind.TOPIC))
     assert {("/turtlesim", "/turtle1/pose", ""), ("/turtlesim", "/rosout", ""), ("/rosout", "/rosout_agg", ""),
             ("/rosout", "/rosout", "")} <= set(everything.edge_names())  # rosout subscribes to /rosout
-    assert "/turtle1/rotate_absolute/feedback" in everything.names(Kind.TOPIC)  # turtlesim's action server
-    actions = build_scene(snap, GraphOptions(mode=Mode.NODES_TOPICS_ALL, hide_dead_sinks=False,
-                                             hide_leaf_topics=False, group_actions=True))
-    assert [t for t in actions.names(Kind.TOPIC) if "rotate_absolute" in t] == [
-        "/turtle1/rotate_absolute/action_topics"]
-    assert ("/turtlesim", "/turtle1/rotate_absolute/action_topics", "") in actions.edge_names()
+    assert not [t for t in everything.names(Kind.TOPIC) if "rotate_absolute" in t]  # ROS 1's turtlesim has no action
 
 
 def test_rostopic_echo_appears_after_a_refresh(lesson: Sim, source: GraphSource) -> None:
