@@ -14,6 +14,7 @@ from kame.client import clock, core
 from kame.client import log as _log
 from kame.client.core import spin as spin  # rospy.spin: the services' spin() uses it too, so it lives in core
 from kame.client.errors import ROSException, ROSInitException, ROSInterruptException
+from kame.console import roscpp_colour, roscpp_line
 from kame.net.signal_wake import SignalSafeEvent
 from kame.node.config import node_config
 from kame.node.master_proxy import MasterError
@@ -32,7 +33,14 @@ def myargv(argv: list[str] | None = None) -> list[str]:
 
 
 def _print_shutdown_call(caller_id: str, msg: str) -> None:
-    """What rospy prints on stdout when the master or `rosnode kill` asks it to shut down."""
+    """What rospy prints on stdout when the master or `rosnode kill` asks it to shut down; a port
+    of a C++ program prints roscpp's two warnings instead (its shutdown callback's)."""
+    if _log.roscpp_console():
+        colour = roscpp_colour(os.environ)
+        for text in ("Shutdown request received.", f"Reason given for shutdown: [{msg}]"):
+            sys.stderr.write(roscpp_line("WARN", text, time.time_ns(), colour) + "\n")
+        sys.stderr.flush()
+        return
     print(f"shutdown request: {msg}" if msg else "shutdown requst", flush=True)  # sic: rospy's typo
 
 
