@@ -53,8 +53,9 @@ def to_svg(layout: Layout) -> str:
         out.append(f'<g class="edge"><title>{escape(title)}</title><path d="{path_data(layout.paths[index])}" '
                    f'fill="none" stroke="{INK}" marker-end="url(#arrow)"/>')
         if edge.label:
-            x, y = layout.label_position(index)
-            out.append(f'<text x="{_f(x)}" y="{_f(y - 4)}" text-anchor="middle">{escape(edge.label)}</text>')
+            box = layout.labels[index]
+            out.append(f'<text x="{_f(box.x + box.w / 2)}" y="{_f(box.y + FONT_SIZE)}" '
+                       f'text-anchor="middle">{escape(edge.label)}</text>')
         out.append("</g>")
     for vertex in scene.vertices:
         box = layout.boxes[vertex.id]

@@ -4,13 +4,17 @@ Rules: a layered (Sugiyama) layout from grandalf, turned to run left to right as
 `rankdir=LR`: publishers left of their topics, subscribers right. Each connected part of the
 graph is laid out on its own and the parts are stacked top to bottom. Edges are polylines
 through grandalf's dummy vertices, clipped to the shapes' borders; a node's edge to itself
-is a loop above it, and parallel edges between the same two vertices bow apart. Text is
+is a loop above it, and parallel edges between the same two vertices (either way round) bow
+apart, a label's height and more from each other. Each edge label gets a box of its own,
+placed along its edge where it meets no other label and no vertex (nodes-only mode labels an
+edge with its topic: graphviz prints two topics between one pair of nodes over each other). Text is
 measured by the caller (the window passes its font's metrics); `text_width` estimates it
 for drawings made without Qt (the SVG of `rqt_graph --output`).
 """
 
 from __future__ import annotations
 
+import itertools
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
@@ -31,6 +35,10 @@ PART_GAP = 28.0  # between the laid-out connected parts
 GROUP_PAD = 10.0
 GROUP_TITLE = 16.0
 LOOP = 26.0
+LABEL_HEIGHT = FONT_SIZE + 4.0
+LABEL_LIFT = 6.0  # a label's bottom sits this far above its point on the edge
+TWIN_GAP = LABEL_HEIGHT + LABEL_LIFT + 10.0  # between parallel edges: room for a label between them
+LABEL_ALONG = (0.5, 0.4, 0.6, 0.3, 0.7, 0.2, 0.8)  # where along its edge a label may sit, first choice first
 
 Point = tuple[float, float]
 Measure = Callable[[str], float]
@@ -57,17 +65,11 @@ class Layout:
     scene: Scene
     boxes: dict[str, Box]  # vertex id -> its shape's bounding box
     paths: tuple[tuple[Point, ...], ...]  # one per scene edge, source to target
+    labels: dict[int, Box]  # edge index -> its label's box (edges with a label only)
     groups: dict[str, tuple[Box, ...]]  # namespace -> its cluster (split where one box would hold others)
     width: float
     height: float
 
-    def label_position(self, edge_index: int) -> Point:
-        """Where an edge's label goes: the middle of its path."""
-        points = self.paths[edge_index]
-        if len(points) % 2:
-            return points[len(points) // 2]
-        a, b = points[len(points) // 2 - 1], points[len(points) // 2]
-        return ((a[0] + b[0]) / 2, (a[1] + b[1]) / 2)
 
 
 def text_width(text: str, size: float = FONT_SIZE) -> float:
@@ -137,18 +139,58 @@ def layout(scene: Scene, measure: Measure = text_width) -> Layout:
     kinds = {v.id: v.kind for v in scene.vertices}
     paths = tuple(_edge_path(scene, index, boxes, kinds, routes) for index in range(len(scene.edges)))
     groups = {group.namespace: _clusters(group.members, boxes) for group in scene.groups}
-    extent = list(boxes.values()) + [b for hulls in groups.values() for b in hulls]
+    labels = _place_labels(scene, paths, boxes, measure)
+    extent = list(boxes.values()) + [b for hulls in groups.values() for b in hulls] + list(labels.values())
     right = max((b.x + b.w for b in extent), default=0.0)
     bottom = max((b.y + b.h for b in extent), default=0.0)
     for path in paths:
         right = max([right, *(p[0] for p in path)])
         bottom = max([bottom, *(p[1] for p in path)])
-    shift = max(0.0, MARGIN - min((b.y for b in extent), default=MARGIN))  # group titles above the first part
+    # group titles and labels above the first part
+    shift = max(0.0, MARGIN - min((b.y for b in extent), default=MARGIN))
     if shift:
         boxes = {k: Box(b.x, b.y + shift, b.w, b.h) for k, b in boxes.items()}
         groups = {k: tuple(Box(b.x, b.y + shift, b.w, b.h) for b in hulls) for k, hulls in groups.items()}
         paths = tuple(tuple((x, y + shift) for x, y in path) for path in paths)
-    return Layout(scene, boxes, paths, groups, right + MARGIN, bottom + shift + MARGIN)
+        labels = {k: Box(b.x, b.y + shift, b.w, b.h) for k, b in labels.items()}
+    return Layout(scene, boxes, paths, labels, groups, right + MARGIN, bottom + shift + MARGIN)
+
+
+def _place_labels(scene: Scene, paths: Sequence[Sequence[Point]], boxes: dict[str, Box],
+                  measure: Measure) -> dict[int, Box]:
+    """A box for each edge's label, above a point of its edge: the first of LABEL_ALONG that
+    meets no label placed before and no vertex, else the middle, moved down until it is free."""
+    placed: dict[int, Box] = {}
+    taken = list(boxes.values())
+    for index, edge in enumerate(scene.edges):
+        if not edge.label:
+            continue
+        width = measure(edge.label) + 4.0
+        candidates = [_label_box(_along(paths[index], t), width) for t in LABEL_ALONG]
+        box = next((c for c in candidates if not any(_overlaps(c, other) for other in taken)), None)
+        if box is None:
+            box = candidates[0]
+            while any(_overlaps(box, other) for other in taken):
+                box = Box(box.x, box.y + LABEL_HEIGHT, box.w, box.h)
+        placed[index] = box
+        taken.append(box)
+    return placed
+
+
+def _label_box(point: Point, width: float) -> Box:
+    return Box(point[0] - width / 2, point[1] - LABEL_LIFT - LABEL_HEIGHT, width, LABEL_HEIGHT)
+
+
+def _along(points: Sequence[Point], t: float) -> Point:
+    """The point a fraction `t` of the way along a polyline, by length."""
+    lengths = [math.dist(a, b) for a, b in itertools.pairwise(points)]
+    goal = sum(lengths) * t
+    for (a, b), length in zip(itertools.pairwise(points), lengths, strict=True):
+        if goal <= length and length > 0:
+            f = goal / length
+            return (a[0] + (b[0] - a[0]) * f, a[1] + (b[1] - a[1]) * f)
+        goal -= length
+    return points[-1]
 
 
 def _clusters(members: Sequence[str], boxes: dict[str, Box]) -> tuple[Box, ...]:
@@ -208,11 +250,14 @@ def _edge_path(scene: Scene, index: int, boxes: dict[str, Box], kinds: dict[str,
         reverse = routes.get((edge.target, edge.source))
         route = list(reversed(reverse)) if reverse else [source.centre, target.centre]
     route = [source.centre, *route[1:-1], target.centre]
-    # parallel edges (two topics between the same nodes) bow apart around the middle
+    # parallel edges (two topics between the same nodes, either way) bow apart around the
+    # middle, each to its own side as seen going from the lesser vertex id to the greater
     twins = [i for i, e in enumerate(scene.edges) if {e.source, e.target} == {edge.source, edge.target}]
     rank = twins.index(index)
     if len(twins) > 1:
-        offset = (rank - (len(twins) - 1) / 2) * 22.0
+        offset = (rank - (len(twins) - 1) / 2) * TWIN_GAP
+        if edge.source > edge.target:  # its route runs the other way: so does its normal
+            offset = -offset
         if offset:
             route = _bow(route, offset)
     start = _clip(route[1], source, kinds[edge.source])

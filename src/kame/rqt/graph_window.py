@@ -131,8 +131,8 @@ class GraphScene(QGraphicsScene):
             self.edge_items.append((line, head))
             if edge.label:
                 label = self.addSimpleText(edge.label, font)
-                x, y = drawn.label_position(index)
-                label.setPos(x - label.boundingRect().width() / 2, y - FONT_SIZE - 6)
+                box = drawn.labels[index]
+                label.setPos(box.x + (box.w - label.boundingRect().width()) / 2, box.y)
         for vertex in scene.vertices:
             box = drawn.boxes[vertex.id]
             item: _Ellipse | _Rect = (_Ellipse if vertex.kind is Kind.NODE else _Rect)(
