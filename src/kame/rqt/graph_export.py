@@ -40,13 +40,12 @@ def to_svg(layout: Layout) -> str:
            "markerHeight=\"8\" orient=\"auto-start-reverse\"><path d=\"M0,0 L10,5 L0,10 z\" fill=\"#000\"/>"
            "</marker></defs>",
            '<rect width="100%" height="100%" fill="#ffffff"/>']
-    for namespace, hulls in sorted(layout.groups.items()):
-        for box in hulls:
-            out.append(f'<g class="cluster"><title>{escape(namespace)}</title>'
-                       f'<rect x="{_f(box.x)}" y="{_f(box.y)}" width="{_f(box.w)}" height="{_f(box.h)}" rx="6" '
-                       f'fill="#f4f6fa" stroke="{CLUSTER}" stroke-dasharray="4 2"/>'
-                       f'<text x="{_f(box.x + 6)}" y="{_f(box.y + 13)}" fill="{CLUSTER}">{escape(namespace)}</text>'
-                       '</g>')
+    for namespace, box in sorted(layout.groups.items()):
+        out.append(f'<g class="cluster"><title>{escape(namespace)}</title>'
+                   f'<rect x="{_f(box.x)}" y="{_f(box.y)}" width="{_f(box.w)}" height="{_f(box.h)}" rx="6" '
+                   f'fill="#f4f6fa" stroke="{CLUSTER}" stroke-dasharray="4 2"/>'
+                   f'<text x="{_f(box.x + 6)}" y="{_f(box.y + 13)}" fill="{CLUSTER}">{escape(namespace)}</text>'
+                   '</g>')
     for index, edge in enumerate(scene.edges):
         source, target = scene.vertex(edge.source).name, scene.vertex(edge.target).name
         title = f"{source}->{target}" + (f" [{edge.label}]" if edge.label else "")

@@ -1,8 +1,11 @@
 """Where rqt_graph draws each node, topic, edge and namespace box (pure; no graphviz binary).
 
 Rules: a layered (Sugiyama) layout from grandalf, turned to run left to right as rqt_graph's
-`rankdir=LR`: publishers left of their topics, subscribers right. Each connected part of the
-graph is laid out on its own and the parts are stacked top to bottom. Edges are polylines
+`rankdir=LR`: publishers left of their topics, subscribers right. A namespace's members are
+laid out as one vertex, stacked in its frame (graphviz lays a cluster out whole): one frame a
+namespace, holding nothing else. Each connected part of the graph is laid out on its own and
+the parts are stacked top to bottom; the drawing is moved so that nothing, curves included,
+lies above or left of its margin. Edges are polylines
 through grandalf's dummy vertices, clipped to the shapes' borders; a node's edge to itself
 is a loop above it, and parallel edges between the same two vertices (either way round) bow
 apart, a label's height and more from each other. Each edge label gets a box of its own,
@@ -29,11 +32,12 @@ MARGIN = 16.0
 NODE_PAD = (28.0, 20.0)  # ellipse: room left and right of the text, above and below
 TOPIC_PAD = (16.0, 14.0)
 VERTEX_GAP = 18.0  # between vertices of one layer; room for cluster frames and titles when grouping
-GROUPED_VERTEX_GAP = 2 * 10.0 + 16.0 + 8.0
 LAYER_GAP = 56.0  # between layers; nodes-only mode adds the widest edge label
 PART_GAP = 28.0  # between the laid-out connected parts
 GROUP_PAD = 10.0
 GROUP_TITLE = 16.0
+STACK_GAP = 12.0  # between the members of a namespace's frame
+GROUP_PREFIX = "g:"  # a namespace's frame as one vertex of the layering
 LOOP = 26.0
 LABEL_HEIGHT = FONT_SIZE + 4.0
 LABEL_LIFT = 6.0  # a label's bottom sits this far above its point on the edge
@@ -66,7 +70,7 @@ class Layout:
     boxes: dict[str, Box]  # vertex id -> its shape's bounding box
     paths: tuple[tuple[Point, ...], ...]  # one per scene edge, source to target
     labels: dict[int, Box]  # edge index -> its label's box (edges with a label only)
-    groups: dict[str, tuple[Box, ...]]  # namespace -> its cluster (split where one box would hold others)
+    groups: dict[str, Box]  # namespace -> its frame, holding its members and nothing else
     width: float
     height: float
 
@@ -112,48 +116,63 @@ class _EdgeView:
 def layout(scene: Scene, measure: Measure = text_width) -> Layout:
     sizes = {v.id: vertex_size(v.kind, v.name, measure) for v in scene.vertices}
     layer_gap = LAYER_GAP + max((measure(e.label) for e in scene.edges if e.label), default=0.0)
-    vertices = {vid: Vertex(vid) for vid in sizes}
+    # a namespace's members are one vertex of the layering (as graphviz lays a cluster out
+    # whole), stacked top to bottom inside its frame: one frame per namespace, holding no other
+    placed_as = {v.id: v.id for v in scene.vertices}
+    stacks: dict[str, tuple[str, ...]] = {}
+    for group in scene.groups:
+        stacks[GROUP_PREFIX + group.namespace] = tuple(sorted(group.members))
+        placed_as.update((member, GROUP_PREFIX + group.namespace) for member in group.members)
+    layered = {vid: size for vid, size in sizes.items() if placed_as[vid] == vid}
+    layered.update((gid, _stack_size([sizes[m] for m in members])) for gid, members in stacks.items())
+    vertices = {vid: Vertex(vid) for vid in layered}
     for vid, vertex in vertices.items():
-        vertex.view = _View(sizes[vid][1], sizes[vid][0])
+        vertex.view = _View(layered[vid][1], layered[vid][0])
     pairs: dict[tuple[str, str], Edge] = {}
     for edge in scene.edges:
-        key = (edge.source, edge.target)
-        if edge.source != edge.target and key not in pairs and (edge.target, edge.source) not in pairs:
-            pairs[key] = Edge(vertices[edge.source], vertices[edge.target])
+        key = (placed_as[edge.source], placed_as[edge.target])
+        if key[0] != key[1] and key not in pairs and (key[1], key[0]) not in pairs:
+            pairs[key] = Edge(vertices[key[0]], vertices[key[1]])
             pairs[key].view = _EdgeView()
     graph = Graph(list(vertices.values()), list(pairs.values()))
     centres: dict[str, Point] = {}
     routes: dict[tuple[str, str], list[Point]] = {}
     top = MARGIN
     for part in sorted(graph.C, key=lambda c: min(str(v.data) for v in c.sV)):
-        placed = _place_part(part, layer_gap, GROUPED_VERTEX_GAP if scene.groups else VERTEX_GAP)
-        ys = [y - sizes[vid][1] / 2 for vid, (_, y) in placed.items()]
-        xs = [x - sizes[vid][0] / 2 for vid, (x, _) in placed.items()]
+        placed = _place_part(part, layer_gap, VERTEX_GAP)
+        ys = [y - layered[vid][1] / 2 for vid, (_, y) in placed.items()]
+        xs = [x - layered[vid][0] / 2 for vid, (x, _) in placed.items()]
         dx, dy = MARGIN - min(xs), top - min(ys)
         for vid, (x, y) in placed.items():
             centres[vid] = (x + dx, y + dy)
         for e in part.sE:
             routes[(e.v[0].data, e.v[1].data)] = [(x + dx, y + dy) for x, y in _turn(e.view.points)]
-        top = max(centres[vid][1] + sizes[vid][1] / 2 for vid in placed) + PART_GAP
-    boxes = {vid: Box(x - sizes[vid][0] / 2, y - sizes[vid][1] / 2, *sizes[vid]) for vid, (x, y) in centres.items()}
+        top = max(centres[vid][1] + layered[vid][1] / 2 for vid in placed) + PART_GAP
+    frames = {gid: Box(centres[gid][0] - layered[gid][0] / 2, centres[gid][1] - layered[gid][1] / 2, *layered[gid])
+              for gid in stacks}
+    for gid, members in stacks.items():
+        centres.update(_stacked(frames[gid], [(m, sizes[m]) for m in members]))
+    boxes = {vid: Box(centres[vid][0] - w / 2, centres[vid][1] - h / 2, w, h) for vid, (w, h) in sizes.items()}
     kinds = {v.id: v.kind for v in scene.vertices}
-    paths = tuple(_edge_path(scene, index, boxes, kinds, routes) for index in range(len(scene.edges)))
-    groups = {group.namespace: _clusters(group.members, boxes) for group in scene.groups}
+    paths = tuple(_edge_path(scene, index, boxes, kinds, routes, placed_as) for index in range(len(scene.edges)))
+    groups = {group.namespace: frames[GROUP_PREFIX + group.namespace] for group in scene.groups}
     labels = _place_labels(scene, paths, boxes, measure)
-    extent = list(boxes.values()) + [b for hulls in groups.values() for b in hulls] + list(labels.values())
-    right = max((b.x + b.w for b in extent), default=0.0)
-    bottom = max((b.y + b.h for b in extent), default=0.0)
-    for path in paths:
-        right = max([right, *(p[0] for p in path)])
-        bottom = max([bottom, *(p[1] for p in path)])
-    # group titles and labels above the first part
-    shift = max(0.0, MARGIN - min((b.y for b in extent), default=MARGIN))
-    if shift:
-        boxes = {k: Box(b.x, b.y + shift, b.w, b.h) for k, b in boxes.items()}
-        groups = {k: tuple(Box(b.x, b.y + shift, b.w, b.h) for b in hulls) for k, hulls in groups.items()}
-        paths = tuple(tuple((x, y + shift) for x, y in path) for path in paths)
-        labels = {k: Box(b.x, b.y + shift, b.w, b.h) for k, b in labels.items()}
-    return Layout(scene, boxes, paths, labels, groups, right + MARGIN, bottom + shift + MARGIN)
+    extent = list(boxes.values()) + list(groups.values()) + list(labels.values())
+    # the curves drawn through the paths stay inside their Bezier control points
+    drawn = [point for path in paths for point in path] + [
+        point for path in paths for segment in cubic_segments(path) for point in segment]
+    xs = [b.x for b in extent] + [b.x + b.w for b in extent] + [x for x, _ in drawn]
+    ys = [b.y for b in extent] + [b.y + b.h for b in extent] + [y for _, y in drawn]
+    if not xs:
+        return Layout(scene, {}, (), {}, {}, 2 * MARGIN, 2 * MARGIN)
+    # group titles, labels and curves above or left of the parts: everything moves in
+    dx, dy = max(0.0, MARGIN - min(xs)), max(0.0, MARGIN - min(ys))
+    if dx or dy:
+        boxes = {k: Box(b.x + dx, b.y + dy, b.w, b.h) for k, b in boxes.items()}
+        groups = {k: Box(b.x + dx, b.y + dy, b.w, b.h) for k, b in groups.items()}
+        paths = tuple(tuple((x + dx, y + dy) for x, y in path) for path in paths)
+        labels = {k: Box(b.x + dx, b.y + dy, b.w, b.h) for k, b in labels.items()}
+    return Layout(scene, boxes, paths, labels, groups, max(xs) + dx + MARGIN, max(ys) + dy + MARGIN)
 
 
 def _place_labels(scene: Scene, paths: Sequence[Sequence[Point]], boxes: dict[str, Box],
@@ -193,29 +212,21 @@ def _along(points: Sequence[Point], t: float) -> Point:
     return points[-1]
 
 
-def _clusters(members: Sequence[str], boxes: dict[str, Box]) -> tuple[Box, ...]:
-    """Boxes around a namespace's members: as few as can be drawn without enclosing a vertex of
-    another namespace (the layers are not built around namespaces, graphviz's clusters are)."""
-    mine = set(members)
-    others = [Box(b.x - GROUP_PAD, b.y - GROUP_PAD, b.w + 2 * GROUP_PAD, b.h + 2 * GROUP_PAD)
-              for vid, b in boxes.items() if vid not in mine]
-    hulls: list[Box] = []
-    for member in sorted(members, key=lambda m: (boxes[m].x, boxes[m].y)):
-        box = boxes[member]
-        for i, hull in enumerate(hulls):
-            merged = hull.united(box)
-            framed = _framed(merged)
-            if not any(_overlaps(framed, other) for other in others):
-                hulls[i] = merged
-                break
-        else:
-            hulls.append(box)
-    return tuple(_framed(h) for h in hulls)
+def _stack_size(sizes: Sequence[tuple[float, float]]) -> tuple[float, float]:
+    """A namespace's frame: its members one above the other, the title on top."""
+    width = max(w for w, _ in sizes) + 2 * GROUP_PAD
+    height = sum(h for _, h in sizes) + STACK_GAP * (len(sizes) - 1) + 2 * GROUP_PAD + GROUP_TITLE
+    return (width, height)
 
 
-def _framed(hull: Box) -> Box:
-    return Box(hull.x - GROUP_PAD, hull.y - GROUP_PAD - GROUP_TITLE, hull.w + 2 * GROUP_PAD,
-               hull.h + 2 * GROUP_PAD + GROUP_TITLE)
+def _stacked(frame: Box, members: Sequence[tuple[str, tuple[float, float]]]) -> dict[str, Point]:
+    """The centres of a frame's members, top to bottom below its title."""
+    centres: dict[str, Point] = {}
+    y = frame.y + GROUP_PAD + GROUP_TITLE
+    for member, (_, h) in members:
+        centres[member] = (frame.x + frame.w / 2, y + h / 2)
+        y += h + STACK_GAP
+    return centres
 
 
 def _overlaps(a: Box, b: Box) -> bool:
@@ -237,7 +248,7 @@ def _turn(points: Sequence[Point]) -> list[Point]:
 
 
 def _edge_path(scene: Scene, index: int, boxes: dict[str, Box], kinds: dict[str, Kind],
-               routes: dict[tuple[str, str], list[Point]]) -> tuple[Point, ...]:
+               routes: dict[tuple[str, str], list[Point]], placed_as: dict[str, str]) -> tuple[Point, ...]:
     edge = scene.edges[index]
     source, target = boxes[edge.source], boxes[edge.target]
     if edge.source == edge.target:
@@ -245,9 +256,10 @@ def _edge_path(scene: Scene, index: int, boxes: dict[str, Box], kinds: dict[str,
         top = source.y
         return ((x - source.w / 4, top + 2), (x - source.w / 4, top - LOOP), (x + source.w / 4, top - LOOP),
                 (x + source.w / 4, top + 2))
-    route = routes.get((edge.source, edge.target))
+    source_at, target_at = placed_as[edge.source], placed_as[edge.target]  # a member's route is its frame's
+    route = routes.get((source_at, target_at))
     if route is None:
-        reverse = routes.get((edge.target, edge.source))
+        reverse = routes.get((target_at, source_at))
         route = list(reversed(reverse)) if reverse else [source.centre, target.centre]
     route = [source.centre, *route[1:-1], target.centre]
     # parallel edges (two topics between the same nodes, either way) bow apart around the

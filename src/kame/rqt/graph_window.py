@@ -111,15 +111,14 @@ class GraphScene(QGraphicsScene):
         self.vertex_items: dict[str, QGraphicsItem] = {}
         self.edge_items: list[tuple[QGraphicsPathItem, QGraphicsPathItem]] = []
         hover = on_hover or self.highlight
-        for namespace, hulls in drawn.groups.items():
-            for box in hulls:
-                rect = self.addRect(QRectF(box.x, box.y, box.w, box.h), QPen(CLUSTER, 1, Qt.PenStyle.DashLine),
-                                    QBrush(QColor("#f4f6fa")))
-                rect.setZValue(-1)
-                title = QGraphicsSimpleTextItem(namespace, rect)
-                title.setFont(font)
-                title.setBrush(QBrush(CLUSTER))
-                title.setPos(box.x + 6, box.y + 2)
+        for namespace, box in drawn.groups.items():
+            rect = self.addRect(QRectF(box.x, box.y, box.w, box.h), QPen(CLUSTER, 1, Qt.PenStyle.DashLine),
+                                QBrush(QColor("#f4f6fa")))
+            rect.setZValue(-1)
+            title = QGraphicsSimpleTextItem(namespace, rect)
+            title.setFont(font)
+            title.setBrush(QBrush(CLUSTER))
+            title.setPos(box.x + 6, box.y + 2)
         scene = drawn.scene
         for index, edge in enumerate(scene.edges):
             points = drawn.paths[index]
