@@ -195,7 +195,8 @@ def test_the_window_draws_refreshes_and_highlights(lesson: Sim, source: GraphSou
     graphics = window.graphics
     assert graphics is not None
     item = graphics.vertex_items["t:/turtle1/cmd_vel"]
-    window.fit()
+    shown = window.view.mapToScene(window.view.viewport().rect()).boundingRect()
+    assert shown.contains(graphics.itemsBoundingRect())  # fitted after the change of mode, no Fit pressed
     centre = window.view.mapFromScene(item.sceneBoundingRect().center())
     qtbot.mouseMove(window.view.viewport(), QPoint(0, 0))
     qtbot.mouseMove(window.view.viewport(), centre)

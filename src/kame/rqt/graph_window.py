@@ -286,12 +286,13 @@ class GraphWindow(QWidget):
         self.save_button.clicked.connect(self._ask_save)
         self.auto_refresh.toggled.connect(self._auto_changed)
         self.auto_period.valueChanged.connect(self._auto_changed)
-        self.mode_box.currentIndexChanged.connect(self.redraw)
+        # another mode, filter or option draws another graph: fitted, or it may lie off-screen
+        self.mode_box.currentIndexChanged.connect(self._restyled)
         for line in (self.node_filter, self.topic_filter):
-            line.editingFinished.connect(self.redraw)
+            line.editingFinished.connect(self._restyled)
         for box in (self.group_box, self.actions_box, self.debug_box, self.dead_box, self.leaf_box,
                     self.unreachable_box):
-            box.toggled.connect(self.redraw)
+            box.toggled.connect(self._restyled)
         self.highlight_box.toggled.connect(self._highlight_toggled)
 
     def options(self) -> GraphOptions:
@@ -356,6 +357,10 @@ class GraphWindow(QWidget):
         self.status.setText(text)
         if first:
             self.fit()
+
+    def _restyled(self, *_: object) -> None:
+        self.redraw()
+        self.fit()
 
     def _hover(self, vertex_id: str | None) -> None:
         if self.graphics is not None and self.highlight_box.isChecked():
