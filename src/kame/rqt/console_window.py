@@ -138,18 +138,28 @@ class RuleEditor(QWidget):
 
 
 class _LogTable(QTableView):
-    """The messages' table: Message stretches over what the other columns leave, and they
-    narrow together in a narrow table so that it keeps about MESSAGE_SHARE of the width
-    (docked beside two other plugins it collapsed to an ellipsis)."""
+    """The messages' table: Message stretches over what the other columns leave. In a narrow
+    table (docked beside two other plugins, Message collapsed to an ellipsis) the others give
+    way, Location first, then Topics, Stamp and Node, down to NARROWEST, until Message has
+    MESSAGE_SHARE of the width and at least MESSAGE_LEAST (at rqt_console's own width only Location
+    narrows a little)."""
 
     COLUMN_WIDTHS = (60, 140, 230, 160, 260)  # severity, node, stamp, topics, location
-    MESSAGE_SHARE = 0.4
+    NARROWEST = 70
+    MESSAGE_SHARE = 0.25
+    MESSAGE_LEAST = 160
 
     def fit_columns(self) -> None:
-        room = self.viewport().width() * (1.0 - self.MESSAGE_SHARE)
-        scale = min(1.0, room / sum(self.COLUMN_WIDTHS))
-        for column, width in enumerate(self.COLUMN_WIDTHS, start=1):
-            self.setColumnWidth(column, max(56, int(width * scale)))
+        width = self.viewport().width()
+        room = width - max(self.MESSAGE_LEAST, width * self.MESSAGE_SHARE)
+        widths = list(self.COLUMN_WIDTHS)
+        for index in (4, 3, 2, 1):
+            excess = sum(widths) - room
+            if excess <= 0:
+                break
+            widths[index] = max(self.NARROWEST, int(widths[index] - excess))
+        for column, column_width in enumerate(widths, start=1):
+            self.setColumnWidth(column, column_width)
 
     def resizeEvent(self, event: QResizeEvent) -> None:
         super().resizeEvent(event)
