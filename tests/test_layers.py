@@ -103,6 +103,7 @@ LAYERS: dict[str, int] = {
     "kame.rqt.plugins": 4,  # the rqt window's plugins: each tool's window and what it talks through
     "kame.rqt.gui_window": 4,
     "kame.rqt.asking": 4,  # Qt: a window whose calls run on its worker thread
+    "kame.rqt.flow_layout": 4,  # Qt: the tools' wrapping button rows
     "kame.rqt.gui_main": 4,
     "kame.rqt.console_source": 4,
     "kame.rqt.console_window": 4,
