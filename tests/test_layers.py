@@ -79,6 +79,7 @@ LAYERS: dict[str, int] = {
     "kame.interactive_markers": 1,  # interactive markers' server and client protocol and menus: no I/O
     "kame.tf_ros": 3,  # the Buffer that waits, /tf listener and broadcasters on a Node
     "kame.turtle_tf": 4,  # the turtle_tf demo programs
+    "kame.turtle_actionlib": 4,  # turtle_actionlib's shape server and client
     "kame.turtlesim.gui": 4,  # Qt; knows only the world
     "kame.turtlesim.node": 4,
     "kame.turtlesim.teleop_key": 4,
