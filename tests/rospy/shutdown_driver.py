@@ -13,6 +13,7 @@ import os
 import signal
 import sys
 import threading
+import time
 
 import rospy
 from std_msgs.msg import String
@@ -25,12 +26,21 @@ def stop(how):
         rospy.signal_shutdown("test")
 
 
+def main_sleeps():
+    with open(f"/proc/self/task/{threading.main_thread().native_id}/stat") as stat:
+        return stat.read().rsplit(")", 1)[1].split()[0] == "S"
+
+
 def stop_later(how):
-    # the wait has begun long before (the main thread enters it at once); its outcome does not
-    # depend on when shutdown comes, only that it comes during or before it
-    timer = threading.Timer(0.3, stop, (how,))
-    timer.start()
-    return timer
+    """Shutdown 0.3 s from now, once the main thread sleeps in its wait (a loaded machine may
+    take longer to get it there: a Ctrl-C before would not find it waiting)."""
+    def later():
+        time.sleep(0.3)
+        while not main_sleeps():
+            time.sleep(0.01)  # a thread's state has no event to wait on
+        stop(how)
+
+    threading.Thread(target=later).start()
 
 
 def outcome(wait):

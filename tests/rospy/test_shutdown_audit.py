@@ -72,11 +72,13 @@ SIM = dict(WALL, sleep=["sleep: raised ROSInterruptException: ROS shutdown reque
 
 @pytest.mark.parametrize("wait", sorted(WALL))
 def test_a_wait_at_shutdown_does_what_rospys_does(envs: dict[str, dict[str, str]], wait: str) -> None:
-    # with signal_shutdown and with Ctrl-C, on either clock: the same lines from kame and Debian
+    # the same lines from kame and Debian
     pythons = [(sys.executable, lambda env: env)]
     if HAS_DEBIAN_ROSPY:
         pythons.append((str(debian.SYSTEM_PYTHON), debian_env))
-    cases = [(clock, how) for clock in ("wall", "sim") for how in ("signal_shutdown", "sigint")]
+    # Ctrl-C reaches a wait through the same handler on either clock: on simulated time
+    # signal_shutdown alone keeps the test quick
+    cases = [("wall", "signal_shutdown"), ("wall", "sigint"), ("sim", "signal_shutdown")]
     runs = [(python, env_for(envs[clock]), [wait, clock, how]) for python, env_for in pythons for clock, how in cases]
     printed = run_all(runs)
     for (python, _, args), lines in zip(runs, printed, strict=True):
