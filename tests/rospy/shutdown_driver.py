@@ -2,11 +2,12 @@
 
     shutdown_driver.py WAIT CLOCK HOW
 
-WAIT is sleep, rate, wait_for_message, wait_for_service, timer, spin or callback; CLOCK is
-wall or sim (simulated time that no /clock ever moves: the test runs the driver against a
-master whose /use_sim_time is set); HOW is signal_shutdown or sigint. The
-driver prints what the wait did (returned, or raised what) and what ran after it. Plain rospy,
-as a user's program: the two interpreters must print the same lines.
+WAIT is sleep, rate, wait_for_message, wait_for_service, timer, spin, callback or busy (a loop
+in the program's own code); CLOCK is wall or sim (simulated time that no /clock ever moves:
+the test runs the driver against a master whose /use_sim_time is set); HOW is
+signal_shutdown or sigint. The driver prints what the wait did (returned, or raised what) and
+what ran after it. Plain rospy, as a user's program: the two interpreters must print the same
+lines.
 """
 
 import os
@@ -31,12 +32,13 @@ def main_sleeps():
         return stat.read().rsplit(")", 1)[1].split()[0] == "S"
 
 
-def stop_later(how):
+def stop_later(how, asleep=True):
     """Shutdown 0.3 s from now, once the main thread sleeps in its wait (a loaded machine may
-    take longer to get it there: a Ctrl-C before would not find it waiting)."""
+    take longer to get it there: a Ctrl-C before would not find it waiting), or at once when
+    the main thread is busy (`asleep` false)."""
     def later():
         time.sleep(0.3)
-        while not main_sleeps():
+        while asleep and not main_sleeps():
             time.sleep(0.01)  # a thread's state has no event to wait on
         stop(how)
 
@@ -79,6 +81,12 @@ def main():
         print("spin:", outcome(rospy.spin))
         timer.join(10)
         print("timer thread ended:", not timer.is_alive())
+    elif wait == "busy":
+        def work():
+            while not rospy.is_shutdown():
+                sum(range(10000))  # the main thread in the program's own code, not in a wait
+        stop_later(how, asleep=False)
+        print("busy loop:", outcome(work))
     elif wait == "spin":
         stop_later(how)
         print("spin:", outcome(rospy.spin))

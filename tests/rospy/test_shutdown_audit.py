@@ -5,7 +5,7 @@ simulated time, prints the same lines and exits cleanly.
 On the wall clock rospy's sleep never raises (a Ctrl-C ends `while not rospy.is_shutdown():
 rate.sleep()` quietly); on simulated time it raises ROSInterruptException; wait_for_message and
 wait_for_service raise it on either clock; spin returns; a Timer's thread ends; a callback in
-flight runs to its end."""
+flight runs to its end; a loop busy in the program's own code ends at its next is_shutdown()."""
 
 from __future__ import annotations
 
@@ -65,6 +65,7 @@ WALL = {
     "timer": ["spin: returned", "timer thread ended: True"],
     "spin": ["spin: returned"],
     "callback": ["spin: returned", "callback in flight finished: True and saw shutdown: [True]"],
+    "busy": ["busy loop: returned"],  # rospy's Ctrl-C raises nothing: the loop sees is_shutdown()
 }
 SIM = dict(WALL, sleep=["sleep: raised ROSInterruptException: ROS shutdown request"],
            rate=["rate loop: raised ROSInterruptException: ROS shutdown request"])

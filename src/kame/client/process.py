@@ -65,16 +65,28 @@ def _wait_for_master(node: Node, master_uri: str) -> None:
     raise ROSInitException("init_node interrupted before it could complete")
 
 
+_interrupt_busy_main = True  # kame's own programs; a rospy program's Ctrl-C never raises (rospy_ctrl_c)
+
+
+def rospy_ctrl_c() -> None:
+    """Ctrl-C as rospy's handler takes it, for the programs that import rospy: the node shuts
+    down and nothing is raised in the main thread, whatever it is doing (rospy swallows the
+    KeyboardInterrupt), so `while not rospy.is_shutdown(): ...` ends at its next check, with no
+    traceback, even when the Ctrl-C comes between two sleeps."""
+    global _interrupt_busy_main
+    _interrupt_busy_main = False
+
+
 def _install_signal_handlers() -> None:
     def handler(signum: int, frame: Any) -> None:
         # The shutdown runs on a thread of its own: the interrupted main thread may hold a lock
         # the shutdown needs (it may be in the middle of a publish). A main thread waiting in
-        # rospy (spin, sleep, Rate) wakes up through the shutdown event and leaves quietly; one
-        # busy in user code gets a ROSInterruptException, which is a KeyboardInterrupt too, so
-        # both the tutorials' `except rospy.ROSInterruptException` and plain Python code see it.
+        # rospy (spin, sleep, Rate) wakes up through the shutdown event and leaves quietly. In
+        # kame's own programs one busy elsewhere (reading keys) gets a ROSInterruptException, a
+        # KeyboardInterrupt too; a rospy program's goes on to its next is_shutdown(), as in rospy.
         waiting = core.main_thread_is_waiting()
         threading.Thread(target=core.signal_shutdown, args=(f"signal-{signum}",), name="rospy-shutdown").start()
-        if signum == signal.SIGINT and not waiting:
+        if signum == signal.SIGINT and not waiting and _interrupt_busy_main:
             raise ROSInterruptException("ROS shutdown request")
 
     if threading.current_thread() is not threading.main_thread():
