@@ -69,8 +69,8 @@ def count(shot: Screenshot, colour: tuple[int, int, int], step: int = 2) -> int:
     return sum(1 for y in range(0, shot.height, step) for x in range(0, shot.width, step) if shot.rgb(x, y) == colour)
 
 
-def dark(shot: Screenshot, top: int = 0, bottom: int | None = None, step: int = 3) -> int:
-    """About how many pixels between rows `top` and `bottom` are near black (text, lines): more
-    once a window has drawn its content there."""
+def dark(shot: Screenshot, top: int = 0, bottom: int | None = None, left: int = 0, step: int = 3) -> int:
+    """About how many pixels below row `top`, above `bottom` and right of column `left` are near
+    black (text, lines): more once a window has drawn its content there."""
     end = shot.height if bottom is None else min(bottom, shot.height)
-    return sum(1 for y in range(top, end, step) for x in range(0, shot.width, step) if sum(shot.rgb(x, y)) < 150)
+    return sum(1 for y in range(top, end, step) for x in range(left, shot.width, step) if sum(shot.rgb(x, y)) < 150)

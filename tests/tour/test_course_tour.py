@@ -80,7 +80,9 @@ def test_the_turtlesim_lessons_windows(desktop: Desktop) -> None:
         DockedPlugin("rqt_graph", 1, {}), DockedPlugin("rqt_plot", 1, {"series": ["/turtle1/pose/x"]}),
         DockedPlugin("rqt_console", 1, {})), "", "")))
     desktop.start("rqt", "--perspective-file", str(perspective))
-    shoot(desktop.display, "Default - rqt", "rqt_three_docks", lambda shot: count(shot, CURVE) > 50)
+    # at 1200x800 Plot docks left, Node Graph right above Console: a curve, and rows in the Console
+    shoot(desktop.display, "Default - rqt", "rqt_three_docks",
+          lambda shot: count(shot, CURVE) > 50 and dark(shot, top=460, bottom=650, left=shot.width // 2 + 20) > 60)
 
 
 def test_the_tf_tutorials_rviz_step(desktop: Desktop) -> None:
