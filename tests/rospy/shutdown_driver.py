@@ -2,12 +2,12 @@
 
     shutdown_driver.py WAIT CLOCK HOW
 
-WAIT is sleep, rate, wait_for_message, wait_for_service, timer, spin, callback or busy (a loop
-in the program's own code); CLOCK is wall or sim (simulated time that no /clock ever moves:
-the test runs the driver against a master whose /use_sim_time is set); HOW is
-signal_shutdown or sigint. The driver prints what the wait did (returned, or raised what) and
-what ran after it. Plain rospy, as a user's program: the two interpreters must print the same
-lines.
+WAIT is sleep, rate, wait_for_message, wait_for_service, timer, spin, callback, busy (a loop
+in the program's own code) or after (a sleep begun after the shutdown); CLOCK is wall or sim
+(simulated time that no /clock ever moves: the test runs the driver against a master whose
+/use_sim_time is set); HOW is signal_shutdown or sigint. The driver prints what the wait did
+(returned, or raised what) and what ran after it. Plain rospy, as a user's program: the two
+interpreters must print the same lines.
 """
 
 import os
@@ -87,6 +87,13 @@ def main():
                 sum(range(10000))  # the main thread in the program's own code, not in a wait
         stop_later(how, asleep=False)
         print("busy loop:", outcome(work))
+    elif wait == "after":
+        stop(how)
+        while not rospy.is_shutdown():
+            time.sleep(0.01)  # kame shuts down on a thread of its own
+        started = time.monotonic()
+        said = outcome(lambda: rospy.sleep(0.5))
+        print("sleep after shutdown:", said + ", slept whole:", time.monotonic() - started >= 0.45)
     elif wait == "spin":
         stop_later(how)
         print("spin:", outcome(rospy.spin))

@@ -5,7 +5,8 @@ simulated time, prints the same lines and exits cleanly.
 On the wall clock rospy's sleep never raises (a Ctrl-C ends `while not rospy.is_shutdown():
 rate.sleep()` quietly); on simulated time it raises ROSInterruptException; wait_for_message and
 wait_for_service raise it on either clock; spin returns; a Timer's thread ends; a callback in
-flight runs to its end; a loop busy in the program's own code ends at its next is_shutdown()."""
+flight runs to its end; a loop busy in the program's own code ends at its next is_shutdown();
+a wall-clock sleep begun after the shutdown sleeps its whole time."""
 
 from __future__ import annotations
 
@@ -66,9 +67,11 @@ WALL = {
     "spin": ["spin: returned"],
     "callback": ["spin: returned", "callback in flight finished: True and saw shutdown: [True]"],
     "busy": ["busy loop: returned"],  # rospy's Ctrl-C raises nothing: the loop sees is_shutdown()
+    "after": ["sleep after shutdown: returned, slept whole: True"],  # a shutdown hook's last sleep
 }
 SIM = dict(WALL, sleep=["sleep: raised ROSInterruptException: ROS shutdown request"],
-           rate=["rate loop: raised ROSInterruptException: ROS shutdown request"])
+           rate=["rate loop: raised ROSInterruptException: ROS shutdown request"],
+           after=["sleep after shutdown: raised ROSInterruptException: ROS shutdown request, slept whole: False"])
 
 
 @pytest.mark.parametrize("wait", sorted(WALL))
