@@ -10,10 +10,22 @@ python=${KAME_PYTHON:-python3}
 if [ ! -x .venv/bin/python ]; then
   "$python" -m venv .venv
 fi
-pip=(.venv/bin/python -m pip install -q --disable-pip-version-check)
-if ! "${pip[@]}" -e '.[gui]' 2>/dev/null; then
-  echo "kame demo: the GUI extra (PySide6) did not install; turtlesim will run headless." >&2
-  "${pip[@]}" -e .
+# Install once, and again only when pyproject.toml changes (its checksum is kept in .venv).
+stamp=.venv/.kame-demo-installed
+want=$(cksum < pyproject.toml)
+if [ "$(cat "$stamp" 2>/dev/null)" != "$want" ]; then
+  echo "kame demo: installing kame into .venv (the first time takes a minute or so)..." >&2
+  pip=(.venv/bin/python -m pip install -q --disable-pip-version-check)
+  log=$(mktemp)
+  if "${pip[@]}" -e '.[gui]' 2>"$log"; then
+    rm -f "$log"
+  else
+    echo "kame demo: the GUI extra (PySide6) did not install; turtlesim will run headless. pip said:" >&2
+    tail -n 5 "$log" | sed 's/^/  /' >&2
+    rm -f "$log"
+    "${pip[@]}" -e .
+  fi
+  echo "$want" > "$stamp"
 fi
 export PATH="$PWD/.venv/bin:$PATH"
 export ROS_MASTER_URI=${ROS_MASTER_URI:-http://localhost:11311/}

@@ -79,6 +79,7 @@ LAYERS: dict[str, int] = {
     "kame.interactive_markers": 1,  # interactive markers' server and client protocol and menus: no I/O
     "kame.tf_ros": 3,  # the Buffer that waits, /tf listener and broadcasters on a Node
     "kame.turtle_tf": 4,  # the turtle_tf demo programs
+    "kame.turtle_actionlib": 4,  # turtle_actionlib's shape server and client
     "kame.turtlesim.gui": 4,  # Qt; knows only the world
     "kame.turtlesim.node": 4,
     "kame.turtlesim.teleop_key": 4,
@@ -103,6 +104,7 @@ LAYERS: dict[str, int] = {
     "kame.rqt.plugins": 4,  # the rqt window's plugins: each tool's window and what it talks through
     "kame.rqt.gui_window": 4,
     "kame.rqt.asking": 4,  # Qt: a window whose calls run on its worker thread
+    "kame.rqt.flow_layout": 4,  # Qt: the tools' wrapping button rows
     "kame.rqt.gui_main": 4,
     "kame.rqt.console_source": 4,
     "kame.rqt.console_window": 4,

@@ -5,6 +5,7 @@ Publisher/Subscriber, Service/ServiceProxy, parameters, time, logging.
 """
 
 from kame.client import log as _log
+from kame.client import process as _process
 from kame.msg.message import Message
 from rospy.client import (
     delete_param,
@@ -137,6 +138,8 @@ def logerr_throttle_identical(period, msg, *args, **kwargs):
 def logfatal_throttle_identical(period, msg, *args, **kwargs):
     _log.emit_throttle_identical(period, FATAL, msg, args)
 
+
+_process.rospy_ctrl_c()  # a program that imports rospy takes Ctrl-C as rospy does: no exception, a shutdown
 
 __all__ = [
     "DEBUG", "ERROR", "FATAL", "INFO", "WARN",

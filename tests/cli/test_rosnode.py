@@ -101,6 +101,21 @@ def test_kill(graph: LiveGraph) -> None:
     assert (result.returncode, result.stdout, result.stderr) == (1, "", "ERROR: Unknown node(s):\n * /nosuch\n")
 
 
+def test_kill_a_port_of_a_cpp_program_prints_roscpps_warnings(graph: LiveGraph) -> None:
+    from tests.support import Proc
+    from tests.turtlesim.sim import BIN, wait_until
+
+    mimic = Proc([str(BIN / "rosrun"), "turtlesim", "mimic", "__name:=cpp_victim"], dict(graph.env, NO_COLOR="1"))
+    graph.procs.append(mimic)
+    wait_until(lambda: "/cpp_victim" in user_nodes(graph), timeout=20, what="mimic registered")
+    assert ok(graph, "kill", "/cpp_victim") == "killing /cpp_victim\nkilled\n"
+    mimic.popen.wait(10)
+    out, err = mimic.stop()
+    warnings = [line.split("]: ", 1) for line in err.splitlines() if line.startswith("[ WARN] [")]
+    assert [text for _, text in warnings] == ["Shutdown request received.", "Reason given for shutdown: [user request]"]
+    assert "shutdown request" not in out
+
+
 def test_kill_from_the_menu(graph: LiveGraph) -> None:
     victim = graph.start_node("__name:=a_victim")
     out = ok(graph, "kill", input="x\n1\n")

@@ -41,8 +41,11 @@ def clean_env(home: Path, uri: str) -> dict[str, str]:
     return env
 
 
-def roswtf(env: dict[str, str], *args: str, cwd: Path | None = None) -> Result:
-    return subprocess.run([str(BIN / "roswtf"), *args], env=env, cwd=cwd or env["ROS_HOME"], capture_output=True,
+def roswtf(env: dict[str, str], *args: str, cwd: Path | None = None, plugins: bool = False) -> Result:
+    """roswtf without its plugins unless asked (test_tf_plugin has tf's; Debian's roswtf here
+    finds no tf package to load it from)."""
+    chosen = args if plugins else ("--no-plugins", *args)
+    return subprocess.run([str(BIN / "roswtf"), *chosen], env=env, cwd=cwd or env["ROS_HOME"], capture_output=True,
                           text=True, timeout=60)
 
 
@@ -99,6 +102,39 @@ def test_healthy_graph(healthy: LiveGraph) -> None:
     expected = f"{CLEAN_STATIC}{ONLINE_HEAD}No errors or warnings\n"
     result = until(lambda: roswtf(healthy.env), lambda out: out == expected)
     assert (result.returncode, result.stdout, result.stderr) == (0, expected, "")
+
+
+def test_tf_plugin(healthy: LiveGraph) -> None:
+    # tf exports tf.tfwtf to roswtf: its first line, and its online check of a second of /tf
+    result = roswtf(healthy.env, plugins=True)
+    assert result.stdout.startswith(f"Loaded plugin tf.tfwtf\n{CLEAN_STATIC}"), result.stdout
+    assert ("... done running graph rules\nrunning tf checks, this will take a second...\n... tf checks complete\n"
+            "\nOnline checks summary:\n\n") in result.stdout
+    assert result.stdout.endswith(f"{W}No tf messages\n\n"), result.stdout
+
+
+def test_tf_plugins_rules() -> None:
+    from kame.cli._wtf import Report, TfMessage, TfTransform, check_tf
+
+    def sent(by: str, *pairs: tuple[str, str], at: float = 100.0, length: float = 1.0) -> TfMessage:
+        return TfMessage(tuple(TfTransform(parent, child, at, length) for parent, child in pairs), 100.5, by)
+
+    report = Report()
+    check_tf([sent("/a", ("world", "turtle1")), sent("/b", ("odom", "turtle1")), sent("/c", ("x", "y"), ("y", "x")),
+              sent("/d", ("world", "late"), at=90.0), sent("/e", ("world", "bent"), length=0.5)], report)
+    assert report.warnings == [
+        "Received out-of-date/future transforms:\n * receiving transform from [/d] that differed from ROS time by "
+        "-10.5s\n",
+        "Received non-normalized rotation in transforms:\n * rotation from [world] to [bent] is not unit length, 0.5\n"]
+    assert report.errors == [
+        "TF re-parenting contention:\n * reparenting of [turtle1] to [odom] by [/b]\n",
+        "TF cycle detection::\n * Frame y is in a loop. It's loop has elements:\ny -> x\n"
+        " * Frame x is in a loop. It's loop has elements:\nx -> y\n",
+        "TF multiple authority contention:\n * node [/b] publishing transform [turtle1] with parent [odom] already "
+        "published by node [/a]\n"]
+    quiet = Report()
+    check_tf([], quiet)
+    assert quiet.warnings == ["No tf messages"] and quiet.errors == []
 
 
 def test_offline(healthy: LiveGraph) -> None:

@@ -399,3 +399,17 @@ def test_wait_waits_for_a_master_started_later(workspace: Path) -> None:
     finally:
         proc.stop()
     assert "auto-starting" not in out
+
+
+@pytest.mark.parametrize("args", [["--help"], [], ["--bogus"]])
+def test_usage_help_and_errors_are_debians(tmp_path: Path, args: list[str]) -> None:
+    # optparse's texts: "Usage:", the blank line before "roslaunch: error: ...", exit status 2
+    debian = Path("/usr/bin/roslaunch")
+    if not debian.exists():
+        pytest.skip("Debian's roslaunch is not installed")
+    env = dict(ros_env(tmp_path), COLUMNS="80")
+    ours = subprocess.run(kame_command("kame.cli.roslaunch", *args), capture_output=True, text=True, env=env,
+                          timeout=60)
+    theirs = subprocess.run([SYSTEM_PYTHON, str(debian), *args], capture_output=True, text=True, env=env,
+                            timeout=60)
+    assert (ours.returncode, ours.stdout, ours.stderr) == (theirs.returncode, theirs.stdout, theirs.stderr)

@@ -72,12 +72,7 @@ def test_the_lessons_graph_in_each_mode(source: GraphSource) -> None:
         everything.names(Kind.TOPIC))
     assert {("/turtlesim", "/turtle1/pose", ""), ("/turtlesim", "/rosout", ""), ("/rosout", "/rosout_agg", ""),
             ("/rosout", "/rosout", "")} <= set(everything.edge_names())  # rosout subscribes to /rosout
-    assert "/turtle1/rotate_absolute/feedback" in everything.names(Kind.TOPIC)  # turtlesim's action server
-    actions = build_scene(snap, GraphOptions(mode=Mode.NODES_TOPICS_ALL, hide_dead_sinks=False,
-                                             hide_leaf_topics=False, group_actions=True))
-    assert [t for t in actions.names(Kind.TOPIC) if "rotate_absolute" in t] == [
-        "/turtle1/rotate_absolute/action_topics"]
-    assert ("/turtlesim", "/turtle1/rotate_absolute/action_topics", "") in actions.edge_names()
+    assert not [t for t in everything.names(Kind.TOPIC) if "rotate_absolute" in t]  # ROS 1's turtlesim has no action
 
 
 def test_rostopic_echo_appears_after_a_refresh(lesson: Sim, source: GraphSource) -> None:
@@ -200,7 +195,8 @@ def test_the_window_draws_refreshes_and_highlights(lesson: Sim, source: GraphSou
     graphics = window.graphics
     assert graphics is not None
     item = graphics.vertex_items["t:/turtle1/cmd_vel"]
-    window.fit()
+    shown = window.view.mapToScene(window.view.viewport().rect()).boundingRect()
+    assert shown.contains(graphics.itemsBoundingRect())  # fitted after the change of mode, no Fit pressed
     centre = window.view.mapFromScene(item.sceneBoundingRect().center())
     qtbot.mouseMove(window.view.viewport(), QPoint(0, 0))
     qtbot.mouseMove(window.view.viewport(), centre)

@@ -115,9 +115,10 @@ def test_layout_runs_left_to_right_without_overlaps(mode: Mode) -> None:
             assert drawn.boxes[edge.source].centre[0] != drawn.boxes[edge.target].centre[0]
         path = drawn.paths[index]
         assert all(0 <= x <= drawn.width and 0 <= y <= drawn.height for x, y in path)
-    for group in scene.groups:  # a namespace's frame never holds another namespace's vertex
-        for hull in drawn.groups[group.namespace]:
-            assert not any(_overlap(hull, box) for vid, box in drawn.boxes.items() if vid not in group.members)
+    for group in scene.groups:  # one frame a namespace, holding its members and no other vertex
+        frame = drawn.groups[group.namespace]
+        assert not any(_overlap(frame, box) for vid, box in drawn.boxes.items() if vid not in group.members)
+        assert all(_overlap(frame, drawn.boxes[member]) for member in group.members)
     publisher, topic = drawn.boxes["n:/teleop_turtle"], drawn.boxes.get("t:/turtle1/cmd_vel")
     if topic is not None:
         assert publisher.centre[0] < topic.centre[0] < drawn.boxes["n:/turtlesim"].centre[0]

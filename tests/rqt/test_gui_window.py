@@ -195,3 +195,35 @@ def test_plugins_ask_again_once_the_master_is_up(qtbot, tmp_path: Path) -> None:
         window.close()
         for proc in started:
             proc.stop()
+
+
+@pytest.mark.parametrize("size", [(1200, 800), (1600, 1000)])
+def test_three_docks_keep_every_control_reachable(sim: Sim, qtbot, size: tuple[int, int]) -> None:  # type: ignore[no-untyped-def]
+    """Node Graph, Plot and Console docked from the Plugins menu: every button, box and field of
+    each lies inside its dock, the Console's Message column keeps its share of the table, and the
+    graph is fitted in its view."""
+    from PySide6.QtWidgets import QAbstractButton, QAbstractSpinBox, QComboBox, QLineEdit
+
+    from kame.rqt.gui_window import RqtWindow
+    from kame.rqt.plugins import PluginContext
+
+    window = RqtWindow(PluginContext(sim.uri), None)
+    qtbot.addWidget(window)
+    for plugin in ("rqt_graph", "rqt_plot", "rqt_console"):
+        window.plugin_actions[plugin].trigger()
+    window.resize(*size)
+    window.show()
+    qtbot.waitExposed(window)
+    graph = window.docks["rqt_graph#1"].handle.widget
+    qtbot.waitUntil(lambda: graph.graphics is not None, timeout=10_000)  # type: ignore[attr-defined]
+    for key, dock in window.docks.items():
+        viewport = dock.widget().viewport()  # type: ignore[attr-defined]
+        for kind in (QAbstractButton, QAbstractSpinBox, QComboBox, QLineEdit):
+            for control in dock.handle.widget.findChildren(kind):
+                if control.isVisibleTo(dock):
+                    where = control.rect().translated(control.mapTo(viewport, control.rect().topLeft()))
+                    assert viewport.rect().contains(where), f"{key}: {type(control).__name__} at {where}"
+    table = window.docks["rqt_console#1"].handle.widget.table  # type: ignore[attr-defined]
+    assert table.columnWidth(0) >= 0.24 * table.viewport().width()  # not an ellipsis
+    shown = graph.view.mapToScene(graph.view.viewport().rect()).boundingRect()  # type: ignore[attr-defined]
+    assert shown.contains(graph.graphics.itemsBoundingRect())  # type: ignore[attr-defined]

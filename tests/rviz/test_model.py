@@ -472,6 +472,14 @@ def test_a_display_draws_once_tf_has_the_frame_it_lacked() -> None:
     assert grid.status.level == OK and scene.batches
 
 
+def test_the_grid_is_centred_on_its_offset() -> None:
+    # turtle_rviz.rviz: 11 cells of 1 m around (5.5, 5.5), turtlesim's world
+    scene = build(displays.Grid(options={"Plane Cell Count": 11, "Offset": {"X": 5.5, "Y": 5.5, "Z": 0}}))
+    points = all_vertices(scene)
+    assert points[:, 0].min() == pytest.approx(0.0) and points[:, 0].max() == pytest.approx(11.0)
+    assert points[:, 1].min() == pytest.approx(0.0) and points[:, 1].max() == pytest.approx(11.0)
+
+
 def _mesh_package(tmp_path):  # type: ignore[no-untyped-def]
     """A package `parts` holding a 1 x 2 x 3 box as binary STL, ASCII STL and red Collada."""
     trimesh = pytest.importorskip("trimesh", reason="rviz reads meshes with trimesh (kame[gui])")

@@ -26,7 +26,7 @@ from kame.node.topics import serialize_frame
 from kame.rostime import Time
 from kame.rviz import config
 from kame.rviz.source import RvizSource
-from kame.rviz.window import NAV_GOAL, POSE_ESTIMATE, PUBLISH_POINT, RvizWindow
+from kame.rviz.window import INTERACT, NAV_GOAL, POSE_ESTIMATE, PUBLISH_POINT, RvizWindow
 from rosgraph_msgs.msg import Clock
 from tests.tf.graph import Graph
 
@@ -59,13 +59,16 @@ def test_mouse_moves_the_camera_and_the_tools_publish(tmp_path: Path, qtbot: Any
         follow_sim_clock(listener, source)
     received: dict[str, Any] = {}
     arrived = threading.Condition()
+    connected: dict[str, threading.Event] = {}
 
     def keep(topic: str, cls: type[Any]) -> None:
         def deliver(frames: list[memoryview], header: dict[str, str]) -> None:
             with arrived:
                 received[topic] = cls._from_buffer(frames[-1])
                 arrived.notify_all()
-        listener.subscribe(topic, cls._type, cls._md5sum, cls._full_text, deliver)
+        connected[topic] = threading.Event()
+        subscription = listener.subscribe(topic, cls._type, cls._md5sum, cls._full_text, deliver)
+        subscription.add_connect_callback(lambda _link, topic=topic: connected[topic].set())
 
     for topic, cls in (("/initialpose", PoseWithCovarianceStamped), ("/move_base_simple/goal", PoseStamped),
                        ("/clicked_point", PointStamped)):
@@ -76,6 +79,10 @@ def test_mouse_moves_the_camera_and_the_tools_publish(tmp_path: Path, qtbot: Any
         window.timer.stop()
         window.resize(800, 600)
         window.show()
+        qtbot.waitExposed(window)
+        qtbot.waitUntil(lambda: window.view.size() == window.view_widget.size())  # laid out: clicks land where aimed
+        for topic, event in connected.items():  # rviz's tools advertise their topics as it starts
+            assert event.wait(10), f"rviz does not publish {topic}"
         view = window.view
         yaw, distance, focal = view.camera.yaw, view.camera.distance, view.camera.focal_point.copy()
         QTest.mousePress(view, Qt.MouseButton.LeftButton, Qt.KeyboardModifier.NoModifier, QPoint(100, 100))
@@ -103,16 +110,16 @@ def test_mouse_moves_the_camera_and_the_tools_publish(tmp_path: Path, qtbot: Any
             window.set_tool(tool)
             with arrived:
                 received.pop(topic, None)
-            for _ in range(50):  # the publisher is new: its first messages may go before the subscriber connects
-                pixels = [view.camera.project([[*p, 0.0]], view.width(), view.height())[0] for p in (start, end)]
-                a, b = (QPoint(round(float(x)), round(float(y))) for x, y in pixels)
-                QTest.mousePress(view, Qt.MouseButton.LeftButton, Qt.KeyboardModifier.NoModifier, a)
-                QTest.mouseMove(view, b)
-                QTest.mouseRelease(view, Qt.MouseButton.LeftButton, Qt.KeyboardModifier.NoModifier, b)
-                with arrived:
-                    if arrived.wait_for(lambda: topic in received, 0.2):
-                        return received[topic]
-            raise AssertionError(f"nothing on {topic}")
+            # one use, its first message: the subscriber connected as rviz started
+            pixels = [view.camera.project([[*p, 0.0]], view.width(), view.height())[0] for p in (start, end)]
+            a, b = (QPoint(round(float(x)), round(float(y))) for x, y in pixels)
+            QTest.mousePress(view, Qt.MouseButton.LeftButton, Qt.KeyboardModifier.NoModifier, a)
+            QTest.mouseMove(view, b)
+            QTest.mouseRelease(view, Qt.MouseButton.LeftButton, Qt.KeyboardModifier.NoModifier, b)
+            assert view.tool == INTERACT and window.tool_actions[INTERACT].isChecked()  # the tool is done
+            with arrived:
+                assert arrived.wait_for(lambda: topic in received, 10), f"nothing on {topic}"
+                return received[topic]
 
         goal = use(NAV_GOAL, (1.0, 1.0), (1.0, 3.0), "/move_base_simple/goal")
         assert goal.header.frame_id == "odom"

@@ -15,6 +15,7 @@ import pytest
 import kame
 from kame.rviz import config
 from tests.support import REPO, Proc
+from tests.support.tour import shoot
 from tests.turtlesim.sim import BIN, master, wait_until
 
 PACKAGE = Path(kame.__file__).parent / "share" / "turtlebot_rviz_launchers"
@@ -57,7 +58,7 @@ def test_view_robot_shows_the_turtlebot_world(tmp_path: Path) -> None:
     pytest.importorskip("numpy", reason="the 2-D world needs kame[sim]")
     from tests.turtlesim.xserver import xvfb
 
-    with master(tmp_path) as sim, xvfb() as display:
+    with master(tmp_path) as sim, xvfb("1600x1000") as display:
         world = Proc([str(BIN / "roslaunch"), "turtlebot_gazebo", "turtlebot_world.launch"], sim.env, cwd=sim.home)
         sim.procs.append(world)
         world.wait_line("Simulating [robot_0]", timeout=60)
@@ -97,6 +98,7 @@ def test_view_robot_shows_the_turtlebot_world(tmp_path: Path) -> None:
         assert statuses == {"Grid": "Ok", "RobotModel": "Ok", "TF": "Ok", "LaserScan": "Ok", "Odometry": "Ok"}, line
         assert int(line.split(" colour ")[1]) > 20, line  # the scan's points drawn
         assert "base_link=" in line and "base_link=none" not in line
+        shoot(display, "robot.rviz - RViz", "rviz_view_robot")  # the tour (tests/support/tour.py)
 
 
 def test_view_navigation_shows_amcl_demo(tmp_path: Path) -> None:
@@ -105,7 +107,7 @@ def test_view_navigation_shows_amcl_demo(tmp_path: Path) -> None:
     pytest.importorskip("numpy", reason="the 2-D world needs kame[sim]")
     from tests.turtlesim.xserver import xvfb
 
-    with master(tmp_path) as sim, xvfb() as display:
+    with master(tmp_path) as sim, xvfb("1600x1000") as display:
         world = Proc([str(BIN / "roslaunch"), "turtlebot_gazebo", "turtlebot_world.launch"], sim.env, cwd=sim.home)
         sim.procs.append(world)
         world.wait_line("Simulating [robot_0]", timeout=60)
@@ -142,3 +144,4 @@ def test_view_navigation_shows_amcl_demo(tmp_path: Path) -> None:
             time.sleep(0.2)
         assert line, f"no report from rviz:\n{''.join(rviz.out)}\n{''.join(rviz.err)}"
         assert {name: _statuses(line)[name] for name in wanted} == dict.fromkeys(wanted, "Ok"), line
+        shoot(display, "navigation.rviz - RViz", "rviz_view_navigation")  # the tour (tests/support/tour.py)

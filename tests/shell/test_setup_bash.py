@@ -132,3 +132,9 @@ def test_rosls_unknown_package_is_ls_of_nothing(tmp_path: Path) -> None:
     result = bash("rosls no_such_pkg; echo status=$?", clean_env(tmp_path))
     assert result.stdout.splitlines()[-1] != "status=0"
     assert "ls: cannot access ''" in result.stderr
+
+
+def test_rosawesome_defines_rosbashs_aliases(tmp_path: Path) -> None:
+    result = bash("rosawesome; alias megamaid suck2blow botherder", clean_env(tmp_path))
+    assert result.stdout.splitlines() == [
+        "alias megamaid='rosbag record'", "alias suck2blow='rosbag play'", "alias botherder='roscore'"]

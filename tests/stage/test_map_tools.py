@@ -32,7 +32,7 @@ def test_map_saver_reproduces_the_served_map(tmp_path: Path) -> None:
     with master(tmp_path / "home") as sim:
         server = sim.start("map_server", "map_server", str(tmp_path / "room.yaml"), wait="Read a 60 X 40 map")
         assert f'Loading map from image "{tmp_path}/room.pgm"' in "".join(server.out)
-        assert "@ 0.05 m/cell" in "".join(server.out)
+        assert "@ 0.050 m/cell" in "".join(server.out)
         info = sim.echo("/map_metadata")
         assert (info["width"], info["height"], info["resolution"]) == (60, 40, pytest.approx(0.05))
         assert info["origin"]["position"]["x"] == -1.5

@@ -7,6 +7,7 @@ from pathlib import Path
 
 import pytest
 
+from tests.support.tour import shoot
 from tests.turtlesim.sim import master, wait_until
 
 pytest.importorskip("PySide6")
@@ -44,6 +45,7 @@ def test_the_window_shows_the_world_and_the_robot(tmp_path: Path) -> None:
 
         wait_until(robot_drawn, timeout=30, what="the robot and the walls in the window")
         assert node.popen.poll() is None
+        shoot(display, "Stage: playground.yaml", "stageros")  # the tour (tests/support/tour.py)
 
 
 @pytest.mark.parametrize("display", [None, "-g"])

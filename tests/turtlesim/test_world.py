@@ -164,21 +164,6 @@ def test_teleports_draw_and_apply_at_the_next_step() -> None:
     assert w.turtle("turtle1").pose.x == pytest.approx(1.0)
 
 
-def test_rotate_absolute() -> None:
-    w = world()
-    w.rotate_absolute("turtle1", 1.0)
-    events = []
-    for _ in range(80):
-        events.extend(w.step().rotations)
-    done = [e for e in events if e.succeeded]
-    assert len(done) == 1 and done[0].delta == pytest.approx(-1.0, abs=0.03)
-    assert w.turtle("turtle1").pose.theta == pytest.approx(1.0, abs=0.02)
-    w.rotate_absolute("turtle1", -1.0)
-    w.step()
-    w.command("turtle1", 0, 0, 0)
-    assert w.step().rotations[-1].aborted
-
-
 def test_snapshot_and_versions() -> None:
     w = world()
     v = w.snapshot().version

@@ -60,17 +60,24 @@ class XWindow:
 
 
 def find_window(display: str, title: str) -> XWindow | None:
-    """The top-level window called `title` (as xwininfo sees it), or None while there is none."""
+    """The top-level window called `title` (as xwininfo sees it), or None while there is none; of
+    several with that name (Qt's unmapped 1x1 leader window shares its program's title), a
+    viewable one first."""
+    windows = find_windows(display, title)
+    return next((w for w in windows if w.viewable), windows[0] if windows else None)
+
+
+def find_windows(display: str, title: str) -> list[XWindow]:
     env = dict(os.environ, DISPLAY=display)
     tree = subprocess.run(["xwininfo", "-root", "-tree"], env=env, capture_output=True, text=True, timeout=10).stdout
-    match = re.search(r"^\s*(0x[0-9a-f]+) \"" + re.escape(title) + r"\"", tree, re.MULTILINE)
-    if match is None:
-        return None
-    info = subprocess.run(["xwininfo", "-id", match.group(1)], env=env, capture_output=True, text=True,
-                          timeout=10).stdout
-    width = int(re.search(r"Width: (\d+)", info).group(1))  # type: ignore[union-attr]
-    height = int(re.search(r"Height: (\d+)", info).group(1))  # type: ignore[union-attr]
-    return XWindow(match.group(1), title, width, height, "Map State: IsViewable" in info)
+    found = []
+    for match in re.finditer(r"^\s*(0x[0-9a-f]+) \"" + re.escape(title) + r"\"", tree, re.MULTILINE):
+        info = subprocess.run(["xwininfo", "-id", match.group(1)], env=env, capture_output=True, text=True,
+                              timeout=10).stdout
+        width = int(re.search(r"Width: (\d+)", info).group(1))  # type: ignore[union-attr]
+        height = int(re.search(r"Height: (\d+)", info).group(1))  # type: ignore[union-attr]
+        found.append(XWindow(match.group(1), title, width, height, "Map State: IsViewable" in info))
+    return found
 
 
 def find_shown_window(display: str, title: str) -> XWindow | None:

@@ -543,3 +543,89 @@ def check_launches(listings: Sequence[tuple[Sequence[Sequence[object]], Sequence
     died = [str(name) for _, dead in listings for name, *_ in dead]
     report.warn("These nodes have respawned at least once:", respawned)
     report.warn("These nodes have died:", died)
+
+
+# ---------------------------------------------------------------- tf's roswtf plugin (tf.tfwtf)
+
+@dataclass(frozen=True)
+class TfTransform:
+    parent: str
+    child: str
+    stamp: float  # seconds
+    rotation_length: float  # of its quaternion
+
+
+@dataclass(frozen=True)
+class TfMessage:
+    """One /tf message as tf's plugin keeps it: its transforms, when it came (ROS time) and from whom."""
+    transforms: tuple[TfTransform, ...]
+    received: float
+    callerid: str
+
+
+def _rostime_delta(messages: Sequence[TfMessage]) -> list[str]:
+    deltas: dict[str, float] = {}
+    for m in messages:
+        for t in m.transforms:
+            seconds = t.stamp - m.received
+            if abs(seconds) > 1.0 and abs(seconds) > abs(deltas.get(m.callerid, 0.0)):
+                deltas[m.callerid] = seconds
+    return [f"receiving transform from [{k}] that differed from ROS time by {v}s" for k, v in deltas.items()]
+
+
+def _not_normalized(messages: Sequence[TfMessage]) -> list[str]:
+    return [f"rotation from [{t.parent}] to [{t.child}] is not unit length, {t.rotation_length}"
+            for m in messages for t in m.transforms if abs(t.rotation_length - 1) > 1e-6]
+
+
+def _reparenting(messages: Sequence[TfMessage]) -> list[str]:
+    errors: list[str] = []
+    parents: dict[str, str] = {}
+    for m in messages:
+        for t in m.transforms:
+            if t.child in parents and parents[t.child] != t.parent:
+                text = f"reparenting of [{t.child}] to [{t.parent}] by [{m.callerid}]"
+                if text not in errors:
+                    errors.append(text)
+            parents[t.child] = t.parent
+    return errors
+
+
+def _cycles(messages: Sequence[TfMessage], max_depth: int = 100) -> list[str]:
+    parents = {t.child: t.parent for m in messages for t in m.transforms}
+    errors = []
+    for frame in parents:
+        chain, current = [], frame
+        for _ in range(max_depth + 2):
+            chain.append(current)
+            if current not in parents:
+                break
+            current = parents[current]
+            if current == frame:
+                errors.append(f"Frame {frame} is in a loop. It's loop has elements:\n{' -> '.join(chain)}")
+                break
+    return errors
+
+
+def _multiple_authority(messages: Sequence[TfMessage]) -> list[str]:
+    errors: list[str] = []
+    authority: dict[str, str] = {}
+    for m in messages:
+        for t in m.transforms:
+            if t.child in authority and authority[t.child] != m.callerid:
+                text = (f"node [{m.callerid}] publishing transform [{t.child}] with parent [{t.parent}] already "
+                        f"published by node [{authority[t.child]}]")
+                if text not in errors:
+                    errors.append(text)
+            authority[t.child] = m.callerid
+    return errors
+
+
+def check_tf(messages: Sequence[TfMessage], report: Report) -> None:
+    """tf's roswtf plugin's rules over what /tf carried for a second, with its texts."""
+    report.warn("No tf messages", not messages)
+    report.warn("Received out-of-date/future transforms:", _rostime_delta(messages))
+    report.warn("Received non-normalized rotation in transforms:", _not_normalized(messages))
+    report.error("TF re-parenting contention:", _reparenting(messages))
+    report.error("TF cycle detection::", _cycles(messages))
+    report.error("TF multiple authority contention:", _multiple_authority(messages))

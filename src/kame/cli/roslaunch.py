@@ -25,6 +25,7 @@ from pathlib import Path
 
 from kame import environ, names
 from kame.catkin import executables
+from kame.cli._options import OptionParser
 from kame.cli.roscore import _disk_usage_check, _link_latest, _title
 from kame.cli.rosmaster import setup_file_logging
 from kame.launch import plan
@@ -96,7 +97,7 @@ def load_config(files: Sequence[str], argv: Sequence[str], env: Mapping[str, str
 
 
 def _parser() -> argparse.ArgumentParser:
-    p = argparse.ArgumentParser(
+    p = OptionParser(
         prog="roslaunch", usage="roslaunch [options] [package] <filename> [arg_name:=value...]\n"
         "       roslaunch [options] <filename> [<filename>...] [arg_name:=value...]\n\n"
         "If <filename> is a single dash ('-'), launch XML is read from standard input.")
@@ -135,7 +136,6 @@ def _parser() -> argparse.ArgumentParser:
         help="the SIGINT timeout used when killing nodes (in seconds).")
     add("--sigterm-timeout", dest="sigterm_timeout", type=float, default=2.0, metavar="SIGTERM_TIMEOUT",
         help="the SIGTERM timeout used when killing nodes if SIGINT does not stop the node (in seconds).")
-    add("args", nargs="*", help=argparse.SUPPRESS)
     return p
 
 

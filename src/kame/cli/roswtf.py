@@ -13,6 +13,7 @@ from __future__ import annotations
 import errno
 import os
 import sys
+import threading
 import time
 import xml.etree.ElementTree as ElementTree
 from collections.abc import Callable, Mapping, Sequence
@@ -150,6 +151,56 @@ def gather_packages(variables: Mapping[str, str], cwd: Path, everything: bool) -
     return [_wtf.PackageFacts(pkg.name, str(pkg.path), _manifest_problem(pkg.path / "package.xml"),
                               _definition_problems(pkg, catalog))
             for pkg in packages.values() if wanted(pkg)]
+
+
+# ------------------------------------------------------------------ plugins
+
+TF_LISTEN = 1.0  # seconds tf's plugin listens to /tf
+
+
+def roswtf_plugins(variables: Mapping[str, str]) -> list[str]:
+    """The plugins packages export to roswtf (`<export><roswtf plugin="tf.tfwtf"/>`) that kame
+    runs: tf's, whose online rules look at a second of /tf."""
+    found: list[str] = []
+    for pkg in find_packages(package_path_roots(variables.get("ROS_PACKAGE_PATH", ""))).values():
+        try:
+            exports = ElementTree.parse(pkg.path / "package.xml").getroot().findall("export/roswtf")
+        except (OSError, ElementTree.ParseError):
+            continue
+        found.extend(e.get("plugin", "") for e in exports if e.get("plugin") in ONLINE_PLUGINS)
+    return sorted(found)
+
+
+def listen_tf(uri: str, report: _wtf.Report) -> None:
+    """tf's plugin: what /tf carries for TF_LISTEN seconds, then its rules."""
+    from kame.node.config import node_config
+    from kame.node.node import Node
+    from tf2_msgs.msg import TFMessage
+
+    print("running tf checks, this will take a second...", flush=True)
+    special = {"name": f"roswtf_{os.getpid()}_{int(time.time() * 1000)}", "master": uri}
+    node = Node(node_config("roswtf", special, os.environ))
+    heard: list[_wtf.TfMessage] = []
+
+    def deliver(frames: list[memoryview], header: dict[str, str]) -> None:
+        message = TFMessage._from_buffer(frames[-1])
+        transforms = tuple(_wtf.TfTransform(t.header.frame_id, t.child_frame_id, t.header.stamp.to_sec(),
+                                            sum(v * v for v in (t.transform.rotation.x, t.transform.rotation.y,
+                                                                t.transform.rotation.z, t.transform.rotation.w))
+                                            ** 0.5)
+                           for t in message.transforms)
+        heard.append(_wtf.TfMessage(transforms, time.time(), header.get("callerid", "")))
+
+    try:
+        node.subscribe("/tf", TFMessage._type, TFMessage._md5sum, TFMessage._full_text, deliver)
+        threading.Event().wait(TF_LISTEN)  # the plugin's sample is a window of time, not an event
+    finally:
+        node.shutdown("roswtf done")
+    print("... tf checks complete")
+    _wtf.check_tf(list(heard), report)
+
+
+ONLINE_PLUGINS: dict[str, Callable[[str, _wtf.Report], None]] = {"tf.tfwtf": listen_tf}
 
 
 # ------------------------------------------------------------------ the graph
@@ -357,6 +408,9 @@ def _main(argv: list[str]) -> int:
     options = parser.parse_args(argv)
     args = options.args
     out = sys.stdout
+    plugins = [] if options.disable_plugins else roswtf_plugins(os.environ)
+    for plugin in plugins:
+        print("Loaded plugin", plugin)
     if args:
         problem = _load_launch_files(args)
         if problem:
@@ -406,6 +460,8 @@ def _main(argv: list[str]) -> int:
     _wtf.check_graph(graph, online, _wtf.master_is_remote(env))
     print("... done running graph rules")
     _wtf.check_launches(gather_launches(uri), online)
+    for plugin in plugins:
+        ONLINE_PLUGINS[plugin](uri, online)
     out.write(f"\nOnline checks summary:\n\n{_wtf.format_report(online)}")
     return 0
 

@@ -59,6 +59,11 @@ def use_roscpp_console(on: bool = True) -> None:
     _roscpp_console = on
 
 
+def roscpp_console() -> bool:
+    """Whether this program prints roscpp's console lines (use_roscpp_console)."""
+    return _roscpp_console
+
+
 def log_dir() -> str:
     if os.environ.get("ROS_LOG_DIR"):
         return os.environ["ROS_LOG_DIR"]

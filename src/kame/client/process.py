@@ -14,6 +14,7 @@ from kame.client import clock, core
 from kame.client import log as _log
 from kame.client.core import spin as spin  # rospy.spin: the services' spin() uses it too, so it lives in core
 from kame.client.errors import ROSException, ROSInitException, ROSInterruptException
+from kame.console import roscpp_colour, roscpp_line
 from kame.net.signal_wake import SignalSafeEvent
 from kame.node.config import node_config
 from kame.node.master_proxy import MasterError
@@ -32,7 +33,14 @@ def myargv(argv: list[str] | None = None) -> list[str]:
 
 
 def _print_shutdown_call(caller_id: str, msg: str) -> None:
-    """What rospy prints on stdout when the master or `rosnode kill` asks it to shut down."""
+    """What rospy prints on stdout when the master or `rosnode kill` asks it to shut down; a port
+    of a C++ program prints roscpp's two warnings instead (its shutdown callback's)."""
+    if _log.roscpp_console():
+        colour = roscpp_colour(os.environ)
+        for text in ("Shutdown request received.", f"Reason given for shutdown: [{msg}]"):
+            sys.stderr.write(roscpp_line("WARN", text, time.time_ns(), colour) + "\n")
+        sys.stderr.flush()
+        return
     print(f"shutdown request: {msg}" if msg else "shutdown requst", flush=True)  # sic: rospy's typo
 
 
@@ -57,16 +65,28 @@ def _wait_for_master(node: Node, master_uri: str) -> None:
     raise ROSInitException("init_node interrupted before it could complete")
 
 
+_interrupt_busy_main = True  # kame's own programs; a rospy program's Ctrl-C never raises (rospy_ctrl_c)
+
+
+def rospy_ctrl_c() -> None:
+    """Ctrl-C as rospy's handler takes it, for the programs that import rospy: the node shuts
+    down and nothing is raised in the main thread, whatever it is doing (rospy swallows the
+    KeyboardInterrupt), so `while not rospy.is_shutdown(): ...` ends at its next check, with no
+    traceback, even when the Ctrl-C comes between two sleeps."""
+    global _interrupt_busy_main
+    _interrupt_busy_main = False
+
+
 def _install_signal_handlers() -> None:
     def handler(signum: int, frame: Any) -> None:
         # The shutdown runs on a thread of its own: the interrupted main thread may hold a lock
         # the shutdown needs (it may be in the middle of a publish). A main thread waiting in
-        # rospy (spin, sleep, Rate) wakes up through the shutdown event and leaves quietly; one
-        # busy in user code gets a ROSInterruptException, which is a KeyboardInterrupt too, so
-        # both the tutorials' `except rospy.ROSInterruptException` and plain Python code see it.
+        # rospy (spin, sleep, Rate) wakes up through the shutdown event and leaves quietly. In
+        # kame's own programs one busy elsewhere (reading keys) gets a ROSInterruptException, a
+        # KeyboardInterrupt too; a rospy program's goes on to its next is_shutdown(), as in rospy.
         waiting = core.main_thread_is_waiting()
         threading.Thread(target=core.signal_shutdown, args=(f"signal-{signum}",), name="rospy-shutdown").start()
-        if signum == signal.SIGINT and not waiting:
+        if signum == signal.SIGINT and not waiting and _interrupt_busy_main:
             raise ROSInterruptException("ROS shutdown request")
 
     if threading.current_thread() is not threading.main_thread():
@@ -269,7 +289,7 @@ def get_master(env: dict[str, str] | None = None) -> Any:
     return _master()
 
 
-def wait_for_message(topic: str, topic_type: type[Any], timeout: float | None = None) -> Any:
+def wait_for_message(topic: str, topic_type: type[Any], timeout: Any = None) -> Any:
     """Subscribe, wait for one message, unsubscribe; ROSException on timeout."""
     from kame.client.topics import Subscriber
 
@@ -281,9 +301,13 @@ def wait_for_message(topic: str, topic_type: type[Any], timeout: float | None = 
             got.append(msg)
             event.set()
 
+    if timeout is not None and not isinstance(timeout, (int, float)):
+        timeout = float(timeout.to_sec())  # a rospy.Duration, as rospy takes too
     subscriber = Subscriber(topic, topic_type, callback)
     try:
-        with core.woken_at_shutdown(event):  # the message, or shutdown, sets it
+        # the message, or shutdown, sets it; a Ctrl-C meanwhile shuts down without raising into
+        # the wait, which then raises rospy's "rospy shutdown"
+        with core.woken_at_shutdown(event), core.main_thread_waiting():
             event.wait(timeout)
     finally:
         subscriber.unregister()

@@ -160,10 +160,12 @@ class ServiceProxy:
 SERVICE_POLL_PERIOD = 0.02
 
 
-def wait_for_service(service: str, timeout: float | None = None) -> None:
+def wait_for_service(service: str, timeout: Any = None) -> None:
     """Block until `service` answers a probe; ROSException on timeout, ROSInterruptException at shutdown."""
     master, caller_id = _master_and_caller()
     resolved = core.resolve_name(service)
+    if timeout is not None and not isinstance(timeout, (int, float)):
+        timeout = float(timeout.to_sec())  # a rospy.Duration, as rospy takes too
     deadline = None if timeout is None else time.monotonic() + timeout
     if timeout == 0.0:
         raise ValueError("timeout must be non-zero")

@@ -18,11 +18,19 @@ def _seconds(duration: Any) -> float:
 
 
 def sleep(duration: Any) -> None:
-    """Sleep for `duration` (seconds or a Duration) of ROS time; ROSInterruptException at shutdown."""
+    """Sleep for `duration` (seconds or a Duration) of ROS time.
+
+    On the wall clock a shutdown during the sleep ends it early and quietly, as rospy's wall
+    sleep never raises: `while not rospy.is_shutdown(): rate.sleep()` then ends cleanly on
+    Ctrl-C. A sleep begun after the shutdown (a shutdown hook letting a last message go, a
+    `while True:` loop) sleeps its whole time, as rospy's does. On simulated time shutdown
+    raises ROSInterruptException, as rospy's sim-time branch does."""
     seconds = _seconds(duration)
     if not clock.is_sim_time():
-        if core.wait_for_shutdown(max(seconds, 0.0)):
-            raise ROSInterruptException("ROS shutdown request")
+        if core.is_shutdown():
+            time.sleep(max(seconds, 0.0))
+        else:
+            core.wait_for_shutdown(max(seconds, 0.0))
         return
     start = clock.get_rostime()
     target = start + clock.Duration.from_sec(seconds)
@@ -109,7 +117,7 @@ class Timer(threading.Thread):
                 rate.sleep()
             except ROSInterruptException:
                 break
-            if self._shutdown:
+            if self._shutdown or core.is_shutdown():  # a wall-clock sleep ends quietly at shutdown
                 break
             current_real = clock.get_rostime()
             start = time.time()

@@ -17,7 +17,7 @@ from pathlib import Path
 from typing import Any
 
 from PySide6.QtCore import QAbstractTableModel, QModelIndex, QPersistentModelIndex, Qt, QTimer, Signal
-from PySide6.QtGui import QBrush, QCloseEvent, QColor
+from PySide6.QtGui import QBrush, QCloseEvent, QColor, QResizeEvent
 from PySide6.QtWidgets import (
     QAbstractItemView,
     QApplication,
@@ -54,6 +54,7 @@ from kame.rqt.console_model import (
     load,
 )
 from kame.rqt.console_source import TOPIC, LogFeed
+from kame.rqt.flow_layout import FlowLayout
 from kame.rqt.master_wait import MasterWaiter
 
 SEVERITY_COLOURS = {DEBUG: QColor("#707070"), WARN: QColor("#b35f00"), ERROR: QColor("#c00000"),
@@ -136,6 +137,35 @@ class RuleEditor(QWidget):
         return (Rule(text, self.column.currentText(), self.regex.isChecked()),) if text else ()
 
 
+class _LogTable(QTableView):
+    """The messages' table: Message stretches over what the other columns leave. In a narrow
+    table (docked beside two other plugins, Message collapsed to an ellipsis) the others give
+    way, Location first, then Topics, Stamp and Node, down to NARROWEST, until Message has
+    MESSAGE_SHARE of the width and at least MESSAGE_LEAST (at rqt_console's own width only Location
+    narrows a little)."""
+
+    COLUMN_WIDTHS = (60, 140, 230, 160, 260)  # severity, node, stamp, topics, location
+    NARROWEST = 70
+    MESSAGE_SHARE = 0.25
+    MESSAGE_LEAST = 160
+
+    def fit_columns(self) -> None:
+        width = self.viewport().width()
+        room = width - max(self.MESSAGE_LEAST, width * self.MESSAGE_SHARE)
+        widths = list(self.COLUMN_WIDTHS)
+        for index in (4, 3, 2, 1):
+            excess = sum(widths) - room
+            if excess <= 0:
+                break
+            widths[index] = max(self.NARROWEST, int(widths[index] - excess))
+        for column, column_width in enumerate(widths, start=1):
+            self.setColumnWidth(column, column_width)
+
+    def resizeEvent(self, event: QResizeEvent) -> None:
+        super().resizeEvent(event)
+        self.fit_columns()
+
+
 class ConsoleWindow(QWidget):
     messages_ready = Signal()
     master_up = Signal()
@@ -147,15 +177,13 @@ class ConsoleWindow(QWidget):
         self.view = view
         self.take = take
         self.model = LogTableModel(view)
-        self.table = QTableView()
+        self.table = _LogTable()
         self.table.setModel(self.model)
         self.table.setSelectionBehavior(QAbstractItemView.SelectionBehavior.SelectRows)
         self.table.verticalHeader().setVisible(False)
         self.table.verticalHeader().setDefaultSectionSize(20)
         self.table.horizontalHeader().setSectionResizeMode(0, QHeaderView.ResizeMode.Stretch)
-        for column, width in enumerate((0, 60, 140, 230, 160, 260)):
-            if width:
-                self.table.setColumnWidth(column, width)
+        self.table.fit_columns()
         self.table.setWordWrap(False)
 
         self.pause_button = QPushButton("Pause")
@@ -179,17 +207,13 @@ class ConsoleWindow(QWidget):
         self.highlight = RuleEditor("highlight messages matching...")
         self.status = QLabel("")
 
-        buttons = QHBoxLayout()
-        for widget in (self.pause_button, self.clear_button, self.save_button, self.load_button, self.autoscroll,
-                       self.capacity):
-            buttons.addWidget(widget)
-        buttons.addStretch(1)
-        buttons.addWidget(self.status)
-        severities = QHBoxLayout()
-        severities.addWidget(QLabel("Show:"))
-        for box in self.severity_boxes.values():
-            severities.addWidget(box)
-        severities.addWidget(self.nodes, 1)
+        # rows that wrap, so a narrow dock keeps every control on screen
+        buttons = FlowLayout()
+        buttons.add_widgets(self.pause_button, self.clear_button, self.save_button, self.load_button, self.autoscroll,
+                            self.capacity, self.status)
+        severities = FlowLayout()
+        self.nodes.setMinimumWidth(220)
+        severities.add_widgets(QLabel("Show:"), *self.severity_boxes.values(), self.nodes)
         page = QVBoxLayout(self)
         page.addWidget(self.table, 1)
         page.addLayout(buttons)

@@ -40,21 +40,21 @@ def to_svg(layout: Layout) -> str:
            "markerHeight=\"8\" orient=\"auto-start-reverse\"><path d=\"M0,0 L10,5 L0,10 z\" fill=\"#000\"/>"
            "</marker></defs>",
            '<rect width="100%" height="100%" fill="#ffffff"/>']
-    for namespace, hulls in sorted(layout.groups.items()):
-        for box in hulls:
-            out.append(f'<g class="cluster"><title>{escape(namespace)}</title>'
-                       f'<rect x="{_f(box.x)}" y="{_f(box.y)}" width="{_f(box.w)}" height="{_f(box.h)}" rx="6" '
-                       f'fill="#f4f6fa" stroke="{CLUSTER}" stroke-dasharray="4 2"/>'
-                       f'<text x="{_f(box.x + 6)}" y="{_f(box.y + 13)}" fill="{CLUSTER}">{escape(namespace)}</text>'
-                       '</g>')
+    for namespace, box in sorted(layout.groups.items()):
+        out.append(f'<g class="cluster"><title>{escape(namespace)}</title>'
+                   f'<rect x="{_f(box.x)}" y="{_f(box.y)}" width="{_f(box.w)}" height="{_f(box.h)}" rx="6" '
+                   f'fill="#f4f6fa" stroke="{CLUSTER}" stroke-dasharray="4 2"/>'
+                   f'<text x="{_f(box.x + 6)}" y="{_f(box.y + 13)}" fill="{CLUSTER}">{escape(namespace)}</text>'
+                   '</g>')
     for index, edge in enumerate(scene.edges):
         source, target = scene.vertex(edge.source).name, scene.vertex(edge.target).name
         title = f"{source}->{target}" + (f" [{edge.label}]" if edge.label else "")
         out.append(f'<g class="edge"><title>{escape(title)}</title><path d="{path_data(layout.paths[index])}" '
                    f'fill="none" stroke="{INK}" marker-end="url(#arrow)"/>')
         if edge.label:
-            x, y = layout.label_position(index)
-            out.append(f'<text x="{_f(x)}" y="{_f(y - 4)}" text-anchor="middle">{escape(edge.label)}</text>')
+            box = layout.labels[index]
+            out.append(f'<text x="{_f(box.x + box.w / 2)}" y="{_f(box.y + FONT_SIZE)}" '
+                       f'text-anchor="middle">{escape(edge.label)}</text>')
         out.append("</g>")
     for vertex in scene.vertices:
         box = layout.boxes[vertex.id]

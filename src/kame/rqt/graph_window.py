@@ -24,6 +24,7 @@ from PySide6.QtGui import (
     QPainterPath,
     QPen,
     QPolygonF,
+    QResizeEvent,
     QWheelEvent,
 )
 from PySide6.QtWidgets import (
@@ -39,7 +40,6 @@ from PySide6.QtWidgets import (
     QGraphicsSceneHoverEvent,
     QGraphicsSimpleTextItem,
     QGraphicsView,
-    QHBoxLayout,
     QLabel,
     QLineEdit,
     QPushButton,
@@ -48,6 +48,7 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
+from kame.rqt.flow_layout import FlowLayout
 from kame.rqt.graph_export import to_dot, to_svg
 from kame.rqt.graph_layout import FONT_SIZE, Layout, cubic_segments, layout
 from kame.rqt.graph_model import GraphOptions, GraphSnapshot, Kind, Mode, Scene, build_scene
@@ -111,15 +112,14 @@ class GraphScene(QGraphicsScene):
         self.vertex_items: dict[str, QGraphicsItem] = {}
         self.edge_items: list[tuple[QGraphicsPathItem, QGraphicsPathItem]] = []
         hover = on_hover or self.highlight
-        for namespace, hulls in drawn.groups.items():
-            for box in hulls:
-                rect = self.addRect(QRectF(box.x, box.y, box.w, box.h), QPen(CLUSTER, 1, Qt.PenStyle.DashLine),
-                                    QBrush(QColor("#f4f6fa")))
-                rect.setZValue(-1)
-                title = QGraphicsSimpleTextItem(namespace, rect)
-                title.setFont(font)
-                title.setBrush(QBrush(CLUSTER))
-                title.setPos(box.x + 6, box.y + 2)
+        for namespace, box in drawn.groups.items():
+            rect = self.addRect(QRectF(box.x, box.y, box.w, box.h), QPen(CLUSTER, 1, Qt.PenStyle.DashLine),
+                                QBrush(QColor("#f4f6fa")))
+            rect.setZValue(-1)
+            title = QGraphicsSimpleTextItem(namespace, rect)
+            title.setFont(font)
+            title.setBrush(QBrush(CLUSTER))
+            title.setPos(box.x + 6, box.y + 2)
         scene = drawn.scene
         for index, edge in enumerate(scene.edges):
             points = drawn.paths[index]
@@ -131,8 +131,8 @@ class GraphScene(QGraphicsScene):
             self.edge_items.append((line, head))
             if edge.label:
                 label = self.addSimpleText(edge.label, font)
-                x, y = drawn.label_position(index)
-                label.setPos(x - label.boundingRect().width() / 2, y - FONT_SIZE - 6)
+                box = drawn.labels[index]
+                label.setPos(box.x + (box.w - label.boundingRect().width()) / 2, box.y)
         for vertex in scene.vertices:
             box = drawn.boxes[vertex.id]
             item: _Ellipse | _Rect = (_Ellipse if vertex.kind is Kind.NODE else _Rect)(
@@ -205,9 +205,28 @@ def save_drawing(path: Path, drawn: Layout, font: QFont | None = None) -> None:
 
 
 class _ZoomView(QGraphicsView):
+    """The graph's view: the wheel zooms. Until the user zooms, the view keeps the graph fitted
+    as it is resized (a docked window is laid out after its first drawing)."""
+
+    def __init__(self) -> None:
+        super().__init__()
+        self.fitted = True
+
+    def fit(self) -> None:
+        scene = self.scene()
+        if scene is not None:
+            self.fitInView(scene.sceneRect(), Qt.AspectRatioMode.KeepAspectRatio)
+        self.fitted = True
+
     def wheelEvent(self, event: QWheelEvent) -> None:
         factor = 1.15 if event.angleDelta().y() > 0 else 1 / 1.15
         self.scale(factor, factor)
+        self.fitted = False
+
+    def resizeEvent(self, event: QResizeEvent) -> None:
+        super().resizeEvent(event)
+        if self.fitted:
+            self.fit()
 
 
 class GraphWindow(QWidget):
@@ -263,16 +282,13 @@ class GraphWindow(QWidget):
         self.view.setRenderHint(QPainter.RenderHint.Antialiasing, True)
         self.view.setDragMode(QGraphicsView.DragMode.ScrollHandDrag)
 
-        first = QHBoxLayout()
-        for widget in (self.refresh_button, self.mode_box, self.node_filter, self.topic_filter, self.auto_refresh,
-                       self.auto_period, self.fit_button, self.save_button):
-            first.addWidget(widget)
-        second = QHBoxLayout()
-        for widget in (self.group_box, self.actions_box, self.debug_box, self.dead_box, self.leaf_box,
-                       self.unreachable_box, self.highlight_box):
-            second.addWidget(widget)
-        second.addStretch(1)
-        second.addWidget(self.status)
+        # rows that wrap: in a narrow dock every control stays on screen (Fit and Save were cut off)
+        first = FlowLayout()
+        first.add_widgets(self.refresh_button, self.mode_box, self.node_filter, self.topic_filter, self.auto_refresh,
+                          self.auto_period, self.fit_button, self.save_button)
+        second = FlowLayout()
+        second.add_widgets(self.group_box, self.actions_box, self.debug_box, self.dead_box, self.leaf_box,
+                           self.unreachable_box, self.highlight_box, self.status)
         column = QVBoxLayout(self)
         column.addLayout(first)
         column.addLayout(second)
@@ -287,12 +303,13 @@ class GraphWindow(QWidget):
         self.save_button.clicked.connect(self._ask_save)
         self.auto_refresh.toggled.connect(self._auto_changed)
         self.auto_period.valueChanged.connect(self._auto_changed)
-        self.mode_box.currentIndexChanged.connect(self.redraw)
+        # another mode, filter or option draws another graph: fitted, or it may lie off-screen
+        self.mode_box.currentIndexChanged.connect(self._restyled)
         for line in (self.node_filter, self.topic_filter):
-            line.editingFinished.connect(self.redraw)
+            line.editingFinished.connect(self._restyled)
         for box in (self.group_box, self.actions_box, self.debug_box, self.dead_box, self.leaf_box,
                     self.unreachable_box):
-            box.toggled.connect(self.redraw)
+            box.toggled.connect(self._restyled)
         self.highlight_box.toggled.connect(self._highlight_toggled)
 
     def options(self) -> GraphOptions:
@@ -358,6 +375,10 @@ class GraphWindow(QWidget):
         if first:
             self.fit()
 
+    def _restyled(self, *_: object) -> None:
+        self.redraw()
+        self.fit()
+
     def _hover(self, vertex_id: str | None) -> None:
         if self.graphics is not None and self.highlight_box.isChecked():
             self.graphics.highlight(vertex_id)
@@ -367,8 +388,7 @@ class GraphWindow(QWidget):
             self.graphics.highlight(None)
 
     def fit(self) -> None:
-        if self.graphics is not None:
-            self.view.fitInView(self.graphics.sceneRect(), Qt.AspectRatioMode.KeepAspectRatio)
+        self.view.fit()
 
     def _ask_save(self) -> None:
         if self.layout_model is None:

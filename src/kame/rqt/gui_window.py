@@ -40,6 +40,9 @@ DOCK_AREAS = (Qt.DockWidgetArea.LeftDockWidgetArea, Qt.DockWidgetArea.RightDockW
               Qt.DockWidgetArea.BottomDockWidgetArea, Qt.DockWidgetArea.TopDockWidgetArea)
 
 
+DOCK_MINIMUM = (320, 240)  # a dock this small still shows its plugin's controls and some of its view
+
+
 class PluginDock(QDockWidget):
     closed = Signal(str)  # the perspective key
 
@@ -51,12 +54,15 @@ class PluginDock(QDockWidget):
         self.setFeatures(QDockWidget.DockWidgetFeature.DockWidgetClosable
                          | QDockWidget.DockWidgetFeature.DockWidgetMovable
                          | QDockWidget.DockWidgetFeature.DockWidgetFloatable)
-        # the tools' button rows are wide: in a narrower dock they scroll instead of widening the window
+        # the tools' button rows wrap (kame.rqt.flow_layout): the plugin is as wide as its dock,
+        # never wider (its right end, Fit and Save, was cut off); it scrolls only up and down
         scroll = QScrollArea()
         scroll.setFrameShape(QFrame.Shape.NoFrame)
         scroll.setWidgetResizable(True)
+        scroll.setHorizontalScrollBarPolicy(Qt.ScrollBarPolicy.ScrollBarAlwaysOff)
         scroll.setWidget(handle.widget)
         self.setWidget(scroll)
+        self.setMinimumSize(*DOCK_MINIMUM)
 
     def closeEvent(self, event: QCloseEvent) -> None:
         super().closeEvent(event)

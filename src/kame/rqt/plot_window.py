@@ -23,7 +23,6 @@ from PySide6.QtWidgets import (
     QComboBox,
     QCompleter,
     QDoubleSpinBox,
-    QHBoxLayout,
     QLabel,
     QLineEdit,
     QPushButton,
@@ -32,6 +31,7 @@ from PySide6.QtWidgets import (
 )
 
 from kame.node.master_proxy import MasterError
+from kame.rqt.flow_layout import FlowLayout
 from kame.rqt.plot_model import SeriesNameError, expand_series_args, padded, value_range
 from kame.rqt.plot_source import PlotSource
 
@@ -88,17 +88,14 @@ class PlotWindow(QWidget):
             box.setValue(value)
         self.status = QLabel("")
 
-        top = QHBoxLayout()
-        top.addWidget(QLabel("Topic"))
-        top.addWidget(self.topic, 1)
-        for button in (self.add_button, self.remove_box, self.remove_button, self.pause_button, self.clear_button):
-            top.addWidget(button)
-        axes = QHBoxLayout()
-        for widget in (self.autoscroll, QLabel("history"), self.history, self.y_auto, QLabel("y from"), self.y_min,
-                       QLabel("to"), self.y_max):
-            axes.addWidget(widget)
-        axes.addStretch(1)
-        axes.addWidget(self.status)
+        # rows that wrap, so a narrow dock keeps every control on screen
+        top = FlowLayout()
+        self.topic.setMinimumWidth(220)
+        top.add_widgets(QLabel("Topic"), self.topic, self.add_button, self.remove_box, self.remove_button,
+                        self.pause_button, self.clear_button)
+        axes = FlowLayout()
+        axes.add_widgets(self.autoscroll, QLabel("history"), self.history, self.y_auto, QLabel("y from"), self.y_min,
+                         QLabel("to"), self.y_max, self.status)
         page = QVBoxLayout(self)
         page.addLayout(top)
         page.addWidget(self.plot, 1)

@@ -32,7 +32,9 @@ class Grid(Display):
         half = count * cell / 2
         ticks = np.linspace(-half, half, count + 1)
         lines = [[(t, -half, 0), (t, half, 0)] for t in ticks] + [[(-half, t, 0), (half, t, 0)] for t in ticks]
-        scene.add("lines", apply(placed, np.array(lines)), self.color(), self.number("Line Width", 1))
+        offset = self.options.get("Offset")  # rviz's: the grid's centre in its reference frame
+        shift = [float(offset.get(axis, 0)) for axis in "XYZ"] if isinstance(offset, dict) else [0.0, 0.0, 0.0]
+        scene.add("lines", apply(placed, np.array(lines) + shift), self.color(), self.number("Line Width", 1))
 
 
 class Axes(Display):

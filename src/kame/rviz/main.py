@@ -1,6 +1,7 @@
 """`rviz [-d FILE.rviz] [-f FIXED_FRAME] [--stats]` (also `rosrun rviz rviz`): the window on a node
 named /rviz_<pid> (rviz's anonymous name) or its `__name:=` (a launch file's name="rviz"), with
-ROS remappings, __ns and __master honoured; --stats prints how well the window keeps up
+ROS remappings, __ns and __master honoured; a -d file that is not there is said so and the
+default layout opens, as rviz does; --stats prints how well the window keeps up
 (kame.rviz.stats) each second. Without PySide6/PyOpenGL it says which extra to install."""
 
 from __future__ import annotations
@@ -13,6 +14,24 @@ import time
 from collections.abc import Sequence
 
 from kame import names
+from kame.rviz import config as rviz_config
+
+
+def startup_config(path: str, fixed_frame: str) -> tuple[rviz_config.Config, str]:
+    """The layout rviz opens with and its file: `path`'s, or rviz's default (a grid) without
+    one. A `path` that is not there is said so and the default opens, as rviz's
+    loadDisplayConfig does. OSError or ValueError for a file that cannot be read as one."""
+    if path and not os.path.isfile(path):
+        from kame.cli._console import console
+
+        console("ERROR", f"{path} does not exist!")
+        path = ""
+    config = rviz_config.load(path) if path else rviz_config.Config()
+    if not path:
+        config.displays = [rviz_config.DISPLAY_CLASSES["rviz/Grid"]()]
+    if fixed_frame:
+        config.fixed_frame = fixed_frame
+    return config, path
 
 
 def main(argv: Sequence[str] | None = None) -> int:
@@ -33,18 +52,13 @@ def main(argv: Sequence[str] | None = None) -> int:
         return 1
     from kame.node.config import node_config
     from kame.node.node import Node
-    from kame.rviz import config as rviz_config
     from kame.rviz.source import RvizSource
 
     try:
-        config = rviz_config.load(options.display_config) if options.display_config else rviz_config.Config()
+        config, options.display_config = startup_config(options.display_config, options.fixed_frame)
     except (OSError, ValueError) as exc:
         print(f"rviz: cannot load {options.display_config}: {exc}", file=sys.stderr)
         return 1
-    if not options.display_config:
-        config.displays = [rviz_config.DISPLAY_CLASSES["rviz/Grid"]()]
-    if options.fixed_frame:
-        config.fixed_frame = options.fixed_frame
     # X11 Qt holds a window's update request 5 ms for more to join it: the view's frames are
     # paced already (kame.rviz.pacing), and a message would wait those 5 ms more for its pixels
     os.environ.setdefault("QT_QPA_UPDATE_IDLE_TIME", "0")

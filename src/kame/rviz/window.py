@@ -50,6 +50,8 @@ from kame.rviz.tools import Measure, Selection
 from kame.rviz.view import INTERACT, MEASURE, NAV_GOAL, POSE_ESTIMATE, PUBLISH_POINT, SELECT, RenderView
 from visualization_msgs.msg import InteractiveMarkerFeedback
 
+# the topics of rviz's default tools (SetInitialPose, SetGoal, PublishPoint)
+INITIAL_POSE_TOPIC, GOAL_TOPIC, CLICKED_POINT_TOPIC = "/initialpose", "/move_base_simple/goal", "/clicked_point"
 STATUS_COLOURS = {WARN: (205, 153, 51), ERROR: (192, 32, 32)}  # as Debian's rviz 1.14 draws them
 
 
@@ -116,6 +118,9 @@ class RvizWindow(QMainWindow):
         dock.setWidget(panel)
         self.addDockWidget(Qt.DockWidgetArea.LeftDockWidgetArea, dock)
         self._tools()
+        self.statusBar()  # there from the start, as rviz's: the view keeps its size when a tool says something
+        if source is not None:  # rviz's tools advertise their topics as it starts: a first goal is heard
+            self._advertise_tools(source)
         self._menus()
         self._topic_errors: dict[int, str] = {}
         self.rebuild_tree()
@@ -136,17 +141,27 @@ class RvizWindow(QMainWindow):
         bar = self.addToolBar("Tools")
         bar.setObjectName("Tools")
         group = QActionGroup(self)
+        self.tool_actions: dict[str, QAction] = {}
         for name in (INTERACT, SELECT, MEASURE, POSE_ESTIMATE, NAV_GOAL, PUBLISH_POINT):
             action = QAction(name, self, checkable=True)
             action.setChecked(name == INTERACT)
             action.triggered.connect(lambda _checked=False, tool=name: self.set_tool(tool))
             group.addAction(action)
             bar.addAction(action)
+            self.tool_actions[name] = action
         self.views = QComboBox()
         self.views.addItems([ORBIT, TOP_DOWN, FPS])
         self.views.setCurrentText(self.config.camera.kind)
         self.views.currentTextChanged.connect(self.set_view)
         bar.addWidget(self.views)
+
+    @staticmethod
+    def _advertise_tools(source: RvizSource) -> None:
+        from geometry_msgs.msg import PointStamped, PoseStamped, PoseWithCovarianceStamped
+
+        source.advertise(INITIAL_POSE_TOPIC, PoseWithCovarianceStamped)
+        source.advertise(GOAL_TOPIC, PoseStamped)
+        source.advertise(CLICKED_POINT_TOPIC, PointStamped)
 
     def _menus(self) -> None:
         file_menu = self.menuBar().addMenu("&File")
@@ -191,6 +206,7 @@ class RvizWindow(QMainWindow):
 
     def set_tool(self, tool: str) -> None:
         self.view.tool = tool
+        self.tool_actions[tool].setChecked(True)
         if tool == SELECT:
             self.selection_dock.show()
         self.statusBar().showMessage(self.measure.status() if tool == MEASURE else "")
@@ -396,9 +412,16 @@ class RvizWindow(QMainWindow):
     # -------------------------------------------------------------- tools
 
     def _tool_used(self, pressed: np.ndarray, released: np.ndarray) -> None:
+        """2D Pose Estimate, 2D Nav Goal or Publish Point, used: its message sent, and Interact
+        the tool again, as rviz's tools finish after one use."""
         publish: Callable[[str, Any], None] | None = self.source.publish_stamped if self.source is not None else None
-        if publish is None or self.view.tool == INTERACT:
+        if publish is None or self.view.tool in (INTERACT, SELECT, MEASURE):
             return
+        self._publish_tool_message(publish, pressed, released)
+        self.set_tool(INTERACT)
+
+    def _publish_tool_message(self, publish: Callable[[str, Any], None], pressed: np.ndarray,
+                              released: np.ndarray) -> None:
         from geometry_msgs.msg import PointStamped, PoseStamped, PoseWithCovarianceStamped
 
         yaw = math.atan2(released[1] - pressed[1], released[0] - pressed[0]) if np.linalg.norm(
@@ -407,7 +430,7 @@ class RvizWindow(QMainWindow):
             point = PointStamped()
             point.header.frame_id = self.config.fixed_frame
             point.point.x, point.point.y, point.point.z = (float(v) for v in released)
-            publish("/clicked_point", point)
+            publish(CLICKED_POINT_TOPIC, point)
             return
         pose: Any = PoseWithCovarianceStamped() if self.view.tool == POSE_ESTIMATE else PoseStamped()
         pose.header.frame_id = self.config.fixed_frame
@@ -420,9 +443,9 @@ class RvizWindow(QMainWindow):
             covariance[0] = covariance[7] = 0.25
             covariance[35] = (math.pi / 12) ** 2
             pose.pose.covariance = covariance
-            publish("/initialpose", pose)
+            publish(INITIAL_POSE_TOPIC, pose)
         else:
-            publish("/move_base_simple/goal", pose)
+            publish(GOAL_TOPIC, pose)
 
     def _measured(self, point: np.ndarray) -> None:
         self.measure.click(point)

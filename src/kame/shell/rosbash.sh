@@ -1,4 +1,4 @@
-# kame: roscd, rospd, rosd, rosls, rosed, roscp, roscat as rosbash defines them, for bash
+# kame: roscd, rospd, rosd, rosls, rosed, roscp, roscat and rosawesome as rosbash defines them, for bash
 # and zsh (sourced by setup.bash / setup.zsh). Lookups go to `python -m kame.shell.locate`,
 # which finds packages as rospack does.
 
@@ -155,4 +155,10 @@ roscat() {
             $CATTER "$_kame_arg"
         fi
     fi
+}
+
+rosawesome() {
+    alias megamaid='rosbag record'
+    alias suck2blow='rosbag play'
+    alias botherder=roscore
 }

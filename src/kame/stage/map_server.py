@@ -80,7 +80,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         runtime.error("%s", exc)
         runtime.signal_shutdown("bad map")
         return 255
-    runtime.info("Read a %d X %d map @ %g m/cell", grid.width, grid.height, grid.resolution)
+    runtime.info("Read a %d X %d map @ %.3f m/cell", grid.width, grid.height, grid.resolution)
     from nav_msgs.msg import MapMetaData, OccupancyGrid
     from nav_msgs.srv import GetMap, GetMapResponse
 

@@ -3,7 +3,11 @@
 Each frame is an ellipse with its name; each parent -> child edge is an arrow labelled with
 the lines view_frames shows (broadcaster, rate, ...); a legend box says when it was recorded.
 Pure: edges in, PDF bytes out. Layout is a tidy tree: leaves side by side in depth-first
-order, each parent centred over its children, one row per depth.
+order, each parent centred over its children, one row per depth, a column as wide as its
+frame's name and label. An edge's label is a block on a white ground over the arrow, halfway
+down, centred on the child's column (so the labels of siblings stand side by side); a block
+that would still meet another moves right until it is clear (graphviz lets the labels of two
+edges from one parent overlap: the tf tutorial's world -> turtle1 and world -> turtle2 did).
 """
 
 from __future__ import annotations
@@ -23,6 +27,20 @@ LABEL_FONT = 7.0
 ROW = 120.0
 MARGIN = 40.0
 NODE_HEIGHT = 28.0
+LABEL_LINE = LABEL_FONT * 1.2
+LABEL_GAP = 6.0  # between two label blocks moved apart
+
+
+class Box(NamedTuple):
+    """A label block: left, top (downwards from the first row's centre), width, height."""
+    x: float
+    y: float
+    w: float
+    h: float
+
+    def meets(self, other: Box) -> bool:
+        return (self.x < other.x + other.w and other.x < self.x + self.w and self.y < other.y + other.h
+                and other.y < self.y + self.h)
 
 
 def _text_width(text: str, size: float) -> float:
@@ -64,14 +82,20 @@ def _layout(edges: Sequence[Edge]) -> tuple[dict[str, tuple[float, int]], float,
         deepest = max(deepest, depth)
         kids = [kid for kid in children[name] if kid not in placed]
         placed[name] = (0.0, depth)  # marks it, so a loop in the input cannot recurse forever
+        start, before = cursor, set(placed)
+        width = _column_width(name, labels.get(name, ()))
         if not kids:
-            width = _column_width(name, labels.get(name, ()))
             x = cursor + width / 2
             cursor += width
         else:
             xs = [place(kid, depth + 1) for kid in kids]
-            x = (xs[0] + xs[-1]) / 2
-            x = max(x, cursor - (xs[-1] - xs[0]) / 2)
+            x = (xs[0] + xs[-1]) / 2  # centred over its children
+            if cursor - start < width:  # itself wider than its subtree: the subtree moves to its middle
+                shift = (width - (cursor - start)) / 2
+                for below in set(placed) - before:
+                    placed[below] = (placed[below][0] + shift, placed[below][1])
+                x += shift
+                cursor = start + width
         placed[name] = (x, depth)
         return x
 
@@ -83,9 +107,39 @@ def _layout(edges: Sequence[Edge]) -> tuple[dict[str, tuple[float, int]], float,
     return placed, cursor, deepest
 
 
+def _ends(edge: Edge, positions: dict[str, tuple[float, int]]) -> tuple[tuple[float, float], tuple[float, float]]:
+    """An arrow's ends, (x, y downwards from the first row's centre): parent's bottom, child's top."""
+    (px, pdepth), (cx, cdepth) = positions[edge.parent], positions[edge.child]
+    return (px, pdepth * ROW + NODE_HEIGHT / 2), (cx, cdepth * ROW - NODE_HEIGHT / 2)
+
+
+def label_boxes(edges: Sequence[Edge]) -> dict[int, Box]:
+    """Each labelled edge's label block (by the edge's index), no two meeting: halfway down its
+    arrow, centred on its child's column, or moved right of the blocks it would meet."""
+    positions = _layout(edges)[0]
+    placed: dict[int, Box] = {}
+    wanted = []
+    for index, edge in enumerate(edges):
+        if edge.label and edge.parent in positions and edge.child in positions:
+            (_, y1), (x2, y2) = _ends(edge, positions)
+            w = max(_text_width(line, LABEL_FONT) for line in edge.label) + 4.0
+            h = len(edge.label) * LABEL_LINE + 2.0
+            wanted.append((index, Box(x2 - w / 2, (y1 + y2) / 2 - h / 2, w, h)))
+    for index, box in sorted(wanted, key=lambda item: (item[1].y, item[1].x)):
+        while True:
+            blocking = [other for other in placed.values() if box.meets(other)]
+            if not blocking:
+                break
+            box = box._replace(x=max(other.x + other.w for other in blocking) + LABEL_GAP)
+        placed[index] = box
+    return placed
+
+
 def render(edges: Sequence[Edge], legend: Sequence[str]) -> bytes:
     """A PDF page of the tree; `legend` lines go in a box at the top."""
     positions, content_width, deepest = _layout(edges)
+    labels = label_boxes(edges)
+    content_width = max([content_width, *(box.x + box.w for box in labels.values())])
     legend_width = max([_text_width(line, FONT) for line in legend] + [0.0]) + 20.0
     width = max(content_width, legend_width, 200.0) + 2 * MARGIN
     legend_height = (len(legend) + 1) * FONT * 1.4 if legend else 0.0
@@ -116,14 +170,14 @@ def render(edges: Sequence[Edge], legend: Sequence[str]) -> bytes:
     for edge in edges:
         if edge.parent not in positions or edge.child not in positions:
             continue
-        (px, pdepth), (cx_, cdepth) = positions[edge.parent], positions[edge.child]
-        x1, y1 = px + MARGIN, y_of(pdepth) - NODE_HEIGHT / 2
-        x2, y2 = cx_ + MARGIN, y_of(cdepth) + NODE_HEIGHT / 2
+        (x1, y1), (x2, y2) = ((x + MARGIN, y_of(0) - y) for x, y in _ends(edge, positions))
         ops.append(f"{x1:.2f} {y1:.2f} m {x2:.2f} {y2:.2f} l S")
         ops.append(f"{x2:.2f} {y2:.2f} m {x2 - 3:.2f} {y2 + 7:.2f} l {x2 + 3:.2f} {y2 + 7:.2f} l h f")
-        for index, line in enumerate(edge.label):
-            text((x1 + x2) / 2 + 6.0, (y1 + y2) / 2 + (len(edge.label) / 2 - index) * LABEL_FONT * 1.2,
-                 line, LABEL_FONT)
+    for index, box in labels.items():  # over the arrows, each on its white ground
+        left, top = box.x + MARGIN, y_of(0) - box.y
+        ops.append(f"1 g {left:.2f} {top - box.h:.2f} {box.w:.2f} {box.h:.2f} re f 0 g")
+        for row, line in enumerate(edges[index].label):
+            text(left + 2.0, top - 1.0 - (row + 1) * LABEL_LINE + LABEL_FONT * 0.2, line, LABEL_FONT)
     return _pdf("\n".join(ops).encode("latin-1"), width, height)
 
 

@@ -20,7 +20,6 @@ from kame.turtlesim.world import (
     NoSuchTurtle,
     Pen,
     Pose,
-    RotationEvent,
     Segment,
     Snapshot,
     Sprite,
@@ -36,6 +35,6 @@ from kame.turtlesim.world import (
 __all__ = [
     "COMMAND_TIMEOUT", "DEFAULT_BACKGROUND", "DEFAULT_PEN_COLOR", "DEFAULT_PEN_WIDTH", "PIXELS_PER_METRE",
     "UPDATE_PERIOD", "WINDOW_PIXELS", "Canvas", "InvalidValue", "NameTaken", "NoSuchTurtle", "Pen", "Pose",
-    "Rgb", "RotationEvent", "Segment", "Snapshot", "Sprite", "StepReport", "TurtleError", "TurtleUpdate",
+    "Rgb", "Segment", "Snapshot", "Sprite", "StepReport", "TurtleError", "TurtleUpdate",
     "TurtleView", "WallHit", "World", "wrap_angle",
 ]

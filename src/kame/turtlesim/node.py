@@ -8,7 +8,8 @@ and world steps into ROS traffic, as turtlesim 0.10.2's TurtleFrame and Turtle d
 - node `turtlesim`; services clear, reset, spawn, kill; params ~background_r/g/b (set to
   69/86/255 when absent, read at start and on every clear/reset);
 - per turtle: cmd_vel in, pose and color_sensor out (every 16 ms step), services set_pen,
-  teleport_absolute, teleport_relative, and the rotate_absolute action;
+  teleport_absolute, teleport_relative (ROS 1's turtlesim has no action: rotate_absolute is
+  ROS 2's);
 - roscpp's log lines; errors are logged and answered as failed calls with no text, as a
   roscpp service returning false is.
 What kame adds: a cmd_vel or request with NaN/infinity is refused (the real turtle would
@@ -32,7 +33,6 @@ from typing import Any
 
 from geometry_msgs.msg import Twist
 from kame.client import core, log, process, topics
-from kame.client.action.simple_action_server import SimpleActionServer
 from kame.net.feed import ChildFeed
 from kame.net.window import window_problem
 from kame.turtlesim.canvas import Rgb
@@ -40,7 +40,6 @@ from kame.turtlesim.frame_codec import FrameEncoder
 from kame.turtlesim.world import (
     DEFAULT_BACKGROUND,
     UPDATE_PERIOD,
-    RotationEvent,
     Snapshot,
     StepReport,
     TurtleError,
@@ -86,7 +85,7 @@ def _serialized(msg: Any) -> bytes:
 
 
 class _TurtleInterfaces:
-    """One turtle's topics, services and action server, under `<name>/`."""
+    """One turtle's topics and services, under `<name>/`."""
 
     def __init__(self, sim: TurtlesimNode, name: str) -> None:
         self.name = name
@@ -99,7 +98,6 @@ class _TurtleInterfaces:
             sim.serve(f"{name}/teleport_absolute", TeleportAbsolute, self._teleport_absolute),
             sim.serve(f"{name}/teleport_relative", TeleportRelative, self._teleport_relative),
         ]
-        self.rotate: Any = sim.rotate_absolute_server(name)
 
     def _on_cmd_vel(self, msg: Twist) -> None:
         try:
@@ -135,8 +133,6 @@ class _TurtleInterfaces:
         for service in self.services:
             if node is not None:
                 node.unadvertise_service(service)
-        if self.rotate is not None:
-            self._sim.close_rotate_absolute_server(self.rotate)
 
 
 class TurtlesimNode:
@@ -253,63 +249,10 @@ class TurtlesimNode:
                 current[new] = _TurtleInterfaces(self, new)
                 self._turtles = dict(current)
 
-    # ---------------------------------------------------------------- rotate_absolute
-
-    def rotate_absolute_server(self, name: str) -> Any:
-        """The turtle's rotate_absolute action server (None if it cannot be served)."""
-        try:
-            from turtlesim.msg import RotateAbsoluteAction
-
-            server: Any = SimpleActionServer(f"{name}/rotate_absolute", RotateAbsoluteAction, auto_start=False)
-        except Exception as exc:  # a server that cannot start: turtlesim goes on without the action
-            _warn("No rotate_absolute action for [%s]: %s", name, exc)
-            return None
-
-        def goal() -> None:
-            accepted = server.accept_new_goal()
-            with self.lock:
-                if self.world.has(name):
-                    self.world.rotate_absolute(name, accepted.theta)
-
-        def preempt() -> None:
-            with self.lock:
-                self.world.cancel_rotation(name)
-            if server.is_active():
-                server.set_preempted()
-
-        server.register_goal_callback(goal)
-        server.register_preempt_callback(preempt)
-        server.start()
-        return server
-
-    def close_rotate_absolute_server(self, server: Any) -> None:
-        for attr in ("shutdown", "stop"):
-            stop = getattr(getattr(server, "action_server", None), attr, None) or getattr(server, attr, None)
-            if callable(stop):
-                try:
-                    stop()
-                except Exception:
-                    pass
-                return
-
-    def _rotation(self, event: RotationEvent) -> None:
-        interfaces = self._turtles.get(event.name)
-        server = interfaces.rotate if interfaces is not None else None
-        if server is None or not server.is_active():
-            return
-        from turtlesim.msg import RotateAbsoluteFeedback, RotateAbsoluteResult
-
-        if event.succeeded:
-            server.set_succeeded(RotateAbsoluteResult(event.delta))
-        elif event.aborted:
-            server.set_aborted()
-        else:
-            server.publish_feedback(RotateAbsoluteFeedback(event.remaining))
-
     # ---------------------------------------------------------------- time
 
     def tick(self) -> StepReport:
-        """One simulation step, then its pose, colour, warning and action traffic."""
+        """One simulation step, then its pose, colour and warning traffic."""
         with self.lock:
             report = self.world.step(UPDATE_PERIOD)
         turtles = self._turtles
@@ -319,8 +262,6 @@ class TurtlesimNode:
                 interfaces.publish(update.pose, update.color)
         for hit in report.hits:
             _warn("Oh no! I hit the wall! (Clamping from [x=%f, y=%f])", hit.x, hit.y)
-        for event in report.rotations:
-            self._rotation(event)
         return report
 
     def frame(self) -> Snapshot | None:

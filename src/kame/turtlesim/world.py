@@ -5,8 +5,8 @@ Rules: knows nothing of ROS or of any GUI and never reads a clock. Its owner cal
 command timeout counts the world's own time, so a run is deterministic.
 
 The numbers and the order of one step are those of ros_tutorials' turtlesim 0.10.2
-(turtle.cpp): queued teleports first (each draws a line when the pen is down), then a
-rotate_absolute goal, then the 1 s command timeout, then the motion
+(turtle.cpp): queued teleports first (each draws a line when the pen is down), then the 1 s
+command timeout, then the motion
     theta = wrap(theta + w dt);  x += (cos th vx - sin th vy) dt;  y += (sin th vx + cos th vy) dt
 then the wall clamp (reported with the unclamped position in the window's top-down frame), the
 pose and the colour under the turtle, and last the line from the old to the new position.
@@ -30,8 +30,6 @@ DEFAULT_BACKGROUND = Rgb(69, 86, 255)
 DEFAULT_PEN_COLOR = Rgb(179, 184, 255)
 DEFAULT_PEN_WIDTH = 3
 IMAGE_COUNT = 8  # kame's turtle drawings; each spawned turtle gets one at random
-ROTATE_TOLERANCE = 0.02  # rad: rotate_absolute is done when this close
-ROTATE_SPEED = 1.0  # rad/s while rotate_absolute turns
 
 
 class TurtleError(Exception):
@@ -107,22 +105,10 @@ class WallHit:
 
 
 @dataclass(frozen=True)
-class RotationEvent:
-    """Progress of a rotate_absolute goal: feedback (`remaining`), success (`delta` turned) or
-    abortion (a velocity command, a new goal or the turtle's removal ended it)."""
-    name: str
-    remaining: float = 0.0
-    succeeded: bool = False
-    aborted: bool = False
-    delta: float = 0.0
-
-
-@dataclass(frozen=True)
 class StepReport:
     updates: tuple[TurtleUpdate, ...]
     hits: tuple[WallHit, ...]
     segments: tuple[Segment, ...]
-    rotations: tuple[RotationEvent, ...]
     changed: bool
 
 
@@ -168,8 +154,6 @@ class _Turtle:
     w: float = 0.0
     last_command: float = -math.inf
     teleports: list[_Teleport] = field(default_factory=list)
-    rotate_goal: float | None = None
-    rotate_start: float = 0.0
 
 
 class World:
@@ -189,7 +173,6 @@ class World:
         self._rng = rng or random.Random()
         self._turtles: dict[str, _Turtle] = {}
         self._counter = 0
-        self._events: list[RotationEvent] = []
 
     # ---------------------------------------------------------------- queries
 
@@ -236,9 +219,7 @@ class World:
     def kill(self, name: str) -> None:
         if name not in self._turtles:
             raise NoSuchTurtle(f"Tried to kill turtle [{name}], which does not exist")
-        t = self._turtles.pop(name)
-        if t.rotate_goal is not None:
-            self._events.append(RotationEvent(name, aborted=True))
+        del self._turtles[name]
         self.version += 1
 
     def clear(self, background: Rgb | None = None) -> None:
@@ -250,9 +231,6 @@ class World:
 
     def reset(self, background: Rgb | None = None) -> str:
         """Remove every turtle, restart the name counter, clear, and spawn turtle1 at the centre."""
-        for t in self._turtles.values():
-            if t.rotate_goal is not None:
-                self._events.append(RotationEvent(t.name, aborted=True))
         self._turtles.clear()
         self._counter = 0
         x, y = self.centre
@@ -262,14 +240,11 @@ class World:
 
     def command(self, name: str, vx: float, vy: float, w: float) -> None:
         """A velocity command (cmd_vel): forward, sideways (m/s) and turn rate (rad/s), good for
-        COMMAND_TIMEOUT seconds of world time. Ends a rotate_absolute goal."""
+        COMMAND_TIMEOUT seconds of world time."""
         t = self._get(name)
         _finite(vx, vy, w)
         t.vx, t.vy, t.w = vx, vy, w
         t.last_command = self.time
-        if t.rotate_goal is not None:
-            t.rotate_goal = None
-            self._events.append(RotationEvent(name, aborted=True))
 
     def set_pen(self, name: str, r: int, g: int, b: int, width: int, off: bool) -> None:
         """Pen up when `off`; else this colour and width (0 means 1 px)."""
@@ -289,22 +264,6 @@ class World:
         _finite(linear, angular)
         self._get(name).teleports.append(_Teleport(True, theta=angular, linear=linear))
 
-    def rotate_absolute(self, name: str, theta: float) -> None:
-        """Turn in place at 1 rad/s to face `theta` (the rotate_absolute action's goal)."""
-        _finite(theta)
-        t = self._get(name)
-        if t.rotate_goal is not None:
-            self._events.append(RotationEvent(name, aborted=True))
-        t.rotate_goal = theta
-        t.rotate_start = t.theta
-
-    def cancel_rotation(self, name: str) -> None:
-        t = self._turtles.get(name)
-        if t is not None and t.rotate_goal is not None:
-            t.rotate_goal = None
-            t.w = 0.0
-            self._events.append(RotationEvent(name, aborted=True))
-
     # ---------------------------------------------------------------- time
 
     def step(self, dt: float = UPDATE_PERIOD) -> StepReport:
@@ -315,10 +274,9 @@ class World:
         for t in self._sorted():
             changed |= self._step_turtle(t, dt, updates, hits, segments)
         self.time += dt
-        events, self._events = tuple(self._events), []
         if changed:
             self.version += 1
-        return StepReport(tuple(updates), tuple(hits), tuple(segments), events, changed)
+        return StepReport(tuple(updates), tuple(hits), tuple(segments), changed)
 
     def _step_turtle(self, t: _Turtle, dt: float, updates: list[TurtleUpdate], hits: list[WallHit],
                      segments: list[Segment]) -> bool:
@@ -337,19 +295,6 @@ class World:
             self._draw(t, old, segments)
             modified = True
         t.teleports.clear()
-
-        if t.rotate_goal is not None:
-            remaining = wrap_angle(t.rotate_goal - t.theta)
-            if abs(remaining) < ROTATE_TOLERANCE:
-                self._events.append(RotationEvent(t.name, remaining, succeeded=True,
-                                                  delta=wrap_angle(t.rotate_start - t.theta)))
-                t.rotate_goal = None
-                t.vx = t.vy = t.w = 0.0
-            else:
-                t.vx = t.vy = 0.0
-                t.w = -ROTATE_SPEED if remaining < 0.0 else ROTATE_SPEED
-                t.last_command = self.time
-                self._events.append(RotationEvent(t.name, remaining))
 
         if self.time - t.last_command > COMMAND_TIMEOUT:
             t.vx = t.vy = t.w = 0.0
