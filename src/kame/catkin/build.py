@@ -1,9 +1,10 @@
 """One build of a workspace: plan the packages, set each up in the devel space, report.
 
 Rules:
-- A package is set up even when part of it cannot be built: its C/C++ targets are listed
-  in its result (kame builds Python packages), its scripts, setup.py and messages still
-  work, and the other packages go on building.
+- This is kame's own build, of the packages without C/C++ targets (kame/catkin/cmake.py runs
+  the real CMake for the others). Where the machine has no C++ toolchain it is given every
+  package: one with C/C++ targets is set up as far as it can be (its targets listed in its
+  result, its scripts, setup.py and messages working), and the other packages go on building.
 - Messages, services and actions need no generation step (kame's import hook reads them
   from ROS_PACKAGE_PATH); the result counts them.
 - dynamic_reconfigure .cfg files are run as catkin runs them and write catkin's files; a
@@ -45,8 +46,9 @@ class PackageResult:
 
     def cpp_message(self) -> str:
         names = ", ".join(t.name for t in self.cpp_targets)
-        return (f"package '{self.name}' needs a C++ build (targets: {names}); kame builds Python packages only, "
-                f"so these targets were not built (its Python scripts and messages are set up)")
+        return (f"package '{self.name}' needs a C++ build (targets: {names}), which needs the system's CMake, "
+                f"C++ compiler, catkin and roscpp; these targets were not built (its Python scripts and messages "
+                f"are set up)")
 
 
 def underlay_workspaces(env: dict[str, str] | os._Environ[str], devel: Path) -> list[str]:

@@ -215,6 +215,11 @@ def with_dependencies(packages: list[WorkspacePackage], names: list[str]) -> set
     return wanted
 
 
+def cmake_packages(packages: list[WorkspacePackage]) -> set[str]:
+    """The packages CMake builds: those with C/C++ targets and what they depend on in the workspace."""
+    return with_dependencies(packages, [p.name for p in packages if p.cpp_targets])
+
+
 def select(packages: list[WorkspacePackage], whitelist: list[str], blacklist: list[str]) -> list[WorkspacePackage]:
     return [p for p in packages if (not whitelist or p.name in whitelist) and p.name not in blacklist]
 

@@ -1,13 +1,20 @@
-"""catkin_make: build a catkin workspace's Python packages into its devel space, no CMake.
+"""catkin_make: build a catkin workspace into its devel space: C/C++ packages with the real CMake,
+Python-only packages by kame without it.
 
 As catkin_make: run in the workspace root (or -C DIR); source space src/, build space
 build/, devel space devel/; prints the spaces, the packages in topological order and the
 progress; `-DVAR=VALUE` arguments are CMake cache variables (CATKIN_WHITELIST_PACKAGES and
-CATKIN_BLACKLIST_PACKAGES are honoured and, as in CMake, remembered in build/CMakeCache.txt
+CATKIN_BLACKLIST_PACKAGES are honoured and, as in CMake, remembered in build/kame_cache.txt
 until set again, `-DCATKIN_WHITELIST_PACKAGES=""` clears); `--only-pkg-with-deps` and
 `--pkg` select packages; make flags (-j, -l) and targets are accepted. Errors are one red
-line on stderr, exit 1. A package needing a C++ build is named with the reason, the
-others build, and the exit status is 1.
+line on stderr, exit 1.
+
+Packages with C/C++ targets, and the workspace packages they depend on, are built as
+catkin_make builds them: src/CMakeLists.txt linked to the system's catkin toplevel.cmake,
+then `cmake` and `make` in the build space (kame/catkin/cmake.py), with headers for kame's
+message packages the system lacks (kame/catkin/cpp_messages.py). The other packages are
+kame's: set up in the devel space with no CMake. Where the machine has no C++ toolchain or
+roscpp, what to install is said, the Python packages are built, and the exit status is 1.
 """
 
 from __future__ import annotations
@@ -15,13 +22,18 @@ from __future__ import annotations
 import argparse
 import os
 import sys
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from pathlib import Path
 
 from kame.catkin.build import PackageResult, build, underlay_workspaces
+from kame.catkin.cmake import CMakeBuild, CMakeFailed, link_toplevel
+from kame.catkin.cpp_messages import KameMessageHeaders, MessageHeaderError
+from kame.catkin.toolchain import Missing, Toolchain, find_toolchain, prefixes
 from kame.catkin.workspace import (
     WorkspaceError,
+    WorkspacePackage,
     cmake_list,
+    cmake_packages,
     find_workspace_packages,
     select,
     with_dependencies,
@@ -29,7 +41,8 @@ from kame.catkin.workspace import (
 
 RED = "\033[31m"
 RESET = "\033[0m"
-CACHE = "CMakeCache.txt"
+CACHE = "kame_cache.txt"  # not CMakeCache.txt: CMake owns that one where C++ packages are built
+KAME_PREFIX = "kame_msgs"  # kame's prefix of C++ message headers in the build space
 CACHED = ("CATKIN_WHITELIST_PACKAGES", "CATKIN_BLACKLIST_PACKAGES")
 WORKSPACE_MARKER = "# This file currently only serves to mark the location of a catkin workspace for tool integration\n"
 
@@ -98,8 +111,9 @@ def split_arguments(argv: Sequence[str]) -> tuple[list[str], dict[str, str], lis
 def parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(
         prog="catkin_make",
-        description="Creates the catkin workspace layout and builds its Python packages into the devel space "
-        "(kame: no CMake or compiler). Any argument starting with -D sets a CMake cache variable "
+        description="Creates the catkin workspace layout and builds its packages into the devel space: "
+        "C/C++ packages with CMake and the system's catkin, Python packages by kame. "
+        "Any argument starting with -D sets a CMake cache variable "
         '(e.g. -DCATKIN_WHITELIST_PACKAGES="foo;bar", -DCATKIN_BLACKLIST_PACKAGES="foo;bar").',
     )
     p.add_argument("-C", "--directory", default=os.curdir, help="The base path of the workspace (default '.')")
@@ -148,7 +162,7 @@ def working_directory() -> str:
 
 
 def run(argv: Sequence[str]) -> int:
-    own, defines, _make_args = split_arguments(argv)
+    own, defines, make_args = split_arguments(argv)
     args = parser().parse_args(own)
     color = not args.no_color
 
@@ -211,6 +225,44 @@ def run(argv: Sequence[str]) -> int:
 
     if not (base / ".catkin_workspace").exists():
         (base / ".catkin_workspace").write_text(WORKSPACE_MARKER)
+    toolchain = find_toolchain(os.environ)
+    if isinstance(toolchain, Toolchain):
+        linked = link_toplevel(source, toolchain)
+        if linked:
+            say(linked)
+    in_cmake = cmake_packages(chosen) if isinstance(toolchain, Toolchain) else set()
+    if in_cmake and isinstance(toolchain, Toolchain):
+        cmake = CMakeBuild(toolchain, source, build_path, devel, install, os.environ,
+                           [build_path / KAME_PREFIX], say, color)
+        needed = {d for p in chosen if p.name in in_cmake for d in p.depends} - {p.name for p in packages}
+        KameMessageHeaders(build_path / KAME_PREFIX, toolchain, prefixes(os.environ)).provide(needed)
+        cmake.configure(sorted(in_cmake), [f"-D{k}={v}" for k, v in defines.items() if k not in CACHED])
+        cmake.make(make_args, args.targets)
+    python_only = [p for p in chosen if p.name not in in_cmake]
+    failed = _build_python(python_only, len(chosen) - len(python_only), source, build_path, devel, whitelist,
+                           blacklist, color, say)
+    if isinstance(toolchain, Missing) and any(p.cpp_targets for p in chosen):
+        raise BuildError(toolchain.advice(_os_release()) + " The Python packages were built; "
+                         "source devel/setup.bash to use them.")
+    if failed:
+        cpp = ", ".join(r.name for r in failed if r.cpp_targets)
+        broken = ", ".join(r.name for r in failed if r.errors)
+        causes = ([f"Not built (C++): {cpp}."] if cpp else []) + ([f"Failed: {broken}."] if broken else [])
+        raise BuildError(" ".join(causes) + " The other packages were built; source devel/setup.bash to use them.")
+    return 0
+
+
+def _os_release() -> str:
+    try:
+        return Path("/etc/os-release").read_text()
+    except OSError:
+        return ""
+
+
+def _build_python(chosen: list[WorkspacePackage], done: int, source: Path, build_path: Path, devel: Path,
+                  whitelist: list[str], blacklist: list[str], color: bool, say: Callable[[str], None],
+                  ) -> list[PackageResult]:
+    """kame's own build of the Python packages (no CMake), with catkin's lines."""
     python = sys.executable
     underlays = underlay_workspaces(os.environ, devel)
     say("####")
@@ -244,9 +296,10 @@ def run(argv: Sequence[str]) -> int:
     say("####")
 
     failed: list[PackageResult] = []
+    total = len(chosen) + done
 
     def progress(index: int, result: PackageResult) -> None:
-        percent = (index + 1) * 100 // max(len(chosen), 1)
+        percent = (done + index + 1) * 100 // max(total, 1)
         for warning in result.warnings:
             print(f"WARNING: {warning}", file=sys.stderr)
         if result.failed:
@@ -257,12 +310,7 @@ def run(argv: Sequence[str]) -> int:
         say(f"[{percent:3d}%] Built target {result.name}" + (" (Python parts only)" if result.failed else ""))
 
     build(chosen, devel, [source], underlays, python, shell_dir(), progress)
-    if failed:
-        cpp = ", ".join(r.name for r in failed if r.cpp_targets)
-        broken = ", ".join(r.name for r in failed if r.errors)
-        causes = ([f"Not built by kame (C++): {cpp}."] if cpp else []) + ([f"Failed: {broken}."] if broken else [])
-        raise BuildError(" ".join(causes) + " The other packages were built; source devel/setup.bash to use them.")
-    return 0
+    return failed
 
 
 def main(argv: Sequence[str] | None = None) -> int:
@@ -270,7 +318,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     color = "--no-color" not in args
     try:
         return run(args)
-    except (BuildError, WorkspaceError) as exc:
+    except (BuildError, WorkspaceError, CMakeFailed, MessageHeaderError) as exc:
         message = str(exc)
         print(f"{RED}{message}{RESET}" if color else message, file=sys.stderr)
         return 1

@@ -1,0 +1,98 @@
+"""The real CMake and make over a workspace's C/C++ packages, as catkin_make runs them.
+
+Rules:
+- catkin_make's commands: `cmake SRC -DCATKIN_DEVEL_PREFIX=.. -DCMAKE_INSTALL_PREFIX=.. -G "Unix Makefiles"`
+  in the build space (src/CMakeLists.txt being catkin's toplevel.cmake), then `make -jN -lN`;
+  each announced by catkin's banner, their output passed through as it comes.
+- CMake is given the packages it builds as CATKIN_WHITELIST_PACKAGES (the Python-only ones are
+  kame's), the interpreter of the system's catkin as PYTHON_EXECUTABLE, and kame's prefix of
+  message headers (kame/catkin/cpp_messages.py) on CMAKE_PREFIX_PATH.
+- make's job flags as catkin's: the user's -j/-l, else none when MAKEFLAGS has some, else
+  ROS_PARALLEL_JOBS, else -jN -lN with N the number of processors.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+import subprocess
+from collections.abc import Callable, Mapping, Sequence
+from pathlib import Path
+
+from kame.catkin.toolchain import Toolchain
+
+_JOBS = re.compile(r"(?:^|\s)(-?(?:j|l)(?:\s*[0-9]+|\s|$))"
+                   r"|(?:^|\s)((?:--)?(?:jobs|load-average)(?:(?:=|\s+)[0-9]+|(?:\s|$)))")
+TOPLEVEL_LINK = "CMakeLists.txt"
+
+
+class CMakeFailed(Exception):
+    """A command failed; the message is catkin_make's."""
+
+
+def make_arguments(given: Sequence[str], env: Mapping[str, str], cpus: int) -> list[str]:
+    args = list(given)
+    if _JOBS.search(" ".join(args)):
+        return args
+    if _JOBS.search(env.get("MAKEFLAGS", "")):
+        return args
+    if "ROS_PARALLEL_JOBS" in env:
+        return args + env["ROS_PARALLEL_JOBS"].split()
+    return [*args, f"-j{cpus}", f"-l{cpus}"]
+
+
+def banner(cmd: Sequence[str], cwd: Path, color: bool) -> list[str]:
+    """catkin's print_command_banner."""
+    if not color:
+        return ["####", f'#### Running command: "{" ".join(cmd)}" in "{cwd}"', "####"]
+    blue, bold, reset = "\033[34m", "\033[1m", "\033[0m"
+    return [f"{blue}####{reset}",
+            f'{blue}#### Running command: {bold}"{" ".join(cmd)}"{reset}{blue} in {bold}"{cwd}"{reset}',
+            f"{blue}####{reset}"]
+
+
+def link_toplevel(source: Path, toolchain: Toolchain) -> str | None:
+    """src/CMakeLists.txt -> catkin's toplevel.cmake, as catkin_init_workspace; the line it prints."""
+    link = source / TOPLEVEL_LINK
+    if link.exists() or link.is_symlink():
+        return None
+    link.symlink_to(toolchain.toplevel)
+    return f'Creating symlink "{link}" pointing to "{toolchain.toplevel}"'
+
+
+class CMakeBuild:
+    """One configure-and-make of the C/C++ packages of a workspace."""
+
+    def __init__(self, toolchain: Toolchain, source: Path, build: Path, devel: Path, install: Path,
+                 env: Mapping[str, str], prefixes: Sequence[Path], say: Callable[[str], None], color: bool) -> None:
+        self.toolchain = toolchain
+        self.source = source
+        self.build = build
+        self.devel = devel
+        self.install = install
+        self.env = dict(env)
+        self.env["CMAKE_PREFIX_PATH"] = os.pathsep.join(
+            [str(p) for p in prefixes] + [p for p in env.get("CMAKE_PREFIX_PATH", "").split(os.pathsep) if p])
+        self.say = say
+        self.color = color
+
+    def _run(self, cmd: list[str], shown: list[str], cwd: Path, env: dict[str, str]) -> bool:
+        for line in banner(shown, cwd, self.color):
+            self.say(line)
+        return subprocess.run(cmd, cwd=cwd, env=env, check=False).returncode == 0
+
+    def configure(self, packages: Sequence[str], cmake_args: Sequence[str]) -> None:
+        shown = [self.toolchain.cmake, str(self.source), f"-DCATKIN_DEVEL_PREFIX={self.devel}",
+                 f"-DCMAKE_INSTALL_PREFIX={self.install}", *cmake_args, "-G", "Unix Makefiles"]
+        kame_args = [f"-DCATKIN_WHITELIST_PACKAGES={';'.join(packages)}",
+                     f"-DPYTHON_EXECUTABLE={self.toolchain.python}"]
+        self.build.mkdir(parents=True, exist_ok=True)
+        shown[0] = "cmake"
+        if not self._run([self.toolchain.cmake, *shown[1:-2], *kame_args, *shown[-2:]], shown, self.build, self.env):
+            raise CMakeFailed('Invoking "cmake" failed')
+
+    def make(self, make_args: Sequence[str], targets: Sequence[str]) -> None:
+        args = make_arguments(make_args, self.env, os.cpu_count() or 1)
+        shown = ["make", *args, *targets]
+        if not self._run([self.toolchain.make, *args, *targets], shown, self.build, self.env):
+            raise CMakeFailed(f'Invoking "{" ".join(shown)}" failed')
