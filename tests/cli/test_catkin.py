@@ -10,6 +10,9 @@ import sys
 import textwrap
 from pathlib import Path
 
+import pytest
+
+from kame.catkin.toolchain import Missing, find_toolchain
 from tests.shell.shell_env import bash, clean_env
 from tests.support import SYSTEM_PYTHON, Proc, free_port, wait_for_master
 
@@ -177,28 +180,43 @@ def test_python_package_with_msg_srv_setup_py_and_scripts(tmp_path: Path) -> Non
                                        "5 beginner_tutorials/AddTwoInts 42 helped", f"{pkg}"]
 
 
-def test_cpp_package_is_reported_and_others_build(tmp_path: Path) -> None:
+def test_cpp_package_without_a_toolchain_says_what_to_install_and_others_build(tmp_path: Path) -> None:
     ws, env = make_workspace(tmp_path)
     create_beginner_tutorials(ws, env)
     run(["catkin_create_pkg", "cpp_tutorials", "roscpp"], ws / "src", env)
     cmake = ws / "src" / "cpp_tutorials" / "CMakeLists.txt"
     cmake.write_text(cmake.read_text() + "add_executable(talker src/talker.cpp)\n"
                      "target_link_libraries(talker ${catkin_LIBRARIES})\n")
-    result = run(["catkin_make", "--no-color"], ws, env)
+    bare = {**env, "PATH": str(BIN)}  # no cmake, make or compiler on PATH
+    result = run(["catkin_make", "--no-color"], ws, bare)
     assert result.returncode == 1
     assert "Traceback" not in result.stderr
-    assert ("kame: package 'cpp_tutorials' needs a C++ build (targets: talker); kame builds Python packages only"
-            in result.stderr)
-    assert "Not built by kame (C++): cpp_tutorials" in result.stderr
+    assert "kame: package 'cpp_tutorials' needs a C++ build (targets: talker)" in result.stderr
+    assert "The C++ packages need cmake, make, c++, which this machine lacks." in result.stderr
+    if "debian" in Path("/etc/os-release").read_text().lower():
+        assert "  sudo apt-get install cmake make g++\n" in result.stderr
     assert "Built target beginner_tutorials" in result.stdout
     assert (ws / "devel" / "setup.bash").is_file()
 
-    build = run(["catkin", "build"], ws, env)
+    build = run(["catkin", "build"], ws, bare)
     assert build.returncode == 1
     assert "Finished  <<< beginner_tutorials" in build.stdout
     assert "Failed     << cpp_tutorials" in build.stdout
     assert "[build] Summary: 1 of 2 packages succeeded." in build.stdout
-    assert "kame builds Python packages only" in build.stderr and "Traceback" not in build.stderr
+    assert "needs a C++ build (targets: talker)" in build.stderr and "Traceback" not in build.stderr
+
+
+def test_cpp_package_with_a_missing_source_fails_in_cmake_as_catkin(tmp_path: Path) -> None:
+    ws, env = make_workspace(tmp_path)
+    run(["catkin_create_pkg", "cpp_tutorials", "roscpp"], ws / "src", env)
+    cmake = ws / "src" / "cpp_tutorials" / "CMakeLists.txt"
+    cmake.write_text(cmake.read_text() + "add_executable(talker src/talker.cpp)\n")
+    if isinstance(find_toolchain(env), Missing):
+        pytest.skip("no C++ toolchain or roscpp here: tests/catkin's fixture says whether that may be")
+    result = run(["catkin_make", "--no-color"], ws, env)
+    assert result.returncode == 1
+    assert "Cannot find source file:\n\n    src/talker.cpp" in result.stderr
+    assert result.stderr.endswith('Invoking "cmake" failed\n')
 
 
 def test_whitelist_is_remembered_until_cleared(tmp_path: Path) -> None:

@@ -7,6 +7,11 @@ Rules:
 - CMake is given the packages it builds as CATKIN_WHITELIST_PACKAGES (the Python-only ones are
   kame's), the interpreter of the system's catkin as PYTHON_EXECUTABLE, and kame's prefix of
   message headers (kame/catkin/cpp_messages.py) on CMAKE_PREFIX_PATH.
+- genmsg is told ROS_LANG_DISABLE=genpy: Python programs import a package's messages through
+  kame's import hook (from its .msg files, as for the Python-only packages), not genpy's modules.
+- CMake runs without kame's ROS_DISTRO: the system's catkin environment hooks set their own
+  (Debian's 1.ros_distro.sh prints a warning that breaks catkin's generate_cached_setup.py
+  when another is set).
 - make's job flags as catkin's: the user's -j/-l, else none when MAKEFLAGS has some, else
   ROS_PARALLEL_JOBS, else -jN -lN with N the number of processors.
 """
@@ -73,6 +78,9 @@ class CMakeBuild:
         self.env = dict(env)
         self.env["CMAKE_PREFIX_PATH"] = os.pathsep.join(
             [str(p) for p in prefixes] + [p for p in env.get("CMAKE_PREFIX_PATH", "").split(os.pathsep) if p])
+        self.env.pop("ROS_DISTRO", None)  # the system's hooks set theirs (Debian's fails on another's)
+        disabled = [g for g in env.get("ROS_LANG_DISABLE", "").split(":") if g]
+        self.env["ROS_LANG_DISABLE"] = ":".join([*disabled, *([] if "genpy" in disabled else ["genpy"])])
         self.say = say
         self.color = color
 
