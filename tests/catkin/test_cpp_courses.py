@@ -169,3 +169,18 @@ def test_own_message_of_a_cpp_package_read_by_rospy(workspace: tuple[Path, subpr
     finally:
         publisher.stop()
         reader.stop()
+
+
+def test_catkin_build_builds_a_cpp_package_as_catkin_tools(tmp_path: Path) -> None:
+    if isinstance(find_toolchain(user_env(tmp_path)), Missing):
+        pytest.skip("no C++ toolchain or roscpp here (the module's fixture says whether that may be)")
+    ws = tmp_path / "ws"
+    (ws / "src").mkdir(parents=True)
+    shutil.copytree(COURSE / "hello", ws / "src" / "hello")
+    result = subprocess.run(["catkin", "build"], cwd=ws, env=user_env(tmp_path), capture_output=True, text=True,
+                            timeout=300)
+    assert result.returncode == 0, result.stdout + result.stderr
+    assert "Starting  >>> hello" in result.stdout and "Finished  <<< hello" in result.stdout
+    assert "[build] Summary: All 1 packages succeeded!" in result.stdout
+    assert (ws / "devel" / "lib" / "hello" / "hello").is_file()
+    assert "Linking CXX executable" in (ws / "logs" / "hello" / "build.log").read_text()

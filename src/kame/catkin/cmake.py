@@ -69,7 +69,9 @@ class CMakeBuild:
     """One configure-and-make of the C/C++ packages of a workspace."""
 
     def __init__(self, toolchain: Toolchain, source: Path, build: Path, devel: Path, install: Path,
-                 env: Mapping[str, str], prefixes: Sequence[Path], say: Callable[[str], None], color: bool) -> None:
+                 env: Mapping[str, str], prefixes: Sequence[Path], say: Callable[[str], None], color: bool,
+                 log: Path | None = None) -> None:
+        """`log`: where the commands' output goes (catkin build's per-package logs); else it is shown."""
         self.toolchain = toolchain
         self.source = source
         self.build = build
@@ -83,16 +85,25 @@ class CMakeBuild:
         self.env["ROS_LANG_DISABLE"] = ":".join([*disabled, *([] if "genpy" in disabled else ["genpy"])])
         self.say = say
         self.color = color
+        self.log = log
 
     def _run(self, cmd: list[str], shown: list[str], cwd: Path, env: dict[str, str]) -> bool:
-        for line in banner(shown, cwd, self.color):
-            self.say(line)
-        return subprocess.run(cmd, cwd=cwd, env=env, check=False).returncode == 0
+        if self.log is None:
+            for line in banner(shown, cwd, self.color):
+                self.say(line)
+            return subprocess.run(cmd, cwd=cwd, env=env, check=False).returncode == 0
+        self.log.parent.mkdir(parents=True, exist_ok=True)
+        with self.log.open("a") as out:
+            out.write("\n".join(banner(shown, cwd, False)) + "\n")
+            out.flush()
+            return subprocess.run(cmd, cwd=cwd, env=env, stdout=out, stderr=subprocess.STDOUT,
+                                  check=False).returncode == 0
 
-    def configure(self, packages: Sequence[str], cmake_args: Sequence[str]) -> None:
+    def configure(self, packages: Sequence[str] | None, cmake_args: Sequence[str]) -> None:
+        """CMake over the source space (`packages` its whitelist) or, with None, one package's folder."""
         shown = [self.toolchain.cmake, str(self.source), f"-DCATKIN_DEVEL_PREFIX={self.devel}",
                  f"-DCMAKE_INSTALL_PREFIX={self.install}", *cmake_args, "-G", "Unix Makefiles"]
-        kame_args = [f"-DCATKIN_WHITELIST_PACKAGES={';'.join(packages)}",
+        kame_args = [*([] if packages is None else [f"-DCATKIN_WHITELIST_PACKAGES={';'.join(packages)}"]),
                      f"-DPYTHON_EXECUTABLE={self.toolchain.python}"]
         self.build.mkdir(parents=True, exist_ok=True)
         shown[0] = "cmake"

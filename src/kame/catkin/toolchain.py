@@ -60,6 +60,14 @@ class Missing:
                 "prefix on CMAKE_PREFIX_PATH, then run catkin_make again.")
 
 
+def os_release() -> str:
+    """/etc/os-release's text (empty where there is none)."""
+    try:
+        return Path("/etc/os-release").read_text()
+    except OSError:
+        return ""
+
+
 def prefixes(env: Mapping[str, str]) -> list[Path]:
     found = [Path(p) for p in env.get("CMAKE_PREFIX_PATH", "").split(os.pathsep) if p]
     return found + [Path(p) for p in DEFAULT_PREFIXES]

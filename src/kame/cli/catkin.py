@@ -1,11 +1,14 @@
-"""catkin (catkin_tools' command): build, clean, init and list for Python workspaces.
+"""catkin (catkin_tools' command): build, clean, init and list.
 
 `catkin build [PKG...]` finds the workspace (the nearest folder, from here up, with
 .catkin_tools/ or else the current folder when it has src/), builds the named packages
-(default: all) into devel/ as catkin_make does (merged devel space, no CMake) and prints
-catkin_tools' progress and summary. `catkin clean [-y]` removes build/ and devel/ (and
+(default: all) into devel/ (merged devel space) and prints catkin_tools' progress and
+summary: packages with C/C++ targets (and what they need in the workspace) one by one with
+CMake in build/<package>, as catkin_tools does, the Python-only ones by kame with no CMake.
+`catkin clean [-y]` removes build/ and devel/ (and
 logs/). `catkin init` marks the workspace. `catkin list` lists its packages.
-A package needing a C++ build fails with the reason; the others still build.
+Where there is no C++ toolchain, a package needing one fails with the reason and what to
+install; the others still build.
 """
 
 from __future__ import annotations
@@ -19,8 +22,17 @@ from collections.abc import Sequence
 from pathlib import Path
 
 from kame.catkin.build import PackageResult, build, underlay_workspaces
-from kame.catkin.workspace import WorkspaceError, find_workspace_packages, with_dependencies
-from kame.cli.catkin_make import shell_dir, working_directory
+from kame.catkin.cmake import CMakeBuild, CMakeFailed
+from kame.catkin.cpp_messages import KameMessageHeaders
+from kame.catkin.toolchain import Toolchain, find_toolchain, os_release, prefixes
+from kame.catkin.workspace import (
+    WorkspaceError,
+    WorkspacePackage,
+    cmake_packages,
+    find_workspace_packages,
+    with_dependencies,
+)
+from kame.cli.catkin_make import KAME_PREFIX, shell_dir, working_directory
 
 RULE = "-" * 64
 
@@ -119,6 +131,7 @@ def cmd_build(args: argparse.Namespace) -> int:
     build_path.mkdir(exist_ok=True)
     (build_path / ".built_by").write_text("catkin build")
     failed: list[PackageResult] = []
+    cpp = _build_cpp(packages, ws, failed)
 
     def progress(index: int, result: PackageResult) -> None:
         print(f"Starting  >>> {result.name}")
@@ -133,7 +146,8 @@ def cmd_build(args: argparse.Namespace) -> int:
         else:
             print(f"Finished  <<< {result.name}                [ 0.0 seconds ]")
 
-    build(packages, devel, [source], underlays, sys.executable, shell_dir(), progress)
+    build([p for p in packages if p.name not in cpp], devel, [source], underlays, sys.executable, shell_dir(),
+          progress)
     (devel / ".built_by").write_text("catkin build")
     ok = len(packages) - len(failed)
     if failed:
@@ -151,6 +165,41 @@ def cmd_build(args: argparse.Namespace) -> int:
         print("[build]   Failed:    None.")
     print(f"[build] Runtime: {time.monotonic() - started:.1f} seconds total.")
     return 1 if failed else 0
+
+
+def _build_cpp(packages: list[WorkspacePackage], ws: Path, failed: list[PackageResult]) -> set[str]:
+    """As catkin_tools: each C/C++ package (and the workspace packages they need) configured by CMake
+    in build/<package> and made there, in order, into the merged devel space; output in
+    logs/<package>/build.log, shown when it fails. Returns the packages built this way."""
+    toolchain = find_toolchain(os.environ)
+    if not isinstance(toolchain, Toolchain):
+        if any(p.cpp_targets for p in packages):
+            print(toolchain.advice(os_release()), file=sys.stderr)
+        return set()
+    in_cmake = cmake_packages(packages)
+    names = {p.name for p in packages}
+    kame_prefix = ws / "build" / KAME_PREFIX
+    needed = {d for p in packages if p.name in in_cmake for d in p.depends} - names
+    KameMessageHeaders(kame_prefix, toolchain, prefixes(os.environ)).provide(needed)
+    for package in packages:
+        if package.name not in in_cmake:
+            continue
+        started = time.monotonic()
+        print(f"Starting  >>> {package.name}")
+        log = ws / "logs" / package.name / "build.log"
+        log.unlink(missing_ok=True)
+        cmake = CMakeBuild(toolchain, package.path, ws / "build" / package.name, ws / "devel", ws / "install",
+                           os.environ, [kame_prefix, ws / "devel"], print, False, log)
+        try:
+            cmake.configure(None, [])
+            cmake.make([], [])
+        except CMakeFailed as exc:
+            failed.append(PackageResult(package.name, errors=[str(exc)]))
+            print(f"Errors     << {package.name}:make {log}\n{log.read_text()}", file=sys.stderr)
+            print(f"Failed     << {package.name}                [ Exited with code 2 ]")
+            continue
+        print(f"Finished  <<< {package.name}                [ {time.monotonic() - started:.1f} seconds ]")
+    return in_cmake
 
 
 def parser() -> argparse.ArgumentParser:

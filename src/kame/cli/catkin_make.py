@@ -28,7 +28,7 @@ from pathlib import Path
 from kame.catkin.build import PackageResult, build, underlay_workspaces
 from kame.catkin.cmake import CMakeBuild, CMakeFailed, link_toplevel
 from kame.catkin.cpp_messages import KameMessageHeaders, MessageHeaderError
-from kame.catkin.toolchain import Missing, Toolchain, find_toolchain, prefixes
+from kame.catkin.toolchain import Missing, Toolchain, find_toolchain, os_release, prefixes
 from kame.catkin.workspace import (
     WorkspaceError,
     WorkspacePackage,
@@ -242,7 +242,7 @@ def run(argv: Sequence[str]) -> int:
     failed = _build_python(python_only, len(chosen) - len(python_only), source, build_path, devel, whitelist,
                            blacklist, color, say)
     if isinstance(toolchain, Missing) and any(p.cpp_targets for p in chosen):
-        raise BuildError(toolchain.advice(_os_release()) + " The Python packages were built; "
+        raise BuildError(toolchain.advice(os_release()) + " The Python packages were built; "
                          "source devel/setup.bash to use them.")
     if failed:
         cpp = ", ".join(r.name for r in failed if r.cpp_targets)
@@ -250,13 +250,6 @@ def run(argv: Sequence[str]) -> int:
         causes = ([f"Not built (C++): {cpp}."] if cpp else []) + ([f"Failed: {broken}."] if broken else [])
         raise BuildError(" ".join(causes) + " The other packages were built; source devel/setup.bash to use them.")
     return 0
-
-
-def _os_release() -> str:
-    try:
-        return Path("/etc/os-release").read_text()
-    except OSError:
-        return ""
 
 
 def _build_python(chosen: list[WorkspacePackage], done: int, source: Path, build_path: Path, devel: Path,
