@@ -111,6 +111,18 @@ def test_catkin_make_builds_the_course_workspace(workspace: tuple[Path, subproce
     assert (ws / "devel" / "lib" / "py_reader" / "reader.py").is_file()
 
 
+def test_devel_setup_gives_catkins_environment(workspace: tuple[Path, subprocess.CompletedProcess[str]]) -> None:
+    ws, _ = workspace
+    out = subprocess.run(["bash", "-c", f"source {ws}/devel/setup.bash && echo $CMAKE_PREFIX_PATH && "
+                          "echo $LD_LIBRARY_PATH && echo $PKG_CONFIG_PATH && pkg-config --modversion hello"],
+                         env=user_env(ws.parent), capture_output=True, text=True, timeout=60)
+    prefix, libraries, pkg_config, version = out.stdout.splitlines()
+    assert prefix.split(":")[0] == f"{ws}/devel"
+    assert libraries.split(":")[0] == f"{ws}/devel/lib"
+    assert pkg_config.split(":")[0] == f"{ws}/devel/lib/pkgconfig"
+    assert version == "0.0.1", out.stderr
+
+
 def test_hello(workspace: tuple[Path, subprocess.CompletedProcess[str]], master: tuple[str, dict[str, str]]) -> None:
     ws, _ = workspace
     hello = rosrun(ws, master[1], "hello", "hello")

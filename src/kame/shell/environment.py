@@ -3,14 +3,17 @@
 Rules (as catkin's setup files and /opt/ros/noetic/setup.bash behave):
 - Sourcing any setup file first rolls back every catkin workspace found in CMAKE_PREFIX_PATH
   (a folder holding a `.catkin` marker): its devel folder, its bin/ on PATH, its Python site
-  folder on PYTHONPATH and its source folders on ROS_PACKAGE_PATH go. So sourcing workspace A
+  folder on PYTHONPATH, its lib/ folders on LD_LIBRARY_PATH and PKG_CONFIG_PATH and its source
+  folders on ROS_PACKAGE_PATH go. So sourcing workspace A
   and then workspace B leaves only B (and what B was built on).
 - Then kame's base: ROS_MASTER_URI (kept if set), ROS_DISTRO, ROS_ROOT, ROS_ETC_DIR,
   ROS_VERSION, ROS_PYTHON_VERSION, the interpreter's bin/ first on PATH, kame's share folder
   last on ROS_PACKAGE_PATH.
 - Then each workspace, underlays first: devel on CMAKE_PREFIX_PATH, devel/bin on PATH,
-  devel/lib/python3/dist-packages on PYTHONPATH, source folders on ROS_PACKAGE_PATH (each
-  prepended, so the last sourced wins).
+  devel/lib/python3/dist-packages on PYTHONPATH, devel/lib (where catkin's CMake puts the C++
+  packages' libraries) on LD_LIBRARY_PATH and devel/lib/pkgconfig on PKG_CONFIG_PATH when they
+  exist (as catkin's _setup_util.py), source folders on ROS_PACKAGE_PATH (each prepended, so
+  the last sourced wins).
 
 `python -m kame.shell.environment --python P [--workspaces DEVEL:DEVEL]` prints the result as
 `export`/`unset` lines for `eval` in sh, bash and zsh.
@@ -31,7 +34,10 @@ DEFAULT_MASTER_URI = environ.SETUP_MASTER_URI
 KAME_DIR = Path(__file__).resolve().parent.parent
 SHARE_DIR = KAME_DIR / "share"
 PYTHON_SITE = "lib/python3/dist-packages"
-PATH_VARIABLES = ("CMAKE_PREFIX_PATH", "PATH", "PYTHONPATH", "ROS_PACKAGE_PATH")
+PATH_VARIABLES = ("CMAKE_PREFIX_PATH", "LD_LIBRARY_PATH", "PATH", "PKG_CONFIG_PATH", "PYTHONPATH", "ROS_PACKAGE_PATH")
+# catkin's _setup_util.py: the devel folders a variable gets, each only when it exists
+LIBRARY_FOLDERS = ("lib", "lib/x86_64-linux-gnu")
+PKG_CONFIG_FOLDERS = ("lib/pkgconfig", "lib/x86_64-linux-gnu/pkgconfig")
 CATKIN_MARKER = ".catkin"
 
 
@@ -79,6 +85,8 @@ def compute(env: Mapping[str, str], python: str, workspaces: Sequence[str] = ())
         lists["CMAKE_PREFIX_PATH"] = _remove(lists["CMAKE_PREFIX_PATH"], {_norm(devel)})
         lists["PATH"] = _remove(lists["PATH"], {_norm(os.path.join(devel, "bin"))})
         lists["PYTHONPATH"] = _remove(lists["PYTHONPATH"], {_norm(os.path.join(devel, PYTHON_SITE))})
+        for name, folders in (("LD_LIBRARY_PATH", LIBRARY_FOLDERS), ("PKG_CONFIG_PATH", PKG_CONFIG_FOLDERS)):
+            lists[name] = _remove(lists[name], {_norm(os.path.join(devel, f)) for f in folders})
         lists["ROS_PACKAGE_PATH"] = _remove(lists["ROS_PACKAGE_PATH"],
                                             {_norm(s) for s in workspace_sources(Path(devel))})
 
@@ -98,6 +106,10 @@ def compute(env: Mapping[str, str], python: str, workspaces: Sequence[str] = ())
         lists["CMAKE_PREFIX_PATH"] = _prepend(lists["CMAKE_PREFIX_PATH"], devel)
         lists["PATH"] = _prepend(lists["PATH"], os.path.join(devel, "bin"))
         lists["PYTHONPATH"] = _prepend(lists["PYTHONPATH"], os.path.join(devel, PYTHON_SITE))
+        for name, folders in (("LD_LIBRARY_PATH", LIBRARY_FOLDERS), ("PKG_CONFIG_PATH", PKG_CONFIG_FOLDERS)):
+            for folder in reversed(folders):
+                if os.path.isdir(os.path.join(devel, folder)):
+                    lists[name] = _prepend(lists[name], os.path.join(devel, folder))
         for source in reversed(workspace_sources(Path(devel))):
             lists["ROS_PACKAGE_PATH"] = _prepend(lists["ROS_PACKAGE_PATH"], source)
 
