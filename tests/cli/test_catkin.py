@@ -294,3 +294,21 @@ def test_tutorial_flow_talker_listener_through_rosrun(tmp_path: Path) -> None:
         for proc in reversed(procs):
             proc.stop()
     assert os.path.isdir(ws / "devel")
+
+
+def test_unknown_dependencies_fail_as_in_catkin(tmp_path: Path) -> None:
+    """`catkin_create_pkg my_first_pkg DEP1 DEP2` then `catkin_make`: CMake stops at find_package."""
+    ws, env = make_workspace(tmp_path)
+    assert run(["catkin_create_pkg", "my_first_pkg", "DEP1", "DEP2"], ws / "src", env).returncode == 0
+    bare = run(["catkin_make", "--no-color"], ws, {**env, "PATH": str(BIN)})  # no toolchain: kame says it
+    assert bare.returncode == 1
+    assert bare.stderr == ('Package "my_first_pkg" needs DEP1, DEP2, which neither the workspace, kame nor this '
+                           "system has: CMake would stop at its find_package(catkin REQUIRED COMPONENTS ...).\n")
+    if isinstance(find_toolchain(env), Missing):
+        pytest.skip("no C++ toolchain or roscpp here: tests/catkin's fixture says whether that may be")
+    result = run(["catkin_make", "--no-color"], ws, env)
+    assert result.returncode == 1
+    assert "-- Could not find the required component 'DEP1'." in result.stdout
+    assert ('Could not find a package configuration file provided by "DEP1" with any of\n  the following names:'
+            in result.stderr)
+    assert result.stderr.endswith('Invoking "cmake" failed\n')

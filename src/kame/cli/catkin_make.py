@@ -28,7 +28,7 @@ from pathlib import Path
 from kame.catkin.build import PackageResult, build, underlay_workspaces
 from kame.catkin.cmake import CMakeBuild, CMakeFailed, link_toplevel
 from kame.catkin.cpp_messages import KameMessageHeaders, MessageHeaderError
-from kame.catkin.toolchain import Missing, Toolchain, find_toolchain, os_release, prefixes
+from kame.catkin.toolchain import Missing, Toolchain, find_toolchain, os_release, package_config, prefixes
 from kame.catkin.workspace import (
     WorkspaceError,
     WorkspacePackage,
@@ -36,8 +36,10 @@ from kame.catkin.workspace import (
     cmake_packages,
     find_workspace_packages,
     select,
+    unresolved_components,
     with_dependencies,
 )
+from kame.msg.catalog import find_packages, package_path_roots
 
 RED = "\033[31m"
 RESET = "\033[0m"
@@ -230,12 +232,21 @@ def run(argv: Sequence[str]) -> int:
         linked = link_toplevel(source, toolchain)
         if linked:
             say(linked)
-    in_cmake = cmake_packages(chosen) if isinstance(toolchain, Toolchain) else set()
+    search = prefixes(os.environ)
+    kame_packages = find_packages(package_path_roots())
+    unresolved = unresolved_components(packages, lambda name: name in kame_packages
+                                       or package_config(name, search) is not None)
+    unresolved = {name: deps for name, deps in unresolved.items() if name in {p.name for p in chosen}}
+    if unresolved and isinstance(toolchain, Missing):
+        raise BuildError("\n".join(f'Package "{name}" needs {", ".join(deps)}, which neither the workspace, kame nor '
+                                   "this system has: CMake would stop at its find_package(catkin REQUIRED "
+                                   "COMPONENTS ...)." for name, deps in unresolved.items()))
+    in_cmake = cmake_packages(chosen) | set(unresolved) if isinstance(toolchain, Toolchain) else set()
     if in_cmake and isinstance(toolchain, Toolchain):
         cmake = CMakeBuild(toolchain, source, build_path, devel, install, os.environ,
                            [build_path / KAME_PREFIX], say, color)
         needed = {d for p in chosen if p.name in in_cmake for d in p.depends} - {p.name for p in packages}
-        KameMessageHeaders(build_path / KAME_PREFIX, toolchain, prefixes(os.environ)).provide(needed)
+        KameMessageHeaders(build_path / KAME_PREFIX, toolchain, search).provide(needed)
         cmake.configure(sorted(in_cmake), [f"-D{k}={v}" for k, v in defines.items() if k not in CACHED])
         cmake.make(make_args, args.targets)
     python_only = [p for p in chosen if p.name not in in_cmake]
