@@ -312,3 +312,20 @@ def test_unknown_dependencies_fail_as_in_catkin(tmp_path: Path) -> None:
     assert ('Could not find a package configuration file provided by "DEP1" with any of\n  the following names:'
             in result.stderr)
     assert result.stderr.endswith('Invoking "cmake" failed\n')
+
+
+def test_catkin_create_pkg_as_catkin_tools(tmp_path: Path) -> None:
+    ws, env = make_workspace(tmp_path)
+    src = ws / "src"
+    assert run(["catkin", "create", "pkg", "pkg_a"], src, env).returncode == 0
+    created = run(["catkin", "create", "pkg", "pkg_c", "--catkin-deps", "pkg_a"], src, env)
+    assert created.returncode == 0, created.stderr
+    assert created.stdout.splitlines() == [f'Creating package "pkg_c" in "{src}"...', "Created file pkg_c/package.xml",
+                                           "Created file pkg_c/CMakeLists.txt",
+                                           f"Successfully created package files in {src}/pkg_c."]
+    xml = (src / "pkg_c" / "package.xml").read_text()
+    assert "  <build_depend>pkg_a</build_depend>\n" in xml and "  <exec_depend>pkg_a</exec_depend>\n" in xml
+    assert "find_package(catkin REQUIRED COMPONENTS\n  pkg_a\n)" in (src / "pkg_c" / "CMakeLists.txt").read_text()
+    built = run(["catkin", "build"], ws, env)
+    assert built.returncode == 0, built.stderr
+    assert built.stdout.index("Finished  <<< pkg_a") < built.stdout.index("Finished  <<< pkg_c")
