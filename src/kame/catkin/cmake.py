@@ -12,6 +12,8 @@ Rules:
 - CMake runs without kame's ROS_DISTRO: the system's catkin environment hooks set their own
   (Debian's 1.ros_distro.sh prints a warning that breaks catkin's generate_cached_setup.py
   when another is set).
+- cmake runs again only when catkin_make would (inputs_changed, --force-cmake); else
+  `make cmake_check_build_system`, as catkin_make.
 - make's job flags as catkin's: the user's -j/-l, else none when MAKEFLAGS has some, else
   ROS_PARALLEL_JOBS, else -jN -lN with N the number of processors.
 """
@@ -54,6 +56,20 @@ def banner(cmd: Sequence[str], cwd: Path, color: bool) -> list[str]:
     return [f"{blue}####{reset}",
             f'{blue}#### Running command: {bold}"{" ".join(cmd)}"{reset}{blue} in {bold}"{cwd}"{reset}',
             f"{blue}####{reset}"]
+
+
+def inputs_changed(build: Path, package_paths: Sequence[str], cmake_args: Sequence[str]) -> bool:
+    """catkin_make's test for running cmake again: the packages or the cmake arguments changed
+    since the last run (build/catkin_make.cache, in catkin's two-line format), or no Makefile."""
+    current = f"{os.pathsep.join(sorted(package_paths))}\n{' '.join(cmake_args)}"
+    cache = build / "catkin_make.cache"
+    try:
+        previous = cache.read_text()
+    except OSError:
+        previous = None
+    build.mkdir(parents=True, exist_ok=True)
+    cache.write_text(current)
+    return previous != current or not (build / "Makefile").is_file()
 
 
 def link_toplevel(source: Path, toolchain: Toolchain) -> str | None:
@@ -109,6 +125,13 @@ class CMakeBuild:
         shown[0] = "cmake"
         if not self._run([self.toolchain.cmake, *shown[1:-2], *kame_args, *shown[-2:]], shown, self.build, self.env):
             raise CMakeFailed('Invoking "cmake" failed')
+
+    def check(self) -> None:
+        """`make cmake_check_build_system`: catkin_make's step instead of cmake when nothing changed
+        (CMake itself reconfigures if a CMakeLists.txt or package.xml did)."""
+        shown = ["make", "cmake_check_build_system"]
+        if not self._run([self.toolchain.make, "cmake_check_build_system"], shown, self.build, self.env):
+            raise CMakeFailed('Invoking "make cmake_check_build_system" failed')
 
     def make(self, make_args: Sequence[str], targets: Sequence[str]) -> None:
         args = make_arguments(make_args, self.env, os.cpu_count() or 1)

@@ -26,7 +26,7 @@ from collections.abc import Callable, Sequence
 from pathlib import Path
 
 from kame.catkin.build import PackageResult, build, underlay_workspaces
-from kame.catkin.cmake import CMakeBuild, CMakeFailed, link_toplevel
+from kame.catkin.cmake import CMakeBuild, CMakeFailed, inputs_changed, link_toplevel
 from kame.catkin.cpp_messages import KameMessageHeaders, MessageHeaderError
 from kame.catkin.toolchain import Missing, Toolchain, find_toolchain, os_release, package_config, prefixes
 from kame.catkin.workspace import (
@@ -124,7 +124,7 @@ def parser() -> argparse.ArgumentParser:
     p.add_argument("--use-ninja", action="store_true", help="Accepted for compatibility")
     p.add_argument("--use-nmake", action="store_true", help="Accepted for compatibility")
     p.add_argument("--use-gmake", action="store_true", help="Accepted for compatibility")
-    p.add_argument("--force-cmake", action="store_true", help="Accepted for compatibility (kame always reconfigures)")
+    p.add_argument("--force-cmake", action="store_true", help="Invoke cmake even if it has been executed before")
     p.add_argument("--no-color", action="store_true", help="Disables colored output")
     p.add_argument("--pkg", nargs="+", help="Build specific packages only")
     p.add_argument("--only-pkg-with-deps", nargs="+",
@@ -247,7 +247,12 @@ def run(argv: Sequence[str]) -> int:
                            [build_path / KAME_PREFIX], say, color)
         needed = {d for p in chosen if p.name in in_cmake for d in p.depends} - {p.name for p in packages}
         KameMessageHeaders(build_path / KAME_PREFIX, toolchain, search).provide(needed)
-        cmake.configure(sorted(in_cmake), [f"-D{k}={v}" for k, v in defines.items() if k not in CACHED])
+        cmake_args = [f"-D{k}={v}" for k, v in defines.items() if k not in CACHED]
+        paths = [str(p.path.relative_to(source)) for p in chosen if p.name in in_cmake]
+        if inputs_changed(build_path, paths, cmake_args) or args.force_cmake:
+            cmake.configure(sorted(in_cmake), cmake_args)
+        else:
+            cmake.check()
         cmake.make(make_args, args.targets)
     python_only = [p for p in chosen if p.name not in in_cmake]
     failed = _build_python(python_only, len(chosen) - len(python_only), source, build_path, devel, whitelist,
