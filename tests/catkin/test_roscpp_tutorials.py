@@ -17,7 +17,7 @@ import pytest
 
 from kame.catkin.toolchain import Missing, find_toolchain
 from kame.roscpp_tutorials.build import program
-from tests.shell.shell_env import bash, clean_env
+from tests.shell.shell_env import bash, clean_env, complete
 from tests.support import Proc, free_port, wait_for_master
 
 BIN = Path(sys.executable).parent
@@ -74,6 +74,9 @@ def test_rosls_shows_what_the_course_shows(master: tuple[str, dict[str, str]]) -
     assert out.stdout.split() == ["cmake", "launch", "package.xml", "srv"], out.stderr
     out = bash("rosls roscpp_tutorials/launch; rossrv show roscpp_tutorials/TwoInts", master[1])
     assert out.stdout.splitlines() == ["talker_listener.launch", "int64 a", "int64 b", "---", "int64 sum", ""]
+    assert complete(master[1], "rosrun", "roscpp_tutorials", "ta") == ["talker"]
+    assert complete(master[1], "rosrun", "roscpp_tutorials", "add_two") == ["add_two_ints_client",
+                                                                             "add_two_ints_server"]
 
 
 def test_talker_and_listener(master: tuple[str, dict[str, str]], kind: str) -> None:
