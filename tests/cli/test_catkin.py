@@ -329,3 +329,17 @@ def test_catkin_create_pkg_as_catkin_tools(tmp_path: Path) -> None:
     built = run(["catkin", "build"], ws, env)
     assert built.returncode == 0, built.stderr
     assert built.stdout.index("Finished  <<< pkg_a") < built.stdout.index("Finished  <<< pkg_c")
+
+
+def test_devel_env_sh_and_setup_util_of_a_python_workspace(tmp_path: Path) -> None:
+    ws, env = make_workspace(tmp_path)
+    create_beginner_tutorials(ws, env)
+    assert run(["catkin_make"], ws, env).returncode == 0
+    inside = run([str(ws / "devel" / "env.sh"), "sh", "-c", "echo $ROS_PACKAGE_PATH; echo $CMAKE_PREFIX_PATH"], ws,
+                 env)
+    assert inside.stdout.splitlines()[0].split(":")[0] == str(ws / "src")
+    assert inside.stdout.splitlines()[1] == str(ws / "devel")
+    bare = run([str(ws / "devel" / "env.sh")], ws, env)
+    assert bare.returncode == 1 and bare.stdout.startswith("Usage: env.sh COMMANDS\n")
+    lines = run([str(ws / "devel" / "_setup_util.py"), "--local"], ws, env).stdout.splitlines()
+    assert f"export CMAKE_PREFIX_PATH={ws}/devel" in lines
