@@ -19,6 +19,9 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
 
+from kame.catkin.workspace import WorkspacePackage, unresolved_components
+from kame.msg.catalog import find_packages, package_path_roots
+
 DEFAULT_PREFIXES = ("/opt/ros/noetic", "/usr/local", "/usr")
 # what to install for each missing piece, on Debian and Ubuntu
 APT_PACKAGES = {
@@ -96,6 +99,13 @@ def interpreter(script: Path) -> str | None:
     if words and os.path.basename(words[0]) == "env" and len(words) > 1:
         return shutil.which(words[1])
     return words[0] if words else None
+
+
+def missing_components(packages: list[WorkspacePackage], search: list[Path]) -> dict[str, list[str]]:
+    """Per package, the find_package(catkin COMPONENTS ...) names neither the workspace, kame
+    (its packages and ROS_PACKAGE_PATH's) nor the system (a NAMEConfig.cmake in `search`) has."""
+    known = find_packages(package_path_roots())
+    return unresolved_components(packages, lambda name: name in known or package_config(name, search) is not None)
 
 
 def find_toolchain(env: Mapping[str, str]) -> Toolchain | Missing:

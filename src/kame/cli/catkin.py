@@ -27,7 +27,7 @@ from typing import Any
 from kame.catkin.build import PackageResult, build, underlay_workspaces
 from kame.catkin.cmake import CMakeBuild, CMakeFailed
 from kame.catkin.cpp_messages import KameMessageHeaders
-from kame.catkin.toolchain import Toolchain, find_toolchain, os_release, prefixes
+from kame.catkin.toolchain import Toolchain, find_toolchain, missing_components, os_release, prefixes
 from kame.catkin.workspace import (
     WorkspaceError,
     WorkspacePackage,
@@ -179,7 +179,7 @@ def _build_cpp(packages: list[WorkspacePackage], ws: Path, failed: list[PackageR
         if any(p.cpp_targets for p in packages):
             print(toolchain.advice(os_release()), file=sys.stderr)
         return set()
-    in_cmake = cmake_packages(packages)
+    in_cmake = cmake_packages(packages) | set(missing_components(packages, prefixes(os.environ)))
     names = {p.name for p in packages}
     kame_prefix = ws / "build" / KAME_PREFIX
     needed = {d for p in packages if p.name in in_cmake for d in p.depends} - names

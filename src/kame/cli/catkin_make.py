@@ -28,7 +28,7 @@ from pathlib import Path
 from kame.catkin.build import PackageResult, build, underlay_workspaces
 from kame.catkin.cmake import CMakeBuild, CMakeFailed, inputs_changed, link_toplevel
 from kame.catkin.cpp_messages import KameMessageHeaders, MessageHeaderError
-from kame.catkin.toolchain import Missing, Toolchain, find_toolchain, os_release, package_config, prefixes
+from kame.catkin.toolchain import Missing, Toolchain, find_toolchain, missing_components, os_release, prefixes
 from kame.catkin.workspace import (
     WorkspaceError,
     WorkspacePackage,
@@ -36,10 +36,8 @@ from kame.catkin.workspace import (
     cmake_packages,
     find_workspace_packages,
     select,
-    unresolved_components,
     with_dependencies,
 )
-from kame.msg.catalog import find_packages, package_path_roots
 
 RED = "\033[31m"
 RESET = "\033[0m"
@@ -233,10 +231,8 @@ def run(argv: Sequence[str]) -> int:
         if linked:
             say(linked)
     search = prefixes(os.environ)
-    kame_packages = find_packages(package_path_roots())
-    unresolved = unresolved_components(packages, lambda name: name in kame_packages
-                                       or package_config(name, search) is not None)
-    unresolved = {name: deps for name, deps in unresolved.items() if name in {p.name for p in chosen}}
+    unresolved = {name: deps for name, deps in missing_components(packages, search).items()
+                  if name in {p.name for p in chosen}}
     if unresolved and isinstance(toolchain, Missing):
         raise BuildError("\n".join(f'Package "{name}" needs {", ".join(deps)}, which neither the workspace, kame nor '
                                    "this system has: CMake would stop at its find_package(catkin REQUIRED "
