@@ -2,7 +2,9 @@
 roscpp, and run with rosrun against kame's roscore: hello, the publisher driving kame's
 turtlesim, the subscriber printing its pose (turtlesim/Pose.h: headers kame makes, Debian
 has none), a talker/listener pair, and a C++ package's own message read by a rospy node in a
-Python package that depends on it (a mixed workspace, built in dependency order).
+Python package that depends on it (a mixed workspace, built in dependency order), and a C++
+dynamic_reconfigure server (the .cfg run by the system's generator in the same CMake build)
+reconfigured with kame's dynparam.
 
 The workspace (tests/catkin/course_ws) is built once for the module, and one roscore serves
 every test; every process is stopped by its PID."""
@@ -106,6 +108,7 @@ def test_catkin_make_builds_the_course_workspace(workspace: tuple[Path, subproce
     assert out.index("Built target reading_pub") < out.index("[100%] Built target py_reader")
     assert (ws / "devel" / "include" / "cpp_msgs_demo" / "Reading.h").is_file()
     assert "struct Reading_" in (ws / "devel" / "include" / "cpp_msgs_demo" / "Reading.h").read_text()
+    assert (ws / "devel" / "include" / "reconfigure_server" / "SpeedConfig.h").is_file()
     for name in ("env.sh", "_setup_util.py", "setup.bash", ".catkin"):
         assert (ws / "devel" / name).is_file(), name
     assert (ws / "devel" / "lib" / "py_reader" / "reader.py").is_file()
@@ -196,3 +199,18 @@ def test_catkin_build_builds_a_cpp_package_as_catkin_tools(tmp_path: Path) -> No
     assert "[build] Summary: All 1 packages succeeded!" in result.stdout
     assert (ws / "devel" / "lib" / "hello" / "hello").is_file()
     assert "Linking CXX executable" in (ws / "logs" / "hello" / "build.log").read_text()
+
+
+def test_cpp_dynamic_reconfigure_server(workspace: tuple[Path, subprocess.CompletedProcess[str]],
+                                        master: tuple[str, dict[str, str]]) -> None:
+    ws, env = workspace[0], master[1]
+    server = rosrun(ws, env, "reconfigure_server", "server")
+    try:
+        assert info(server.wait_line("speed=1.0")) == "Reconfigure request: speed=1.0 who=turtle"
+        done = subprocess.run(["bash", "-c", f"source {ws}/devel/setup.bash && "
+                               "rosrun dynamic_reconfigure dynparam set /speed_server speed 2.5"],
+                              env=env, capture_output=True, text=True, timeout=60)
+        assert done.returncode == 0, done.stderr
+        assert info(server.wait_line("speed=2.5")) == "Reconfigure request: speed=2.5 who=turtle"
+    finally:
+        server.stop()
