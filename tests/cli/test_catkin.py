@@ -343,3 +343,19 @@ def test_devel_env_sh_and_setup_util_of_a_python_workspace(tmp_path: Path) -> No
     assert bare.returncode == 1 and bare.stdout.startswith("Usage: env.sh COMMANDS\n")
     lines = run([str(ws / "devel" / "_setup_util.py"), "--local"], ws, env).stdout.splitlines()
     assert f"export CMAKE_PREFIX_PATH={ws}/devel" in lines
+
+
+def test_compiler_errors_show_as_in_catkin(tmp_path: Path) -> None:
+    ws, env = make_workspace(tmp_path)
+    if isinstance(find_toolchain(env), Missing):
+        pytest.skip("no C++ toolchain or roscpp here: tests/catkin's fixture says whether that may be")
+    run(["catkin_create_pkg", "broken", "roscpp"], ws / "src", env)
+    pkg = ws / "src" / "broken"
+    (pkg / "src" / "broken.cpp").write_text("int main() { return undeclared_thing; }\n")
+    cmake = pkg / "CMakeLists.txt"
+    cmake.write_text(cmake.read_text() + "add_executable(broken src/broken.cpp)\n")
+    result = run(["catkin_make", "--no-color", "-j1"], ws, env)
+    assert result.returncode == 1
+    assert "src/broken.cpp:1:21: error: \u2018undeclared_thing\u2019 was not declared in this scope" in result.stderr
+    assert "[ 50%] Building CXX object broken/CMakeFiles/broken.dir/src/broken.cpp.o" in result.stdout
+    assert result.stderr.endswith('Invoking "make -j1" failed\n')
