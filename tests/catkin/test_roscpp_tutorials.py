@@ -75,8 +75,8 @@ def test_rosls_shows_what_the_course_shows(master: tuple[str, dict[str, str]]) -
     out = bash("rosls roscpp_tutorials/launch; rossrv show roscpp_tutorials/TwoInts", master[1])
     assert out.stdout.splitlines() == ["talker_listener.launch", "int64 a", "int64 b", "---", "int64 sum", ""]
     assert complete(master[1], "rosrun", "roscpp_tutorials", "ta") == ["talker"]
-    assert complete(master[1], "rosrun", "roscpp_tutorials", "add_two") == ["add_two_ints_client",
-                                                                             "add_two_ints_server"]
+    assert complete(master[1], "rosrun", "roscpp_tutorials", "add_two") == [
+        "add_two_ints_client", "add_two_ints_server", "add_two_ints_server_class"]
 
 
 def test_talker_and_listener(master: tuple[str, dict[str, str]], kind: str) -> None:
@@ -120,3 +120,20 @@ def test_roslaunch_talker_listener(master: tuple[str, dict[str, str]], kind: str
         assert re.fullmatch(r"I heard: \[hello world \d+\]", text(heard))
     finally:
         launch.stop(timeout=15)
+
+
+def test_node_handle_namespaces_and_listener_multiple(master: tuple[str, dict[str, str]], kind: str) -> None:
+    env = env_for(master, kind)
+    names = subprocess.run(["stdbuf", "-oL", str(BIN / "rosrun"), "roscpp_tutorials", "node_handle_namespaces",
+                            "__ns:=/robot"], env=env, capture_output=True, text=True, timeout=30)
+    assert [text(line) for line in names.stdout.splitlines()] == [
+        "/robot/level1/a", "/robot/level1/level2/a", "/robot/node_handle_namespaces/a"], names.stderr
+    talker = rosrun(env, "babbler", "babble:=chatter")
+    listener = rosrun(env, "listener_multiple")
+    try:
+        heard = [text(listener.wait_line(f"chatter{n}: [hello world ")) for n in (1, 2, 3, 4)]
+        assert all(re.fullmatch(rf"chatter{n}: \[hello world \d+\]", h) for n, h in zip((1, 2, 3, 4), heard,
+                                                                                          strict=True)), heard
+    finally:
+        listener.stop()
+        talker.stop()

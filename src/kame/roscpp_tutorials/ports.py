@@ -12,6 +12,7 @@ import sys
 import threading
 import time
 from collections.abc import Callable, Sequence
+from concurrent.futures import ThreadPoolExecutor
 from typing import Any
 
 from kame.client import clock, core, errors, log, process, services, timer, topics
@@ -87,6 +88,85 @@ def listener_with_userdata(argv: Sequence[str]) -> int:
     return 0
 
 
+def listener_class(argv: Sequence[str]) -> int:
+    _start("listener_class", argv)
+    topics.Subscriber("chatter", String, _heard, queue_size=1000)
+    core.spin()
+    return 0
+
+
+def listener_unreliable(argv: Sequence[str]) -> int:
+    """Asks for UDP as roscpp's does; kame's publishers offer TCP, which roscpp then uses too."""
+    _start("listener_unreliable", argv)
+    topics.Subscriber("chatter", String, _heard, queue_size=1000)
+    core.spin()
+    return 0
+
+
+def listener_with_tracked_object(argv: Sequence[str]) -> int:
+    """The tracked object is gone before any message comes: only the plain callback prints."""
+    _start("listener", argv)
+    topics.Subscriber("chatter", String, lambda msg: _info("Only this version should print: [%s]", msg.data),
+                      queue_size=1)
+    core.spin()
+    return 0
+
+
+def _four_callbacks(pool: ThreadPoolExecutor | None) -> None:
+    """listener_multiple's four subscriptions to chatter; with a pool (the spinner tutorials' four
+    threads), each callback runs on it, printing its thread and working a hundredth of a second."""
+    def callback(which: int) -> Callable[[String], None]:
+        def work(msg: String) -> None:
+            _info("chatter%d: [%s] [thread=%d]", which, msg.data, threading.get_ident())
+            timer.sleep(0.01)
+
+        def heard(msg: String) -> None:
+            if pool is None:
+                _info("chatter%d: [%s]", which, msg.data)
+            else:
+                pool.submit(work, msg)
+        return heard
+
+    for which in (1, 2, 3, 4):
+        topics.Subscriber("chatter", String, callback(which), queue_size=10)
+
+
+def listener_multiple(argv: Sequence[str]) -> int:
+    _start("listener", argv)
+    _four_callbacks(None)
+    core.spin()
+    return 0
+
+
+def listener_threaded_spin(argv: Sequence[str]) -> int:
+    _start("listener", argv)
+    with ThreadPoolExecutor(4, thread_name_prefix="spinner") as pool:  # ros::MultiThreadedSpinner(4)
+        _four_callbacks(pool)
+        core.spin()
+    return 0
+
+
+def listener_async_spin(argv: Sequence[str]) -> int:
+    _start("listener", argv)
+    with ThreadPoolExecutor(4, thread_name_prefix="async-spinner") as pool:  # ros::AsyncSpinner(4)
+        _four_callbacks(pool)
+        rate = timer.Rate(5)
+        while not core.is_shutdown():
+            _info("Main thread [%d].", threading.get_ident())
+            try:
+                rate.sleep()
+            except errors.ROSInterruptException:
+                break
+    return 0
+
+
+def node_handle_namespaces(argv: Sequence[str]) -> int:
+    _start("node_handle_namespaces", argv)
+    for name in ("level1/a", "level1/level2/a", "~a"):  # NodeHandles "level1", its "level2", and "~"
+        _info("%s", core.resolve_name(name))
+    return 0
+
+
 class _Announcer(topics.SubscribeListener):
     """notify_connect's callbacks: each new subscriber is greeted (it alone gets the message)."""
 
@@ -112,6 +192,7 @@ def notify_connect(argv: Sequence[str]) -> int:
 
 
 def add_two_ints_server(argv: Sequence[str]) -> int:
+    """add_two_ints_server, and add_two_ints_server_class (the same with an object's method)."""
     _start("add_two_ints_server", argv)
 
     def add(request: TwoIntsRequest) -> TwoIntsResponse:
@@ -198,20 +279,20 @@ def custom_callback_processing(argv: Sequence[str]) -> int:
     main: queue.Queue[String] = queue.Queue()
 
     def serve_custom() -> None:
-        _info("Callback thread id=%x", threading.get_ident())
+        _info("Callback thread id=%d", threading.get_ident())
         while (msg := custom.get()) is not None:
-            _info("I heard: [ %s] in thread [%x]", msg.data, threading.get_ident())
+            _info("I heard: [ %s] in thread [%d]", msg.data, threading.get_ident())
 
     topics.Subscriber("chatter", String, custom.put, queue_size=1000)
     topics.Subscriber("chatter", String, main.put, queue_size=1000)
     worker = threading.Thread(target=serve_custom, name="custom-callback-queue")
     worker.start()
-    _info("Main thread id=%x", threading.get_ident())
+    _info("Main thread id=%d", threading.get_ident())
     rate = timer.Rate(1)
     try:
         while not core.is_shutdown():
             while not main.empty():
-                _info("I heard: [ %s] in thread [%x] (Main thread)", main.get().data, threading.get_ident())
+                _info("I heard: [ %s] in thread [%d] (Main thread)", main.get().data, threading.get_ident())
             try:
                 rate.sleep()
             except errors.ROSInterruptException:
@@ -227,7 +308,11 @@ PROGRAMS: dict[str, Callable[[Sequence[str]], int]] = {
     "listener_with_userdata": listener_with_userdata, "notify_connect": notify_connect,
     "add_two_ints_server": add_two_ints_server, "add_two_ints_client": add_two_ints_client,
     "time_api_sleep": time_api_sleep, "timers": timers, "parameters": parameters,
-    "custom_callback_processing": custom_callback_processing,
+    "custom_callback_processing": custom_callback_processing, "listener_class": listener_class,
+    "listener_multiple": listener_multiple, "listener_threaded_spin": listener_threaded_spin,
+    "listener_async_spin": listener_async_spin, "listener_unreliable": listener_unreliable,
+    "node_handle_namespaces": node_handle_namespaces, "add_two_ints_server_class": add_two_ints_server,
+    "listener_with_tracked_object": listener_with_tracked_object,
 }
 
 
