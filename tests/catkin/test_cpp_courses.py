@@ -114,6 +114,20 @@ def test_catkin_make_builds_the_course_workspace(workspace: tuple[Path, subproce
     assert (ws / "devel" / "lib" / "py_reader" / "reader.py").is_file()
 
 
+def test_pkg_makes_one_package_with_nothing_reconfigured(
+        workspace: tuple[Path, subprocess.CompletedProcess[str]]) -> None:
+    ws, _ = workspace
+    (ws / "src" / "hello" / "hello.cpp").touch()
+    result = subprocess.run(["catkin_make", "--no-color", "--pkg", "hello"], cwd=ws, env=user_env(ws.parent),
+                            capture_output=True, text=True, timeout=300)
+    assert result.returncode == 0, result.stderr
+    assert f'#### Running command: "make cmake_check_build_system" in "{ws}/build"' in result.stdout
+    assert re.search(rf'#### Running command: "make -j\d+ -l\d+" in "{ws}/build/hello"', result.stdout)
+    assert f"Linking CXX executable {ws}/devel/lib/hello/hello" in result.stdout
+    assert result.stdout.count("Linking CXX executable") == 1
+    assert "kame: Python packages" not in result.stdout
+
+
 def test_devel_setup_gives_catkins_environment(workspace: tuple[Path, subprocess.CompletedProcess[str]]) -> None:
     ws, _ = workspace
     out = subprocess.run(["bash", "-c", f"source {ws}/devel/setup.bash && echo $CMAKE_PREFIX_PATH && "

@@ -133,8 +133,9 @@ class CMakeBuild:
         if not self._run([self.toolchain.make, "cmake_check_build_system"], shown, self.build, self.env):
             raise CMakeFailed('Invoking "make cmake_check_build_system" failed')
 
-    def make(self, make_args: Sequence[str], targets: Sequence[str]) -> None:
+    def make(self, make_args: Sequence[str], targets: Sequence[str], folder: Path | None = None) -> None:
+        """make in the build space, or in one package's `folder` of it (catkin_make --pkg)."""
         args = make_arguments(make_args, self.env, os.cpu_count() or 1)
         shown = ["make", *args, *targets]
-        if not self._run([self.toolchain.make, *args, *targets], shown, self.build, self.env):
+        if not self._run([self.toolchain.make, *args, *targets], shown, folder or self.build, self.env):
             raise CMakeFailed(f'Invoking "{" ".join(shown)}" failed')

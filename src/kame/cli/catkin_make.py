@@ -215,7 +215,8 @@ def run(argv: Sequence[str]) -> int:
     write_cache(build_path, {k: v for k, v in cache.items() if v})
     whitelist = cmake_list(cache.get("CATKIN_WHITELIST_PACKAGES", ""))
     blacklist = cmake_list(cache.get("CATKIN_BLACKLIST_PACKAGES", ""))
-    chosen = select(packages, whitelist, blacklist)
+    selected = select(packages, whitelist, blacklist)
+    chosen = selected
     if args.pkg:
         names = {p.name for p in chosen}
         unknown = [n for n in args.pkg if n not in names]
@@ -232,27 +233,18 @@ def run(argv: Sequence[str]) -> int:
             say(linked)
     search = prefixes(os.environ)
     unresolved = {name: deps for name, deps in missing_components(packages, search).items()
-                  if name in {p.name for p in chosen}}
+                  if name in {p.name for p in selected}}
     if unresolved and isinstance(toolchain, Missing):
         raise BuildError("\n".join(f'Package "{name}" needs {", ".join(deps)}, which neither the workspace, kame nor '
                                    "this system has: CMake would stop at its find_package(catkin REQUIRED "
                                    "COMPONENTS ...)." for name, deps in unresolved.items()))
-    in_cmake = cmake_packages(chosen) | set(unresolved) if isinstance(toolchain, Toolchain) else set()
+    in_cmake = cmake_packages(selected) | set(unresolved) if isinstance(toolchain, Toolchain) else set()
     if in_cmake and isinstance(toolchain, Toolchain):
-        cmake = CMakeBuild(toolchain, source, build_path, devel, install, os.environ,
-                           [build_path / KAME_PREFIX], say, color)
-        needed = {d for p in chosen if p.name in in_cmake for d in p.depends} - {p.name for p in packages}
-        KameMessageHeaders(build_path / KAME_PREFIX, toolchain, search).provide(needed)
-        cmake_args = [f"-D{k}={v}" for k, v in defines.items() if k not in CACHED]
-        paths = [str(p.path.relative_to(source)) for p in chosen if p.name in in_cmake]
-        if inputs_changed(build_path, paths, cmake_args) or args.force_cmake:
-            cmake.configure(sorted(in_cmake), cmake_args)
-        else:
-            cmake.check()
-        cmake.make(make_args, args.targets)
+        _build_cpp(toolchain, [p for p in selected if p.name in in_cmake], packages, args, defines, make_args,
+                   (source, build_path, devel, install), search, say, color)
     python_only = [p for p in chosen if p.name not in in_cmake]
     failed = _build_python(python_only, len(chosen) - len(python_only), source, build_path, devel, whitelist,
-                           blacklist, color, say)
+                           blacklist, color, say, bool(in_cmake))
     if isinstance(toolchain, Missing) and any(p.cpp_targets for p in chosen):
         raise BuildError(toolchain.advice(os_release()) + " The Python packages were built; "
                          "source devel/setup.bash to use them.")
@@ -264,41 +256,67 @@ def run(argv: Sequence[str]) -> int:
     return 0
 
 
+def _build_cpp(toolchain: Toolchain, in_cmake: list[WorkspacePackage], packages: list[WorkspacePackage],
+               args: argparse.Namespace, defines: dict[str, str], make_args: list[str],
+               spaces: tuple[Path, Path, Path, Path], search: list[Path], say: Callable[[str], None],
+               color: bool) -> None:
+    """catkin_make's cmake (only when its inputs changed) and make over the C/C++ packages and what
+    they need in the workspace; with --pkg, make in those packages' build folders only."""
+    source, build_path, devel, install = spaces
+    cmake = CMakeBuild(toolchain, source, build_path, devel, install, os.environ, [build_path / KAME_PREFIX],
+                       say, color)
+    needed = {d for p in in_cmake for d in p.depends} - {p.name for p in packages}
+    KameMessageHeaders(build_path / KAME_PREFIX, toolchain, search).provide(needed)
+    cmake_args = [f"-D{k}={v}" for k, v in defines.items() if k not in CACHED]
+    paths = [str(p.path.relative_to(source)) for p in in_cmake]
+    if inputs_changed(build_path, paths, cmake_args) or args.force_cmake:
+        cmake.configure(sorted(p.name for p in in_cmake), cmake_args)
+    else:
+        cmake.check()
+    if not args.pkg:
+        cmake.make(make_args, args.targets)
+        return
+    for package in in_cmake:
+        if package.name in args.pkg:
+            cmake.make(make_args, args.targets, build_path / package.path.relative_to(source))
+
+
 def _build_python(chosen: list[WorkspacePackage], done: int, source: Path, build_path: Path, devel: Path,
                   whitelist: list[str], blacklist: list[str], color: bool, say: Callable[[str], None],
-                  ) -> list[PackageResult]:
+                  by_cmake: bool) -> list[PackageResult]:
     """kame's own build of the Python packages (no CMake), with catkin's lines."""
     python = sys.executable
     underlays = underlay_workspaces(os.environ, devel)
-    say("####")
-    say(f'#### Configuring the workspace in "{build_path}" (kame: Python packages, no CMake)')
-    say("####")
-    say(f"-- Using CATKIN_DEVEL_PREFIX: {devel}")
-    say(f"-- Using CMAKE_PREFIX_PATH: {os.environ.get('CMAKE_PREFIX_PATH', '')}")
-    if underlays:
-        say(f"-- This workspace overlays: {';'.join(reversed(underlays))}")
-    say(f"-- Using PYTHON_EXECUTABLE: {python}")
-    if whitelist:
-        say(f"-- Using CATKIN_WHITELIST_PACKAGES: {';'.join(whitelist)}")
-    if blacklist:
-        say(f"-- Using CATKIN_BLACKLIST_PACKAGES: {';'.join(blacklist)}")
-    say(f"-- ~~  traversing {len(chosen)} packages in topological order:")
-    for package in chosen:
-        say(f"-- ~~  - {package.name}")
-    say("-- ~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~")
-    for package in chosen:
-        say(f"-- +++ processing catkin package: '{package.name}'")
-        say(f"-- ==> add_subdirectory({package.path.relative_to(source)})")
-        interfaces = package.interface_files()
-        if interfaces:
-            counts = ", ".join(f"{len(v)} {k}" for k, v in interfaces.items())
-            say(f"-- {package.name}: {counts} (no generation step: kame imports them from the package)")
-    say("-- Configuring done")
-    say("-- Generating done")
-    say(f"-- Build files have been written to: {build_path}")
-    say("####")
-    say(f'#### Building in "{build_path}"')
-    say("####")
+    if chosen or not by_cmake:  # (where CMake built every package, only the setup files are kame's)
+        say("####")
+        say(f'#### Configuring the workspace in "{build_path}" (kame: Python packages, no CMake)')
+        say("####")
+        say(f"-- Using CATKIN_DEVEL_PREFIX: {devel}")
+        say(f"-- Using CMAKE_PREFIX_PATH: {os.environ.get('CMAKE_PREFIX_PATH', '')}")
+        if underlays:
+            say(f"-- This workspace overlays: {';'.join(reversed(underlays))}")
+        say(f"-- Using PYTHON_EXECUTABLE: {python}")
+        if whitelist:
+            say(f"-- Using CATKIN_WHITELIST_PACKAGES: {';'.join(whitelist)}")
+        if blacklist:
+            say(f"-- Using CATKIN_BLACKLIST_PACKAGES: {';'.join(blacklist)}")
+        say(f"-- ~~  traversing {len(chosen)} packages in topological order:")
+        for package in chosen:
+            say(f"-- ~~  - {package.name}")
+        say("-- ~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~")
+        for package in chosen:
+            say(f"-- +++ processing catkin package: '{package.name}'")
+            say(f"-- ==> add_subdirectory({package.path.relative_to(source)})")
+            interfaces = package.interface_files()
+            if interfaces:
+                counts = ", ".join(f"{len(v)} {k}" for k, v in interfaces.items())
+                say(f"-- {package.name}: {counts} (no generation step: kame imports them from the package)")
+        say("-- Configuring done")
+        say("-- Generating done")
+        say(f"-- Build files have been written to: {build_path}")
+        say("####")
+        say(f'#### Building in "{build_path}"')
+        say("####")
 
     failed: list[PackageResult] = []
     total = len(chosen) + done
