@@ -68,7 +68,9 @@ class KameMessageHeaders:
     def _gencpp(self) -> tuple[Path, Path]:
         folder = package_config("gencpp", self.search)
         if folder is None:
-            raise MessageHeaderError("gencpp (the C++ message generator) is not installed")
+            raise MessageHeaderError("gencpp (the C++ message generator) is not installed: the C++ headers of "
+                                     "kame's message packages are made with it (Debian and Ubuntu: "
+                                     "sudo apt-get install python3-gencpp ros-message-generation)")
         extras = (folder / "gencpp-extras.cmake").read_text()
         found = _GENCPP_BIN.search(extras)
         if found is None:

@@ -30,8 +30,6 @@ APT_PACKAGES = {
     "c++": "g++",
     "catkin": "catkin",
     "roscpp": "libroscpp-dev",
-    "message_generation": "ros-message-generation",
-    "gencpp": "python3-gencpp",
 }
 
 
@@ -116,9 +114,7 @@ def find_toolchain(env: Mapping[str, str]) -> Toolchain | Missing:
     search = prefixes(env)
     catkin = package_config("catkin", search)
     missing = [name for name, found in (("cmake", cmake), ("make", make), ("c++", compiler), ("catkin", catkin),
-                                        ("roscpp", package_config("roscpp", search)),
-                                        ("message_generation", package_config("message_generation", search)),
-                                        ("gencpp", package_config("gencpp", search)))
+                                        ("roscpp", package_config("roscpp", search)))
                if not found]
     if missing or cmake is None or make is None or catkin is None:
         return Missing(tuple(missing))

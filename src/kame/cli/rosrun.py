@@ -179,7 +179,7 @@ def resolve(package: str, name: str, debug: bool) -> list[str]:
         if debug:
             print("[rosrun]", text)
 
-    libexec = catkin_dirs(package) + shipped_programs(package)  # kame's lib/<package> as an installed ROS's
+    libexec = catkin_dirs(package) or shipped_programs(package)  # kame's lib/<package>: an installed ROS's
     say("Looking in catkin libexec dirs: \n" + "\n".join(str(d) for d in libexec))
     pkg = find_packages(package_path_roots()).get(package)
     pkgdir = Path(os.path.abspath(pkg.path)) if pkg is not None else None

@@ -122,7 +122,7 @@ def libexec_dirs(package: str, env: Mapping[str, str]) -> list[Path]:
             candidate = Path(prefix) / "lib" / package
             if candidate.is_dir():
                 found.append(candidate)
-    return found + shipped_programs(package)
+    return found or shipped_programs(package)
 
 
 def package_roots(package: str, env: Mapping[str, str]) -> list[tuple[Path, Path | None]]:
