@@ -131,13 +131,15 @@ def test_pkg_makes_one_package_with_nothing_reconfigured(
 def test_devel_setup_gives_catkins_environment(workspace: tuple[Path, subprocess.CompletedProcess[str]]) -> None:
     ws, _ = workspace
     out = subprocess.run(["bash", "-c", f"source {ws}/devel/setup.bash && echo $CMAKE_PREFIX_PATH && "
-                          "echo $LD_LIBRARY_PATH && echo $PKG_CONFIG_PATH && pkg-config --modversion hello"],
+                          "echo $LD_LIBRARY_PATH && echo $PKG_CONFIG_PATH && pkg-config --modversion hello && "
+                          "echo $ROSLISP_PACKAGE_DIRECTORIES"],
                          env=user_env(ws.parent), capture_output=True, text=True, timeout=60)
-    prefix, libraries, pkg_config, version = out.stdout.splitlines()
+    prefix, libraries, pkg_config, version, lisp = out.stdout.splitlines()
     assert prefix.split(":")[0] == f"{ws}/devel"
     assert libraries.split(":")[0] == f"{ws}/devel/lib"
     assert pkg_config.split(":")[0] == f"{ws}/devel/lib/pkgconfig"
     assert version == "0.0.1", out.stderr
+    assert lisp == f"{ws}/devel/share/common-lisp"
 
 
 def test_hello(workspace: tuple[Path, subprocess.CompletedProcess[str]], master: tuple[str, dict[str, str]]) -> None:

@@ -13,7 +13,8 @@ Rules (as catkin's setup files and /opt/ros/noetic/setup.bash behave):
   devel/lib/python3/dist-packages on PYTHONPATH, devel/lib (where catkin's CMake puts the C++
   packages' libraries) on LD_LIBRARY_PATH and devel/lib/pkgconfig on PKG_CONFIG_PATH when they
   exist (as catkin's _setup_util.py), source folders on ROS_PACKAGE_PATH (each prepended, so
-  the last sourced wins).
+  the last sourced wins); ROSLISP_PACKAGE_DIRECTORIES lists devel/share/common-lisp of each
+  devel space on CMAKE_PREFIX_PATH, in its order, as roslisp's environment hook does.
 
 `python -m kame.shell.environment --python P [--workspaces DEVEL:DEVEL]` prints the result as
 `export`/`unset` lines for `eval` in sh, bash and zsh.
@@ -38,6 +39,7 @@ PATH_VARIABLES = ("CMAKE_PREFIX_PATH", "LD_LIBRARY_PATH", "PATH", "PKG_CONFIG_PA
 # catkin's _setup_util.py: the devel folders a variable gets, each only when it exists
 LIBRARY_FOLDERS = ("lib", "lib/x86_64-linux-gnu")
 PKG_CONFIG_FOLDERS = ("lib/pkgconfig", "lib/x86_64-linux-gnu/pkgconfig")
+LISP_FOLDER = "share/common-lisp"  # genlisp's output folder, which roslisp's environment hook lists
 CATKIN_MARKER = ".catkin"
 
 
@@ -115,6 +117,9 @@ def compute(env: Mapping[str, str], python: str, workspaces: Sequence[str] = ())
 
     for name, entries in lists.items():
         result[name] = os.pathsep.join(entries) if entries else None
+    lisp = [os.path.join(p, LISP_FOLDER) for p in lists["CMAKE_PREFIX_PATH"]
+            if is_workspace(p) and workspace_sources(Path(p))]
+    result["ROSLISP_PACKAGE_DIRECTORIES"] = os.pathsep.join(lisp) if lisp else None
     return result
 
 
