@@ -187,6 +187,18 @@ def test_talker_and_listener(workspace: tuple[Path, subprocess.CompletedProcess[
         listener.stop()
 
 
+def test_roslaunch_runs_the_workspace_programs(workspace: tuple[Path, subprocess.CompletedProcess[str]],
+                                               master: tuple[str, dict[str, str]]) -> None:
+    ws, env = workspace[0], master[1]
+    launch = Proc(["bash", "-c", f"source {ws}/devel/setup.bash && exec stdbuf -oL roslaunch cpp_chatter "
+                   "chatter.launch"], env)
+    try:
+        heard = info(launch.wait_line("I heard: [hello world ", timeout=30))
+        assert re.fullmatch(r"I heard: \[hello world \d+\]", heard)
+    finally:
+        launch.stop(timeout=15)
+
+
 def test_own_message_of_a_cpp_package_read_by_rospy(workspace: tuple[Path, subprocess.CompletedProcess[str]],
                                                      master: tuple[str, dict[str, str]]) -> None:
     ws, env = workspace[0], master[1]
