@@ -25,7 +25,7 @@ from pathlib import Path
 from typing import Any
 
 from kame.catkin.build import PackageResult, build, underlay_workspaces
-from kame.catkin.cmake import CMakeBuild, CMakeFailed
+from kame.catkin.cmake import CMakeBuild, CMakeFailed, inputs_changed
 from kame.catkin.cpp_messages import KameMessageHeaders
 from kame.catkin.toolchain import Toolchain, find_toolchain, missing_components, os_release, prefixes
 from kame.catkin.workspace import (
@@ -175,11 +175,18 @@ def _build_cpp(packages: list[WorkspacePackage], ws: Path, failed: list[PackageR
     in build/<package> and made there, in order, into the merged devel space; output in
     logs/<package>/build.log, shown when it fails. Returns the packages built this way."""
     toolchain = find_toolchain(os.environ)
+    missing = missing_components(packages, prefixes(os.environ))
     if not isinstance(toolchain, Toolchain):
         if any(p.cpp_targets for p in packages):
             print(toolchain.advice(os_release()), file=sys.stderr)
-        return set()
-    in_cmake = cmake_packages(packages) | set(missing_components(packages, prefixes(os.environ)))
+        for name, deps in missing.items():  # what CMake would stop at, said without it
+            message = (f"package '{name}' needs {', '.join(deps)}, which neither the workspace, kame nor this "
+                       "system has")
+            failed.append(PackageResult(name, errors=[message]))
+            print(f"Errors     << {name}\nkame: {message}", file=sys.stderr)
+            print(f"Failed     << {name}                [ Exited with code 1 ]")
+        return set(missing)
+    in_cmake = cmake_packages(packages) | set(missing)
     names = {p.name for p in packages}
     kame_prefix = ws / "build" / KAME_PREFIX
     needed = {d for p in packages if p.name in in_cmake for d in p.depends} - names
@@ -194,7 +201,10 @@ def _build_cpp(packages: list[WorkspacePackage], ws: Path, failed: list[PackageR
         cmake = CMakeBuild(toolchain, package.path, ws / "build" / package.name, ws / "devel", ws / "install",
                            os.environ, [kame_prefix, ws / "devel"], print, False, log)
         try:
-            cmake.configure(None, [])
+            if inputs_changed(ws / "build" / package.name, [str(package.path)], []):
+                cmake.configure(None, [])
+            else:
+                cmake.check()
             cmake.make([], [])
         except CMakeFailed as exc:
             failed.append(PackageResult(package.name, errors=[str(exc)]))
