@@ -305,6 +305,9 @@ def test_unknown_dependencies_fail_as_in_catkin(tmp_path: Path) -> None:
     assert bare.returncode == 1
     assert bare.stderr == ('Package "my_first_pkg" needs DEP1, DEP2, which neither the workspace, kame nor this '
                            "system has: CMake would stop at its find_package(catkin REQUIRED COMPONENTS ...).\n")
+    tools = run(["catkin", "build"], ws, {**env, "PATH": str(BIN)})
+    assert tools.returncode == 1 and "Failed     << my_first_pkg" in tools.stdout
+    assert "kame: package 'my_first_pkg' needs DEP1, DEP2, which neither the workspace, kame nor" in tools.stderr
     if isinstance(find_toolchain(env), Missing):
         pytest.skip("no C++ toolchain or roscpp here: tests/catkin's fixture says whether that may be")
     result = run(["catkin_make", "--no-color"], ws, env)
