@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import os
 import re
+import shutil
 import subprocess
 import sys
 import textwrap
@@ -305,7 +306,9 @@ def test_unknown_dependencies_fail_as_in_catkin(tmp_path: Path) -> None:
     assert bare.returncode == 1
     assert bare.stderr == ('Package "my_first_pkg" needs DEP1, DEP2, which neither the workspace, kame nor this '
                            "system has: CMake would stop at its find_package(catkin REQUIRED COMPONENTS ...).\n")
-    tools = run(["catkin", "build"], ws, {**env, "PATH": str(BIN)})
+    tools_ws = tmp_path / "tools_ws"  # catkin build marks its build space as its own
+    shutil.copytree(ws / "src", tools_ws / "src", symlinks=True)
+    tools = run(["catkin", "build"], tools_ws, {**env, "PATH": str(BIN)})
     assert tools.returncode == 1 and "Failed     << my_first_pkg" in tools.stdout
     assert "kame: package 'my_first_pkg' needs DEP1, DEP2, which neither the workspace, kame nor" in tools.stderr
     if isinstance(find_toolchain(env), Missing):
