@@ -75,6 +75,7 @@ class WorkspacePackage:
     path: Path
     depends: set[str]
     cmake_text: str
+    version: str = ""
 
     @property
     def cpp_targets(self) -> list[CppTarget]:
@@ -218,7 +219,7 @@ def find_workspace_packages(source: Path) -> list[WorkspacePackage]:
         folder = source / relpath
         cmake = folder / "CMakeLists.txt"
         text = cmake.read_text(errors="replace") if cmake.is_file() else ""
-        result.append(WorkspacePackage(pkg.name, folder, depends, text))
+        result.append(WorkspacePackage(pkg.name, folder, depends, text, pkg.version))
     return result
 
 

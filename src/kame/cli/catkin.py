@@ -24,7 +24,7 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
-from kame.catkin.build import PackageResult, build, underlay_workspaces
+from kame.catkin.build import PackageResult, build, underlay_prefixes
 from kame.catkin.cmake import CMakeBuild, CMakeFailed, inputs_changed
 from kame.catkin.cpp_messages import KameMessageHeaders
 from kame.catkin.toolchain import Toolchain, find_toolchain, missing_components, os_release, prefixes
@@ -106,7 +106,7 @@ def cmd_build(args: argparse.Namespace) -> int:
     source, build_path, devel = ws / "src", ws / "build", ws / "devel"
     (ws / ".catkin_tools" / "profiles" / "default").mkdir(parents=True, exist_ok=True)
     cmake_prefix = os.environ.get("CMAKE_PREFIX_PATH", "")
-    underlays = underlay_workspaces(os.environ, devel)
+    underlays = underlay_prefixes(os.environ, devel)
     print(RULE)
     print("Profile:                     default")
     print(f"Extending:             [env] {cmake_prefix or '(kame)'}")

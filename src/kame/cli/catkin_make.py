@@ -25,7 +25,7 @@ import sys
 from collections.abc import Callable, Sequence
 from pathlib import Path
 
-from kame.catkin.build import PackageResult, build, underlay_workspaces
+from kame.catkin.build import PackageResult, build, configure_lines, underlay_prefixes
 from kame.catkin.cmake import CMakeBuild, CMakeFailed, inputs_changed, link_toplevel
 from kame.catkin.cpp_messages import KameMessageHeaders, MessageHeaderError
 from kame.catkin.toolchain import Missing, Toolchain, find_toolchain, missing_components, os_release, prefixes
@@ -286,15 +286,14 @@ def _build_python(chosen: list[WorkspacePackage], done: int, source: Path, build
                   by_cmake: bool) -> list[PackageResult]:
     """kame's own build of the Python packages (no CMake), with catkin's lines."""
     python = sys.executable
-    underlays = underlay_workspaces(os.environ, devel)
+    underlays = underlay_prefixes(os.environ, devel)
     if chosen or not by_cmake:  # (where CMake built every package, only the setup files are kame's)
         say("####")
         say(f'#### Configuring the workspace in "{build_path}" (kame: Python packages, no CMake)')
         say("####")
         say(f"-- Using CATKIN_DEVEL_PREFIX: {devel}")
-        say(f"-- Using CMAKE_PREFIX_PATH: {os.environ.get('CMAKE_PREFIX_PATH', '')}")
-        if underlays:
-            say(f"-- This workspace overlays: {';'.join(reversed(underlays))}")
+        for line in configure_lines(os.environ):
+            say(line)
         say(f"-- Using PYTHON_EXECUTABLE: {python}")
         if whitelist:
             say(f"-- Using CATKIN_WHITELIST_PACKAGES: {';'.join(whitelist)}")
