@@ -2,9 +2,10 @@
 roscpp, and run with rosrun against kame's roscore: hello, the publisher driving kame's
 turtlesim, the subscriber printing its pose (turtlesim/Pose.h: headers kame makes, Debian
 has none), a talker/listener pair, and a C++ package's own message read by a rospy node in a
-Python package that depends on it (a mixed workspace, built in dependency order), and a C++
+Python package that depends on it (a mixed workspace, built in dependency order), a C++
 dynamic_reconfigure server (the .cfg run by the system's generator in the same CMake build)
-reconfigured with kame's dynparam.
+reconfigured with kame's dynparam, and a program building action goals from the headers of
+kame's actions the system lacks (actionlib_tutorials' Fibonacci, nav_msgs' GetMap).
 
 The workspace (tests/catkin/course_ws) is built once for the module, and one roscore serves
 every test; every process is stopped by its PID."""
@@ -101,7 +102,7 @@ def test_catkin_make_builds_the_course_workspace(workspace: tuple[Path, subproce
     assert "-- ~~  - cpp_msgs_demo" in out and "-- ==> add_subdirectory(hello)" in out
     for package, program in (("hello", "hello"), ("publisher", "publisher"), ("subscriber", "subscriber"),
                              ("cpp_chatter", "talker"), ("cpp_chatter", "listener"),
-                             ("cpp_msgs_demo", "reading_pub")):
+                             ("cpp_msgs_demo", "reading_pub"), ("action_goals", "fibonacci_goal")):
         assert f"Linking CXX executable {ws}/devel/lib/{package}/{program}" in out
         assert (ws / "devel" / "lib" / package / program).is_file()
     # the mixed workspace: the Python package that depends on the C++ one comes after it
@@ -140,6 +141,24 @@ def test_devel_setup_gives_catkins_environment(workspace: tuple[Path, subprocess
     assert pkg_config.split(":")[0] == f"{ws}/devel/lib/pkgconfig"
     assert version == "0.0.1", out.stderr
     assert lisp == f"{ws}/devel/share/common-lisp"
+
+
+def test_action_headers_kame_makes_carry_the_messages_md5sums(
+        workspace: tuple[Path, subprocess.CompletedProcess[str]]) -> None:
+    ws, _ = workspace
+    env = user_env(ws.parent)
+    goals = subprocess.run([str(ws / "devel" / "lib" / "action_goals" / "fibonacci_goal")], env=env,
+                           capture_output=True, text=True, timeout=30)
+    assert goals.returncode == 0, goals.stderr
+    md5 = [subprocess.run([str(BIN / "rosmsg"), "md5", name], env=env, capture_output=True, text=True,
+                          timeout=30).stdout.strip() for name in ("actionlib_tutorials/FibonacciAction",
+                                                                  "nav_msgs/GetMapAction")]
+    assert goals.stdout.splitlines() == ["actionlib_tutorials/FibonacciActionGoal 20", md5[0],
+                                         "nav_msgs/GetMapActionGoal", md5[1]]
+    generated = ws / "build" / "kame_msgs" / "share" / "actionlib_tutorials" / "msg"
+    assert sorted(p.name for p in generated.glob("Fibonacci*.msg")) == sorted(
+        f"Fibonacci{part}.msg" for part in ("Action", "ActionGoal", "ActionResult", "ActionFeedback", "Goal",
+                                            "Result", "Feedback"))
 
 
 def test_hello(workspace: tuple[Path, subprocess.CompletedProcess[str]], master: tuple[str, dict[str, str]]) -> None:
