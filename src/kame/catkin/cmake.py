@@ -5,8 +5,10 @@ Rules:
   in the build space (src/CMakeLists.txt being catkin's toplevel.cmake), then `make -jN -lN`;
   each announced by catkin's banner, their output passed through as it comes.
 - CMake is given the packages it builds as CATKIN_WHITELIST_PACKAGES (the Python-only ones are
-  kame's), the interpreter of the system's catkin as PYTHON_EXECUTABLE, and kame's prefix of
-  message headers (kame/catkin/cpp_messages.py) on CMAKE_PREFIX_PATH.
+  kame's), the interpreter of the system's catkin as PYTHON_EXECUTABLE, and each package of
+  kame's prefix of message headers (kame/catkin/cpp_messages.py) as a <package>_DIR
+  environment variable, which find_package searches, so CMAKE_PREFIX_PATH stays the user's (as
+  catkin's "Using CMAKE_PREFIX_PATH" prints it and its setup files record it).
 - genmsg is told ROS_LANG_DISABLE=genpy: Python programs import a package's messages through
   kame's import hook (from its .msg files, as for the Python-only packages), not genpy's modules.
 - CMake runs without kame's ROS_DISTRO: the system's catkin environment hooks set their own
@@ -86,8 +88,9 @@ class CMakeBuild:
 
     def __init__(self, toolchain: Toolchain, source: Path, build: Path, devel: Path, install: Path,
                  env: Mapping[str, str], prefixes: Sequence[Path], say: Callable[[str], None], color: bool,
-                 log: Path | None = None) -> None:
-        """`log`: where the commands' output goes (catkin build's per-package logs); else it is shown."""
+                 log: Path | None = None, headers: Path | None = None) -> None:
+        """`prefixes` go first on CMAKE_PREFIX_PATH; `headers`: kame's prefix of message headers;
+        `log`: where the commands' output goes (catkin build's per-package logs); else it is shown."""
         self.toolchain = toolchain
         self.source = source
         self.build = build
@@ -102,6 +105,14 @@ class CMakeBuild:
         self.say = say
         self.color = color
         self.log = log
+        self.headers = headers
+
+    def _environment(self) -> dict[str, str]:
+        """The commands' environment: kame's header packages found through <package>_DIR."""
+        if self.headers is None:
+            return self.env
+        found = {config.parent.name: str(self.headers) for config in self.headers.glob("share/*/cmake")}
+        return {**self.env, **{f"{name}_DIR": prefix for name, prefix in found.items()}}
 
     def _run(self, cmd: list[str], shown: list[str], cwd: Path, env: dict[str, str]) -> bool:
         if self.log is None:
@@ -123,19 +134,20 @@ class CMakeBuild:
                      f"-DPYTHON_EXECUTABLE={self.toolchain.python}"]
         self.build.mkdir(parents=True, exist_ok=True)
         shown[0] = "cmake"
-        if not self._run([self.toolchain.cmake, *shown[1:-2], *kame_args, *shown[-2:]], shown, self.build, self.env):
+        if not self._run([self.toolchain.cmake, *shown[1:-2], *kame_args, *shown[-2:]], shown, self.build,
+                         self._environment()):
             raise CMakeFailed('Invoking "cmake" failed')
 
     def check(self) -> None:
         """`make cmake_check_build_system`: catkin_make's step instead of cmake when nothing changed
         (CMake itself reconfigures if a CMakeLists.txt or package.xml did)."""
         shown = ["make", "cmake_check_build_system"]
-        if not self._run([self.toolchain.make, "cmake_check_build_system"], shown, self.build, self.env):
+        if not self._run([self.toolchain.make, "cmake_check_build_system"], shown, self.build, self._environment()):
             raise CMakeFailed('Invoking "make cmake_check_build_system" failed')
 
     def make(self, make_args: Sequence[str], targets: Sequence[str], folder: Path | None = None) -> None:
         """make in the build space, or in one package's `folder` of it (catkin_make --pkg)."""
         args = make_arguments(make_args, self.env, os.cpu_count() or 1)
         shown = ["make", *args, *targets]
-        if not self._run([self.toolchain.make, *args, *targets], shown, folder or self.build, self.env):
+        if not self._run([self.toolchain.make, *args, *targets], shown, folder or self.build, self._environment()):
             raise CMakeFailed(f'Invoking "{" ".join(shown)}" failed')

@@ -199,7 +199,7 @@ def _build_cpp(packages: list[WorkspacePackage], ws: Path, failed: list[PackageR
         log = ws / "logs" / package.name / "build.log"
         log.unlink(missing_ok=True)
         cmake = CMakeBuild(toolchain, package.path, ws / "build" / package.name, ws / "devel", ws / "install",
-                           os.environ, [kame_prefix, ws / "devel"], print, False, log)
+                           os.environ, [ws / "devel"], print, False, log, kame_prefix)
         try:
             if inputs_changed(ws / "build" / package.name, [str(package.path)], []):
                 cmake.configure(None, [])

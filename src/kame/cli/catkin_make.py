@@ -263,8 +263,8 @@ def _build_cpp(toolchain: Toolchain, in_cmake: list[WorkspacePackage], packages:
     """catkin_make's cmake (only when its inputs changed) and make over the C/C++ packages and what
     they need in the workspace; with --pkg, make in those packages' build folders only."""
     source, build_path, devel, install = spaces
-    cmake = CMakeBuild(toolchain, source, build_path, devel, install, os.environ, [build_path / KAME_PREFIX],
-                       say, color)
+    cmake = CMakeBuild(toolchain, source, build_path, devel, install, os.environ, [], say, color,
+                       headers=build_path / KAME_PREFIX)
     needed = {d for p in in_cmake for d in p.depends} - {p.name for p in packages}
     KameMessageHeaders(build_path / KAME_PREFIX, toolchain, search).provide(needed)
     cmake_args = [f"-D{k}={v}" for k, v in defines.items() if k not in CACHED]
