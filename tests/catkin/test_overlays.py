@@ -6,7 +6,9 @@ own copy (Debian's with the system's environment: no ROS variables, /usr/bin fir
 lines catkin prints about the prefixes and the environment `source ws2/devel/setup.bash`
 gives in a fresh shell must be the same, but for what only kame has (its interpreter's bin/
 on PATH, its share folder on ROS_PACKAGE_PATH, roslisp's ROSLISP_PACKAGE_DIRECTORIES, which
-Debian does not package). Both builds run once for the module."""
+Debian does not package). Then, where there is a C++ toolchain, ws3's C++ package is built on
+ws2 and finds ws2's Python package with find_package(catkin REQUIRED COMPONENTS ...), as it
+finds catkin's. The builds run once for the module."""
 
 from __future__ import annotations
 
@@ -19,6 +21,7 @@ from pathlib import Path
 
 import pytest
 
+from kame.catkin.toolchain import Missing, find_toolchain
 from tests.shell.shell_env import bash, clean_env
 
 DEBIAN_CATKIN_MAKE = Path("/usr/bin/catkin_make")
@@ -62,14 +65,26 @@ def _package(src: Path, name: str, python: bool) -> None:
         (folder / "src" / name / "__init__.py").write_text("VALUE = 1\n")
 
 
+Runner = Callable[[str], subprocess.CompletedProcess[str]]
+NODE = """#include <ros/ros.h>
+int main(int argc, char** argv) {
+  ros::Time::init();
+  std::cout << "built on ws2_pkg" << std::endl;
+  return 0;
+}
+"""
+
+
 @dataclass
 class Chain:
+    root: Path
+    run: Runner
     ws1: list[str]  # the lines on the prefixes each build printed (root as ROOT)
     ws2: list[str]
     env: dict[str, list[str]]  # the entries below root of each variable ws2's setup.bash gives
 
 
-def _chain(root: Path, run: Callable[[str], subprocess.CompletedProcess[str]]) -> Chain:
+def _chain(root: Path, run: Runner) -> Chain:
     """Build ws1, then ws2 on top of it (and of root/other); what they printed and ws2's environment."""
     for ws, python in (("ws1", False), ("ws2", True)):
         _package(root / ws / "src", f"{ws}_pkg", python)
@@ -82,9 +97,26 @@ def _chain(root: Path, run: Callable[[str], subprocess.CompletedProcess[str]]) -
     for done in (first, second, shown):
         assert done.returncode == 0, done.stdout + done.stderr
     env = dict(line.split("=", 1) for line in shown.stdout.splitlines() if "=" in line)
-    return Chain(_prefix_lines(first.stdout, root), _prefix_lines(second.stdout, root),
+    return Chain(root, run, _prefix_lines(first.stdout, root), _prefix_lines(second.stdout, root),
                  {name: [p.replace(str(root), "ROOT") for p in env[name].split(":") if p.startswith(str(root))]
                   for name in COMPARED})
+
+
+def _cpp_overlay(chain: Chain) -> tuple[subprocess.CompletedProcess[str], subprocess.CompletedProcess[str]]:
+    """ws3: a C++ package needing roscpp and ws2's package, built after sourcing ws2; its build and its run."""
+    folder = chain.root / "ws3" / "src" / "ws3_node"
+    folder.mkdir(parents=True)
+    (folder / "package.xml").write_text(PACKAGE_XML.format(name="ws3_node").replace(
+        "<exec_depend>rospy</exec_depend>", "<depend>roscpp</depend>\n  <depend>ws2_pkg</depend>"))
+    (folder / "CMakeLists.txt").write_text(
+        "cmake_minimum_required(VERSION 3.0.2)\nproject(ws3_node)\n"
+        "find_package(catkin REQUIRED COMPONENTS roscpp ws2_pkg)\ncatkin_package()\n"
+        "include_directories(${catkin_INCLUDE_DIRS})\nadd_executable(node node.cpp)\n"
+        "target_link_libraries(node ${catkin_LIBRARIES})\n")
+    (folder / "node.cpp").write_text(NODE)
+    built = chain.run(f"source {chain.root}/ws2/devel/setup.bash && cd {chain.root}/ws3 && catkin_make")
+    ran = chain.run(f"source {chain.root}/ws3/devel/setup.bash && rosrun ws3_node node")
+    return built, ran
 
 
 def _prefix_lines(output: str, root: Path) -> list[str]:
@@ -103,6 +135,13 @@ def debian(tmp_path_factory: pytest.TempPathFactory) -> Chain:
         return subprocess.run(["bash", "-c", script], env=env, capture_output=True, text=True, timeout=300)
 
     return _chain(root, run)
+
+
+@pytest.fixture(scope="module")
+def kame_cpp(kame: Chain) -> tuple[subprocess.CompletedProcess[str], subprocess.CompletedProcess[str]]:
+    if isinstance(find_toolchain(clean_env(kame.root)), Missing):
+        pytest.skip("no C++ toolchain (cmake, make, c++, catkin, roscpp): no C++ overlay to build")
+    return _cpp_overlay(kame)
 
 
 @pytest.fixture(scope="module")
@@ -139,3 +178,16 @@ def test_the_second_workspaces_setup_gives_catkins_environment(debian: Chain,
         "PATH": [],
     }
     assert kame.env == debian.env
+
+
+def test_a_cpp_package_finds_a_python_package_of_the_workspace_it_overlays(
+        debian: Chain, kame: Chain,
+        kame_cpp: tuple[subprocess.CompletedProcess[str], subprocess.CompletedProcess[str]]) -> None:
+    debian_built, debian_ran = _cpp_overlay(debian)
+    built, ran = kame_cpp
+    for done, chain in ((debian_built, debian), (built, kame)):
+        assert done.returncode == 0, done.stdout[-3000:] + done.stderr[-3000:]
+        assert _prefix_lines(done.stdout, chain.root) == [
+            "-- Using CMAKE_PREFIX_PATH: ROOT/ws2/devel;ROOT/ws1/devel;ROOT/other",
+            "-- This workspace overlays: ROOT/ws2/devel;ROOT/ws1/devel"]
+    assert debian_ran.stdout == ran.stdout == "built on ws2_pkg\n", ran.stderr

@@ -78,7 +78,7 @@ def configure_lines(env: Mapping[str, str]) -> list[str]:
 
 def build_package(devel: Devel, package: WorkspacePackage, python: str) -> PackageResult:
     result = PackageResult(package.name, cpp_targets=package.cpp_targets, interfaces=package.interface_files())
-    devel.pkg_config(package.name, package.version)
+    devel.package_configs(package.name, package.path, package.version)
     setup = package.python_setup()
     if setup is not None and (package.uses_python_setup or not package.cmake_text):
         result.warnings.extend(setup.warnings)
