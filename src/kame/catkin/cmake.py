@@ -6,9 +6,10 @@ Rules:
   each announced by catkin's banner, their output passed through as it comes.
 - CMake is given the packages it builds as CATKIN_WHITELIST_PACKAGES (the Python-only ones are
   kame's), the interpreter of the system's catkin as PYTHON_EXECUTABLE, and each package of
-  kame's prefix of message headers (kame/catkin/cpp_messages.py) as a <package>_DIR
-  environment variable, which find_package searches, so CMAKE_PREFIX_PATH stays the user's (as
-  catkin's "Using CMAKE_PREFIX_PATH" prints it and its setup files record it).
+  kame's prefix of message headers (kame/catkin/cpp_messages.py) as its <package>_DIR cache
+  variable, which find_package takes before any prefix (so kame's headers win over the config
+  a Python-only underlay has), CMAKE_PREFIX_PATH staying the user's (as catkin's "Using
+  CMAKE_PREFIX_PATH" prints it and its setup files record it).
 - genmsg is told ROS_LANG_DISABLE=genpy: Python programs import a package's messages through
   kame's import hook (from its .msg files, as for the Python-only packages), not genpy's modules.
 - CMake runs without kame's ROS_DISTRO: the system's catkin environment hooks set their own
@@ -107,12 +108,12 @@ class CMakeBuild:
         self.log = log
         self.headers = headers
 
-    def _environment(self) -> dict[str, str]:
-        """The commands' environment: kame's header packages found through <package>_DIR."""
+    def header_arguments(self) -> list[str]:
+        """-D<package>_DIR=... for each package of kame's header prefix (an input of inputs_changed:
+        CMake's own re-run, from make, would not have them)."""
         if self.headers is None:
-            return self.env
-        found = {config.parent.name: str(self.headers) for config in self.headers.glob("share/*/cmake")}
-        return {**self.env, **{f"{name}_DIR": prefix for name, prefix in found.items()}}
+            return []
+        return [f"-D{config.parent.name}_DIR={config}" for config in sorted(self.headers.glob("share/*/cmake"))]
 
     def _run(self, cmd: list[str], shown: list[str], cwd: Path, env: dict[str, str]) -> bool:
         if self.log is None:
@@ -131,23 +132,22 @@ class CMakeBuild:
         shown = [self.toolchain.cmake, str(self.source), f"-DCATKIN_DEVEL_PREFIX={self.devel}",
                  f"-DCMAKE_INSTALL_PREFIX={self.install}", *cmake_args, "-G", "Unix Makefiles"]
         kame_args = [*([] if packages is None else [f"-DCATKIN_WHITELIST_PACKAGES={';'.join(packages)}"]),
-                     f"-DPYTHON_EXECUTABLE={self.toolchain.python}"]
+                     f"-DPYTHON_EXECUTABLE={self.toolchain.python}", *self.header_arguments()]
         self.build.mkdir(parents=True, exist_ok=True)
         shown[0] = "cmake"
-        if not self._run([self.toolchain.cmake, *shown[1:-2], *kame_args, *shown[-2:]], shown, self.build,
-                         self._environment()):
+        if not self._run([self.toolchain.cmake, *shown[1:-2], *kame_args, *shown[-2:]], shown, self.build, self.env):
             raise CMakeFailed('Invoking "cmake" failed')
 
     def check(self) -> None:
         """`make cmake_check_build_system`: catkin_make's step instead of cmake when nothing changed
         (CMake itself reconfigures if a CMakeLists.txt or package.xml did)."""
         shown = ["make", "cmake_check_build_system"]
-        if not self._run([self.toolchain.make, "cmake_check_build_system"], shown, self.build, self._environment()):
+        if not self._run([self.toolchain.make, "cmake_check_build_system"], shown, self.build, self.env):
             raise CMakeFailed('Invoking "make cmake_check_build_system" failed')
 
     def make(self, make_args: Sequence[str], targets: Sequence[str], folder: Path | None = None) -> None:
         """make in the build space, or in one package's `folder` of it (catkin_make --pkg)."""
         args = make_arguments(make_args, self.env, os.cpu_count() or 1)
         shown = ["make", *args, *targets]
-        if not self._run([self.toolchain.make, *args, *targets], shown, folder or self.build, self._environment()):
+        if not self._run([self.toolchain.make, *args, *targets], shown, folder or self.build, self.env):
             raise CMakeFailed(f'Invoking "{" ".join(shown)}" failed')

@@ -201,7 +201,7 @@ def _build_cpp(packages: list[WorkspacePackage], ws: Path, failed: list[PackageR
         cmake = CMakeBuild(toolchain, package.path, ws / "build" / package.name, ws / "devel", ws / "install",
                            os.environ, [ws / "devel"], print, False, log, kame_prefix)
         try:
-            if inputs_changed(ws / "build" / package.name, [str(package.path)], []):
+            if inputs_changed(ws / "build" / package.name, [str(package.path)], cmake.header_arguments()):
                 cmake.configure(None, [])
             else:
                 cmake.check()

@@ -269,7 +269,7 @@ def _build_cpp(toolchain: Toolchain, in_cmake: list[WorkspacePackage], packages:
     KameMessageHeaders(build_path / KAME_PREFIX, toolchain, search).provide(needed)
     cmake_args = [f"-D{k}={v}" for k, v in defines.items() if k not in CACHED]
     paths = [str(p.path.relative_to(source)) for p in in_cmake]
-    if inputs_changed(build_path, paths, cmake_args) or args.force_cmake:
+    if inputs_changed(build_path, paths, [*cmake_args, *cmake.header_arguments()]) or args.force_cmake:
         cmake.configure(sorted(p.name for p in in_cmake), cmake_args)
     else:
         cmake.check()
