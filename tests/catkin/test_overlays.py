@@ -7,8 +7,8 @@ lines catkin prints about the prefixes and the environment `source ws2/devel/set
 gives in a fresh shell must be the same, but for what only kame has (its interpreter's bin/
 on PATH, its share folder on ROS_PACKAGE_PATH, roslisp's ROSLISP_PACKAGE_DIRECTORIES, which
 Debian does not package). Then, where there is a C++ toolchain, ws3's C++ package is built on
-ws2 and finds ws2's Python package with find_package(catkin REQUIRED COMPONENTS ...), as it
-finds catkin's. The builds run once for the module."""
+ws2 and finds ws2's Python package and message package with find_package(catkin REQUIRED
+COMPONENTS ...), and the message's header, as it finds catkin's. The builds run once for the module."""
 
 from __future__ import annotations
 
@@ -67,12 +67,30 @@ def _package(src: Path, name: str, python: bool) -> None:
 
 Runner = Callable[[str], subprocess.CompletedProcess[str]]
 NODE = """#include <ros/ros.h>
+#include <ws2_msgs/Num.h>
 int main(int argc, char** argv) {
-  ros::Time::init();
-  std::cout << "built on ws2_pkg" << std::endl;
+  ws2_msgs::Num num;
+  num.num = 7;
+  std::cout << ros::message_traits::datatype(num) << " " << num.num << " "
+            << ros::message_traits::md5sum(num) << std::endl;
   return 0;
 }
 """
+
+
+def _message_package(src: Path) -> None:
+    """ws2_msgs: a message package with no C++ target (kame's build: no headers in its devel)."""
+    folder = src / "ws2_msgs"
+    (folder / "msg").mkdir(parents=True)
+    (folder / "msg" / "Num.msg").write_text("int64 num\n")
+    (folder / "package.xml").write_text(PACKAGE_XML.format(name="ws2_msgs").replace(
+        "<exec_depend>rospy</exec_depend>",
+        "<build_depend>message_generation</build_depend>\n  <exec_depend>message_runtime</exec_depend>"))
+    (folder / "CMakeLists.txt").write_text(
+        "cmake_minimum_required(VERSION 3.0.2)\nproject(ws2_msgs)\n"
+        "find_package(catkin REQUIRED COMPONENTS message_generation)\n"
+        "add_message_files(FILES Num.msg)\ngenerate_messages()\n"
+        "catkin_package(CATKIN_DEPENDS message_runtime)\n")
 
 
 @dataclass
@@ -88,6 +106,7 @@ def _chain(root: Path, run: Runner) -> Chain:
     """Build ws1, then ws2 on top of it (and of root/other); what they printed and ws2's environment."""
     for ws, python in (("ws1", False), ("ws2", True)):
         _package(root / ws / "src", f"{ws}_pkg", python)
+    _message_package(root / "ws2" / "src")
     (root / "other" / "lib").mkdir(parents=True)
     first = run(f"cd {root}/ws1 && catkin_make")
     second = run(f"source {root}/ws1/devel/setup.bash && export CMAKE_PREFIX_PATH=$CMAKE_PREFIX_PATH:{root}/other "
@@ -103,14 +122,16 @@ def _chain(root: Path, run: Runner) -> Chain:
 
 
 def _cpp_overlay(chain: Chain) -> tuple[subprocess.CompletedProcess[str], subprocess.CompletedProcess[str]]:
-    """ws3: a C++ package needing roscpp and ws2's package, built after sourcing ws2; its build and its run."""
+    """ws3: a C++ package needing roscpp and ws2's packages (including a header of ws2_msgs), built after
+    sourcing ws2; its build and its run."""
     folder = chain.root / "ws3" / "src" / "ws3_node"
     folder.mkdir(parents=True)
     (folder / "package.xml").write_text(PACKAGE_XML.format(name="ws3_node").replace(
-        "<exec_depend>rospy</exec_depend>", "<depend>roscpp</depend>\n  <depend>ws2_pkg</depend>"))
+        "<exec_depend>rospy</exec_depend>",
+        "<depend>roscpp</depend>\n  <depend>ws2_pkg</depend>\n  <depend>ws2_msgs</depend>"))
     (folder / "CMakeLists.txt").write_text(
         "cmake_minimum_required(VERSION 3.0.2)\nproject(ws3_node)\n"
-        "find_package(catkin REQUIRED COMPONENTS roscpp ws2_pkg)\ncatkin_package()\n"
+        "find_package(catkin REQUIRED COMPONENTS roscpp ws2_pkg ws2_msgs)\ncatkin_package()\n"
         "include_directories(${catkin_INCLUDE_DIRS})\nadd_executable(node node.cpp)\n"
         "target_link_libraries(node ${catkin_LIBRARIES})\n")
     (folder / "node.cpp").write_text(NODE)
@@ -190,4 +211,4 @@ def test_a_cpp_package_finds_a_python_package_of_the_workspace_it_overlays(
         assert _prefix_lines(done.stdout, chain.root) == [
             "-- Using CMAKE_PREFIX_PATH: ROOT/ws2/devel;ROOT/ws1/devel;ROOT/other",
             "-- This workspace overlays: ROOT/ws2/devel;ROOT/ws1/devel"]
-    assert debian_ran.stdout == ran.stdout == "built on ws2_pkg\n", ran.stderr
+    assert debian_ran.stdout == ran.stdout == "ws2_msgs/Num 7 57d3c40ec3ac3754af76a83e6e73127a\n", ran.stderr

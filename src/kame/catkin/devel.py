@@ -20,7 +20,7 @@ Rules (catkin's devel layout, Python parts only):
 - devel/lib/pkgconfig/<package>.pc and devel/share/<package>/cmake/<package>Config.cmake (and
   -version) as catkin_package() writes them for a package without libraries or headers: an
   overlay's pkg-config and find_package(catkin REQUIRED COMPONENTS <package>) find the package
-  (no C++ headers of its messages, though: those come from catkin's CMake build).
+  (the C++ headers of its messages an overlay's C++ build gets from kame/catkin/cpp_messages.py).
 - env.sh (runs a command in the workspace's environment) and _setup_util.py (prints it as
   shell lines) as catkin has them, kame's own, unless catkin's CMake wrote its own there.
 - What a build wrote is listed in devel/.kame_manifest and removed before the next build (unless
