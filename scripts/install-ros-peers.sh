@@ -23,6 +23,11 @@ packages=(
   ros-shape-msgs ros-stereo-msgs ros-tf2-msgs ros-roscpp-msg ros-move-base-msgs python3-rostest
   rosbash  # rosrun and rospack (rospack-tools), compared with kame's
   g++ pkg-config
+  # catkin_make and catkin build of C++ packages with the real tools (tests/catkin): CMake, make, the
+  # system's catkin macros, message generation (gencpp for the headers, actionlib_msgs' genaction for
+  # kame's actions) and the course's message headers
+  cmake make catkin ros-message-generation ros-message-runtime python3-gencpp libgeometry-msgs-dev
+  libactionlib-msgs-dev
   zsh tmux  # the shell-integration and terminal (teleop) tests drive these
   iproute2  # ip netns: the several-hosts tests (tests/hosts) run each host in a network namespace
   openssh-server  # sshd, run by tests/hosts in a namespace for roslaunch's <machine> nodes

@@ -85,6 +85,7 @@ LAYERS: dict[str, int] = {
     "kame.turtlesim.teleop_key": 4,
     "kame.turtlesim.draw_square": 4,
     "kame.turtlesim.mimic": 4,
+    "kame.roscpp_tutorials": 4,  # the tutorial programs: built with the system's CMake (kame.catkin), or ported
     "kame.rqt": 1,  # the rqt tools' models, layout and file writers: no Qt, no sockets
     "kame.rqt.graph_source": 4,  # asks the master and the nodes
     "kame.rqt.graph_window": 4,  # Qt

@@ -1,9 +1,10 @@
 """One build of a workspace: plan the packages, set each up in the devel space, report.
 
 Rules:
-- A package is set up even when part of it cannot be built: its C/C++ targets are listed
-  in its result (kame builds Python packages), its scripts, setup.py and messages still
-  work, and the other packages go on building.
+- This is kame's own build, of the packages without C/C++ targets (kame/catkin/cmake.py runs
+  the real CMake for the others). Where the machine has no C++ toolchain it is given every
+  package: one with C/C++ targets is set up as far as it can be (its targets listed in its
+  result, its scripts, setup.py and messages working), and the other packages go on building.
 - Messages, services and actions need no generation step (kame's import hook reads them
   from ROS_PACKAGE_PATH); the result counts them.
 - dynamic_reconfigure .cfg files are run as catkin runs them and write catkin's files; a
@@ -13,7 +14,7 @@ Rules:
 from __future__ import annotations
 
 import os
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -45,21 +46,39 @@ class PackageResult:
 
     def cpp_message(self) -> str:
         names = ", ".join(t.name for t in self.cpp_targets)
-        return (f"package '{self.name}' needs a C++ build (targets: {names}); kame builds Python packages only, "
-                f"so these targets were not built (its Python scripts and messages are set up)")
+        return (f"package '{self.name}' needs a C++ build (targets: {names}), which needs the system's CMake, "
+                f"C++ compiler, catkin and roscpp; these targets were not built (its Python scripts and messages "
+                f"are set up)")
 
 
-def underlay_workspaces(env: dict[str, str] | os._Environ[str], devel: Path) -> list[str]:
-    """Workspaces this one is built on: catkin devel folders in CMAKE_PREFIX_PATH, underlays first."""
+def underlay_prefixes(env: Mapping[str, str], devel: Path) -> list[str]:
+    """The prefixes this workspace is built on, as catkin records them for its setup files: every
+    CMAKE_PREFIX_PATH entry (catkin workspaces and other prefixes) but the devel space itself,
+    underlays first."""
     found = []
     for prefix in env.get("CMAKE_PREFIX_PATH", "").split(os.pathsep):
-        if prefix and Path(prefix, ".catkin").is_file() and Path(prefix).resolve() != devel.resolve():
+        if prefix and Path(prefix).resolve() != devel.resolve() and prefix not in found:
             found.append(prefix)
     return list(reversed(found))
 
 
+def configure_lines(env: Mapping[str, str]) -> list[str]:
+    """catkin's all.cmake lines on the prefixes: CMAKE_PREFIX_PATH as a CMake list, then the catkin
+    workspaces (prefixes with a .catkin marker) in it, once each, when there are any."""
+    value = env.get("CMAKE_PREFIX_PATH", "")
+    lines = [f"-- Using CMAKE_PREFIX_PATH: {value.replace(os.pathsep, ';')}"]
+    workspaces: list[str] = []
+    for prefix in value.split(os.pathsep):
+        if prefix and Path(prefix, ".catkin").is_file() and prefix not in workspaces:
+            workspaces.append(prefix)
+    if workspaces:
+        lines.append(f"-- This workspace overlays: {';'.join(workspaces)}")
+    return lines
+
+
 def build_package(devel: Devel, package: WorkspacePackage, python: str) -> PackageResult:
     result = PackageResult(package.name, cpp_targets=package.cpp_targets, interfaces=package.interface_files())
+    devel.package_configs(package.name, package.path, package.version)
     setup = package.python_setup()
     if setup is not None and (package.uses_python_setup or not package.cmake_text):
         result.warnings.extend(setup.warnings)

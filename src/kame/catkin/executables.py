@@ -2,10 +2,10 @@
 program is run (roslaunch here, rosrun in kame.cli.rosrun with its own search rules).
 
 Rules: roslaunch looks as roslib.packages.find_node does: the catkin workspaces' lib/P (first
-workspace on CMAKE_PREFIX_PATH holding it), then the package folder searched recursively
-(links followed, hidden folders skipped) for a regular file named T with an execute bit.
-Python programs (a python shebang, or .py with none) run with this interpreter, whatever their
-shebang says, so they import kame's rospy.
+workspace on CMAKE_PREFIX_PATH holding it, else kame's own lib/P in kame/lib), then the package
+folder searched recursively (links followed, hidden folders skipped) for a regular file named T
+with an execute bit. Python programs (a python shebang, or .py with none) run with this
+interpreter, whatever their shebang says, so they import kame's rospy.
 """
 
 from __future__ import annotations
@@ -16,7 +16,7 @@ import sys
 from collections.abc import Mapping
 from pathlib import Path
 
-from kame.msg.catalog import Package, find_packages, package_path_roots
+from kame.msg.catalog import Package, find_packages, package_path_roots, shipped_programs
 
 _EXEC_BITS = stat.S_IXUSR | stat.S_IXGRP | stat.S_IXOTH
 
@@ -66,7 +66,7 @@ def is_executable(path: Path) -> bool:
 def find_node(package: Package, node_type: str, env: Mapping[str, str]) -> list[Path]:
     """The executables named `node_type` of `package`, best first."""
     hits: list[Path] = []
-    for top in [*_catkin_lib(package.name, env), package.path]:
+    for top in [*(_catkin_lib(package.name, env) or shipped_programs(package.name)), package.path]:
         for hit in _walk(top, node_type):
             if hit not in hits:
                 hits.append(hit)

@@ -9,6 +9,8 @@ Rules:
 - kame builds Python packages: scripts, setup.py (catkin_python_setup), msg/srv/action.
   A CMakeLists.txt that compiles C or C++ (add_executable / add_library with C/C++ source
   files) is reported with its target names; its package's Python parts are still set up.
+- A package whose find_package(catkin REQUIRED COMPONENTS ...) names a package that neither
+  the workspace, kame nor the system has goes to CMake, which fails as catkin fails.
 - setup.py is read, not run: the keywords packages, package_dir, py_modules and scripts of
   the setup()/generate_distutils_setup() call, when they are literals (the catkin
   convention). Anything else is reported as a warning.
@@ -19,6 +21,7 @@ from __future__ import annotations
 import ast
 import os
 import re
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -27,7 +30,9 @@ CPP_SUFFIXES = (".c", ".cc", ".cpp", ".cxx", ".c++", ".C", ".cu", ".m", ".mm")
 _TARGET_CALL = re.compile(r"\b(?:cuda_)?add_(executable|library)\s*\(", re.IGNORECASE)
 _BRACKET_COMMENT = re.compile(r"#\[(=*)\[.*?\]\1\]", re.DOTALL)
 _LINE_COMMENT = re.compile(r"#[^\n]*")
+_FIND_CATKIN = re.compile(r"\bfind_package\s*\(\s*catkin\b", re.IGNORECASE)
 _RECONFIGURE_CALL = re.compile(r"\bgenerate_dynamic_reconfigure_options\s*\(", re.IGNORECASE)
+_FIND_KEYWORDS = {"OPTIONAL_COMPONENTS", "REQUIRED", "QUIET", "CONFIG", "NO_MODULE", "EXACT", "NO_POLICY_SCOPE"}
 _TARGET_KEYWORDS = {"STATIC", "SHARED", "MODULE", "OBJECT", "WIN32", "MACOSX_BUNDLE", "EXCLUDE_FROM_ALL"}
 
 
@@ -70,6 +75,7 @@ class WorkspacePackage:
     path: Path
     depends: set[str]
     cmake_text: str
+    version: str = ""
 
     @property
     def cpp_targets(self) -> list[CppTarget]:
@@ -119,6 +125,22 @@ def _call_arguments(text: str, start: int) -> str:
             depth -= 1
         i += 1
     return text[start : i - 1]
+
+
+def catkin_components(cmake_text: str) -> list[str]:
+    """The packages `find_package(catkin REQUIRED COMPONENTS ...)` asks CMake for."""
+    text = strip_cmake_comments(cmake_text)
+    found: list[str] = []
+    for match in _FIND_CATKIN.finditer(text):
+        args = _call_arguments(text, match.end()).split()
+        if "COMPONENTS" not in args:
+            continue
+        for arg in args[args.index("COMPONENTS") + 1 :]:
+            if arg in _FIND_KEYWORDS:
+                break
+            if arg not in found:
+                found.append(arg)
+    return found
 
 
 def cpp_targets(cmake_text: str, project: str) -> list[CppTarget]:
@@ -197,7 +219,7 @@ def find_workspace_packages(source: Path) -> list[WorkspacePackage]:
         folder = source / relpath
         cmake = folder / "CMakeLists.txt"
         text = cmake.read_text(errors="replace") if cmake.is_file() else ""
-        result.append(WorkspacePackage(pkg.name, folder, depends, text))
+        result.append(WorkspacePackage(pkg.name, folder, depends, text, pkg.version))
     return result
 
 
@@ -213,6 +235,23 @@ def with_dependencies(packages: list[WorkspacePackage], names: list[str]) -> set
         wanted.add(name)
         todo.extend(d for d in by_name[name].depends if d in by_name)
     return wanted
+
+
+def cmake_packages(packages: list[WorkspacePackage]) -> set[str]:
+    """The packages CMake builds: those with C/C++ targets and what they depend on in the workspace."""
+    return with_dependencies(packages, [p.name for p in packages if p.cpp_targets])
+
+
+def unresolved_components(packages: list[WorkspacePackage], known: Callable[[str], bool]) -> dict[str, list[str]]:
+    """Per package, the find_package(catkin COMPONENTS ...) names that are not in the workspace
+    and that `known` (kame's packages, the system's) does not know either."""
+    names = {p.name for p in packages}
+    found = {}
+    for package in packages:
+        missing = [c for c in catkin_components(package.cmake_text) if c not in names and not known(c)]
+        if missing:
+            found[package.name] = missing
+    return found
 
 
 def select(packages: list[WorkspacePackage], whitelist: list[str], blacklist: list[str]) -> list[WorkspacePackage]:

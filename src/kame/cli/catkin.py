@@ -1,11 +1,16 @@
-"""catkin (catkin_tools' command): build, clean, init and list for Python workspaces.
+"""catkin (catkin_tools' command): build, clean, init and list.
 
 `catkin build [PKG...]` finds the workspace (the nearest folder, from here up, with
 .catkin_tools/ or else the current folder when it has src/), builds the named packages
-(default: all) into devel/ as catkin_make does (merged devel space, no CMake) and prints
-catkin_tools' progress and summary. `catkin clean [-y]` removes build/ and devel/ (and
-logs/). `catkin init` marks the workspace. `catkin list` lists its packages.
-A package needing a C++ build fails with the reason; the others still build.
+(default: all) into devel/ (merged devel space) and prints catkin_tools' progress and
+summary: packages with C/C++ targets (and what they need in the workspace) one by one with
+CMake in build/<package>, as catkin_tools does, the Python-only ones by kame with no CMake.
+`catkin clean [-y]` removes build/ and devel/ (and
+logs/). `catkin init` marks the workspace. `catkin list` lists its packages. `catkin create pkg
+NAME [--catkin-deps DEP...]` writes a package's package.xml and CMakeLists.txt as catkin_tools
+does (catkin_pkg's templates).
+Where there is no C++ toolchain, a package needing one fails with the reason and what to
+install; the others still build.
 """
 
 from __future__ import annotations
@@ -17,10 +22,20 @@ import sys
 import time
 from collections.abc import Sequence
 from pathlib import Path
+from typing import Any
 
-from kame.catkin.build import PackageResult, build, underlay_workspaces
-from kame.catkin.workspace import WorkspaceError, find_workspace_packages, with_dependencies
-from kame.cli.catkin_make import shell_dir, working_directory
+from kame.catkin.build import PackageResult, build, underlay_prefixes
+from kame.catkin.cmake import CMakeBuild, CMakeFailed, inputs_changed
+from kame.catkin.cpp_messages import KameMessageHeaders
+from kame.catkin.toolchain import Toolchain, find_toolchain, missing_components, os_release, prefixes
+from kame.catkin.workspace import (
+    WorkspaceError,
+    WorkspacePackage,
+    cmake_packages,
+    find_workspace_packages,
+    with_dependencies,
+)
+from kame.cli.catkin_make import KAME_PREFIX, shell_dir, working_directory
 
 RULE = "-" * 64
 
@@ -91,7 +106,7 @@ def cmd_build(args: argparse.Namespace) -> int:
     source, build_path, devel = ws / "src", ws / "build", ws / "devel"
     (ws / ".catkin_tools" / "profiles" / "default").mkdir(parents=True, exist_ok=True)
     cmake_prefix = os.environ.get("CMAKE_PREFIX_PATH", "")
-    underlays = underlay_workspaces(os.environ, devel)
+    underlays = underlay_prefixes(os.environ, devel)
     print(RULE)
     print("Profile:                     default")
     print(f"Extending:             [env] {cmake_prefix or '(kame)'}")
@@ -119,6 +134,7 @@ def cmd_build(args: argparse.Namespace) -> int:
     build_path.mkdir(exist_ok=True)
     (build_path / ".built_by").write_text("catkin build")
     failed: list[PackageResult] = []
+    cpp = _build_cpp(packages, ws, failed)
 
     def progress(index: int, result: PackageResult) -> None:
         print(f"Starting  >>> {result.name}")
@@ -133,7 +149,8 @@ def cmd_build(args: argparse.Namespace) -> int:
         else:
             print(f"Finished  <<< {result.name}                [ 0.0 seconds ]")
 
-    build(packages, devel, [source], underlays, sys.executable, shell_dir(), progress)
+    build([p for p in packages if p.name not in cpp], devel, [source], underlays, sys.executable, shell_dir(),
+          progress)
     (devel / ".built_by").write_text("catkin build")
     ok = len(packages) - len(failed)
     if failed:
@@ -153,8 +170,107 @@ def cmd_build(args: argparse.Namespace) -> int:
     return 1 if failed else 0
 
 
+def _build_cpp(packages: list[WorkspacePackage], ws: Path, failed: list[PackageResult]) -> set[str]:
+    """As catkin_tools: each C/C++ package (and the workspace packages they need) configured by CMake
+    in build/<package> and made there, in order, into the merged devel space; output in
+    logs/<package>/build.log, shown when it fails. Returns the packages built this way."""
+    toolchain = find_toolchain(os.environ)
+    missing = missing_components(packages, prefixes(os.environ))
+    if not isinstance(toolchain, Toolchain):
+        if any(p.cpp_targets for p in packages):
+            print(toolchain.advice(os_release()), file=sys.stderr)
+        for name, deps in missing.items():  # what CMake would stop at, said without it
+            message = (f"package '{name}' needs {', '.join(deps)}, which neither the workspace, kame nor this "
+                       "system has")
+            failed.append(PackageResult(name, errors=[message]))
+            print(f"Errors     << {name}\nkame: {message}", file=sys.stderr)
+            print(f"Failed     << {name}                [ Exited with code 1 ]")
+        return set(missing)
+    in_cmake = cmake_packages(packages) | set(missing)
+    names = {p.name for p in packages}
+    kame_prefix = ws / "build" / KAME_PREFIX
+    needed = {d for p in packages if p.name in in_cmake for d in p.depends} - names
+    KameMessageHeaders(kame_prefix, toolchain, prefixes(os.environ)).provide(needed)
+    for package in packages:
+        if package.name not in in_cmake:
+            continue
+        started = time.monotonic()
+        print(f"Starting  >>> {package.name}")
+        log = ws / "logs" / package.name / "build.log"
+        log.unlink(missing_ok=True)
+        cmake = CMakeBuild(toolchain, package.path, ws / "build" / package.name, ws / "devel", ws / "install",
+                           os.environ, [ws / "devel"], print, False, log, kame_prefix)
+        try:
+            if inputs_changed(ws / "build" / package.name, [str(package.path)], cmake.header_arguments()):
+                cmake.configure(None, [])
+            else:
+                cmake.check()
+            cmake.make([], [])
+        except CMakeFailed as exc:
+            failed.append(PackageResult(package.name, errors=[str(exc)]))
+            print(f"Errors     << {package.name}:make {log}\n{log.read_text()}", file=sys.stderr)
+            print(f"Failed     << {package.name}                [ Exited with code 2 ]")
+            continue
+        print(f"Finished  <<< {package.name}                [ {time.monotonic() - started:.1f} seconds ]")
+    return in_cmake
+
+
+def cmd_create(args: argparse.Namespace) -> int:
+    """`catkin create pkg NAME... [--catkin-deps DEP...]`: catkin_pkg's package files, as catkin_tools."""
+    from catkin_pkg.package_templates import PackageTemplate, create_package_files
+
+    if args.kind != "pkg":
+        print("usage: catkin create {pkg} ...", file=sys.stderr)
+        return 1
+    if args.rosdistro is None:
+        raise WorkspaceError("catkin create pkg: error: the following arguments are required: --rosdistro")
+    destination = os.path.abspath(args.path or working_directory())
+    maintainers = sorted(args.maintainers or [], key=lambda m: m[0])
+    authors = sorted(args.authors or [], key=lambda a: a[0])
+    for name in args.name:
+        print(f'Creating package "{name}" in "{destination}"...')
+        target = os.path.join(destination, name)
+        try:
+            template = PackageTemplate._create_package_template(
+                package_name=name, description=args.description, licenses=args.license,
+                maintainer_names=[m[0] for m in maintainers], author_names=[a[0] for a in authors],
+                version=args.version, catkin_deps=args.catkin_deps, system_deps=args.system_deps,
+                boost_comps=args.boost_components)
+            for person, (_name, email) in zip(template.maintainers, maintainers, strict=False):
+                person.email = email
+            for person, (_name, email) in zip(template.authors, authors, strict=False):
+                person.email = email
+            create_package_files(target_path=target, package_template=template, rosdistro=args.rosdistro,
+                                 newfiles={})
+        except ValueError as exc:
+            print(str(exc))
+            return 1
+        print(f"Successfully created package files in {target}.")
+    return 0
+
+
+def _create_parser(sub: Any) -> None:
+    create = sub.add_parser("create", help="Creates catkin workspace resources like packages.")
+    kinds = create.add_subparsers(dest="kind", metavar="{pkg}")
+    pkg = kinds.add_parser("pkg", help="Create a new catkin package.")
+    pkg.add_argument("name", metavar="PKG_NAME", nargs="+", help="The name of one or more packages to create.")
+    pkg.add_argument("-p", "--path", help="The path into which the package should be generated.")
+    pkg.add_argument("--rosdistro", default=os.environ.get("ROS_DISTRO"),
+                     help="The ROS distro (default: environment variable ROS_DISTRO if defined)")
+    pkg.add_argument("-v", "--version", metavar="MAJOR.MINOR.PATCH", help="Initial package version. (default 0.0.0)")
+    pkg.add_argument("-l", "--license", action="append", help='The license (default: "TODO")')
+    pkg.add_argument("-m", "--maintainer", metavar=("NAME", "EMAIL"), dest="maintainers", action="append", nargs=2,
+                     help="A maintainer who is responsible for the package. (multiple allowed)")
+    pkg.add_argument("-a", "--author", metavar=("NAME", "EMAIL"), dest="authors", action="append", nargs=2,
+                     help="An author who contributed to the package. (multiple allowed)")
+    pkg.add_argument("-d", "--description", help="Description of the package. (default: empty)")
+    pkg.add_argument("--catkin-deps", "-c", metavar="DEP", nargs="*", help="Catkin dependencies.")
+    pkg.add_argument("--system-deps", "-s", metavar="DEP", nargs="*", help="System dependencies.")
+    pkg.add_argument("--boost-components", metavar="COMP", nargs="*", help="Boost components used by the package.")
+
+
 def parser() -> argparse.ArgumentParser:
-    p = argparse.ArgumentParser(prog="catkin", description="catkin command (kame: Python workspaces, no CMake)")
+    p = argparse.ArgumentParser(prog="catkin", description="catkin command (catkin_tools' verbs, kame's build)")
     p.add_argument("-w", "--workspace", help="The path to the catkin workspace")
     sub = p.add_subparsers(dest="verb", metavar="VERB")
     b = sub.add_parser("build", help="Builds a catkin workspace.")
@@ -166,13 +282,14 @@ def parser() -> argparse.ArgumentParser:
     c.add_argument("-y", "--yes", action="store_true", help="Assume yes to all questions.")
     c.add_argument("packages", nargs="*")
     sub.add_parser("init", help="Initializes a given folder as a catkin workspace.")
+    _create_parser(sub)
     sub.add_parser("list", help="Lists catkin packages in the workspace or other arbitray folders.")
     return p
 
 
 def main(argv: Sequence[str] | None = None) -> int:
     args = parser().parse_args(list(sys.argv[1:] if argv is None else argv))
-    verbs = {"build": cmd_build, "clean": cmd_clean, "init": cmd_init, "list": cmd_list}
+    verbs = {"build": cmd_build, "clean": cmd_clean, "create": cmd_create, "init": cmd_init, "list": cmd_list}
     if args.verb not in verbs:
         parser().print_help()
         return 0 if args.verb is None else 1

@@ -1,13 +1,20 @@
-"""catkin_make: build a catkin workspace's Python packages into its devel space, no CMake.
+"""catkin_make: build a catkin workspace into its devel space: C/C++ packages with the real CMake,
+Python-only packages by kame without it.
 
 As catkin_make: run in the workspace root (or -C DIR); source space src/, build space
 build/, devel space devel/; prints the spaces, the packages in topological order and the
 progress; `-DVAR=VALUE` arguments are CMake cache variables (CATKIN_WHITELIST_PACKAGES and
-CATKIN_BLACKLIST_PACKAGES are honoured and, as in CMake, remembered in build/CMakeCache.txt
+CATKIN_BLACKLIST_PACKAGES are honoured and, as in CMake, remembered in build/kame_cache.txt
 until set again, `-DCATKIN_WHITELIST_PACKAGES=""` clears); `--only-pkg-with-deps` and
 `--pkg` select packages; make flags (-j, -l) and targets are accepted. Errors are one red
-line on stderr, exit 1. A package needing a C++ build is named with the reason, the
-others build, and the exit status is 1.
+line on stderr, exit 1.
+
+Packages with C/C++ targets, and the workspace packages they depend on, are built as
+catkin_make builds them: src/CMakeLists.txt linked to the system's catkin toplevel.cmake,
+then `cmake` and `make` in the build space (kame/catkin/cmake.py), with headers for kame's
+message packages the system lacks (kame/catkin/cpp_messages.py). The other packages are
+kame's: set up in the devel space with no CMake. Where the machine has no C++ toolchain or
+roscpp, what to install is said, the Python packages are built, and the exit status is 1.
 """
 
 from __future__ import annotations
@@ -15,13 +22,18 @@ from __future__ import annotations
 import argparse
 import os
 import sys
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from pathlib import Path
 
-from kame.catkin.build import PackageResult, build, underlay_workspaces
+from kame.catkin.build import PackageResult, build, configure_lines, underlay_prefixes
+from kame.catkin.cmake import CMakeBuild, CMakeFailed, inputs_changed, link_toplevel
+from kame.catkin.cpp_messages import KameMessageHeaders, MessageHeaderError
+from kame.catkin.toolchain import Missing, Toolchain, find_toolchain, missing_components, os_release, prefixes
 from kame.catkin.workspace import (
     WorkspaceError,
+    WorkspacePackage,
     cmake_list,
+    cmake_packages,
     find_workspace_packages,
     select,
     with_dependencies,
@@ -29,7 +41,8 @@ from kame.catkin.workspace import (
 
 RED = "\033[31m"
 RESET = "\033[0m"
-CACHE = "CMakeCache.txt"
+CACHE = "kame_cache.txt"  # not CMakeCache.txt: CMake owns that one where C++ packages are built
+KAME_PREFIX = "kame_msgs"  # kame's prefix of C++ message headers in the build space
 CACHED = ("CATKIN_WHITELIST_PACKAGES", "CATKIN_BLACKLIST_PACKAGES")
 WORKSPACE_MARKER = "# This file currently only serves to mark the location of a catkin workspace for tool integration\n"
 
@@ -98,8 +111,9 @@ def split_arguments(argv: Sequence[str]) -> tuple[list[str], dict[str, str], lis
 def parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(
         prog="catkin_make",
-        description="Creates the catkin workspace layout and builds its Python packages into the devel space "
-        "(kame: no CMake or compiler). Any argument starting with -D sets a CMake cache variable "
+        description="Creates the catkin workspace layout and builds its packages into the devel space: "
+        "C/C++ packages with CMake and the system's catkin, Python packages by kame. "
+        "Any argument starting with -D sets a CMake cache variable "
         '(e.g. -DCATKIN_WHITELIST_PACKAGES="foo;bar", -DCATKIN_BLACKLIST_PACKAGES="foo;bar").',
     )
     p.add_argument("-C", "--directory", default=os.curdir, help="The base path of the workspace (default '.')")
@@ -108,7 +122,7 @@ def parser() -> argparse.ArgumentParser:
     p.add_argument("--use-ninja", action="store_true", help="Accepted for compatibility")
     p.add_argument("--use-nmake", action="store_true", help="Accepted for compatibility")
     p.add_argument("--use-gmake", action="store_true", help="Accepted for compatibility")
-    p.add_argument("--force-cmake", action="store_true", help="Accepted for compatibility (kame always reconfigures)")
+    p.add_argument("--force-cmake", action="store_true", help="Invoke cmake even if it has been executed before")
     p.add_argument("--no-color", action="store_true", help="Disables colored output")
     p.add_argument("--pkg", nargs="+", help="Build specific packages only")
     p.add_argument("--only-pkg-with-deps", nargs="+",
@@ -148,7 +162,7 @@ def working_directory() -> str:
 
 
 def run(argv: Sequence[str]) -> int:
-    own, defines, _make_args = split_arguments(argv)
+    own, defines, make_args = split_arguments(argv)
     args = parser().parse_args(own)
     color = not args.no_color
 
@@ -201,7 +215,8 @@ def run(argv: Sequence[str]) -> int:
     write_cache(build_path, {k: v for k, v in cache.items() if v})
     whitelist = cmake_list(cache.get("CATKIN_WHITELIST_PACKAGES", ""))
     blacklist = cmake_list(cache.get("CATKIN_BLACKLIST_PACKAGES", ""))
-    chosen = select(packages, whitelist, blacklist)
+    selected = select(packages, whitelist, blacklist)
+    chosen = selected
     if args.pkg:
         names = {p.name for p in chosen}
         unknown = [n for n in args.pkg if n not in names]
@@ -211,42 +226,102 @@ def run(argv: Sequence[str]) -> int:
 
     if not (base / ".catkin_workspace").exists():
         (base / ".catkin_workspace").write_text(WORKSPACE_MARKER)
+    toolchain = find_toolchain(os.environ)
+    if isinstance(toolchain, Toolchain):
+        linked = link_toplevel(source, toolchain)
+        if linked:
+            say(linked)
+    search = prefixes(os.environ)
+    unresolved = {name: deps for name, deps in missing_components(packages, search).items()
+                  if name in {p.name for p in selected}}
+    if unresolved and isinstance(toolchain, Missing):
+        raise BuildError("\n".join(f'Package "{name}" needs {", ".join(deps)}, which neither the workspace, kame nor '
+                                   "this system has: CMake would stop at its find_package(catkin REQUIRED "
+                                   "COMPONENTS ...)." for name, deps in unresolved.items()))
+    in_cmake = cmake_packages(selected) | set(unresolved) if isinstance(toolchain, Toolchain) else set()
+    if in_cmake and isinstance(toolchain, Toolchain):
+        _build_cpp(toolchain, [p for p in selected if p.name in in_cmake], packages, args, defines, make_args,
+                   (source, build_path, devel, install), search, say, color)
+    python_only = [p for p in chosen if p.name not in in_cmake]
+    failed = _build_python(python_only, len(chosen) - len(python_only), source, build_path, devel, whitelist,
+                           blacklist, color, say, bool(in_cmake))
+    if isinstance(toolchain, Missing) and any(p.cpp_targets for p in chosen):
+        raise BuildError(toolchain.advice(os_release()) + " The Python packages were built; "
+                         "source devel/setup.bash to use them.")
+    if failed:
+        cpp = ", ".join(r.name for r in failed if r.cpp_targets)
+        broken = ", ".join(r.name for r in failed if r.errors)
+        causes = ([f"Not built (C++): {cpp}."] if cpp else []) + ([f"Failed: {broken}."] if broken else [])
+        raise BuildError(" ".join(causes) + " The other packages were built; source devel/setup.bash to use them.")
+    return 0
+
+
+def _build_cpp(toolchain: Toolchain, in_cmake: list[WorkspacePackage], packages: list[WorkspacePackage],
+               args: argparse.Namespace, defines: dict[str, str], make_args: list[str],
+               spaces: tuple[Path, Path, Path, Path], search: list[Path], say: Callable[[str], None],
+               color: bool) -> None:
+    """catkin_make's cmake (only when its inputs changed) and make over the C/C++ packages and what
+    they need in the workspace; with --pkg, make in those packages' build folders only."""
+    source, build_path, devel, install = spaces
+    cmake = CMakeBuild(toolchain, source, build_path, devel, install, os.environ, [], say, color,
+                       headers=build_path / KAME_PREFIX)
+    needed = {d for p in in_cmake for d in p.depends} - {p.name for p in packages}
+    KameMessageHeaders(build_path / KAME_PREFIX, toolchain, search).provide(needed)
+    cmake_args = [f"-D{k}={v}" for k, v in defines.items() if k not in CACHED]
+    paths = [str(p.path.relative_to(source)) for p in in_cmake]
+    if inputs_changed(build_path, paths, [*cmake_args, *cmake.header_arguments()]) or args.force_cmake:
+        cmake.configure(sorted(p.name for p in in_cmake), cmake_args)
+    else:
+        cmake.check()
+    if not args.pkg:
+        cmake.make(make_args, args.targets)
+        return
+    for package in in_cmake:
+        if package.name in args.pkg:
+            cmake.make(make_args, args.targets, build_path / package.path.relative_to(source))
+
+
+def _build_python(chosen: list[WorkspacePackage], done: int, source: Path, build_path: Path, devel: Path,
+                  whitelist: list[str], blacklist: list[str], color: bool, say: Callable[[str], None],
+                  by_cmake: bool) -> list[PackageResult]:
+    """kame's own build of the Python packages (no CMake), with catkin's lines."""
     python = sys.executable
-    underlays = underlay_workspaces(os.environ, devel)
-    say("####")
-    say(f'#### Configuring the workspace in "{build_path}" (kame: Python packages, no CMake)')
-    say("####")
-    say(f"-- Using CATKIN_DEVEL_PREFIX: {devel}")
-    say(f"-- Using CMAKE_PREFIX_PATH: {os.environ.get('CMAKE_PREFIX_PATH', '')}")
-    if underlays:
-        say(f"-- This workspace overlays: {';'.join(reversed(underlays))}")
-    say(f"-- Using PYTHON_EXECUTABLE: {python}")
-    if whitelist:
-        say(f"-- Using CATKIN_WHITELIST_PACKAGES: {';'.join(whitelist)}")
-    if blacklist:
-        say(f"-- Using CATKIN_BLACKLIST_PACKAGES: {';'.join(blacklist)}")
-    say(f"-- ~~  traversing {len(chosen)} packages in topological order:")
-    for package in chosen:
-        say(f"-- ~~  - {package.name}")
-    say("-- ~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~")
-    for package in chosen:
-        say(f"-- +++ processing catkin package: '{package.name}'")
-        say(f"-- ==> add_subdirectory({package.path.relative_to(source)})")
-        interfaces = package.interface_files()
-        if interfaces:
-            counts = ", ".join(f"{len(v)} {k}" for k, v in interfaces.items())
-            say(f"-- {package.name}: {counts} (no generation step: kame imports them from the package)")
-    say("-- Configuring done")
-    say("-- Generating done")
-    say(f"-- Build files have been written to: {build_path}")
-    say("####")
-    say(f'#### Building in "{build_path}"')
-    say("####")
+    underlays = underlay_prefixes(os.environ, devel)
+    if chosen or not by_cmake:  # (where CMake built every package, only the setup files are kame's)
+        say("####")
+        say(f'#### Configuring the workspace in "{build_path}" (kame: Python packages, no CMake)')
+        say("####")
+        say(f"-- Using CATKIN_DEVEL_PREFIX: {devel}")
+        for line in configure_lines(os.environ):
+            say(line)
+        say(f"-- Using PYTHON_EXECUTABLE: {python}")
+        if whitelist:
+            say(f"-- Using CATKIN_WHITELIST_PACKAGES: {';'.join(whitelist)}")
+        if blacklist:
+            say(f"-- Using CATKIN_BLACKLIST_PACKAGES: {';'.join(blacklist)}")
+        say(f"-- ~~  traversing {len(chosen)} packages in topological order:")
+        for package in chosen:
+            say(f"-- ~~  - {package.name}")
+        say("-- ~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~~")
+        for package in chosen:
+            say(f"-- +++ processing catkin package: '{package.name}'")
+            say(f"-- ==> add_subdirectory({package.path.relative_to(source)})")
+            interfaces = package.interface_files()
+            if interfaces:
+                counts = ", ".join(f"{len(v)} {k}" for k, v in interfaces.items())
+                say(f"-- {package.name}: {counts} (no generation step: kame imports them from the package)")
+        say("-- Configuring done")
+        say("-- Generating done")
+        say(f"-- Build files have been written to: {build_path}")
+        say("####")
+        say(f'#### Building in "{build_path}"')
+        say("####")
 
     failed: list[PackageResult] = []
+    total = len(chosen) + done
 
     def progress(index: int, result: PackageResult) -> None:
-        percent = (index + 1) * 100 // max(len(chosen), 1)
+        percent = (done + index + 1) * 100 // max(total, 1)
         for warning in result.warnings:
             print(f"WARNING: {warning}", file=sys.stderr)
         if result.failed:
@@ -257,12 +332,7 @@ def run(argv: Sequence[str]) -> int:
         say(f"[{percent:3d}%] Built target {result.name}" + (" (Python parts only)" if result.failed else ""))
 
     build(chosen, devel, [source], underlays, python, shell_dir(), progress)
-    if failed:
-        cpp = ", ".join(r.name for r in failed if r.cpp_targets)
-        broken = ", ".join(r.name for r in failed if r.errors)
-        causes = ([f"Not built by kame (C++): {cpp}."] if cpp else []) + ([f"Failed: {broken}."] if broken else [])
-        raise BuildError(" ".join(causes) + " The other packages were built; source devel/setup.bash to use them.")
-    return 0
+    return failed
 
 
 def main(argv: Sequence[str] | None = None) -> int:
@@ -270,7 +340,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     color = "--no-color" not in args
     try:
         return run(args)
-    except (BuildError, WorkspaceError) as exc:
+    except (BuildError, WorkspaceError, CMakeFailed, MessageHeaderError) as exc:
         message = str(exc)
         print(f"{RED}{message}{RESET}" if color else message, file=sys.stderr)
         return 1

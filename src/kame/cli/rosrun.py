@@ -3,7 +3,8 @@
     rosrun [--prefix cmd] [--debug] PACKAGE EXECUTABLE [ARGS]
 
 Where it looks, as the real one: the catkin workspaces' lib/PACKAGE, share/PACKAGE and source
-folders (`catkin_find --without-underlays --libexec --share`), then the package folder
+folders (`catkin_find --without-underlays --libexec --share`), kame's own lib/PACKAGE
+(kame/lib, where an installed ROS keeps a package's programs), then the package folder
 (`rospack find`), searched recursively, following symbolic links, for a regular file of that
 name with an execute bit (not below the package's build/ folder). A name with a slash is a
 path inside the package folder. Two hits, one a workspace relay and one in a share/source
@@ -30,7 +31,7 @@ from importlib import metadata
 from pathlib import Path
 
 from kame.catkin.executables import command_for, is_executable
-from kame.msg.catalog import find_packages, package_path_roots
+from kame.msg.catalog import find_packages, package_path_roots, shipped_programs
 
 USAGE = """Usage: rosrun [--prefix cmd] [--debug] PACKAGE EXECUTABLE [ARGS]
   rosrun will locate PACKAGE and try to find
@@ -178,7 +179,7 @@ def resolve(package: str, name: str, debug: bool) -> list[str]:
         if debug:
             print("[rosrun]", text)
 
-    libexec = catkin_dirs(package)
+    libexec = catkin_dirs(package) or shipped_programs(package)  # kame's lib/<package>: an installed ROS's
     say("Looking in catkin libexec dirs: \n" + "\n".join(str(d) for d in libexec))
     pkg = find_packages(package_path_roots()).get(package)
     pkgdir = Path(os.path.abspath(pkg.path)) if pkg is not None else None

@@ -3,6 +3,8 @@
 A package is a folder holding a package.xml; its interface files are msg/*.msg, srv/*.srv
 and action/*.action. ROS_PACKAGE_PATH entries are searched first, in order (the first
 package of a name wins, as with rospack), then the packages kame ships in kame/share.
+Programs kame ships for a package that are not in its share folder (roscpp_tutorials' talker,
+...) are in kame/lib/<package>, as an installed ROS keeps them in lib/<package>.
 Folders holding CATKIN_IGNORE, and hidden folders, are not searched; nor are the subfolders of
 one holding rospack_nosubdirs.
 """
@@ -21,6 +23,13 @@ from kame.msg.parser import action_message_texts, parse_msg, parse_srv, split_ty
 from kame.msg.spec import MsgSpec, SrvSpec
 
 SHARE_DIR = Path(__file__).resolve().parent.parent / "share"
+LIB_DIR = SHARE_DIR.parent / "lib"
+
+
+def shipped_programs(package: str) -> list[Path]:
+    """kame's folder of `package`'s programs (as lib/<package> of an installed ROS), if it has one."""
+    folder = LIB_DIR / package
+    return [folder] if folder.is_dir() else []
 _ACTION_SUFFIXES = ("ActionGoal", "ActionResult", "ActionFeedback", "Action", "Goal", "Result", "Feedback")
 
 

@@ -23,7 +23,7 @@ from collections.abc import Iterator, Mapping, Sequence
 from pathlib import Path
 
 from kame import environ
-from kame.msg.catalog import Package, find_packages, package_path_roots
+from kame.msg.catalog import Package, find_packages, package_path_roots, shipped_programs
 
 
 def packages(env: Mapping[str, str] | None = None) -> dict[str, Package]:
@@ -122,7 +122,7 @@ def libexec_dirs(package: str, env: Mapping[str, str]) -> list[Path]:
             candidate = Path(prefix) / "lib" / package
             if candidate.is_dir():
                 found.append(candidate)
-    return found
+    return found or shipped_programs(package)
 
 
 def package_roots(package: str, env: Mapping[str, str]) -> list[tuple[Path, Path | None]]:
