@@ -7,6 +7,8 @@ Pure: text in, a number out.
 
 from __future__ import annotations
 
+import functools
+
 from kame.msg.errors import MsgDefinitionError
 
 __all__ = ["fixed_size"]
@@ -17,6 +19,7 @@ _SIZES = {
 }
 
 
+@functools.lru_cache(maxsize=256)  # a node subscribes to many topics of a few types
 def fixed_size(type_name: str, full_definition: str) -> int | None:
     """The serialized size every message of `type_name` has, or None when it varies (or the
     definition cannot say: empty, unparsable, a dependency missing)."""
