@@ -194,7 +194,11 @@ def info(graph: Graph, node: str, quiet: bool) -> None:
         bus_info = _node_call(uri, "getBusInfo", INFO_TIMEOUT)
     except OSError:
         raise ToolError(f"Communication with node[{uri}] failed!") from None
-    print(_nodeinfo.connections(pid, bus_info if isinstance(bus_info, list) else [], state, graph.uri))
+    try:
+        dropped = _nodeinfo.drop_counts(_node_call(uri, "getBusStats", INFO_TIMEOUT))
+    except (OSError, ToolError):  # counts are extra: a node that cannot say has none shown
+        dropped = {}
+    print(_nodeinfo.connections(pid, bus_info if isinstance(bus_info, list) else [], state, graph.uri, dropped))
 
 
 def cmd_info(argv: list[str]) -> None:
