@@ -172,8 +172,8 @@ def test_connections_say_what_their_queues_dropped() -> None:
     kame = [[["/t", 10, [[2, 10, 5, True, 3]]]], [["/u", [[1, 20, 9, 4, True]]]], [0, 0, 0]]
     assert _nodeinfo.drop_counts(kame) == {2: 3, 1: 4}
     rospy = [[["/t", 10, [[2, 10, 5, True]]]], [["/u", [[1, 20, 9, -1, True]]]], [0, 0, 0]]
-    roscpp = [[["/t", [[2, 10, 8, 5, 0]]]], [], []]
-    assert _nodeinfo.drop_counts(rospy) == {} and _nodeinfo.drop_counts(roscpp) == {}
+    roscpp = [[["/t", [[2, 10, 8, 5, 0]]]], [["/u", [[0, 60, 42, 7, 0]]]]]
+    assert _nodeinfo.drop_counts(rospy) == {} and _nodeinfo.drop_counts(roscpp) == {0: 7}
     assert _nodeinfo.drop_counts("nonsense") == {}
     state = ([("/t", ["/n"])], [("/u", ["/n"])], [])
     bus = [[1, "http://h:1/", "i", "TCPROS", "/u", True], [2, "/sub", "o", "TCPROS", "/t", True]]

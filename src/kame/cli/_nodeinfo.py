@@ -59,12 +59,13 @@ def peer_name(state: SystemState, topic: str, dest: str, lookup: Callable[[str],
 
 def drop_counts(bus_stats: Any) -> dict[int, int]:
     """Messages dropped by each connection's queue (by connection id), from a getBusStats
-    answer: a subscription's drop estimate (roscpp's and kame's; rospy says -1) and the fifth
-    field kame's publication rows add after rospy's four (roscpp's fifth is not a count)."""
+    answer's stats: a subscription's drop estimate (roscpp's and kame's; rospy says -1) and the
+    fifth field kame's publication rows add after rospy's four (roscpp's rows have no byte
+    total, and their fifth field is not a count)."""
     counts: dict[int, int] = {}
     try:
         publications, subscriptions = bus_stats[0], bus_stats[1]
-        for row in (row for _, _, rows in publications for row in rows):
+        for row in (row for *_, rows in publications for row in rows):
             if len(row) == 5 and isinstance(row[3], bool) and isinstance(row[4], int):
                 counts[row[0]] = row[4]
         for row in (row for _, rows in subscriptions for row in rows):
