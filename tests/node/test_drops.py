@@ -6,6 +6,7 @@ subscription's queue or handed to the callback; getBusStats reports the same cou
 
 from __future__ import annotations
 
+import socket
 import threading
 import time
 import xmlrpc.client
@@ -14,7 +15,8 @@ from typing import Any
 import pytest
 
 from kame.node.node import Node
-from kame.node.topics import Publication, Subscription
+from kame.node.topics import Publication, Subscription, serialize_frame
+from kame.protocol import tcpros
 from std_msgs.msg import String
 
 STRING = ("std_msgs/String", String._md5sum, String._full_text)
@@ -128,3 +130,39 @@ def test_a_subscriber_behind_drops_nothing_that_its_queue_holds(make_node: Any, 
     link = next(iter(sub.links.values()))
     assert wait_until(lambda: link.messages_received == 5000 and slow.count + link.dropped == 5000)
     assert (slow.count, link.dropped, pub.links[0].sender.dropped) == (5000, 0, 0)
+
+
+def test_a_stream_read_with_the_handshake_is_handed_on_queue_size_at_a_time(make_node: Any) -> None:
+    # A publisher already flowing when the subscriber's header read comes: 3,000 messages right
+    # behind its header, in one send, arrive with it (the read takes up to 64 KiB). They were
+    # handed on as one batch, and a queue_size of 1000 dropped 2,000 of them.
+    server = socket.socket()
+    server.bind(("127.0.0.1", 0))
+    server.listen(1)
+    fake = make_node("/flowing_pub")
+    fake.advertise("/flowing", *STRING)
+    fake.tcpros_port = server.getsockname()[1]
+    done = threading.Event()
+
+    def serve() -> None:
+        conn, _ = server.accept()
+        with conn:
+            conn.recv(65536)
+            header = tcpros.encode_header(tcpros.publisher_reply_fields(
+                callerid="/flowing_pub", topic="/flowing", spec=tcpros.TopicSpec(*STRING)))
+            conn.sendall(header + b"".join(serialize_frame(String(f"{i:06d}"))[0] for i in range(3000)))
+            done.wait(20)
+
+    threading.Thread(target=serve, daemon=True).start()
+    got: list[str] = []
+    sub = make_node("/flowing_sub").subscribe("/flowing", *STRING,
+                                              lambda frames, header: got.extend(String._from_buffer(f).data
+                                                                                for f in frames), 1000)
+    try:
+        assert wait_until(lambda: len(got) + sum(link.dropped for link in sub.links.values()) >= 3000)
+        link = next(iter(sub.links.values()))
+        assert (link.messages_received, link.dropped) == (3000, 0)
+        assert got == [f"{i:06d}" for i in range(3000)]
+    finally:
+        done.set()
+        server.close()

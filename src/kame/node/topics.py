@@ -609,11 +609,15 @@ class _Frames:
         self._fits = 1 << 62  # frames of the smallest size a read of _queue_bytes holds, plus a split one
 
     def get_buffer(self, sizehint: int) -> memoryview:
-        if self._trailing:  # bytes that came with the publisher's header (a latched message)
+        if self._trailing:  # bytes that came with the publisher's header: a latched message, or
+            # the start of a stream that was already flowing (up to 64 KiB): queue_size at a time
             frames = self._reader.feed(self._trailing)
             self._trailing = b""
-            if frames:
-                self._deliver(frames)
+            if frames and self._queue_size:
+                self._resize(frames)
+            step = self._queue_size or len(frames) or 1
+            for start in range(0, len(frames), step):
+                self._deliver(frames[start:start + step])
         return self._reader.get_buffer(min(sizehint, self._queue_bytes))
 
     @property
