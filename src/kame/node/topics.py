@@ -650,7 +650,8 @@ class Subscription:
     `tcp_nodelay` goes to each publisher in our connection header (`tcp_nodelay=1`), asking
     it to send without Nagle's delay, and is set on our side of the socket too. `buff_size`
     is how many bytes each read asks of the kernel, as rospy's (the default is kame's own);
-    with a queue_size, a read asks for no more than about queue_size messages' worth. A
+    with a queue_size, a read asks for no more than queue_size of the smallest messages seen
+    (4 KiB at least; see _Frames). A
     message larger than `buff_size` still arrives whole: once its length is known, the rest
     is read straight into its own buffer. `read_interval` (seconds, 0: none) is a pause after
     each read (stream.Receiver), for a subscriber that batches anyway: many small messages
