@@ -90,9 +90,9 @@ def test_a_full_publisher_queue_drops_and_counts_its_oldest(make_node: Any, monk
     assert wait_until(lambda: sender.dropped + link.messages_received == 100)
     assert link.dropped == 0
     assert wait_until(lambda: slow.count == link.messages_received)
-    pub_rows, sub_rows = bus_stats(listener)
-    if transport == "intraprocess":  # one node: its publication's row is there too
-        assert [row[4] for row in pub_rows] == [sender.dropped]
+    pub_rows, _ = bus_stats(pub.node)  # type: ignore[arg-type]  # the talker: a Node
+    assert [(row[2], row[4]) for row in pub_rows] == [(100, sender.dropped)]
+    _, sub_rows = bus_stats(listener)
     assert [(row[2], row[3]) for row in sub_rows] == [(link.messages_received, 0)]
 
 
