@@ -180,6 +180,24 @@ def test_connections_text() -> None:
     assert _nodeinfo.connections(1, [], state, uris.get) == "Pid: 1\n"
 
 
+def test_connections_say_what_their_queues_dropped() -> None:
+    # kame's getBusStats: publication rows with a fifth field (dropped), subscription rows with
+    # roscpp's drop estimate; rospy's -1 and roscpp's publication rows (fifth field 0, an int
+    # where rospy's fourth is a bool) count nothing
+    kame = [[["/t", 10, [[2, 10, 5, True, 3]]]], [["/u", [[1, 20, 9, 4, True]]]], [0, 0, 0]]
+    assert _nodeinfo.drop_counts(kame) == {2: 3, 1: 4}
+    rospy = [[["/t", 10, [[2, 10, 5, True]]]], [["/u", [[1, 20, 9, -1, True]]]], [0, 0, 0]]
+    roscpp = [[["/t", [[2, 10, 8, 5, 0]]]], [["/u", [[0, 60, 42, 7, 0]]]]]
+    assert _nodeinfo.drop_counts(rospy) == {} and _nodeinfo.drop_counts(roscpp) == {0: 7}
+    assert _nodeinfo.drop_counts("nonsense") == {}
+    state = ([("/t", ["/n"])], [("/u", ["/n"])], [])
+    bus = [[1, "http://h:1/", "i", "TCPROS", "/u", True], [2, "/sub", "o", "TCPROS", "/t", True]]
+    assert _nodeinfo.connections(42, bus, state, {}.get, {1: 4, 2: 0}) == (
+        "Pid: 42\nConnections:\n * topic: /u\n    * to: http://h:1/\n    * direction: inbound\n"
+        "    * transport: TCPROS\n    * dropped: 4 (its queue was full)\n * topic: /t\n    * to: /sub\n"
+        "    * direction: outbound\n    * transport: TCPROS\n")
+
+
 @pytest.mark.parametrize(("ns", "name", "resolved"), [
     ("/", "x", "/x"), ("/", "/a//b", "/a//b"), ("/ns", "x", "/ns/x"), ("/ns", "~p", "/ns/rosparam/p"), ("/", "", "/"),
 ])

@@ -66,6 +66,19 @@ def test_fixed_size_is_the_size_of_every_message_of_a_fixed_size_type() -> None:
     assert fixed > 20
 
 
+def test_fixed_size_finds_variable_sizes_without_the_parser_as_the_parser_does(monkeypatch: pytest.MonkeyPatch) -> None:
+    # the quick scan (a string or an unbounded array declared anywhere) never says "varies"
+    # where the parser finds a fixed size
+    from kame.msg import size
+
+    quick = {name: size._declares_variable_field(message_class(name)._full_text) for name in ALL_MESSAGE_TYPES}
+    monkeypatch.setattr(size, "_declares_variable_field", lambda text: False)
+    parsed = {name: size.fixed_size.__wrapped__(name, message_class(name)._full_text) for name in ALL_MESSAGE_TYPES}
+    assert [name for name, varies in quick.items() if varies and parsed[name] is not None] == []
+    assert sum(quick.values()) > 100
+    assert size._declares_variable_field('string FOO=a # b\nint32 X=1\nfloat64 x # = []\n') is False
+
+
 @pytest.mark.parametrize("type_name", ALL_SERVICE_TYPES)
 def test_every_shipped_service_round_trips(type_name: str) -> None:
     package, short = type_name.split("/")

@@ -6,6 +6,8 @@
 - Connections come from the node's getBusInfo, in its order; only connected ones are shown.
   The peer is named `node (uri)` when the URI is one of the topic's registered nodes, and
   rospy's transport description adds `(port - peer) [fd]` to the direction.
+- A connection whose queue has dropped messages says how many (`* dropped:`, kame's line,
+  from getBusStats); one that dropped none prints as rosnode does.
 """
 
 from __future__ import annotations
@@ -55,9 +57,28 @@ def peer_name(state: SystemState, topic: str, dest: str, lookup: Callable[[str],
     return dest
 
 
+def drop_counts(bus_stats: Any) -> dict[int, int]:
+    """Messages dropped by each connection's queue (by connection id), from a getBusStats
+    answer's stats: a subscription's drop estimate (roscpp's and kame's; rospy says -1) and the
+    fifth field kame's publication rows add after rospy's four (roscpp's rows have no byte
+    total, and their fifth field is not a count)."""
+    counts: dict[int, int] = {}
+    try:
+        publications, subscriptions = bus_stats[0], bus_stats[1]
+        for row in (row for *_, rows in publications for row in rows):
+            if len(row) == 5 and isinstance(row[3], bool) and isinstance(row[4], int):
+                counts[row[0]] = row[4]
+        for row in (row for _, rows in subscriptions for row in rows):
+            if len(row) == 5 and isinstance(row[3], int) and row[3] >= 0:
+                counts[row[0]] = row[3]
+    except (TypeError, ValueError, IndexError):  # an answer of another shape: no counts
+        return {}
+    return counts
+
+
 def connections(pid: Any, bus_info: Sequence[Sequence[Any]], state: SystemState,
-                lookup: Callable[[str], str | None]) -> str:
-    """`Pid: N` and the `Connections:` list."""
+                lookup: Callable[[str], str | None], dropped: dict[int, int] | None = None) -> str:
+    """`Pid: N` and the `Connections:` list; `dropped` from drop_counts."""
     text = f"Pid: {pid}\n"
     if not bus_info:
         return text
@@ -76,4 +97,7 @@ def connections(pid: Any, bus_info: Sequence[Sequence[Any]], state: SystemState,
             if match is not None:
                 text += " ({} - {}) [{}]".format(*match.groups())
         text += f"\n    * transport: {transport}\n"
+        drops = (dropped or {}).get(info[0], 0)
+        if drops:
+            text += f"    * dropped: {drops} (its queue was full)\n"
     return text

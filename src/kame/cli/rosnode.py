@@ -77,6 +77,18 @@ def _node_call(uri: str, method: str, timeout: float, *args: object) -> object:
         proxy.close()
 
 
+def _bus_stats(uri: str) -> object:
+    """A node's getBusStats: rospy's and kame's answer [code, text, stats], roscpp's the stats alone."""
+    proxy = MasterProxy(uri, ID, timeout=INFO_TIMEOUT)
+    try:
+        answer = proxy.call_raw("getBusStats")
+    finally:
+        proxy.close()
+    if isinstance(answer, list) and len(answer) == 3 and type(answer[0]) is int:
+        return answer[2] if answer[0] == 1 else None
+    return answer
+
+
 def _cause(exc: BaseException) -> BaseException:
     while exc.__cause__ is not None:
         exc = exc.__cause__
@@ -194,7 +206,11 @@ def info(graph: Graph, node: str, quiet: bool) -> None:
         bus_info = _node_call(uri, "getBusInfo", INFO_TIMEOUT)
     except OSError:
         raise ToolError(f"Communication with node[{uri}] failed!") from None
-    print(_nodeinfo.connections(pid, bus_info if isinstance(bus_info, list) else [], state, graph.uri))
+    try:
+        dropped = _nodeinfo.drop_counts(_bus_stats(uri))
+    except (OSError, XmlRpcError):  # counts are extra: a node that cannot say has none shown
+        dropped = {}
+    print(_nodeinfo.connections(pid, bus_info if isinstance(bus_info, list) else [], state, graph.uri, dropped))
 
 
 def cmd_info(argv: list[str]) -> None:

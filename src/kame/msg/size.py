@@ -7,6 +7,8 @@ Pure: text in, a number out.
 
 from __future__ import annotations
 
+import functools
+
 from kame.msg.errors import MsgDefinitionError
 
 __all__ = ["fixed_size"]
@@ -17,10 +19,11 @@ _SIZES = {
 }
 
 
+@functools.lru_cache(maxsize=256)  # a node subscribes to many topics of a few types
 def fixed_size(type_name: str, full_definition: str) -> int | None:
     """The serialized size every message of `type_name` has, or None when it varies (or the
     definition cannot say: empty, unparsable, a dependency missing)."""
-    if not full_definition.strip():
+    if not full_definition.strip() or _declares_variable_field(full_definition):
         return None
     # here, not at the top: the parser (with dataclasses, inspect, hashlib) is a few megabytes
     # that a node which only publishes never needs; the transport imports this module
@@ -57,3 +60,18 @@ def fixed_size(type_name: str, full_definition: str) -> int | None:
         return total
 
     return size_of(type_name, ())
+
+
+def _declares_variable_field(full_definition: str) -> bool:
+    """Whether a field of any section is a string or an unbounded array: the usual answer
+    (any message with a Header), found without the parser. A full definition holds only the
+    types its fields use, so such a field anywhere makes the size vary. Constants, comments,
+    the sections' ===== lines and their MSG: lines declare no field."""
+    for line in full_definition.splitlines():
+        line = line.split("#", 1)[0]
+        if "=" in line:
+            continue
+        words = line.split(None, 1)
+        if words and (words[0] == "string" or words[0].endswith("[]")):
+            return True
+    return False

@@ -583,11 +583,13 @@ class ShmReceiver:
         self._acked = 0
 
     def deliver(self, frames: list[memoryview], deliver: Callable[[list[memoryview]], None],
-                sock: socket.socket) -> None:
+                sock: socket.socket) -> int:
         """Hand the messages of `frames` to `deliver` (the newest queue_size of them, as
-        over TCPROS) and acknowledge them."""
+        over TCPROS) and acknowledge them; returns how many older ones were dropped."""
         entries = self._payloads(frames)
+        dropped = 0
         if self.queue_size and len(entries) > self.queue_size:
+            dropped = len(entries) - self.queue_size
             entries = entries[-self.queue_size:]  # the counts are running: a later one covers the dropped
         first = 0
         for index, (view, done) in enumerate(entries):
@@ -598,6 +600,7 @@ class ShmReceiver:
         if first < len(entries):
             deliver([entry[0] for entry in entries[first:]])
         self._acknowledge(sock, self._done)
+        return dropped
 
     def _payloads(self, frames: list[memoryview]) -> list[tuple[memoryview, int]]:
         """Each message's bytes, with the record count to acknowledge once they have been read."""

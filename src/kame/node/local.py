@@ -121,6 +121,8 @@ class LocalPublisherLink:
         self.callerid = subscription.node.name
         self.header: dict[str, str] = {}
         self.bytes_received = 0
+        self.messages_received = 0
+        self.dropped = 0
         self.closed = False
         self.connected = False
         self.ended = False  # the publication closed: a new one needs a new link
@@ -165,6 +167,9 @@ class LocalPublisherLink:
     def deliver(self, items: collections.deque[tuple[bool, Any]]) -> None:
         sub = self.subscription
         if sub.queue_size and len(items) > sub.queue_size:
+            excess = len(items) - sub.queue_size
+            self.messages_received += excess
+            self.dropped += excess
             items = collections.deque(list(items)[-sub.queue_size:])
         objects: list[Any] = []
         frames: list[memoryview] = []

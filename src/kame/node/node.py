@@ -348,9 +348,14 @@ class Node:
         return [1, "bus info", info]
 
     def _get_bus_stats(self, caller_id: str) -> list[Any]:
-        pubs = [[t, p.bytes_sent, [[lk.connection_id, lk.sender.bytes_sent, lk.sender.frames_sent, True]
-                                   for lk in p.links]] for t, p in list(self.publications.items())]
-        subs = [[t, [[lk.connection_id, lk.bytes_received, -1, lk.connected] for lk in s.links.values()]]
+        """rospy's rows: a publication's connections [id, bytes, messages, connected] with the
+        messages its queue dropped after them (kame's; readers of four fields are unaffected), a
+        subscription's [id, bytes, messages, drops, connected], drops in roscpp's place for them."""
+        pubs = [[t, p.bytes_sent, [[lk.connection_id, lk.sender.bytes_sent, lk.sender.frames_sent, True,
+                                    lk.sender.dropped] for lk in p.links]]
+                for t, p in list(self.publications.items())]
+        subs = [[t, [[lk.connection_id, lk.bytes_received, lk.messages_received, lk.dropped, lk.connected]
+                     for lk in s.links.values()]]
                 for t, s in list(self.subscriptions.items())]
         return [1, "", [pubs, subs, [0, 0, 0]]]
 

@@ -89,6 +89,7 @@ class FrameSender(Protocol):
 
     bytes_sent: int
     frames_sent: int
+    dropped: int  # frames its queue of queue_size dropped (the oldest) for a subscriber behind
 
     def send(self, frame: Buffer) -> None: ...
 
@@ -116,6 +117,8 @@ class IncomingLink(Protocol):
     callerid: str
     header: dict[str, str]
     bytes_received: int
+    messages_received: int
+    dropped: int  # received, then dropped by the subscription's queue_size (its oldest)
     connected: bool
     ended: bool  # the publication is gone for good: a new one needs a new link
     latching: bool
@@ -133,6 +136,7 @@ class ObjectLatch(Protocol):
 
     latching: bool
     latched_object: Any
+    messages_received: int
 
 
 class _Chunks(list[Any]):
@@ -383,6 +387,8 @@ class PublisherLink:
         self.receiver: Receiver | None = None
         self.sock: socket.socket | None = None
         self.bytes_received = 0
+        self.messages_received = 0
+        self.dropped = 0
         self.closed = False
         self._closing = threading.Event()  # set by close(): ends a retry's wait at once
         self._lock = threading.Lock()
@@ -521,7 +527,10 @@ class PublisherLink:
     def _deliver_shm(self, frames: list[memoryview]) -> None:
         receiver, sock = self._shm, self.sock
         assert receiver is not None and sock is not None
-        receiver.deliver(frames, self._deliver, sock)
+        dropped = receiver.deliver(frames, self._deliver, sock)
+        if dropped:
+            self.messages_received += dropped
+            self.dropped += dropped
 
     def _ended(self, exc: BaseException | None) -> None:
         self.connected = False
@@ -578,10 +587,14 @@ def _shm_unavailable() -> type[Exception]:
 class _Frames:
     """A Receiver consumer: TCPROS frames out of the stream, handed on in batches.
 
-    With a queue_size, each read asks the kernel for about queue_size frames' worth of bytes
-    (from the running mean frame size): a burst then waits in the socket buffer for the next
-    read instead of overflowing one batch and being discarded, while a subscriber that really
-    falls behind still keeps only the newest queue_size of every read, as rospy does.
+    With a queue_size N, a read asks the kernel for no more than N of the smallest frames seen
+    (4 KiB at least): a read then never holds more than N frames, so what the subscription
+    keeps of it (its newest N) is all of it, and a subscriber that falls behind leaves the rest
+    in the socket's buffers, where TCP's flow control holds the publisher back until its own
+    queue of queue_size drops the oldest (bench/RESULTS.md: kame's queue_size). A read sized by
+    the mean frame dropped frames whenever the mean sat above the real size (1 % at full rate).
+    Only a queue_size small enough for the 4 KiB floor to hold more (N = 1, say) keeps the newest
+    N of each read and drops the others on the subscriber's side, as rospy does.
     """
 
     def __init__(self, deliver: Callable[[list[memoryview]], None], trailing: bytes, queue_size: int | None,
@@ -589,18 +602,22 @@ class _Frames:
         self._reader = tcpros.FrameReader(max_frame, reuse=True)  # deliver copies what it keeps
         self._deliver = deliver
         self._trailing = trailing
-        self._queue_size = queue_size
-        self._mean_frame = 64.0
-        self._last_frame = -1  # the size of the last frame, while it keeps the mean where it is
-        self._queue_bytes = 1 << 62  # what a read may ask for: about queue_size frames' worth
-        self._size_reads()
+        self._queue_size = queue_size or 0
+        # the smallest frame seen; 0 without a queue_size (reads are then buff_size, never resized)
+        self._smallest = MAX_FRAME + 1 if queue_size else 0
+        self._queue_bytes = _MIN_READ if queue_size else 1 << 62  # what a read may ask for
+        self._fits = 1 << 62  # frames of the smallest size a read of _queue_bytes holds, plus a split one
 
     def get_buffer(self, sizehint: int) -> memoryview:
-        if self._trailing:  # bytes that came with the publisher's header (a latched message)
+        if self._trailing:  # bytes that came with the publisher's header: a latched message, or
+            # the start of a stream that was already flowing (up to 64 KiB): queue_size at a time
             frames = self._reader.feed(self._trailing)
             self._trailing = b""
-            if frames:
-                self._deliver(frames)
+            if frames and self._queue_size:
+                self._resize(frames)
+            step = self._queue_size or len(frames) or 1
+            for start in range(0, len(frames), step):
+                self._deliver(frames[start:start + step])
         return self._reader.get_buffer(min(sizehint, self._queue_bytes))
 
     @property
@@ -610,19 +627,21 @@ class _Frames:
     def buffer_updated(self, nbytes: int) -> None:
         frames = self._reader.buffer_updated(nbytes)
         if frames:
-            size = len(frames[-1])
-            if size != self._last_frame:  # messages of one size (most topics) leave the mean alone
-                self._update_mean(size)
+            # checks of the last frame and the count only: a smaller frame earlier in the read
+            # shows as more frames than the read could hold
+            if len(frames[-1]) < self._smallest or len(frames) > self._fits:
+                self._resize(frames)
             self._deliver(frames)
 
-    def _update_mean(self, size: int) -> None:
-        mean = self._mean_frame = 0.9 * self._mean_frame + 0.1 * size
-        self._last_frame = size if abs(mean - size) < 1.0 else -1  # close enough: rest until it changes
-        self._size_reads()
+    def _resize(self, frames: list[memoryview]) -> None:
+        smallest = min(len(frame) for frame in frames)
+        if smallest < self._smallest:
+            self._smallest = smallest
+            self._queue_bytes = max(_MIN_READ, self._queue_size * (smallest + 4))
+            self._fits = self._queue_bytes // (smallest + 4) + 1
 
-    def _size_reads(self) -> None:
-        if self._queue_size:
-            self._queue_bytes = max(4096, int(self._queue_size * (self._mean_frame + 4)))
+
+_MIN_READ = 4096
 
 
 class Subscription:
@@ -631,7 +650,8 @@ class Subscription:
     `tcp_nodelay` goes to each publisher in our connection header (`tcp_nodelay=1`), asking
     it to send without Nagle's delay, and is set on our side of the socket too. `buff_size`
     is how many bytes each read asks of the kernel, as rospy's (the default is kame's own);
-    with a queue_size, a read asks for no more than about queue_size messages' worth. A
+    with a queue_size, a read asks for no more than queue_size of the smallest messages seen
+    (4 KiB at least; see _Frames). A
     message larger than `buff_size` still arrives whole: once its length is known, the rest
     is read straight into its own buffer. `read_interval` (seconds, 0: none) is a pause after
     each read (stream.Receiver), for a subscriber that batches anyway: many small messages
@@ -651,10 +671,9 @@ class Subscription:
         self.deliver_messages = deliver_messages
         self.shared_memory = shared_memory  # offer shared memory to kame publishers on this host (kame.protocol.shmros)
         self.no_shm: set[str] = set()  # publishers whose segments we could not map
-        if max_frame is None:
-            exact = fixed_size(type, definition) if "*" not in (type, md5sum) else None
-            max_frame = MAX_FRAME if exact is None else exact
-        self.max_frame = max_frame
+        # None: worked out at the first connection; parsing the definition in subscribe() nearly
+        # doubled the time 100 subscriptions took to register (17 -> 31 ms)
+        self._max_frame = max_frame
         self.stall_timeout = STALL_TIMEOUT
         self.topic = topic
         self.type = type
@@ -675,6 +694,15 @@ class Subscription:
         # only subscribers it has registered), so the answer must not undo it
         self._lists_lock = threading.Lock()
         self.updates = 0  # publisherUpdates applied
+
+    @property
+    def max_frame(self) -> int:
+        """The largest frame a publisher may send: the type's size when it has no variable-length
+        fields, else MAX_FRAME (or what subscribe() was given)."""
+        if self._max_frame is None:
+            exact = fixed_size(self.type, self.definition) if "*" not in (self.type, self.md5sum) else None
+            self._max_frame = MAX_FRAME if exact is None else exact
+        return self._max_frame
 
     def publisher_update(self, uris: list[str]) -> None:
         """A publisherUpdate's list: the master's newest."""
@@ -698,12 +726,13 @@ class Subscription:
         with self._lock:
             self.on_connect = [c for c in self.on_connect if c is not callback]
 
-    def deliver(self, frames: list[memoryview], header: dict[str, str],
-                link: IncomingLink | None = None) -> None:
+    def deliver(self, frames: list[memoryview], header: dict[str, str], link: IncomingLink) -> None:
+        link.messages_received += len(frames)
         if self.queue_size and len(frames) > self.queue_size:
+            link.dropped += len(frames) - self.queue_size
             frames = frames[-self.queue_size:]  # a slow callback keeps the newest, as queue_size promises
         with self.callback_lock:
-            if link is not None and link.latching:
+            if link.latching:
                 link.latched = bytes(frames[-1])
             if not self.closed:
                 self.deliver_frames(frames, header)
@@ -712,6 +741,7 @@ class Subscription:
         """Messages from a publication of this node, as published (kame.node.local)."""
         deliver = self.deliver_messages
         assert deliver is not None
+        link.messages_received += len(msgs)
         with self.callback_lock:
             if link.latching:
                 link.latched_object = msgs[-1]
