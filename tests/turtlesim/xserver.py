@@ -1,6 +1,10 @@
 """A real X server for the window tests: a private Xvfb, and what xwininfo and xwd say of it.
 
-Xvfb picks a free display number itself (-displayfd) and is stopped by its PID. Without Xvfb
+Each Xvfb gets a random display number from a wide range, not the lowest free one that every
+server of two test runs side by side (and of other work) reaches for: a simulator's window test,
+run beside another suite, once found its fresh Xvfb on :0 unreachable ("could not connect to
+display :0"). It says it is ready through -displayfd, logs to a file (not a pipe nobody reads,
+which a chatty server could fill and stall on), and is stopped by its PID. Without Xvfb
 (or xwininfo of x11-utils, xwd of x11-apps) the tests that need them skip and say which is missing;
 scripts/install-gui-libs.sh --xvfb installs them.
 """
@@ -8,11 +12,13 @@ scripts/install-gui-libs.sh --xvfb installs them.
 from __future__ import annotations
 
 import os
+import random
 import re
 import shutil
 import signal
 import struct
 import subprocess
+import tempfile
 from collections.abc import Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass
@@ -30,24 +36,38 @@ def require_x_tools() -> None:
 def xvfb(size: str = "800x600") -> Iterator[str]:
     """A running Xvfb of `size` pixels (24-bit colour); yields its DISPLAY (":N")."""
     require_x_tools()
-    read, write = os.pipe()
-    server = subprocess.Popen(["Xvfb", "-displayfd", str(write), "-screen", "0", f"{size}x24", "-nolisten", "tcp"],
-                              pass_fds=(write,), stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
-    os.close(write)
-    try:
-        with os.fdopen(read) as pipe:
-            number = pipe.readline().strip()  # written once the server accepts clients
-        if not number:
-            raise RuntimeError(f"Xvfb did not start: {server.stderr.read().decode() if server.stderr else ''}")
-        yield f":{number}"
-    finally:
-        if server.poll() is None:
-            os.kill(server.pid, signal.SIGTERM)
+    said = ""
+    for _ in range(20):  # a number another server holds: that one refuses it, try another
+        number = random.randrange(100, 50000)
+        if os.path.exists(f"/tmp/.X{number}-lock"):
+            continue
+        with tempfile.TemporaryFile() as log:
+            read, write = os.pipe()
+            server = subprocess.Popen(["Xvfb", f":{number}", "-displayfd", str(write), "-screen", "0", f"{size}x24",
+                                       "-nolisten", "tcp"], pass_fds=(write,), stdout=subprocess.DEVNULL, stderr=log)
+            os.close(write)
             try:
+                with os.fdopen(read) as pipe:
+                    ready = pipe.readline().strip()  # written once the server accepts clients
+                if ready:
+                    yield f":{ready}"
+                    return
                 server.wait(10)
-            except subprocess.TimeoutExpired:
-                os.kill(server.pid, signal.SIGKILL)
-                server.wait()
+                log.seek(0)
+                said = log.read().decode(errors="replace")
+            finally:
+                _stop(server)
+    raise RuntimeError(f"Xvfb did not start: {said}")
+
+
+def _stop(server: subprocess.Popen[bytes]) -> None:
+    if server.poll() is None:
+        os.kill(server.pid, signal.SIGTERM)
+        try:
+            server.wait(10)
+        except subprocess.TimeoutExpired:
+            os.kill(server.pid, signal.SIGKILL)
+            server.wait()
 
 
 @dataclass(frozen=True)
