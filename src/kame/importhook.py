@@ -62,7 +62,7 @@ class _XacroFinder:
     def find_spec(
         self, fullname: str, path: Sequence[str] | None, target: ModuleType | None = None
     ) -> ModuleSpec | None:
-        if fullname != "xacro.substitution_args":
+        if fullname != "xacro":
             return None
         from importlib.machinery import PathFinder
 

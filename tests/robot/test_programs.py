@@ -93,6 +93,10 @@ def test_the_xacro_distributions_own_command_finds_kames_packages_too(tmp_path: 
                           text=True, timeout=60)
     assert done.returncode == 0, done.stderr
     assert '<link name="base_scan">' in done.stdout  # the included turtlebot.urdf, found through $(find)
+    failed = subprocess.run([sys.executable, "-c", their_script, str(tmp_path / "missing.xacro")], capture_output=True,
+                            text=True, timeout=60)
+    assert failed.returncode != 0 and "No such file or directory" in failed.stderr, failed.stderr
+    assert "Traceback" not in failed.stderr, failed.stderr
 
 
 def test_a_launched_xacro_robot_shows_up_in_tf(tmp_path: Path) -> None:

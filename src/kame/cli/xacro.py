@@ -24,7 +24,12 @@ def find_package(name: str) -> str:
 
 
 def use_kame_packages() -> None:
-    """Points xacro's `$(find)` (in attributes and in `${...}` expressions) at kame's finder."""
+    """Points xacro's `$(find)` (in attributes and in `${...}` expressions) at kame's finder. Run
+    wherever xacro is imported (kame.importhook), so also under the xacro distribution's command."""
+    # xacro 2.1's error path names xml.parsers.expat without importing it: a missing input file
+    # ended in an AttributeError traceback instead of its "No such file or directory" message
+    import xml.parsers.expat  # noqa: F401
+
     from xacro import substitution_args
 
     substitution_args._eval_find = find_package
@@ -32,10 +37,6 @@ def use_kame_packages() -> None:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    # xacro 2.1's error path names xml.parsers.expat without importing it: a missing input file
-    # ended in an AttributeError traceback instead of its "No such file or directory" message
-    import xml.parsers.expat  # noqa: F401
-
     import xacro
 
     use_kame_packages()
