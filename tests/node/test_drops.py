@@ -8,7 +8,6 @@ from __future__ import annotations
 
 import socket
 import threading
-import time
 import xmlrpc.client
 from typing import Any
 
@@ -19,17 +18,11 @@ from kame.node.topics import Publication, Subscription, serialize_frame
 from kame.protocol import tcpros
 from std_msgs.msg import String
 
+from ..support import wait_until
+
 STRING = ("std_msgs/String", String._md5sum, String._full_text)
 TRANSPORTS = ["tcpros", "shm", "intraprocess"]
 
-
-def wait_until(condition: Any, timeout: float = 20.0) -> bool:
-    deadline = time.monotonic() + timeout
-    while time.monotonic() < deadline:
-        if condition():
-            return True
-        time.sleep(0.01)
-    return False
 
 
 class Gated:
@@ -55,7 +48,7 @@ def pair(make_node: Any, monkeypatch: pytest.MonkeyPatch, transport: str, name: 
     slow = Gated()
     sub = listener.subscribe(f"/{name}", *STRING, slow.deliver, sub_queue, message_class=String,
                              deliver_messages=slow.deliver)
-    assert wait_until(lambda: len(pub.links) == 1 and sub.connection_count == 1)
+    assert wait_until(lambda: len(pub.links) == 1 and sub.connection_count == 1, timeout=20)
     kind = {"tcpros": "Sender", "shm": "ShmSender", "intraprocess": "LocalSender"}[transport]
     assert type(pub.links[0].sender).__name__ == kind
     return listener, pub, sub, slow
@@ -87,9 +80,9 @@ def test_a_full_publisher_queue_drops_and_counts_its_oldest(make_node: Any, monk
     assert sender.dropped > 0
     slow.gate.set()
     link = next(iter(sub.links.values()))
-    assert wait_until(lambda: sender.dropped + link.messages_received == 100)
+    assert wait_until(lambda: sender.dropped + link.messages_received == 100, timeout=20)
     assert link.dropped == 0
-    assert wait_until(lambda: slow.count == link.messages_received)
+    assert wait_until(lambda: slow.count == link.messages_received, timeout=20)
     pub_rows, _ = bus_stats(pub.node)  # type: ignore[arg-type]  # the talker: a Node
     assert [(row[2], row[4]) for row in pub_rows] == [(100, sender.dropped)]
     _, sub_rows = bus_stats(listener)
@@ -108,9 +101,9 @@ def test_a_full_subscriber_queue_drops_and_counts_its_oldest(make_node: Any, mon
     sender = pub.links[0].sender
     link = next(iter(sub.links.values()))
     slow.gate.set()
-    assert wait_until(lambda: link.messages_received == 200)
+    assert wait_until(lambda: link.messages_received == 200, timeout=20)
     assert sender.dropped == 0
-    assert wait_until(lambda: slow.count + link.dropped == 200)
+    assert wait_until(lambda: slow.count + link.dropped == 200, timeout=20)
     assert link.dropped >= 190
     _, sub_rows = bus_stats(listener)
     assert [(row[2], row[3]) for row in sub_rows] == [(200, link.dropped)]
@@ -128,7 +121,7 @@ def test_a_subscriber_behind_drops_nothing_that_its_queue_holds(make_node: Any, 
     publish(pub, 4999, 0)
     slow.gate.set()
     link = next(iter(sub.links.values()))
-    assert wait_until(lambda: link.messages_received == 5000 and slow.count + link.dropped == 5000)
+    assert wait_until(lambda: link.messages_received == 5000 and slow.count + link.dropped == 5000, timeout=20)
     assert (slow.count, link.dropped, pub.links[0].sender.dropped) == (5000, 0, 0)
 
 
@@ -159,7 +152,7 @@ def test_a_stream_read_with_the_handshake_is_handed_on_queue_size_at_a_time(make
                                               lambda frames, header: got.extend(String._from_buffer(f).data
                                                                                 for f in frames), 1000)
     try:
-        assert wait_until(lambda: len(got) + sum(link.dropped for link in sub.links.values()) >= 3000)
+        assert wait_until(lambda: len(got) + sum(link.dropped for link in sub.links.values()) >= 3000, timeout=20)
         link = next(iter(sub.links.values()))
         assert (link.messages_received, link.dropped) == (3000, 0)
         assert got == [f"{i:06d}" for i in range(3000)]

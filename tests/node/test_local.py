@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import threading
-import time
 import xmlrpc.client
 from typing import Any
 
@@ -13,16 +12,10 @@ from kame.node.node import Node
 from kame.node.topics import serialize_frame
 from std_msgs.msg import String
 
+from ..support import wait_until
+
 STRING = ("std_msgs/String", String._md5sum, String._full_text)
 
-
-def wait_until(condition: Any, timeout: float = 5.0) -> bool:
-    deadline = time.monotonic() + timeout
-    while time.monotonic() < deadline:
-        if condition():
-            return True
-        time.sleep(0.01)
-    return False
 
 
 class Received:

@@ -20,7 +20,7 @@ from kame.node.topics import serialize_frame
 from kame.protocol import tcpros
 from std_msgs.msg import String
 
-from ..support import free_port
+from ..support import free_port, wait_until
 
 STRING = ("std_msgs/String", String._md5sum, String._full_text)
 
@@ -37,14 +37,6 @@ def collect(node: Node, topic: str, queue_size: int | None = None) -> tuple[list
     node.subscribe(topic, *STRING, deliver, queue_size)
     return got, event
 
-
-def wait_until(condition: Any, timeout: float = 5.0) -> bool:
-    deadline = time.monotonic() + timeout
-    while time.monotonic() < deadline:
-        if condition():
-            return True
-        time.sleep(0.01)
-    return False
 
 
 def test_publish_subscribe_in_order(make_node: Any) -> None:

@@ -6,7 +6,6 @@ from __future__ import annotations
 
 import socket
 import threading
-import time
 import xmlrpc.client
 from typing import Any
 
@@ -15,18 +14,10 @@ import pytest
 from kame.node.topics import serialize_frame
 from std_msgs.msg import String
 
-from ..support import free_port
+from ..support import free_port, wait_until
 
 STRING = ("std_msgs/String", String._md5sum, String._full_text)
 
-
-def wait_until(condition: Any, timeout: float = 10.0) -> bool:
-    deadline = time.monotonic() + timeout
-    while time.monotonic() < deadline:
-        if condition():
-            return True
-        time.sleep(0.01)
-    return False
 
 
 def _empty_response(data: bytes) -> tuple[bool, bytes | str]:

@@ -20,18 +20,10 @@ from kame.node.node import Node
 from kame.node.topics import Publication, serialize_frame
 from sensor_msgs.msg import Image
 
-from ..support import ros_env
+from ..support import ros_env, wait_until
 
 IMAGE = ("sensor_msgs/Image", Image._md5sum, Image._full_text)
 
-
-def wait_until(condition: Any, timeout: float = 10.0) -> bool:
-    deadline = time.monotonic() + timeout
-    while time.monotonic() < deadline:
-        if condition():
-            return True
-        time.sleep(0.01)
-    return False
 
 
 def image(seq: int, size: int) -> Image:

@@ -14,7 +14,7 @@ import subprocess
 import sys
 import time
 import xmlrpc.client
-from collections.abc import Iterator, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from contextlib import contextmanager
 from pathlib import Path
 
@@ -117,6 +117,17 @@ def running(args: Sequence[str], env: dict[str, str], cwd: Path | None = None) -
 def kame_command(module: str, *args: str) -> list[str]:
     """Run a kame CLI module with this interpreter (works without installed entry points)."""
     return [sys.executable, "-m", module, *args]
+
+
+def wait_until(condition: Callable[[], object], timeout: float = 10.0) -> bool:
+    """Whether `condition()` came true within `timeout` seconds (polled every 10 ms): for state a
+    test can only look at, such as another thread's counters or a node's links."""
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        if condition():
+            return True
+        time.sleep(0.01)
+    return False
 
 
 def wait_for_master(uri: str, timeout: float = 10.0, proc: Proc | None = None) -> None:
