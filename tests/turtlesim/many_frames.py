@@ -24,6 +24,13 @@ def main() -> int:
     world.spawn("turtle2", 2.0, 2.0, 0.0)
     window = gui.TurtleWindow(world.snapshot(), "TurtleSim")
     window.show()
+    # on a real X server a window paints only once it is exposed, which a loaded machine can leave
+    # for later than one processEvents(): repaint() then painted nothing for the whole loop
+    from PySide6.QtTest import QTest
+
+    if not QTest.qWaitForWindowExposed(window, 30_000):
+        print("the window was never exposed", flush=True)
+        return 1
     app.processEvents()
     painted_before = window.frames_painted
     none_before = sys.getrefcount(None)
