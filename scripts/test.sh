@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Sets up everything the tests need and runs all of them: lint, types, unit and interop tests,
 # and turtlesim's window offscreen and on a real X server (Xvfb).
-# Usage: scripts/test.sh [pytest args...]
+# Usage: scripts/test.sh [pytest args...]   (e.g. -n 0 to run in one process)
 # KAME_DEPS (newest, oldest) is set by scripts/dependency-sweep.sh.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -35,4 +35,6 @@ if [ "${KAME_DEPS:-}" = oldest ]; then
 else
   "$venv/bin/python" -m mypy
 fi
-"$venv/bin/python" -m pytest -q "$@"
+# one worker per core (-n auto); a test file's tests stay together on one worker (--dist loadfile),
+# so a module's shared roscore or workspace is made once. `scripts/test.sh -n 0 ...` runs serially
+"$venv/bin/python" -m pytest -q -n auto --dist loadfile "$@"
