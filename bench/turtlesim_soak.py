@@ -88,7 +88,9 @@ def window_child() -> int:
         figures.add("paint", time.perf_counter() - t0)
 
     gui.TurtleWindow.paintEvent = timed_paint  # type: ignore[method-assign]
-    return gui.main(["--window", "TurtleSim"])
+    from kame.msg.catalog import SHARE_DIR
+
+    return gui.main(["--window", "TurtleSim", str(SHARE_DIR / "turtlesim" / "images")])
 
 
 def turtlesim_child() -> int:

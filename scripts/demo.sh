@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The main job: set kame up in .venv (with the GUI extra when it installs) and roslaunch
-# turtlesim's demo: a master, turtlesim and draw_square, so a turtle draws squares at once.
+# scripts/turtlesim_demo.launch: a master, turtlesim and draw_square, so a turtle draws squares at once.
 # Drive it from another terminal: `source .venv/bin/activate && rosrun turtlesim turtle_teleop_key`.
 # With no display the same simulation runs headless, and turtlesim says why there is no window.
 # Ctrl-C stops everything.
@@ -45,4 +45,4 @@ kame demo: turtlesim with a turtle drawing squares (Ctrl-C stops it).
     source $PWD/.venv/bin/activate
     rosrun turtlesim turtle_teleop_key
 MSG
-exec roslaunch -p "$port" turtlesim demo.launch
+exec roslaunch -p "$port" scripts/turtlesim_demo.launch

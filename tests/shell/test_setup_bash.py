@@ -10,7 +10,7 @@ from pathlib import Path
 import pytest
 
 from kame.shell import SHELL_DIR, setup_file
-from tests.shell.shell_env import BIN, SETUP_BASH, bash, clean_env
+from tests.shell.shell_env import BIN, SETUP_BASH, bash, clean_env, complete
 
 SHARE = Path(__file__).resolve().parents[2] / "src" / "kame" / "share"
 
@@ -126,6 +126,17 @@ def test_rosls_roscat_roscp_rosed(tmp_path: Path) -> None:
         "#!/usr/bin/env python3",
         f"editing {SHARE / 'rospy_tutorials' / 'msg' / 'Floats.msg'}",
     ]
+
+
+def test_turtlesim_is_laid_out_as_noetic_installs_it(tmp_path: Path) -> None:
+    """share/turtlesim as Noetic's (cmake, images, msg, package.xml, srv: no launch files, no
+    action), its programs in lib/turtlesim, found by rosrun's completion."""
+    env = clean_env(tmp_path)
+    result = bash("rosls turtlesim; echo --; rosls turtlesim/images", env)
+    assert result.stdout.splitlines() == [
+        "cmake", "images", "msg", "package.xml", "srv", "--",
+        *(f"{colour}-turtle.png" for colour in ("blue", "brown", "green", "olive", "orange", "red", "teal", "violet"))]
+    assert complete(env, "rosrun", "turtlesim", "") == ["draw_square", "mimic", "turtle_teleop_key", "turtlesim_node"]
 
 
 def test_rosls_unknown_package_is_ls_of_nothing(tmp_path: Path) -> None:

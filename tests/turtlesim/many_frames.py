@@ -13,6 +13,7 @@ from __future__ import annotations
 import random
 import sys
 
+from kame.msg.catalog import SHARE_DIR
 from kame.turtlesim import World, gui
 
 
@@ -22,7 +23,7 @@ def main() -> int:
     world = World(rng=random.Random(1))
     world.reset()
     world.spawn("turtle2", 2.0, 2.0, 0.0)
-    window = gui.TurtleWindow(world.snapshot(), "TurtleSim")
+    window = gui.TurtleWindow(world.snapshot(), "TurtleSim", gui.load_turtle_images(SHARE_DIR / "turtlesim" / "images"))
     window.show()
     # on a real X server a window paints only once it is exposed, which a loaded machine can leave
     # for later than one processEvents(): repaint() then painted nothing for the whole loop

@@ -25,7 +25,25 @@ if not os.environ.get("QT_QPA_PLATFORM"):
 
 from PySide6.QtGui import QImage
 
+from kame.msg.catalog import SHARE_DIR
 from kame.turtlesim import gui
+
+IMAGES_FOLDER = SHARE_DIR / "turtlesim" / "images"
+
+
+def shell_colours(image: int) -> set[tuple[int, int, int]]:
+    """The two commonest opaque colours of turtle image `image` (its shell and its pattern):
+    a rotated image keeps them exact inside its areas of one colour."""
+    from collections import Counter
+
+    picture = gui.load_turtle_images(IMAGES_FOLDER)[image]
+    counts: Counter[tuple[int, int, int]] = Counter()
+    for x in range(picture.width()):
+        for y in range(picture.height()):
+            c = picture.pixelColor(x, y)
+            if c.alpha() == 255:
+                counts[(c.red(), c.green(), c.blue())] += 1
+    return {colour for colour, _ in counts.most_common(2)}
 
 
 def rgb(image: QImage, x: int, y: int) -> tuple[int, int, int]:
@@ -41,7 +59,9 @@ def test_screenshot_shows_background_pen_line_and_turtle(tmp_path: Path) -> None
     world.command("turtle1", 2.0, 0.0, 0.0)
     for _ in range(40):  # 1.28 m to the right, drawing
         world.step()
-    window = gui.TurtleWindow(world.snapshot(), "TurtleSim")
+    images = gui.load_turtle_images(IMAGES_FOLDER)
+    assert len(images) == 8
+    window = gui.TurtleWindow(world.snapshot(), "TurtleSim", images)
     window.show()
     shot = window.grab().toImage()
     shot.save(str(tmp_path / "turtlesim.png"))
@@ -52,14 +72,10 @@ def test_screenshot_shows_background_pen_line_and_turtle(tmp_path: Path) -> None
     assert rgb(shot, 265, 250) == (255, 0, 0)  # the pen line, 5 px wide, left behind the turtle
     assert rgb(shot, 265, 247) == (255, 0, 0) and rgb(shot, 265, 244) == (69, 86, 255)
     turtle_x = round(world.turtle("turtle1").pose.x * 45)
-    shell = gui.PALETTE[world.turtle("turtle1").image]
     colours = {rgb(shot, x, y) for x in range(turtle_x - 20, turtle_x + 21) for y in range(230, 271)}
-    from PySide6.QtGui import QColor
-
-    wanted = {(QColor(c).red(), QColor(c).green(), QColor(c).blue()) for c in shell}
-    assert wanted & colours, "the turtle's drawing is on the screenshot"
+    assert shell_colours(world.turtle("turtle1").image) <= colours, "the turtle's image is on the screenshot"
     # render() paints the same frame
-    assert rgb(gui.render(world.snapshot()), 265, 250) == (255, 0, 0)
+    assert rgb(gui.render(world.snapshot(), images), 265, 250) == (255, 0, 0)
     window.close()
 
 
@@ -129,12 +145,6 @@ BACKGROUND = (69, 86, 255)
 PEN = (179, 184, 255)
 
 
-def shell_colours(image: int) -> set[tuple[int, int, int]]:
-    from PySide6.QtGui import QColor
-
-    return {(QColor(c).red(), QColor(c).green(), QColor(c).blue()) for c in gui.PALETTE[image][:2]}
-
-
 def test_the_window_on_a_real_x_server_and_teleop_moves_the_turtle(tmp_path: Path) -> None:
     from tests.support import sending_to
     from tests.turtlesim.sim import master, wait_until
@@ -164,7 +174,7 @@ def test_the_window_on_a_real_x_server_and_teleop_moves_the_turtle(tmp_path: Pat
             shot = screenshot(display, window.id)
             return bool(shot.colours(x_px - 20, 230, x_px + 21, 271) & everyone)
 
-        everyone = set().union(*(shell_colours(i) for i in range(len(gui.PALETTE))))
+        everyone = set().union(*(shell_colours(i) for i in range(8)))
         wait_until(lambda: shows_the_turtle_at(250), what="the turtle drawn at the centre")
         shot = screenshot(display, window.id)
         assert (shot.width, shot.height) == (500, 500)
@@ -219,3 +229,18 @@ def test_the_simulation_outlives_its_x_server(tmp_path: Path) -> None:
         wait_until(lambda: live.pose()["x"] > CENTRE + 0.5, timeout=20, what="the turtle to move, headless")
         _, err = node.stop()
         assert node.popen.returncode == 0 and "Traceback" not in err, err
+
+
+def test_turtle_images_are_read_from_the_folder_and_bad_files_left_out(tmp_path: Path) -> None:
+    """A folder with no readable PNG is a clear error (the window process prints it and ends,
+    and turtlesim goes on headless); unreadable files are left out, the others used."""
+    (tmp_path / "garbage.png").write_bytes(b"\x89PNG not really")
+    with pytest.raises(gui.TurtleImageError, match="no turtle image"):
+        gui.load_turtle_images(tmp_path)
+    (tmp_path / "mine.png").write_bytes((IMAGES_FOLDER / "red-turtle.png").read_bytes())
+    images = gui.load_turtle_images(tmp_path)
+    assert [(i.width(), i.height()) for i in images] == [(45, 45)]
+    run = subprocess.run([sys.executable, "-m", "kame.turtlesim.gui", "--window", "TurtleSim", str(tmp_path / "none")],
+                         capture_output=True, text=True, timeout=60, stdin=subprocess.DEVNULL,
+                         env=dict(os.environ, QT_QPA_PLATFORM="offscreen"))
+    assert run.returncode == 1 and "no turtle image (*.png) that Qt can read in" in run.stderr, run.stderr

@@ -1,101 +1,61 @@
 """turtlesim's window: draws world snapshots with Qt (PySide6, the optional `kame[gui]` extra).
 
 Rules: knows only the world (kame.turtlesim.world's Snapshot), never ROS. It runs in a process
-of its own (`python -m kame.turtlesim.gui --window TITLE`), fed frames on its stdin by the
+of its own (`python -m kame.turtlesim.gui --window TITLE IMAGES`), fed frames on its stdin by the
 node, so that a window that dies (its X server gone, Qt aborting) leaves the simulation running. The background and
-trails come from the world's raster as they are; the turtles are kame's own drawings, made
-with QPainter (no image files), one of IMAGE_COUNT shell colours per turtle, facing +x at
-theta 0. The window is fixed at the world's size and repaints only when the snapshot changed.
+trails come from the world's raster as they are; the turtles are the PNG images of turtlesim's
+images/ folder (kame's own drawings, head up), one per turtle as the world picked it, rotated
+to its heading as turtlesim's TurtleFrame does: replace a file and that turtle changes. The
+window is fixed at the world's size and repaints only when the snapshot changed.
 """
 
 from __future__ import annotations
 
-import functools
 import math
 import sys
 from collections.abc import Sequence
-from dataclasses import dataclass
+from pathlib import Path
 
-from PySide6.QtCore import QPointF, QRectF, Qt
-from PySide6.QtGui import QBrush, QColor, QImage, QPainter, QPaintEvent, QPen, QPolygonF, QTransform
+from PySide6.QtCore import QPointF
+from PySide6.QtGui import QImage, QPainter, QPaintEvent, QTransform
 from PySide6.QtWidgets import QWidget
 
 from kame.fed_window import application, show_fed_frames
 from kame.turtlesim.frame_codec import FrameDecoder
-from kame.turtlesim.world import IMAGE_COUNT, Snapshot, Sprite
-
-# (shell, shell pattern, skin): one per turtle image
-PALETTE: tuple[tuple[str, str, str], ...] = (
-    ("#2e8b57", "#1f5f3b", "#9acd32"),
-    ("#8b5a2b", "#5c3a1a", "#c8b560"),
-    ("#4169e1", "#27408b", "#87cefa"),
-    ("#b22222", "#7a1616", "#f4a460"),
-    ("#6a5acd", "#483d8b", "#d8bfd8"),
-    ("#ff8c00", "#b35f00", "#ffd27f"),
-    ("#008b8b", "#005f5f", "#7fffd4"),
-    ("#556b2f", "#3a4a20", "#bdb76b"),
-)
-assert len(PALETTE) == IMAGE_COUNT
+from kame.turtlesim.world import Snapshot, Sprite
 
 
-@dataclass(frozen=True)
-class _Look:
-    """One turtle image's pens, brushes and outlines, made once: a frame only places them."""
-    outline: QPen
-    no_pen: QPen
-    skin: QBrush
-    eyes: QBrush
-    shell: QBrush
-    pattern: QBrush
-    tail: QPolygonF
-    hexagon: QPolygonF
+class TurtleImageError(Exception):
+    """The images folder has no turtle image Qt can read."""
 
 
-@functools.cache
-def _look(image: int) -> _Look:
-    shell, pattern, skin = (QColor(c) for c in PALETTE[image % len(PALETTE)])
-    return _Look(
-        outline=QPen(QColor("#1a1a1a"), 1.2), no_pen=QPen(Qt.PenStyle.NoPen), skin=QBrush(skin),
-        eyes=QBrush(QColor("#111111")), shell=QBrush(shell), pattern=QBrush(pattern),
-        tail=QPolygonF([QPointF(-13.0, -2.5), QPointF(-20.0, 0.0), QPointF(-13.0, 2.5)]),
-        hexagon=QPolygonF([QPointF(5.0 * math.cos(k * math.pi / 3), 5.0 * math.sin(k * math.pi / 3))
-                           for k in range(6)]))
+def load_turtle_images(folder: Path) -> tuple[QImage, ...]:
+    """The turtle images (PNG, head up, as turtlesim's images/ holds them), sorted by name;
+    files Qt cannot read are left out."""
+    images = tuple(image for image in (QImage(str(path)) for path in sorted(folder.glob("*.png")))
+                   if not image.isNull())
+    if not images:
+        raise TurtleImageError(f"no turtle image (*.png) that Qt can read in {folder}")
+    return images
 
 
-def draw_turtle(painter: QPainter, sprite: Sprite) -> None:
-    """A top view of a turtle about 45 px long, centred on its position, heading theta.
+def draw_turtle(painter: QPainter, sprite: Sprite, images: Sequence[QImage]) -> None:
+    """One of the turtle images centred on the turtle's position, rotated from head-up to theta
+    (as turtlesim's TurtleFrame places them).
 
     The transform is set whole (setTransform) and reset after, never save()/restore(): every
     call of a void Qt method costs PySide6 6.12.0 a reference to None, and save/restore is two
     more of them per turtle per frame (see paint())."""
-    look = _look(sprite.image)
+    image = images[sprite.image % len(images)]
     place = QTransform()
     place.translate(sprite.x, sprite.y)
-    place.rotate(-math.degrees(sprite.theta))  # window y points down: CCW is negative
+    place.rotate(90.0 - math.degrees(sprite.theta))  # from head-up; window y points down, so CCW is negative
     painter.setTransform(place)
-    painter.setPen(look.outline)
-    painter.setBrush(look.skin)
-    for fx, fy in ((9.0, 11.0), (9.0, -11.0), (-9.0, 11.0), (-9.0, -11.0)):  # flippers
-        painter.drawEllipse(QPointF(fx, fy), 5.0, 3.5)
-    painter.drawPolygon(look.tail)
-    painter.drawEllipse(QPointF(16.0, 0.0), 6.0, 5.0)  # head
-    painter.setPen(look.no_pen)
-    painter.setBrush(look.eyes)
-    painter.drawEllipse(QPointF(19.0, 2.2), 1.1, 1.1)
-    painter.drawEllipse(QPointF(19.0, -2.2), 1.1, 1.1)
-    painter.setPen(look.outline)
-    painter.setBrush(look.shell)
-    painter.drawEllipse(QRectF(-14.0, -11.0, 28.0, 22.0))  # shell
-    painter.setPen(look.no_pen)
-    painter.setBrush(look.pattern)
-    painter.drawPolygon(look.hexagon)
-    for k in range(6):
-        a = k * math.pi / 3 + math.pi / 6
-        painter.drawEllipse(QPointF(9.0 * math.cos(a), 7.0 * math.sin(a)), 2.4, 2.0)
+    painter.drawImage(QPointF(-image.width() / 2, -image.height() / 2), image)
     painter.resetTransform()
 
 
-def paint(painter: QPainter, snapshot: Snapshot) -> None:
+def paint(painter: QPainter, snapshot: Snapshot, images: Sequence[QImage]) -> None:
     """One frame: the world's raster as it is (QImage wraps the snapshot's bytes, no copy), then
     the turtles.
 
@@ -108,24 +68,25 @@ def paint(painter: QPainter, snapshot: Snapshot) -> None:
     image = QImage(snapshot.pixels, snapshot.width, snapshot.height, snapshot.width * 3,
                    QImage.Format.Format_RGB888)
     painter.drawImage(0, 0, image)
-    painter.setRenderHint(QPainter.RenderHint.Antialiasing, True)
+    painter.setRenderHint(QPainter.RenderHint.SmoothPixmapTransform, True)
     for sprite in snapshot.turtles:
-        draw_turtle(painter, sprite)
+        draw_turtle(painter, sprite, images)
 
 
-def render(snapshot: Snapshot) -> QImage:
+def render(snapshot: Snapshot, images: Sequence[QImage]) -> QImage:
     """The frame the window would show (needs a QGuiApplication)."""
     image = QImage(snapshot.width, snapshot.height, QImage.Format.Format_RGB32)
     painter = QPainter(image)
-    paint(painter, snapshot)
+    paint(painter, snapshot, images)
     painter.end()
     return image
 
 
 class TurtleWindow(QWidget):
-    def __init__(self, snapshot: Snapshot, title: str) -> None:
+    def __init__(self, snapshot: Snapshot, title: str, images: Sequence[QImage]) -> None:
         super().__init__()
         self.snapshot = snapshot
+        self.images = images
         self.setWindowTitle(title)
         self.setFixedSize(snapshot.width, snapshot.height)
         self.frames_painted = 0
@@ -137,15 +98,20 @@ class TurtleWindow(QWidget):
 
     def paintEvent(self, event: QPaintEvent) -> None:
         painter = QPainter(self)
-        paint(painter, self.snapshot)
+        paint(painter, self.snapshot, self.images)
         painter.end()
         self.frames_painted += 1
 
 
-def show_frames(fd: int, title: str) -> int:
+def show_frames(fd: int, title: str, images_folder: Path) -> int:
     """The window process: draw the frames (kame.turtlesim.frame_codec) that arrive on `fd`
-    (kame.fed_window says how it ends)."""
-    return show_fed_frames(fd, FrameDecoder(), "turtlesim_node", lambda first: TurtleWindow(first, title),
+    with the turtle images of `images_folder` (kame.fed_window says how it ends)."""
+    try:
+        images = load_turtle_images(images_folder)
+    except TurtleImageError as e:
+        print(f"turtlesim_node: {e}", file=sys.stderr, flush=True)
+        return 1
+    return show_fed_frames(fd, FrameDecoder(), "turtlesim_node", lambda first: TurtleWindow(first, title, images),
                            TurtleWindow.show_snapshot)
 
 
@@ -175,9 +141,9 @@ def probe() -> int:
 
 
 def main(argv: Sequence[str]) -> int:
-    """`python -m kame.turtlesim.gui`: the probe; `... --window TITLE`: the window process."""
-    if argv[:1] == ["--window"]:
-        return show_frames(sys.stdin.fileno(), argv[1] if len(argv) > 1 else "TurtleSim")
+    """`python -m kame.turtlesim.gui`: the probe; `... --window TITLE IMAGES`: the window process."""
+    if argv[:1] == ["--window"] and len(argv) == 3:
+        return show_frames(sys.stdin.fileno(), argv[1], Path(argv[2]))
     return probe()
 
 

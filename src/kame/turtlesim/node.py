@@ -32,6 +32,7 @@ from collections.abc import Callable, Sequence
 from typing import Any
 
 from geometry_msgs.msg import Twist
+from kame.catkin import executables
 from kame.client import core, log, process, topics
 from kame.net.feed import ChildFeed
 from kame.net.window import window_problem
@@ -297,7 +298,10 @@ class TurtlesimNode:
 
 
 def window_command() -> list[str]:
-    return [sys.executable, "-m", "kame.turtlesim.gui", "--window", WINDOW_TITLE]
+    """The window process, with turtlesim's images/ found as turtlesim finds its package (the
+    first turtlesim on ROS_PACKAGE_PATH, else kame's own)."""
+    images = executables.packages(os.environ)["turtlesim"].path / "images"
+    return [sys.executable, "-m", "kame.turtlesim.gui", "--window", WINDOW_TITLE, str(images)]
 
 
 def open_window() -> ChildFeed[Snapshot]:

@@ -29,7 +29,7 @@ COMMAND_TIMEOUT = 1.0  # seconds without cmd_vel before the velocities drop to z
 DEFAULT_BACKGROUND = Rgb(69, 86, 255)
 DEFAULT_PEN_COLOR = Rgb(179, 184, 255)
 DEFAULT_PEN_WIDTH = 3
-IMAGE_COUNT = 8  # kame's turtle drawings; each spawned turtle gets one at random
+IMAGE_COUNT = 8  # turtlesim's images/ (the window's); each spawned turtle gets one at random
 
 
 class TurtleError(Exception):
