@@ -113,6 +113,30 @@ def test_tf_plugin(healthy: LiveGraph) -> None:
     assert result.stdout.endswith(f"{W}No tf messages\n\n"), result.stdout
 
 
+def test_tf_plugin_on_live_tf_traffic(tmp_path: Path) -> None:
+    """Two publishers on /tf that give turtle1 different parents: tf's plugin hears them for its
+    second and reports the contention, as tf.tfwtf does for two broadcasters of one frame."""
+    with live_graph(tmp_path) as graph:
+        graph.env.update(clean_env(tmp_path, graph.uri))
+        for parent in ("world", "odom"):
+            message = (f"{{transforms: [{{header: {{stamp: now, frame_id: {parent}}}, child_frame_id: turtle1, "
+                       f"transform: {{rotation: {{w: 1.0}}}}}}]}}")
+            graph.procs.append(Proc([str(BIN / "rostopic"), "pub", "-s", "-r", "20", "/tf", "tf2_msgs/TFMessage",
+                                     message, f"__name:=from_{parent}"], graph.env))
+        result = until(lambda: roswtf(graph.env, plugins=True),
+                       lambda out: "TF multiple authority contention" in out and "TF re-parenting" in out)
+    found = blocks(result.stdout)
+    reparenting = [items for title, items in found.items() if title.startswith(f"{E}TF re-parenting contention")]
+    authority = [items for title, items in found.items() if title.startswith(f"{E}TF multiple authority")]
+    assert reparenting and authority, result.stdout
+    assert re.fullmatch(r" \* reparenting of \[turtle1\] to \[(world|odom)\] by \[/from_(world|odom)\]",
+                        reparenting[0][0]), reparenting
+    assert re.fullmatch(r" \* node \[/from_(world|odom)\] publishing transform \[turtle1\] with parent "
+                        r"\[(world|odom)\] already published by node \[/from_(world|odom)\]",
+                        authority[0][0]), authority
+    assert "No tf messages" not in result.stdout and "out-of-date" not in result.stdout, result.stdout
+
+
 def test_tf_plugins_rules() -> None:
     from kame.cli._wtf import Report, TfMessage, TfTransform, check_tf
 
