@@ -26,7 +26,7 @@ def test_rospy_tutorials_ships_noetics_programs(sim: Sim) -> None:
     assert listed.stdout.endswith("add_two_ints_client [x y]\n"), listed.stdout + listed.stderr
     assert listed.returncode == 1
     found = sim.run("rospack", "find", "rospy_tutorials").stdout.strip()
-    scripts = sorted(p.name for p in (Path(found) / "scripts").iterdir())
+    scripts = sorted(p.name for p in (Path(found) / "scripts").iterdir() if p.is_file())
     assert scripts == PROGRAMS
 
 
