@@ -95,6 +95,25 @@ def _install_signal_handlers() -> None:
     signal.signal(signal.SIGTERM, handler)
 
 
+def _command_line_params(texts: dict[str, str]) -> dict[str, Any]:
+    """The `_p:=value` arguments' values, loaded before the node registers. A value that is not
+    YAML, or that an alias bomb would blow up, ends the program with one line on stderr, as a bad
+    command-line option does: rospy raises ROSInitException("invalid command-line parameters"),
+    whose traceback says nothing more than its message."""
+    import yaml
+
+    from kame import param_yaml
+
+    values: dict[str, Any] = {}
+    for key, text in texts.items():
+        try:
+            values[key] = param_yaml.safe_load(text) if text else ""
+        except (yaml.YAMLError, param_yaml.ParamValueError) as exc:
+            problem = " ".join(str(exc).split())
+            raise SystemExit(f"[ERROR] invalid command-line parameters: {key}: {problem}") from None
+    return values
+
+
 def init_node(name: str, argv: list[str] | None = None, anonymous: bool = False, log_level: int | None = None,
               disable_rostime: bool = False, disable_rosout: bool = False, disable_signals: bool = False,
               xmlrpc_port: int = 0, tcpros_port: int = 0) -> None:
@@ -112,6 +131,7 @@ def init_node(name: str, argv: list[str] | None = None, anonymous: bool = False,
         if names.SEP in name:
             raise ValueError("namespaces are not allowed in node names")
         ros_args = names.parse_args(sys.argv if argv is None else argv)
+        private_params = _command_line_params(ros_args.params)
         special = ros_args.special
         if "name" in special:
             name = special["name"]
@@ -138,11 +158,8 @@ def init_node(name: str, argv: list[str] | None = None, anonymous: bool = False,
     _log.configure_file_logging(caller_id, special.get("log"))
     _log.route_runtime_logs()
     _wait_for_master(node, master_uri)
-    if ros_args.params:
-        from kame import param_yaml
-
-        for key, text in ros_args.params.items():  # bounded: an alias bomb is refused, not expanded
-            set_param(key, param_yaml.safe_load(text) if text else "")
+    for key, value in private_params.items():
+        set_param(key, value)
     core.run_deferred()
     if not disable_rosout:
         _start_rosout(node)
