@@ -34,13 +34,13 @@ from kame.net.workers import WorkerPool
 from kame.node import local
 from kame.node.master_proxy import MasterError, MasterProxy
 from kame.node.master_watch import MasterWatch
+from kame.node.publisher_link import PublisherLink
 from kame.node.services import ServiceClient, ServiceHandler, ServiceServer
 from kame.node.topics import (
     Callback,
     IncomingLink,
     MessagesCallback,
     Publication,
-    PublisherLink,
     SubscriberLink,
     Subscription,
 )
