@@ -81,7 +81,7 @@ def test_no_respawn_without_asking(tmp_path: Path) -> None:
 
 
 def test_respawn_backoff_doubles_for_young_deaths_and_resets_after_a_long_life() -> None:
-    from kame.net.process import RespawnBackoff
+    from kame.net.backoff import RespawnBackoff
 
     backoff = RespawnBackoff()
     delays = [backoff.delay(0.1, 0.0) for _ in range(10)]

@@ -9,7 +9,7 @@ Rules (roslaunch's nodeprocess and pmon, with its console wording):
   respawn_delay (`[name] restarting process`); a required one ends the whole launch.
 - A respawning child that dies young (within 5 s of its start) twice in a row waits longer
   before each further start: 0.5 s, doubled per young death up to 30 s (or its respawn_delay,
-  if longer; kame.net.process.RespawnBackoff), said once per step (`[name] died 0.1 s after it started,
+  if longer; kame.net.backoff.RespawnBackoff), said once per step (`[name] died 0.1 s after it started,
   3 times in a row: restarting in 1 s`); a child that lived longer starts the count afresh.
   roslaunch restarts a node that crashes at start as fast as it can, forever.
 - On Linux a child is started with PR_SET_PDEATHSIG: if roslaunch is killed outright
@@ -37,7 +37,8 @@ from pathlib import Path
 from typing import IO, Protocol
 
 from kame.launch.plan import ProcessSpec
-from kame.net.process import RespawnBackoff, die_with_parent
+from kame.net.backoff import RespawnBackoff
+from kame.net.process import die_with_parent
 
 log = logging.getLogger("kame.launch")
 BOLD, RED, RESET = "\033[1m", "\033[31m", "\033[0m"

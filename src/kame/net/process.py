@@ -8,7 +8,7 @@ Rules:
 - Its stdout goes to a file opened for appending, so a respawn continues the same log;
   stderr stays the parent's.
 - A respawning child that dies young, again and again, is restarted ever more slowly
-  (`RespawnBackoff`, shared with the launch supervisor): a program that crashes at start
+  (kame.net.backoff's `RespawnBackoff`, shared with the launch supervisor): a program that crashes at start
   must not be restarted as fast as it can, for good.
 - On Linux it gets SIGTERM when its parent dies (PR_SET_PDEATHSIG, `die_with_parent`), so a
   supervisor killed outright leaves no orphan.
@@ -26,6 +26,8 @@ import sys
 from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
 
+from kame.net.backoff import RespawnBackoff
+
 log = logging.getLogger("kame.net.process")
 _PR_SET_PDEATHSIG = 1
 
@@ -40,35 +42,6 @@ def _libc_prctl() -> Callable[..., int] | None:
 
 
 _prctl = _libc_prctl()  # looked up here: a forked child should only call it
-
-
-class RespawnBackoff:
-    """How long a respawning child waits before its next start.
-
-    A child that dies within YOUNG seconds of its start died young; from the second young
-    death in a row on, it waits START, doubled per further one, up to CAP (or the configured
-    delay if that is longer). A child that lived longer starts the count afresh."""
-
-    YOUNG = 5.0
-    START = 0.5
-    CAP = 30.0
-
-    def __init__(self) -> None:
-        self.young_deaths = 0  # in a row
-        self.backoff = 0.0  # the last backoff returned as news
-
-    def delay(self, lived: float, configured: float) -> tuple[float, bool]:
-        """(seconds to wait, whether that is a new backoff step worth saying once)."""
-        self.young_deaths = self.young_deaths + 1 if lived < self.YOUNG else 0
-        if self.young_deaths < 2:
-            self.backoff = 0.0
-            return configured, False
-        backoff = min(self.CAP, self.START * 2.0 ** (self.young_deaths - 2))
-        if backoff <= configured:
-            return configured, False
-        news = backoff != self.backoff
-        self.backoff = backoff
-        return backoff, news
 
 
 def die_with_parent() -> Callable[[], None] | None:
