@@ -20,7 +20,8 @@ class HandshakeError(Exception):
 
 class MalformedHeader(HandshakeError):
     """The peer's header arrived but cannot be read (a field without '=', a lying length, too
-    large): the peer is told why in an error header before we close."""
+    large): a server tells the peer why in an error header before it closes; a subscriber tries
+    the publisher again, ever more slowly."""
 
 
 class ClosedBeforeHeader(HandshakeError):
@@ -64,7 +65,7 @@ def read_header_and_rest(sock: socket.socket, timeout: float | None = None) -> t
         try:
             fields = reader.feed(data)
         except TcprosError as exc:
-            raise HandshakeError(str(exc)) from exc
+            raise MalformedHeader(str(exc)) from exc
         if fields is not None:
             return fields, bytes(reader.trailing)
 

@@ -21,7 +21,8 @@ from collections.abc import Callable
 from typing import TYPE_CHECKING
 
 from kame.net.address import DOES_NOT_RESOLVE, unreachable_reason
-from kame.net.handshake import HandshakeError, read_header_and_rest, write_header
+from kame.net.backoff import RespawnBackoff
+from kame.net.handshake import HandshakeError, MalformedHeader, read_header_and_rest, write_header
 from kame.net.stream import Receiver, connect, set_keepalive, set_nodelay, shut_down
 from kame.net.xmlrpc_client import XmlRpcProxy
 from kame.node.master_proxy import unwrap
@@ -40,6 +41,10 @@ log = logging.getLogger("kame.topics")
 
 #: The largest frame a subscription takes by default: 1 GiB, roscpp's own sanity bound.
 MAX_FRAME = 1 << 30
+#: Seconds before the first retry of a publisher that could not be reached, doubled per
+#: failure up to RETRY_CAP: a publisher just starting or just gone (the master's update drops it).
+RETRY_DELAY = 0.1
+RETRY_CAP = 2.0
 
 
 class PublisherLink:
@@ -73,6 +78,9 @@ class PublisherLink:
         self.latched: bytes | None = None
         self.ended = False  # always False: a TCPROS link retries by itself
         self._shm: shm.ShmReceiver | None = None
+        # a publisher that answers with what is not a connection header is tried again ever
+        # more slowly, as a program that keeps crashing is respawned
+        self._garbled = RespawnBackoff()
 
     def latched_payload(self) -> bytes | None:
         return self.latched
@@ -85,6 +93,14 @@ class PublisherLink:
             try:
                 self._connect()
                 return
+            except MalformedHeader as exc:
+                if self.closed:
+                    return
+                wait, _ = self._garbled.delay(0.0, RETRY_DELAY)
+                self._report_garbled(exc, wait)
+                if self._closing.wait(wait):
+                    return
+                continue
             except (OSError, HandshakeError, ValueError) as exc:
                 if self.closed:
                     return
@@ -100,7 +116,18 @@ class PublisherLink:
                 return
             if self._closing.wait(delay):
                 return
-            delay = min(delay * 2, 2.0)
+            delay = min(delay * 2, RETRY_CAP)
+
+    def _report_garbled(self, exc: MalformedHeader, wait: float) -> None:
+        """One error line for a publisher whose reply is not a connection header; each retry
+        after it is a debug line with its delay."""
+        topic = self.subscription.topic
+        if self._garbled.young_deaths == 1:
+            who = self._publisher_name() or self.publisher_uri
+            log.error("publisher %s of %s answered with a malformed connection header (%s): trying again "
+                      "ever less often, up to every %g s", who, topic, exc, RespawnBackoff.CAP)
+        log.debug("malformed connection header from %s for %s: %s; trying again in %g s",
+                  self.publisher_uri, topic, exc, wait)
 
     def _report_unreachable(self, exc: BaseException, failures: int) -> None:
         """One warning per publisher when its advertised address fails us: at once when its name
