@@ -7,11 +7,17 @@ Rules (rviz's resource retriever):
 - A file is read once; later uses (and failures: the reason is kept) come from the cache.
 - A Collada scene's node transforms are applied; its materials' colours become per-vertex
   colours (used when the marker asks for embedded materials, or the URDF gives none).
+- An STL file is checked as rviz's STLLoader checks it before trimesh sees it: a binary one
+  whose triangle count disagrees with its size, or that has no triangles, is refused with the
+  reason (trimesh would read it as ASCII, find nothing or ask for charset_normalizer, an
+  optional module, to guess the text's encoding); data past the count is left out, as rviz
+  does. ASCII STL, which rviz does not read, must be text.
 """
 
 from __future__ import annotations
 
 import os
+import struct
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
@@ -74,11 +80,42 @@ class MeshLibrary:
             return f"cannot read mesh {uri}: {exc}"
 
 
+_STL_HEADER = 84  # an 80-byte comment and a uint32 triangle count
+_STL_TRIANGLE = 50  # a normal and three corners (12 float32) and a uint16 attribute count
+
+
+def checked_stl(data: bytes) -> bytes:
+    """The STL file's bytes as trimesh can read them; ValueError naming what is wrong otherwise.
+    A file whose size matches its binary triangle count is binary (a binary header may start
+    with `solid` too); else one that starts with `solid` and has `endsolid` is ASCII; anything
+    else is a binary file that lies about its size."""
+    count = struct.unpack_from("<I", data, 80)[0] if len(data) >= _STL_HEADER else -1
+    expected = _STL_HEADER + count * _STL_TRIANGLE
+    if len(data) != expected and data.startswith(b"solid") and b"endsolid" in data[5:]:
+        try:
+            data.decode("utf-8")
+        except UnicodeDecodeError as exc:
+            raise ValueError(f"malformed ASCII STL: byte {exc.start} is not text") from None
+        return data
+    if count < 0:
+        raise ValueError(f"malformed STL: {len(data)} bytes, too short for a binary STL's 80-byte header "
+                         "and triangle count, and not an ASCII STL (solid ... endsolid)")
+    if count == 0:
+        raise ValueError("the STL file has no triangles (its binary header says 0)")
+    if len(data) < expected:
+        raise ValueError(f"malformed STL: its binary header says {count} triangles ({expected} bytes), "
+                         f"but the file has {len(data)} bytes")
+    return data[:expected]
+
+
 def read_mesh(data: bytes, kind: str) -> Mesh:
     """The triangles (and colours) of an STL or DAE file's bytes."""
     import io
 
     import trimesh
+
+    if kind == "stl":
+        data = checked_stl(data)
 
     scene = trimesh.load(io.BytesIO(data), file_type=kind, force="scene")
     if not isinstance(scene, trimesh.Scene):
