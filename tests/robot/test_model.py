@@ -55,6 +55,35 @@ def test_a_text_that_is_not_a_urdf_is_refused() -> None:
         RobotTree("<robot><link name='a'>")
 
 
+def _robot(links: str, joints: dict[str, tuple[str, str]]) -> str:
+    text = "".join(f"<link name='{link}'/>" for link in links.split())
+    for name, (parent, child) in joints.items():
+        text += f"<joint name='{name}' type='fixed'><parent link='{parent}'/><child link='{child}'/></joint>"
+    return f"<robot name='r'>{text}</robot>"
+
+
+@pytest.mark.parametrize(("links", "joints", "problem"), [
+    ("a b c", {"ab": ("a", "b"), "bc": ("b", "c"), "ca": ("c", "a")},
+     "No roots detected, invalid URDF: every link has a parent joint, and joints [ab] -> [bc] -> [ca] form a loop"),
+    ("a", {"aa": ("a", "a")},
+     "No roots detected, invalid URDF: every link has a parent joint, and joints [aa] form a loop"),
+    ("r a b", {"ra": ("r", "a"), "ab": ("a", "b"), "ba": ("b", "a")},
+     "link [a] is the child of two joints, [ra] and [ba]: invalid URDF, a robot is a tree"),
+    ("r a b", {"ra": ("r", "a"), "ab": ("a", "b"), "bb": ("b", "b")},
+     "link [b] is the child of two joints, [ab] and [bb]: invalid URDF, a robot is a tree"),
+    ("r b c", {"bc": ("b", "c"), "cb": ("c", "b")},
+     "joints [bc] -> [cb] form a loop, invalid URDF: a robot is a tree from its root [r]"),
+    ("r a", {}, "Multiple roots detected, invalid URDF: links [r], [a] have no parent joint"),
+    ("r a", {"ra": ("r", "a"), "ax": ("a", "x")}, "child link [x] of joint [ax] not found"),
+])
+def test_a_urdf_that_is_not_one_tree_is_refused_naming_its_loop_or_roots(
+        links: str, joints: dict[str, tuple[str, str]], problem: str) -> None:
+    # robot_state_publisher published such a robot's joints as they came: a tf loop
+    with pytest.raises(ValueError) as refused:
+        RobotTree(_robot(links, joints))
+    assert str(refused.value) == problem
+
+
 def test_joint_state_publisher_starts_at_zero_or_mid_range_and_mimic_joints_follow() -> None:
     positions = JointPositions(RobotTree(ARM), zeros={"elbow": 0.25})
     assert list(positions.free) == ["shoulder", "elbow", "rail"]  # thumb mimics, weld is fixed

@@ -191,3 +191,12 @@ def test_robot_state_publisher_without_a_description_says_so_and_the_old_name_wa
         sim.run("rosparam", "set", "robot_description", "<robot><link name='a'>")
         done = sim.run("rosrun", "robot_state_publisher", "robot_state_publisher", check=False, timeout=60)
         assert done.returncode == 1 and "Failed to extract kdl tree from xml robot description" in done.stderr
+        looped = ("<robot name='loop'><link name='a'/><link name='b'/>"
+                  "<joint name='ab' type='fixed'><parent link='a'/><child link='b'/></joint>"
+                  "<joint name='ba' type='fixed'><parent link='b'/><child link='a'/></joint></robot>")
+        sim.run("rosparam", "set", "robot_description", looped)
+        done = sim.run("rosrun", "robot_state_publisher", "robot_state_publisher", check=False, timeout=60)
+        assert done.returncode == 1
+        (line,) = done.stderr.strip().splitlines()  # roscpp's console line, nothing more
+        assert line.endswith("]: Failed to extract kdl tree from xml robot description: No roots detected, invalid "
+                             "URDF: every link has a parent joint, and joints [ab] -> [ba] form a loop\x1b[0m"), line

@@ -1,7 +1,10 @@
 """A URDF's kinematic tree, as robot_state_publisher and joint_state_publisher use it.
 
 Rules (robot_state_publisher and kdl_parser, joint_state_publisher):
-- The URDF is parsed by urdf_parser_py (the module ROS's Python tools parse URDF with).
+- The URDF is parsed by urdf_parser_py (the module ROS's Python tools parse URDF with), then
+  checked as urdfdom checks it before kdl_parser builds the tree (`tree_problem`): every joint's
+  links exist, no link has two parent joints, exactly one link has none (the root), and every
+  link hangs from it. A joint loop is refused naming its joints: published, it was a tf loop.
 - fixed joints, and floating and planar ones (kdl_parser turns those into fixed joints), make
   the static transforms; revolute, continuous and prismatic joints move.
 - A moving joint's transform is its origin followed by a rotation about (or a translation
@@ -101,6 +104,9 @@ class RobotTree:
             self.joints.append(Joint(str(joint.name), str(joint.type), str(joint.parent), str(joint.child),
                                      translation, rpy_quaternion(roll, pitch, yaw),
                                      (axis[0] / length, axis[1] / length, axis[2] / length), lower, upper, mimic))
+        problem = tree_problem(self.links, self.joints)
+        if problem:
+            raise ValueError(problem)
         self.by_name = {joint.name: joint for joint in self.joints}
 
     @property
@@ -124,6 +130,49 @@ class RobotTree:
             elif joint.mimic is not None and joint.mimic[0] in positions:
                 out.append(joint.transform(positions[joint.mimic[0]] * joint.mimic[1] + joint.mimic[2]))
         return out
+
+
+def tree_problem(links: list[str], joints: list[Joint]) -> str | None:
+    """Why `joints` do not make `links` a tree with one root, or None when they do. The wording
+    is urdf_parser_py's and urdfdom's, with the links and joints named."""
+    defined = set(links)
+    parent_joint: dict[str, Joint] = {}
+    for joint in joints:
+        for role, link in (("parent", joint.parent), ("child", joint.child)):
+            if link not in defined:
+                return f"{role} link [{link}] of joint [{joint.name}] not found"
+        other = parent_joint.get(joint.child)
+        if other is not None:
+            return (f"link [{joint.child}] is the child of two joints, [{other.name}] and [{joint.name}]: "
+                    "invalid URDF, a robot is a tree")
+        parent_joint[joint.child] = joint
+    roots = [link for link in links if link not in parent_joint]
+    if len(roots) > 1:
+        return f"Multiple roots detected, invalid URDF: links [{'], ['.join(roots)}] have no parent joint"
+    loop = _joint_loop(links, parent_joint, roots)
+    if loop and not roots:
+        return f"No roots detected, invalid URDF: every link has a parent joint, and joints {loop} form a loop"
+    if loop:
+        return f"joints {loop} form a loop, invalid URDF: a robot is a tree from its root [{roots[0]}]"
+    return None
+
+
+def _joint_loop(links: list[str], parent_joint: Mapping[str, Joint], roots: list[str]) -> str | None:
+    """The joints of a loop, as `[a] -> [b] -> [c]` (each the parent of the next's link), when a
+    link does not hang from the root; None when every link does."""
+    below_root = set(roots)
+    for start in links:
+        path: list[str] = []
+        link = start
+        while link not in below_root and link not in path:
+            path.append(link)
+            link = parent_joint[link].parent
+        if link in below_root:
+            below_root.update(path)
+            continue
+        cycle = path[path.index(link):]  # child links, each found from the one before it
+        return " -> ".join(f"[{parent_joint[child].name}]" for child in reversed(cycle))
+    return None
 
 
 @dataclass
