@@ -11,6 +11,7 @@ from PIL import Image
 
 from kame.stage.mapfile import load, parse_description
 from kame.stage.world import LaserModel, Walls, World
+from tests.stage.test_mapfile import huge_png
 from tests.turtlesim.sim import master
 
 SHIPPED = Path(__file__).resolve().parents[2] / "src" / "kame" / "share" / "turtlebot_gazebo" / "worlds"
@@ -89,8 +90,11 @@ def test_bad_maps_are_errors_not_crashes(tmp_path: Path) -> None:
     (tmp_path / "missing.yaml").write_text((tmp_path / "room.yaml").read_text().replace("room.pgm", "gone.pgm"))
     (tmp_path / "thresholds.yaml").write_text(
         (tmp_path / "room.yaml").read_text().replace("free_thresh: 0.196", "free_thresh: 0.8"))
+    (tmp_path / "huge.png").write_bytes(huge_png(100_000, 100_000))
+    (tmp_path / "huge.yaml").write_text((tmp_path / "room.yaml").read_text().replace("room.pgm", "huge.png"))
     with master(tmp_path / "home") as sim:
         for name, text in (("missing.yaml", 'Failed to open image file "'),
+                           ("huge.yaml", "could be decompression bomb DOS attack"),
                            ("thresholds.yaml", "must be below its occupied_thresh"),
                            ("nothing.yaml", "Map_server could not open")):
             result = sim.run("rosrun", "map_server", "map_server", str(tmp_path / name), check=False)

@@ -92,6 +92,25 @@ def test_an_image_that_is_not_one() -> None:
         load(parse_description(YAML), b"not an image", "m.pgm")
 
 
+def huge_png(width: int, height: int) -> bytes:
+    """A PNG of a few bytes whose header says `width` x `height` grey pixels."""
+    import struct
+    import zlib
+
+    def chunk(kind: bytes, data: bytes) -> bytes:
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
+
+    header = struct.pack(">IIBBBBB", width, height, 8, 0, 0, 0, 0)
+    return b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", header) + chunk(b"IEND", b"")
+
+
+def test_an_image_header_claiming_ten_billion_pixels_is_a_map_error() -> None:
+    # Pillow's DecompressionBombError is no OSError: map_server died of it with a traceback
+    with pytest.raises(MapError, match=r'Failed to open image file "m\.png": Image size \(10000000000 pixels\) '
+                                       r"exceeds limit of \d+ pixels, could be decompression bomb DOS attack"):
+        load(parse_description(YAML), huge_png(100_000, 100_000), "m.png")
+
+
 def test_saver_writes_what_map_server_reads_back() -> None:
     pixels = np.array([[0, 254, 205, 254], [254, 254, 0, 205]], dtype=np.uint8)
     description = parse_description(YAML)

@@ -114,6 +114,9 @@ def decode_image(data: bytes, name: str) -> tuple[np.ndarray, np.ndarray | None]
     """(channel average, alpha or None) of an image file's bytes, as uint8 arrays, row 0 at the top."""
     from PIL import Image, UnidentifiedImageError
 
+    # a header claiming more pixels than Pillow's bound (a 100,000 x 100,000 image in a few bytes)
+    # raises its DecompressionBombError, an Exception of its own, before any pixel is allocated
+
     try:
         with Image.open(io.BytesIO(data)) as image:
             image.load()
@@ -129,7 +132,7 @@ def decode_image(data: bytes, name: str) -> tuple[np.ndarray, np.ndarray | None]
                 average = rgba[:, :, :3].sum(axis=2) // 3  # map_server's integer average
             alpha = rgba[:, :, 3].astype(np.uint8) if has_alpha else None
             return average.astype(np.uint8), alpha
-    except (UnidentifiedImageError, OSError, ValueError) as exc:
+    except (UnidentifiedImageError, OSError, ValueError, Image.DecompressionBombError) as exc:
         raise MapError(f'Failed to open image file "{name}": {exc}') from exc
 
 
