@@ -20,6 +20,11 @@ Parameters are amcl's, with its defaults; the filter itself is kame.nav.amcl. It
 the likelihood field (~laser_model_type's default, the TurtleBot's): amcl's `beam` and
 `likelihood_field_prob` models are not implemented, and asking for either (or for a model amcl
 does not know) says so once at start-up, naming the value, and runs the likelihood field.
+What kame's amcl adds: a map without cells (0 x 0), or whose size, resolution or origin is not
+usable, is refused with one error line (the filter keeps the map it had, or waits for one); an
+initial pose or a scan with NaN or inf where a number must be is left out with a warning (at
+most one each 10 s for scans), so the particles never become NaN; global_localization without a
+map, or on one with no free cell, says so in one line.
 """
 
 from __future__ import annotations
@@ -34,6 +39,7 @@ import numpy as np
 
 from kame.client import clock, core, process, services, topics
 from kame.client import log as _log
+from kame.nav import inputs
 from kame.nav.amcl import (
     INITIAL_POSE_PARAMS,
     FilterParams,
@@ -155,6 +161,11 @@ class Amcl:
     def set_map(self, msg: Any) -> None:
         info = msg.info
         data = msg.data
+        problem = inputs.map_problem(info, len(data))
+        if problem is not None:
+            kept = "keeping the map it had" if self.filter is not None else "waiting for a usable map"
+            _log.emit(_log.ERROR, "Ignoring the map: %s; amcl is %s", (problem, kept))
+            return
         cells = np.frombuffer(data, dtype=np.int8) if isinstance(data, bytes) else np.asarray(data, np.int16)
         cells = cells.reshape(info.height, info.width)
         field = LikelihoodField(cells, info.resolution, (info.origin.position.x, info.origin.position.y),
@@ -193,6 +204,10 @@ class Amcl:
                       '"%s"', (frame, self.global_frame))
             return
         pose = msg.pose.pose
+        problem = inputs.pose_problem(pose) or inputs.covariance_problem(msg.pose.covariance)
+        if problem is not None:
+            _log.emit(_log.WARN, "Ignoring initial pose: %s", (problem,))
+            return
         mean = compose((pose.position.x, pose.position.y, yaw_of(pose.orientation)),
                        self._moved_since(msg.header.stamp))
         _log.emit(_log.INFO, "Setting pose (%.6f): %.3f %.3f %.3f", (clock.get_rostime().to_sec(), *mean))
@@ -220,10 +235,16 @@ class Amcl:
     def global_localization(self, _request: Any) -> Any:
         from std_srvs.srv import EmptyResponse
         with self.lock:
-            if self.filter is not None:
-                _log.emit(_log.INFO, "Initializing with uniform distribution", ())
+            if self.filter is None:
+                _log.emit(_log.WARN, "global_localization: there is no map yet to spread the particles over", ())
+                return EmptyResponse()
+            _log.emit(_log.INFO, "Initializing with uniform distribution", ())
+            try:
                 self.filter.set_uniform()
-                self._restart_filter()
+            except ValueError as exc:  # no free cell: the particles stay where they were
+                _log.emit(_log.ERROR, "global_localization: %s", (exc,))
+                return EmptyResponse()
+            self._restart_filter()
         return EmptyResponse()
 
     def nomotion_update(self, _request: Any) -> Any:
@@ -238,6 +259,10 @@ class Amcl:
         return t.x, t.y, yaw_of(q)
 
     def on_scan(self, scan: Any) -> None:
+        problem = inputs.scan_problem(scan)
+        if problem is not None:
+            _log.emit_throttle(10.0, _log.WARN, "Ignoring a scan in frame %s: %s", (scan.header.frame_id, problem))
+            return
         try:
             odom = self._pose_of(self.odom_frame, self.base_frame, scan.header.stamp)
             laser = self._pose_of(self.base_frame, scan.header.frame_id, scan.header.stamp)

@@ -57,11 +57,19 @@ class Costmap:
         return int(rows), int(columns)
 
     def cell_of(self, x: float, y: float) -> tuple[int, int] | None:
-        """(row, column) of a point, None off the map."""
+        """(row, column) of a point, None off the map (and for a coordinate that is NaN or inf)."""
+        if not (math.isfinite(x) and math.isfinite(y)):
+            return None
         column = math.floor((x - self.origin[0]) / self.resolution)
         row = math.floor((y - self.origin[1]) / self.resolution)
         rows, columns = self.shape
         return (row, column) if 0 <= row < rows and 0 <= column < columns else None
+
+    def bounds(self) -> tuple[float, float, float, float]:
+        """(x min, y min, x max, y max): the map's area in its frame."""
+        rows, columns = self.shape
+        x, y = self.origin
+        return x, y, x + columns * self.resolution, y + rows * self.resolution
 
     def centre_of(self, row: int, column: int) -> tuple[float, float]:
         return (self.origin[0] + (column + 0.5) * self.resolution, self.origin[1] + (row + 0.5) * self.resolution)

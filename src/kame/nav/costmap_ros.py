@@ -20,6 +20,7 @@ import numpy as np
 
 from kame.client import clock, topics
 from kame.client import log as _log
+from kame.nav import inputs
 from kame.nav.amcl_node import yaw_of
 from kame.nav.config import CostmapConfig
 from kame.nav.costmap import Costmap
@@ -60,6 +61,10 @@ class CostmapROS:
             return
         info = msg.info
         data = msg.data
+        problem = inputs.map_problem(info, len(data))
+        if problem is not None:
+            _log.emit(_log.ERROR, "%s: ignoring the map: %s", (self.config.name, problem))
+            return
         cells = np.frombuffer(data, dtype=np.int8) if isinstance(data, bytes) else np.asarray(data, np.int16)
         costmap = Costmap(cells.reshape(info.height, info.width), info.resolution,
                           (info.origin.position.x, info.origin.position.y), self.config.layers)

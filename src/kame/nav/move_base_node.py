@@ -17,6 +17,10 @@ seconds), CONTROLLING while the local planner finds commands (a failure replans;
 controller_patience seconds, or oscillation, goes to CLEARING), CLEARING runs the next recovery
 behaviour (conservative_reset, rotate_recovery, aggressive_reset, rotate_recovery by default, or
 ~recovery_behaviors) and plans again; with none left the goal is aborted with move_base's text.
+What kame's move_base adds: a goal is checked before it is planned for: one whose position is NaN
+or inf is aborted as one with a bad quaternion is, and one off the global costmap is aborted
+at once saying so (move_base tried, recovered and aborted with "Failed to find a valid plan");
+a map or scan that cannot be used is left out with one line (kame.nav.inputs).
 What kame's move_base does not have: the local planner checks the robot's inscribed circle, not
 every edge of a polygon footprint; PointCloud2 observation sources (the TurtleBot's bumper) are
 not read.
@@ -35,6 +39,7 @@ from kame.client import clock, core, process, services, timer, topics
 from kame.client import log as _log
 from kame.client.action.simple_action_server import SimpleActionServer
 from kame.client.errors import ROSInterruptException
+from kame.nav import inputs
 from kame.nav.amcl_node import yaw_of
 from kame.nav.config import (
     CLEAR,
@@ -114,6 +119,10 @@ class MoveBase:
         self.map_ready.set()
 
     def on_scan(self, topic: str, scan: Any) -> None:
+        problem = inputs.scan_problem(scan)
+        if problem is not None:
+            _log.emit_throttle(10.0, _log.WARN, "Ignoring a scan on %s: %s", (topic, problem))
+            return
         self.scans[topic] = scan
 
     def update_costmaps(self) -> None:
@@ -167,14 +176,11 @@ class MoveBase:
     def _execute(self, server: SimpleActionServer, goal: Any) -> None:
         target = goal.target_pose
         q = target.pose.orientation
-        if not math.isfinite(q.x + q.y + q.z + q.w) or math.sqrt(q.x ** 2 + q.y ** 2 + q.z ** 2 + q.w ** 2) < 1e-6:
-            server.set_aborted(text="Aborting on goal because it was sent with an invalid quaternion")
+        refusal = self._refusal(target)
+        if refusal is not None:
+            server.set_aborted(text=refusal)
             return
         global_frame = self.global_costmap.config.global_frame
-        frame = target.header.frame_id.lstrip("/")
-        if frame and frame != global_frame:
-            server.set_aborted(text=f"goals must be given in the global frame [{global_frame}], not [{frame}]")
-            return
         goal_pose = (target.pose.position.x, target.pose.position.y, yaw_of(q))
         config = self.config
         rate = timer.Rate(config.controller_frequency)
@@ -251,6 +257,32 @@ class MoveBase:
                     server.set_aborted(text=result_text)
                     return
             rate.sleep()
+
+    def _refusal(self, target: Any) -> str | None:
+        """Why a goal (a PoseStamped) is aborted before any planning, with its error logged; None
+        for a goal to plan for."""
+        problem = inputs.position_problem(target.pose.position)
+        if problem is not None:
+            _log.emit(_log.ERROR, "%s", (problem,))
+            return "Aborting on goal because it was sent with a position that has nans or infs"
+        problem = inputs.quaternion_problem(target.pose.orientation)
+        if problem is not None:
+            _log.emit(_log.ERROR, "%s", (problem,))
+            return "Aborting on goal because it was sent with an invalid quaternion"
+        global_frame = self.global_costmap.config.global_frame
+        frame = target.header.frame_id.lstrip("/")
+        if frame and frame != global_frame:
+            return f"goals must be given in the global frame [{global_frame}], not [{frame}]"
+        x, y = target.pose.position.x, target.pose.position.y
+        with self.global_costmap.lock:
+            costmap = self.global_costmap.costmap
+            if costmap is None or costmap.cell_of(x, y) is not None:
+                return None
+            x0, y0, x1, y1 = costmap.bounds()
+        _log.emit(_log.WARN, "The goal sent to the navfn planner is off the global costmap. Planning will always "
+                             "fail to this goal.", ())
+        return (f"Aborting on goal because it is off the global costmap: ({x:g}, {y:g}) is outside "
+                f"[{x0:g}, {x1:g}] x [{y0:g}, {y1:g}] in {global_frame}")
 
     def _goal_reached(self, pose: Pose2D, goal: Pose2D) -> bool:
         within = math.hypot(pose[0] - goal[0], pose[1] - goal[1]) <= self.planner.xy_goal_tolerance
