@@ -115,6 +115,7 @@ FILES = {
   <node name="ok" pkg="demo" type="recorder.py"/>
   <param name="p" value="$(arg missing)"/>
 </launch>""",
+    "launch/only_param.launch": """<launch><param name="set_by_launch" value="1"/></launch>""",
     "config/params.yaml": "gains: {p: 1.0, i: 0.1}\nnames: [a, b]\nenabled: yes\n",
 }
 
@@ -352,6 +353,33 @@ def test_listings_match_debian(workspace: Path, option: list[str]) -> None:
         assert ours.stdout.replace(sys.executable + " ", "") == real.stdout
     else:
         assert ours.stdout == real.stdout
+
+
+def test_each_launch_removes_its_server_uri_from_the_master_it_leaves(workspace: Path) -> None:
+    # roslaunch sets /roslaunch/uris/host_<host>__<port> and left it there: one stale entry a launch
+    port = free_port()
+    env = launch_env(workspace, port)
+    uri = f"http://127.0.0.1:{port}"
+    with_master = Proc(kame_command("kame.cli.rosmaster", "--core", "-p", str(port)), env)
+    try:
+        wait_for_master(uri, proc=with_master)
+        master = xmlrpc.client.ServerProxy(uri)
+        for _ in range(2):  # nothing to run: the launch ends by itself
+            done = subprocess.run(kame_command("kame.cli.roslaunch", "demo", "only_param.launch"), env=env,
+                                  capture_output=True, text=True, timeout=60)
+            assert done.returncode == 0 and "No processes to monitor" in done.stdout, done.stdout + done.stderr
+        proc = Proc(kame_command("kame.cli.roslaunch", "demo", "lone.launch"), env)
+        try:
+            record(workspace, "lone")
+            assert len(master.getParam("/test", "/roslaunch/uris")[2]) == 1  # this one's, while it runs
+        finally:
+            proc.stop(timeout=25)  # Ctrl-C
+        assert proc.popen.returncode == 0
+        code, _, uris = master.getParam("/test", "/roslaunch/uris")
+        assert code == 1 and uris == {}, uris
+        assert master.getParam("/test", "/set_by_launch")[2] == 1  # what the launch set stays
+    finally:
+        with_master.stop()
 
 
 def test_master_already_running(workspace: Path) -> None:

@@ -374,6 +374,7 @@ def _launch(options: argparse.Namespace, files: list[str], argv: list[str]) -> i
         try:
             status = asyncio.run(_run(run))
         finally:
+            run.withdraw_server()
             server.close()
         if status == 0:
             say_bold("done")

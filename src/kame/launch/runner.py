@@ -288,6 +288,21 @@ class LaunchRun:
         say("shutting down processing monitor...")
         say("... shutting down processing monitor complete")
 
+    def withdraw_server(self) -> None:
+        """Delete our server's /roslaunch/uris entry from a master that outlives the launch
+        (roslaunch leaves it: every launch on a long-running roscore added one more, and roswtf
+        then reports them as launches that stopped answering). A master we started ended with
+        the launch, its parameters with it."""
+        if self.server is None or self.started_master:
+            return
+        proxy = MasterProxy(self.options.master_uri, CALLER, timeout=2.0)
+        try:
+            proxy.call("deleteParam", self.server.param)
+        except (OSError, MasterError, ValueError):
+            pass  # the master went first, or never had it (the launch failed before setting it)
+        finally:
+            proxy.close()
+
 
 def address_is_local(address: str) -> bool:
     """Whether a <machine> at `address` is this host: this host's name, or a name or address

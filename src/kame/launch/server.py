@@ -7,7 +7,8 @@ Rules (ros1-interop spec §11, roslaunch's server.py):
   [-1, "no process by that name", {}]; `get_node_names` -> [1, "node names", names], which
   are, as roslaunch's process monitor gives them, the running processes' names.
 - Its URI is announced as `started roslaunch server http://<host>:<port>/` and stored as
-  `/roslaunch/uris/host_<host>__<port>` (roswtf checks those servers are still there).
+  `/roslaunch/uris/host_<host>__<port>` (roswtf checks those servers are still there), and
+  deleted when the launch ends (kame.launch.runner's withdraw_server; roslaunch leaves it).
 - RpcHandlerServer is the same server calling any handler by method name (roslaunch.server
   serves roslaunch's handler objects on it).
 - The processes are read through a callable, at call time, from whatever runs them (the
