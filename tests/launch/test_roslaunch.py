@@ -115,6 +115,11 @@ FILES = {
   <node name="ok" pkg="demo" type="recorder.py"/>
   <param name="p" value="$(arg missing)"/>
 </launch>""",
+    "launch/orphans.launch": """<launch>
+  <env name="RECORD_DIR" value="$(env RECORD_DIR)"/>
+  <node name="stubborn" pkg="demo" type="recorder.py"><env name="STUBBORN" value="1"/></node>
+  <node name="wrapped" pkg="demo" type="wrapper.sh"/>
+</launch>""",
     "launch/only_param.launch": """<launch><param name="set_by_launch" value="1"/></launch>""",
     "config/params.yaml": "gains: {p: 1.0, i: 0.1}\nnames: [a, b]\nenabled: yes\n",
 }
@@ -131,6 +136,9 @@ def workspace(tmp_path: Path) -> Path:
     script.parent.mkdir()
     script.write_text(RECORDER)
     script.chmod(0o755)
+    wrapper = pkg / "scripts" / "wrapper.sh"  # a shell that runs the node as its child, not exec
+    wrapper.write_text('#!/bin/sh\n"$(dirname "$0")/recorder.py" "$@"\n')
+    wrapper.chmod(0o755)
     (tmp_path / "records").mkdir()
     return tmp_path
 
@@ -296,6 +304,27 @@ def test_children_die_with_a_roslaunch_killed_outright(workspace: Path) -> None:
             if not gone(pid):
                 os.kill(pid, signal.SIGKILL)
     assert set(pids) == {"master", "rosout-1", "lone-2"} and pids["lone-2"] == lone["pid"]
+
+
+def test_a_stubborn_node_and_a_wrappers_child_die_with_a_roslaunch_killed_outright(workspace: Path) -> None:
+    # PDEATHSIG's SIGTERM alone left both running: one ignores it, the other never gets it
+    env = launch_env(workspace, free_port())
+    proc = Proc(kame_command("kame.cli.roslaunch", "--sigint-timeout", "0.5", "--sigterm-timeout", "0.5",
+                             "demo", "orphans.launch"), env)
+    victims: list[int] = []
+    try:
+        stubborn, wrapped = record(workspace, "stubborn"), record(workspace, "wrapped")
+        victims = [stubborn["pid"], int(stubborn["env"]["GRANDCHILD"]), wrapped["pid"]]
+        os.kill(proc.pid, signal.SIGKILL)
+        proc.popen.wait(10)
+        for pid in victims:
+            wait_for(lambda pid=pid: gone(pid), timeout=15)  # type: ignore[misc]
+    finally:
+        _, err = proc.stop()
+        for pid in victims:  # had they outlived it, the test must not leave them behind
+            if not gone(pid):
+                os.kill(pid, signal.SIGKILL)
+    assert f"roslaunch [{proc.pid}] is gone and left " in err and ": sending SIGKILL" in err, err
 
 
 def test_load_error_starts_nothing(workspace: Path) -> None:

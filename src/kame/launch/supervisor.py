@@ -13,7 +13,10 @@ Rules (roslaunch's nodeprocess and pmon, with its console wording):
   3 times in a row: restarting in 1 s`); a child that lived longer starts the count afresh.
   roslaunch restarts a node that crashes at start as fast as it can, forever.
 - On Linux a child is started with PR_SET_PDEATHSIG: if roslaunch is killed outright
-  (SIGKILL, a crash), its children get SIGTERM instead of living on as orphans.
+  (SIGKILL, a crash), its children get SIGTERM instead of living on as orphans; and a watchdog
+  process that outlives roslaunch (kame.net.watchdog) then stops their process groups as
+  shutdown does, SIGINT to SIGKILL, so neither a node that ignores SIGTERM nor a shell
+  wrapper's child outlives it.
 - When every non-core child is gone and nothing will respawn, the monitor ends (unless told to
   keep going, as roslaunch does when it started the master).
 - Remote processes (a roslaunch child per other machine) are watched alongside: the launch goes
@@ -39,6 +42,7 @@ from typing import IO, Protocol
 from kame.launch.plan import ProcessSpec
 from kame.net.backoff import RespawnBackoff
 from kame.net.process import die_with_parent
+from kame.net.watchdog import GroupWatchdog
 
 log = logging.getLogger("kame.launch")
 BOLD, RED, RESET = "\033[1m", "\033[31m", "\033[0m"
@@ -199,6 +203,14 @@ class Monitor:
         self.remotes: list[RemoteProcess] = []
         self.done = asyncio.Event()
         self._watchers: list[asyncio.Task[None]] = []
+        self._watchdog: GroupWatchdog | None = None  # started with the first child (Linux)
+
+    def _started(self, child: Child) -> None:
+        """Hand a child's process group to the watchdog that outlives us."""
+        if self._watchdog is None and sys.platform.startswith("linux"):
+            self._watchdog = GroupWatchdog(self.sigint_timeout, self.sigterm_timeout)
+        if self._watchdog is not None:
+            self._watchdog.watch(child.pid, child.name)
 
     async def add(self, child: Child) -> bool:
         """Start `child` and watch it; False (reported, recorded as dead) when it cannot start."""
@@ -210,6 +222,7 @@ class Monitor:
             say_error(f"[{child.name}] {child.exit_description()}")
             (self.core if child.core else self.children).remove(child)
             return False
+        self._started(child)
         self._watchers.append(asyncio.ensure_future(self._watch(child)))
         return True
 
@@ -217,6 +230,8 @@ class Monitor:
         while True:
             assert child.proc is not None
             code = await child.proc.wait()
+            if self._watchdog is not None:
+                self._watchdog.released(child.pid)
             if child.stopping:
                 return
             child.exit_code = code
@@ -247,6 +262,7 @@ class Monitor:
                 child.gone = True
                 self._check_all_dead()
                 return
+            self._started(child)
 
     def add_remote(self, remote: RemoteProcess) -> None:
         """Watch a started remote process: its end is reported, and it is stopped on shutdown."""
@@ -295,3 +311,6 @@ class Monitor:
         for task in self._watchers:
             with contextlib.suppress(asyncio.CancelledError):
                 await task
+        if self._watchdog is not None:
+            self._watchdog.close()
+            self._watchdog = None
