@@ -529,16 +529,16 @@ def test_header_seq_numbers_are_unique_across_publishing_threads(make_node: Any)
     assert numbers == list(range(1, 20001))
 
 
-def test_a_publisher_at_an_unusable_address_is_one_warning_naming_it_and_the_fix(
-        make_node: Any, master_uri: str, caplog: pytest.LogCaptureFixture) -> None:
+def _one_warning_about(make_node: Any, master_uri: str, caplog: pytest.LogCaptureFixture, ghost_uri: str,
+                       topic: str) -> str:
+    """The one warning a subscriber gives about the publisher /ghost registered at `ghost_uri`,
+    after five failed attempts to reach it."""
     caplog.set_level(logging.DEBUG, logger="kame.topics")
-    dead_port = free_port()  # nothing listens: what a node advertising a wrong address looks like from here
-    ghost_uri = f"http://127.0.0.1:{dead_port}/"
     master = xmlrpc.client.ServerProxy(master_uri)
-    assert master.registerPublisher("/ghost", "/unreachable", "std_msgs/String", ghost_uri)[0] == 1
+    assert master.registerPublisher("/ghost", topic, "std_msgs/String", ghost_uri)[0] == 1
     try:
         listener = make_node("/listener")
-        collect(listener, "/unreachable")
+        collect(listener, topic)
 
         def attempts() -> int:
             return sum("connecting to" in r.getMessage() and "failed" in r.getMessage() for r in caplog.records)
@@ -546,11 +546,28 @@ def test_a_publisher_at_an_unusable_address_is_one_warning_naming_it_and_the_fix
         assert wait_until(lambda: attempts() >= 5, timeout=10), caplog.text
         warnings = [r.getMessage() for r in caplog.records if r.levelno == logging.WARNING]
         assert len(warnings) == 1, warnings
-        assert warnings[0].startswith(f"cannot reach publisher /ghost of /unreachable at {ghost_uri}: "
-                                      "the connection was refused."), warnings[0]
-        assert "ROS_IP" in warnings[0] and "ROS_HOSTNAME" in warnings[0]
+        return warnings[0]
     finally:
-        master.unregisterPublisher("/ghost", "/unreachable", ghost_uri)
+        master.unregisterPublisher("/ghost", topic, ghost_uri)
+
+
+def test_a_publisher_at_an_unusable_address_is_one_warning_naming_it_and_the_fix(
+        make_node: Any, master_uri: str, caplog: pytest.LogCaptureFixture) -> None:
+    ghost_uri = "http://ghost.invalid:11311/"  # a name no machine resolves
+    warning = _one_warning_about(make_node, master_uri, caplog, ghost_uri, "/unreachable")
+    assert warning.startswith(f"cannot reach publisher /ghost of /unreachable at {ghost_uri}: "
+                              "its name does not resolve on this machine."), warning
+    assert "ROS_IP" in warning and "ROS_HOSTNAME" in warning
+
+
+def test_a_dead_publisher_on_this_machine_is_reported_dead_not_as_an_address_problem(
+        make_node: Any, master_uri: str, caplog: pytest.LogCaptureFixture) -> None:
+    # A SIGKILLed local talker's registration: the advice was to set ROS_IP on its machine
+    ghost_uri = f"http://127.0.0.1:{free_port()}/"  # nothing listens: the process is gone
+    warning = _one_warning_about(make_node, master_uri, caplog, ghost_uri, "/orphaned")
+    assert warning == (f"publisher /ghost of /orphaned is dead: nothing listens at {ghost_uri} on this machine any "
+                       "more, so its process ended without unregistering (killed, or crashed); the master lists it "
+                       "until `rosnode cleanup` removes it or it starts again")
 
 
 def test_a_publisher_killed_mid_frame_costs_only_its_half_message(make_node: Any) -> None:

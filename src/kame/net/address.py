@@ -162,6 +162,7 @@ def is_this_host(address: str) -> bool:
 
 DOES_NOT_RESOLVE = "its name does not resolve on this machine"
 NO_ROUTE = "there is no route to it"
+REFUSED = "the connection was refused"
 _UNREACHABLE_ERRNOS = {errno.EHOSTUNREACH, errno.ENETUNREACH, errno.EHOSTDOWN, errno.ENETDOWN}
 
 
@@ -173,7 +174,7 @@ def unreachable_reason(exc: BaseException) -> str | None:
         if isinstance(seen, socket.gaierror):
             return DOES_NOT_RESOLVE
         if isinstance(seen, ConnectionRefusedError):
-            return "the connection was refused"
+            return REFUSED
         if isinstance(seen, (TimeoutError, socket.timeout)):
             return "it did not answer"
         if isinstance(seen, OSError) and seen.errno in _UNREACHABLE_ERRNOS:

@@ -20,13 +20,13 @@ import threading
 from collections.abc import Callable
 from typing import TYPE_CHECKING
 
-from kame.net.address import DOES_NOT_RESOLVE, unreachable_reason
+from kame.net.address import DOES_NOT_RESOLVE, REFUSED, is_local_address, unreachable_reason
 from kame.net.backoff import RespawnBackoff
 from kame.net.handshake import HandshakeError, MalformedHeader, read_header_and_rest, write_header
 from kame.net.stream import Receiver, connect, set_keepalive, set_nodelay, shut_down
 from kame.net.xmlrpc_client import XmlRpcProxy
 from kame.node.master_proxy import unwrap
-from kame.node.unreachable import unreachable_message
+from kame.node.unreachable import dead_publisher_message, unreachable_message
 from kame.protocol import shmros, tcpros
 
 if TYPE_CHECKING:
@@ -132,7 +132,8 @@ class PublisherLink:
     def _report_unreachable(self, exc: BaseException, failures: int) -> None:
         """One warning per publisher when its advertised address fails us: at once when its name
         does not resolve, else from the third failure on (a publisher that just exited also
-        refuses, and the master's update then drops it)."""
+        refuses, and the master's update then drops it). A node API on this machine that refuses
+        the connection is a dead publisher (kame.node.unreachable), not an address problem."""
         reason = unreachable_reason(exc)
         if not self._may_report or reason is None:
             return
@@ -140,8 +141,19 @@ class PublisherLink:
             return
         self._may_report = False
         node = self.subscription.node
-        if node.unreachable_reported.first(self.publisher_uri):
+        if not node.unreachable_reported.first(self.publisher_uri):
+            return
+        if reason == REFUSED and self._target == self.publisher_uri and self._on_this_machine():
+            log.warning(dead_publisher_message(self._publisher_name(), self.subscription.topic, self.publisher_uri))
+        else:
             log.warning(unreachable_message(self._publisher_name(), self.subscription.topic, self._target, reason))
+
+    def _on_this_machine(self) -> bool:
+        """Whether the publisher's node API is an address of this machine (or its loopback)."""
+        from urllib.parse import urlsplit
+
+        host = urlsplit(self.publisher_uri).hostname or ""
+        return bool(host) and is_local_address(host, ipv6=":" in host)
 
     def _publisher_name(self) -> str | None:
         """The node the master lists at our publisher's URI, if it says."""
