@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 import random
 import struct
 from typing import Any
@@ -245,11 +246,21 @@ def test_oversize_frame_refused_without_allocation() -> None:
     with pytest.raises(t.TcprosError, match="101 bytes refused"):
         small.feed(b"\x65\x00")  # split prefix: refused once complete
         small.feed(b"\x00\x00")
-    # a huge but allowed prefix does not commit its size up front
-    big = t.FrameReader()
-    assert big.feed(struct.pack("<I", 1 << 30) + b"abc") == []
-    assert big._body is not None and len(big._body) == 3
-    assert big.pending == 7
+    # a huge but allowed prefix commits what arrived, not its size: 8 readers told 64 MiB each
+    # hold a few pages, not 512 MiB (64 MiB each at once, repeated, drove a subscriber to 1.6 GB)
+    before = _resident_bytes()
+    readers = [t.FrameReader() for _ in range(8)]
+    for reader in readers:
+        assert reader.feed(struct.pack("<I", 64 << 20) + b"abc") == [] and reader.pending == 7
+    assert _resident_bytes() - before < 16 << 20
+    for reader in readers:
+        reader.release()
+        assert reader.pending == 0 and reader.frame_size == 0
+
+
+def _resident_bytes() -> int:
+    with open("/proc/self/statm") as f:
+        return int(f.read().split()[1]) * os.sysconf("SC_PAGE_SIZE")
 
 
 def test_empty_frames_and_pending() -> None:

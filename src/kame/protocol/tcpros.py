@@ -16,6 +16,7 @@ No I/O, no clock: the socket loop lives in kame.net and calls into this module.
 
 from __future__ import annotations
 
+import mmap
 import struct
 from collections.abc import Mapping
 from typing import Literal, NamedTuple
@@ -72,10 +73,15 @@ __all__ = [
 DEFAULT_MAX_HEADER = 1 << 20
 #: Largest message frame accepted by default: 1 GiB, roscpp's own sanity bound (1e9).
 DEFAULT_MAX_FRAME = 1 << 30
-#: Frames up to this size get their whole buffer when their length prefix arrives (so they are
-#: filled with one copy, or zero with `get_buffer`); bigger ones grow as their bytes arrive, so a
-#: lying prefix cannot make us commit a gigabyte up front.
-_EAGER_LIMIT = 64 << 20
+#: A frame's buffer is allocated whole when its length prefix arrives, so that it is filled with
+#: one copy, or none with `get_buffer`. Up to this size it is a bytearray, committed at once:
+#: the bounded chunk a peer can make us hold beyond what it sent. A longer one is an anonymous
+#: private mapping, whose pages the kernel commits as they are first written: a peer that
+#: announces 64 MiB (or 1 GiB) and sends ten bytes costs a page of memory, not 64 MiB.
+_COMMIT_LIMIT = 1 << 20
+#: With `reuse`, a frame's buffer up to this size is kept for the next frame (a stream of camera
+#: images is then received with no allocation and no page faults); a longer one is let go.
+_SPARE_LIMIT = 64 << 20
 #: `get_buffer` hands out the frame's own buffer (recv straight into it) when at least this much
 #: of the frame is still missing; below that a scratch buffer that may hold many frames wins.
 _DIRECT_MIN = 64 << 10
@@ -174,6 +180,8 @@ class FrameReader:
       bytearray may be reused for the next read.
     - A frame split across chunks is gathered into its own buffer (one copy) allocated when its
       length is known; nothing is ever re-joined, so splitting costs O(bytes), not O(bytes^2).
+      Past _COMMIT_LIMIT that buffer is a mapping whose pages are committed as they are
+      written: what a peer makes us hold is what it sent, plus at most _COMMIT_LIMIT.
     - `get_buffer()` / `buffer_updated(n)` (asyncio.BufferedProtocol's shape): when a large frame
       is in progress the buffer handed out is that frame's own storage, so `recv_into` fills it
       with no copy at all; otherwise it is a fresh scratch buffer parsed like `feed`.
@@ -181,18 +189,20 @@ class FrameReader:
       buffer (a subscriber that deserializes, which copies): the scratch buffer and the frame
       buffers are then reused instead of allocated, zeroed and paged in afresh for every read.
     A length above `max_frame` raises TcprosError before anything is allocated for it.
+    `begun` counts the frames whose body did not come whole in one chunk, for a reader that
+    gives each such frame a deadline; `release()` drops every buffer when the stream is over.
     """
 
-    __slots__ = ("_body", "_direct", "_eager", "_filled", "_head", "_need", "_reuse", "_scratch", "_scratch_read",
-                 "_scratch_write", "_spare", "max_frame")
+    __slots__ = ("_body", "_direct", "_filled", "_head", "_need", "_reuse", "_scratch", "_scratch_read",
+                 "_scratch_write", "_spare", "begun", "max_frame")
 
     def __init__(self, max_frame: int = DEFAULT_MAX_FRAME, reuse: bool = False) -> None:
         self.max_frame = max_frame
         self._reuse = reuse
-        self._spare: bytearray | None = None  # with reuse: the last frame buffer, for the next one
+        self._spare: bytearray | mmap.mmap | None = None  # with reuse: the last frame buffer, for the next one
         self._head = bytearray()  # the first 0-3 bytes of a split length prefix
-        self._body: bytearray | None = None  # the frame being gathered across chunks
-        self._eager = False  # _body was allocated at full size (else it grows)
+        self._body: bytearray | mmap.mmap | None = None  # the frame being gathered across chunks
+        self.begun = 0
         self._need = 0
         self._filled = 0
         self._scratch: bytearray | None = None
@@ -216,7 +226,7 @@ class FrameReader:
         """A writable buffer to `recv_into`; report the count with `buffer_updated`. Valid only
         until then. Never larger than the frame in progress when it is the frame's own storage."""
         body = self._body
-        if body is not None and self._eager and self._need - self._filled >= _DIRECT_MIN:
+        if body is not None and self._need - self._filled >= _DIRECT_MIN:
             self._direct = True
             return memoryview(body)[self._filled : self._need]
         self._direct = False
@@ -311,14 +321,30 @@ class FrameReader:
             out.append(self._finish())
         return pos
 
+    @property
+    def frame_size(self) -> int:
+        """The length of the frame whose body is being gathered (0 when none is)."""
+        return self._need if self._body is not None else 0
+
+    def release(self) -> None:
+        """Drop every buffer now: the stream is over. Without this they would live as long as
+        whatever holds the reader, which may be a reference cycle waiting for the collector."""
+        self._body = self._spare = self._scratch = None
+        self._scratch_write = self._scratch_read = memoryview(b"")
+        self._head = bytearray()
+        self._need = self._filled = 0
+
     def _begin(self, length: int) -> None:
         self._need = length
         self._filled = 0
-        self._eager = length <= _EAGER_LIMIT
-        if not self._eager:
-            self._body = bytearray()
-        elif self._reuse and self._spare is not None and len(self._spare) >= length:
+        self.begun += 1
+        if self._reuse and self._spare is not None and len(self._spare) >= length:
             self._body = self._spare
+        elif length > _COMMIT_LIMIT:
+            try:
+                self._body = mmap.mmap(-1, length, flags=mmap.MAP_PRIVATE)
+            except OSError as exc:  # a strict overcommit policy (vm.overcommit_memory=2) refuses it
+                raise TcprosError(f"cannot map {length} bytes for a frame: {exc.strerror}", remote=False) from None
         else:
             self._body = bytearray(length)
 
@@ -326,10 +352,7 @@ class FrameReader:
         body = self._body
         assert body is not None
         take = min(len(chunk), self._need - self._filled)
-        if self._eager:
-            body[self._filled : self._filled + take] = chunk[:take]
-        else:
-            body += chunk[:take]
+        body[self._filled : self._filled + take] = chunk[:take]
         self._filled += take
         return take
 
@@ -337,7 +360,7 @@ class FrameReader:
         body = self._body
         assert body is not None
         self._body = None
-        if self._reuse and self._eager:
+        if self._reuse and len(body) <= _SPARE_LIMIT:
             self._spare = body
         return memoryview(body).toreadonly()[: self._need]
 
