@@ -16,6 +16,7 @@ import pytest
 
 from kame.net.backoff import RespawnBackoff
 from kame.node import publisher_link
+from kame.protocol import tcpros
 from std_msgs.msg import String
 
 from ..support import wait_until
@@ -84,3 +85,65 @@ def test_a_malformed_reply_header_is_one_error_and_the_retries_back_off(
     errors = [r.getMessage() for r in caplog.records if r.levelno >= logging.WARNING]
     assert len(errors) == 1, errors
     assert errors[0].startswith("publisher /garbler of /garbled answered with a malformed connection header "), errors
+
+
+def reply_header(name: str, topic: str) -> bytes:
+    return tcpros.encode_header(tcpros.publisher_reply_fields(callerid=name, topic=topic,
+                                                              spec=tcpros.TopicSpec(*STRING)))
+
+
+def test_a_publisher_that_drops_us_after_each_handshake_is_reconnected_to_ever_more_slowly(
+        make_node: Any, serve_each: Any, caplog: pytest.LogCaptureFixture, monkeypatch: pytest.MonkeyPatch) -> None:
+    # "Announce 64 MiB, then close" was reconnected to at once, for ever: 1.6 GB in 40 s
+    monkeypatch.setattr(RespawnBackoff, "START", 0.02)
+    announce = struct.pack("<I", 64 << 20) + b"0123456789"
+
+    def drop(conn: socket.socket) -> None:
+        conn.sendall(reply_header("/dropper", "/dropped") + announce)
+        conn.close()
+
+    accepted = serve_each("/dropper", "/dropped", drop)
+    caplog.set_level(logging.WARNING, logger="kame.topics")
+    make_node("/drop_listener").subscribe("/dropped", *STRING, lambda frames, header: None)
+
+    def delays() -> list[float]:
+        return [float(r.getMessage().split("connecting again in ")[1].split()[0]) for r in caplog.records
+                if "dropped the connection on /dropped" in r.getMessage()]
+
+    assert wait_until(lambda: len(delays()) >= 4, timeout=10), caplog.text
+    assert delays()[:4] == [0.02, 0.04, 0.08, 0.16]  # the first drop is retried at once
+    assert caplog.records[0].getMessage().startswith("/dropper dropped the connection on /dropped 0.0 s after it "
+                                                     "was made, 2 times in a row: connecting again in 0.02 s")
+    assert len(accepted) >= 5
+
+
+def test_a_frame_dripped_a_byte_at_a_time_is_cut_off_by_its_deadline(
+        make_node: Any, serve_each: Any, caplog: pytest.LogCaptureFixture, monkeypatch: pytest.MonkeyPatch) -> None:
+    # Each byte reset the 30 s stall timeout: a frame at a byte every 10 s held its buffer for ever
+    from kame.node import topics
+
+    monkeypatch.setattr(topics, "STALL_TIMEOUT", 0.3)
+    monkeypatch.setattr(publisher_link, "MIN_FRAME_RATE", 10_000)  # 1,000 bytes: 0.1 s more
+    test_over = threading.Event()
+    dropped = threading.Event()
+
+    def drip(conn: socket.socket) -> None:
+        conn.sendall(reply_header("/dripper", "/dripped") + struct.pack("<I", 1000) + b"\4\0\0\0")
+        try:
+            while not test_over.wait(0.05):  # a byte every 0.05 s: never a stall of 0.3 s
+                conn.sendall(b"x")
+        except OSError:  # the subscriber hung up
+            dropped.set()
+        conn.close()
+
+    serve_each("/dripper", "/dripped", drip)
+    caplog.set_level(logging.ERROR, logger="kame.topics")
+    try:
+        make_node("/drip_listener").subscribe("/dripped", *STRING, lambda frames, header: None)
+        assert dropped.wait(10)
+    finally:
+        test_over.set()
+    (line,) = [r.getMessage() for r in caplog.records]
+    assert line.startswith("dropping the connection to /dripper on /dripped: Stalled: a frame of 1000 bytes is not "
+                           "whole 0."), line
+    assert line.endswith("a frame must arrive at 9 KiB/s at least"), line

@@ -17,13 +17,14 @@ from __future__ import annotations
 
 import logging
 import threading
+import time
 from collections.abc import Callable
 from typing import TYPE_CHECKING
 
 from kame.net.address import DOES_NOT_RESOLVE, REFUSED, is_local_address, unreachable_reason
 from kame.net.backoff import RespawnBackoff
 from kame.net.handshake import HandshakeError, MalformedHeader, read_header_and_rest, write_header
-from kame.net.stream import Receiver, connect, set_keepalive, set_nodelay, shut_down
+from kame.net.stream import Receiver, Stalled, connect, set_keepalive, set_nodelay, shut_down
 from kame.net.xmlrpc_client import XmlRpcProxy
 from kame.node.master_proxy import unwrap
 from kame.node.unreachable import dead_publisher_message, unreachable_message
@@ -45,6 +46,12 @@ MAX_FRAME = 1 << 30
 #: failure up to RETRY_CAP: a publisher just starting or just gone (the master's update drops it).
 RETRY_DELAY = 0.1
 RETRY_CAP = 2.0
+#: Seconds a publisher may leave a frame half-sent before the connection is dropped (no byte
+#: that long), and the base of a split frame's deadline.
+STALL_TIMEOUT = 30.0
+#: Bytes a second a frame that spans several reads must arrive at, on average, after
+#: STALL_TIMEOUT: 16 KiB/s, a slow radio link's; a 6 MB image then has 6.4 min, a 64 MiB frame 68.
+MIN_FRAME_RATE = 16 << 10
 
 
 class PublisherLink:
@@ -53,13 +60,20 @@ class PublisherLink:
     transport = "TCPROS"
 
     def __init__(self, subscription: Subscription, publisher_uri: str, connection_id: int,
-                 reconnecting: bool = False) -> None:
+                 after: PublisherLink | None = None) -> None:
+        """`after`: the link to the same publisher that this one replaces, which it dropped."""
         self.subscription = subscription
         self.publisher_uri = publisher_uri
         self.connection_id = connection_id
         # a publisher we were connected to and lost is no news: only a first connection's
         # failures say that the publisher's advertised address is unusable from here
-        self._may_report = not reconnecting
+        self._may_report = after is None
+        # a publisher that drops us soon after each handshake is reconnected to ever more slowly,
+        # as a program that keeps crashing is respawned; the count lives across the links
+        self.drops: RespawnBackoff = RespawnBackoff() if after is None else after.drops
+        self._first_wait = 0.0 if after is None else after.reconnect_delay
+        self.reconnect_delay: float = 0.0  # how long the link that replaces this one waits first
+        self._connected_at = 0.0
         self._target = publisher_uri  # what _connect is trying to reach: its URI, then host:port
         self.callerid = ""
         self.header: dict[str, str] = {}
@@ -87,7 +101,9 @@ class PublisherLink:
 
     def run(self) -> None:
         """Connect, retrying while the publisher stays registered (runs on its own thread)."""
-        delay = 0.1
+        if self._first_wait and self._closing.wait(self._first_wait):
+            return
+        delay = RETRY_DELAY
         failures = 0
         while not self.closed and not self.subscription.node.is_shutdown:
             try:
@@ -217,9 +233,10 @@ class PublisherLink:
         if offer and shmros.accepted(header):
             self._shm = shm.ShmReceiver(sub.max_frame, sub.queue_size)
             # records are one byte longer than the message, and a MAP names a segment
-            consumer = _Frames(self._deliver_shm, trailing, sub.queue_size, max(sub.max_frame + 1, 256))
+            consumer = _Frames(self._deliver_shm, trailing, sub.queue_size, max(sub.max_frame + 1, 256),
+                               sub.stall_timeout)
         else:
-            consumer = _Frames(self._deliver, trailing, sub.queue_size, sub.max_frame)
+            consumer = _Frames(self._deliver, trailing, sub.queue_size, sub.max_frame, sub.stall_timeout)
         with self._lock:  # close() either sees the receiver, or we see that it was closed
             if self.closed:
                 sock.close()
@@ -228,6 +245,7 @@ class PublisherLink:
                                      chunk_size=sub.buff_size, stall_timeout=sub.stall_timeout,
                                      read_interval=sub.read_interval)
             self.connected = True
+            self._connected_at = time.monotonic()
             self.receiver.start()
         for callback in sub.on_connect:
             callback(self)
@@ -268,6 +286,12 @@ class PublisherLink:
         if self.closed or self.subscription.node.is_shutdown:
             return
         # The publisher went away; while the master still lists it, try again.
+        lived = time.monotonic() - self._connected_at
+        self.reconnect_delay, news = self.drops.delay(lived, 0.0)
+        if news:
+            log.warning("%s dropped the connection on %s %.1f s after it was made, %d times in a row: connecting "
+                        "again in %g s", self.callerid or self.publisher_uri, self.subscription.topic, lived,
+                        self.drops.young_deaths, self.reconnect_delay)
         self.subscription.reconnect(self)
 
     def close(self) -> None:
@@ -308,11 +332,21 @@ class _Frames:
     the mean frame dropped frames whenever the mean sat above the real size (1 % at full rate).
     Only a queue_size small enough for the 4 KiB floor to hold more (N = 1, say) keeps the newest
     N of each read and drops the others on the subscriber's side, as rospy does.
+
+    A frame that does not come whole in one read must be whole within `stall_timeout` plus its
+    size at MIN_FRAME_RATE, else the stream ends with Stalled: a frame dripped a byte at a time
+    resets the stall timeout with every byte, and held its buffer (and the connection) for ever.
+    The check costs the hot path two attribute reads per read; the clock is read only while a
+    frame is being gathered.
     """
 
     def __init__(self, deliver: Callable[[list[memoryview]], None], trailing: bytes, queue_size: int | None,
-                 max_frame: int = MAX_FRAME) -> None:
+                 max_frame: int = MAX_FRAME, stall_timeout: float = STALL_TIMEOUT) -> None:
         self._reader = tcpros.FrameReader(max_frame, reuse=True)  # deliver copies what it keeps
+        self._stall_timeout = stall_timeout
+        self._begun = 0  # the reader's `begun` when the deadline was set
+        self._deadline = 0.0  # monotonic seconds by which the frame being gathered must be whole; 0: none is
+        self._started = 0.0
         self._deliver = deliver
         self._trailing = trailing
         self._queue_size = queue_size or 0
@@ -338,13 +372,36 @@ class _Frames:
         return self._reader.pending > 0
 
     def buffer_updated(self, nbytes: int) -> None:
-        frames = self._reader.buffer_updated(nbytes)
+        reader = self._reader
+        frames = reader.buffer_updated(nbytes)
+        if self._deadline or reader.begun != self._begun:
+            self._frame_deadline()
         if frames:
             # checks of the last frame and the count only: a smaller frame earlier in the read
             # shows as more frames than the read could hold
             if len(frames[-1]) < self._smallest or len(frames) > self._fits:
                 self._resize(frames)
             self._deliver(frames)
+
+    def _frame_deadline(self) -> None:
+        """Set the deadline of a frame just begun, forget it once the frame is whole, or end the
+        stream when it has passed."""
+        reader = self._reader
+        size = reader.frame_size
+        now = time.monotonic()
+        if reader.begun != self._begun:
+            self._begun = reader.begun
+            self._started = now
+            self._deadline = now + self._stall_timeout + size / MIN_FRAME_RATE
+        elif not size:
+            self._deadline = 0.0
+        elif now > self._deadline:
+            raise Stalled(f"a frame of {size} bytes is not whole {now - self._started:.1f} s after it began "
+                          f"({reader.pending - 4} bytes came); a frame must arrive at {MIN_FRAME_RATE >> 10} KiB/s "
+                          "at least")
+
+    def release(self) -> None:
+        self._reader.release()
 
     def _resize(self, frames: list[memoryview]) -> None:
         smallest = min(len(frame) for frame in frames)

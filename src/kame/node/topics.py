@@ -22,7 +22,7 @@ from typing import TYPE_CHECKING, Any, Protocol
 from kame.msg.size import fixed_size
 from kame.net.handshake import write_header
 from kame.net.stream import Sender, peer_of, set_keepalive, set_nodelay, shut_down
-from kame.node.publisher_link import MAX_FRAME, PublisherLink
+from kame.node.publisher_link import MAX_FRAME, STALL_TIMEOUT, PublisherLink
 from kame.protocol import shmros, tcpros
 
 if TYPE_CHECKING:
@@ -40,8 +40,6 @@ SMALL_FRAME = 64 * 1024
 READ_SIZE = 256 * 1024  # bytes a subscriber's read asks for when it names no buff_size
 #: Bytes a publisher without a queue_size keeps for one subscriber that does not keep up.
 UNQUEUED_BACKLOG = 256 << 20
-#: Seconds a publisher may leave a frame half-sent before the connection is dropped.
-STALL_TIMEOUT = 30.0
 
 
 _pack_frame_length = struct.Struct("<I").pack
@@ -487,11 +485,13 @@ class Subscription:
         for link in new:
             self.node.spawn(link.run, f"kame-connect{self.topic}")
 
-    def reconnect(self, old: IncomingLink) -> None:
+    def reconnect(self, old: PublisherLink) -> None:
+        """A new link to the publisher `old` was connected to, which dropped it (TCPROS links
+        only: a link in this node ends with its publication)."""
         with self._lock:
             if self.closed or self.links.get(old.publisher_uri) is not old:
                 return
-            link = PublisherLink(self, old.publisher_uri, self.node.next_connection_id(), reconnecting=True)
+            link = PublisherLink(self, old.publisher_uri, self.node.next_connection_id(), after=old)
             self.links[old.publisher_uri] = link
         self.node.spawn(link.run, f"kame-reconnect{self.topic}")
 
