@@ -119,12 +119,16 @@ class _Collect:
     def __init__(self) -> None:
         self.data = bytearray()
         self._buf = bytearray(7)
+        self.released = False
 
     def get_buffer(self, sizehint: int) -> memoryview:
         return memoryview(self._buf)
 
     def buffer_updated(self, nbytes: int) -> None:
         self.data += self._buf[:nbytes]
+
+    def release(self) -> None:
+        self.released = True
 
 
 def test_receiver_reads_until_the_peer_closes() -> None:
@@ -143,9 +147,45 @@ def test_receiver_reads_until_the_peer_closes() -> None:
     b.close()
     assert done.wait(5)
     assert bytes(consumer.data) == b"0123456789abcdef"
-    assert ended == [None]
+    assert ended == [None] and consumer.released
     receiver.close()
     a.close()
+
+
+class _Link:
+    """An owner whose receiver's consumer and on_end call back into it: a reference cycle."""
+
+    def __init__(self, sock: socket.socket, ended: threading.Event) -> None:
+        consumer = _Collect()
+        consumer.owner = self  # type: ignore[attr-defined]  # as a link's frames go to its deliver()
+        self.ended = ended
+        self.receiver = Receiver(sock, consumer, self.on_end, name="test-receiver")
+
+    def on_end(self, exc: BaseException | None) -> None:
+        self.ended.set()
+
+
+def test_a_receiver_whose_stream_ended_holds_no_cycle_to_its_owner() -> None:
+    # The owner (a subscriber's link) and its half-received frame stayed until the cyclic
+    # collector ran: a subscriber reconnected to a dropping publisher grew to 1.6 GB.
+    import gc
+    import weakref
+
+    a, b = socket.socketpair()
+    ended = threading.Event()
+    gc.disable()
+    try:
+        link = _Link(a, ended)
+        gone = weakref.ref(link)
+        link.receiver.start()
+        b.close()
+        assert ended.wait(5)
+        link.receiver._thread.join(5)
+        del link
+        assert gone() is None  # freed by its reference count, at once
+    finally:
+        gc.enable()
+        a.close()
 
 
 def test_closing_a_receiver_ourselves_reports_nothing() -> None:

@@ -366,6 +366,10 @@ class Consumer(Protocol):
         """Part of a message has arrived and the rest has not (a stall here is the peer's)."""
         ...
 
+    def release(self) -> None:
+        """The stream is over: drop the buffers now."""
+        ...
+
 
 class Stalled(Exception):
     """The peer stopped sending in the middle of a message."""
@@ -382,6 +386,10 @@ class Receiver:
     gathers in the socket's buffer and comes in the next read, one wake-up for many small
     messages instead of one each. For a consumer that only looks at the data every so often (a
     plot drawn at a frame rate); the kernel's buffer (and TCP's flow control) bounds what waits.
+    When the stream ends the consumer releases its buffers on the spot, and the receiver lets go
+    of the consumer and `on_end`: an owner that holds the receiver while the consumer's callbacks
+    hold the owner is a reference cycle, which kept a half-received frame (up to 64 MiB) until
+    the cyclic collector happened to run.
     """
 
     def __init__(self, sock: socket.socket, consumer: Consumer, on_end: Callable[[BaseException | None], None],
@@ -390,8 +398,8 @@ class Receiver:
         self.sock = sock
         self._stall_timeout = stall_timeout
         self._read_interval = read_interval
-        self._consumer = consumer
-        self._on_end = on_end
+        self._consumer: Consumer | None = consumer  # both let go of when the stream ends
+        self._on_end: Callable[[BaseException | None], None] | None = on_end
         self._chunk_size = chunk_size
         self._closing = False
         self._closed = threading.Event()  # wakes a read_interval wait at close
@@ -402,6 +410,7 @@ class Receiver:
 
     def _run(self) -> None:
         consumer = self._consumer
+        assert consumer is not None
         recv_into = self.sock.recv_into
         chunk_size = self._chunk_size
         error: BaseException | None = None
@@ -427,8 +436,12 @@ class Receiver:
             error = exc
         except Exception as exc:  # a protocol error or a bug in the consumer: end this stream only
             error = exc
-        if not self._closing:
-            self._on_end(error)
+        consumer.release()
+        del consumer
+        self._consumer = None
+        on_end, self._on_end = self._on_end, None
+        if not self._closing and on_end is not None:
+            on_end(error)
 
     def close(self) -> None:
         self._closing = True
