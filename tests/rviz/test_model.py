@@ -357,6 +357,15 @@ def test_an_rviz_file_loads_and_saves_back_what_it_had() -> None:
         config.parse("- just a list")
 
 
+def test_an_rviz_file_with_sections_of_the_wrong_shape_opens_with_the_defaults() -> None:
+    # tests/fuzz found these: AttributeError, or "cannot convert float NaN to integer"
+    for text in ("Visualization Manager: 1", "Visualization Manager: {Views: [1], Displays: 3}",
+                 "Visualization Manager: {Global Options: {Frame Rate: .nan}, Views: {Current: {Focal Point: 2}}}"):
+        loaded = config.parse(text)
+        assert loaded.frame_rate == 30 and loaded.displays == [] and loaded.camera.focal_point.tolist() == [0, 0, 0]
+        assert config.parse(config.dump(loaded)).fixed_frame == "map"
+
+
 def test_first_person_view_looks_from_its_eye_and_moves_as_rvizs() -> None:
     camera = Camera(kind=FPS, position=np.array([0.0, 0.0, 1.0]), yaw=0.0, pitch=0.0)
     ahead, left, behind = camera.project([[5.0, 0.0, 1.0], [5.0, 1.0, 1.0], [-5.0, 0.0, 1.0]], 640, 480)

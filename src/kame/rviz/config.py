@@ -1,10 +1,13 @@
 """The .rviz file (YAML, as rviz writes it): Visualization Manager's Displays (Class, Name,
 Enabled, and each display's own keys), Global Options (Fixed Frame, Background Color, Frame
 Rate) and Views (Current: rviz/Orbit, rviz/TopDownOrtho or rviz/FPS). Keys kame does not use are kept and
-written back, so a file saved by kame still opens in rviz with what rviz had put there."""
+written back, so a file saved by kame still opens in rviz with what rviz had put there.
+As rviz's config reader, a section that is not a mapping (or list) where one belongs, and a
+number that is not one (or is NaN or inf), count as absent: the defaults stand."""
 
 from __future__ import annotations
 
+import math
 import posixpath
 from dataclasses import dataclass, field
 from typing import Any
@@ -66,9 +69,18 @@ class Config:
 
 def _float(value: Any, default: float) -> float:
     try:
-        return float(value)
+        number = float(value)
     except (TypeError, ValueError):
         return default
+    return number if math.isfinite(number) else default
+
+
+def _mapping(value: Any) -> dict[str, Any]:
+    return value if isinstance(value, dict) else {}
+
+
+def _entries(value: Any) -> list[Any]:
+    return value if isinstance(value, list) else []
 
 
 def display_from(entry: dict[str, Any]) -> Display | None:
@@ -83,7 +95,7 @@ def camera_from(view: dict[str, Any]) -> Camera:
     camera = Camera()
     kind = str(view.get("Class"))
     camera.kind = kind if kind in (TOP_DOWN, FPS) else ORBIT
-    focal = view.get("Focal Point") or {}
+    focal = _mapping(view.get("Focal Point"))
     camera.focal_point = np.array([_float(focal.get(axis), 0.0) for axis in "XYZ"])
     camera.distance = _float(view.get("Distance"), camera.distance)
     camera.yaw, camera.pitch = _float(view.get("Yaw"), camera.yaw), _float(view.get("Pitch"), camera.pitch)
@@ -92,7 +104,7 @@ def camera_from(view: dict[str, Any]) -> Camera:
     if camera.kind == TOP_DOWN:
         camera.focal_point = np.array([_float(view.get("X"), 0.0), _float(view.get("Y"), 0.0), 0.0])
     if camera.kind == FPS:
-        position = view.get("Position") or {}
+        position = _mapping(view.get("Position"))
         camera.position = np.array([_float(position.get(axis), 0.0) for axis in "XYZ"])
     return camera
 
@@ -105,13 +117,13 @@ def parse(text: str) -> Config:
         raise ValueError(f"not YAML: {exc}") from None
     if not isinstance(document, dict):
         raise ValueError("a .rviz file is a YAML mapping")
-    manager = document.get("Visualization Manager") or {}
-    options = manager.get("Global Options") or {}
+    manager = _mapping(document.get("Visualization Manager"))
+    options = _mapping(manager.get("Global Options"))
     config = Config(raw=document, displays=[])
     config.fixed_frame = str(options.get("Fixed Frame", config.fixed_frame))
     config.background = parse_color(options.get("Background Color"), config.background)
     config.frame_rate = int(_float(options.get("Frame Rate"), config.frame_rate))
-    for entry in manager.get("Displays") or []:
+    for entry in _entries(manager.get("Displays")):
         if not isinstance(entry, dict):
             continue
         display = display_from(entry)
@@ -119,8 +131,7 @@ def parse(text: str) -> Config:
             config.unknown_displays.append(entry)
         else:
             config.displays.append(display)
-    current = (manager.get("Views") or {}).get("Current") or {}
-    config.camera = camera_from(current if isinstance(current, dict) else {})
+    config.camera = camera_from(_mapping(_mapping(manager.get("Views")).get("Current")))
     return config
 
 
@@ -150,16 +161,16 @@ def view_entry(camera: Camera) -> dict[str, Any]:
 
 def dump(config: Config) -> str:
     document = dict(config.raw)
-    manager = dict(document.get("Visualization Manager") or {})
+    manager = dict(_mapping(document.get("Visualization Manager")))
     manager["Class"] = ""
     manager["Displays"] = [display_entry(d) for d in config.displays] + config.unknown_displays
     manager["Enabled"] = True
-    options = dict(manager.get("Global Options") or {})
+    options = dict(_mapping(manager.get("Global Options")))
     options.update({"Fixed Frame": config.fixed_frame, "Background Color": format_color(config.background),
                     "Frame Rate": config.frame_rate})
     options.setdefault("Default Light", True)
     manager["Global Options"] = options
-    views = dict(manager.get("Views") or {})
+    views = dict(_mapping(manager.get("Views")))
     views["Current"] = view_entry(config.camera)
     views.setdefault("Saved", None)
     manager["Views"] = views
