@@ -197,4 +197,5 @@ def test_the_navigation_checks_of_a_pose_answer_without_raising(values: list[flo
     p.x, p.y, p.z, q.x, q.y, q.z, q.w = values
     if inputs.pose_problem(pose) is None:  # a goal the planner may take: finite, turning about z only
         assert all(math.isfinite(v) for v in values)
-        assert q.x * q.x + q.y * q.y < 1e-3 * (q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w)
+        length = math.hypot(q.x, q.y, q.z, q.w)
+        assert math.hypot(q.x / length, q.y / length) ** 2 < 1e-3

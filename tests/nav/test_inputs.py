@@ -46,6 +46,8 @@ def pose(x: float = 0.0, qx: float = 0.0, qz: float = 0.0, qw: float = 1.0) -> P
     (pose(qx=1.0, qw=0.0), "Quaternion is invalid... for navigation the z-axis of the quaternion must be close to "
                            "vertical."),
     (pose(qz=2.0, qw=2.0), None),  # not normalised: move_base normalises it
+    (pose(qx=1.3407807929942597e154), "Quaternion is invalid... for navigation the z-axis of the quaternion must be "
+                                      "close to vertical."),  # its square is inf: found by tests/fuzz
 ])
 def test_goals_as_move_base_checks_their_quaternions(goal: Pose, problem: str | None) -> None:
     assert inputs.pose_problem(goal) == problem

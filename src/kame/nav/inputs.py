@@ -45,10 +45,14 @@ def quaternion_problem(q: Any) -> str | None:
     values = (q.x, q.y, q.z, q.w)
     if not all(math.isfinite(v) for v in values):
         return "Quaternion has nans or infs... discarding as a navigation goal"
-    length2 = sum(v * v for v in values)
-    if length2 < 1e-6:
+    scale = max(abs(v) for v in values)  # divided out first: a component of 1e154 squares to inf
+    if scale == 0.0:
         return "Quaternion has length close to zero... discarding as navigation goal"
-    x, y = q.x / math.sqrt(length2), q.y / math.sqrt(length2)
+    unit = [v / scale for v in values]
+    length = math.hypot(*unit)
+    if scale * length < 1e-3:
+        return "Quaternion has length close to zero... discarding as navigation goal"
+    x, y = unit[0] / length, unit[1] / length
     z_of_rotated_up = 1.0 - 2.0 * (x * x + y * y)  # the rotated (0, 0, 1)'s z
     if abs(z_of_rotated_up - 1.0) > _VERTICAL_TOLERANCE:
         return "Quaternion is invalid... for navigation the z-axis of the quaternion must be close to vertical."
