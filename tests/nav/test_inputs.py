@@ -63,6 +63,8 @@ def covariance(xx: float = 0.25, xy: float = 0.0, yy: float = 0.25, aa: float = 
     (covariance(xx=NAN), "its covariance's x-y block and yaw variance (nan, 0, 0, 0.25, 0.07) are not all finite"),
     (covariance(aa=-1.0), "its covariance has a negative variance (x 0.25, y 0.25, yaw -1)"),
     (covariance(xy=1.0), "its covariance's x-y block (0.25, 1, 1, 0.25) is not symmetric positive semidefinite"),
+    (covariance(xx=1e300, xy=1e301, yy=1e300),
+     "its covariance's x-y block (1e+300, 1e+301, 1e+301, 1e+300) is not symmetric positive semidefinite"),
     (covariance(), None),
     (PoseWithCovariance().covariance, None),  # all zero: the particles on the pose itself
 ])

@@ -80,7 +80,7 @@ def covariance_problem(covariance: Sequence[float]) -> str | None:
         return f"its covariance's x-y block and yaw variance ({_numbers((xx, xy, yx, yy, aa))}) are not all finite"
     if xx < 0 or yy < 0 or aa < 0:
         return f"its covariance has a negative variance (x {xx:g}, y {yy:g}, yaw {aa:g})"
-    if xy != yx or xy * xy > xx * yy * (1 + 1e-9):
+    if xy != yx or abs(xy) > math.sqrt(xx) * math.sqrt(yy) * (1 + 1e-9):  # roots: 1e300 squared is inf
         return f"its covariance's x-y block ({_numbers((xx, xy, yx, yy))}) is not symmetric positive semidefinite"
     return None
 
