@@ -146,4 +146,5 @@ def test_a_frame_dripped_a_byte_at_a_time_is_cut_off_by_its_deadline(
     (line,) = [r.getMessage() for r in caplog.records]
     assert line.startswith("dropping the connection to /dripper on /dripped: Stalled: a frame of 1000 bytes is not "
                            "whole 0."), line
+    assert " s into it (" in line, line
     assert line.endswith("a frame must arrive at 9 KiB/s at least"), line

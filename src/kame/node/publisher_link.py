@@ -333,19 +333,19 @@ class _Frames:
     Only a queue_size small enough for the 4 KiB floor to hold more (N = 1, say) keeps the newest
     N of each read and drops the others on the subscriber's side, as rospy does.
 
-    A frame that does not come whole in one read must be whole within `stall_timeout` plus its
-    size at MIN_FRAME_RATE, else the stream ends with Stalled: a frame dripped a byte at a time
-    resets the stall timeout with every byte, and held its buffer (and the connection) for ever.
-    The check costs the hot path two attribute reads per read; the clock is read only while a
-    frame is being gathered.
+    A frame still incomplete after a second read must be whole within `stall_timeout` plus its
+    size at MIN_FRAME_RATE from then, else the stream ends with Stalled: a frame dripped a byte
+    at a time resets the stall timeout with every byte, and held its buffer (and the connection)
+    for ever. The hot path pays one attribute read a read; a small frame split between two
+    reads, two attribute writes; the clock is read only for a frame that spans three reads.
     """
 
     def __init__(self, deliver: Callable[[list[memoryview]], None], trailing: bytes, queue_size: int | None,
                  max_frame: int = MAX_FRAME, stall_timeout: float = STALL_TIMEOUT) -> None:
         self._reader = tcpros.FrameReader(max_frame, reuse=True)  # deliver copies what it keeps
         self._stall_timeout = stall_timeout
-        self._begun = 0  # the reader's `begun` when the deadline was set
-        self._deadline = 0.0  # monotonic seconds by which the frame being gathered must be whole; 0: none is
+        self._partial = 0  # the reader's `partial` last seen
+        self._deadline = 0.0  # monotonic seconds by which that frame must be whole; 0: not set yet
         self._started = 0.0
         self._deliver = deliver
         self._trailing = trailing
@@ -374,8 +374,12 @@ class _Frames:
     def buffer_updated(self, nbytes: int) -> None:
         reader = self._reader
         frames = reader.buffer_updated(nbytes)
-        if self._deadline or reader.begun != self._begun:
-            self._frame_deadline()
+        partial = reader.partial
+        if partial:
+            if partial != self._partial:  # begun in this read
+                self._partial, self._deadline = partial, 0.0
+            else:
+                self._frame_deadline()
         if frames:
             # checks of the last frame and the count only: a smaller frame earlier in the read
             # shows as more frames than the read could hold
@@ -384,21 +388,17 @@ class _Frames:
             self._deliver(frames)
 
     def _frame_deadline(self) -> None:
-        """Set the deadline of a frame just begun, forget it once the frame is whole, or end the
-        stream when it has passed."""
-        reader = self._reader
-        size = reader.frame_size
+        """For a frame still incomplete after another read: set its deadline, or end the stream
+        once the deadline has passed."""
+        size = self._reader.frame_size
         now = time.monotonic()
-        if reader.begun != self._begun:
-            self._begun = reader.begun
+        if not self._deadline:
             self._started = now
             self._deadline = now + self._stall_timeout + size / MIN_FRAME_RATE
-        elif not size:
-            self._deadline = 0.0
         elif now > self._deadline:
-            raise Stalled(f"a frame of {size} bytes is not whole {now - self._started:.1f} s after it began "
-                          f"({reader.pending - 4} bytes came); a frame must arrive at {MIN_FRAME_RATE >> 10} KiB/s "
-                          "at least")
+            came = self._reader.pending - 4
+            raise Stalled(f"a frame of {size} bytes is not whole {now - self._started:.1f} s into it ({came} bytes "
+                          f"came); a frame must arrive at {MIN_FRAME_RATE >> 10} KiB/s at least")
 
     def release(self) -> None:
         self._reader.release()

@@ -189,12 +189,12 @@ class FrameReader:
       buffer (a subscriber that deserializes, which copies): the scratch buffer and the frame
       buffers are then reused instead of allocated, zeroed and paged in afresh for every read.
     A length above `max_frame` raises TcprosError before anything is allocated for it.
-    `begun` counts the frames whose body did not come whole in one chunk, for a reader that
-    gives each such frame a deadline; `release()` drops every buffer when the stream is over.
+    `partial` numbers the frame being gathered (0 when none is), for a reader that gives each
+    frame that spans chunks a deadline; `release()` drops every buffer when the stream is over.
     """
 
     __slots__ = ("_body", "_direct", "_filled", "_head", "_need", "_reuse", "_scratch", "_scratch_read",
-                 "_scratch_write", "_spare", "begun", "max_frame")
+                 "_scratch_write", "_serial", "_spare", "max_frame", "partial")
 
     def __init__(self, max_frame: int = DEFAULT_MAX_FRAME, reuse: bool = False) -> None:
         self.max_frame = max_frame
@@ -202,7 +202,8 @@ class FrameReader:
         self._spare: bytearray | mmap.mmap | None = None  # with reuse: the last frame buffer, for the next one
         self._head = bytearray()  # the first 0-3 bytes of a split length prefix
         self._body: bytearray | mmap.mmap | None = None  # the frame being gathered across chunks
-        self.begun = 0
+        self._serial = 0  # frames gathered so far, numbering the next
+        self.partial = 0
         self._need = 0
         self._filled = 0
         self._scratch: bytearray | None = None
@@ -332,12 +333,13 @@ class FrameReader:
         self._body = self._spare = self._scratch = None
         self._scratch_write = self._scratch_read = memoryview(b"")
         self._head = bytearray()
-        self._need = self._filled = 0
+        self._need = self._filled = self.partial = 0
 
     def _begin(self, length: int) -> None:
         self._need = length
         self._filled = 0
-        self.begun += 1
+        self._serial += 1
+        self.partial = self._serial
         if self._reuse and self._spare is not None and len(self._spare) >= length:
             self._body = self._spare
         elif length > _COMMIT_LIMIT:
@@ -360,6 +362,7 @@ class FrameReader:
         body = self._body
         assert body is not None
         self._body = None
+        self.partial = 0
         if self._reuse and len(body) <= _SPARE_LIMIT:
             self._spare = body
         return memoryview(body).toreadonly()[: self._need]
