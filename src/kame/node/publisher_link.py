@@ -8,9 +8,12 @@ registered, the link is retried with a growing delay, waiting on an event that c
 
 What a publisher can make a subscriber hold is bounded: a frame longer than the message type
 can be (its size, for a type without variable-length fields; else `max_frame`, 1 GiB by
-default) and a frame that stops arriving half-way (no byte for the subscription's stall
-timeout) both drop the connection with one error line, without a retry (the peer would do the
-same again).
+default), a frame that stops arriving half-way (no byte for the subscription's stall timeout)
+and one that arrives too slowly (a deadline scaled to its size, see _Frames) drop the connection
+with one error line, without a retry (the peer would do the same again). A frame's buffer holds
+what arrived (kame.protocol.tcpros's FrameReader) and is released when the connection ends. A
+publisher that answers with what is not a connection header, or that drops the connection soon
+after each handshake, is tried again ever more slowly (kame.net.backoff), with one line.
 """
 
 from __future__ import annotations
