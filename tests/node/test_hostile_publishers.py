@@ -6,6 +6,7 @@ socket the test serves by hand (`serve_each`)."""
 from __future__ import annotations
 
 import logging
+import re
 import socket
 import struct
 import threading
@@ -112,8 +113,9 @@ def test_a_publisher_that_drops_us_after_each_handshake_is_reconnected_to_ever_m
 
     assert wait_until(lambda: len(delays()) >= 4, timeout=10), caplog.text
     assert delays()[:4] == [0.02, 0.04, 0.08, 0.16]  # the first drop is retried at once
-    assert caplog.records[0].getMessage().startswith("/dropper dropped the connection on /dropped 0.0 s after it "
-                                                     "was made, 2 times in a row: connecting again in 0.02 s")
+    first = caplog.records[0].getMessage()
+    assert first.startswith("/dropper dropped the connection on /dropped ") and first.endswith(
+        " s after it was made, 2 times in a row: connecting again in 0.02 s"), first
     assert len(accepted) >= 5
 
 
@@ -122,7 +124,7 @@ def test_a_frame_dripped_a_byte_at_a_time_is_cut_off_by_its_deadline(
     # Each byte reset the 30 s stall timeout: a frame at a byte every 10 s held its buffer for ever
     from kame.node import topics
 
-    monkeypatch.setattr(topics, "STALL_TIMEOUT", 0.3)
+    monkeypatch.setattr(topics, "STALL_TIMEOUT", 1.0)  # 20 drips: a loaded machine does not stall one
     monkeypatch.setattr(publisher_link, "MIN_FRAME_RATE", 10_000)  # 1,000 bytes: 0.1 s more
     test_over = threading.Event()
     dropped = threading.Event()
@@ -130,7 +132,7 @@ def test_a_frame_dripped_a_byte_at_a_time_is_cut_off_by_its_deadline(
     def drip(conn: socket.socket) -> None:
         conn.sendall(reply_header("/dripper", "/dripped") + struct.pack("<I", 1000) + b"\4\0\0\0")
         try:
-            while not test_over.wait(0.05):  # a byte every 0.05 s: never a stall of 0.3 s
+            while not test_over.wait(0.05):  # a byte every 0.05 s: the stall timeout never passes
                 conn.sendall(b"x")
         except OSError:  # the subscriber hung up
             dropped.set()
@@ -144,7 +146,6 @@ def test_a_frame_dripped_a_byte_at_a_time_is_cut_off_by_its_deadline(
     finally:
         test_over.set()
     (line,) = [r.getMessage() for r in caplog.records]
-    assert line.startswith("dropping the connection to /dripper on /dripped: Stalled: a frame of 1000 bytes is not "
-                           "whole 0."), line
-    assert " s into it (" in line, line
+    assert re.match(r"dropping the connection to /dripper on /dripped: Stalled: a frame of 1000 bytes is not whole "
+                    r"\d+\.\d s into it \(\d+ bytes came\)", line), line
     assert line.endswith("a frame must arrive at 9 KiB/s at least"), line
