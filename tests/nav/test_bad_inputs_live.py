@@ -40,6 +40,18 @@ def test_amcl_refuses_an_empty_map_nan_poses_and_scans_and_goes_on_serving(tmp_p
         assert amcl.popen.returncode == 0 and "Traceback" not in "".join(amcl.err), "".join(amcl.err)
 
 
+def test_slam_gmapping_leaves_out_a_scan_it_cannot_place(tmp_path: Path) -> None:
+    with master(tmp_path) as sim:
+        gmapping = sim.start("gmapping", "slam_gmapping")
+        wait_until(lambda: "/slam_gmapping" in sim.run("rostopic", "info", "/scan", check=False).stdout, timeout=30,
+                   what="slam_gmapping to subscribe to /scan")
+        sim.run("rostopic", "pub", "-1", "/scan", "sensor_msgs/LaserScan",
+                "{header: {frame_id: laser}, angle_increment: 0.1, range_max: .inf, ranges: [1, 2]}")
+        assert "its range_max is inf: the map's beams need a length" in stderr_line(gmapping, "Ignoring a scan")
+        gmapping.stop()
+        assert "Traceback" not in "".join(gmapping.err), "".join(gmapping.err)
+
+
 GOALS = """
     import actionlib, rospy, sys
     from move_base_msgs.msg import MoveBaseAction, MoveBaseGoal

@@ -83,3 +83,8 @@ def test_initial_pose_covariances(values: list[float], problem: str | None) -> N
 ])
 def test_scans(scan: LaserScan, problem: str | None) -> None:
     assert inputs.scan_problem(scan) == problem
+
+
+def test_a_map_builder_needs_a_finite_range_max() -> None:
+    scan = LaserScan(angle_increment=0.1, range_max=INF, ranges=[1.0])
+    assert inputs.scan_problem(scan, finite_range=True) == "its range_max is inf: the map's beams need a length"

@@ -10,6 +10,8 @@ particles' weights) after every processed scan, and the transform ~map_frame -> 
 ~transform_publish_period seconds (stamped that far ahead); serves `dynamic_map`
 (nav_msgs/GetMap). The filter's parameters are gmapping's, with its defaults (maxRange: the
 scan's range_max less 1 cm; maxUrange: maxRange); ~throttle_scans uses every n-th scan.
+A scan whose angles or range limits are NaN or inf (kame.nav.inputs) is left out with a warning,
+at most one each 10 s: a NaN angle would be drawn into the map for good.
 """
 
 from __future__ import annotations
@@ -24,6 +26,7 @@ import numpy as np
 
 from kame.client import clock, core, process, services, timer, topics
 from kame.client import log as _log
+from kame.nav import inputs
 from kame.nav.amcl_node import compose, inverse, yaw_of
 from kame.nav.slam import Gmapping, GmappingParams, MapView
 from kame.tf import errors as tf_errors
@@ -87,6 +90,10 @@ class SlamGmapping:
     def on_scan(self, scan: Any) -> None:
         self.scans += 1
         if self.scans % self.throttle_scans:
+            return
+        problem = inputs.scan_problem(scan, finite_range=True)
+        if problem is not None:
+            _log.emit_throttle(10.0, _log.WARN, "Ignoring a scan in frame %s: %s", (scan.header.frame_id, problem))
             return
         try:
             odom = self._pose_of(self.odom_frame, self.base_frame, scan.header.stamp)

@@ -85,10 +85,10 @@ def covariance_problem(covariance: Sequence[float]) -> str | None:
     return None
 
 
-def scan_problem(scan: Any) -> str | None:
+def scan_problem(scan: Any, finite_range: bool = False) -> str | None:
     """Why a sensor_msgs/LaserScan's rays cannot be placed: its angles must be finite, range_min
-    too, and range_max above it (inf is a scanner without a limit; readings themselves may be
-    NaN or inf: no return)."""
+    too, and range_max above it (inf is a scanner without a limit, unless `finite_range`: a map
+    builder sizes its beams by it; readings themselves may be NaN or inf: no return)."""
     angles = (scan.angle_min, scan.angle_increment)
     if not all(math.isfinite(v) for v in angles):
         return f"its angle_min and angle_increment ({_numbers(angles)}) are not finite"
@@ -97,4 +97,6 @@ def scan_problem(scan: Any) -> str | None:
     limits = (scan.range_min, scan.range_max)
     if not math.isfinite(scan.range_min) or not scan.range_max > scan.range_min:
         return f"its range_min and range_max ({_numbers(limits)}) are no interval: range_max must be above range_min"
+    if finite_range and math.isinf(scan.range_max):
+        return "its range_max is inf: the map's beams need a length"
     return None
