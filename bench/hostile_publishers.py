@@ -12,6 +12,9 @@ registration whose TCPROS port is a socket this script serves by hand:
   dropping it, as kame's does.
 - "drip": --drippers publishers, each announcing a 64 MiB frame and sending a byte a second of
   it for --seconds.
+- "garbled": one publisher that answers every connection with a header that is not one (a
+  field without '='), for --seconds: how often the subscriber tries again, and how many lines
+  it writes on stderr meanwhile.
 Printed per run: the cycles served and their time, the subscriber's resident memory (VmRSS) when
 idle, its peak (VmHWM) above that, and its VmRSS at the end. The goal (issue 34): a peak at most
 100 MB above idle.
@@ -43,6 +46,7 @@ rospy.spin()
 """
 
 ANNOUNCE = struct.pack("<I", 64 << 20) + b"0123456789"
+GARBAGE = struct.pack("<I", 8) + struct.pack("<I", 4) + b"abcd"  # a header whose one field has no '='
 
 
 def status_kb(pid: int, key: str) -> int:
@@ -53,7 +57,8 @@ def status_kb(pid: int, key: str) -> int:
 class FakePublisher:
     """A registered publisher of /hostile whose connections get `answer(conn)`."""
 
-    def __init__(self, name: str, master_uri: str, answer: Callable[[socket.socket], None]) -> None:
+    def __init__(self, name: str, master_uri: str, answer: Callable[[socket.socket, bytes], None]) -> None:
+        """`answer(conn, header)` once the subscriber's header is read; `header` is a valid reply."""
         from kame.node.node import Node, NodeConfig
 
         self.server = socket.socket()
@@ -85,9 +90,8 @@ class FakePublisher:
         try:
             conn.settimeout(10)
             conn.recv(65536)
-            conn.sendall(tcpros.encode_header(tcpros.publisher_reply_fields(
+            self.answer(conn, tcpros.encode_header(tcpros.publisher_reply_fields(
                 callerid=self.node.name, topic="/hostile", spec=tcpros.TopicSpec("std_msgs/String", String._md5sum))))
-            self.answer(conn)
         except OSError:
             pass
         finally:
@@ -99,13 +103,17 @@ class FakePublisher:
         self.server.close()
 
 
-def announce_and_close(conn: socket.socket) -> None:
-    conn.sendall(ANNOUNCE)
+def announce_and_close(conn: socket.socket, header: bytes) -> None:
+    conn.sendall(header + ANNOUNCE)
 
 
-def dripper(seconds: float) -> Callable[[socket.socket], None]:
-    def drip(conn: socket.socket) -> None:
-        conn.sendall(ANNOUNCE[:4])
+def garble(conn: socket.socket, header: bytes) -> None:
+    conn.sendall(GARBAGE)
+
+
+def dripper(seconds: float) -> Callable[[socket.socket, bytes], None]:
+    def drip(conn: socket.socket, header: bytes) -> None:
+        conn.sendall(header + ANNOUNCE[:4])
         end = time.monotonic() + seconds
         while time.monotonic() < end:
             conn.sendall(b"x")
@@ -114,8 +122,9 @@ def dripper(seconds: float) -> Callable[[socket.socket], None]:
 
 
 def run(python: str, env: dict[str, str], master_uri: str, case: str, options: argparse.Namespace) -> str:
+    errors = open(Path(env["ROS_HOME"]) / f"{case}-stderr.txt", "w+")
     subscriber = subprocess.Popen([python, "-c", textwrap.dedent(SUBSCRIBER)], env=env, text=True,
-                                  stdout=subprocess.PIPE, stderr=subprocess.DEVNULL)
+                                  stdout=subprocess.PIPE, stderr=errors)
     fakes: list[FakePublisher] = []
     try:
         assert subscriber.stdout is not None and subscriber.stdout.readline().strip() == "ready"
@@ -127,11 +136,20 @@ def run(python: str, env: dict[str, str], master_uri: str, case: str, options: a
             while sum(f.served for f in fakes) < options.cycles and time.monotonic() - start < 120:
                 time.sleep(0.1)
             what = f"{sum(f.served for f in fakes)} cycles in {time.monotonic() - start:.0f} s"
-        else:
+        elif case == "drip":
             fakes = [FakePublisher(f"/dripper{i}", master_uri, dripper(options.seconds))
                      for i in range(options.drippers)]
             time.sleep(options.seconds)
             what = f"{options.drippers} drippers for {options.seconds:.0f} s"
+        else:
+            errors.seek(0, os.SEEK_END)
+            lines_before = errors.tell()
+            fakes = [FakePublisher("/garbler", master_uri, garble)]
+            time.sleep(options.seconds)
+            errors.flush()
+            errors.seek(lines_before)
+            lines = len(errors.read().splitlines())
+            what = f"garbled replies for {options.seconds:.0f} s: {fakes[0].served} connections, {lines} stderr lines"
         peak = status_kb(subscriber.pid, "VmHWM")
         for fake in fakes:
             fake.close()
@@ -144,6 +162,7 @@ def run(python: str, env: dict[str, str], master_uri: str, case: str, options: a
         for fake in fakes:
             fake.close()
         stop(subscriber)
+        errors.close()
 
 
 def main() -> None:
@@ -153,10 +172,12 @@ def main() -> None:
     parser.add_argument("--seconds", type=float, default=30.0)
     parser.add_argument("--ref", help="a kame src/ folder to run as `ref` (its nodes on this checkout's master)")
     parser.add_argument("--only", default="ref,kame,rospy", help="which of ref, kame and rospy to run")
+    parser.add_argument("--cases", default="announce,drip,garbled", help="which of announce, drip and garbled")
     options = parser.parse_args()
     port = free_port()
     uri = f"http://127.0.0.1:{port}/"
     home = Path("/tmp") / f"kame-hostile-bench-{os.getpid()}"
+    home.mkdir(parents=True, exist_ok=True)
     env = dict(os.environ, ROS_MASTER_URI=uri, ROS_HOME=str(home), ROS_HOSTNAME="127.0.0.1", KAME_SHM="0")
     system_env = {k: v for k, v in env.items() if k != "PYTHONPATH"}
     master = subprocess.Popen([sys.executable, "-m", "kame.cli.rosmaster", "--core", "-p", str(port)], env=env,
@@ -182,7 +203,7 @@ def main() -> None:
             if subprocess.run([python, "-c", "import rospy"], env=impl_env, capture_output=True).returncode:
                 print(f"{name}: cannot import rospy, left out", flush=True)
                 continue
-            for case in ("announce", "drip"):
+            for case in options.cases.split(","):
                 print(f"{name:5} {case:8} {run(python, impl_env, uri, case, options)}", flush=True)
     finally:
         stop(master)
