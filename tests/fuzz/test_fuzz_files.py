@@ -73,6 +73,7 @@ def test_an_image_becomes_a_grid_of_its_size_with_occupancy_values(mode: str, wi
         assert set(np.unique(grid.cells)) <= {-1, *range(0, 101)}
 
 
+@pytest.mark.filterwarnings("ignore::PIL.Image.DecompressionBombWarning")  # a header between 89 and 179 Mpx
 @given(image=st.binary(max_size=200), cut=st.integers(0, 80), width=st.integers(0, 2**31 - 1),
        height=st.integers(0, 2**31 - 1))
 def test_any_bytes_or_a_lying_header_are_an_image_or_map_servers_error(image: bytes, cut: int, width: int,
