@@ -237,5 +237,12 @@ def test_a_private_parameter_argument_that_is_an_alias_bomb_is_refused(tmp_path:
         # one line, as a bad command-line option gets: the traceback said nothing more
         assert err.splitlines() == [err.strip()], err
         assert err.startswith("[ERROR] invalid command-line parameters: ~p: YAML aliases expand this value to"), err
+        # rospy's ROSInitException all the same, for a program that catches it
+        caught = Proc([sys.executable, "-c", "import rospy\ntry:\n    rospy.init_node('bombed')\n"
+                       "except rospy.ROSInitException as e:\n    print('caught', e)", f"_p:={bomb}"],
+                      ros_env(tmp_path, f"http://127.0.0.1:{port}/"))
+        assert caught.popen.wait(30) == 0
+        out, err = caught.stop()
+        assert out.startswith("caught invalid command-line parameters: ~p: YAML aliases"), out + err
     finally:
         master.stop()

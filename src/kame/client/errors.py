@@ -15,6 +15,12 @@ class ROSInitException(ROSException):
     """Exception for errors initializing ROS state."""
 
 
+class InvalidCommandLineParams(ROSInitException):
+    """A `_p:=value` argument that is not YAML (or an alias bomb): rospy's ROSInitException,
+    which a program may catch; left uncaught it is one line on stderr, not a traceback
+    (kame.client.process installs the hook)."""
+
+
 class ROSInterruptException(ROSException, KeyboardInterrupt):
     """Raised when a wait is interrupted by shutdown (Ctrl-C, rospy.signal_shutdown)."""
 

@@ -7,13 +7,14 @@ import signal
 import sys
 import threading
 import time
+from types import TracebackType
 from typing import Any
 
 from kame import environ, names
 from kame.client import clock, core
 from kame.client import log as _log
 from kame.client.core import spin as spin  # rospy.spin: the services' spin() uses it too, so it lives in core
-from kame.client.errors import ROSException, ROSInitException, ROSInterruptException
+from kame.client.errors import InvalidCommandLineParams, ROSException, ROSInitException, ROSInterruptException
 from kame.console import roscpp_colour, roscpp_line
 from kame.net.signal_wake import SignalSafeEvent
 from kame.node.config import node_config
@@ -97,9 +98,10 @@ def _install_signal_handlers() -> None:
 
 def _command_line_params(texts: dict[str, str]) -> dict[str, Any]:
     """The `_p:=value` arguments' values, loaded before the node registers. A value that is not
-    YAML, or that an alias bomb would blow up, ends the program with one line on stderr, as a bad
-    command-line option does: rospy raises ROSInitException("invalid command-line parameters"),
-    whose traceback says nothing more than its message."""
+    YAML, or that an alias bomb would blow up, raises rospy's ROSInitException("invalid
+    command-line parameters: ..."), which a program may catch; uncaught, it ends the program with
+    that one line on stderr (exit 1), as a bad command-line option does, since its traceback
+    says nothing more than its message."""
     if not texts:  # the usual case: no YAML parser loaded (tests/rospy/test_import_footprint.py)
         return {}
     import yaml
@@ -112,8 +114,23 @@ def _command_line_params(texts: dict[str, str]) -> dict[str, Any]:
             values[key] = param_yaml.safe_load(text) if text else ""
         except (yaml.YAMLError, param_yaml.ParamValueError) as exc:
             problem = " ".join(str(exc).split())
-            raise SystemExit(f"[ERROR] invalid command-line parameters: {key}: {problem}") from None
+            _print_uncaught_as_one_line()
+            raise InvalidCommandLineParams(f"invalid command-line parameters: {key}: {problem}") from None
     return values
+
+
+def _print_uncaught_as_one_line() -> None:
+    """sys.excepthook prints an uncaught InvalidCommandLineParams as `[ERROR] <message>`; every
+    other exception goes to the hook there was."""
+    previous = sys.excepthook
+
+    def hook(kind: type[BaseException], value: BaseException, tb: TracebackType | None) -> None:
+        if isinstance(value, InvalidCommandLineParams):
+            print(f"[ERROR] {value}", file=sys.stderr)
+        else:
+            previous(kind, value, tb)
+
+    sys.excepthook = hook
 
 
 def init_node(name: str, argv: list[str] | None = None, anonymous: bool = False, log_level: int | None = None,
