@@ -52,6 +52,7 @@ LAYERS: dict[str, int] = {
     "kame.turtlesim": 1,  # the world: no ROS, no GUI, no clock
     "kame.stage": 1,  # the 2-D robot world and map_server's map files: no ROS, no clock
     "kame.nav": 1,  # the navigation stack's algorithms (amcl's filter, costmaps, planners, SLAM): no ROS, no clock
+    "kame.gazebo": 1,  # the 3-D simulator's world on MuJoCo (SDF, URDF, sensors, camera renders): no ROS, no clock
     # L2 I/O
     "kame.net": 2,
     "kame.bag.reader": 2,  # bag file I/O

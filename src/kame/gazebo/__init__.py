@@ -1,0 +1,16 @@
+"""Gazebo's simulator core on MuJoCo: SDF and URDF to a running 3-D world, its sensors, no ROS.
+
+A pure layer (no ROS, no clock, no threads, no sockets; MuJoCo and numpy compute): the gazebo_ros
+node steps a `World` and publishes what it reads. `World` (kame.gazebo.world) is the API;
+`Resources` says where model://, package:// and file:// lead; every refusal is a `GazeboError`.
+Shipped models (ground_plane, sun, box, cylinder, sphere) are in kame/gazebo/models, searched
+after GAZEBO_MODEL_PATH.
+"""
+
+from kame.gazebo.errors import GazeboError
+from kame.gazebo.poses import Pose
+from kame.gazebo.resources import SHIPPED_MODELS, Resources
+from kame.gazebo.world import JointState, SensorInfo, State, VisualShape, World
+
+__all__ = ["SHIPPED_MODELS", "GazeboError", "JointState", "Pose", "Resources", "SensorInfo", "State", "VisualShape",
+           "World"]
