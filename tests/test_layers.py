@@ -141,6 +141,8 @@ LAYERS: dict[str, int] = {
     "kame.stage.teleop": 4,
     "kame.gazebo_ros": 4,  # gazebo_ros on kame: the /gazebo node, its plugins, spawn_model
     "kame.gazebo_ros.command_line": 1,  # gzserver's options, parsed
+    "kame.gazebo_ros.relative": 1,  # poses and twists relative to another entity
+    "kame.gazebo_ros.plugins.parameters": 1,  # a plugin's <plugin> parameters, read as gazebo_ros reads them
     "kame.nav.amcl_node": 4,  # amcl on kame.client and kame.tf_ros
     "kame.nav.move_base_node": 4,
     "kame.nav.costmap_ros": 4,  # move_base's costmaps on kame.client and kame.tf_ros

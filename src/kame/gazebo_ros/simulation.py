@@ -1,0 +1,130 @@
+"""The running world of gzserver: kame.gazebo's World, the lock every ROS callback takes to touch
+it, and the thread that steps it (owned here: `start` makes it, `stop` ends and joins it).
+
+Pacing: each step is max_step_size of simulated time; with a real_time_factor f > 0 the thread
+waits until f x wall time has caught up (a late step is not made up for by a burst), with 0 it
+steps as fast as it can. A paused world waits on its condition until unpause, stop, or a
+request to step. After each step the listeners run, in order, with the world locked: the
+publishers and plugins. What the World put right (a diverging model reset) is logged as a warning.
+"""
+
+from __future__ import annotations
+
+import math
+import threading
+import time
+from collections.abc import Callable
+
+from kame.gazebo.world import World
+
+StepListener = Callable[[float], None]  # called with the simulated time after each step
+
+
+class Simulation:
+    def __init__(self, world: World, paused: bool, warn: Callable[[str], None], seed: int = 0,
+                 iterations: int | None = None, finished: Callable[[], None] | None = None) -> None:
+        self.world = world
+        self.seed = seed
+        self.lock = threading.RLock()
+        self._changed = threading.Condition(self.lock)
+        self._paused = paused
+        self._stopping = False
+        self._steps_asked = 0
+        self._warn = warn
+        self._iterations_left = iterations
+        self._finished = finished
+        self._listeners: list[StepListener] = []
+        self._thread: threading.Thread | None = None
+    # ------------------------------------------------------------------ control
+
+    @property
+    def paused(self) -> bool:
+        return self._paused
+
+    def set_paused(self, paused: bool) -> None:
+        with self._changed:
+            self._paused = paused
+            self._changed.notify_all()
+
+    def step_once(self, steps: int = 1) -> None:
+        """Step a paused world `steps` times (Gazebo's step button)."""
+        with self._changed:
+            self._steps_asked += steps
+            self._changed.notify_all()
+
+    def add_listener(self, listener: StepListener) -> None:
+        with self.lock:
+            self._listeners.append(listener)
+
+    def remove_listener(self, listener: StepListener) -> None:
+        with self.lock:
+            if listener in self._listeners:
+                self._listeners.remove(listener)
+
+    def start(self) -> None:
+        self._thread = threading.Thread(target=self._run, name="gzserver-physics", daemon=True)
+        self._thread.start()
+
+    def stop(self) -> None:
+        with self._changed:
+            self._stopping = True
+            self._changed.notify_all()
+        if self._thread is not None and self._thread is not threading.current_thread():
+            self._thread.join()
+
+    # ------------------------------------------------------------------ stepping
+
+    def report_warnings(self) -> None:
+        """Log what the World left out or put right since the last call; with the lock held."""
+        for warning in self.world.take_warnings():
+            self._warn(warning)
+
+    def step(self) -> float:
+        """One step and its listeners; the world's time after it. The caller holds no lock."""
+        with self.lock:
+            self.world.step()
+            self.report_warnings()
+            now = self.world.sim_time
+            for listener in list(self._listeners):
+                listener(now)
+        return now
+
+    def _wait_while_paused(self) -> bool:
+        """False once stopping."""
+        with self._changed:
+            while not self._stopping and self._paused and self._steps_asked == 0:
+                self._changed.wait()
+            if self._steps_asked:
+                self._steps_asked -= 1
+            return not self._stopping
+
+    def _pace(self, started_wall: float, started_sim: float, now: float) -> tuple[float, float]:
+        """Wait until wall time matches the simulated time at the real-time factor; the new
+        reference (wall, sim) when the world ran late or was paused."""
+        factor = self.world.physics.real_time_factor
+        if not (factor > 0 and math.isfinite(factor)):
+            return started_wall, started_sim
+        due = started_wall + (now - started_sim) / factor
+        delay = due - time.monotonic()
+        if delay < -0.1:  # late (or just unpaused): take now as the new start, no burst
+            return time.monotonic(), now
+        if delay > 0:
+            with self._changed:
+                self._changed.wait_for(lambda: self._stopping or self._paused, timeout=delay)
+        return started_wall, started_sim
+
+    def _run(self) -> None:
+        wall, sim = time.monotonic(), self.world.sim_time
+        while self._wait_while_paused():
+            was_paused = self._paused
+            now = self.step()
+            if self._iterations_left is not None:
+                self._iterations_left -= 1
+                if self._iterations_left <= 0:
+                    if self._finished is not None:
+                        self._finished()
+                    return
+            if was_paused:
+                wall, sim = time.monotonic(), now
+                continue
+            wall, sim = self._pace(wall, sim, now)
