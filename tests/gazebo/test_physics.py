@@ -4,10 +4,11 @@ stop with friction, and a two-wheeled body driven along an arc."""
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import pytest
 
-from kame.gazebo import Pose, State, World
+from kame.gazebo import State, World
 
 G = 9.8
 
@@ -43,7 +44,6 @@ def test_gravity_is_the_worlds_and_can_be_changed() -> None:
     assert world.physics.gravity == (0.0, 0.0, -1.62)
     world.step(1000)
     assert 10.0 - world.model_state("ball").pose.position[2] == pytest.approx(0.5 * 1.62, rel=0.01)
-    from dataclasses import replace
     world.physics = replace(world.physics, gravity=(0.0, 0.0, 0.0), max_step_size=0.002)
     height = world.model_state("ball").pose.position[2]
     speed = world.model_state("ball").linear[2]

@@ -163,7 +163,7 @@ def _geoms(spec: mujoco.MjSpec, body: mujoco.MjsBody, model: str, link: d.Link, 
         geom.group = COLLISION_GROUP
         geom.friction = (collision.mu, 0.005, 0.0001)
         geom.mass = 0.0
-        geom.rgba = (0.5, 0.5, 0.5, 0.0)
+        geom.rgba = (0.5, 0.5, 0.5, 1.0)  # rays skip transparent geoms; cameras hide this group instead
     for sensor in link.sensors:
         placed = sensor_object_name(model, link.name, sensor.name)
         if sensor.type in CAMERA_TYPES:
