@@ -122,7 +122,7 @@ def _joint(spec: mujoco.MjSpec, body: mujoco.MjsBody, model: str, joint: d.Joint
     added.pos = joint.pose.position
     axis = joint.pose.rotation() @ np.asarray(joint.axis.xyz)
     added.axis = axis
-    added.damping = max(joint.axis.damping, 0.0)
+    added.damping = (max(joint.axis.damping, 0.0), 0.0, 0.0)  # MuJoCo 4: linear, then higher-order terms
     added.frictionloss = max(joint.axis.friction, 0.0)
     if joint.type == "ball":
         added.limited = mujoco.mjtLimited.mjLIMITED_FALSE
@@ -137,8 +137,7 @@ def _joint(spec: mujoco.MjSpec, body: mujoco.MjsBody, model: str, joint: d.Joint
     drive.biastype = mujoco.mjtBias.mjBIAS_AFFINE
     drive.gainprm[0] = 0.0
     drive.biasprm[:3] = (0.0, 0.0, 0.0)
-    drive.forcelimited = mujoco.mjtLimited.mjLIMITED_TRUE
-    drive.forcerange = (0.0, 0.0)
+    drive.forcelimited = mujoco.mjtLimited.mjLIMITED_FALSE  # limited when a drive sets its max effort
 
 
 def _geoms(spec: mujoco.MjSpec, body: mujoco.MjsBody, model: str, link: d.Link, load_mesh: MeshLoader) -> None:
@@ -164,7 +163,7 @@ def _geoms(spec: mujoco.MjSpec, body: mujoco.MjsBody, model: str, link: d.Link, 
         geom.group = COLLISION_GROUP
         geom.friction = (collision.mu, 0.005, 0.0001)
         geom.mass = 0.0
-        geom.rgba = (0.5, 0.5, 0.5, 0.0)
+        geom.rgba = (0.5, 0.5, 0.5, 1.0)  # rays skip transparent geoms; cameras hide this group instead
     for sensor in link.sensors:
         placed = sensor_object_name(model, link.name, sensor.name)
         if sensor.type in CAMERA_TYPES:

@@ -37,6 +37,8 @@ import numpy as np
 
 from kame.gazebo import assembly
 from kame.gazebo import description as d
+from kame.gazebo import sensors as sensing
+from kame.gazebo.camera import CameraConfig, CameraFrame, Cameras
 from kame.gazebo.engine import mujoco
 from kame.gazebo.errors import GazeboError
 from kame.gazebo.meshes import MeshCache
@@ -49,6 +51,8 @@ from kame.gazebo.xmltree import Element, parse
 MAX_SPEED = 1e4  # m/s or rad/s: a body faster than this has diverged
 OVERLAP = 0.05  # metres: a spawned model's collisions deeper than this inside another's are refused
 MIN_RENDER_SIZE = (640, 480)  # MuJoCo's offscreen buffer, at least; larger cameras enlarge it
+DRIVE_STIFFNESS = 20.0  # a drive's gain: this many times its joint's inertia a step (see _set_drive)
+ONE_DEGREE = (int(mujoco.mjtJoint.mjJNT_HINGE), int(mujoco.mjtJoint.mjJNT_SLIDE))
 
 
 @dataclass(frozen=True)
@@ -120,6 +124,7 @@ class World:
         self._forces_applied = False
         self.iterations = 0
         self._generation = 0  # counts compilations: renderers made for an older model are remade
+        self._cameras = Cameras()
         self._spec = mujoco.MjSpec()
         self._spec.compiler.degree = False
         self._spec.compiler.autolimits = False
@@ -297,7 +302,7 @@ class World:
 
     def _place_root(self, body: int, pose: Pose, state: State) -> None:
         joint = self.model.body_jntadr[body]
-        if joint < 0 or self.model.jnt_type[joint] != mujoco.mjtJoint.mjJNT_FREE:
+        if joint < 0 or int(self.model.jnt_type[joint]) != int(mujoco.mjtJoint.mjJNT_FREE):
             self.model.body_pos[body] = pose.position
             self.model.body_quat[body] = pose.mj_quat()
             spec_body = self._spec.body(mujoco.mj_id2name(self.model, mujoco.mjtObj.mjOBJ_BODY, body))
@@ -315,7 +320,7 @@ class World:
     def joint_state(self, joint: str) -> JointState:
         jid = self._joint_id(joint)
         qpos, dof = self.model.jnt_qposadr[jid], self.model.jnt_dofadr[jid]
-        width = {mujoco.mjtJoint.mjJNT_BALL: (4, 3)}.get(self.model.jnt_type[jid], (1, 1))
+        width = {int(mujoco.mjtJoint.mjJNT_BALL): (4, 3)}.get(int(self.model.jnt_type[jid]), (1, 1))
         return JointState(tuple(float(v) for v in self.data.qpos[qpos:qpos + width[0]]),
                           tuple(float(v) for v in self.data.qvel[dof:dof + width[1]]))
 
@@ -332,7 +337,7 @@ class World:
         jid = mujoco.mj_name2id(self.model, mujoco.mjtObj.mjOBJ_JOINT, joint)
         if jid < 0:
             raise GazeboError(f"no joint named {joint!r} (joints are named model::joint; fixed joints have no state)")
-        if one_degree and self.model.jnt_type[jid] not in (mujoco.mjtJoint.mjJNT_HINGE, mujoco.mjtJoint.mjJNT_SLIDE):
+        if one_degree and int(self.model.jnt_type[jid]) not in ONE_DEGREE:
             raise GazeboError(f"joint {joint!r} is not a revolute, continuous or prismatic joint")
         return int(jid)
 
@@ -503,13 +508,16 @@ class World:
         self._set_drive(joint, 0.0, 0.0)
 
     def _set_drive(self, joint: str, velocity: float, max_effort: float) -> None:
-        self._joint_id(joint, one_degree=True)
+        jid = self._joint_id(joint, one_degree=True)
         actuator = mujoco.mj_name2id(self.model, mujoco.mjtObj.mjOBJ_ACTUATOR, assembly.drive_name(joint))
-        # stiff enough to hold the speed whenever the torque allows, as ODE's joint motor does; MuJoCo
-        # integrates the gain implicitly, so any gain is stable
-        gain = 1000.0 * max(max_effort, 1e-3) if max_effort > 0 else 0.0
+        # scaled by the joint's own inertia: 20x a step follows a pair of wheels' arc within 1 %
+        # (tests/gazebo/test_physics.py); a hundred times stiffer, the servo fights the soft contacts
+        # it drives through and the wheels chatter and slip, ten times softer it lags
+        inertia = float(self.model.dof_M0[self.model.jnt_dofadr[jid]])
+        gain = DRIVE_STIFFNESS * inertia / self.physics.max_step_size if max_effort > 0 else 0.0
         self.model.actuator_gainprm[actuator, 0] = gain
         self.model.actuator_biasprm[actuator, 2] = -gain
+        self.model.actuator_forcelimited[actuator] = 1
         self.model.actuator_forcerange[actuator] = (-max_effort, max_effort)
         self.data.ctrl[actuator] = velocity
 
@@ -539,6 +547,43 @@ class World:
         self._wrenches = [w for w in self._wrenches if w.end > now]
         self._efforts = [e for e in self._efforts if e.end > now]
         self._forces_applied = True
+
+    # ------------------------------------------------------------------ sensors
+
+    def sensor_pose(self, sensor: SensorInfo) -> Pose:
+        """The sensor's pose in the world."""
+        return self.link_state(sensor.link).pose * sensor.pose
+
+    def ray_scan(self, sensor: SensorInfo) -> sensing.RayScan:
+        config = sensing.RayConfig.of(sensor.config)
+        return sensing.ray_scan(self.model, self.data, self.sensor_pose(sensor), self.body_id(sensor.link), config,
+                                self.rng)
+
+    def range_reading(self, sensor: SensorInfo) -> sensing.RangeReading:
+        """A sonar's reading, or the nearest of a ray sensor's rays (gazebo_ros_range)."""
+        sonar = sensor.config.child("sonar")
+        if sonar is not None:
+            return sensing.sonar_range(self.model, self.data, self.sensor_pose(sensor), self.body_id(sensor.link),
+                                       sonar, self.rng)
+        return sensing.ray_range(self.ray_scan(sensor))
+
+    def camera_frame(self, sensor: SensorInfo, rgb: bool = True, depth: bool = False) -> CameraFrame:
+        if sensor.type not in assembly.CAMERA_TYPES:
+            raise GazeboError(f"sensor {sensor.name!r} of {sensor.link!r} is a {sensor.type} sensor, not a camera")
+        name = assembly.sensor_object_name(sensor.model, sensor.link.partition("::")[2], sensor.name)
+        return self._cameras.render(self.model, self.data, self._generation, name, CameraConfig.of(sensor.config),
+                                    rgb, depth, self.rng)
+
+    def imu_reading(self, sensor: SensorInfo) -> sensing.ImuReading:
+        name = assembly.sensor_object_name(sensor.model, sensor.link.partition("::")[2], sensor.name)
+        return sensing.imu_reading(self.model, self.data, name, sensor.config, self.rng)
+
+    def contacts(self, link: str) -> list[sensing.Contact]:
+        return sensing.contacts(self.model, self.data, self.body_id(link))
+
+    def close(self) -> None:
+        """Frees the cameras' GL contexts (the world itself holds no other resource)."""
+        self._cameras.close()
 
     # ------------------------------------------------------------------ resets and divergence
 
