@@ -185,15 +185,21 @@ class World:
         self._set_spec_physics(physics)
         self.model.opt.timestep = physics.max_step_size
         self.model.opt.gravity[:] = physics.gravity
+        mujoco.mj_forward(self.model, self.data)  # gravity's bias forces are computed before a step
 
     def _set_spec_physics(self, physics: d.Physics) -> None:
         self._spec.option.timestep = physics.max_step_size
         self._spec.option.gravity = physics.gravity
 
     def step(self, steps: int = 1) -> None:
+        """Advances `steps` steps. Each is MuJoCo's second half (forces, integration) then its first
+        (positions and velocities of the new state): the same work as mj_step, but poses, twists and
+        rays read after it are of the state reached, not the one before (every change of state here
+        ends in mj_forward, so the first half is always done)."""
         for _ in range(steps):
             self._apply_forces()
-            mujoco.mj_step(self.model, self.data)
+            mujoco.mj_step2(self.model, self.data)
+            mujoco.mj_step1(self.model, self.data)
             self.iterations += 1
             self._check_divergence()
 
