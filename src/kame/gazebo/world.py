@@ -631,7 +631,10 @@ class World:
                 self.data.qpos[start:start + positions] = self.model.qpos0[start:start + positions]
                 self.data.qvel[dof:dof + speeds] = 0.0
         self.data.qacc_warmstart[:] = 0.0
+        # the forces that drove it there would only do it again
+        self._wrenches = [w for w in self._wrenches if w.target.partition("::")[0] not in bad_models]
+        self._efforts = [e for e in self._efforts if e.target.partition("::")[0] not in bad_models]
         names = ", ".join(sorted(m or "the world" for m in bad_models))
         self._warnings.append(f"model {names} diverged at sim time {self.sim_time:.3f} s (NaN or speeds over "
-                              f"{MAX_SPEED:g}): put back where it was spawned, at rest")
+                              f"{MAX_SPEED:g}): put back where it was spawned, at rest, its applied forces cleared")
         mujoco.mj_forward(self.model, self.data)
