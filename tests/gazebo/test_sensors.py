@@ -126,7 +126,7 @@ def test_a_camera_sees_a_red_box_at_the_pixels_its_k_predicts() -> None:
         return cx + fx * -y / x, cy + fy * -(z - 0.5) / x
 
     rgb = frame.rgb.astype(int)
-    red = (rgb[:, :, 0] > 80) & (rgb[:, :, 1] < 40) & (rgb[:, :, 2] < 40)
+    red = (rgb[:, :, 0] > 100) & (rgb[:, :, 0] > 2 * rgb[:, :, 1]) & (rgb[:, :, 0] > 2 * rgb[:, :, 2])
     rows, cols = np.nonzero(red)
     assert len(rows) > 50
     # the near face (x = 2.9), lit head-on by the camera's headlight, is bright red (the right side
