@@ -198,6 +198,20 @@ def test_meshes_through_package_and_file_uris(tmp_path: Path) -> None:
     assert world.model_state("rock").pose.position[2] < 0.05  # the collision hull rests on the ground
 
 
+def test_a_collada_mesh_keeps_its_scene_transform(tmp_path: Path) -> None:
+    import trimesh
+
+    box = trimesh.creation.box((0.2, 0.4, 0.6))
+    box.apply_translation((1.0, 0.0, 0.0))
+    (tmp_path / "box.dae").write_bytes(trimesh.exchange.dae.export_collada(box))
+    world = World.from_sdf(sdf(f"""<model name="m"><static>true</static><link name="link"><visual name="v">
+      <geometry><mesh><uri>{tmp_path}/box.dae</uri><scale>2 2 2</scale></mesh></geometry></visual></link></model>"""))
+    (visual,) = world.visuals()
+    assert visual.triangles is not None and len(visual.triangles) == 36
+    assert visual.triangles.min(axis=0) == pytest.approx((1.8, -0.4, -0.6), abs=1e-5)
+    assert visual.triangles.max(axis=0) == pytest.approx((2.2, 0.4, 0.6), abs=1e-5)
+
+
 URDF = """<robot name="bot">
   <material name="blue"><color rgba="0 0 1 1"/></material>
   <link name="base_link">

@@ -168,6 +168,20 @@ def test_an_imu_at_rest_feels_gravity_upward_and_reads_its_heading() -> None:
     assert reading.orientation == pytest.approx((0.0, 0.0, math.sin(0.25), math.cos(0.25)), abs=1e-3)
 
 
+def test_imu_noise_per_axis_has_its_mean_and_stddev() -> None:
+    noise = "".join(f"<{axis}><noise type='gaussian'><mean>0.1</mean><stddev>0.05</stddev></noise></{axis}>"
+                    for axis in "xyz")
+    world = world_with("<include><uri>model://ground_plane</uri></include>", IMU.replace(
+        "<update_rate>100</update_rate>", f"<update_rate>100</update_rate><imu><angular_velocity>{noise}"
+                                          "</angular_velocity></imu>"))
+    world.step(500)
+    sensor = only_sensor(world, "imu")
+    readings = np.array([world.imu_reading(sensor).angular_velocity for _ in range(2000)])
+    assert readings.mean(axis=0) == pytest.approx((0.1, 0.1, 0.1), abs=0.005)
+    assert readings.std(axis=0) == pytest.approx((0.05, 0.05, 0.05), abs=0.005)
+    assert world.imu_reading(sensor).linear_acceleration == pytest.approx((0.0, 0.0, 9.8), abs=0.02)  # no noise
+
+
 def test_a_bumper_reports_its_links_contacts_and_the_force() -> None:
     world = world_with("<include><uri>model://ground_plane</uri></include>", IMU)
     world.step(500)
