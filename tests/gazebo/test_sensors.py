@@ -126,7 +126,7 @@ def test_a_camera_sees_a_red_box_at_the_pixels_its_k_predicts() -> None:
         return cx + fx * -y / x, cy + fy * -(z - 0.5) / x
 
     rgb = frame.rgb.astype(int)
-    red = (rgb[:, :, 0] > 80) & (rgb[:, :, 1] < 40) & (rgb[:, :, 2] < 40)
+    red = (rgb[:, :, 0] > 100) & (rgb[:, :, 0] > 2 * rgb[:, :, 1]) & (rgb[:, :, 0] > 2 * rgb[:, :, 2])
     rows, cols = np.nonzero(red)
     assert len(rows) > 50
     # the near face (x = 2.9), lit head-on by the camera's headlight, is bright red (the right side
@@ -166,6 +166,20 @@ def test_an_imu_at_rest_feels_gravity_upward_and_reads_its_heading() -> None:
     assert reading.linear_acceleration == pytest.approx((0.0, 0.0, 9.8), abs=0.02)
     assert reading.angular_velocity == pytest.approx((0.0, 0.0, 0.0), abs=1e-3)
     assert reading.orientation == pytest.approx((0.0, 0.0, math.sin(0.25), math.cos(0.25)), abs=1e-3)
+
+
+def test_imu_noise_per_axis_has_its_mean_and_stddev() -> None:
+    noise = "".join(f"<{axis}><noise type='gaussian'><mean>0.1</mean><stddev>0.05</stddev></noise></{axis}>"
+                    for axis in "xyz")
+    world = world_with("<include><uri>model://ground_plane</uri></include>", IMU.replace(
+        "<update_rate>100</update_rate>", f"<update_rate>100</update_rate><imu><angular_velocity>{noise}"
+                                          "</angular_velocity></imu>"))
+    world.step(500)
+    sensor = only_sensor(world, "imu")
+    readings = np.array([world.imu_reading(sensor).angular_velocity for _ in range(2000)])
+    assert readings.mean(axis=0) == pytest.approx((0.1, 0.1, 0.1), abs=0.005)
+    assert readings.std(axis=0) == pytest.approx((0.05, 0.05, 0.05), abs=0.005)
+    assert world.imu_reading(sensor).linear_acceleration == pytest.approx((0.0, 0.0, 9.8), abs=0.02)  # no noise
 
 
 def test_a_bumper_reports_its_links_contacts_and_the_force() -> None:

@@ -7,10 +7,11 @@ Shipped models (ground_plane, sun, box, cylinder, sphere) are in kame/gazebo/mod
 after GAZEBO_MODEL_PATH.
 """
 
+from kame.gazebo.description import Physics
 from kame.gazebo.errors import GazeboError
 from kame.gazebo.poses import Pose
 from kame.gazebo.resources import SHIPPED_MODELS, Resources
 from kame.gazebo.world import JointState, SensorInfo, State, VisualShape, World
 
-__all__ = ["SHIPPED_MODELS", "GazeboError", "JointState", "Pose", "Resources", "SensorInfo", "State", "VisualShape",
-           "World"]
+__all__ = ["SHIPPED_MODELS", "GazeboError", "JointState", "Physics", "Pose", "Resources", "SensorInfo", "State",
+           "VisualShape", "World"]

@@ -2,10 +2,12 @@
 images in metres along the optical axis (as Gazebo's depth cameras give them), and the pinhole
 K matrix a CameraInfo carries.
 
-Cameras draw visuals only (collision shapes are MuJoCo geoms in another group). One MuJoCo
-Renderer (one GL context) per image size, remade when the world's model is rebuilt; `close()`
-frees them. A camera's near and far clip and field of view are set on the model just before it
-renders, since MuJoCo keeps one clip range for the whole model.
+Cameras draw visuals only (collision shapes are MuJoCo geoms in another group). One GL context
+per image size, remade when the world's model is rebuilt; `close()` frees them. Each frame is one
+render whose colour and depth buffers are both read (mujoco.Renderer renders twice for the two),
+without multisampling: on Mesa's software renderer 4x multisampling made a 640x480 frame 8 times
+slower (bench/gazebo_bench.py). A camera's near and far clip and field of view are set on the
+model just before it renders, since MuJoCo keeps one clip range for the whole model.
 """
 
 from __future__ import annotations
@@ -77,16 +79,38 @@ class CameraFrame:
     config: CameraConfig
 
 
+class _Offscreen:
+    """One GL context with MuJoCo's offscreen buffer, a scene and the frame's buffers, of one size."""
+
+    def __init__(self, model: mujoco.MjModel, width: int, height: int) -> None:
+        self.context = mujoco.GLContext(width, height)
+        self.context.make_current()
+        self.renderer = mujoco.MjrContext(model, mujoco.mjtFontScale.mjFONTSCALE_150.value)
+        mujoco.mjr_setBuffer(mujoco.mjtFramebuffer.mjFB_OFFSCREEN.value, self.renderer)
+        self.renderer.readDepthMap = mujoco.mjtDepthMap.mjDEPTH_ZEROFAR
+        self.scene = mujoco.MjvScene(model, maxgeom=10000)
+        self.rect = mujoco.MjrRect(0, 0, width, height)
+        self.rgb = np.empty((height, width, 3), dtype=np.uint8)
+        self.depth = np.empty((height, width), dtype=np.float32)
+
+    def free(self) -> None:
+        self.context.make_current()
+        self.renderer.free()
+        self.context.free()
+
+
 class Cameras:
     """The GL renderers of one world's cameras."""
 
     def __init__(self) -> None:
-        self._renderers: dict[tuple[int, int], mujoco.Renderer] = {}
+        self._offscreen: dict[tuple[int, int], _Offscreen] = {}
         self._generation = -1
         self._option = mujoco.MjvOption()
         self._option.geomgroup[:] = 0
         self._option.geomgroup[VISUAL_GROUP] = 1
         self._option.sitegroup[:] = 0
+        self._camera = mujoco.MjvCamera()
+        self._camera.type = mujoco.mjtCamera.mjCAMERA_FIXED
 
     def render(self, model: mujoco.MjModel, data: mujoco.MjData, generation: int, camera: str, config: CameraConfig,
                rgb: bool, depth: bool, rng: np.random.Generator) -> CameraFrame:
@@ -97,28 +121,39 @@ class Cameras:
             self.close()
             self._generation = generation
         size = (config.width, config.height)
-        if size not in self._renderers:
-            self._renderers[size] = mujoco.Renderer(model, config.height, config.width)
-        renderer = self._renderers[size]
+        if size not in self._offscreen:
+            self._offscreen[size] = _Offscreen(model, *size)
+        offscreen = self._offscreen[size]
         model.cam_fovy[camera_id] = math.degrees(config.vertical_fov())
         model.vis.map.znear = config.near / model.stat.extent
         model.vis.map.zfar = config.far / model.stat.extent
-        renderer.update_scene(data, camera_id, self._option)
-        image = renderer.render().copy() if rgb else None
+        self._camera.fixedcamid = camera_id
+        offscreen.context.make_current()
+        mujoco.mjv_updateScene(model, data, self._option, None, self._camera, mujoco.mjtCatBit.mjCAT_ALL.value,
+                               offscreen.scene)
+        mujoco.mjr_render(offscreen.rect, offscreen.scene, offscreen.renderer)
+        mujoco.mjr_readPixels(offscreen.rgb if rgb else None, offscreen.depth if depth else None, offscreen.rect,
+                              offscreen.renderer)
+        image = np.flipud(offscreen.rgb).copy() if rgb else None  # GL's rows run bottom up
         if image is not None and config.noise_stddev > 0:
             noisy = image + rng.normal(config.noise_mean * 255, config.noise_stddev * 255, image.shape)
             image = np.clip(noisy, 0, 255).astype(np.uint8)
-        distances = None
-        if depth:
-            renderer.enable_depth_rendering()
-            try:
-                distances = renderer.render().astype(np.float32)
-            finally:
-                renderer.disable_depth_rendering()
-            distances[distances >= config.far * 0.999] = np.inf
+        distances = _metres(np.flipud(offscreen.depth), config.near, config.far) if depth else None
         return CameraFrame(image, distances, config)
 
     def close(self) -> None:
-        for renderer in self._renderers.values():
-            renderer.close()
-        self._renderers.clear()
+        for offscreen in self._offscreen.values():
+            offscreen.free()
+        self._offscreen.clear()
+
+
+def _metres(buffer: np.ndarray, near: float, far: float) -> np.ndarray:
+    """MuJoCo's reversed-Z depth buffer (1 at the near clip, 0 at the far one) as distances along the
+    optical axis, +inf at the far clip; the same projection as mujoco.Renderer undoes, in float32 as
+    glFrustum builds it and float64 to invert it."""
+    znear, zfar = np.float32(near), np.float32(far)
+    c_coef = np.float32(-0.5) * (-(zfar + znear) / (zfar - znear)) - np.float32(0.5)
+    d_coef = np.float32(-0.5) * (-(np.float32(2) * zfar * znear) / (zfar - znear))
+    distances = (float(d_coef) / (buffer.astype(np.float64) + float(c_coef))).astype(np.float32)
+    distances[distances >= far * 0.999] = np.inf
+    return distances

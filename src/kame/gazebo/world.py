@@ -52,6 +52,7 @@ MAX_SPEED = 1e4  # m/s or rad/s: a body faster than this has diverged
 OVERLAP = 0.05  # metres: a spawned model's collisions deeper than this inside another's are refused
 MIN_RENDER_SIZE = (640, 480)  # MuJoCo's offscreen buffer, at least; larger cameras enlarge it
 DRIVE_STIFFNESS = 20.0  # a drive's gain: this many times its joint's inertia a step (see _set_drive)
+BAD_QPOS = int(mujoco.mjtWarning.mjWARN_BADQPOS)
 ONE_DEGREE = (int(mujoco.mjtJoint.mjJNT_HINGE), int(mujoco.mjtJoint.mjJNT_SLIDE))
 
 
@@ -122,6 +123,7 @@ class World:
         self._efforts: list[_TimedForce] = []
         self._drives: dict[str, tuple[float, float]] = {}
         self._forces_applied = False
+        self._stale = False  # the bodies' poses lag the state after a step, until _current
         self.iterations = 0
         self._generation = 0  # counts compilations: renderers made for an older model are remade
         self._cameras = Cameras()
@@ -134,6 +136,7 @@ class World:
         self._spec.option.integrator = mujoco.mjtIntegrator.mjINT_IMPLICITFAST
         self._spec.option.disableflags |= mujoco.mjtDisableBit.mjDSBL_AUTORESET  # divergence is ours to handle
         self._spec.visual.global_.offwidth, self._spec.visual.global_.offheight = MIN_RENDER_SIZE
+        self._spec.visual.quality.offsamples = 0  # multisampling costs 8x on Mesa's software renderer (camera.py)
         self._set_spec_physics(description.physics)
         self._physics = description.physics
         for light in description.lights:
@@ -142,7 +145,7 @@ class World:
             self._add_to_spec(model)
         self.model, self.data = self._compile(description.source)
         self._index()
-        mujoco.mj_forward(self.model, self.data)
+        self._forward()
 
     # ------------------------------------------------------------------ making worlds
 
@@ -185,17 +188,41 @@ class World:
         self._set_spec_physics(physics)
         self.model.opt.timestep = physics.max_step_size
         self.model.opt.gravity[:] = physics.gravity
+        self._forward()  # gravity's bias forces are computed before a step
 
     def _set_spec_physics(self, physics: d.Physics) -> None:
         self._spec.option.timestep = physics.max_step_size
         self._spec.option.gravity = physics.gravity
 
     def step(self, steps: int = 1) -> None:
-        for _ in range(steps):
-            self._apply_forces()
-            mujoco.mj_step(self.model, self.data)
-            self.iterations += 1
+        """Advances `steps` steps (in one call into MuJoCo when no timed force may start or end
+        between them). MuJoCo's step leaves the bodies' poses of the state it started from; they are
+        brought up to date when something reads them (`_current`), not after every step."""
+        if self._wrenches or self._efforts or self._forces_applied:
+            for _ in range(steps):
+                self._apply_forces()
+                mujoco.mj_step(self.model, self.data)
+                self.iterations += 1
+                self._check_divergence()
+        elif steps > 0:
+            mujoco.mj_step(self.model, self.data, steps)
+            self.iterations += steps
             self._check_divergence()
+        self._stale = True
+
+    def _forward(self) -> None:
+        """Everything MuJoCo derives from the state (after the state or the model changed)."""
+        mujoco.mj_forward(self.model, self.data)
+        self._stale = False
+
+    def _current(self) -> None:
+        """Poses, twists and cameras of the state reached (the kinematic half of mj_forward)."""
+        if self._stale:
+            mujoco.mj_kinematics(self.model, self.data)
+            mujoco.mj_comPos(self.model, self.data)
+            mujoco.mj_camlight(self.model, self.data)
+            mujoco.mj_comVel(self.model, self.data)
+            self._stale = False
 
     # ------------------------------------------------------------------ contents
 
@@ -256,6 +283,7 @@ class World:
 
     def link_state(self, link: str) -> State:
         body = self.body_id(link)
+        self._current()
         twist = np.zeros(6)
         mujoco.mj_objectVelocity(self.model, self.data, mujoco.mjtObj.mjOBJ_BODY, body, twist, 0)
         return State(Pose.from_mj(self.data.xpos[body], self.data.xquat[body]),
@@ -287,7 +315,7 @@ class World:
             self._place_root(body, move * current, state)
         if model.static:
             self._models[name] = replace(model, pose=target)
-        mujoco.mj_forward(self.model, self.data)
+        self._forward()
 
     def set_link_state(self, link: str, state: State) -> None:
         """Moves a link that hangs on nothing but the world (a free or static link); a link on a joint
@@ -298,7 +326,7 @@ class World:
             raise GazeboError(f"link {link!r} hangs on a joint of its model: set the model's state or the joint's "
                               f"position instead")
         self._place_root(body, normalized_pose(state.pose), state)
-        mujoco.mj_forward(self.model, self.data)
+        self._forward()
 
     def _place_root(self, body: int, pose: Pose, state: State) -> None:
         joint = self.model.body_jntadr[body]
@@ -331,7 +359,7 @@ class World:
             jid = self._joint_id(f"{model}::{name}")
             self.data.qpos[self.model.jnt_qposadr[jid]] = position
             self.data.qvel[self.model.jnt_dofadr[jid]] = 0.0
-        mujoco.mj_forward(self.model, self.data)
+        self._forward()
 
     def _joint_id(self, joint: str, one_degree: bool = False) -> int:
         jid = mujoco.mj_name2id(self.model, mujoco.mjtObj.mjOBJ_JOINT, joint)
@@ -374,7 +402,7 @@ class World:
             self._models.pop(model.name, None)
             raise
         self._index()
-        mujoco.mj_forward(self.model, self.data)
+        self._forward()
         inside = self._overlapped_by(model.name)
         if inside:
             self.delete_model(model.name)
@@ -392,7 +420,7 @@ class World:
         self._drives = {j: v for j, v in self._drives.items() if not j.startswith(prefix)}
         self.model, self.data = self._recompile(name)
         self._index()
-        mujoco.mj_forward(self.model, self.data)
+        self._forward()
 
     def _add_to_spec(self, model: d.Model) -> None:
         self._models[model.name] = model
@@ -529,6 +557,7 @@ class World:
                 self._forces_applied = False
             return
         now = self.sim_time
+        self._current()  # a wrench's point is placed on the body where it is now
         self.data.xfrc_applied[:] = 0.0
         self.data.qfrc_applied[:] = 0.0
         for wrench in self._wrenches:
@@ -555,6 +584,7 @@ class World:
         return self.link_state(sensor.link).pose * sensor.pose
 
     def ray_scan(self, sensor: SensorInfo) -> sensing.RayScan:
+        self._current()
         config = sensing.RayConfig.of(sensor.config)
         return sensing.ray_scan(self.model, self.data, self.sensor_pose(sensor), self.body_id(sensor.link), config,
                                 self.rng)
@@ -562,6 +592,7 @@ class World:
     def range_reading(self, sensor: SensorInfo) -> sensing.RangeReading:
         """A sonar's reading, or the nearest of a ray sensor's rays (gazebo_ros_range)."""
         sonar = sensor.config.child("sonar")
+        self._current()
         if sonar is not None:
             return sensing.sonar_range(self.model, self.data, self.sensor_pose(sensor), self.body_id(sensor.link),
                                        sonar, self.rng)
@@ -571,6 +602,7 @@ class World:
         if sensor.type not in assembly.CAMERA_TYPES:
             raise GazeboError(f"sensor {sensor.name!r} of {sensor.link!r} is a {sensor.type} sensor, not a camera")
         name = assembly.sensor_object_name(sensor.model, sensor.link.partition("::")[2], sensor.name)
+        self._current()
         return self._cameras.render(self.model, self.data, self._generation, name, CameraConfig.of(sensor.config),
                                     rgb, depth, self.rng)
 
@@ -604,13 +636,15 @@ class World:
         self._efforts.clear()
         for joint, (velocity, max_effort) in self._drives.items():
             self._set_drive(joint, velocity, max_effort)
-        mujoco.mj_forward(self.model, self.data)
+        self._forward()
 
     def _check_divergence(self) -> None:
         qvel = self.data.qvel
-        if np.isfinite(qvel).all() and np.isfinite(self.data.qpos).all() and (
-                not len(qvel) or float(np.abs(qvel).max()) < MAX_SPEED):
+        # one dot product a step: NaN and infinities make it NaN, a runaway speed makes it large; a
+        # NaN position that MuJoCo met, it counts among its warnings
+        if float(qvel @ qvel) < MAX_SPEED * MAX_SPEED and not self.data.warning[BAD_QPOS].number:
             return
+        self.data.warning[BAD_QPOS].number = 0
         bad_dofs = np.flatnonzero(~np.isfinite(qvel) | (np.abs(np.nan_to_num(qvel, nan=np.inf)) >= MAX_SPEED))
         bad_models = {self._body_model[self.model.dof_bodyid[dof]] for dof in bad_dofs}
         bad_qpos = np.flatnonzero(~np.isfinite(self.data.qpos))
@@ -625,7 +659,10 @@ class World:
                 self.data.qpos[start:start + positions] = self.model.qpos0[start:start + positions]
                 self.data.qvel[dof:dof + speeds] = 0.0
         self.data.qacc_warmstart[:] = 0.0
+        # the forces that drove it there would only do it again
+        self._wrenches = [w for w in self._wrenches if w.target.partition("::")[0] not in bad_models]
+        self._efforts = [e for e in self._efforts if e.target.partition("::")[0] not in bad_models]
         names = ", ".join(sorted(m or "the world" for m in bad_models))
         self._warnings.append(f"model {names} diverged at sim time {self.sim_time:.3f} s (NaN or speeds over "
-                              f"{MAX_SPEED:g}): put back where it was spawned, at rest")
-        mujoco.mj_forward(self.model, self.data)
+                              f"{MAX_SPEED:g}): put back where it was spawned, at rest, its applied forces cleared")
+        self._forward()
