@@ -146,3 +146,18 @@ def test_a_drive_is_limited_by_its_torque() -> None:
     world.drive_joint("robot::right_wheel_joint", 100.0, 0.001)
     world.step(500)
     assert world.joint_state("robot::left_wheel_joint").velocity[0] < 10.0
+
+
+def test_casters_of_mu_0_touching_the_ground_drive_the_arc_without_diverging() -> None:
+    # the casters of a URDF robot sit on the ground with mu 0 (<gazebo reference><mu1>0</mu1>): a
+    # degenerate friction cone in MuJoCo, which diverged within half a second of driving
+    radius, separation = 0.05, 0.3
+    wheeler = two_wheeler(radius, separation).replace("-0.038 0 0 0", "-0.04 0 0 0")
+    world = World.from_sdf(sdf_world(GROUND + wheeler))
+    world.step(300)
+    world.drive_joint("robot::left_wheel_joint", 4.0, 5.0)
+    world.drive_joint("robot::right_wheel_joint", 6.0, 5.0)
+    world.step(3000)
+    assert world.take_warnings() == []
+    end = world.model_state("robot").pose
+    assert end.rpy()[2] == pytest.approx(radius * 2.0 / separation * 2.8, rel=0.05)  # turned as driven

@@ -162,6 +162,8 @@ def _geoms(spec: mujoco.MjSpec, body: mujoco.MjsBody, model: str, link: d.Link, 
         geom = _geom(spec, body, collision.geometry, collision.pose, unique(f"{prefix}::{collision.name}"), load_mesh)
         geom.group = COLLISION_GROUP
         geom.friction = (collision.mu, 0.005, 0.0001)
+        if collision.mu <= 0:  # frictionless (a caster's mu 0): MuJoCo's friction cone of mu 0 is degenerate and
+            geom.condim = 1  # its solver diverges on it; a normal-only contact is what mu 0 means
         geom.mass = 0.0
         geom.rgba = (0.5, 0.5, 0.5, 1.0)  # rays skip transparent geoms; cameras hide this group instead
     for sensor in link.sensors:
