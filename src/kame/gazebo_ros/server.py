@@ -128,6 +128,7 @@ def run(options: command_line.ServerOptions) -> int:
             host.stop_all()
             if api is not None:
                 api.close()
+            world.close()
     return 0
 
 

@@ -9,7 +9,7 @@ from typing import Any
 
 from kame.client import topics
 from kame.gazebo import description as d
-from kame.gazebo_ros.plugins.parameters import GAZEBO_ROS_MISSING, Parameters
+from kame.gazebo_ros.plugins.parameters import GAZEBO_ROS_MISSING, Parameters, PluginParameterError
 from kame.gazebo_ros.simulation import Simulation
 
 
@@ -78,6 +78,15 @@ class PluginContext:
         if link is None:
             return None
         return next((s for s in link.sensors if s.name == self.plugin.sensor), None)
+
+    def sensor_info(self) -> Any:
+        """The World's SensorInfo of the plugin's sensor, which its sensor readings take."""
+        link = self.scoped(self.plugin.link)
+        found = next((s for s in self.world.sensors() if s.link == link and s.name == self.plugin.sensor), None)
+        if found is None:
+            raise PluginParameterError(f"plugin [{self.plugin.name}] names sensor [{self.plugin.sensor}] of "
+                                       f"[{link}], which the world does not have")
+        return found
 
     def publisher(self, namespace: str, name: str, data_class: type[Any], latch: bool = False) -> topics.Publisher:
         return topics.Publisher(topic_name(namespace, name), data_class, queue_size=10, latch=latch)

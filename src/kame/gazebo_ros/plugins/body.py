@@ -104,7 +104,7 @@ class ImuSensor(GazeboPlugin):
         sensor = context.sensor()
         if sensor is None or sensor.type != "imu":
             raise PluginParameterError("imu_sensor plugin must sit in an imu sensor (<sensor type=\"imu\">)")
-        self.sensor_id = (context.scoped(context.plugin.link), sensor.name)
+        self.sensor_info = context.sensor_info()
         p = context.parameters("GazeboRosImuSensor", "GazeboRosImuSensor missing <{tag}>, defaults to {default}")
         namespace = context.namespace(p)
         topic = p.text("topicName", "imu")
@@ -120,7 +120,7 @@ class ImuSensor(GazeboPlugin):
             return
         from sensor_msgs.msg import Imu as ImuMsg
 
-        reading = self.context.world.imu_reading(*self.sensor_id)
+        reading = self.context.world.imu_reading(self.sensor_info)
         rng = self.context.world.rng
         extra = rng.normal(0.0, self.noise, 6) if self.noise > 0 else np.zeros(6)
         msg = ImuMsg()

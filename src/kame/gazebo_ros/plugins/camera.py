@@ -41,7 +41,7 @@ class Camera(GazeboPlugin):
             raise PluginParameterError(f"{type(self).__name__} plugin must sit in a camera sensor "
                                        f"(<sensor type=\"{wanted[0]}\">)")
         self.sensor = sensor
-        self.sensor_id = (context.scoped(context.plugin.link), sensor.name)
+        self.sensor_info = context.sensor_info()
         p = context.parameters("Camera", CAMERA_MISSING)
         namespace = context.namespace(p)
         camera_name = p.text("cameraName", "", quiet=True).strip("/")
@@ -103,7 +103,7 @@ class Camera(GazeboPlugin):
     def update(self, now: float) -> None:
         if not self.rate.due(now) or not self._wanted():
             return
-        frame = self.context.world.camera_frame(*self.sensor_id, rgb=True, depth=self.depth)
+        frame = self.context.world.camera_frame(self.sensor_info, rgb=True, depth=self.depth)
         config = frame.config
         encoding = ENCODINGS.get(config.format, "rgb8")
         pixels = frame.rgb

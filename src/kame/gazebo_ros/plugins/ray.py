@@ -31,12 +31,12 @@ class _RaySensorPlugin(GazeboPlugin):
             raise PluginParameterError(f"{kind} plugin must sit in a ray sensor (<sensor type=\"ray\">), "
                                        f"not in {sensor.type if sensor else 'a model'}")
         self.sensor = sensor
-        self.sensor_id = (context.scoped(context.plugin.link), sensor.name)
+        self.sensor_info = context.sensor_info()
         self.rng = context.world.rng
 
     def _scan(self) -> Any:
         """The sensor's scan now: kame.gazebo's RayScan (angles, config, ranges rows x columns)."""
-        return self.context.world.ray_scan(*self.sensor_id)
+        return self.context.world.ray_scan(self.sensor_info)
 
     def _noisy(self, ranges: np.ndarray, stddev: float) -> np.ndarray:
         if stddev <= 0:
