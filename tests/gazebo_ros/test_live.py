@@ -1,0 +1,175 @@
+"""gzserver live, as the courses run it: `roslaunch gazebo_ros empty_world.launch` (headless),
+`rosrun gazebo_ros spawn_model -urdf -param ...`, Debian's rosservice asking /gazebo/get_model_state,
+and a URDF robot's plugins: its laser against a known wall, its camera's image and CameraInfo,
+diff drive's odometry along the commanded arc; pause, unpause and reset; the unknown plugin's
+warning; bad requests answered, the server running on."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterator
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pytest
+import yaml
+
+from tests.gazebo_ros.gazebo_sim import DATA, debian_message_packages, gazebo
+from tests.support import SYSTEM_PYTHON, Proc, have_debian_ros
+from tests.turtlesim.sim import BIN, Sim, wait_until
+
+pytest.importorskip("mujoco", reason="kame[gazebo] (MuJoCo) is not installed")
+
+BOX_URDF = """<robot name="box"><link name="base_link">
+  <inertial><mass value="1"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial>
+  <collision><geometry><box size="0.2 0.2 0.2"/></geometry></collision>
+  <visual><geometry><box size="0.2 0.2 0.2"/></geometry></visual></link></robot>"""
+RED_PLATE = """<sdf version="1.6"><model name="plate"><static>true</static><link name="link">
+  <collision name="c"><geometry><box><size>0.02 0.2 0.2</size></box></geometry></collision>
+  <visual name="v"><geometry><box><size>0.02 0.2 0.2</size></box></geometry>
+  <material><script><name>Gazebo/Red</name></script></material></visual></link></model></sdf>"""
+
+
+@pytest.fixture(scope="module")
+def live(tmp_path_factory: pytest.TempPathFactory) -> Iterator[tuple[Sim, Proc]]:
+    home = tmp_path_factory.mktemp("gazebo")
+    with gazebo(home, "paused:=true", f"world_name:={DATA / 'walls.world'}") as running:
+        yield running
+
+
+def call(sim: Sim, service: str, *args: str) -> dict[str, Any]:
+    out = sim.run("rosservice", "call", service, *args, timeout=30).stdout
+    data = yaml.safe_load(out) if out.strip() else {}
+    return data if isinstance(data, dict) else {}
+
+
+def spawn(sim: Sim, *args: str) -> str:
+    result = sim.run("rosrun", "gazebo_ros", "spawn_model", *args, check=False, timeout=60)
+    return result.stdout + result.stderr
+
+
+def test_spawn_model_then_debian_rosservice_gets_its_state(live: tuple[Sim, Proc], tmp_path: Path) -> None:
+    sim, _ = live
+    (tmp_path / "box.urdf").write_text(BOX_URDF)
+    sim.run("rosparam", "set", "/box_description", "-t", str(tmp_path / "box.urdf"))
+    out = spawn(sim, "-urdf", "-param", "box_description", "-model", "box", "-x", "-1", "-z", "1")
+    assert "Spawn status: SpawnModel: Successfully spawned entity" in out
+    assert "box" in call(sim, "/gazebo/get_world_properties")["model_names"]
+    if not have_debian_ros():
+        pytest.skip("Debian's ROS 1 is not installed")
+    env = dict(sim.env, PYTHONPATH=str(debian_message_packages(tmp_path / "debian")))
+    answer = Proc([SYSTEM_PYTHON, "/usr/bin/rosservice", "call", "/gazebo/get_model_state",
+                   "{model_name: box, relative_entity_name: world}"], env)
+    out, err = answer.stop(timeout=30) if answer.popen.wait(30) is not None else ("", "")
+    state = yaml.safe_load(out)
+    assert state["success"] is True and state["status_message"] == "GetModelState: got properties", err
+    assert state["pose"]["position"] == {"x": -1.0, "y": 0.0, "z": 1.0}  # paused: where it was spawned
+    assert state["header"]["frame_id"] == "world"
+
+
+def test_pause_unpause_and_reset(live: tuple[Sim, Proc]) -> None:
+    sim, _ = live
+
+    def box_z() -> float:
+        return float(call(sim, "/gazebo/get_model_state", "box", "")["pose"]["position"]["z"])
+
+    assert call(sim, "/gazebo/get_physics_properties")["pause"] is True
+    call(sim, "/gazebo/unpause_physics")
+    wait_until(lambda: box_z() < 0.11, timeout=30, what="the box to fall onto the ground")
+    assert box_z() == pytest.approx(0.1, abs=0.005)
+    call(sim, "/gazebo/pause_physics")
+    time_paused = call(sim, "/gazebo/get_world_properties")["sim_time"]
+    assert call(sim, "/gazebo/get_world_properties")["sim_time"] == time_paused
+    call(sim, "/gazebo/reset_simulation")
+    assert call(sim, "/gazebo/get_world_properties")["sim_time"] == 0.0
+    assert box_z() == pytest.approx(1.0)
+    deleted = call(sim, "/gazebo/delete_model", "box")
+    assert deleted == {"success": True, "status_message": "DeleteModel: successfully deleted model"}
+
+
+def test_robot_plugins_laser_camera_and_unknown(live: tuple[Sim, Proc]) -> None:
+    sim, launch = live
+    out = spawn(sim, "-urdf", "-file", str(DATA / "robot.urdf"), "-model", "rover")
+    assert "Successfully spawned entity" in out
+    warnings = [line for line in launch.out + launch.err if "libgazebo_ros_control.so" in line]
+    assert len(warnings) == 1 and "kame has no libgazebo_ros_control.so" in warnings[0]
+    call(sim, "/gazebo/unpause_physics")
+    scan = sim.echo("/scan")
+    ranges = [float(r) for r in scan["ranges"]]  # rostopic prints inf, which YAML reads as text
+    assert len(ranges) == 181 and scan["header"]["frame_id"] == "laser_link"
+    # the wall's near face is at x = 2, the laser 0.1 m ahead of the robot's centre
+    assert ranges[90] == pytest.approx(1.9, abs=0.01)
+    assert ranges[60] == pytest.approx(1.9 / math.cos(math.radians(30)), abs=0.01)
+    assert ranges[0] == math.inf  # along the wall: nothing within range
+    plate = call(sim, "/gazebo/spawn_sdf_model", "plate", RED_PLATE, "", "{position: {x: 1.15, y: 0.3, z: 0.115}}", "")
+    assert plate["success"] is True, plate
+    info = sim.echo("/front_camera/camera_info")
+    assert (info["width"], info["height"], info["header"]["frame_id"]) == (160, 120, "camera_link")
+    f, cx, cy = info["K"][0], info["K"][2], info["K"][5]
+    assert f == pytest.approx(160 / (2 * math.tan(0.5)))
+    assert (cx, cy) == ((160 - 1) / 2, (120 - 1) / 2)  # the image's centre, where the renderer puts the axis
+    image = sim.run("rostopic", "echo", "-n", "1", "--noarr", "/front_camera/image_raw", timeout=20).stdout
+    assert "encoding: \"rgb8\"" in image and "height: 120" in image
+
+
+def test_red_plate_at_the_pixels_k_predicts(live: tuple[Sim, Proc]) -> None:
+    """The plate spawned in front of the camera (its centre 0.3 m left at 1 m) where K puts it."""
+    sim, _ = live
+    found: list[np.ndarray] = []
+
+    def red_pixels() -> bool:
+        out = sim.run("rostopic", "echo", "-n", "1", "/front_camera/image_raw", timeout=30).stdout
+        msg = yaml.safe_load(out.split("---")[0])
+        pixels = np.array(msg["data"], dtype=np.uint8).reshape(msg["height"], msg["width"], 3).astype(int)
+        found[:] = [(pixels[:, :, 0] > 80) & (pixels[:, :, 0] > 2 * pixels[:, :, 1])
+                    & (pixels[:, :, 0] > 2 * pixels[:, :, 2])]
+        return int(found[0].sum()) > 50
+
+    wait_until(red_pixels, timeout=30, what="an image with the red plate in it")
+    rows, columns = np.nonzero(found[0])
+    k = sim.echo("/front_camera/camera_info")["K"]
+    distance = 1.14 - 0.15  # the plate's face from the camera (at x = 0.15); its centre 0.3 m to the left
+    assert columns.mean() == pytest.approx(k[2] - k[0] * 0.3 / distance, abs=1.0)
+    assert rows.mean() == pytest.approx(k[5], abs=1.0)
+
+
+def test_diff_drive_follows_the_commanded_arc(live: tuple[Sim, Proc]) -> None:
+    sim, _ = live
+    call(sim, "/gazebo/reset_world")
+    driver = Proc([str(BIN / "rostopic"), "pub", "-r", "20", "/cmd_vel", "geometry_msgs/Twist",
+                   "{linear: {x: 0.2}, angular: {z: 0.2}}"], sim.env, cwd=sim.home)
+    sim.procs.append(driver)
+
+    def odom() -> tuple[float, float, float]:
+        pose = sim.echo("/odom")["pose"]["pose"]
+        q = pose["orientation"]
+        yaw = math.atan2(2 * (q["w"] * q["z"] + q["x"] * q["y"]), 1 - 2 * (q["y"] ** 2 + q["z"] ** 2))
+        return pose["position"]["x"], pose["position"]["y"], yaw
+
+    wait_until(lambda: odom()[2] > 0.6, timeout=60, what="the robot to turn 0.6 rad")
+    x, y, yaw = odom()
+    # a twist of 0.2 m/s and 0.2 rad/s drives a circle of 1 m about (0, 1): where the heading puts it
+    assert math.dist((x, y), (math.sin(yaw), 1 - math.cos(yaw))) < 0.05
+    driver.stop()
+
+
+def test_bad_requests_are_answered_and_the_server_runs_on(live: tuple[Sim, Proc], tmp_path: Path) -> None:
+    sim, launch = live
+    nan_state = call(sim, "/gazebo/set_model_state", "{model_state: {model_name: rover, pose: {position: {x: .nan}}}}")
+    assert nan_state["success"] is False and "finite" in nan_state["status_message"]
+    wrench = call(sim, "/gazebo/apply_body_wrench", "{body_name: 'rover::chassis', wrench: {force: {x: .inf}}}")
+    assert wrench["success"] is False
+    malformed = call(sim, "/gazebo/spawn_urdf_model", "broken", "<robot name='x'><link", "", "{}", "")
+    assert malformed["success"] is False and "not SDF or URDF" in malformed["status_message"]
+    big_box = BOX_URDF.replace("0.2 0.2 0.2", "0.6 0.6 0.6")
+    inside = call(sim, "/gazebo/spawn_urdf_model", "in_wall", big_box, "", "{position: {x: 2.1, z: 0.5}}", "")
+    assert inside["success"] is False and "inside model 'wall'" in inside["status_message"]
+    mesh = BOX_URDF.replace('<box size="0.2 0.2 0.2"/>', '<mesh filename="file:///nowhere/missing.stl"/>')
+    missing = call(sim, "/gazebo/spawn_urdf_model", "meshy", mesh, "", "{position: {z: 3}}", "")
+    assert missing["success"] is False and "missing.stl" in missing["status_message"]
+    unknown = call(sim, "/gazebo/get_model_state", "nobody", "")
+    assert unknown == {**unknown, "success": False, "status_message": "GetModelState: model does not exist"}
+    assert launch.popen.poll() is None
+    assert "rover" in call(sim, "/gazebo/get_world_properties")["model_names"]
+    assert not any("Traceback" in line for line in launch.out + launch.err)
