@@ -203,7 +203,7 @@ def test_a_collada_mesh_keeps_its_scene_transform(tmp_path: Path) -> None:
 
     box = trimesh.creation.box((0.2, 0.4, 0.6))
     box.apply_translation((1.0, 0.0, 0.0))
-    (tmp_path / "box.dae").write_bytes(trimesh.exchange.dae.export_collada(box))
+    box.export(str(tmp_path / "box.dae"))
     world = World.from_sdf(sdf(f"""<model name="m"><static>true</static><link name="link"><visual name="v">
       <geometry><mesh><uri>{tmp_path}/box.dae</uri><scale>2 2 2</scale></mesh></geometry></visual></link></model>"""))
     (visual,) = world.visuals()
