@@ -454,6 +454,8 @@ class World:
             self._spec.delete(actuator)
         for sensor in [s for s in self._spec.sensors if s.name.startswith(prefix)]:
             self._spec.delete(sensor)
+        for exclusion in [e for e in self._spec.excludes if e.name.startswith(prefix)]:
+            self._spec.delete(exclusion)
         for body in [b for b in self._spec.worldbody.bodies if b.name.startswith(prefix)]:
             self._spec.delete(body)
         for mesh in [m for m in self._spec.meshes if m.name.startswith(prefix)]:
