@@ -125,9 +125,11 @@ class UrdfReader:
         if not norm > 0 or not math.isfinite(norm):
             raise GazeboError(f"{(axis_element or element).where()}: a joint axis must be a non-zero vector")
         axis = d.JointAxis((xyz[0] / norm, xyz[1] / norm, xyz[2] / norm))
-        if limit is not None and kind != "continuous":
-            axis = replace(axis, lower=_attr_float(limit, "lower", 0.0), upper=_attr_float(limit, "upper", 0.0),
-                           effort=_attr_float(limit, "effort", -1.0), velocity=_attr_float(limit, "velocity", -1.0))
+        if limit is not None:  # a continuous joint's effort and velocity limits hold too; its range does not
+            axis = replace(axis, effort=_attr_float(limit, "effort", -1.0),
+                           velocity=_attr_float(limit, "velocity", -1.0))
+            if kind != "continuous":
+                axis = replace(axis, lower=_attr_float(limit, "lower", 0.0), upper=_attr_float(limit, "upper", 0.0))
         if dynamics is not None:
             axis = replace(axis, damping=_attr_float(dynamics, "damping", 0.0),
                            friction=_attr_float(dynamics, "friction", 0.0))

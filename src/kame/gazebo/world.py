@@ -25,6 +25,11 @@ API (what the gazebo_ros side calls; names of links and joints are "model::link"
 - Trouble: every refusal is a GazeboError saying why (unknown names, NaN values, a model spawned
   inside another, bad files); a model whose state diverges (NaN or runaway speeds) is put back
   where it was spawned, at rest, and `take_warnings()` returns what happened, for the node to log.
+- A World is not thread-safe: its owner (the node) calls it from one thread at a time, and renders
+  cameras from one thread (an EGL context is current in one thread). `close()` frees the cameras'
+  GL contexts.
+- Contacts are those of the last step's collision pass; velocity limits of joints are not enforced
+  (effort limits are, on applied efforts); <kinematic> links are simulated as dynamic ones.
 """
 
 from __future__ import annotations
