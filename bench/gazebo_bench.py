@@ -12,8 +12,10 @@ driving a circle (its wheels held at their speeds by World.drive_joint), stepped
 - camera: one robot with the laser and a 640x480 camera (horizontal fov 1.047, as the
   Kinect's) rendered at 30 Hz, RGB and depth each frame, and a scan read off the depth image's
   middle row (depthimage_to_laserscan's way). Target >= 1x.
-Each scenario also reports where its wall time went (physics steps, rays, renders), so a missed
-target says why. MuJoCo renders through EGL (Mesa's llvmpipe on a machine without a GPU).
+Each scenario also reports simulated seconds per CPU second of the process (all its threads:
+on a machine shared with other work, what a core of its own would give) and where its wall time
+went (physics steps, rays, renders), so a missed target says why. MuJoCo renders through EGL
+(Mesa's llvmpipe on a machine without a GPU).
 """
 
 from __future__ import annotations
@@ -81,7 +83,7 @@ class Timing:
     renders: float = 0.0
 
 
-def run(robots: int, laser: bool, camera: bool, seconds: float) -> tuple[float, Timing]:
+def run(robots: int, laser: bool, camera: bool, seconds: float) -> tuple[float, float, Timing]:
     from kame.gazebo import World
 
     placed = "".join(robot(f"robot_{i}", 2.0 * math.cos(2 * math.pi * i / robots),
@@ -97,6 +99,7 @@ def run(robots: int, laser: bool, camera: bool, seconds: float) -> tuple[float, 
     cameras = [s for s in world.sensors() if s.type == "depth"]
     timing = Timing()
     next_scan, next_frame = 0.0, 0.0
+    cpu = time.process_time()
     start = time.perf_counter()
     while time.perf_counter() - start < seconds:
         began = time.perf_counter()
@@ -117,8 +120,9 @@ def run(robots: int, laser: bool, camera: bool, seconds: float) -> tuple[float, 
             timing.renders += time.perf_counter() - began
             next_frame += 1 / 30
     wall = time.perf_counter() - start
+    cpu = time.process_time() - cpu  # every thread's, Mesa's rendering threads too
     world.close()
-    return world.sim_time / wall, timing
+    return world.sim_time / wall, world.sim_time / cpu, timing
 
 
 def main() -> None:
@@ -132,14 +136,14 @@ def main() -> None:
                  "camera": ("1 robot, laser + 640x480 RGB and depth at 30 Hz", 1, True, True, 1.0)}
     print(f"loadavg {' '.join(f'{v:.2f}' for v in os.getloadavg())}, MUJOCO_GL={os.environ.get('MUJOCO_GL', 'egl')}",
           file=sys.stderr, flush=True)
-    print(f"{'scenario':50} {'real-time factor':>17} {'target':>7}  where the wall time went")
+    print(f"{'scenario':50} {'real-time factor':>17} {'per CPU second':>15} {'target':>7}  where the wall time went")
     for key in options.only.split(","):
         title, robots, laser, camera, target = scenarios[key]
-        factor, timing = run(robots, laser, camera, options.seconds)
+        factor, per_cpu, timing = run(robots, laser, camera, options.seconds)
         spent = timing.steps + timing.rays + timing.renders
         parts = ", ".join(f"{name} {share / spent:.0%}" for name, share in
                           (("steps", timing.steps), ("rays", timing.rays), ("renders", timing.renders)) if share)
-        print(f"{title:50} {factor:16.2f}x {target:6.0f}x  {parts}", flush=True)
+        print(f"{title:50} {factor:16.2f}x {per_cpu:14.2f}x {target:6.0f}x  {parts}", flush=True)
     print(f"loadavg after {' '.join(f'{v:.2f}' for v in os.getloadavg())}", file=sys.stderr)
 
 

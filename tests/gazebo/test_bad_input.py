@@ -166,3 +166,19 @@ def test_a_diverging_model_is_put_back_with_a_warning() -> None:
     assert world.model_state("sphere").pose.position == pytest.approx((3.0, 0.0, 2.0), abs=0.05)
     assert world.model_state("box").pose.position == pytest.approx((0.0, 0.0, 0.5), abs=1e-3)  # untouched
     assert world.sim_time == pytest.approx(0.15)
+
+
+def test_nan_in_the_engines_state_is_put_right_with_a_warning() -> None:
+    world = World.from_sdf(sdf(f"""{GROUND}<include><uri>model://sphere</uri><pose>3 0 2 0 0 0</pose></include>
+      <include><uri>model://box</uri><pose>0 0 0.5 0 0 0</pose></include>"""))
+    world.step(10)
+    sphere = world.model.body_jntadr[world.body_id("sphere::link")]
+    world.data.qvel[world.model.jnt_dofadr[sphere]] = math.nan  # as a blown-up solve leaves it
+    world.step(1)
+    # MuJoCo's solver solves all contacts and bodies together: the NaN reached the box too, so both go back
+    (warning,) = world.take_warnings()
+    assert warning.startswith("model box, sphere diverged")
+    assert world.model_state("sphere").pose.position == pytest.approx((3.0, 0.0, 2.0))
+    assert world.model_state("box").pose.position == pytest.approx((0.0, 0.0, 0.5))
+    world.step(100)
+    assert all(math.isfinite(v) for v in world.model_state("sphere").pose.position)

@@ -203,7 +203,7 @@ def test_a_collada_mesh_keeps_its_scene_transform(tmp_path: Path) -> None:
 
     box = trimesh.creation.box((0.2, 0.4, 0.6))
     box.apply_translation((1.0, 0.0, 0.0))
-    (tmp_path / "box.dae").write_bytes(trimesh.exchange.dae.export_collada(box))
+    box.export(str(tmp_path / "box.dae"))
     world = World.from_sdf(sdf(f"""<model name="m"><static>true</static><link name="link"><visual name="v">
       <geometry><mesh><uri>{tmp_path}/box.dae</uri><scale>2 2 2</scale></mesh></geometry></visual></link></model>"""))
     (visual,) = world.visuals()
@@ -339,3 +339,34 @@ def test_world_and_sensor_plugins_and_physics_are_read() -> None:
     frame = world.camera_frame(sensor)
     assert frame.rgb is not None and frame.rgb.shape == (48, 64, 3) and np.asarray(frame.config.k()).shape == (9,)
     world.close()
+
+
+def siblings(self_collide: str) -> str:
+    def child(name: str, x: float) -> str:
+        return f"""<link name="{name}"><pose>{x} 0 1 0 0 0</pose>{self_collide}
+          <collision name="c"><geometry><box><size>0.3 0.3 0.3</size></box></geometry></collision></link>
+          <joint name="{name}_joint" type="revolute"><parent>base</parent><child>{name}</child>
+          <axis><xyz>0 0 1</xyz></axis></joint>"""
+
+    return f"""<model name="m"><link name="base"><pose>0 0 1 0 0 0</pose><gravity>false</gravity></link>
+      <joint name="fix" type="fixed"><parent>world</parent><child>base</child></joint>
+      {child("a", 0.1)}{child("b", -0.1)}</model>"""
+
+
+def test_a_models_links_touch_each_other_only_where_they_self_collide() -> None:
+    apart = World.from_sdf(sdf(siblings("")))
+    assert apart.contacts("m::a") == []
+    together = World.from_sdf(sdf(siblings("<self_collide>true</self_collide>")))
+    assert {c.collision2 for c in together.contacts("m::a")} == {"m::b::c"}
+
+
+def test_a_urdf_link_named_world_holds_the_robot_in_place() -> None:
+    world = World.from_sdf(sdf(GROUND))
+    world.spawn_urdf("""<robot name="arm"><link name="world"/>
+      <link name="base"><inertial><mass value="1"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/>
+      </inertial></link>
+      <joint name="anchor" type="fixed"><parent link="world"/><child link="base"/><origin xyz="0 0 1"/></joint>
+      </robot>""", "arm", Pose((1.0, 0.0, 0.0)))
+    world.step(500)
+    assert world.link_names("arm") == ["arm::base"]
+    assert world.link_state("arm::base").pose.position == pytest.approx((1.0, 0.0, 1.0))

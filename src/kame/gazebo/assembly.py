@@ -20,6 +20,8 @@ How Gazebo's concepts map onto MuJoCo's:
 - Camera and depth sensors are MuJoCo cameras (looking along the sensor's +x, up +z, as Gazebo's);
   an IMU is a site with MuJoCo's gyro, accelerometer and orientation sensors.
 - <gravity>false</gravity> on a link is MuJoCo's gravity compensation.
+- A model's links do not collide with each other unless both say <self_collide> (Gazebo's
+  default), by MuJoCo exclusions between their bodies.
 """
 
 from __future__ import annotations
@@ -100,6 +102,18 @@ def add_model(spec: mujoco.MjSpec, model: d.Model, load_mesh: MeshLoader, warnin
     for name in links:
         if name not in placed:  # only reachable through a loop: hang it on a free joint of its own
             add(name, spec.worldbody, Pose())
+    _exclude_self_collisions(spec, model)
+
+
+def _exclude_self_collisions(spec: mujoco.MjSpec, model: d.Model) -> None:
+    """A model's links touch each other only where both say <self_collide> (MuJoCo already leaves
+    out a body and its parent, and bodies welded together)."""
+    colliding = [link for link in model.links if link.collisions]
+    for i, first in enumerate(colliding):
+        for second in colliding[i + 1:]:
+            if not (first.self_collide and second.self_collide):
+                spec.add_exclude(name=f"{model.name}::exclude::{first.name}::{second.name}",
+                                 bodyname1=f"{model.name}::{first.name}", bodyname2=f"{model.name}::{second.name}")
 
 
 def _inertia(body: mujoco.MjsBody, link: d.Link) -> None:

@@ -13,6 +13,7 @@ model just before it renders, since MuJoCo keeps one clip range for the whole mo
 from __future__ import annotations
 
 import math
+import os
 from dataclasses import dataclass
 
 import numpy as np
@@ -21,6 +22,8 @@ from kame.gazebo.assembly import VISUAL_GROUP
 from kame.gazebo.engine import mujoco
 from kame.gazebo.errors import GazeboError
 from kame.gazebo.xmltree import Element
+
+EGL_PACKAGES = ("libegl1", "libopengl0", "libegl-mesa0", "libgl1-mesa-dri")  # scripts/install-gui-libs.sh --xvfb
 
 
 @dataclass(frozen=True)
@@ -122,7 +125,12 @@ class Cameras:
             self._generation = generation
         size = (config.width, config.height)
         if size not in self._offscreen:
-            self._offscreen[size] = _Offscreen(model, *size)
+            try:
+                self._offscreen[size] = _Offscreen(model, *size)
+            except Exception as exc:  # no GL: PyOpenGL's, EGL's and MuJoCo's errors differ by what is missing
+                raise GazeboError(f"MuJoCo cannot render camera {camera!r} with MUJOCO_GL="
+                                  f"{os.environ.get('MUJOCO_GL', '')}: {exc} (headless rendering needs EGL: "
+                                  f"apt-get install {' '.join(EGL_PACKAGES)})") from None
         offscreen = self._offscreen[size]
         model.cam_fovy[camera_id] = math.degrees(config.vertical_fov())
         model.vis.map.znear = config.near / model.stat.extent

@@ -90,6 +90,7 @@ class Link:
     sensors: tuple[Sensor, ...] = ()
     gravity: bool = True
     kinematic: bool = False
+    self_collide: bool = False  # Gazebo's default: a model's links do not collide with each other
 
 
 @dataclass(frozen=True)

@@ -233,7 +233,8 @@ class SdfReader:
                 nested.append(inner)
         for joint in element.each("joint"):
             frames.add(joint.attrs.get("name", ""), joint, joint.child_text("child") or MODEL_FRAME)
-        links = [self._link(e, link_name, frames, name) for e, link_name in raw_links]
+        self_collide = element.flag("self_collide", False)
+        links = [self._link(e, link_name, frames, self_collide) for e, link_name in raw_links]
         joints = [j for j in (self._joint(e, frames, version) for e in element.each("joint")) if j is not None]
         plugins = [self._plugin(e, name, "", "") for e in element.each("plugin")]
         for link_element, link_name in raw_links:
@@ -253,7 +254,7 @@ class SdfReader:
         return d.Model(name, _placed(pose, relative_to, placed or {}, element), element.flag("static", False),
                        tuple(links), tuple(joints), tuple(plugins), element.source)
 
-    def _link(self, element: Element, name: str, frames: _Frames, model: str) -> d.Link:
+    def _link(self, element: Element, name: str, frames: _Frames, self_collide: bool) -> d.Link:
         if not name:
             raise GazeboError(f"{element.where()}: a <link> needs a name")
         in_model = frames.resolve(name)
@@ -286,7 +287,8 @@ class SdfReader:
         sensors = [d.Sensor(s.attrs.get("name", ""), s.attrs.get("type", ""), local(s), s.number("update_rate", 0.0),
                             s.flag("always_on", False), s.flag("visualize", False), s) for s in element.each("sensor")]
         return d.Link(name, in_model, self._inertial(element.child("inertial")), tuple(visuals), tuple(collisions),
-                      tuple(sensors), element.flag("gravity", True), element.flag("kinematic", False))
+                      tuple(sensors), element.flag("gravity", True), element.flag("kinematic", False),
+                      element.flag("self_collide", self_collide))
 
     def _inertial(self, element: Element | None) -> d.Inertial:
         if element is None:

@@ -63,7 +63,8 @@ class UrdfReader:
         for gazebo in root.each("gazebo"):
             extensions.setdefault(gazebo.attrs.get("reference", ""), []).extend(gazebo.children)
         joints = [self._joint(j) for j in root.each("joint")]
-        link_elements = {e.attrs.get("name", ""): e for e in root.each("link")}
+        # a link named "world" is the world itself (a robot fixed in place hangs on it), as Gazebo reads it
+        link_elements = {e.attrs.get("name", ""): e for e in root.each("link") if e.attrs.get("name") != "world"}
         if "" in link_elements:
             raise GazeboError(f"{link_elements[''].where()}: a <link> needs a name")
         if not link_elements:
@@ -71,7 +72,7 @@ class UrdfReader:
         parent_of = {j.child: j for j, _ in joints}
         for joint, element in joints:
             for end in (joint.parent, joint.child):
-                if end not in link_elements:
+                if end not in link_elements and not (end == "world" and end == joint.parent):
                     raise GazeboError(f"{element.where()}: joint {joint.name!r} names link {end!r}, which the robot "
                                       f"does not have")
         poses: dict[str, Pose] = {}
@@ -81,8 +82,12 @@ class UrdfReader:
                 if link in seen:
                     raise GazeboError(f"{root.source}: the joints of link {link!r} form a loop")
                 joint_and_origin = parent_of.get(link)
-                poses[link] = Pose() if joint_and_origin is None else (
-                    pose_in_model(joint_and_origin.parent, (*seen, link)) * joint_and_origin.pose)
+                if joint_and_origin is None:
+                    poses[link] = Pose()
+                elif joint_and_origin.parent == "world":
+                    poses[link] = joint_and_origin.pose
+                else:
+                    poses[link] = pose_in_model(joint_and_origin.parent, (*seen, link)) * joint_and_origin.pose
             return poses[link]
 
         links = [self._link(e, pose_in_model(n), colors, extensions.get(n, [])) for n, e in link_elements.items()]
@@ -120,9 +125,11 @@ class UrdfReader:
         if not norm > 0 or not math.isfinite(norm):
             raise GazeboError(f"{(axis_element or element).where()}: a joint axis must be a non-zero vector")
         axis = d.JointAxis((xyz[0] / norm, xyz[1] / norm, xyz[2] / norm))
-        if limit is not None and kind != "continuous":
-            axis = replace(axis, lower=_attr_float(limit, "lower", 0.0), upper=_attr_float(limit, "upper", 0.0),
-                           effort=_attr_float(limit, "effort", -1.0), velocity=_attr_float(limit, "velocity", -1.0))
+        if limit is not None:  # a continuous joint's effort and velocity limits hold too; its range does not
+            axis = replace(axis, effort=_attr_float(limit, "effort", -1.0),
+                           velocity=_attr_float(limit, "velocity", -1.0))
+            if kind != "continuous":
+                axis = replace(axis, lower=_attr_float(limit, "lower", 0.0), upper=_attr_float(limit, "upper", 0.0))
         if dynamics is not None:
             axis = replace(axis, damping=_attr_float(dynamics, "damping", 0.0),
                            friction=_attr_float(dynamics, "friction", 0.0))
@@ -151,14 +158,16 @@ class UrdfReader:
             sensors.append(d.Sensor(s.attrs.get("name", ""), s.attrs.get("type", ""), sensor_pose,
                                     s.number("update_rate", 0.0), s.flag("always_on", False),
                                     s.flag("visualize", False), s))
-        gravity = True
+        gravity, self_collide = True, False
         for e in extensions:
             if e.tag == "gravity":
                 gravity = e.text.strip().lower() in ("1", "true")
             elif e.tag == "turnGravityOff":
                 gravity = e.text.strip().lower() not in ("1", "true")
+            elif e.tag == "selfCollide":
+                self_collide = e.text.strip().lower() in ("1", "true")
         return d.Link(name, pose, self._inertial(element.child("inertial")), tuple(visuals), tuple(collisions),
-                      tuple(sensors), gravity)
+                      tuple(sensors), gravity, self_collide=self_collide)
 
     def _inertial(self, element: Element | None) -> d.Inertial:
         if element is None:

@@ -25,6 +25,11 @@ API (what the gazebo_ros side calls; names of links and joints are "model::link"
 - Trouble: every refusal is a GazeboError saying why (unknown names, NaN values, a model spawned
   inside another, bad files); a model whose state diverges (NaN or runaway speeds) is put back
   where it was spawned, at rest, and `take_warnings()` returns what happened, for the node to log.
+- A World is not thread-safe: its owner (the node) calls it from one thread at a time, and renders
+  cameras from one thread (an EGL context is current in one thread). `close()` frees the cameras'
+  GL contexts.
+- Contacts are those of the last step's collision pass; velocity limits of joints are not enforced
+  (effort limits are, on applied efforts); <kinematic> links are simulated as dynamic ones.
 """
 
 from __future__ import annotations
@@ -52,7 +57,9 @@ MAX_SPEED = 1e4  # m/s or rad/s: a body faster than this has diverged
 OVERLAP = 0.05  # metres: a spawned model's collisions deeper than this inside another's are refused
 MIN_RENDER_SIZE = (640, 480)  # MuJoCo's offscreen buffer, at least; larger cameras enlarge it
 DRIVE_STIFFNESS = 20.0  # a drive's gain: this many times its joint's inertia a step (see _set_drive)
-BAD_QPOS = int(mujoco.mjtWarning.mjWARN_BADQPOS)
+WARNING_CHECK_STEPS = 100
+BAD_STATE = tuple(int(w) for w in (mujoco.mjtWarning.mjWARN_BADQPOS, mujoco.mjtWarning.mjWARN_BADQVEL,
+                                    mujoco.mjtWarning.mjWARN_BADQACC))  # MuJoCo's own checks of NaN and huge values
 ONE_DEGREE = (int(mujoco.mjtJoint.mjJNT_HINGE), int(mujoco.mjtJoint.mjJNT_SLIDE))
 
 
@@ -124,6 +131,8 @@ class World:
         self._drives: dict[str, tuple[float, float]] = {}
         self._forces_applied = False
         self._stale = False  # the bodies' poses lag the state after a step, until _current
+        self._engine_warned: set[int] = set()  # the kinds of MuJoCo warning already passed on
+        self._next_warning_check = 0
         self.iterations = 0
         self._generation = 0  # counts compilations: renderers made for an older model are remade
         self._cameras = Cameras()
@@ -209,6 +218,21 @@ class World:
             self.iterations += steps
             self._check_divergence()
         self._stale = True
+        if self.iterations >= self._next_warning_check:
+            self._next_warning_check = self.iterations + WARNING_CHECK_STEPS
+            self._note_engine_warnings()
+
+    def _note_engine_warnings(self) -> None:
+        """MuJoCo's own warnings (a full contact buffer, a bad position...), each kind once per
+        model, for the node to log; a bad state among them is a divergence."""
+        warnings = self.data.warning
+        if any(warnings[kind].number for kind in BAD_STATE):
+            self._check_divergence(engine_said_so=True)
+        for kind, warning in enumerate(warnings):
+            if warning.number and kind not in self._engine_warned:
+                self._engine_warned.add(kind)
+                text = mujoco.mju_warningText(kind, warning.lastinfo)
+                self._warnings.append(f"MuJoCo warns at sim time {self.sim_time:.3f} s: {text}")
 
     def _forward(self) -> None:
         """Everything MuJoCo derives from the state (after the state or the model changed)."""
@@ -435,6 +459,8 @@ class World:
             self._spec.delete(actuator)
         for sensor in [s for s in self._spec.sensors if s.name.startswith(prefix)]:
             self._spec.delete(sensor)
+        for exclusion in [e for e in self._spec.excludes if e.name.startswith(prefix)]:
+            self._spec.delete(exclusion)
         for body in [b for b in self._spec.worldbody.bodies if b.name.startswith(prefix)]:
             self._spec.delete(body)
         for mesh in [m for m in self._spec.meshes if m.name.startswith(prefix)]:
@@ -465,6 +491,7 @@ class World:
         except ValueError as exc:
             raise GazeboError(f"{source}: MuJoCo cannot build the model: {exc}") from None
         self._generation += 1
+        self._engine_warned.clear()  # a new MjData counts from 0
         self.model, self.data = model, data
         self.physics = self._physics  # the runtime settings live in the compiled model: give them again
         for joint, (velocity, max_effort) in self._drives.items():
@@ -638,16 +665,21 @@ class World:
             self._set_drive(joint, velocity, max_effort)
         self._forward()
 
-    def _check_divergence(self) -> None:
+    def _check_divergence(self, engine_said_so: bool = False) -> None:
         qvel = self.data.qvel
-        # one dot product a step: NaN and infinities make it NaN, a runaway speed makes it large; a
-        # NaN position that MuJoCo met, it counts among its warnings
-        if float(qvel @ qvel) < MAX_SPEED * MAX_SPEED and not self.data.warning[BAD_QPOS].number:
+        # one dot product a step: NaN and infinities make it NaN, a runaway speed makes it large;
+        # MuJoCo's own count of NaN positions and huge accelerations is read every
+        # WARNING_CHECK_STEPS (reading its warnings costs more than the step of a small world)
+        if float(qvel @ qvel) < MAX_SPEED * MAX_SPEED and not engine_said_so:
             return
-        self.data.warning[BAD_QPOS].number = 0
-        bad_dofs = np.flatnonzero(~np.isfinite(qvel) | (np.abs(np.nan_to_num(qvel, nan=np.inf)) >= MAX_SPEED))
+        bad_dofs = set(np.flatnonzero(~np.isfinite(qvel) | (np.abs(np.nan_to_num(qvel, nan=np.inf)) >= MAX_SPEED)))
+        bad_qpos = set(np.flatnonzero(~np.isfinite(self.data.qpos)))
+        for kind in BAD_STATE:  # reported below as the divergence they are; lastinfo is the index MuJoCo met
+            warning = self.data.warning[kind]
+            if warning.number and 0 <= warning.lastinfo < (self.model.nq if kind == BAD_STATE[0] else self.model.nv):
+                (bad_qpos if kind == BAD_STATE[0] else bad_dofs).add(warning.lastinfo)
+            warning.number = 0
         bad_models = {self._body_model[self.model.dof_bodyid[dof]] for dof in bad_dofs}
-        bad_qpos = np.flatnonzero(~np.isfinite(self.data.qpos))
         for joint in range(self.model.njnt):
             start, width = self.model.jnt_qposadr[joint], {0: 7, 1: 4}.get(int(self.model.jnt_type[joint]), 1)
             if any(start <= q < start + width for q in bad_qpos):
