@@ -128,7 +128,6 @@ def run(options: command_line.ServerOptions) -> int:
             host.stop_all()
             if api is not None:
                 api.close()
-            world.close()
     return 0
 
 

@@ -1,5 +1,6 @@
 """The running world of gzserver: kame.gazebo's World, the lock every ROS callback takes to touch
-it, and the thread that steps it (owned here: `start` makes it, `stop` ends and joins it).
+it, and the thread that steps it (owned here: `start` makes it, `stop` ends and joins it). The
+World's cameras render on that thread, so it also frees them when it ends.
 
 Pacing: each step is max_step_size of simulated time; with a real_time_factor f > 0 the thread
 waits until f x wall time has caught up (a late step is not made up for by a burst), with 0 it
@@ -114,6 +115,13 @@ class Simulation:
         return started_wall, started_sim
 
     def _run(self) -> None:
+        try:
+            self._step_until_stopped()
+        finally:
+            with self.lock:  # the cameras' GL contexts were made current here: they are freed here
+                self.world.close()
+
+    def _step_until_stopped(self) -> None:
         wall, sim = time.monotonic(), self.world.sim_time
         while self._wait_while_paused():
             was_paused = self._paused
