@@ -78,6 +78,12 @@ def test_pause_unpause_and_reset(live: tuple[Sim, Proc]) -> None:
     call(sim, "/gazebo/unpause_physics")
     wait_until(lambda: box_z() < 0.11, timeout=30, what="the box to fall onto the ground")
     assert box_z() == pytest.approx(0.1, abs=0.005)
+    push = call(sim, "/gazebo/apply_body_wrench",
+                "{body_name: 'box::base_link', wrench: {force: {z: 30}}, duration: {secs: -1}}")
+    assert push["success"] is True  # 30 N up on 1 kg: it rises until the wrench is cleared
+    wait_until(lambda: box_z() > 0.5, timeout=30, what="the wrench to lift the box")
+    call(sim, "/gazebo/clear_body_wrenches", "box::base_link")
+    wait_until(lambda: box_z() < 0.11, timeout=30, what="the box to fall back")
     call(sim, "/gazebo/pause_physics")
     time_paused = call(sim, "/gazebo/get_world_properties")["sim_time"]
     assert call(sim, "/gazebo/get_world_properties")["sim_time"] == time_paused
@@ -90,11 +96,13 @@ def test_pause_unpause_and_reset(live: tuple[Sim, Proc]) -> None:
 
 def test_robot_plugins_laser_camera_and_unknown(live: tuple[Sim, Proc]) -> None:
     sim, launch = live
-    out = spawn(sim, "-urdf", "-file", str(DATA / "robot.urdf"), "-model", "rover")
+    out = spawn(sim, "-urdf", "-file", str(DATA / "robot.urdf"), "-model", "rover", "-J", "left_wheel_joint", "0.5",
+                "-unpause")
     assert "Successfully spawned entity" in out
+    assert "Set model configuration status: SetModelConfiguration: success" in out
+    assert call(sim, "/gazebo/get_physics_properties")["pause"] is False  # -unpause
     warnings = [line for line in launch.out + launch.err if "libgazebo_ros_control.so" in line]
     assert len(warnings) == 1 and "kame has no libgazebo_ros_control.so" in warnings[0]
-    call(sim, "/gazebo/unpause_physics")
     scan = sim.echo("/scan")
     ranges = [float(r) for r in scan["ranges"]]  # rostopic prints inf, which YAML reads as text
     assert len(ranges) == 181 and scan["header"]["frame_id"] == "laser_link"

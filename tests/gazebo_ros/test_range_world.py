@@ -30,3 +30,14 @@ def test_the_sonar_reads_its_wall_and_gzclient_says_what_is_missing(tmp_path: Pa
         assert len(said) == 1 and "window is not available yet" in said[0]
         assert launch.popen.poll() is None
         assert "model_1" in sim.run("rosservice", "call", "/gazebo/get_world_properties").stdout
+
+
+def test_a_malformed_world_is_an_error_line_and_the_server_runs_on_empty(tmp_path: Path) -> None:
+    broken = tmp_path / "broken.world"
+    broken.write_text('<sdf version="1.6"><world name="w"><model name="m"><link name="l"></model></world></sdf>')
+    with master(tmp_path) as sim:
+        server = sim.start("gazebo_ros", "gzserver", str(broken), wait="Finished loading Gazebo ROS API Plugin.")
+        errors = "".join(server.out + server.err)
+        assert "broken.world" in errors and "runs on with an empty world" in errors
+        assert "model_names: []" in sim.run("rosservice", "call", "/gazebo/get_world_properties").stdout
+        assert "Traceback" not in errors
