@@ -1,6 +1,6 @@
 """The other plugins live, on one world (data/sensors.world): imu_sensor at rest, the bumper on the
-ground, p3d's ground truth, planar_move driven by cmd_vel, openni_kinect's depth image, CameraInfo
-and cloud against a wall 1.5 m away, and block_laser's cloud."""
+ground, p3d's ground truth, planar_move and skid_steer_drive driven by cmd_vel, openni_kinect's depth
+image, CameraInfo and cloud against a wall 1.5 m away, and block_laser's cloud."""
 
 from __future__ import annotations
 
@@ -17,7 +17,7 @@ from tests.turtlesim.sim import BIN, wait_until
 pytest.importorskip("mujoco", reason="kame[gazebo] (MuJoCo) is not installed")
 
 
-def test_imu_bumper_p3d_planar_move_depth_camera_and_block_laser(tmp_path: Path) -> None:
+def test_imu_bumper_p3d_drives_depth_camera_and_block_laser(tmp_path: Path) -> None:
     with gazebo(tmp_path, f"world_name:={DATA / 'sensors.world'}") as (sim, launch):
         imu = sim.echo("/probe/imu")
         assert imu["header"]["frame_id"] == "probe_imu"
@@ -39,6 +39,17 @@ def test_imu_bumper_p3d_planar_move_depth_camera_and_block_laser(tmp_path: Path)
         assert (odom["header"]["frame_id"], odom["child_frame_id"]) == ("probe_odom", "probe")
         assert odom["pose"]["pose"]["position"]["y"] == pytest.approx(-2.0, abs=0.05)
         mover.stop()
+
+        skid = Proc([str(BIN / "rostopic"), "pub", "-r", "20", "/skid/cmd_vel", "geometry_msgs/Twist",
+                     "{linear: {x: 0.3}}"], sim.env, cwd=tmp_path)
+        sim.procs.append(skid)
+        wait_until(lambda: sim.echo("/skid/odom")["pose"]["pose"]["position"]["x"] > 0.3, timeout=30,
+                   what="skid_steer_drive's four wheels to drive the rover forward")
+        skid_odom = sim.echo("/skid/odom")
+        assert (skid_odom["header"]["frame_id"], skid_odom["child_frame_id"]) == ("skid_odom", "skid_base")
+        assert skid_odom["pose"]["pose"]["position"]["y"] == pytest.approx(2.0, abs=0.05)
+        assert skid_odom["twist"]["twist"]["linear"]["x"] == pytest.approx(0.3, abs=0.05)
+        skid.stop()
 
         info = sim.echo("/kinect/depth/camera_info")
         assert (info["width"], info["height"], info["header"]["frame_id"]) == (64, 48, "kinect_optical")
