@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 
 from kame.gazebo import Pose, SensorInfo, State, World
+from kame.gazebo.camera import optical_points
 
 WALLS = """<model name="walls"><static>true</static><link name="link">
   <collision name="east"><pose>3 0 1 0 0 0</pose><geometry><box><size>0.2 30 2</size></box></geometry></collision>
@@ -146,6 +147,11 @@ def test_depth_values_equal_distances_along_the_optical_axis() -> None:
     # the east wall's face at x = 2.9 is 2.9 m deep at every pixel that sees it
     assert frame.depth[60, 80] == pytest.approx(2.9, abs=0.01)
     assert frame.depth[60, 10] == pytest.approx(2.9, abs=0.01)
+    points = optical_points(frame.depth, frame.config)
+    metres_a_pixel = 2.9 / frame.config.focal_length()  # on the wall
+    # pixel (80, 60) is half a pixel right of and below the optical axis (cx = 79.5, cy = 59.5)
+    assert points[60, 80] == pytest.approx((0.5 * metres_a_pixel, 0.5 * metres_a_pixel, 2.9), abs=0.01)
+    assert points[60, 10] == pytest.approx((-69.5 * metres_a_pixel, 0.5 * metres_a_pixel, 2.9), abs=0.01)
     # looking west, nothing within the far clip: +inf
     world.set_model_state("eye", State(Pose((0.0, 0.0, 0.5), (0.0, 0.0, 1.0, 0.0))))
     west = world.camera_frame(sensor, rgb=False, depth=True).depth

@@ -75,6 +75,15 @@ def _noise(noise: Element | None) -> tuple[float, float]:
     return noise.number("mean", 0.0), noise.number("stddev", 0.0)
 
 
+def optical_points(depth: np.ndarray, config: CameraConfig) -> np.ndarray:
+    """Each pixel's point (height x width x 3, float32) in the camera's optical frame (x right, y
+    down, z forward), as a depth camera's PointCloud2 carries them; NaN where the depth is +inf."""
+    fx, _, cx, _, fy, cy, *_ = config.k()
+    rows, cols = np.indices(depth.shape, dtype=np.float32)
+    z = np.where(np.isfinite(depth), depth, np.nan).astype(np.float32)
+    return np.stack(((cols - cx) * z / fx, (rows - cy) * z / fy, z), axis=-1)
+
+
 @dataclass(frozen=True)
 class CameraFrame:
     rgb: np.ndarray | None  # height x width x 3, uint8, top row first
