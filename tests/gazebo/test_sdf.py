@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from kame.gazebo import SHIPPED_MODELS, Physics, Pose, Resources, State, World
+from kame.gazebo import SHIPPED_MODELS, GazeboError, Physics, Pose, Resources, State, World
 
 GROUND = "<include><uri>model://ground_plane</uri></include>"
 
@@ -370,3 +370,15 @@ def test_a_urdf_link_named_world_holds_the_robot_in_place() -> None:
     world.step(500)
     assert world.link_names("arm") == ["arm::base"]
     assert world.link_state("arm::base").pose.position == pytest.approx((1.0, 0.0, 1.0))
+
+
+def test_worlds_are_found_on_gazebo_resource_path_then_kames(tmp_path: Path) -> None:
+    (tmp_path / "worlds").mkdir()
+    (tmp_path / "worlds" / "mine.world").write_text(sdf(GROUND))
+    resources = Resources.from_environment({"GAZEBO_RESOURCE_PATH": str(tmp_path)})
+    assert resources.world_file("worlds/mine.world") == str(tmp_path / "worlds" / "mine.world")
+    empty = World.from_file(resources.world_file("worlds/empty.world"), resources)
+    assert empty.model_names() == ["ground_plane"] and [light.name for light in empty.lights] == ["sun"]
+    with pytest.raises(GazeboError, match=f"world file worlds/none.world not found, nor in GAZEBO_RESOURCE_PATH "
+                                          f"\\({tmp_path}\\)"):
+        resources.world_file("worlds/none.world")

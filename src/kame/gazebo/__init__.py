@@ -4,7 +4,8 @@ A pure layer (no ROS, no clock, no threads, no sockets; MuJoCo and numpy compute
 node steps a `World` and publishes what it reads. `World` (kame.gazebo.world) is the API;
 `Resources` says where model://, package:// and file:// lead; every refusal is a `GazeboError`.
 Shipped models (ground_plane, sun, box, cylinder, sphere) are in kame/gazebo/models, searched
-after GAZEBO_MODEL_PATH.
+after GAZEBO_MODEL_PATH; shipped worlds (worlds/empty.world) in kame/gazebo/worlds, after
+GAZEBO_RESOURCE_PATH.
 """
 
 from kame.gazebo.description import Physics
