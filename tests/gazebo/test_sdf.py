@@ -39,8 +39,10 @@ def test_includes_come_from_gazebo_model_path_with_name_pose_and_static(tmp_path
     resources = Resources.from_environment({"GAZEBO_MODEL_PATH": f"/nonexistent:{tmp_path}"})
     world = World.from_sdf(sdf(f"""{GROUND}<include><uri>model://sun</uri></include>
       <include><uri>model://crate</uri><name>crate_a</name><pose>1 2 0 0 0 1.5707963</pose></include>
-      <include><uri>model://crate</uri><name>crate_b</name><pose>-1 0 3 0 0 0</pose><static>true</static></include>
+      <include><uri>model://crate</uri><name>crate_b</name><pose>-1 0 3 0 0 0</pose><static>true</static>
+        <plugin name="mover" filename="libmover.so"><speed>2</speed></plugin></include>
       """), resources)
+    assert [(p.name, p.model, p.parameters()) for p in world.plugins()] == [("mover", "crate_b", {"speed": "2"})]
     assert world.model_names() == ["ground_plane", "crate_a", "crate_b"]
     assert [light.name for light in world.lights] == ["sun"]
     world.step(1000)
