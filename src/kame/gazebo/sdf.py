@@ -170,7 +170,8 @@ class SdfReader:
             model = replace(model, pose=_placed(pose, relative_to, placed or {}, element))
         if element.child("static") is not None:
             model = replace(model, static=element.flag("static", False))
-        added = tuple(self._plugin(p, model.name, "", "") for p in element.each("plugin"))  # SDF 1.6's <include><plugin>
+        # SDF 1.6 lets an <include> carry plugins for the model it includes
+        added = tuple(self._plugin(p, model.name, "", "") for p in element.each("plugin"))
         return replace(model, plugins=model.plugins + added) if added else model
 
     def _version(self, root: Element) -> tuple[int, ...]:
