@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
@@ -55,6 +56,19 @@ class RayConfig:
     range_resolution: float
     noise_mean: float = 0.0
     noise_stddev: float = 0.0
+
+    @cached_property
+    def horizontal_angles(self) -> np.ndarray:
+        return self.horizontal.angles()
+
+    @cached_property
+    def vertical_angles(self) -> np.ndarray:
+        return self.vertical.angles()
+
+    @cached_property
+    def directions(self) -> np.ndarray:
+        """Every ray's unit direction in the sensor's frame, vertical-major (computed once a sensor)."""
+        return ray_directions(self.horizontal_angles, self.vertical_angles)
 
     @staticmethod
     def of(sensor: Element) -> RayConfig:
@@ -128,8 +142,8 @@ def ray_directions(horizontal: np.ndarray, vertical: np.ndarray) -> np.ndarray:
 
 def ray_scan(model: mujoco.MjModel, data: mujoco.MjData, origin: Pose, body: int, config: RayConfig,
              rng: np.random.Generator) -> RayScan:
-    horizontal, vertical = config.horizontal.angles(), config.vertical.angles()
-    ranges = cast(model, data, origin, body, ray_directions(horizontal, vertical), config.range_min, config.range_max)
+    horizontal, vertical = config.horizontal_angles, config.vertical_angles
+    ranges = cast(model, data, origin, body, config.directions, config.range_min, config.range_max)
     if config.noise_stddev > 0 or config.noise_mean != 0:
         finite = np.isfinite(ranges)
         noisy = ranges[finite] + rng.normal(config.noise_mean, config.noise_stddev, int(finite.sum()))

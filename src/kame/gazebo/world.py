@@ -136,6 +136,7 @@ class World:
         self.iterations = 0
         self._generation = 0  # counts compilations: renderers made for an older model are remade
         self._cameras = Cameras()
+        self._ray_configs: dict[int, tuple[Element, sensing.RayConfig]] = {}
         self._spec = mujoco.MjSpec()
         self._spec.compiler.degree = False
         self._spec.compiler.autolimits = False
@@ -442,6 +443,7 @@ class World:
         self._wrenches = [w for w in self._wrenches if not w.target.startswith(prefix)]
         self._efforts = [e for e in self._efforts if not e.target.startswith(prefix)]
         self._drives = {j: v for j, v in self._drives.items() if not j.startswith(prefix)}
+        self._ray_configs.clear()  # the deleted model's sensors' among them
         self.model, self.data = self._recompile(name)
         self._index()
         self._forward()
@@ -612,7 +614,11 @@ class World:
 
     def ray_scan(self, sensor: SensorInfo) -> sensing.RayScan:
         self._current()
-        config = sensing.RayConfig.of(sensor.config)
+        # a sensor's configuration is read once: the element is kept with it, so its id is not reused
+        known = self._ray_configs.get(id(sensor.config))
+        if known is None or known[0] is not sensor.config:
+            known = self._ray_configs[id(sensor.config)] = (sensor.config, sensing.RayConfig.of(sensor.config))
+        config = known[1]
         return sensing.ray_scan(self.model, self.data, self.sensor_pose(sensor), self.body_id(sensor.link), config,
                                 self.rng)
 
