@@ -384,3 +384,12 @@ def test_worlds_are_found_on_gazebo_resource_path_then_kames(tmp_path: Path) -> 
     with pytest.raises(GazeboError, match=f"world file worlds/none.world not found, nor in GAZEBO_RESOURCE_PATH "
                                           f"\\({tmp_path}\\)"):
         resources.world_file("worlds/none.world")
+
+
+def test_an_empty_world_runs_and_takes_models() -> None:
+    world = World.empty()
+    world.step(10)
+    assert world.model_names() == [] and world.sim_time == pytest.approx(0.01)
+    world.spawn_sdf((Path(SHIPPED_MODELS) / "box" / "model.sdf").read_text(), "box", Pose((0.0, 0.0, 1.0)))
+    world.step(100)
+    assert world.model_state("box").pose.position[2] == pytest.approx(1.0 - 0.5 * 9.8 * 0.1 ** 2, abs=1e-3)

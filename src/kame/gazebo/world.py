@@ -507,9 +507,6 @@ class World:
             name = mujoco.mj_id2name(self.model, mujoco.mjtObj.mjOBJ_BODY, body) or ""
             self._body_model[body] = name.partition("::")[0]
 
-    def model_of_body(self, body: int) -> str:
-        return self._body_model[body]
-
     def _overlapped_by(self, name: str) -> tuple[str, float] | None:
         for contact in self.data.contact[:self.data.ncon]:
             models = (self._body_model[self.model.geom_bodyid[contact.geom1]],
