@@ -105,7 +105,7 @@ class VisualShape:
 @dataclass(frozen=True)
 class _TimedForce:
     target: str  # link or joint
-    values: tuple[float, ...]  # force + torque about the centre of mass (world frame), or an effort
+    values: tuple[float, ...]  # force, torque (world frame) and the point (link frame); or an effort
     start: float
     end: float  # math.inf: until cleared
 
