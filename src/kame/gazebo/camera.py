@@ -43,8 +43,8 @@ class CameraConfig:
         if camera is None:
             return CameraConfig()
         image, clip = camera.child("image"), camera.child("clip")
-        width = int(image.number("width", 320)) if image is not None else 320
-        height = int(image.number("height", 240)) if image is not None else 240
+        width = image.integer("width", 320) if image is not None else 320
+        height = image.integer("height", 240) if image is not None else 240
         config = CameraConfig(width, height, camera.number("horizontal_fov", 1.047),
                               clip.number("near", 0.1) if clip is not None else 0.1,
                               clip.number("far", 100.0) if clip is not None else 100.0,

@@ -237,7 +237,7 @@ class SdfReader:
             frames.add(joint.attrs.get("name", ""), joint, joint.child_text("child") or MODEL_FRAME)
         self_collide = element.flag("self_collide", False)
         links = [self._link(e, link_name, frames, self_collide) for e, link_name in raw_links]
-        joints = [j for j in (self._joint(e, frames, version) for e in element.each("joint")) if j is not None]
+        joints = [self._joint(e, frames, version) for e in element.each("joint")]
         plugins = [self._plugin(e, name, "", "") for e in element.each("plugin")]
         for link_element, link_name in raw_links:
             for sensor in link_element.each("sensor"):
@@ -306,7 +306,7 @@ class SdfReader:
                    for key in ("ixx", "iyy", "izz", "ixy", "ixz", "iyz"))
         return d.Inertial(mass, pose, *moments)
 
-    def _joint(self, element: Element, frames: _Frames, version: tuple[int, ...]) -> d.Joint | None:
+    def _joint(self, element: Element, frames: _Frames, version: tuple[int, ...]) -> d.Joint:
         name = element.attrs.get("name", "")
         kind = element.attrs.get("type", "")
         parent, child = element.child_text("parent") or "", element.child_text("child") or ""

@@ -93,7 +93,7 @@ class RayConfig:
 def _axis(element: Element | None) -> RayAxis:
     if element is None:
         return RayAxis()
-    axis = RayAxis(int(element.number("samples", 1)), element.number("resolution", 1.0),
+    axis = RayAxis(element.integer("samples", 1), element.number("resolution", 1.0),
                    element.number("min_angle", 0.0), element.number("max_angle", 0.0))
     if axis.samples < 1 or not axis.resolution > 0 or axis.min_angle > axis.max_angle:
         raise GazeboError(f"{element.where()}: needs samples >= 1, resolution > 0 and min_angle <= max_angle")

@@ -150,7 +150,10 @@ class World:
         self._set_spec_physics(description.physics)
         self._physics = description.physics
         for light in description.lights:
-            assembly.add_light(self._spec, light)
+            try:
+                assembly.add_light(self._spec, light)
+            except ValueError as exc:  # MuJoCo refuses a second light of the same name as it is added
+                raise GazeboError(f"{description.source}: light {light.name!r}: {exc}") from None
         for model in description.models:
             self._add_to_spec(model)
         self.model, self.data = self._compile(description.source)
@@ -453,7 +456,12 @@ class World:
         for link in model.links:
             for sensor in link.sensors:
                 self._grow_render_buffer(sensor)
-        assembly.add_model(self._spec, model, self._meshes.load, self._warnings)
+        try:
+            assembly.add_model(self._spec, model, self._meshes.load, self._warnings)
+        except GazeboError:
+            raise
+        except ValueError as exc:  # MuJoCo refuses some things as they are added (a repeated name)
+            raise GazeboError(f"{model.source}: model {model.name!r}: {exc}") from None
 
     def _remove_from_spec(self, name: str) -> None:
         prefix = f"{name}::"
@@ -469,13 +477,13 @@ class World:
             self._spec.delete(mesh)
 
     def _grow_render_buffer(self, sensor: d.Sensor) -> None:
-        image = sensor.element.child("camera")
-        image = image.child("image") if image is not None else None
-        if image is None:
+        """MuJoCo's offscreen buffer as large as the largest camera; a camera's bad configuration is
+        refused here, as its model is loaded."""
+        if sensor.type not in assembly.CAMERA_TYPES:
             return
-        size = (int(image.number("width", 320)), int(image.number("height", 240)))
+        config = CameraConfig.of(sensor.element)
         global_ = self._spec.visual.global_
-        global_.offwidth, global_.offheight = max(global_.offwidth, size[0]), max(global_.offheight, size[1])
+        global_.offwidth, global_.offheight = max(global_.offwidth, config.width), max(global_.offheight, config.height)
 
     def _compile(self, source: str) -> tuple[mujoco.MjModel, mujoco.MjData]:
         assembly.rank_friction(self._spec)
