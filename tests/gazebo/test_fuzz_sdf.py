@@ -67,3 +67,42 @@ def test_any_urdf_spawns_or_is_a_gazebo_error(body: str) -> None:
     except GazeboError:
         return
     world.step(5)
+
+
+SKELETON = """<model name="m"><static>{}</static><pose>{}</pose>
+  <link name="a"><pose>{}</pose><inertial><mass>{}</mass><inertia><ixx>{}</ixx><iyy>{}</iyy><izz>{}</izz></inertia>
+    </inertial><collision name="c"><pose>{}</pose><geometry><box><size>{}</size></box></geometry>
+      <surface><friction><ode><mu>{}</mu><mu2>{}</mu2></ode></friction></surface></collision>
+    <visual name="v"><geometry><cylinder><radius>{}</radius><length>{}</length></cylinder></geometry>
+      <material><diffuse>{}</diffuse><script><name>{}</name></script></material></visual>
+    <sensor name="laser" type="ray"><pose>{}</pose><update_rate>{}</update_rate><ray><scan><horizontal>
+      <samples>{}</samples><resolution>{}</resolution><min_angle>{}</min_angle><max_angle>{}</max_angle></horizontal>
+      </scan><range><min>{}</min><max>{}</max></range><noise><type>gaussian</type><mean>{}</mean>
+      <stddev>{}</stddev></noise></ray></sensor>
+    <sensor name="imu" type="imu"><imu><noise><type>gaussian</type><rate><mean>{}</mean><stddev>{}</stddev></rate>
+      </noise></imu></sensor></link>
+  <link name="b"><pose>{}</pose><collision name="c"><geometry><sphere><radius>{}</radius></sphere></geometry>
+    </collision></link>
+  <joint name="j" type="{}"><parent>a</parent><child>b</child><pose>{}</pose><axis><xyz>{}</xyz>
+    <limit><lower>{}</lower><upper>{}</upper><effort>{}</effort></limit><dynamics><damping>{}</damping>
+    <friction>{}</friction></dynamics></axis></joint></model>"""
+JOINT_TYPES = st.sampled_from(["revolute", "continuous", "prismatic", "fixed", "ball", "screw", ""])
+# mostly empty (each element's default), so that most examples get past the first values to the deep ones
+FILLS = st.sampled_from([""] * 12 + ["1", "0", "-1", "0.5", "1e9", "nan", "x", "inf", "1 2 3", "0 0 1",
+                                     "1 2 3 4 5 6", "true", "Gazebo/Red"])
+
+
+@given(st.lists(FILLS, min_size=SKELETON.count("{}") - 1, max_size=SKELETON.count("{}") - 1), JOINT_TYPES)
+def test_a_model_with_any_values_is_a_world_or_a_gazebo_error(values: list[str], joint_type: str) -> None:
+    at = 29  # the joint's type among the placeholders
+    filled = SKELETON.format(*values[:at], joint_type, *values[at:])
+    try:
+        world = World.from_sdf(f'<sdf version="1.6"><world name="w">{filled}</world></sdf>')
+    except GazeboError:
+        return
+    world.step(20)
+    for sensor in world.sensors():
+        try:
+            world.ray_scan(sensor) if sensor.type == "ray" else world.imu_reading(sensor)
+        except GazeboError:
+            pass
