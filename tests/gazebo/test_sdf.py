@@ -310,6 +310,18 @@ def test_reset_simulation_rewinds_time_and_reset_world_keeps_it() -> None:
     assert world.model_state("box").linear == (0.0, 0.0, 0.0)
 
 
+def test_a_moved_static_model_goes_back_on_reset() -> None:
+    world = World.from_sdf(sdf(GROUND + """<include><uri>model://box</uri><pose>0 0 0.5 0 0 0</pose>
+      <static>true</static></include>"""))
+    world.set_model_state("box", State(Pose((2.0, 1.0, 0.5))))
+    world.step(10)
+    assert world.model_state("box").pose.position == pytest.approx((2.0, 1.0, 0.5))
+    world.spawn_sdf((Path(SHIPPED_MODELS) / "sphere" / "model.sdf").read_text(), "ball", Pose((5.0, 0.0, 1.0)))
+    assert world.model_state("box").pose.position == pytest.approx((2.0, 1.0, 0.5))  # kept through a rebuild
+    world.reset_world()
+    assert world.model_state("box").pose.position == pytest.approx((0.0, 0.0, 0.5))
+
+
 def test_set_model_state_moves_and_launches_a_model() -> None:
     world = World.from_sdf(sdf("<include><uri>model://box</uri><pose>0 0 3 0 0 0</pose></include>"))
     world.physics = Physics(gravity=(0.0, 0.0, 0.0))

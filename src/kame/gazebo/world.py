@@ -129,6 +129,7 @@ class World:
         self._wrenches: list[_TimedForce] = []
         self._efforts: list[_TimedForce] = []
         self._drives: dict[str, tuple[float, float]] = {}
+        self._moved_static: set[str] = set()  # static models moved since their spawn (resets put them back)
         self._forces_applied = False
         self._stale = False  # the bodies' poses lag the state after a step, until _current
         self._engine_warned: set[int] = set()  # the kinds of MuJoCo warning already passed on
@@ -342,7 +343,7 @@ class World:
             current = Pose.from_mj(self.data.xpos[body], self.data.xquat[body])
             self._place_root(body, move * current, state)
         if model.static:
-            self._models[name] = replace(model, pose=target)
+            self._moved_static.add(name)
         self._forward()
 
     def set_link_state(self, link: str, state: State) -> None:
@@ -354,6 +355,8 @@ class World:
             raise GazeboError(f"link {link!r} hangs on a joint of its model: set the model's state or the joint's "
                               f"position instead")
         self._place_root(body, normalized_pose(state.pose), state)
+        if self._model(link.partition("::")[0]).static:
+            self._moved_static.add(link.partition("::")[0])
         self._forward()
 
     def _place_root(self, body: int, pose: Pose, state: State) -> None:
@@ -447,6 +450,7 @@ class World:
         self._efforts = [e for e in self._efforts if not e.target.startswith(prefix)]
         self._drives = {j: v for j, v in self._drives.items() if not j.startswith(prefix)}
         self._ray_configs.clear()  # the deleted model's sensors' among them
+        self._moved_static.discard(name)
         self.model, self.data = self._recompile(name)
         self._index()
         self._forward()
@@ -670,6 +674,13 @@ class World:
 
     def _reset(self) -> None:
         mujoco.mj_resetData(self.model, self.data)
+        for name in self._moved_static:  # a static model's place is in the compiled model, not the state
+            for link in self._models[name].links:
+                body = self.body_id(f"{name}::{link.name}")
+                if self.model.body_parentid[body] == 0:  # the others hang on these
+                    pose = self._models[name].pose * link.pose
+                    self._place_root(body, pose, State(pose))
+        self._moved_static.clear()
         self._wrenches.clear()
         self._efforts.clear()
         for joint, (velocity, max_effort) in self._drives.items():
