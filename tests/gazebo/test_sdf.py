@@ -264,6 +264,10 @@ def test_urdf_with_gazebo_tags_spawns_as_spawn_model_reads_it() -> None:
     assert (plugins["laser"].link, plugins["laser"].sensor) == ("laser_link", "hokuyo")
     world.step(500)
     assert world.model_state("robot").pose.position[2] < 0.5  # it fell onto the ground
+    links = world.link_states()
+    assert list(links) == ["ground_plane::link", "robot::base_link", "robot::wheel", "robot::laser_link"]
+    assert links["robot::wheel"] == world.link_state("robot::wheel")
+    assert world.model_states() == {name: world.model_state(name) for name in ("ground_plane", "robot")}
 
 
 def test_spawning_and_deleting_keeps_the_others_state() -> None:

@@ -10,7 +10,8 @@ API (what the gazebo_ros side calls; names of links and joints are "model::link"
   `joint_names(model)`, `plugins()`, `sensors()`, `visuals()` (per link: shape, size or triangles,
   local pose, colour, for a 3-D window), `lights`.
 - State: `model_state(name)`, `link_state(link)` (pose: position and quaternion xyzw; twist in the
-  world frame), `set_model_state(name, state)`, `set_link_state(link, state)`, `joint_state(joint)`,
+  world frame), `model_states()` and `link_states()` (all of them, by name),
+  `set_model_state(name, state)`, `set_link_state(link, state)`, `joint_state(joint)`,
   `set_joint_positions(model, {joint: position})`.
 - Changes: `spawn_sdf(xml, name, pose)`, `spawn_urdf(xml, name, pose)`, `spawn(model)`, `delete_model(name)`
   (MjSpec edits, recompiled keeping every other model's state).
@@ -319,6 +320,22 @@ class World:
                      (float(twist[3]), float(twist[4]), float(twist[5])),
                      (float(twist[0]), float(twist[1]), float(twist[2])))
 
+    def link_states(self) -> dict[str, State]:
+        """Every link's state, by "model::link" (for /gazebo/link_states and a 3-D window's frames)."""
+        self._current()
+        twist = np.zeros(6)
+        states = {}
+        for body in range(1, self.model.nbody):
+            mujoco.mj_objectVelocity(self.model, self.data, mujoco.mjtObj.mjOBJ_BODY, body, twist, 0)
+            states[self._body_names[body]] = State(Pose.from_mj(self.data.xpos[body], self.data.xquat[body]),
+                                                   (float(twist[3]), float(twist[4]), float(twist[5])),
+                                                   (float(twist[0]), float(twist[1]), float(twist[2])))
+        return states
+
+    def model_states(self) -> dict[str, State]:
+        """Every model's state, by name (for /gazebo/model_states)."""
+        return {name: self.model_state(name) for name in self._models}
+
     def model_state(self, name: str) -> State:
         """The model frame's pose (its canonical, first, link's pose less that link's pose in the
         model) and the canonical link's twist, as Gazebo reports a model's."""
@@ -513,11 +530,10 @@ class World:
         return model, data
 
     def _index(self) -> None:
-        """Which model each body belongs to (by the names assembly gives), for contacts and divergence."""
-        self._body_model = [""] * self.model.nbody
-        for body in range(1, self.model.nbody):
-            name = mujoco.mj_id2name(self.model, mujoco.mjtObj.mjOBJ_BODY, body) or ""
-            self._body_model[body] = name.partition("::")[0]
+        """Each body's name and the model it belongs to (by the names assembly gives)."""
+        self._body_names = [mujoco.mj_id2name(self.model, mujoco.mjtObj.mjOBJ_BODY, body) or ""
+                            for body in range(self.model.nbody)]
+        self._body_model = [name.partition("::")[0] for name in self._body_names]
 
     def _overlapped_by(self, name: str) -> tuple[str, float] | None:
         for contact in self.data.contact[:self.data.ncon]:
