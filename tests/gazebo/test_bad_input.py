@@ -155,7 +155,9 @@ def test_unknown_names_are_refused() -> None:
             call()
 
 
-def test_a_diverging_model_is_put_back_with_a_warning() -> None:
+def test_a_diverging_model_is_put_back_with_a_warning(tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
+                                                       capfd: pytest.CaptureFixture[str]) -> None:
+    monkeypatch.chdir(tmp_path)  # where MuJoCo's default handler would write MUJOCO_LOG.TXT
     world = World.from_sdf(sdf(f"""{GROUND}<include><uri>model://box</uri><pose>0 0 0.5 0 0 0</pose></include>
       <include><uri>model://sphere</uri><pose>3 0 2 0 0 0</pose></include>"""))
     world.step(100)
@@ -166,6 +168,7 @@ def test_a_diverging_model_is_put_back_with_a_warning() -> None:
     assert world.model_state("sphere").pose.position == pytest.approx((3.0, 0.0, 2.0), abs=0.05)
     assert world.model_state("box").pose.position == pytest.approx((0.0, 0.0, 0.5), abs=1e-3)  # untouched
     assert world.sim_time == pytest.approx(0.15)
+    assert list(tmp_path.iterdir()) == [] and "WARNING" not in capfd.readouterr().out  # told once, by the World
 
 
 def test_nan_in_the_engines_state_is_put_right_with_a_warning() -> None:
