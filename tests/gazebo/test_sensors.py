@@ -174,6 +174,16 @@ def test_an_imu_at_rest_feels_gravity_upward_and_reads_its_heading() -> None:
     assert reading.orientation == pytest.approx((0.0, 0.0, math.sin(0.25), math.cos(0.25)), abs=1e-3)
 
 
+def test_a_links_acceleration_is_what_an_accelerometer_feels() -> None:
+    world = world_with("<include><uri>model://ground_plane</uri></include>", IMU)
+    world.step(500)
+    linear, angular = world.link_acceleration("imu_box::link")
+    assert linear == pytest.approx((0.0, 0.0, 9.8), abs=0.02) and angular == pytest.approx((0.0, 0.0, 0.0), abs=0.01)
+    falling = world_with(IMU.replace("0 0 0.1 0 0 0.5", "0 0 5 0 0 0.5"))
+    falling.step(10)
+    assert falling.link_acceleration("imu_box::link")[0] == pytest.approx((0.0, 0.0, 0.0), abs=1e-6)  # free fall
+
+
 def test_imu_noise_per_axis_has_its_mean_and_stddev() -> None:
     noise = "".join(f"<{axis}><noise type='gaussian'><mean>0.1</mean><stddev>0.05</stddev></noise></{axis}>"
                     for axis in "xyz")

@@ -10,7 +10,7 @@ API (what the gazebo_ros side calls; names of links and joints are "model::link"
   `joint_names(model)`, `plugins()`, `sensors()`, `visuals()` (per link: shape, size or triangles,
   local pose, colour, for a 3-D window), `lights`.
 - State: `model_state(name)`, `link_state(link)` (pose: position and quaternion xyzw; twist in the
-  world frame), `model_states()` and `link_states()` (all of them, by name),
+  world frame), `model_states()` and `link_states()` (all of them, by name), `link_acceleration(link)`,
   `set_model_state(name, state)`, `set_link_state(link, state)`, `joint_state(joint)`,
   `set_joint_positions(model, {joint: position})`.
 - Changes: `spawn_sdf(xml, name, pose)`, `spawn_urdf(xml, name, pose)`, `spawn(model)`, `delete_model(name)`
@@ -319,6 +319,18 @@ class World:
         return State(Pose.from_mj(self.data.xpos[body], self.data.xquat[body]),
                      (float(twist[3]), float(twist[4]), float(twist[5])),
                      (float(twist[0]), float(twist[1]), float(twist[2])))
+
+    def link_acceleration(self, link: str) -> tuple[Vector3, Vector3]:
+        """The link's linear and angular acceleration at its origin in the world frame, the linear
+        one as an accelerometer feels it (gravity's reaction included: +9.8 upward at rest), for the
+        plugins that read a body's acceleration (gazebo_ros_imu as a model plugin)."""
+        body = self.body_id(link)
+        self._current()
+        mujoco.mj_rnePostConstraint(self.model, self.data)  # the bodies' accelerations, contact forces included
+        acceleration = np.zeros(6)
+        mujoco.mj_objectAcceleration(self.model, self.data, mujoco.mjtObj.mjOBJ_BODY, body, acceleration, 0)
+        return ((float(acceleration[3]), float(acceleration[4]), float(acceleration[5])),
+                (float(acceleration[0]), float(acceleration[1]), float(acceleration[2])))
 
     def link_states(self) -> dict[str, State]:
         """Every link's state, by "model::link" (for /gazebo/link_states and a 3-D window's frames)."""
