@@ -12,7 +12,8 @@ from kame.gazebo.description import Physics
 from kame.gazebo.errors import GazeboError
 from kame.gazebo.poses import Pose
 from kame.gazebo.resources import SHIPPED_MODELS, Resources
-from kame.gazebo.world import JointState, SensorInfo, State, VisualShape, World
+from kame.gazebo.states import JointState, SensorInfo, State, VisualShape
+from kame.gazebo.world import World
 
 __all__ = ["SHIPPED_MODELS", "GazeboError", "JointState", "Physics", "Pose", "Resources", "SensorInfo", "State",
            "VisualShape", "World"]

@@ -48,9 +48,10 @@ from kame.gazebo.camera import CameraConfig, CameraFrame, Cameras
 from kame.gazebo.engine import mujoco
 from kame.gazebo.errors import GazeboError
 from kame.gazebo.meshes import MeshCache
-from kame.gazebo.poses import IDENTITY, Pose, Vector3, normalized_pose
+from kame.gazebo.poses import Pose, Vector3, normalized_pose
 from kame.gazebo.resources import Resources, read_xml
 from kame.gazebo.sdf import SdfReader
+from kame.gazebo.states import JointState, SensorInfo, State, VisualShape
 from kame.gazebo.urdf import UrdfReader
 from kame.gazebo.xmltree import Element, parse
 
@@ -62,45 +63,6 @@ WARNING_CHECK_STEPS = 100
 BAD_STATE = tuple(int(w) for w in (mujoco.mjtWarning.mjWARN_BADQPOS, mujoco.mjtWarning.mjWARN_BADQVEL,
                                     mujoco.mjtWarning.mjWARN_BADQACC))  # MuJoCo's own checks of NaN and huge values
 ONE_DEGREE = (int(mujoco.mjtJoint.mjJNT_HINGE), int(mujoco.mjtJoint.mjJNT_SLIDE))
-
-
-@dataclass(frozen=True)
-class State:
-    """A model's or link's pose and twist, the twist in the world frame at the frame's origin."""
-
-    pose: Pose = IDENTITY
-    linear: Vector3 = (0.0, 0.0, 0.0)
-    angular: Vector3 = (0.0, 0.0, 0.0)
-
-
-@dataclass(frozen=True)
-class JointState:
-    position: tuple[float, ...]  # one value a degree of freedom; a ball joint's quaternion (w, x, y, z)
-    velocity: tuple[float, ...]
-
-
-@dataclass(frozen=True)
-class SensorInfo:
-    model: str
-    link: str  # "model::link"
-    name: str
-    type: str
-    pose: Pose  # in the link's frame
-    update_rate: float
-    always_on: bool
-    visualize: bool
-    config: Element  # the <sensor> element: <ray>, <camera>, <imu>, <noise>... as written
-
-
-@dataclass(frozen=True)
-class VisualShape:
-    link: str  # "model::link"
-    name: str
-    kind: str  # box, cylinder, sphere, plane, mesh
-    size: tuple[float, ...]  # as description.Geometry; a mesh's scale is applied to its triangles
-    triangles: np.ndarray | None  # a mesh's corners (3 M x 3, float32) in the visual's frame
-    pose: Pose  # in the link's frame
-    color: d.Color
 
 
 @dataclass(frozen=True)
