@@ -155,7 +155,9 @@ def test_unknown_names_are_refused() -> None:
             call()
 
 
-def test_a_diverging_model_is_put_back_with_a_warning() -> None:
+def test_a_diverging_model_is_put_back_with_a_warning(tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
+                                                       capfd: pytest.CaptureFixture[str]) -> None:
+    monkeypatch.chdir(tmp_path)  # where MuJoCo's default handler would write MUJOCO_LOG.TXT
     world = World.from_sdf(sdf(f"""{GROUND}<include><uri>model://box</uri><pose>0 0 0.5 0 0 0</pose></include>
       <include><uri>model://sphere</uri><pose>3 0 2 0 0 0</pose></include>"""))
     world.step(100)
@@ -166,6 +168,7 @@ def test_a_diverging_model_is_put_back_with_a_warning() -> None:
     assert world.model_state("sphere").pose.position == pytest.approx((3.0, 0.0, 2.0), abs=0.05)
     assert world.model_state("box").pose.position == pytest.approx((0.0, 0.0, 0.5), abs=1e-3)  # untouched
     assert world.sim_time == pytest.approx(0.15)
+    assert list(tmp_path.iterdir()) == [] and "WARNING" not in capfd.readouterr().out  # told once, by the World
 
 
 def test_nan_in_the_engines_state_is_put_right_with_a_warning() -> None:
@@ -182,3 +185,30 @@ def test_nan_in_the_engines_state_is_put_right_with_a_warning() -> None:
     assert world.model_state("box").pose.position == pytest.approx((0.0, 0.0, 0.5))
     world.step(100)
     assert all(math.isfinite(v) for v in world.model_state("sphere").pose.position)
+
+
+@pytest.mark.parametrize(("sensor", "expected"), [
+    ("<sensor name='s' type='ray'><ray><scan><horizontal><samples>nan</samples></horizontal></scan>"
+     "<range><min>0</min><max>1</max></range></ray></sensor>", "expected a finite number, not 'nan'"),
+    ("<sensor name='s' type='ray'><ray><scan><horizontal><samples>2.5</samples></horizontal></scan>"
+     "<range><min>0</min><max>1</max></range></ray></sensor>", "expected a whole number, not 2.5"),
+    ("<sensor name='s' type='ray'><ray><range><min>2</min><max>1</max></range></ray></sensor>",
+     "needs 0 <= min < max"),
+    ("<sensor name='s' type='camera'><camera><image><width>1e9</width></image></camera></sensor>",
+     "an image of 1000000000x240 pixels cannot be rendered"),
+    ("<sensor name='s' type='camera'><camera><horizontal_fov>4</horizontal_fov></camera></sensor>",
+     "needs 0 < horizontal_fov < pi"),
+])
+def test_a_sensors_bad_configuration_is_a_clear_error(sensor: str, expected: str) -> None:
+    text = sdf(f"<model name='m'><static>true</static><link name='l'>{sensor}</link></model>")
+    try:
+        world = World.from_sdf(text, source="bad.world")
+        world.ray_scan(world.sensors()[0])
+    except GazeboError as exc:
+        assert expected in str(exc)
+    else:
+        raise AssertionError(f"no error for {sensor}")
+
+
+def test_two_lights_of_one_name_are_refused() -> None:
+    assert "light 'lamp'" in refused(sdf("<light name='lamp'/><light name='lamp'/>"))

@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from kame.gazebo import SHIPPED_MODELS, Physics, Pose, Resources, State, World
+from kame.gazebo import SHIPPED_MODELS, GazeboError, Physics, Pose, Resources, State, World
 
 GROUND = "<include><uri>model://ground_plane</uri></include>"
 
@@ -39,8 +39,10 @@ def test_includes_come_from_gazebo_model_path_with_name_pose_and_static(tmp_path
     resources = Resources.from_environment({"GAZEBO_MODEL_PATH": f"/nonexistent:{tmp_path}"})
     world = World.from_sdf(sdf(f"""{GROUND}<include><uri>model://sun</uri></include>
       <include><uri>model://crate</uri><name>crate_a</name><pose>1 2 0 0 0 1.5707963</pose></include>
-      <include><uri>model://crate</uri><name>crate_b</name><pose>-1 0 3 0 0 0</pose><static>true</static></include>
+      <include><uri>model://crate</uri><name>crate_b</name><pose>-1 0 3 0 0 0</pose><static>true</static>
+        <plugin name="mover" filename="libmover.so"><speed>2</speed></plugin></include>
       """), resources)
+    assert [(p.name, p.model, p.parameters()) for p in world.plugins()] == [("mover", "crate_b", {"speed": "2"})]
     assert world.model_names() == ["ground_plane", "crate_a", "crate_b"]
     assert [light.name for light in world.lights] == ["sun"]
     world.step(1000)
@@ -262,6 +264,10 @@ def test_urdf_with_gazebo_tags_spawns_as_spawn_model_reads_it() -> None:
     assert (plugins["laser"].link, plugins["laser"].sensor) == ("laser_link", "hokuyo")
     world.step(500)
     assert world.model_state("robot").pose.position[2] < 0.5  # it fell onto the ground
+    links = world.link_states()
+    assert list(links) == ["ground_plane::link", "robot::base_link", "robot::wheel", "robot::laser_link"]
+    assert links["robot::wheel"] == world.link_state("robot::wheel")
+    assert world.model_states() == {name: world.model_state(name) for name in ("ground_plane", "robot")}
 
 
 def test_spawning_and_deleting_keeps_the_others_state() -> None:
@@ -306,6 +312,18 @@ def test_reset_simulation_rewinds_time_and_reset_world_keeps_it() -> None:
     assert world.sim_time == 0.0 and world.iterations == 0
     assert world.model_state("box").pose.position[2] == pytest.approx(3.0)
     assert world.model_state("box").linear == (0.0, 0.0, 0.0)
+
+
+def test_a_moved_static_model_goes_back_on_reset() -> None:
+    world = World.from_sdf(sdf(GROUND + """<include><uri>model://box</uri><pose>0 0 0.5 0 0 0</pose>
+      <static>true</static></include>"""))
+    world.set_model_state("box", State(Pose((2.0, 1.0, 0.5))))
+    world.step(10)
+    assert world.model_state("box").pose.position == pytest.approx((2.0, 1.0, 0.5))
+    world.spawn_sdf((Path(SHIPPED_MODELS) / "sphere" / "model.sdf").read_text(), "ball", Pose((5.0, 0.0, 1.0)))
+    assert world.model_state("box").pose.position == pytest.approx((2.0, 1.0, 0.5))  # kept through a rebuild
+    world.reset_world()
+    assert world.model_state("box").pose.position == pytest.approx((0.0, 0.0, 0.5))
 
 
 def test_set_model_state_moves_and_launches_a_model() -> None:
@@ -370,3 +388,24 @@ def test_a_urdf_link_named_world_holds_the_robot_in_place() -> None:
     world.step(500)
     assert world.link_names("arm") == ["arm::base"]
     assert world.link_state("arm::base").pose.position == pytest.approx((1.0, 0.0, 1.0))
+
+
+def test_worlds_are_found_on_gazebo_resource_path_then_kames(tmp_path: Path) -> None:
+    (tmp_path / "worlds").mkdir()
+    (tmp_path / "worlds" / "mine.world").write_text(sdf(GROUND))
+    resources = Resources.from_environment({"GAZEBO_RESOURCE_PATH": str(tmp_path)})
+    assert resources.world_file("worlds/mine.world") == str(tmp_path / "worlds" / "mine.world")
+    empty = World.from_file(resources.world_file("worlds/empty.world"), resources)
+    assert empty.model_names() == ["ground_plane"] and [light.name for light in empty.lights] == ["sun"]
+    with pytest.raises(GazeboError, match=f"world file worlds/none.world not found, nor in GAZEBO_RESOURCE_PATH "
+                                          f"\\({tmp_path}\\)"):
+        resources.world_file("worlds/none.world")
+
+
+def test_an_empty_world_runs_and_takes_models() -> None:
+    world = World.empty()
+    world.step(10)
+    assert world.model_names() == [] and world.sim_time == pytest.approx(0.01)
+    world.spawn_sdf((Path(SHIPPED_MODELS) / "box" / "model.sdf").read_text(), "box", Pose((0.0, 0.0, 1.0)))
+    world.step(100)
+    assert world.model_state("box").pose.position[2] == pytest.approx(1.0 - 0.5 * 9.8 * 0.1 ** 2, abs=1e-3)

@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 
 from kame.gazebo import Pose, SensorInfo, State, World
+from kame.gazebo.camera import optical_points
 
 WALLS = """<model name="walls"><static>true</static><link name="link">
   <collision name="east"><pose>3 0 1 0 0 0</pose><geometry><box><size>0.2 30 2</size></box></geometry></collision>
@@ -146,6 +147,11 @@ def test_depth_values_equal_distances_along_the_optical_axis() -> None:
     # the east wall's face at x = 2.9 is 2.9 m deep at every pixel that sees it
     assert frame.depth[60, 80] == pytest.approx(2.9, abs=0.01)
     assert frame.depth[60, 10] == pytest.approx(2.9, abs=0.01)
+    points = optical_points(frame.depth, frame.config)
+    metres_a_pixel = 2.9 / frame.config.focal_length()  # on the wall
+    # pixel (80, 60) is half a pixel right of and below the optical axis (cx = 79.5, cy = 59.5)
+    assert points[60, 80] == pytest.approx((0.5 * metres_a_pixel, 0.5 * metres_a_pixel, 2.9), abs=0.01)
+    assert points[60, 10] == pytest.approx((-69.5 * metres_a_pixel, 0.5 * metres_a_pixel, 2.9), abs=0.01)
     # looking west, nothing within the far clip: +inf
     world.set_model_state("eye", State(Pose((0.0, 0.0, 0.5), (0.0, 0.0, 1.0, 0.0))))
     west = world.camera_frame(sensor, rgb=False, depth=True).depth
@@ -166,6 +172,16 @@ def test_an_imu_at_rest_feels_gravity_upward_and_reads_its_heading() -> None:
     assert reading.linear_acceleration == pytest.approx((0.0, 0.0, 9.8), abs=0.02)
     assert reading.angular_velocity == pytest.approx((0.0, 0.0, 0.0), abs=1e-3)
     assert reading.orientation == pytest.approx((0.0, 0.0, math.sin(0.25), math.cos(0.25)), abs=1e-3)
+
+
+def test_a_links_acceleration_is_what_an_accelerometer_feels() -> None:
+    world = world_with("<include><uri>model://ground_plane</uri></include>", IMU)
+    world.step(500)
+    linear, angular = world.link_acceleration("imu_box::link")
+    assert linear == pytest.approx((0.0, 0.0, 9.8), abs=0.02) and angular == pytest.approx((0.0, 0.0, 0.0), abs=0.01)
+    falling = world_with(IMU.replace("0 0 0.1 0 0 0.5", "0 0 5 0 0 0.5"))
+    falling.step(10)
+    assert falling.link_acceleration("imu_box::link")[0] == pytest.approx((0.0, 0.0, 0.0), abs=1e-6)  # free fall
 
 
 def test_imu_noise_per_axis_has_its_mean_and_stddev() -> None:

@@ -43,8 +43,8 @@ class CameraConfig:
         if camera is None:
             return CameraConfig()
         image, clip = camera.child("image"), camera.child("clip")
-        width = int(image.number("width", 320)) if image is not None else 320
-        height = int(image.number("height", 240)) if image is not None else 240
+        width = image.integer("width", 320) if image is not None else 320
+        height = image.integer("height", 240) if image is not None else 240
         config = CameraConfig(width, height, camera.number("horizontal_fov", 1.047),
                               clip.number("near", 0.1) if clip is not None else 0.1,
                               clip.number("far", 100.0) if clip is not None else 100.0,
@@ -73,6 +73,15 @@ def _noise(noise: Element | None) -> tuple[float, float]:
     if noise is None or (noise.child_text("type") or "gaussian") != "gaussian":
         return 0.0, 0.0
     return noise.number("mean", 0.0), noise.number("stddev", 0.0)
+
+
+def optical_points(depth: np.ndarray, config: CameraConfig) -> np.ndarray:
+    """Each pixel's point (height x width x 3, float32) in the camera's optical frame (x right, y
+    down, z forward), as a depth camera's PointCloud2 carries them; NaN where the depth is +inf."""
+    fx, _, cx, _, fy, cy, *_ = config.k()
+    rows, cols = np.indices(depth.shape, dtype=np.float32)
+    z = np.where(np.isfinite(depth), depth, np.nan).astype(np.float32)
+    return np.stack(((cols - cx) * z / fx, (rows - cy) * z / fy, z), axis=-1)
 
 
 @dataclass(frozen=True)

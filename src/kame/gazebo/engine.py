@@ -1,8 +1,12 @@
-"""MuJoCo, imported once for the simulator with its renderer headless.
+"""MuJoCo, imported once for the simulator with its renderer headless and its warnings quiet.
 
 MuJoCo picks its OpenGL back end from MUJOCO_GL when it is first imported: EGL (Mesa) renders
 offscreen without a display on these machines, where OSMesa failed. A caller's own choice
 (glfw on a desktop, osmesa elsewhere) is kept.
+MuJoCo's default warning handler prints each warning and appends it to MUJOCO_LOG.TXT in the
+current folder (a user's, wherever gzserver was started). The simulator's warnings are counted
+in MjData, where kame.gazebo.world reads them and says what it did about them, so the handler
+here lets them go.
 """
 
 from __future__ import annotations
@@ -12,5 +16,12 @@ import os
 os.environ.setdefault("MUJOCO_GL", "egl")
 
 import mujoco  # after MUJOCO_GL: the back end is chosen at import
+
+
+def _counted_in_the_data(message: str) -> None:
+    del message  # see the module's docstring
+
+
+mujoco.set_mju_user_warning(_counted_in_the_data)
 
 __all__ = ["mujoco"]

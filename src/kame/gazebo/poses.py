@@ -71,9 +71,6 @@ class Pose:
         p = self.rotation() @ np.asarray(point, dtype=float) + np.asarray(self.position)
         return float(p[0]), float(p[1]), float(p[2])
 
-    def is_finite(self) -> bool:
-        return all(math.isfinite(v) for v in (*self.position, *self.orientation))
-
 
 IDENTITY = Pose()
 

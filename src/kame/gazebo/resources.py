@@ -15,6 +15,7 @@ from pathlib import Path
 from kame.gazebo.errors import GazeboError
 from kame.gazebo.xmltree import Element, parse
 
+SHIPPED_RESOURCES = str(Path(__file__).resolve().parent)  # its worlds/ folder, as Gazebo's share/gazebo-11
 SHIPPED_MODELS = str(Path(__file__).resolve().parent / "models")
 
 
@@ -22,6 +23,7 @@ SHIPPED_MODELS = str(Path(__file__).resolve().parent / "models")
 class Resources:
     model_path: tuple[str, ...] = ()  # GAZEBO_MODEL_PATH's folders, searched before the shipped models
     find_package: Callable[[str], str | None] | None = None
+    resource_path: tuple[str, ...] = ()  # GAZEBO_RESOURCE_PATH's folders, searched before kame's for worlds
 
     @staticmethod
     def from_environment(environ: Mapping[str, str], find_package: Callable[[str], str | None] | None = None,
@@ -29,7 +31,20 @@ class Resources:
         """GAZEBO_MODEL_PATH's folders (colon-separated, as Gazebo reads it), then `extra_model_paths`
         (the gazebo_model_path exports of packages, which the ROS side collects)."""
         paths = tuple(p for p in environ.get("GAZEBO_MODEL_PATH", "").split(os.pathsep) if p)
-        return Resources(paths + extra_model_paths, find_package)
+        resources = tuple(p for p in environ.get("GAZEBO_RESOURCE_PATH", "").split(os.pathsep) if p)
+        return Resources(paths + extra_model_paths, find_package, resources)
+
+    def world_file(self, name: str) -> str:
+        """The world file `name` names, as gzserver finds it: a path that exists, else relative to
+        GAZEBO_RESOURCE_PATH's folders, then kame's (so "worlds/empty.world" is kame's empty world)."""
+        if os.path.isfile(name):
+            return name
+        for folder in (*self.resource_path, SHIPPED_RESOURCES):
+            candidate = os.path.join(folder, name)
+            if os.path.isfile(candidate):
+                return candidate
+        searched = ":".join(self.resource_path) or "(empty)"
+        raise GazeboError(f"world file {name} not found, nor in GAZEBO_RESOURCE_PATH ({searched}) and kame's worlds")
 
     def model_folder(self, name: str, where: Element) -> str:
         for folder in (*self.model_path, SHIPPED_MODELS):

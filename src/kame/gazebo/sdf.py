@@ -170,7 +170,9 @@ class SdfReader:
             model = replace(model, pose=_placed(pose, relative_to, placed or {}, element))
         if element.child("static") is not None:
             model = replace(model, static=element.flag("static", False))
-        return model
+        # SDF 1.6 lets an <include> carry plugins for the model it includes
+        added = tuple(self._plugin(p, model.name, "", "") for p in element.each("plugin"))
+        return replace(model, plugins=model.plugins + added) if added else model
 
     def _version(self, root: Element) -> tuple[int, ...]:
         if root.tag != "sdf":
@@ -235,7 +237,7 @@ class SdfReader:
             frames.add(joint.attrs.get("name", ""), joint, joint.child_text("child") or MODEL_FRAME)
         self_collide = element.flag("self_collide", False)
         links = [self._link(e, link_name, frames, self_collide) for e, link_name in raw_links]
-        joints = [j for j in (self._joint(e, frames, version) for e in element.each("joint")) if j is not None]
+        joints = [self._joint(e, frames, version) for e in element.each("joint")]
         plugins = [self._plugin(e, name, "", "") for e in element.each("plugin")]
         for link_element, link_name in raw_links:
             for sensor in link_element.each("sensor"):
@@ -304,7 +306,7 @@ class SdfReader:
                    for key in ("ixx", "iyy", "izz", "ixy", "ixz", "iyz"))
         return d.Inertial(mass, pose, *moments)
 
-    def _joint(self, element: Element, frames: _Frames, version: tuple[int, ...]) -> d.Joint | None:
+    def _joint(self, element: Element, frames: _Frames, version: tuple[int, ...]) -> d.Joint:
         name = element.attrs.get("name", "")
         kind = element.attrs.get("type", "")
         parent, child = element.child_text("parent") or "", element.child_text("child") or ""

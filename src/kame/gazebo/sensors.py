@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
@@ -56,6 +57,19 @@ class RayConfig:
     noise_mean: float = 0.0
     noise_stddev: float = 0.0
 
+    @cached_property
+    def horizontal_angles(self) -> np.ndarray:
+        return self.horizontal.angles()
+
+    @cached_property
+    def vertical_angles(self) -> np.ndarray:
+        return self.vertical.angles()
+
+    @cached_property
+    def directions(self) -> np.ndarray:
+        """Every ray's unit direction in the sensor's frame, vertical-major (computed once a sensor)."""
+        return ray_directions(self.horizontal_angles, self.vertical_angles)
+
     @staticmethod
     def of(sensor: Element) -> RayConfig:
         ray = sensor.child("ray") or sensor.child("lidar")
@@ -79,7 +93,7 @@ class RayConfig:
 def _axis(element: Element | None) -> RayAxis:
     if element is None:
         return RayAxis()
-    axis = RayAxis(int(element.number("samples", 1)), element.number("resolution", 1.0),
+    axis = RayAxis(element.integer("samples", 1), element.number("resolution", 1.0),
                    element.number("min_angle", 0.0), element.number("max_angle", 0.0))
     if axis.samples < 1 or not axis.resolution > 0 or axis.min_angle > axis.max_angle:
         raise GazeboError(f"{element.where()}: needs samples >= 1, resolution > 0 and min_angle <= max_angle")
@@ -128,8 +142,8 @@ def ray_directions(horizontal: np.ndarray, vertical: np.ndarray) -> np.ndarray:
 
 def ray_scan(model: mujoco.MjModel, data: mujoco.MjData, origin: Pose, body: int, config: RayConfig,
              rng: np.random.Generator) -> RayScan:
-    horizontal, vertical = config.horizontal.angles(), config.vertical.angles()
-    ranges = cast(model, data, origin, body, ray_directions(horizontal, vertical), config.range_min, config.range_max)
+    horizontal, vertical = config.horizontal_angles, config.vertical_angles
+    ranges = cast(model, data, origin, body, config.directions, config.range_min, config.range_max)
     if config.noise_stddev > 0 or config.noise_mean != 0:
         finite = np.isfinite(ranges)
         noisy = ranges[finite] + rng.normal(config.noise_mean, config.noise_stddev, int(finite.sum()))

@@ -10,7 +10,8 @@ API (what the gazebo_ros side calls; names of links and joints are "model::link"
   `joint_names(model)`, `plugins()`, `sensors()`, `visuals()` (per link: shape, size or triangles,
   local pose, colour, for a 3-D window), `lights`.
 - State: `model_state(name)`, `link_state(link)` (pose: position and quaternion xyzw; twist in the
-  world frame), `set_model_state(name, state)`, `set_link_state(link, state)`, `joint_state(joint)`,
+  world frame), `model_states()` and `link_states()` (all of them, by name), `link_acceleration(link)`,
+  `set_model_state(name, state)`, `set_link_state(link, state)`, `joint_state(joint)`,
   `set_joint_positions(model, {joint: position})`.
 - Changes: `spawn_sdf(xml, name, pose)`, `spawn_urdf(xml, name, pose)`, `spawn(model)`, `delete_model(name)`
   (MjSpec edits, recompiled keeping every other model's state).
@@ -47,9 +48,10 @@ from kame.gazebo.camera import CameraConfig, CameraFrame, Cameras
 from kame.gazebo.engine import mujoco
 from kame.gazebo.errors import GazeboError
 from kame.gazebo.meshes import MeshCache
-from kame.gazebo.poses import IDENTITY, Pose, Vector3, normalized_pose
+from kame.gazebo.poses import Pose, Vector3, normalized_pose
 from kame.gazebo.resources import Resources, read_xml
 from kame.gazebo.sdf import SdfReader
+from kame.gazebo.states import JointState, SensorInfo, State, VisualShape
 from kame.gazebo.urdf import UrdfReader
 from kame.gazebo.xmltree import Element, parse
 
@@ -64,48 +66,9 @@ ONE_DEGREE = (int(mujoco.mjtJoint.mjJNT_HINGE), int(mujoco.mjtJoint.mjJNT_SLIDE)
 
 
 @dataclass(frozen=True)
-class State:
-    """A model's or link's pose and twist, the twist in the world frame at the frame's origin."""
-
-    pose: Pose = IDENTITY
-    linear: Vector3 = (0.0, 0.0, 0.0)
-    angular: Vector3 = (0.0, 0.0, 0.0)
-
-
-@dataclass(frozen=True)
-class JointState:
-    position: tuple[float, ...]  # one value a degree of freedom; a ball joint's quaternion (w, x, y, z)
-    velocity: tuple[float, ...]
-
-
-@dataclass(frozen=True)
-class SensorInfo:
-    model: str
-    link: str  # "model::link"
-    name: str
-    type: str
-    pose: Pose  # in the link's frame
-    update_rate: float
-    always_on: bool
-    visualize: bool
-    config: Element  # the <sensor> element: <ray>, <camera>, <imu>, <noise>... as written
-
-
-@dataclass(frozen=True)
-class VisualShape:
-    link: str  # "model::link"
-    name: str
-    kind: str  # box, cylinder, sphere, plane, mesh
-    size: tuple[float, ...]  # as description.Geometry; a mesh's scale is applied to its triangles
-    triangles: np.ndarray | None  # a mesh's corners (3 M x 3, float32) in the visual's frame
-    pose: Pose  # in the link's frame
-    color: d.Color
-
-
-@dataclass(frozen=True)
 class _TimedForce:
     target: str  # link or joint
-    values: tuple[float, ...]  # force + torque about the centre of mass (world frame), or an effort
+    values: tuple[float, ...]  # force, torque (world frame) and the point (link frame); or an effort
     start: float
     end: float  # math.inf: until cleared
 
@@ -129,6 +92,7 @@ class World:
         self._wrenches: list[_TimedForce] = []
         self._efforts: list[_TimedForce] = []
         self._drives: dict[str, tuple[float, float]] = {}
+        self._moved_static: set[str] = set()  # static models moved since their spawn (resets put them back)
         self._forces_applied = False
         self._stale = False  # the bodies' poses lag the state after a step, until _current
         self._engine_warned: set[int] = set()  # the kinds of MuJoCo warning already passed on
@@ -136,6 +100,7 @@ class World:
         self.iterations = 0
         self._generation = 0  # counts compilations: renderers made for an older model are remade
         self._cameras = Cameras()
+        self._ray_configs: dict[int, tuple[Element, sensing.RayConfig]] = {}
         self._spec = mujoco.MjSpec()
         self._spec.compiler.degree = False
         self._spec.compiler.autolimits = False
@@ -149,7 +114,10 @@ class World:
         self._set_spec_physics(description.physics)
         self._physics = description.physics
         for light in description.lights:
-            assembly.add_light(self._spec, light)
+            try:
+                assembly.add_light(self._spec, light)
+            except ValueError as exc:  # MuJoCo refuses a second light of the same name as it is added
+                raise GazeboError(f"{description.source}: light {light.name!r}: {exc}") from None
         for model in description.models:
             self._add_to_spec(model)
         self.model, self.data = self._compile(description.source)
@@ -314,6 +282,34 @@ class World:
                      (float(twist[3]), float(twist[4]), float(twist[5])),
                      (float(twist[0]), float(twist[1]), float(twist[2])))
 
+    def link_acceleration(self, link: str) -> tuple[Vector3, Vector3]:
+        """The link's linear and angular acceleration at its origin in the world frame, the linear
+        one as an accelerometer feels it (gravity's reaction included: +9.8 upward at rest), for the
+        plugins that read a body's acceleration (gazebo_ros_imu as a model plugin)."""
+        body = self.body_id(link)
+        self._current()
+        mujoco.mj_rnePostConstraint(self.model, self.data)  # the bodies' accelerations, contact forces included
+        acceleration = np.zeros(6)
+        mujoco.mj_objectAcceleration(self.model, self.data, mujoco.mjtObj.mjOBJ_BODY, body, acceleration, 0)
+        return ((float(acceleration[3]), float(acceleration[4]), float(acceleration[5])),
+                (float(acceleration[0]), float(acceleration[1]), float(acceleration[2])))
+
+    def link_states(self) -> dict[str, State]:
+        """Every link's state, by "model::link" (for /gazebo/link_states and a 3-D window's frames)."""
+        self._current()
+        twist = np.zeros(6)
+        states = {}
+        for body in range(1, self.model.nbody):
+            mujoco.mj_objectVelocity(self.model, self.data, mujoco.mjtObj.mjOBJ_BODY, body, twist, 0)
+            states[self._body_names[body]] = State(Pose.from_mj(self.data.xpos[body], self.data.xquat[body]),
+                                                   (float(twist[3]), float(twist[4]), float(twist[5])),
+                                                   (float(twist[0]), float(twist[1]), float(twist[2])))
+        return states
+
+    def model_states(self) -> dict[str, State]:
+        """Every model's state, by name (for /gazebo/model_states)."""
+        return {name: self.model_state(name) for name in self._models}
+
     def model_state(self, name: str) -> State:
         """The model frame's pose (its canonical, first, link's pose less that link's pose in the
         model) and the canonical link's twist, as Gazebo reports a model's."""
@@ -338,7 +334,7 @@ class World:
             current = Pose.from_mj(self.data.xpos[body], self.data.xquat[body])
             self._place_root(body, move * current, state)
         if model.static:
-            self._models[name] = replace(model, pose=target)
+            self._moved_static.add(name)
         self._forward()
 
     def set_link_state(self, link: str, state: State) -> None:
@@ -350,6 +346,8 @@ class World:
             raise GazeboError(f"link {link!r} hangs on a joint of its model: set the model's state or the joint's "
                               f"position instead")
         self._place_root(body, normalized_pose(state.pose), state)
+        if self._model(link.partition("::")[0]).static:
+            self._moved_static.add(link.partition("::")[0])
         self._forward()
 
     def _place_root(self, body: int, pose: Pose, state: State) -> None:
@@ -442,6 +440,8 @@ class World:
         self._wrenches = [w for w in self._wrenches if not w.target.startswith(prefix)]
         self._efforts = [e for e in self._efforts if not e.target.startswith(prefix)]
         self._drives = {j: v for j, v in self._drives.items() if not j.startswith(prefix)}
+        self._ray_configs.clear()  # the deleted model's sensors' among them
+        self._moved_static.discard(name)
         self.model, self.data = self._recompile(name)
         self._index()
         self._forward()
@@ -451,7 +451,12 @@ class World:
         for link in model.links:
             for sensor in link.sensors:
                 self._grow_render_buffer(sensor)
-        assembly.add_model(self._spec, model, self._meshes.load, self._warnings)
+        try:
+            assembly.add_model(self._spec, model, self._meshes.load, self._warnings)
+        except GazeboError:
+            raise
+        except ValueError as exc:  # MuJoCo refuses some things as they are added (a repeated name)
+            raise GazeboError(f"{model.source}: model {model.name!r}: {exc}") from None
 
     def _remove_from_spec(self, name: str) -> None:
         prefix = f"{name}::"
@@ -467,13 +472,13 @@ class World:
             self._spec.delete(mesh)
 
     def _grow_render_buffer(self, sensor: d.Sensor) -> None:
-        image = sensor.element.child("camera")
-        image = image.child("image") if image is not None else None
-        if image is None:
+        """MuJoCo's offscreen buffer as large as the largest camera; a camera's bad configuration is
+        refused here, as its model is loaded."""
+        if sensor.type not in assembly.CAMERA_TYPES:
             return
-        size = (int(image.number("width", 320)), int(image.number("height", 240)))
+        config = CameraConfig.of(sensor.element)
         global_ = self._spec.visual.global_
-        global_.offwidth, global_.offheight = max(global_.offwidth, size[0]), max(global_.offheight, size[1])
+        global_.offwidth, global_.offheight = max(global_.offwidth, config.width), max(global_.offheight, config.height)
 
     def _compile(self, source: str) -> tuple[mujoco.MjModel, mujoco.MjData]:
         assembly.rank_friction(self._spec)
@@ -499,14 +504,10 @@ class World:
         return model, data
 
     def _index(self) -> None:
-        """Which model each body belongs to (by the names assembly gives), for contacts and divergence."""
-        self._body_model = [""] * self.model.nbody
-        for body in range(1, self.model.nbody):
-            name = mujoco.mj_id2name(self.model, mujoco.mjtObj.mjOBJ_BODY, body) or ""
-            self._body_model[body] = name.partition("::")[0]
-
-    def model_of_body(self, body: int) -> str:
-        return self._body_model[body]
+        """Each body's name and the model it belongs to (by the names assembly gives)."""
+        self._body_names = [mujoco.mj_id2name(self.model, mujoco.mjtObj.mjOBJ_BODY, body) or ""
+                            for body in range(self.model.nbody)]
+        self._body_model = [name.partition("::")[0] for name in self._body_names]
 
     def _overlapped_by(self, name: str) -> tuple[str, float] | None:
         for contact in self.data.contact[:self.data.ncon]:
@@ -612,7 +613,11 @@ class World:
 
     def ray_scan(self, sensor: SensorInfo) -> sensing.RayScan:
         self._current()
-        config = sensing.RayConfig.of(sensor.config)
+        # a sensor's configuration is read once: the element is kept with it, so its id is not reused
+        known = self._ray_configs.get(id(sensor.config))
+        if known is None or known[0] is not sensor.config:
+            known = self._ray_configs[id(sensor.config)] = (sensor.config, sensing.RayConfig.of(sensor.config))
+        config = known[1]
         return sensing.ray_scan(self.model, self.data, self.sensor_pose(sensor), self.body_id(sensor.link), config,
                                 self.rng)
 
@@ -659,6 +664,13 @@ class World:
 
     def _reset(self) -> None:
         mujoco.mj_resetData(self.model, self.data)
+        for name in self._moved_static:  # a static model's place is in the compiled model, not the state
+            for link in self._models[name].links:
+                body = self.body_id(f"{name}::{link.name}")
+                if self.model.body_parentid[body] == 0:  # the others hang on these
+                    pose = self._models[name].pose * link.pose
+                    self._place_root(body, pose, State(pose))
+        self._moved_static.clear()
         self._wrenches.clear()
         self._efforts.clear()
         for joint, (velocity, max_effort) in self._drives.items():

@@ -7,6 +7,7 @@ dependency; and expat gives each element's line, which error messages need.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Iterator
 from dataclasses import dataclass, field
 from xml.parsers import expat
@@ -39,10 +40,20 @@ class Element:
         return found.text.strip() if found is not None else None
 
     def number(self, tag: str, default: float) -> float:
+        """The child's finite number (SDF writes 1e16 for "no limit", never inf or nan)."""
         text = self.child_text(tag)
         if text is None or text == "":
             return default
-        return parse_float(text, self.child(tag) or self)
+        value = parse_float(text, self.child(tag) or self)
+        if not math.isfinite(value):
+            raise GazeboError(f"{(self.child(tag) or self).where()}: expected a finite number, not {text!r}")
+        return value
+
+    def integer(self, tag: str, default: int) -> int:
+        value = self.number(tag, default)
+        if value != int(value):
+            raise GazeboError(f"{(self.child(tag) or self).where()}: expected a whole number, not {value}")
+        return int(value)
 
     def flag(self, tag: str, default: bool) -> bool:
         text = self.child_text(tag)
