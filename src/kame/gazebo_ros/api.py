@@ -23,7 +23,7 @@ from kame.client import services, topics
 from kame.gazebo import description as d
 from kame.gazebo.errors import GazeboError
 from kame.gazebo.poses import Pose
-from kame.gazebo.world import State
+from kame.gazebo.states import State
 from kame.gazebo_ros import relative
 from kame.gazebo_ros.conversions import (
     finite,

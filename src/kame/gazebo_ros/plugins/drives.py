@@ -16,7 +16,7 @@ import threading
 from typing import Any
 
 from kame.gazebo.poses import Pose
-from kame.gazebo.world import State
+from kame.gazebo.states import State
 from kame.gazebo_ros.conversions import stamp
 from kame.gazebo_ros.plugins.base import Every, GazeboPlugin, PluginContext
 from kame.gazebo_ros.plugins.parameters import PluginParameterError
