@@ -32,7 +32,9 @@ def _yaw(pose: Pose) -> float:
 
 
 class _Command:
-    """The newest cmd_vel (linear.x, linear.y, angular.z), written by the subscriber's thread."""
+    """The newest cmd_vel (linear.x, linear.y, angular.z), written by the subscriber's thread, which
+    never touches the World (only the stepping thread does): it stamps a command with the simulated
+    time of the plugin's last update."""
 
     def __init__(self) -> None:
         self._lock = threading.Lock()
@@ -135,7 +137,7 @@ class _WheelDrive(GazeboPlugin):
         self.last_update = self.context.world.sim_time
         self.context.info(f"{self.info}: Try to subscribe to {command_topic}")
         self.own(self.context.subscriber(namespace, command_topic, Twist,
-                                         lambda msg: self.command.set(msg, self.context.world.sim_time)))
+                                         lambda msg: self.command.set(msg, self.last_update)))
         self.context.info(f"{self.info}: Subscribe to {command_topic}")
 
     def _targets(self) -> tuple[float, float]:
@@ -318,11 +320,12 @@ class PlanarMove(GazeboPlugin):
         self.timeout = p.number("cmdTimeout", -1.0, quiet=True)
         context.report(p)
         self.command = _Command()
-        self.own(context.subscriber(namespace, command_topic, Twist,
-                                    lambda msg: self.command.set(msg, context.world.sim_time)))
+        self.now = context.world.sim_time  # the world's time at the last update: callbacks never touch the World
+        self.own(context.subscriber(namespace, command_topic, Twist, lambda msg: self.command.set(msg, self.now)))
         self.odom = _Odometry(self, namespace, odometry_topic, odometry_frame, base_frame, publish_tf)
 
     def update(self, now: float) -> None:
+        self.now = now
         world = self.context.world
         model = self.context.model_name()
         if self.timeout > 0 and now - self.command.received > self.timeout:
