@@ -162,6 +162,18 @@ def test_diff_drive_follows_the_commanded_arc(live: tuple[Sim, Proc]) -> None:
     driver.stop()
 
 
+def test_robot_namespace_puts_a_second_robots_topics_under_it(live: tuple[Sim, Proc]) -> None:
+    sim, _ = live
+    out = spawn(sim, "-urdf", "-file", str(DATA / "robot.urdf"), "-model", "rover2", "-robot_namespace", "r2",
+                "-y", "-1.5")
+    assert "Successfully spawned entity" in out
+    odom = sim.echo("/r2/odom")  # the plugins' topics under the namespace, their frames as given (no tf_prefix)
+    assert (odom["header"]["frame_id"], odom["child_frame_id"]) == ("odom", "base_footprint")
+    assert odom["pose"]["pose"]["position"]["y"] == pytest.approx(-1.5, abs=0.01)
+    assert sim.echo("/r2/front_camera/camera_info")["width"] == 160
+    assert call(sim, "/gazebo/delete_model", "rover2")["success"] is True
+
+
 def test_bad_requests_are_answered_and_the_server_runs_on(live: tuple[Sim, Proc], tmp_path: Path) -> None:
     sim, launch = live
     nan_state = call(sim, "/gazebo/set_model_state", "{model_state: {model_name: rover, pose: {position: {x: .nan}}}}")

@@ -15,6 +15,7 @@ import math
 import threading
 from typing import Any
 
+from kame.client import process
 from kame.gazebo.poses import Pose
 from kame.gazebo.states import State
 from kame.gazebo_ros.conversions import stamp
@@ -58,6 +59,16 @@ class _Command:
             self.x = self.y = self.rotation = 0.0
 
 
+def _tf_prefix(namespace: str) -> str:
+    """tf::getPrefixParam: ~tf_prefix searched up from the robot's namespace ("" when unset)."""
+    parts = [p for p in namespace.split("/") if p]
+    for depth in range(len(parts), -1, -1):
+        found = process.get_param("/" + "/".join([*parts[:depth], "tf_prefix"]), None)
+        if isinstance(found, str):
+            return found
+    return ""
+
+
 class _Odometry:
     """Odometry and the odom -> base transform, published as the drive plugins do."""
 
@@ -67,6 +78,7 @@ class _Odometry:
         from tf2_msgs.msg import TFMessage
 
         self.namespace = namespace
+        self.tf_prefix = _tf_prefix(namespace)
         self.odom_frame = self._framed(odom_frame)
         self.base_frame = self._framed(base_frame)
         self.covariance = covariance
@@ -74,9 +86,11 @@ class _Odometry:
         self.tf = plugin.own(plugin.context.publisher("", "/tf", TFMessage)) if publish_tf else None
 
     def _framed(self, frame: str) -> str:
-        """tf_prefix-less frames under the robot namespace, as gazebo_ros's resolve gives them."""
-        frame = frame.lstrip("/")
-        return f"{self.namespace}/{frame}" if self.namespace else frame
+        """tf::resolve(tf_prefix, frame), as gazebo_ros's resolveTF: an absolute frame loses its
+        slash, a relative one takes the tf_prefix found from the robot's namespace (none: as is)."""
+        if frame.startswith("/") or not self.tf_prefix:
+            return frame.lstrip("/")
+        return f"{self.tf_prefix.lstrip('/')}/{frame}"
 
     def publish(self, now: float, pose: Pose, linear: tuple[float, float], angular: float) -> None:
         from geometry_msgs.msg import TransformStamped
