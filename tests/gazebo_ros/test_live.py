@@ -174,6 +174,18 @@ def test_robot_namespace_puts_a_second_robots_topics_under_it(live: tuple[Sim, P
     assert call(sim, "/gazebo/delete_model", "rover2")["success"] is True
 
 
+def test_spawn_model_waits_for_a_model_and_bonds_to_its_own(live: tuple[Sim, Proc], tmp_path: Path) -> None:
+    sim, _ = live
+    (tmp_path / "box.urdf").write_text(BOX_URDF)
+    bonded = Proc([str(BIN / "rosrun"), "gazebo_ros", "spawn_model", "-urdf", "-file", str(tmp_path / "box.urdf"),
+                   "-model", "bonded", "-x", "-2", "-z", "0.5", "-wait", "rover", "-b"], sim.env, cwd=tmp_path)
+    sim.procs.append(bonded)
+    bonded.wait_line("Waiting for shutdown to delete model bonded", timeout=60)
+    assert "bonded" in call(sim, "/gazebo/get_world_properties")["model_names"]
+    bonded.stop(timeout=30)  # Ctrl-C: -b deletes the model on the way out
+    assert "bonded" not in call(sim, "/gazebo/get_world_properties")["model_names"]
+
+
 def test_bad_requests_are_answered_and_the_server_runs_on(live: tuple[Sim, Proc], tmp_path: Path) -> None:
     sim, launch = live
     nan_state = call(sim, "/gazebo/set_model_state", "{model_state: {model_name: rover, pose: {position: {x: .nan}}}}")
