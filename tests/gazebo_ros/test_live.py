@@ -90,6 +90,11 @@ def test_pause_unpause_and_reset(live: tuple[Sim, Proc]) -> None:
     call(sim, "/gazebo/reset_simulation")
     assert call(sim, "/gazebo/get_world_properties")["sim_time"] == 0.0
     assert box_z() == pytest.approx(1.0)
+    sim.run("rostopic", "pub", "-1", "/gazebo/set_model_state", "gazebo_msgs/ModelState",
+            "{model_name: box, pose: {position: {x: 1.5, z: 2}, orientation: {w: 1}}, reference_frame: world}")
+    wait_until(lambda: box_z() == pytest.approx(2.0), timeout=20, what="/gazebo/set_model_state to move the box")
+    link = call(sim, "/gazebo/get_link_state", "box::base_link", "box")  # the link seen from its own model
+    assert link["success"] is True and link["link_state"]["pose"]["position"] == {"x": 0.0, "y": 0.0, "z": 0.0}
     deleted = call(sim, "/gazebo/delete_model", "box")
     assert deleted == {"success": True, "status_message": "DeleteModel: successfully deleted model"}
 
