@@ -16,8 +16,9 @@ from tests.support import SYSTEM_PYTHON
 SHARE = Path(__file__).resolve().parents[2] / "src" / "kame" / "share"
 DEFINITIONS = SHARE / "gazebo_msgs"
 
-# md5sums quoted by code generated from Noetic's gazebo_msgs (rosserial headers, gennodejs and
-# roslisp output) and by a gazebo_ros_pkgs issue on a handshake that failed over GetModelState.
+# md5sums quoted by code generated from Noetic's gazebo_msgs (rosserial headers, gennodejs, roslisp
+# and roseus output, C# and Swift message libraries) and by a gazebo_ros_pkgs issue on a handshake
+# that failed over GetModelState.
 PUBLISHED = {
     "gazebo_msgs/ModelStates": "48c080191eb15c41858319b4d8a609c2",
     "gazebo_msgs/ModelState": "9330fd35f2fcd82d457e54bd54e10593",
@@ -28,6 +29,15 @@ PUBLISHED = {
     "gazebo_msgs/SetLightPropertiesRequest": "10d953f2306aec18460eb80dd94fdd47",
     "gazebo_msgs/SetLightPropertiesResponse": "2ec6f3eff0161f4257b808b12bc830c2",
     "gazebo_msgs/GetLightPropertiesResponse": "9a19ddd5aab4c13b7643d1722c709f1f",
+    "gazebo_msgs/LinkState": "0818ebbf28ce3a08d48ab1eaa7309ebe",
+    "gazebo_msgs/ODEJointProperties": "1b744c32a920af979f53afe2f9c3511f",
+    "gazebo_msgs/ODEPhysics": "667d56ddbd547918c32d1934503dc335",
+    "gazebo_msgs/PerformanceMetrics": "884f71fd5037b886ec5e126b83c4425a",
+    "gazebo_msgs/SpawnModel": "9ed9c82c96abe1a00c3e8cdaeee24413",
+    "gazebo_msgs/GetJointProperties": "7b30be900f50aa21efec4a0ec92d91c9",
+    "gazebo_msgs/GetPhysicsProperties": "575a5e74786981b7df2e3afc567693a6",
+    "gazebo_msgs/ApplyBodyWrench": "585b9f9618aa0581b207e2f2d90866bc",
+    "gazebo_msgs/SetModelConfiguration": "10e3139d3b669c40afc057d38956fff7",
 }
 
 NOETIC_TYPES = {
