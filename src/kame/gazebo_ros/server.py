@@ -6,7 +6,7 @@ Loads the world (a path, or a name on GAZEBO_RESOURCE_PATH such as worlds/empty.
 kame's shipped worlds), starts its models' plugins, steps it on a thread this module owns at the
 world's real_time_factor (paused with -u until /gazebo/unpause_physics), publishes /clock
 (every step, or at ~pub_clock_frequency Hz of simulated time when set), and serves the /gazebo
-API (kame.gazebo_ros.api) unless ~enable_ros_network is false. A world that cannot be read is
+API (kame.gazebo_ros.api) and ~performance_metrics unless ~enable_ros_network is false. A world that cannot be read is
 an error line, and the server runs on with an empty world, so models can still be spawned.
 """
 
@@ -15,6 +15,7 @@ from __future__ import annotations
 import math
 import os
 import sys
+import time
 from collections.abc import Sequence
 from pathlib import Path
 
@@ -63,6 +64,38 @@ class ClockPublisher:
             return
         self._last = now
         self.clock.publish(Clock(stamp(now)))
+
+
+class PerformanceMetrics:
+    """~performance_metrics (gazebo_msgs/PerformanceMetrics, as Noetic's gazebo_ros publishes
+    Gazebo's): the real-time factor over the last second of wall time, once a second while someone
+    listens. kame's sensors have no update-rate statistics: the sensor list stays empty."""
+
+    PERIOD = 1.0  # seconds of wall time
+
+    def __init__(self) -> None:
+        from gazebo_msgs.msg import PerformanceMetrics as Metrics
+
+        self.metrics = topics.Publisher("~performance_metrics", Metrics, queue_size=10)
+        self._since: tuple[float, float] | None = None  # (wall, simulated) when the period began
+
+    def __call__(self, now: float) -> None:
+        from gazebo_msgs.msg import PerformanceMetrics as Metrics
+
+        wall = time.monotonic()
+        if self._since is None or now < self._since[1]:
+            self._since = (wall, now)
+            return
+        elapsed = wall - self._since[0]
+        if elapsed < self.PERIOD:
+            return
+        factor = (now - self._since[1]) / elapsed
+        self._since = (wall, now)
+        if self.metrics.get_num_connections() > 0:
+            msg = Metrics()
+            msg.header.stamp = stamp(now)
+            msg.real_time_factor = factor
+            self.metrics.publish(msg)
 
 
 def _number_param(name: str, default: float) -> float:
@@ -116,6 +149,7 @@ def run(options: command_line.ServerOptions) -> int:
             host.start_model(world.model_description(name), None)
         if bool(process.get_param("~enable_ros_network", True)):
             api = GazeboApi(sim, ModelFactory(sim, host, _warn))
+            sim.add_listener(PerformanceMetrics())
     _info("Finished loading Gazebo ROS API Plugin.")
     if options.paused:
         _info("Simulation paused: /gazebo/unpause_physics runs it")
