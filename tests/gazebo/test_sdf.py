@@ -11,7 +11,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from kame.gazebo import SHIPPED_MODELS, GazeboError, Physics, Pose, Resources, State, World
+from tests.gazebo import require_engine
+
+require_engine()
+
+from kame.gazebo import SHIPPED_MODELS, GazeboError, Physics, Pose, Resources, State, World  # noqa: E402  (MuJoCo loads once require_engine has checked it can)
 
 GROUND = "<include><uri>model://ground_plane</uri></include>"
 
@@ -338,6 +342,7 @@ def test_set_model_state_moves_and_launches_a_model() -> None:
     assert world.model_state("box").pose.rpy()[2] == pytest.approx(1.5, rel=1e-3)
 
 
+@pytest.mark.usefixtures("renders")
 def test_world_and_sensor_plugins_and_physics_are_read() -> None:
     world = World.from_sdf(sdf("""<physics type="ode"><max_step_size>0.002</max_step_size>
       <real_time_update_rate>500</real_time_update_rate><real_time_factor>2</real_time_factor></physics>

@@ -8,8 +8,12 @@ import math
 import numpy as np
 import pytest
 
-from kame.gazebo import Pose, SensorInfo, State, World
-from kame.gazebo.camera import optical_points
+from tests.gazebo import require_engine
+
+require_engine()
+
+from kame.gazebo import Pose, SensorInfo, State, World  # noqa: E402  (MuJoCo loads once require_engine has checked it can)
+from kame.gazebo.camera import optical_points  # noqa: E402  (MuJoCo loads once require_engine has checked it can)
 
 WALLS = """<model name="walls"><static>true</static><link name="link">
   <collision name="east"><pose>3 0 1 0 0 0</pose><geometry><box><size>0.2 30 2</size></box></geometry></collision>
@@ -117,6 +121,7 @@ def red_box(x: float, y: float, z: float, size: float = 0.2) -> str:
       <material><script><name>Gazebo/Red</name></script></material></visual></link></model>"""
 
 
+@pytest.mark.usefixtures("renders")
 def test_a_camera_sees_a_red_box_at_the_pixels_its_k_predicts() -> None:
     world = world_with(red_box(3.0, 0.6, 0.8), camera())
     frame = world.camera_frame(only_sensor(world, "cam"))
@@ -139,6 +144,7 @@ def test_a_camera_sees_a_red_box_at_the_pixels_its_k_predicts() -> None:
     world.close()
 
 
+@pytest.mark.usefixtures("renders")
 def test_depth_values_equal_distances_along_the_optical_axis() -> None:
     world = world_with(WALLS, camera(160, 120, 1.0, "depth"))
     sensor = only_sensor(world, "cam")
