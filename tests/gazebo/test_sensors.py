@@ -213,3 +213,31 @@ def test_a_bumper_reports_its_links_contacts_and_the_force() -> None:
     assert sum(c.force[2] for c in found) == pytest.approx(9.8, rel=0.01)  # the ground holds the box up
     assert all(c.normal[2] < -0.99 for c in found)  # from the box's collision outward: down into the ground
     assert world.contacts("ground_plane::link")[0].collision1 == "ground_plane::link::collision"
+
+
+def sonar_cube(name: str, x: float) -> str:
+    """A 5 cm cube carrying a ray sensor 25 cm ahead of its centre, as gazebo_ros_range.world's models do."""
+    cube = "<geometry><box><size>0.05 0.05 0.05</size></box></geometry>"
+    axis = "<samples>5</samples><resolution>1</resolution><min_angle>-0.25</min_angle><max_angle>0.25</max_angle>"
+    return f"""<model name="{name}"><pose>{x} 0 0 0 0 0</pose><link name="link"><gravity>false</gravity>
+      <visual name="v">{cube}</visual><collision name="c">{cube}</collision>
+      <sensor type="ray" name="sonar"><pose>0.25 0 0 0 0 0</pose><update_rate>5</update_rate><ray><scan>
+        <horizontal>{axis}</horizontal><vertical>{axis}</vertical></scan>
+        <range><min>0.01</min><max>0.75</max><resolution>0.01</resolution></range></ray>
+        <plugin filename="libgazebo_ros_range.so" name="range"><fov>0.5</fov><radiation>ultrasound</radiation>
+        </plugin></sensor></link></model>"""
+
+
+def test_two_sonar_cubes_in_an_sdf_1_4_world_without_gravity() -> None:
+    world = World.from_sdf(f"""<sdf version="1.4"><world name="range"><physics type="ode">
+      <gravity>0 0 0</gravity><max_step_size>0.001</max_step_size></physics>
+      {sonar_cube("first", 0.0)}{sonar_cube("second", 0.5)}
+      <light type="point" name="lamp"><pose>0 0 10 0 0 0</pose><spot><inner_angle>1.57</inner_angle></spot></light>
+      </world></sdf>""")
+    assert world.physics.gravity == (0.0, 0.0, 0.0)
+    world.step(200)
+    first, second = (s for s in world.sensors() if s.name == "sonar")
+    # the second cube's near face is at x = 0.475, the first sonar at x = 0.25: 0.225 m; nothing before the second
+    assert world.range_reading(first).range == pytest.approx(0.225, abs=0.005)
+    assert world.range_reading(second).range == math.inf
+    assert world.model_state("second").pose.position == pytest.approx((0.5, 0.0, 0.0))  # no gravity, no drift
