@@ -343,6 +343,17 @@ def test_set_model_state_moves_and_launches_a_model() -> None:
 
 
 @pytest.mark.usefixtures("renders")
+def test_a_models_twist_is_set_where_it_is() -> None:
+    world = World.from_sdf(sdf("<include><uri>model://box</uri><pose>1 2 3 0 0 1</pose></include>"))
+    world.physics = Physics(gravity=(0.0, 0.0, 0.0))
+    world.set_model_twist("box", (0.5, 0.0, 0.0), (0.0, 0.0, 0.2))
+    state = world.model_state("box")
+    assert state.pose.position == pytest.approx((1.0, 2.0, 3.0)) and state.angular == pytest.approx((0.0, 0.0, 0.2))
+    world.step(1000)
+    assert world.model_state("box").pose.position[0] == pytest.approx(1.5, rel=1e-3)
+    assert world.model_state("box").pose.rpy()[2] == pytest.approx(1.2, rel=1e-3)
+
+
 def test_world_and_sensor_plugins_and_physics_are_read() -> None:
     world = World.from_sdf(sdf("""<physics type="ode"><max_step_size>0.002</max_step_size>
       <real_time_update_rate>500</real_time_update_rate><real_time_factor>2</real_time_factor></physics>

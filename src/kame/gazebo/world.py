@@ -11,7 +11,8 @@ API (what the gazebo_ros side calls; names of links and joints are "model::link"
   local pose, colour, for a 3-D window), `lights`.
 - State: `model_state(name)`, `link_state(link)` (pose: position and quaternion xyzw; twist in the
   world frame), `model_states()` and `link_states()` (all of them, by name), `link_acceleration(link)`,
-  `set_model_state(name, state)`, `set_link_state(link, state)`, `joint_state(joint)`,
+  `set_model_state(name, state)`, `set_model_twist(name, linear, angular)`, `set_link_state(link, state)`,
+  `joint_state(joint)`,
   `set_joint_positions(model, {joint: position})`.
 - Changes: `spawn_sdf(xml, name, pose)`, `spawn_urdf(xml, name, pose)`, `spawn(model)`, `delete_model(name)`
   (MjSpec edits, recompiled keeping every other model's state).
@@ -62,6 +63,7 @@ DRIVE_STIFFNESS = 20.0  # a drive's gain: this many times its joint's inertia a 
 WARNING_CHECK_STEPS = 100
 BAD_STATE = tuple(int(w) for w in (mujoco.mjtWarning.mjWARN_BADQPOS, mujoco.mjtWarning.mjWARN_BADQVEL,
                                     mujoco.mjtWarning.mjWARN_BADQACC))  # MuJoCo's own checks of NaN and huge values
+FREE = int(mujoco.mjtJoint.mjJNT_FREE)
 ONE_DEGREE = (int(mujoco.mjtJoint.mjJNT_HINGE), int(mujoco.mjtJoint.mjJNT_SLIDE))
 
 
@@ -337,6 +339,21 @@ class World:
             self._moved_static.add(name)
         self._forward()
 
+    def set_model_twist(self, name: str, linear: Vector3, angular: Vector3) -> None:
+        """Gives the model's free links this twist (world frame) where they are, as planar_move
+        drives a model each update."""
+        _finite((*linear, *angular), f"the twist of model {name!r}")
+        self._current()
+        for link in self._model(name).links:
+            body = self.body_id(f"{name}::{link.name}")
+            joint = self.model.body_jntadr[body]
+            if self.model.body_parentid[body] == 0 and joint >= 0 and int(self.model.jnt_type[joint]) == FREE:
+                dof = self.model.jnt_dofadr[joint]
+                self.data.qvel[dof:dof + 3] = linear
+                rotation = self.data.xmat[body].reshape(3, 3)
+                self.data.qvel[dof + 3:dof + 6] = rotation.T @ np.asarray(angular)  # MuJoCo's are local
+        self._forward()
+
     def set_link_state(self, link: str, state: State) -> None:
         """Moves a link that hangs on nothing but the world (a free or static link); a link on a joint
         is moved through its model or its joint."""
@@ -352,7 +369,7 @@ class World:
 
     def _place_root(self, body: int, pose: Pose, state: State) -> None:
         joint = self.model.body_jntadr[body]
-        if joint < 0 or int(self.model.jnt_type[joint]) != int(mujoco.mjtJoint.mjJNT_FREE):
+        if joint < 0 or int(self.model.jnt_type[joint]) != FREE:
             self.model.body_pos[body] = pose.position
             self.model.body_quat[body] = pose.mj_quat()
             spec_body = self._spec.body(mujoco.mj_id2name(self.model, mujoco.mjtObj.mjOBJ_BODY, body))
