@@ -425,3 +425,11 @@ def test_an_empty_world_runs_and_takes_models() -> None:
     world.spawn_sdf((Path(SHIPPED_MODELS) / "box" / "model.sdf").read_text(), "box", Pose((0.0, 0.0, 1.0)))
     world.step(100)
     assert world.model_state("box").pose.position[2] == pytest.approx(1.0 - 0.5 * 9.8 * 0.1 ** 2, abs=1e-3)
+
+
+def test_a_planes_visual_faces_its_normal() -> None:
+    world = World.from_sdf(sdf("""<model name="wall"><static>true</static><link name="link"><visual name="v">
+      <geometry><plane><normal>1 0 0</normal><size>4 2</size></plane></geometry></visual></link></model>"""))
+    (plane,) = world.visuals()
+    assert (plane.kind, plane.size) == ("plane", (4.0, 2.0))
+    assert plane.pose.rotation() @ np.array((0.0, 0.0, 1.0)) == pytest.approx((1.0, 0.0, 0.0))

@@ -206,7 +206,7 @@ def _geom(spec: mujoco.MjSpec, body: mujoco.MjsBody, geometry: d.Geometry, pose:
         geom.type = mujoco.mjtGeom.mjGEOM_PLANE
         half = [v / 2 for v in geometry.size] if len(geometry.size) == 2 else [0.0, 0.0]
         geom.size = (half[0], half[1], 1.0)
-        pose = pose * _z_to(geometry.normal)
+        pose = pose * plane_rotation(geometry.normal)
     else:
         vertices, faces = load_mesh(geometry)
         mesh = spec.add_mesh(name=f"{name}::mesh")
@@ -219,7 +219,7 @@ def _geom(spec: mujoco.MjSpec, body: mujoco.MjsBody, geometry: d.Geometry, pose:
     return geom
 
 
-def _z_to(normal: tuple[float, float, float]) -> Pose:
+def plane_rotation(normal: tuple[float, float, float]) -> Pose:
     """The rotation taking +z to `normal` (a plane's)."""
     n = np.asarray(normal, dtype=float)
     norm = float(np.linalg.norm(n))

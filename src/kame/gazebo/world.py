@@ -253,8 +253,10 @@ class World:
             for link in m.links:
                 for v in link.visuals:
                     triangles = self._meshes.triangles(v.geometry) if v.geometry.kind == "mesh" else None
+                    # a plane is drawn in its pose's x-y plane, turned to face its normal
+                    pose = v.pose * assembly.plane_rotation(v.geometry.normal) if v.geometry.kind == "plane" else v.pose
                     shapes.append(VisualShape(f"{m.name}::{link.name}", v.name, v.geometry.kind, v.geometry.size,
-                                              triangles, v.pose, v.color))
+                                              triangles, pose, v.color))
         return shapes
 
     def take_warnings(self) -> list[str]:
