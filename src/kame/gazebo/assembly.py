@@ -9,8 +9,8 @@ How Gazebo's concepts map onto MuJoCo's:
   loop is left out with a warning (MuJoCo's bodies form a tree).
 - Visuals are geoms in VISUAL_GROUP that collide with nothing; collisions are geoms in
   COLLISION_GROUP, which cameras do not draw and rays hit. A mesh collides as its convex hull
-  (MuJoCo's rule: a room or an arch made of one mesh is solid to other bodies; cameras draw the
-  mesh itself). Inertia is the link's <inertial>, never computed from geoms.
+  (MuJoCo's rule: a room or an arch made of one mesh is solid to other bodies; rays and cameras
+  see the mesh itself). Inertia is the link's <inertial>, never computed from geoms.
 - Friction: Gazebo (ODE) takes the smaller `mu` of two touching surfaces, MuJoCo the larger,
   unless one geom has a higher priority: so a collision's priority ranks its mu, lowest mu
   highest (`rank_friction`). `mu2` (the second direction) is not simulated: MuJoCo's friction
