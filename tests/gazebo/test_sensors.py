@@ -4,6 +4,7 @@ seeing a red box at the pixels its K predicts, depth equal to distances, an IMU 
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -241,3 +242,21 @@ def test_two_sonar_cubes_in_an_sdf_1_4_world_without_gravity() -> None:
     assert world.range_reading(first).range == pytest.approx(0.225, abs=0.005)
     assert world.range_reading(second).range == math.inf
     assert world.model_state("second").pose.position == pytest.approx((0.5, 0.0, 0.0))  # no gravity, no drift
+
+
+def test_rays_see_a_collision_mesh_itself_not_its_hull(tmp_path: Path) -> None:
+    import trimesh
+
+    apart = [trimesh.creation.box((0.2, 0.2, 0.2)) for _ in range(2)]
+    apart[0].apply_translation((0.0, 0.5, 0.0))
+    apart[1].apply_translation((0.0, -0.5, 0.0))
+    (apart[0] + apart[1]).export(str(tmp_path / "two.stl"))
+    eye = """<model name="eye"><static>true</static><link name="l"><sensor name="s" type="ray"><ray><scan><horizontal>
+      <samples>3</samples><min_angle>-0.2449787</min_angle><max_angle>0.2449787</max_angle></horizontal></scan>
+      <range><min>0.05</min><max>10</max></range></ray></sensor></link></model>"""
+    world = world_with(f"""<model name="m"><static>true</static><pose>2 0 0 0 0 0</pose><link name="l">
+      <collision name="c"><geometry><mesh><uri>{tmp_path}/two.stl</uri></mesh></geometry></collision></link></model>""",
+                       eye)
+    ranges = world.ray_scan(only_sensor(world, "s")).ranges[0]
+    assert ranges[1] == math.inf  # straight between the boxes
+    assert ranges[0] == pytest.approx(1.9 / math.cos(0.2449787), abs=0.01)  # at the boxes' near faces
