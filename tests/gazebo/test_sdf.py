@@ -129,6 +129,22 @@ def test_damping_and_prismatic_and_ball_joints() -> None:
     assert len(ball.joint_state("m::ball").position) == 4 and len(ball.joint_state("m::ball").velocity) == 3
 
 
+def test_a_joint_spring_oscillates_about_its_reference() -> None:
+    world = World.from_sdf(sdf(hinged("""<joint name="hinge" type="revolute"><parent>base</parent><child>arm</child>
+      <axis><xyz>0 0 1</xyz><dynamics><spring_stiffness>0.4</spring_stiffness><spring_reference>0.3</spring_reference>
+      </dynamics></axis></joint>""")))
+    crossings: list[float] = []
+    before = world.joint_state("m::hinge").position[0] - 0.3
+    while len(crossings) < 3:
+        world.step()
+        now = world.joint_state("m::hinge").position[0] - 0.3
+        if (before > 0 >= now) or (before < 0 <= now):
+            crossings.append(world.sim_time)
+        before = now
+    # 0.1 kg m^2 on 0.4 N m/rad: a period of 2 pi sqrt(0.1 / 0.4) = pi s, about 0.3 rad
+    assert crossings[2] - crossings[0] == pytest.approx(math.pi, rel=0.01)
+
+
 def test_sdf_1_4_axes_are_in_the_model_frame() -> None:
     body = hinged("""<joint name="hinge" type="revolute"><parent>base</parent><child>arm</child>
       <pose>0 0 0 1.5707963 0 0</pose><axis><xyz>0 0 1</xyz></axis></joint>""")

@@ -139,6 +139,8 @@ def _joint(spec: mujoco.MjSpec, body: mujoco.MjsBody, model: str, joint: d.Joint
     added.axis = axis
     added.damping = (max(joint.axis.damping, 0.0), 0.0, 0.0)  # MuJoCo 4: linear, then higher-order terms
     added.frictionloss = max(joint.axis.friction, 0.0)
+    added.stiffness = (max(joint.axis.spring_stiffness, 0.0), 0.0, 0.0)
+    added.springref = joint.axis.spring_reference
     if joint.type == "ball":
         added.limited = mujoco.mjtLimited.mjLIMITED_FALSE
         return
