@@ -276,6 +276,7 @@ def test_urdf_with_gazebo_tags_spawns_as_spawn_model_reads_it() -> None:
     wheel = world.model_description("robot").link("wheel")
     assert wheel is not None and (wheel.collisions[0].name, wheel.collisions[0].mu, wheel.collisions[0].mu2) == (
         "wheel_collision", 0.8, 0.6)
+    assert wheel.collisions[0].gazebo_name == "wheel_collision"  # on a continuous joint: not lumped
     (sensor,) = world.sensors()
     assert (sensor.link, sensor.name, sensor.type, sensor.update_rate) == ("robot::laser_link", "hokuyo", "ray", 40.0)
     plugins = {p.name: p for p in world.plugins()}
@@ -449,3 +450,22 @@ def test_a_planes_visual_faces_its_normal() -> None:
     (plane,) = world.visuals()
     assert (plane.kind, plane.size) == ("plane", (4.0, 2.0))
     assert plane.pose.rotation() @ np.array((0.0, 0.0, 1.0)) == pytest.approx((1.0, 0.0, 0.0))
+
+
+def test_urdf_collisions_carry_the_names_gazebos_lumping_gives_them() -> None:
+    box = "<collision><geometry><box size='0.1 0.1 0.1'/></geometry></collision>"
+    world = World.empty()
+    world.spawn_urdf(f"""<robot name="kobuki"><link name="base_footprint"/><link name="base_link">{box}{box}</link>
+      <link name="plate">{box}</link><link name="wheel">{box}</link>
+      <joint name="a" type="fixed"><parent link="base_footprint"/><child link="base_link"/></joint>
+      <joint name="b" type="fixed"><parent link="base_link"/><child link="plate"/><origin xyz="0 0 0.2"/></joint>
+      <joint name="c" type="continuous"><parent link="base_link"/><child link="wheel"/><origin xyz="0 0.3 0"/></joint>
+      </robot>""", pose=Pose((0.0, 0.0, 1.0)))
+    names = {link.name: [(c.name, c.gazebo_name) for c in link.collisions]
+             for link in world.model_description("kobuki").links}
+    assert names == {
+        "base_footprint": [],
+        "base_link": [("base_link_collision", "base_footprint_fixed_joint_lump__base_link_collision"),
+                      ("base_link_collision_1", "base_footprint_fixed_joint_lump__base_link_collision_1")],
+        "plate": [("plate_collision", "base_footprint_fixed_joint_lump__plate_collision")],
+        "wheel": [("wheel_collision", "wheel_collision")]}

@@ -41,6 +41,7 @@ class Collision:
     pose: Pose
     mu: float = 1.0  # ODE's default friction coefficients
     mu2: float = 1.0
+    gazebo_name: str = ""  # a URDF collision's name in Gazebo, where it differs (fixed-joint lumping)
 
 
 @dataclass(frozen=True)
