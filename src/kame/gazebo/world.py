@@ -6,14 +6,14 @@ API (what the gazebo_ros side calls; names of links and joints are "model::link"
 - Time: `step(n=1)` advances n steps of `physics.max_step_size`; `sim_time`, `iterations`.
   `physics` (max_step_size, real_time_update_rate, real_time_factor, gravity) is read and set
   whole (`world.physics = replace(world.physics, gravity=...)`); the node paces real time by it.
-- Contents: `model_names()`, `model(name)` (its description), `link_names(model)`,
-  `joint_names(model)`, `plugins()`, `sensors()`, `visuals()` (per link: shape, size or triangles,
-  local pose, colour, for a 3-D window), `lights`.
+- Contents: `model_names()`, `model_description(name)` (links with inertia, collisions, static...),
+  `joint_description(joint)`, `link_names(model)`, `joint_names(model)`, `plugins()`, `sensors()`,
+  `visuals()` (per link: shape, size or triangles, local pose, colour, for a 3-D window), `lights`,
+  `generation` (changes when a spawn or delete rebuilds the model). `model` and `data` are MuJoCo's.
 - State: `model_state(name)`, `link_state(link)` (pose: position and quaternion xyzw; twist in the
   world frame), `model_states()` and `link_states()` (all of them, by name), `link_acceleration(link)`,
   `set_model_state(name, state)`, `set_model_twist(name, linear, angular)`, `set_link_state(link, state)`,
-  `joint_state(joint)`,
-  `set_joint_positions(model, {joint: position})`.
+  `joint_state(joint)`, `set_joint_positions(model, {joint: position})`.
 - Changes: `spawn_sdf(xml, name, pose)`, `spawn_urdf(xml, name, pose)`, `spawn(model)`, `delete_model(name)`
   (MjSpec edits, recompiled keeping every other model's state).
 - Forces: `apply_body_wrench(link, force, torque, reference_point, start, duration)`,
@@ -22,8 +22,10 @@ API (what the gazebo_ros side calls; names of links and joints are "model::link"
   `drive_joint(joint, velocity, max_effort)` / `release_joint(joint)` (a velocity motor with a
   torque limit, as Gazebo's Joint::SetVelocity drives wheels).
 - `reset_simulation()` (poses, velocities and time to 0), `reset_world()` (poses and velocities; time goes on).
-- Sensors (kame.gazebo.sensors): `ray_scan`, `range_reading`, `camera_frame`, `imu_reading`,
-  `contacts(link)`; noise draws from the world's seeded generator, so a run replays exactly.
+- Sensors (kame.gazebo.sensors, kame.gazebo.camera), each given a SensorInfo from `sensors()`:
+  `ray_scan`, `range_reading`, `camera_frame` (RGB and/or depth, and the config with K),
+  `imu_reading`, `sensor_pose`; `contacts(link)`; noise draws from the world's seeded generator, so
+  a run replays exactly.
 - Trouble: every refusal is a GazeboError saying why (unknown names, NaN values, a model spawned
   inside another, bad files); a model whose state diverges (NaN or runaway speeds) is put back
   where it was spawned, at rest, and `take_warnings()` returns what happened, for the node to log.
