@@ -9,7 +9,11 @@ from pathlib import Path
 
 import pytest
 
-from kame.gazebo import GazeboError, Pose, Resources, State, World
+from tests.gazebo import require_engine
+
+require_engine()
+
+from kame.gazebo import GazeboError, Pose, Resources, State, World  # noqa: E402  (MuJoCo loads once require_engine has checked it can)
 
 GROUND = "<include><uri>model://ground_plane</uri></include>"
 

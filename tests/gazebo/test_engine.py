@@ -9,6 +9,10 @@ import subprocess
 import sys
 from pathlib import Path
 
+from tests.gazebo import require_engine
+
+require_engine()
+
 SRC = Path(__file__).resolve().parents[2] / "src"
 
 

@@ -8,7 +8,11 @@ from __future__ import annotations
 from hypothesis import given
 from hypothesis import strategies as st
 
-from kame.gazebo import GazeboError, World
+from tests.gazebo import require_engine
+
+require_engine()
+
+from kame.gazebo import GazeboError, World  # noqa: E402  (MuJoCo loads once require_engine has checked it can)
 
 SDF_TAGS = ["model", "link", "joint", "visual", "collision", "geometry", "box", "sphere", "cylinder", "plane", "mesh",
             "size", "radius", "length", "pose", "inertial", "mass", "inertia", "ixx", "iyy", "izz", "parent", "child",

@@ -8,7 +8,11 @@ from dataclasses import replace
 
 import pytest
 
-from kame.gazebo import State, World
+from tests.gazebo import require_engine
+
+require_engine()
+
+from kame.gazebo import State, World  # noqa: E402  (MuJoCo loads once require_engine has checked it can)
 
 G = 9.8
 

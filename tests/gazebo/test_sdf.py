@@ -11,7 +11,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from kame.gazebo import SHIPPED_MODELS, GazeboError, Physics, Pose, Resources, State, World
+from tests.gazebo import require_engine
+
+require_engine()
+
+from kame.gazebo import SHIPPED_MODELS, GazeboError, Physics, Pose, Resources, State, World  # noqa: E402  (MuJoCo loads once require_engine has checked it can)
 
 GROUND = "<include><uri>model://ground_plane</uri></include>"
 
@@ -123,6 +127,22 @@ def test_damping_and_prismatic_and_ball_joints() -> None:
     ball = World.from_sdf(sdf(hinged("""<joint name="ball" type="ball"><parent>base</parent><child>arm</child>
       </joint>""")))
     assert len(ball.joint_state("m::ball").position) == 4 and len(ball.joint_state("m::ball").velocity) == 3
+
+
+def test_a_joint_spring_oscillates_about_its_reference() -> None:
+    world = World.from_sdf(sdf(hinged("""<joint name="hinge" type="revolute"><parent>base</parent><child>arm</child>
+      <axis><xyz>0 0 1</xyz><dynamics><spring_stiffness>0.4</spring_stiffness><spring_reference>0.3</spring_reference>
+      </dynamics></axis></joint>""")))
+    crossings: list[float] = []
+    before = world.joint_state("m::hinge").position[0] - 0.3
+    while len(crossings) < 3:
+        world.step()
+        now = world.joint_state("m::hinge").position[0] - 0.3
+        if (before > 0 >= now) or (before < 0 <= now):
+            crossings.append(world.sim_time)
+        before = now
+    # 0.1 kg m^2 on 0.4 N m/rad: a period of 2 pi sqrt(0.1 / 0.4) = pi s, about 0.3 rad
+    assert crossings[2] - crossings[0] == pytest.approx(math.pi, rel=0.01)
 
 
 def test_sdf_1_4_axes_are_in_the_model_frame() -> None:
@@ -256,6 +276,7 @@ def test_urdf_with_gazebo_tags_spawns_as_spawn_model_reads_it() -> None:
     wheel = world.model_description("robot").link("wheel")
     assert wheel is not None and (wheel.collisions[0].name, wheel.collisions[0].mu, wheel.collisions[0].mu2) == (
         "wheel_collision", 0.8, 0.6)
+    assert wheel.collisions[0].gazebo_name == "wheel_collision"  # on a continuous joint: not lumped
     (sensor,) = world.sensors()
     assert (sensor.link, sensor.name, sensor.type, sensor.update_rate) == ("robot::laser_link", "hokuyo", "ray", 40.0)
     plugins = {p.name: p for p in world.plugins()}
@@ -338,6 +359,18 @@ def test_set_model_state_moves_and_launches_a_model() -> None:
     assert world.model_state("box").pose.rpy()[2] == pytest.approx(1.5, rel=1e-3)
 
 
+@pytest.mark.usefixtures("renders")
+def test_a_models_twist_is_set_where_it_is() -> None:
+    world = World.from_sdf(sdf("<include><uri>model://box</uri><pose>1 2 3 0 0 1</pose></include>"))
+    world.physics = Physics(gravity=(0.0, 0.0, 0.0))
+    world.set_model_twist("box", (0.5, 0.0, 0.0), (0.0, 0.0, 0.2))
+    state = world.model_state("box")
+    assert state.pose.position == pytest.approx((1.0, 2.0, 3.0)) and state.angular == pytest.approx((0.0, 0.0, 0.2))
+    world.step(1000)
+    assert world.model_state("box").pose.position[0] == pytest.approx(1.5, rel=1e-3)
+    assert world.model_state("box").pose.rpy()[2] == pytest.approx(1.2, rel=1e-3)
+
+
 def test_world_and_sensor_plugins_and_physics_are_read() -> None:
     world = World.from_sdf(sdf("""<physics type="ode"><max_step_size>0.002</max_step_size>
       <real_time_update_rate>500</real_time_update_rate><real_time_factor>2</real_time_factor></physics>
@@ -409,3 +442,30 @@ def test_an_empty_world_runs_and_takes_models() -> None:
     world.spawn_sdf((Path(SHIPPED_MODELS) / "box" / "model.sdf").read_text(), "box", Pose((0.0, 0.0, 1.0)))
     world.step(100)
     assert world.model_state("box").pose.position[2] == pytest.approx(1.0 - 0.5 * 9.8 * 0.1 ** 2, abs=1e-3)
+
+
+def test_a_planes_visual_faces_its_normal() -> None:
+    world = World.from_sdf(sdf("""<model name="wall"><static>true</static><link name="link"><visual name="v">
+      <geometry><plane><normal>1 0 0</normal><size>4 2</size></plane></geometry></visual></link></model>"""))
+    (plane,) = world.visuals()
+    assert (plane.kind, plane.size) == ("plane", (4.0, 2.0))
+    assert plane.pose.rotation() @ np.array((0.0, 0.0, 1.0)) == pytest.approx((1.0, 0.0, 0.0))
+
+
+def test_urdf_collisions_carry_the_names_gazebos_lumping_gives_them() -> None:
+    box = "<collision><geometry><box size='0.1 0.1 0.1'/></geometry></collision>"
+    world = World.empty()
+    world.spawn_urdf(f"""<robot name="kobuki"><link name="base_footprint"/><link name="base_link">{box}{box}</link>
+      <link name="plate">{box}</link><link name="wheel">{box}</link>
+      <joint name="a" type="fixed"><parent link="base_footprint"/><child link="base_link"/></joint>
+      <joint name="b" type="fixed"><parent link="base_link"/><child link="plate"/><origin xyz="0 0 0.2"/></joint>
+      <joint name="c" type="continuous"><parent link="base_link"/><child link="wheel"/><origin xyz="0 0.3 0"/></joint>
+      </robot>""", pose=Pose((0.0, 0.0, 1.0)))
+    names = {link.name: [(c.name, c.gazebo_name) for c in link.collisions]
+             for link in world.model_description("kobuki").links}
+    assert names == {
+        "base_footprint": [],
+        "base_link": [("base_link_collision", "base_footprint_fixed_joint_lump__base_link_collision"),
+                      ("base_link_collision_1", "base_footprint_fixed_joint_lump__base_link_collision_1")],
+        "plate": [("plate_collision", "base_footprint_fixed_joint_lump__plate_collision")],
+        "wheel": [("wheel_collision", "wheel_collision")]}

@@ -4,12 +4,17 @@ seeing a red box at the pixels its K predicts, depth equal to distances, an IMU 
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
 
-from kame.gazebo import Pose, SensorInfo, State, World
-from kame.gazebo.camera import optical_points
+from tests.gazebo import require_engine
+
+require_engine()
+
+from kame.gazebo import Pose, SensorInfo, State, World  # noqa: E402  (MuJoCo loads once require_engine has checked it can)
+from kame.gazebo.camera import optical_points  # noqa: E402  (MuJoCo loads once require_engine has checked it can)
 
 WALLS = """<model name="walls"><static>true</static><link name="link">
   <collision name="east"><pose>3 0 1 0 0 0</pose><geometry><box><size>0.2 30 2</size></box></geometry></collision>
@@ -117,6 +122,7 @@ def red_box(x: float, y: float, z: float, size: float = 0.2) -> str:
       <material><script><name>Gazebo/Red</name></script></material></visual></link></model>"""
 
 
+@pytest.mark.usefixtures("renders")
 def test_a_camera_sees_a_red_box_at_the_pixels_its_k_predicts() -> None:
     world = world_with(red_box(3.0, 0.6, 0.8), camera())
     frame = world.camera_frame(only_sensor(world, "cam"))
@@ -139,6 +145,7 @@ def test_a_camera_sees_a_red_box_at_the_pixels_its_k_predicts() -> None:
     world.close()
 
 
+@pytest.mark.usefixtures("renders")
 def test_depth_values_equal_distances_along_the_optical_axis() -> None:
     world = world_with(WALLS, camera(160, 120, 1.0, "depth"))
     sensor = only_sensor(world, "cam")
@@ -207,3 +214,49 @@ def test_a_bumper_reports_its_links_contacts_and_the_force() -> None:
     assert sum(c.force[2] for c in found) == pytest.approx(9.8, rel=0.01)  # the ground holds the box up
     assert all(c.normal[2] < -0.99 for c in found)  # from the box's collision outward: down into the ground
     assert world.contacts("ground_plane::link")[0].collision1 == "ground_plane::link::collision"
+
+
+def sonar_cube(name: str, x: float) -> str:
+    """A 5 cm cube carrying a ray sensor 25 cm ahead of its centre, as gazebo_ros_range.world's models do."""
+    cube = "<geometry><box><size>0.05 0.05 0.05</size></box></geometry>"
+    axis = "<samples>5</samples><resolution>1</resolution><min_angle>-0.25</min_angle><max_angle>0.25</max_angle>"
+    return f"""<model name="{name}"><pose>{x} 0 0 0 0 0</pose><link name="link"><gravity>false</gravity>
+      <visual name="v">{cube}</visual><collision name="c">{cube}</collision>
+      <sensor type="ray" name="sonar"><pose>0.25 0 0 0 0 0</pose><update_rate>5</update_rate><ray><scan>
+        <horizontal>{axis}</horizontal><vertical>{axis}</vertical></scan>
+        <range><min>0.01</min><max>0.75</max><resolution>0.01</resolution></range></ray>
+        <plugin filename="libgazebo_ros_range.so" name="range"><fov>0.5</fov><radiation>ultrasound</radiation>
+        </plugin></sensor></link></model>"""
+
+
+def test_two_sonar_cubes_in_an_sdf_1_4_world_without_gravity() -> None:
+    world = World.from_sdf(f"""<sdf version="1.4"><world name="range"><physics type="ode">
+      <gravity>0 0 0</gravity><max_step_size>0.001</max_step_size></physics>
+      {sonar_cube("first", 0.0)}{sonar_cube("second", 0.5)}
+      <light type="point" name="lamp"><pose>0 0 10 0 0 0</pose><spot><inner_angle>1.57</inner_angle></spot></light>
+      </world></sdf>""")
+    assert world.physics.gravity == (0.0, 0.0, 0.0)
+    world.step(200)
+    first, second = (s for s in world.sensors() if s.name == "sonar")
+    # the second cube's near face is at x = 0.475, the first sonar at x = 0.25: 0.225 m; nothing before the second
+    assert world.range_reading(first).range == pytest.approx(0.225, abs=0.005)
+    assert world.range_reading(second).range == math.inf
+    assert world.model_state("second").pose.position == pytest.approx((0.5, 0.0, 0.0))  # no gravity, no drift
+
+
+def test_rays_see_a_collision_mesh_itself_not_its_hull(tmp_path: Path) -> None:
+    import trimesh
+
+    apart = [trimesh.creation.box((0.2, 0.2, 0.2)) for _ in range(2)]
+    apart[0].apply_translation((0.0, 0.5, 0.0))
+    apart[1].apply_translation((0.0, -0.5, 0.0))
+    (apart[0] + apart[1]).export(str(tmp_path / "two.stl"))
+    eye = """<model name="eye"><static>true</static><link name="l"><sensor name="s" type="ray"><ray><scan><horizontal>
+      <samples>3</samples><min_angle>-0.2449787</min_angle><max_angle>0.2449787</max_angle></horizontal></scan>
+      <range><min>0.05</min><max>10</max></range></ray></sensor></link></model>"""
+    world = world_with(f"""<model name="m"><static>true</static><pose>2 0 0 0 0 0</pose><link name="l">
+      <collision name="c"><geometry><mesh><uri>{tmp_path}/two.stl</uri></mesh></geometry></collision></link></model>""",
+                       eye)
+    ranges = world.ray_scan(only_sensor(world, "s")).ranges[0]
+    assert ranges[1] == math.inf  # straight between the boxes
+    assert ranges[0] == pytest.approx(1.9 / math.cos(0.2449787), abs=0.01)  # at the boxes' near faces

@@ -8,8 +8,9 @@ How Gazebo's concepts map onto MuJoCo's:
   model is <static> or the link's joint names "world" as parent. A joint that would close a
   loop is left out with a warning (MuJoCo's bodies form a tree).
 - Visuals are geoms in VISUAL_GROUP that collide with nothing; collisions are geoms in
-  COLLISION_GROUP, which cameras do not draw and rays hit. Inertia is the link's <inertial>,
-  never computed from geoms.
+  COLLISION_GROUP, which cameras do not draw and rays hit. A mesh collides as its convex hull
+  (MuJoCo's rule: a room or an arch made of one mesh is solid to other bodies; rays and cameras
+  see the mesh itself). Inertia is the link's <inertial>, never computed from geoms.
 - Friction: Gazebo (ODE) takes the smaller `mu` of two touching surfaces, MuJoCo the larger,
   unless one geom has a higher priority: so a collision's priority ranks its mu, lowest mu
   highest (`rank_friction`). `mu2` (the second direction) is not simulated: MuJoCo's friction
@@ -138,6 +139,8 @@ def _joint(spec: mujoco.MjSpec, body: mujoco.MjsBody, model: str, joint: d.Joint
     added.axis = axis
     added.damping = (max(joint.axis.damping, 0.0), 0.0, 0.0)  # MuJoCo 4: linear, then higher-order terms
     added.frictionloss = max(joint.axis.friction, 0.0)
+    added.stiffness = (max(joint.axis.spring_stiffness, 0.0), 0.0, 0.0)
+    added.springref = joint.axis.spring_reference
     if joint.type == "ball":
         added.limited = mujoco.mjtLimited.mjLIMITED_FALSE
         return
@@ -208,7 +211,7 @@ def _geom(spec: mujoco.MjSpec, body: mujoco.MjsBody, geometry: d.Geometry, pose:
         geom.type = mujoco.mjtGeom.mjGEOM_PLANE
         half = [v / 2 for v in geometry.size] if len(geometry.size) == 2 else [0.0, 0.0]
         geom.size = (half[0], half[1], 1.0)
-        pose = pose * _z_to(geometry.normal)
+        pose = pose * plane_rotation(geometry.normal)
     else:
         vertices, faces = load_mesh(geometry)
         mesh = spec.add_mesh(name=f"{name}::mesh")
@@ -221,7 +224,7 @@ def _geom(spec: mujoco.MjSpec, body: mujoco.MjsBody, geometry: d.Geometry, pose:
     return geom
 
 
-def _z_to(normal: tuple[float, float, float]) -> Pose:
+def plane_rotation(normal: tuple[float, float, float]) -> Pose:
     """The rotation taking +z to `normal` (a plane's)."""
     n = np.asarray(normal, dtype=float)
     norm = float(np.linalg.norm(n))

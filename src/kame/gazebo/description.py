@@ -41,6 +41,7 @@ class Collision:
     pose: Pose
     mu: float = 1.0  # ODE's default friction coefficients
     mu2: float = 1.0
+    gazebo_name: str = ""  # a URDF collision's name in Gazebo, where it differs (fixed-joint lumping)
 
 
 @dataclass(frozen=True)
@@ -102,6 +103,8 @@ class JointAxis:
     velocity: float = -1.0
     damping: float = 0.0
     friction: float = 0.0
+    spring_stiffness: float = 0.0  # SDF 1.5's <dynamics>: a spring pulling toward spring_reference
+    spring_reference: float = 0.0
 
     def limited(self) -> bool:
         return self.lower > -1e15 and self.upper < 1e15 and self.lower < self.upper

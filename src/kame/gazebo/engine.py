@@ -15,7 +15,13 @@ import os
 
 os.environ.setdefault("MUJOCO_GL", "egl")
 
-import mujoco  # after MUJOCO_GL: the back end is chosen at import
+try:
+    import mujoco  # after MUJOCO_GL: the back end is chosen at import
+except ModuleNotFoundError:
+    raise
+except (ImportError, AttributeError, OSError) as exc:  # the chosen back end's libraries, not MuJoCo, are missing
+    raise ImportError(f"MuJoCo cannot load its MUJOCO_GL={os.environ['MUJOCO_GL']} back end ({exc}); unset "
+                      f"MUJOCO_GL for EGL, which renders headless") from exc
 
 
 def _counted_in_the_data(message: str) -> None:

@@ -6,7 +6,7 @@ Understood: <world> with <physics> (max_step_size, real_time_update_rate, real_t
 <include> (flattened, their links named "inner::link"); <link> with <inertial>, <visual>,
 <collision> (surface friction mu, mu2), <sensor> (its plugins), <gravity>, <kinematic>;
 geometry box, cylinder, sphere, plane and mesh; joints revolute, continuous, prismatic, fixed and
-ball, with <limit> and <dynamics>.
+ball, with <limit> and <dynamics> (damping, friction, spring_stiffness, spring_reference).
 Poses: <pose relative_to="frame"> (1.7) and <pose frame="frame"> (1.5, 1.6) name a link, joint,
 <frame> or nested model of the same model ("__model__" or nothing: the model; a world's models
 may be placed relative to another model). Joint axes are in the joint's frame, or the model's with
@@ -285,7 +285,8 @@ class SdfReader:
                 self.warnings.append(geometry)
                 continue
             mu, mu2 = _friction(c)
-            collisions.append(d.Collision(c.attrs.get("name", "collision"), geometry, local(c), mu, mu2))
+            name_in_sdf = c.attrs.get("name", "collision")
+            collisions.append(d.Collision(name_in_sdf, geometry, local(c), mu, mu2, name_in_sdf))
         sensors = [d.Sensor(s.attrs.get("name", ""), s.attrs.get("type", ""), local(s), s.number("update_rate", 0.0),
                             s.flag("always_on", False), s.flag("visualize", False), s) for s in element.each("sensor")]
         return d.Link(name, in_model, self._inertial(element.child("inertial")), tuple(visuals), tuple(collisions),
@@ -341,7 +342,9 @@ class SdfReader:
                 limit.number("effort", -1.0) if limit is not None else -1.0,
                 limit.number("velocity", -1.0) if limit is not None else -1.0,
                 dynamics.number("damping", 0.0) if dynamics is not None else 0.0,
-                dynamics.number("friction", 0.0) if dynamics is not None else 0.0)
+                dynamics.number("friction", 0.0) if dynamics is not None else 0.0,
+                dynamics.number("spring_stiffness", 0.0) if dynamics is not None else 0.0,
+                dynamics.number("spring_reference", 0.0) if dynamics is not None else 0.0)
             if kind == "continuous":
                 axis = replace(axis, lower=-1e16, upper=1e16)
         return d.Joint(name, kind, parent, child, child_in_model.inverse() * joint_in_model, axis)

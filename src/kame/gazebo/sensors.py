@@ -6,7 +6,8 @@ range (sonar, IR), IMU, contacts (bumper); cameras are in kame.gazebo.camera.
   seen, as Gazebo's rays start there); beyond max (or no hit) it is +inf. `samples` x
   `resolution` rays are cast over [min_angle, max_angle], horizontal and vertical. Gaussian
   noise (mean, stddev) is added to finite readings, then clipped to [min, max]; none without a
-  <noise> element.
+  <noise> element. The range's <resolution> is carried in the configuration, not applied (Gazebo
+  does not round ranges to it either).
 - A range sensor is the nearest of its rays: a ray sensor's own samples (gazebo_ros_range over
   a <ray>), or for <sonar> a cone of rays whose radius at max range is the sonar's radius.
 - An IMU reads MuJoCo's gyro and accelerometer at its site (the acceleration includes gravity's

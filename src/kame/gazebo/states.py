@@ -47,5 +47,5 @@ class VisualShape:
     kind: str  # box, cylinder, sphere, plane, mesh
     size: tuple[float, ...]  # as description.Geometry; a mesh's scale is applied to its triangles
     triangles: np.ndarray | None  # a mesh's corners (3 M x 3, float32) in the visual's frame
-    pose: Pose  # in the link's frame
+    pose: Pose  # in the link's frame (a plane lies in this pose's x-y plane)
     color: d.Color

@@ -4,7 +4,9 @@
   warning), <inertial>, <visual>, <collision>, materials by name or colour; meshes through the
   package finder. A link's frame is its parent joint's frame, as URDF defines it.
 - Fixed joints are kept, not lumped: MuJoCo welds the child link to its parent, so every link
-  keeps its name and the lumped result's inertia is the same. A link without <inertial> gets a
+  keeps its name and the lumped result's inertia is the same. Each collision also carries the
+  name Gazebo's lumping gives it ("base_footprint_fixed_joint_lump__base_link_collision"), which
+  contact sensors written for Gazebo name. A link without <inertial> gets a
   negligible mass (Gazebo would drop it; here it still carries its visuals and collisions).
 - <gazebo reference="link">: <material> (a Gazebo material script name: the link's visuals take
   its colour), <mu1>, <mu2>, <gravity>/<turnGravityOff>, <sensor> (its <pose> in the link's frame,
@@ -90,7 +92,14 @@ class UrdfReader:
                     poses[link] = pose_in_model(joint_and_origin.parent, (*seen, link)) * joint_and_origin.pose
             return poses[link]
 
-        links = [self._link(e, pose_in_model(n), colors, extensions.get(n, [])) for n, e in link_elements.items()]
+        def lumped_into(link: str) -> str:
+            """The link Gazebo lumps `link` into: its nearest ancestor not on a fixed joint."""
+            while link in parent_of and parent_of[link].type == "fixed" and parent_of[link].parent != "world":
+                link = parent_of[link].parent
+            return link
+
+        links = [self._link(e, pose_in_model(n), colors, extensions.get(n, []), lumped_into(n))
+                 for n, e in link_elements.items()]
         plugins = [d.Plugin(p.attrs.get("name", ""), p.attrs.get("filename", ""), robot, "", "", p)
                    for p in extensions.get("", []) if p.tag == "plugin"]
         for link in links:
@@ -136,7 +145,8 @@ class UrdfReader:
         # the origin is the child link's pose in the parent's frame; kept here until the link poses are known
         return d.Joint(name, kind, parent.attrs["link"], child.attrs["link"], origin_of(element), axis), element
 
-    def _link(self, element: Element, pose: Pose, colors: dict[str, d.Color], extensions: list[Element]) -> d.Link:
+    def _link(self, element: Element, pose: Pose, colors: dict[str, d.Color], extensions: list[Element],
+              lumped_into: str) -> d.Link:
         name = element.attrs["name"]
         gazebo_material = next((e.text.strip() for e in reversed(extensions) if e.tag == "material"), "")
         mu1 = next((float(e.text) for e in reversed(extensions) if e.tag == "mu1" and _number(e)), None)
@@ -150,8 +160,12 @@ class UrdfReader:
         collisions = []
         for index, c in enumerate(element.each("collision")):
             mu = mu1 if mu1 is not None else 1.0
-            collisions.append(d.Collision(_indexed(f"{name}_collision", index), self._geometry(c), origin_of(c), mu,
-                                          mu2 if mu2 is not None else mu))
+            own = _indexed(f"{name}_collision", index)
+            # Gazebo merges a link on fixed joints into its ancestor, renaming its collisions (a contact
+            # sensor's <collision> names them so); kame keeps the link and gives the name beside it
+            in_gazebo = own if lumped_into == name else f"{lumped_into}_fixed_joint_lump__{own}"
+            collisions.append(d.Collision(own, self._geometry(c), origin_of(c), mu, mu2 if mu2 is not None else mu,
+                                          in_gazebo))
         sensors = []
         for s in (e for e in extensions if e.tag == "sensor"):
             sensor_pose, _ = pose_of(s)

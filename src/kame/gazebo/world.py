@@ -6,13 +6,14 @@ API (what the gazebo_ros side calls; names of links and joints are "model::link"
 - Time: `step(n=1)` advances n steps of `physics.max_step_size`; `sim_time`, `iterations`.
   `physics` (max_step_size, real_time_update_rate, real_time_factor, gravity) is read and set
   whole (`world.physics = replace(world.physics, gravity=...)`); the node paces real time by it.
-- Contents: `model_names()`, `model(name)` (its description), `link_names(model)`,
-  `joint_names(model)`, `plugins()`, `sensors()`, `visuals()` (per link: shape, size or triangles,
-  local pose, colour, for a 3-D window), `lights`.
+- Contents: `model_names()`, `model_description(name)` (links with inertia, collisions, static...),
+  `joint_description(joint)`, `link_names(model)`, `joint_names(model)`, `plugins()`, `sensors()`,
+  `visuals()` (per link: shape, size or triangles, local pose, colour, for a 3-D window), `lights`,
+  `generation` (changes when a spawn or delete rebuilds the model). `model` and `data` are MuJoCo's.
 - State: `model_state(name)`, `link_state(link)` (pose: position and quaternion xyzw; twist in the
   world frame), `model_states()` and `link_states()` (all of them, by name), `link_acceleration(link)`,
-  `set_model_state(name, state)`, `set_link_state(link, state)`, `joint_state(joint)`,
-  `set_joint_positions(model, {joint: position})`.
+  `set_model_state(name, state)`, `set_model_twist(name, linear, angular)`, `set_link_state(link, state)`,
+  `joint_state(joint)`, `set_joint_positions(model, {joint: position})`.
 - Changes: `spawn_sdf(xml, name, pose)`, `spawn_urdf(xml, name, pose)`, `spawn(model)`, `delete_model(name)`
   (MjSpec edits, recompiled keeping every other model's state).
 - Forces: `apply_body_wrench(link, force, torque, reference_point, start, duration)`,
@@ -21,8 +22,10 @@ API (what the gazebo_ros side calls; names of links and joints are "model::link"
   `drive_joint(joint, velocity, max_effort)` / `release_joint(joint)` (a velocity motor with a
   torque limit, as Gazebo's Joint::SetVelocity drives wheels).
 - `reset_simulation()` (poses, velocities and time to 0), `reset_world()` (poses and velocities; time goes on).
-- Sensors (kame.gazebo.sensors): `ray_scan`, `range_reading`, `camera_frame`, `imu_reading`,
-  `contacts(link)`; noise draws from the world's seeded generator, so a run replays exactly.
+- Sensors (kame.gazebo.sensors, kame.gazebo.camera), each given a SensorInfo from `sensors()`:
+  `ray_scan`, `range_reading`, `camera_frame` (RGB and/or depth, and the config with K),
+  `imu_reading`, `sensor_pose`; `contacts(link)`; noise draws from the world's seeded generator, so
+  a run replays exactly.
 - Trouble: every refusal is a GazeboError saying why (unknown names, NaN values, a model spawned
   inside another, bad files); a model whose state diverges (NaN or runaway speeds) is put back
   where it was spawned, at rest, and `take_warnings()` returns what happened, for the node to log.
@@ -62,6 +65,7 @@ DRIVE_STIFFNESS = 20.0  # a drive's gain: this many times its joint's inertia a 
 WARNING_CHECK_STEPS = 100
 BAD_STATE = tuple(int(w) for w in (mujoco.mjtWarning.mjWARN_BADQPOS, mujoco.mjtWarning.mjWARN_BADQVEL,
                                     mujoco.mjtWarning.mjWARN_BADQACC))  # MuJoCo's own checks of NaN and huge values
+FREE = int(mujoco.mjtJoint.mjJNT_FREE)
 ONE_DEGREE = (int(mujoco.mjtJoint.mjJNT_HINGE), int(mujoco.mjtJoint.mjJNT_SLIDE))
 
 
@@ -251,8 +255,10 @@ class World:
             for link in m.links:
                 for v in link.visuals:
                     triangles = self._meshes.triangles(v.geometry) if v.geometry.kind == "mesh" else None
+                    # a plane is drawn in its pose's x-y plane, turned to face its normal
+                    pose = v.pose * assembly.plane_rotation(v.geometry.normal) if v.geometry.kind == "plane" else v.pose
                     shapes.append(VisualShape(f"{m.name}::{link.name}", v.name, v.geometry.kind, v.geometry.size,
-                                              triangles, v.pose, v.color))
+                                              triangles, pose, v.color))
         return shapes
 
     def take_warnings(self) -> list[str]:
@@ -337,6 +343,21 @@ class World:
             self._moved_static.add(name)
         self._forward()
 
+    def set_model_twist(self, name: str, linear: Vector3, angular: Vector3) -> None:
+        """Gives the model's free links this twist (world frame) where they are, as planar_move
+        drives a model each update."""
+        _finite((*linear, *angular), f"the twist of model {name!r}")
+        self._current()
+        for link in self._model(name).links:
+            body = self.body_id(f"{name}::{link.name}")
+            joint = self.model.body_jntadr[body]
+            if self.model.body_parentid[body] == 0 and joint >= 0 and int(self.model.jnt_type[joint]) == FREE:
+                dof = self.model.jnt_dofadr[joint]
+                self.data.qvel[dof:dof + 3] = linear
+                rotation = self.data.xmat[body].reshape(3, 3)
+                self.data.qvel[dof + 3:dof + 6] = rotation.T @ np.asarray(angular)  # MuJoCo's are local
+        self._forward()
+
     def set_link_state(self, link: str, state: State) -> None:
         """Moves a link that hangs on nothing but the world (a free or static link); a link on a joint
         is moved through its model or its joint."""
@@ -352,7 +373,7 @@ class World:
 
     def _place_root(self, body: int, pose: Pose, state: State) -> None:
         joint = self.model.body_jntadr[body]
-        if joint < 0 or int(self.model.jnt_type[joint]) != int(mujoco.mjtJoint.mjJNT_FREE):
+        if joint < 0 or int(self.model.jnt_type[joint]) != FREE:
             self.model.body_pos[body] = pose.position
             self.model.body_quat[body] = pose.mj_quat()
             spec_body = self._spec.body(mujoco.mj_id2name(self.model, mujoco.mjtObj.mjOBJ_BODY, body))
