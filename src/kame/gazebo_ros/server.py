@@ -145,6 +145,7 @@ def run(options: command_line.ServerOptions) -> int:
     with sim.lock:
         sim.report_warnings()
         sim.add_listener(clock)
+        host.start_world([plugin for plugin in world.plugins() if not plugin.model])
         for name in world.model_names():
             host.start_model(world.model_description(name), None)
         if bool(process.get_param("~enable_ros_network", True)):

@@ -3,10 +3,11 @@ it, and the thread that steps it (owned here: `start` makes it, `stop` ends and 
 World's cameras render on that thread, so it also frees them when it ends.
 
 Pacing: each step is max_step_size of simulated time; with a real_time_factor f > 0 the thread
-waits until f x wall time has caught up (a late step is not made up for by a burst), with 0 it
-steps as fast as it can. A paused world waits on its condition until unpause, stop, or a
-request to step. After each step the listeners run, in order, with the world locked: the
-publishers and plugins. What the World put right (a diverging model reset) is logged as a warning.
+waits until f x wall time has caught up (a late step is not made up for by a burst); with f = 0,
+or a real_time_update_rate (gazebo_ros's max_update_rate) of 0, it steps as fast as it can. A
+paused world waits on its condition until unpause or stop. After each step the listeners run, in
+order, with the world locked: the publishers and plugins. What the World put right (a diverging
+model reset) is logged as a warning.
 """
 
 from __future__ import annotations
@@ -30,7 +31,6 @@ class Simulation:
         self._changed = threading.Condition(self.lock)
         self._paused = paused
         self._stopping = False
-        self._steps_asked = 0
         self._warn = warn
         self._iterations_left = iterations
         self._finished = finished
@@ -45,12 +45,6 @@ class Simulation:
     def set_paused(self, paused: bool) -> None:
         with self._changed:
             self._paused = paused
-            self._changed.notify_all()
-
-    def step_once(self, steps: int = 1) -> None:
-        """Step a paused world `steps` times (Gazebo's step button)."""
-        with self._changed:
-            self._steps_asked += steps
             self._changed.notify_all()
 
     def add_listener(self, listener: StepListener) -> None:
@@ -93,17 +87,17 @@ class Simulation:
     def _wait_while_paused(self) -> bool:
         """False once stopping."""
         with self._changed:
-            while not self._stopping and self._paused and self._steps_asked == 0:
+            while not self._stopping and self._paused:
                 self._changed.wait()
-            if self._steps_asked:
-                self._steps_asked -= 1
             return not self._stopping
 
     def _pace(self, started_wall: float, started_sim: float, now: float) -> tuple[float, float]:
         """Wait until wall time matches the simulated time at the real-time factor; the new
         reference (wall, sim) when the world ran late or was paused."""
-        factor = self.world.physics.real_time_factor
-        if not (factor > 0 and math.isfinite(factor)):
+        physics = self.world.physics
+        factor = physics.real_time_factor
+        # a max_update_rate (real_time_update_rate) of 0 runs unthrottled, as in Gazebo
+        if physics.real_time_update_rate == 0 or not (factor > 0 and math.isfinite(factor)):
             return started_wall, started_sim
         due = started_wall + (now - started_sim) / factor
         delay = due - time.monotonic()
@@ -124,7 +118,6 @@ class Simulation:
     def _step_until_stopped(self) -> None:
         wall, sim = time.monotonic(), self.world.sim_time
         while self._wait_while_paused():
-            was_paused = self._paused
             now = self.step()
             if self._iterations_left is not None:
                 self._iterations_left -= 1
@@ -132,7 +125,4 @@ class Simulation:
                     if self._finished is not None:
                         self._finished()
                     return
-            if was_paused:
-                wall, sim = time.monotonic(), now
-                continue
-            wall, sim = self._pace(wall, sim, now)
+            wall, sim = self._pace(wall, sim, now)  # after a pause it runs late: the pace starts again

@@ -61,8 +61,9 @@ class PluginHost:
         for plugin in model.plugins:
             self._start(model.name, plugin, model, namespace)
 
-    def start_world(self, world: d.World) -> None:
-        for plugin in world.plugins:
+    def start_world(self, plugins: list[d.Plugin]) -> None:
+        """Start the world's own plugins (<world><plugin>)."""
+        for plugin in plugins:
             self._start("", plugin, None, None)
 
     def _start(self, owner: str, plugin: d.Plugin, model: d.Model | None, namespace: str | None) -> None:
