@@ -106,7 +106,7 @@ def test_robot_plugins_laser_camera_and_unknown(live: tuple[Sim, Proc]) -> None:
     assert "Successfully spawned entity" in out
     assert "Set model configuration status: SetModelConfiguration: success" in out
     assert call(sim, "/gazebo/get_physics_properties")["pause"] is False  # -unpause
-    assert 0.5 < sim.echo("/gazebo/performance_metrics")["real_time_factor"] < 1.5
+    assert 0 < sim.echo("/gazebo/performance_metrics")["real_time_factor"] < 1.2  # paced at 1, slower under load
     warnings = [line for line in launch.out + launch.err if "libgazebo_ros_control.so" in line]
     assert len(warnings) == 1 and "kame has no libgazebo_ros_control.so" in warnings[0]
     scan = sim.echo("/scan")
