@@ -61,7 +61,8 @@ def test_spawn_model_then_debian_rosservice_gets_its_state(live: tuple[Sim, Proc
     env = dict(sim.env, PYTHONPATH=str(debian_message_packages(tmp_path / "debian")))
     answer = Proc([SYSTEM_PYTHON, "/usr/bin/rosservice", "call", "/gazebo/get_model_state",
                    "{model_name: box, relative_entity_name: world}"], env)
-    out, err = answer.stop(timeout=30) if answer.popen.wait(30) is not None else ("", "")
+    answer.popen.wait(30)
+    out, err = answer.stop()
     state = yaml.safe_load(out)
     assert state["success"] is True and state["status_message"] == "GetModelState: got properties", err
     assert state["pose"]["position"] == {"x": -1.0, "y": 0.0, "z": 1.0}  # paused: where it was spawned
