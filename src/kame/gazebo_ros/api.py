@@ -404,8 +404,9 @@ class GazeboApi:
         if light is None:
             return GetLightPropertiesResponse(
                 success=False, status_message=f"getLightProperties: Requested light {req.light_name} not found!")
+        # kame's lights keep their colour and range, not their attenuation: SDF's defaults are answered
         return GetLightPropertiesResponse(diffuse=ColorRGBA(*light.diffuse), attenuation_constant=1.0,
-                                          attenuation_linear=0.0, attenuation_quadratic=0.0, success=True,
+                                          attenuation_linear=1.0, attenuation_quadratic=0.0, success=True,
                                           status_message="")
 
     def set_light_properties(self, req: Any) -> Any:
