@@ -108,6 +108,9 @@ def test_robot_plugins_laser_camera_and_unknown(live: tuple[Sim, Proc]) -> None:
     assert "Set model configuration status: SetModelConfiguration: success" in out
     assert call(sim, "/gazebo/get_physics_properties")["pause"] is False  # -unpause
     assert 0 < sim.echo("/gazebo/performance_metrics")["real_time_factor"] < 1.2  # paced at 1, slower under load
+    joints = sim.echo("/joint_states")
+    assert joints["name"] == ["left_wheel_joint", "right_wheel_joint", "laser_joint"]
+    assert joints["position"][0] == pytest.approx(0.5, abs=0.05) and joints["position"][2] == 0.0  # -J; fixed
     warnings = [line for line in launch.out + launch.err if "libgazebo_ros_control.so" in line]
     assert len(warnings) == 1 and "kame has no libgazebo_ros_control.so" in warnings[0]
     scan = sim.echo("/scan")

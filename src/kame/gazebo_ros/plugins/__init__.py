@@ -98,6 +98,15 @@ class PluginHost:
                 plugin.reset()
 
     def _update(self, now: float) -> None:
-        for plugins in self._running.values():
+        failed: list[tuple[str, GazeboPlugin]] = []
+        for owner, plugins in self._running.items():
             for plugin in plugins:
-                plugin.update(now)
+                try:
+                    plugin.update(now)
+                except Exception as exc:  # whatever a plugin does wrong must not stop the world's thread
+                    self._error(f"Plugin [{plugin.context.plugin.name}] ({plugin.context.plugin.filename}) of "
+                                f"model [{owner}] failed and is stopped, the world runs on: {exc!r}")
+                    failed.append((owner, plugin))
+        for owner, plugin in failed:
+            plugin.close()
+            self._running[owner].remove(plugin)

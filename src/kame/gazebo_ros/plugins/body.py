@@ -259,6 +259,7 @@ class JointStatePublisher(GazeboPlugin):
             raise PluginParameterError(f"GazeboRosJointStatePublisher: no joint named {', '.join(missing)} "
                                        f"in model [{context.model_name()}]")
         self.joints = names
+        self.fixed = {j.name for j in context.model.joints if j.type == "fixed"} if context.model is not None else set()
         self.publisher = self.own(context.publisher(namespace, "joint_states", JointState))
         context.info(f"Starting GazeboRosJointStatePublisher Plugin (ns = {namespace})!, "
                      f"parent name: {context.model_name()}")
@@ -271,8 +272,13 @@ class JointStatePublisher(GazeboPlugin):
         world = self.context.world
         msg = JointState()
         msg.header.stamp = stamp(now)
-        states = [world.joint_state(self.context.scoped(j)) for j in self.joints]
         msg.name = list(self.joints)
-        msg.position = [s.position[0] if s.position else math.nan for s in states]
-        msg.velocity = [s.velocity[0] if s.velocity else math.nan for s in states]
+        for joint in self.joints:
+            if joint in self.fixed:  # a fixed joint has no state in the world: it stays at 0
+                msg.position.append(0.0)
+                msg.velocity.append(0.0)
+                continue
+            state = world.joint_state(self.context.scoped(joint))
+            msg.position.append(state.position[0] if state.position else math.nan)
+            msg.velocity.append(state.velocity[0] if state.velocity else math.nan)
         self.publisher.publish(msg)
