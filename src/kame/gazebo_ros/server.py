@@ -137,7 +137,7 @@ def run(options: command_line.ServerOptions) -> int:
     env = dict(os.environ)
     _report_options(options)
     world = load_world(options, env)
-    sim = Simulation(world, options.paused, _warn, iterations=options.iterations,
+    sim = Simulation(world, options.paused, _warn, _error, iterations=options.iterations,
                      finished=lambda: core.signal_shutdown("--iters reached"))
     host = PluginHost(sim, _info, _warn, _error)
     api: GazeboApi | None = None

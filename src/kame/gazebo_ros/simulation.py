@@ -23,15 +23,16 @@ StepListener = Callable[[float], None]  # called with the simulated time after e
 
 
 class Simulation:
-    def __init__(self, world: World, paused: bool, warn: Callable[[str], None], seed: int = 0,
+    def __init__(self, world: World, paused: bool, warn: Callable[[str], None], error: Callable[[str], None],
                  iterations: int | None = None, finished: Callable[[], None] | None = None) -> None:
         self.world = world
-        self.seed = seed
         self.lock = threading.RLock()
         self._changed = threading.Condition(self.lock)
         self._paused = paused
         self._stopping = False
         self._warn = warn
+        self._error = error
+        self._failed: list[StepListener] = []  # listeners that failed once: said, not said again
         self._iterations_left = iterations
         self._finished = finished
         self._listeners: list[StepListener] = []
@@ -75,13 +76,26 @@ class Simulation:
             self._warn(warning)
 
     def step(self) -> float:
-        """One step and its listeners; the world's time after it. The caller holds no lock."""
+        """One step and its listeners; the world's time after it. The caller holds no lock. A step
+        the World cannot make pauses the simulation with an error line; a listener that fails says
+        so once and is called again at the next step (the world's thread never ends on an error)."""
         with self.lock:
-            self.world.step()
+            try:
+                self.world.step()
+            except Exception as exc:  # whatever stops MuJoCo must leave the node answering
+                self._error(f"The world could not be stepped at {self.world.sim_time:.3f} s ({exc!r}): "
+                            "the simulation is paused")
+                self.set_paused(True)
+                return self.world.sim_time
             self.report_warnings()
             now = self.world.sim_time
             for listener in list(self._listeners):
-                listener(now)
+                try:
+                    listener(now)
+                except Exception as exc:  # a publisher's failure must not stop the world's thread
+                    if listener not in self._failed:
+                        self._failed.append(listener)
+                        self._error(f"After a step, {listener!r} failed ({exc!r}); the simulation runs on")
         return now
 
     def _wait_while_paused(self) -> bool:
