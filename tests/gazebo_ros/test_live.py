@@ -196,12 +196,26 @@ def test_spawn_model_waits_for_a_model_and_bonds_to_its_own(live: tuple[Sim, Pro
     assert "bonded" not in call(sim, "/gazebo/get_world_properties")["model_names"]
 
 
+def test_spawn_sdf_file_places_the_models_own_pose_at_the_initial_pose(live: tuple[Sim, Proc]) -> None:
+    sim, _ = live
+    model = Path(__file__).resolve().parents[2] / "src" / "kame" / "gazebo" / "models" / "box" / "model.sdf"
+    out = spawn(sim, "-sdf", "-file", str(model), "-model", "crate", "-x", "-3", "-y", "3", "-Y", "0.5")
+    assert "Successfully spawned entity" in out
+    state = call(sim, "/gazebo/get_model_state", "crate", "")
+    # the model's <pose> (0 0 0.5) seen from the initial pose, as gazebo_ros's updateSDFAttributes puts it
+    assert state["pose"]["position"]["x"] == pytest.approx(-3, abs=0.01)
+    assert state["pose"]["position"]["z"] == pytest.approx(0.5, abs=0.01)
+    assert call(sim, "/gazebo/delete_model", "crate")["success"] is True
+
+
 def test_bad_requests_are_answered_and_the_server_runs_on(live: tuple[Sim, Proc], tmp_path: Path) -> None:
     sim, launch = live
     nan_state = call(sim, "/gazebo/set_model_state", "{model_state: {model_name: rover, pose: {position: {x: .nan}}}}")
     assert nan_state["success"] is False and "finite" in nan_state["status_message"]
     wrench = call(sim, "/gazebo/apply_body_wrench", "{body_name: 'rover::chassis', wrench: {force: {x: .inf}}}")
     assert wrench["success"] is False
+    nan_pose = call(sim, "/gazebo/spawn_urdf_model", "nan_box", BOX_URDF, "", "{position: {x: .nan}}", "")
+    assert nan_pose["success"] is False and "finite" in nan_pose["status_message"]
     malformed = call(sim, "/gazebo/spawn_urdf_model", "broken", "<robot name='x'><link", "", "{}", "")
     assert malformed["success"] is False and "not SDF or URDF" in malformed["status_message"]
     big_box = BOX_URDF.replace("0.2 0.2 0.2", "0.6 0.6 0.6")

@@ -10,12 +10,15 @@ from __future__ import annotations
 import os
 import xml.etree.ElementTree as ET
 from collections.abc import Callable, Mapping
+from dataclasses import replace
 from pathlib import Path
 
 from kame.catkin import executables
 from kame.gazebo.errors import GazeboError
 from kame.gazebo.poses import Pose
 from kame.gazebo.resources import Resources
+from kame.gazebo.sdf import SdfReader
+from kame.gazebo.xmltree import parse
 from kame.gazebo_ros.plugins import PluginHost
 from kame.gazebo_ros.simulation import Simulation
 
@@ -85,7 +88,12 @@ class ModelFactory:
         if found == "urdf":
             world.spawn_urdf(text, name, pose, f"<{name}>")
         else:
-            world.spawn_sdf(text, name, pose, f"<{name}>")
+            # gazebo_ros's updateSDFAttributes: the model's own <pose> is taken relative to the initial pose
+            reader = SdfReader(world.resources)
+            model = reader.model_document(parse(text, f"<{name}>"), name)
+            for warning in reader.warnings:
+                self._warn(warning)
+            world.spawn(replace(model, pose=pose * model.pose))
         self.sim.report_warnings()
         self.plugins.start_model(world.model_description(name), robot_namespace.strip("/") if robot_namespace
                                  else None)
