@@ -260,3 +260,17 @@ def test_rays_see_a_collision_mesh_itself_not_its_hull(tmp_path: Path) -> None:
     ranges = world.ray_scan(only_sensor(world, "s")).ranges[0]
     assert ranges[1] == math.inf  # straight between the boxes
     assert ranges[0] == pytest.approx(1.9 / math.cos(0.2449787), abs=0.01)  # at the boxes' near faces
+
+
+@pytest.mark.usefixtures("renders")
+def test_camera_noise_is_gaussian_in_intensity() -> None:
+    noisy = camera().replace("<clip>", "<noise><type>gaussian</type><mean>0</mean><stddev>0.05</stddev></noise><clip>")
+    clean_world, noisy_world = world_with(red_box(3.0, 0.6, 0.8), camera()), world_with(red_box(3.0, 0.6, 0.8), noisy)
+    clean = clean_world.camera_frame(only_sensor(clean_world, "cam")).rgb
+    grainy = noisy_world.camera_frame(only_sensor(noisy_world, "cam")).rgb
+    assert clean is not None and grainy is not None
+    face = (slice(90, 100), slice(106, 117))  # inside the red face, far from 0 and 255
+    difference = grainy[face].astype(float) - clean[face].astype(float)
+    assert difference.mean() == pytest.approx(0.0, abs=1.5) and difference.std() == pytest.approx(0.05 * 255, rel=0.15)
+    clean_world.close()
+    noisy_world.close()
