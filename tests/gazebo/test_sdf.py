@@ -276,7 +276,7 @@ def test_urdf_with_gazebo_tags_spawns_as_spawn_model_reads_it() -> None:
     wheel = world.model_description("robot").link("wheel")
     assert wheel is not None and (wheel.collisions[0].name, wheel.collisions[0].mu, wheel.collisions[0].mu2) == (
         "wheel_collision", 0.8, 0.6)
-    assert wheel.collisions[0].gazebo_name == "wheel_collision"  # on a continuous joint: not lumped
+    assert wheel.collisions[0].gazebo_name == "wheel::wheel_collision"  # on a continuous joint: not lumped
     (sensor,) = world.sensors()
     assert (sensor.link, sensor.name, sensor.type, sensor.update_rate) == ("robot::laser_link", "hokuyo", "ray", 40.0)
     plugins = {p.name: p for p in world.plugins()}
@@ -465,7 +465,12 @@ def test_urdf_collisions_carry_the_names_gazebos_lumping_gives_them() -> None:
              for link in world.model_description("kobuki").links}
     assert names == {
         "base_footprint": [],
-        "base_link": [("base_link_collision", "base_footprint_fixed_joint_lump__base_link_collision"),
-                      ("base_link_collision_1", "base_footprint_fixed_joint_lump__base_link_collision_1")],
-        "plate": [("plate_collision", "base_footprint_fixed_joint_lump__plate_collision")],
-        "wheel": [("wheel_collision", "wheel_collision")]}
+        "base_link": [("base_link_collision", "base_footprint::base_footprint_fixed_joint_lump__base_link_collision"),
+                      ("base_link_collision_1",
+                       "base_footprint::base_footprint_fixed_joint_lump__base_link_collision_1")],
+        "plate": [("plate_collision", "base_footprint::base_footprint_fixed_joint_lump__plate_collision")],
+        "wheel": [("wheel_collision", "wheel::wheel_collision")]}
+    assert world.gazebo_collision_name("kobuki::plate::plate_collision") == (
+        "kobuki::base_footprint::base_footprint_fixed_joint_lump__plate_collision")
+    assert world.gazebo_collision_name("kobuki::wheel::wheel_collision") == "kobuki::wheel::wheel_collision"
+    assert world.gazebo_collision_name("elsewhere::l::c") == "elsewhere::l::c"

@@ -41,7 +41,7 @@ class Collision:
     pose: Pose
     mu: float = 1.0  # ODE's default friction coefficients
     mu2: float = 1.0
-    gazebo_name: str = ""  # a URDF collision's name in Gazebo, where it differs (fixed-joint lumping)
+    gazebo_name: str = ""  # "link::collision" as Gazebo names it (a URDF's fixed-joint lumping renames both)
 
 
 @dataclass(frozen=True)

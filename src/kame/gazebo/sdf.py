@@ -286,7 +286,7 @@ class SdfReader:
                 continue
             mu, mu2 = _friction(c)
             name_in_sdf = c.attrs.get("name", "collision")
-            collisions.append(d.Collision(name_in_sdf, geometry, local(c), mu, mu2, name_in_sdf))
+            collisions.append(d.Collision(name_in_sdf, geometry, local(c), mu, mu2, f"{name}::{name_in_sdf}"))
         sensors = [d.Sensor(s.attrs.get("name", ""), s.attrs.get("type", ""), local(s), s.number("update_rate", 0.0),
                             s.flag("always_on", False), s.flag("visualize", False), s) for s in element.each("sensor")]
         return d.Link(name, in_model, self._inertial(element.child("inertial")), tuple(visuals), tuple(collisions),

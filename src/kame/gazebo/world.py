@@ -666,6 +666,15 @@ class World:
     def contacts(self, link: str) -> list[sensing.Contact]:
         return sensing.contacts(self.model, self.data, self.body_id(link))
 
+    def gazebo_collision_name(self, collision: str) -> str:
+        """A collision's "model::link::collision" as Gazebo names it (a URDF's lumped links and
+        collisions renamed, as in Gazebo's contact messages); other names are returned as they are."""
+        model, _, rest = collision.partition("::")
+        link, _, name = rest.rpartition("::")
+        found = self._models[model].link(link) if model in self._models else None
+        match = next((c for c in found.collisions if c.name == name), None) if found is not None else None
+        return f"{model}::{match.gazebo_name}" if match is not None and match.gazebo_name else collision
+
     def close(self) -> None:
         """Frees the cameras' GL contexts (the world itself holds no other resource)."""
         self._cameras.close()
