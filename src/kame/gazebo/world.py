@@ -24,8 +24,9 @@ API (what the gazebo_ros side calls; names of links and joints are "model::link"
 - `reset_simulation()` (poses, velocities and time to 0), `reset_world()` (poses and velocities; time goes on).
 - Sensors (kame.gazebo.sensors, kame.gazebo.camera), each given a SensorInfo from `sensors()`:
   `ray_scan`, `range_reading`, `camera_frame` (RGB and/or depth, and the config with K),
-  `imu_reading`, `sensor_pose`; `contacts(link)`; noise draws from the world's seeded generator, so
-  a run replays exactly.
+  `imu_reading`, `sensor_pose`; `contacts(link)` (collisions named "model::link::collision";
+  `gazebo_collision_name` gives Gazebo's name for one); noise draws from the world's seeded
+  generator, so a run replays exactly.
 - Trouble: every refusal is a GazeboError saying why (unknown names, NaN values, a model spawned
   inside another, bad files); a model whose state diverges (NaN or runaway speeds) is put back
   where it was spawned, at rest, and `take_warnings()` returns what happened, for the node to log.
