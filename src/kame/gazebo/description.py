@@ -155,9 +155,18 @@ class Physics:
 
 
 @dataclass(frozen=True)
+class Scene:
+    """A world's <scene>: what cameras see behind everything, and the light from everywhere."""
+
+    ambient: Color = (0.4, 0.4, 0.4, 1.0)  # Gazebo's defaults
+    background: Color = (0.7, 0.7, 0.7, 1.0)
+
+
+@dataclass(frozen=True)
 class World:
     name: str = "default"
     physics: Physics = Physics()
+    scene: Scene = Scene()
     models: tuple[Model, ...] = ()
     lights: tuple[Light, ...] = ()
     plugins: tuple[Plugin, ...] = field(default=())

@@ -130,7 +130,16 @@ class SdfReader:
             if child.tag in ("actor", "road", "population"):
                 self.warnings.append(f"{child.where()}: <{child.tag}> is not simulated by kame; left out")
         plugins = tuple(self._plugin(e, "", "", "") for e in world.each("plugin"))
-        return d.World(world.attrs.get("name", "default"), physics, tuple(models), tuple(lights), plugins, root.source)
+        return d.World(world.attrs.get("name", "default"), physics, self._scene(world.child("scene")), tuple(models),
+                       tuple(lights), plugins, root.source)
+
+    def _scene(self, scene: Element | None) -> d.Scene:
+        if scene is None:
+            return d.Scene()
+        defaults = d.Scene()
+        colors = [color_of(_as_material(scene, tag)) if scene.child(tag) is not None else default
+                  for tag, default in (("ambient", defaults.ambient), ("background", defaults.background))]
+        return d.Scene(*colors)
 
     def _include_in_world(self, element: Element, placed: dict[str, Pose]) -> d.Model | d.Light:
         """An included model, or an included light (model://sun is a <light>, not a <model>)."""
@@ -409,8 +418,8 @@ def _friction(collision: Element) -> tuple[float, float]:
     return mu, mu2
 
 
-def _as_material(light: Element, tag: str) -> Element | None:
-    found = light.child(tag)
+def _as_material(owner: Element, tag: str) -> Element | None:
+    found = owner.child(tag)
     if found is None:
         return None
     return Element("material", {}, found.line, found.source, [Element("diffuse", {}, found.line, found.source,
