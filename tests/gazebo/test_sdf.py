@@ -59,6 +59,17 @@ def test_includes_come_from_gazebo_model_path_with_name_pose_and_static(tmp_path
     assert colors["ground_plane::link"] == pytest.approx((0.7, 0.7, 0.7, 1.0))  # Gazebo/Grey
 
 
+def test_an_included_model_folder_may_hold_a_urdf(tmp_path: Path) -> None:
+    (tmp_path / "arm").mkdir()
+    (tmp_path / "arm" / "model.config").write_text('<model><name>arm</name><sdf version="1.6">arm.urdf</sdf></model>')
+    (tmp_path / "arm" / "arm.urdf").write_text("""<robot name="arm"><link name="base">
+      <collision><geometry><box size="0.2 0.2 0.2"/></geometry></collision></link></robot>""")
+    include = "<include><uri>model://arm</uri><name>left_arm</name><pose>0 0 2 0 0 0</pose></include>"
+    world = World.from_sdf(sdf(include), Resources((str(tmp_path),)))
+    assert world.link_names("left_arm") == ["left_arm::base"]
+    assert world.model_state("left_arm").pose.position == pytest.approx((0.0, 0.0, 2.0))
+
+
 def test_a_model_folder_without_model_config_uses_model_sdf(tmp_path: Path) -> None:
     write_model(tmp_path, "crate", CRATE, config=False)
     world = World.from_sdf(sdf("<include><uri>model://crate</uri></include>"), Resources((str(tmp_path),)))

@@ -24,9 +24,8 @@ from dataclasses import replace
 from kame.gazebo import description as d
 from kame.gazebo.errors import GazeboError
 from kame.gazebo.materials import script_color
-from kame.gazebo.poses import Pose
+from kame.gazebo.poses import Pose, pose_of
 from kame.gazebo.resources import Resources
-from kame.gazebo.sdf import pose_of
 from kame.gazebo.xmltree import Element, parse_vector
 
 MASSLESS = d.Inertial(1e-6, Pose(), 1e-9, 1e-9, 1e-9)
