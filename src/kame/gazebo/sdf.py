@@ -1,13 +1,13 @@
 """SDF 1.4 to 1.7 worlds and models read into kame.gazebo.description's values.
 
 Understood: <world> with <physics> (max_step_size, real_time_update_rate, real_time_factor;
-<gravity> in the world or, as SDF 1.4 put it, in <physics>), <light>, <model>, <include> and
-<plugin>; <model> with <static>, <pose>, <link>, <joint>, <frame>, <plugin>, nested <model> and
-<include> (flattened, their links named "inner::link"; an included folder may hold a URDF); <link>
-with <inertial>, <visual>, <collision> (surface friction mu, mu2), <sensor> (its plugins),
-<gravity>, <kinematic>, <self_collide>; geometry box, cylinder, sphere, plane and mesh; joints
-revolute, continuous, prismatic, fixed and ball, with <limit> and <dynamics> (damping, friction,
-spring_stiffness, spring_reference).
+<gravity> in the world or, as SDF 1.4 put it, in <physics>), <scene> (ambient, background),
+<light>, <model>, <include> and <plugin>; <model> with <static>, <pose>, <link>, <joint>, <frame>,
+<plugin>, nested <model> and <include> (flattened, their links named "inner::link"; an included
+folder may hold a URDF); <link> with <inertial>, <visual>, <collision> (surface friction mu, mu2),
+<sensor> (its plugins), <gravity>, <kinematic>, <self_collide>; geometry box, cylinder, sphere,
+plane and mesh; joints revolute, continuous, prismatic, fixed and ball, with <limit> and <dynamics>
+(damping, friction, spring_stiffness, spring_reference).
 Poses: <pose relative_to="frame"> (1.7) and <pose frame="frame"> (1.5, 1.6) name a link, joint,
 <frame> or nested model of the same model ("__model__" or nothing: the model; a world's models
 may be placed relative to another model). Joint axes are in the joint's frame, or the model's with
