@@ -59,6 +59,17 @@ def test_includes_come_from_gazebo_model_path_with_name_pose_and_static(tmp_path
     assert colors["ground_plane::link"] == pytest.approx((0.7, 0.7, 0.7, 1.0))  # Gazebo/Grey
 
 
+def test_an_included_model_folder_may_hold_a_urdf(tmp_path: Path) -> None:
+    (tmp_path / "arm").mkdir()
+    (tmp_path / "arm" / "model.config").write_text('<model><name>arm</name><sdf version="1.6">arm.urdf</sdf></model>')
+    (tmp_path / "arm" / "arm.urdf").write_text("""<robot name="arm"><link name="base">
+      <collision><geometry><box size="0.2 0.2 0.2"/></geometry></collision></link></robot>""")
+    include = "<include><uri>model://arm</uri><name>left_arm</name><pose>0 0 2 0 0 0</pose></include>"
+    world = World.from_sdf(sdf(include), Resources((str(tmp_path),)))
+    assert world.link_names("left_arm") == ["left_arm::base"]
+    assert world.model_state("left_arm").pose.position == pytest.approx((0.0, 0.0, 2.0))
+
+
 def test_a_model_folder_without_model_config_uses_model_sdf(tmp_path: Path) -> None:
     write_model(tmp_path, "crate", CRATE, config=False)
     world = World.from_sdf(sdf("<include><uri>model://crate</uri></include>"), Resources((str(tmp_path),)))
@@ -276,7 +287,7 @@ def test_urdf_with_gazebo_tags_spawns_as_spawn_model_reads_it() -> None:
     wheel = world.model_description("robot").link("wheel")
     assert wheel is not None and (wheel.collisions[0].name, wheel.collisions[0].mu, wheel.collisions[0].mu2) == (
         "wheel_collision", 0.8, 0.6)
-    assert wheel.collisions[0].gazebo_name == "wheel_collision"  # on a continuous joint: not lumped
+    assert wheel.collisions[0].gazebo_name == "wheel::wheel_collision"  # on a continuous joint: not lumped
     (sensor,) = world.sensors()
     assert (sensor.link, sensor.name, sensor.type, sensor.update_rate) == ("robot::laser_link", "hokuyo", "ray", 40.0)
     plugins = {p.name: p for p in world.plugins()}
@@ -465,7 +476,12 @@ def test_urdf_collisions_carry_the_names_gazebos_lumping_gives_them() -> None:
              for link in world.model_description("kobuki").links}
     assert names == {
         "base_footprint": [],
-        "base_link": [("base_link_collision", "base_footprint_fixed_joint_lump__base_link_collision"),
-                      ("base_link_collision_1", "base_footprint_fixed_joint_lump__base_link_collision_1")],
-        "plate": [("plate_collision", "base_footprint_fixed_joint_lump__plate_collision")],
-        "wheel": [("wheel_collision", "wheel_collision")]}
+        "base_link": [("base_link_collision", "base_footprint::base_footprint_fixed_joint_lump__base_link_collision"),
+                      ("base_link_collision_1",
+                       "base_footprint::base_footprint_fixed_joint_lump__base_link_collision_1")],
+        "plate": [("plate_collision", "base_footprint::base_footprint_fixed_joint_lump__plate_collision")],
+        "wheel": [("wheel_collision", "wheel::wheel_collision")]}
+    assert world.gazebo_collision_name("kobuki::plate::plate_collision") == (
+        "kobuki::base_footprint::base_footprint_fixed_joint_lump__plate_collision")
+    assert world.gazebo_collision_name("kobuki::wheel::wheel_collision") == "kobuki::wheel::wheel_collision"
+    assert world.gazebo_collision_name("elsewhere::l::c") == "elsewhere::l::c"

@@ -133,15 +133,17 @@ def test_a_camera_sees_a_red_box_at_the_pixels_its_k_predicts() -> None:
         return cx + fx * -y / x, cy + fy * -(z - 0.5) / x
 
     rgb = frame.rgb.astype(int)
-    red = (rgb[:, :, 0] > 100) & (rgb[:, :, 0] > 2 * rgb[:, :, 1]) & (rgb[:, :, 0] > 2 * rgb[:, :, 2])
+    red = (rgb[:, :, 0] > 60) & (rgb[:, :, 0] > 2 * rgb[:, :, 1]) & (rgb[:, :, 0] > 2 * rgb[:, :, 2])
     rows, cols = np.nonzero(red)
     assert len(rows) > 50
-    # the near face (x = 2.9), lit head-on by the camera's headlight, is bright red (the right side
-    # and the bottom, which the camera sees edge-on, are dark): its corners' projections bound it
-    left, top = pixel(2.9, 0.7, 0.9)
-    right, bottom = pixel(2.9, 0.5, 0.7)
-    assert (cols.min(), cols.max()) == (pytest.approx(left, abs=1.0), pytest.approx(right, abs=1.0))
-    assert (rows.min(), rows.max()) == (pytest.approx(top, abs=1.0), pytest.approx(bottom, abs=1.0))
+    # a box is convex: its outline's outermost pixels are its corners' projections (the camera, below
+    # and right of it, sees its near face, its right side and its bottom, all red in the ambient light)
+    corners = [pixel(x, y, z) for x in (2.9, 3.1) for y in (0.5, 0.7) for z in (0.7, 0.9)]
+    us, vs = [u for u, _ in corners], [v for _, v in corners]
+    assert (cols.min(), cols.max()) == (pytest.approx(min(us), abs=1.0), pytest.approx(max(us), abs=1.0))
+    assert (rows.min(), rows.max()) == (pytest.approx(min(vs), abs=1.0), pytest.approx(max(vs), abs=1.0))
+    # elsewhere the scene's background: Gazebo's default grey
+    assert tuple(frame.rgb[5, 5]) == (178, 178, 178)
     world.close()
 
 
@@ -260,3 +262,28 @@ def test_rays_see_a_collision_mesh_itself_not_its_hull(tmp_path: Path) -> None:
     ranges = world.ray_scan(only_sensor(world, "s")).ranges[0]
     assert ranges[1] == math.inf  # straight between the boxes
     assert ranges[0] == pytest.approx(1.9 / math.cos(0.2449787), abs=0.01)  # at the boxes' near faces
+
+
+@pytest.mark.usefixtures("renders")
+def test_camera_noise_is_gaussian_in_intensity() -> None:
+    noisy = camera().replace("<clip>", "<noise><type>gaussian</type><mean>0</mean><stddev>0.05</stddev></noise><clip>")
+    clean_world, noisy_world = world_with(red_box(3.0, 0.6, 0.8), camera()), world_with(red_box(3.0, 0.6, 0.8), noisy)
+    clean = clean_world.camera_frame(only_sensor(clean_world, "cam")).rgb
+    grainy = noisy_world.camera_frame(only_sensor(noisy_world, "cam")).rgb
+    assert clean is not None and grainy is not None
+    face = (slice(90, 100), slice(106, 117))  # inside the red face, far from 0 and 255
+    difference = grainy[face].astype(float) - clean[face].astype(float)
+    assert difference.mean() == pytest.approx(0.0, abs=1.5) and difference.std() == pytest.approx(0.05 * 255, rel=0.15)
+    clean_world.close()
+    noisy_world.close()
+
+
+@pytest.mark.usefixtures("renders")
+def test_a_camera_sees_the_scenes_background() -> None:
+    world = World.from_sdf(f"""<sdf version="1.6"><world name="w"><scene><ambient>0.1 0.2 0.3 1</ambient>
+      <background>0 0 1 1</background></scene>{camera(32, 24)}</world></sdf>""")
+    assert world.scene.ambient == (0.1, 0.2, 0.3, 1.0) and world.scene.background == (0.0, 0.0, 1.0, 1.0)
+    frame = world.camera_frame(only_sensor(world, "cam"), depth=True)
+    assert frame.rgb is not None and (frame.rgb == (0, 0, 255)).all()
+    assert frame.depth is not None and np.isinf(frame.depth).all()
+    world.close()

@@ -2,8 +2,9 @@
 images in metres along the optical axis (as Gazebo's depth cameras give them), and the pinhole
 K matrix a CameraInfo carries.
 
-Cameras draw visuals only (collision shapes are MuJoCo geoms in another group). One GL context
-per image size, remade when the world's model is rebuilt; `close()` frees them. Each frame is one
+Cameras draw visuals only (collision shapes are MuJoCo geoms in another group), on the world's
+<scene> background (where the depth buffer shows nothing drawn: a sky box would have depth). One
+GL context per image size, remade when the world's model is rebuilt; `close()` frees them. Each frame is one
 render whose colour and depth buffers are both read (mujoco.Renderer renders twice for the two),
 without multisampling: on Mesa's software renderer 4x multisampling made a 640x480 frame 8 times
 slower (bench/gazebo_bench.py). A camera's near and far clip and field of view are set on the
@@ -125,7 +126,7 @@ class Cameras:
         self._camera.type = mujoco.mjtCamera.mjCAMERA_FIXED
 
     def render(self, model: mujoco.MjModel, data: mujoco.MjData, generation: int, camera: str, config: CameraConfig,
-               rgb: bool, depth: bool, rng: np.random.Generator) -> CameraFrame:
+               rgb: bool, depth: bool, rng: np.random.Generator, background: tuple[float, ...]) -> CameraFrame:
         camera_id = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_CAMERA, camera)
         if camera_id < 0:
             raise GazeboError(f"no camera sensor named {camera!r}")
@@ -149,9 +150,10 @@ class Cameras:
         mujoco.mjv_updateScene(model, data, self._option, None, self._camera, mujoco.mjtCatBit.mjCAT_ALL.value,
                                offscreen.scene)
         mujoco.mjr_render(offscreen.rect, offscreen.scene, offscreen.renderer)
-        mujoco.mjr_readPixels(offscreen.rgb if rgb else None, offscreen.depth if depth else None, offscreen.rect,
-                              offscreen.renderer)
+        mujoco.mjr_readPixels(offscreen.rgb if rgb else None, offscreen.depth, offscreen.rect, offscreen.renderer)
         image = np.flipud(offscreen.rgb).copy() if rgb else None  # GL's rows run bottom up
+        if image is not None:  # where nothing was drawn (the depth buffer still at the far clip): the background
+            image[np.flipud(offscreen.depth) <= 0.0] = np.round(np.asarray(background[:3]) * 255).astype(np.uint8)
         if image is not None and config.noise_stddev > 0:
             noisy = image + rng.normal(config.noise_mean * 255, config.noise_stddev * 255, image.shape)
             image = np.clip(noisy, 0, 255).astype(np.uint8)

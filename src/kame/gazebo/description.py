@@ -41,7 +41,7 @@ class Collision:
     pose: Pose
     mu: float = 1.0  # ODE's default friction coefficients
     mu2: float = 1.0
-    gazebo_name: str = ""  # a URDF collision's name in Gazebo, where it differs (fixed-joint lumping)
+    gazebo_name: str = ""  # "link::collision" as Gazebo names it (a URDF's fixed-joint lumping renames both)
 
 
 @dataclass(frozen=True)
@@ -155,9 +155,18 @@ class Physics:
 
 
 @dataclass(frozen=True)
+class Scene:
+    """A world's <scene>: what cameras see behind everything, and the light from everywhere."""
+
+    ambient: Color = (0.4, 0.4, 0.4, 1.0)  # Gazebo's defaults
+    background: Color = (0.7, 0.7, 0.7, 1.0)
+
+
+@dataclass(frozen=True)
 class World:
     name: str = "default"
     physics: Physics = Physics()
+    scene: Scene = Scene()
     models: tuple[Model, ...] = ()
     lights: tuple[Light, ...] = ()
     plugins: tuple[Plugin, ...] = field(default=())

@@ -1,6 +1,7 @@
 """Rigid poses as the simulator's API gives them: a position and a unit quaternion (x, y, z, w),
 as ROS's geometry_msgs/Pose orders it. MuJoCo orders quaternions (w, x, y, z): `mj_quat` and
-`from_mj` are the only crossings.
+`from_mj` are the only crossings. `pose_of` reads an SDF element's <pose> (x y z roll pitch yaw),
+which SDF and the <gazebo> tags of URDF share.
 """
 
 from __future__ import annotations
@@ -9,6 +10,9 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+
+from kame.gazebo.errors import GazeboError
+from kame.gazebo.xmltree import Element, parse_vector
 
 Vector3 = tuple[float, float, float]
 Quaternion = tuple[float, float, float, float]  # x, y, z, w
@@ -85,3 +89,18 @@ def normalized_pose(pose: Pose) -> Pose:
     if not any(pose.orientation):
         return Pose(pose.position)
     return Pose(pose.position, _normalized(pose.orientation))
+
+
+def pose_of(element: Element) -> tuple[Pose, str]:
+    """The element's <pose> and the frame it is relative to ("" when the default applies)."""
+    found = element.child("pose")
+    if found is None:
+        return Pose(), ""
+    relative_to = found.attrs.get("relative_to", found.attrs.get("frame", "")).strip()
+    text = found.text.strip()
+    if not text:
+        return Pose(), relative_to
+    values = parse_vector(text, 6, found)
+    if not all(math.isfinite(v) for v in values):
+        raise GazeboError(f"{found.where()}: a pose must be finite, not {text!r}")
+    return Pose.from_xyz_rpy(*values), relative_to

@@ -1,12 +1,13 @@
 """SDF 1.4 to 1.7 worlds and models read into kame.gazebo.description's values.
 
 Understood: <world> with <physics> (max_step_size, real_time_update_rate, real_time_factor;
-<gravity> in the world or, as SDF 1.4 put it, in <physics>), <light>, <model>, <include> and
-<plugin>; <model> with <static>, <pose>, <link>, <joint>, <frame>, <plugin>, nested <model> and
-<include> (flattened, their links named "inner::link"); <link> with <inertial>, <visual>,
-<collision> (surface friction mu, mu2), <sensor> (its plugins), <gravity>, <kinematic>;
-geometry box, cylinder, sphere, plane and mesh; joints revolute, continuous, prismatic, fixed and
-ball, with <limit> and <dynamics> (damping, friction, spring_stiffness, spring_reference).
+<gravity> in the world or, as SDF 1.4 put it, in <physics>), <scene> (ambient, background),
+<light>, <model>, <include> and <plugin>; <model> with <static>, <pose>, <link>, <joint>, <frame>,
+<plugin>, nested <model> and <include> (flattened, their links named "inner::link"; an included
+folder may hold a URDF); <link> with <inertial>, <visual>, <collision> (surface friction mu, mu2),
+<sensor> (its plugins), <gravity>, <kinematic>, <self_collide>; geometry box, cylinder, sphere,
+plane and mesh; joints revolute, continuous, prismatic, fixed and ball, with <limit> and <dynamics>
+(damping, friction, spring_stiffness, spring_reference).
 Poses: <pose relative_to="frame"> (1.7) and <pose frame="frame"> (1.5, 1.6) name a link, joint,
 <frame> or nested model of the same model ("__model__" or nothing: the model; a world's models
 may be placed relative to another model). Joint axes are in the joint's frame, or the model's with
@@ -24,27 +25,13 @@ from dataclasses import replace
 from kame.gazebo import description as d
 from kame.gazebo.errors import GazeboError
 from kame.gazebo.materials import script_color
-from kame.gazebo.poses import Pose, Vector3
+from kame.gazebo.poses import Pose, Vector3, pose_of
 from kame.gazebo.resources import Resources, read_xml
+from kame.gazebo.urdf import UrdfReader
 from kame.gazebo.xmltree import Element, parse_vector
 
 JOINT_TYPES = {"revolute", "continuous", "prismatic", "fixed", "ball"}
 MODEL_FRAME = "__model__"
-
-
-def pose_of(element: Element) -> tuple[Pose, str]:
-    """The element's <pose> and the frame it is relative to ("" when the default applies)."""
-    found = element.child("pose")
-    if found is None:
-        return Pose(), ""
-    relative_to = found.attrs.get("relative_to", found.attrs.get("frame", "")).strip()
-    text = found.text.strip()
-    if not text:
-        return Pose(), relative_to
-    values = parse_vector(text, 6, found)
-    if not all(math.isfinite(v) for v in values):
-        raise GazeboError(f"{found.where()}: a pose must be finite, not {text!r}")
-    return Pose.from_xyz_rpy(*values), relative_to
 
 
 def color_of(material: Element | None) -> d.Color:
@@ -130,7 +117,16 @@ class SdfReader:
             if child.tag in ("actor", "road", "population"):
                 self.warnings.append(f"{child.where()}: <{child.tag}> is not simulated by kame; left out")
         plugins = tuple(self._plugin(e, "", "", "") for e in world.each("plugin"))
-        return d.World(world.attrs.get("name", "default"), physics, tuple(models), tuple(lights), plugins, root.source)
+        return d.World(world.attrs.get("name", "default"), physics, self._scene(world.child("scene")), tuple(models),
+                       tuple(lights), plugins, root.source)
+
+    def _scene(self, scene: Element | None) -> d.Scene:
+        if scene is None:
+            return d.Scene()
+        defaults = d.Scene()
+        colors = [color_of(_as_material(scene, tag)) if scene.child(tag) is not None else default
+                  for tag, default in (("ambient", defaults.ambient), ("background", defaults.background))]
+        return d.Scene(*colors)
 
     def _include_in_world(self, element: Element, placed: dict[str, Pose]) -> d.Model | d.Light:
         """An included model, or an included light (model://sun is a <light>, not a <model>)."""
@@ -164,7 +160,12 @@ class SdfReader:
             raise GazeboError(f"{element.where()}: an <include> needs a <uri>")
         folder = self.resources.path(uri, element)
         root = read_xml(self.resources.model_file(folder, element))
-        model = self.model_document(root, element.child_text("name") or "")
+        if root.tag == "robot":  # a model folder may hold a URDF (model.config's <sdf> names the file)
+            urdf = UrdfReader(self.resources)
+            model = urdf.model(root, element.child_text("name") or "")
+            self.warnings += urdf.warnings
+        else:
+            model = self.model_document(root, element.child_text("name") or "")
         pose, relative_to = pose_of(element)
         if element.child("pose") is not None:
             model = replace(model, pose=_placed(pose, relative_to, placed or {}, element))
@@ -286,7 +287,7 @@ class SdfReader:
                 continue
             mu, mu2 = _friction(c)
             name_in_sdf = c.attrs.get("name", "collision")
-            collisions.append(d.Collision(name_in_sdf, geometry, local(c), mu, mu2, name_in_sdf))
+            collisions.append(d.Collision(name_in_sdf, geometry, local(c), mu, mu2, f"{name}::{name_in_sdf}"))
         sensors = [d.Sensor(s.attrs.get("name", ""), s.attrs.get("type", ""), local(s), s.number("update_rate", 0.0),
                             s.flag("always_on", False), s.flag("visualize", False), s) for s in element.each("sensor")]
         return d.Link(name, in_model, self._inertial(element.child("inertial")), tuple(visuals), tuple(collisions),
@@ -409,8 +410,8 @@ def _friction(collision: Element) -> tuple[float, float]:
     return mu, mu2
 
 
-def _as_material(light: Element, tag: str) -> Element | None:
-    found = light.child(tag)
+def _as_material(owner: Element, tag: str) -> Element | None:
+    found = owner.child(tag)
     if found is None:
         return None
     return Element("material", {}, found.line, found.source, [Element("diffuse", {}, found.line, found.source,

@@ -5,9 +5,10 @@
   package finder. A link's frame is its parent joint's frame, as URDF defines it.
 - Fixed joints are kept, not lumped: MuJoCo welds the child link to its parent, so every link
   keeps its name and the lumped result's inertia is the same. Each collision also carries the
-  name Gazebo's lumping gives it ("base_footprint_fixed_joint_lump__base_link_collision"), which
-  contact sensors written for Gazebo name. A link without <inertial> gets a
-  negligible mass (Gazebo would drop it; here it still carries its visuals and collisions).
+  link and name Gazebo's lumping gives it ("base_footprint::base_footprint_fixed_joint_lump__
+  base_link_collision"), which contact sensors and bumper messages written for Gazebo name. A
+  link without <inertial> gets a negligible mass (Gazebo would drop it; here it still carries its
+  visuals and collisions).
 - <gazebo reference="link">: <material> (a Gazebo material script name: the link's visuals take
   its colour), <mu1>, <mu2>, <gravity>/<turnGravityOff>, <sensor> (its <pose> in the link's frame,
   its plugins). <gazebo> without a reference: <plugin> (the model's), <static>.
@@ -23,9 +24,8 @@ from dataclasses import replace
 from kame.gazebo import description as d
 from kame.gazebo.errors import GazeboError
 from kame.gazebo.materials import script_color
-from kame.gazebo.poses import Pose
+from kame.gazebo.poses import Pose, pose_of
 from kame.gazebo.resources import Resources
-from kame.gazebo.sdf import pose_of
 from kame.gazebo.xmltree import Element, parse_vector
 
 MASSLESS = d.Inertial(1e-6, Pose(), 1e-9, 1e-9, 1e-9)
@@ -163,7 +163,8 @@ class UrdfReader:
             own = _indexed(f"{name}_collision", index)
             # Gazebo merges a link on fixed joints into its ancestor, renaming its collisions (a contact
             # sensor's <collision> names them so); kame keeps the link and gives the name beside it
-            in_gazebo = own if lumped_into == name else f"{lumped_into}_fixed_joint_lump__{own}"
+            in_gazebo = f"{name}::{own}" if lumped_into == name else (
+                f"{lumped_into}::{lumped_into}_fixed_joint_lump__{own}")
             collisions.append(d.Collision(own, self._geometry(c), origin_of(c), mu, mu2 if mu2 is not None else mu,
                                           in_gazebo))
         sensors = []

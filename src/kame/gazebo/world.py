@@ -6,10 +6,11 @@ API (what the gazebo_ros side calls; names of links and joints are "model::link"
 - Time: `step(n=1)` advances n steps of `physics.max_step_size`; `sim_time`, `iterations`.
   `physics` (max_step_size, real_time_update_rate, real_time_factor, gravity) is read and set
   whole (`world.physics = replace(world.physics, gravity=...)`); the node paces real time by it.
-- Contents: `model_names()`, `model_description(name)` (links with inertia, collisions, static...),
-  `joint_description(joint)`, `link_names(model)`, `joint_names(model)`, `plugins()`, `sensors()`,
-  `visuals()` (per link: shape, size or triangles, local pose, colour, for a 3-D window), `lights`,
-  `generation` (changes when a spawn or delete rebuilds the model). `model` and `data` are MuJoCo's.
+- Contents: `scene` (ambient and background colours), `model_names()`, `model_description(name)`
+  (links with inertia, collisions, static...), `joint_description(joint)`, `link_names(model)`,
+  `joint_names(model)`, `plugins()`, `sensors()`, `visuals()` (per link: shape, size or triangles,
+  local pose, colour, for a 3-D window), `lights`, `generation` (changes when a spawn or delete
+  rebuilds the model). `model` and `data` are MuJoCo's.
 - State: `model_state(name)`, `link_state(link)` (pose: position and quaternion xyzw; twist in the
   world frame), `model_states()` and `link_states()` (all of them, by name), `link_acceleration(link)`,
   `set_model_state(name, state)`, `set_model_twist(name, linear, angular)`, `set_link_state(link, state)`,
@@ -24,8 +25,9 @@ API (what the gazebo_ros side calls; names of links and joints are "model::link"
 - `reset_simulation()` (poses, velocities and time to 0), `reset_world()` (poses and velocities; time goes on).
 - Sensors (kame.gazebo.sensors, kame.gazebo.camera), each given a SensorInfo from `sensors()`:
   `ray_scan`, `range_reading`, `camera_frame` (RGB and/or depth, and the config with K),
-  `imu_reading`, `sensor_pose`; `contacts(link)`; noise draws from the world's seeded generator, so
-  a run replays exactly.
+  `imu_reading`, `sensor_pose`; `contacts(link)` (collisions named "model::link::collision";
+  `gazebo_collision_name` gives Gazebo's name for one); noise draws from the world's seeded
+  generator, so a run replays exactly.
 - Trouble: every refusal is a GazeboError saying why (unknown names, NaN values, a model spawned
   inside another, bad files); a model whose state diverges (NaN or runaway speeds) is put back
   where it was spawned, at rest, and `take_warnings()` returns what happened, for the node to log.
@@ -88,6 +90,7 @@ class World:
         self.name = description.name
         self.resources = resources or Resources()
         self.lights = description.lights
+        self.scene = description.scene
         self.rng = np.random.default_rng(seed)
         self._world_plugins = description.plugins
         self._models: dict[str, d.Model] = {}
@@ -117,6 +120,7 @@ class World:
         self._spec.visual.quality.offsamples = 0  # multisampling costs 8x on Mesa's software renderer (camera.py)
         self._set_spec_physics(description.physics)
         self._physics = description.physics
+        self._spec.visual.headlight.ambient = description.scene.ambient[:3]  # the scene's light from everywhere
         for light in description.lights:
             try:
                 assembly.add_light(self._spec, light)
@@ -657,7 +661,7 @@ class World:
         name = assembly.sensor_object_name(sensor.model, sensor.link.partition("::")[2], sensor.name)
         self._current()
         return self._cameras.render(self.model, self.data, self._generation, name, CameraConfig.of(sensor.config),
-                                    rgb, depth, self.rng)
+                                    rgb, depth, self.rng, self.scene.background)
 
     def imu_reading(self, sensor: SensorInfo) -> sensing.ImuReading:
         name = assembly.sensor_object_name(sensor.model, sensor.link.partition("::")[2], sensor.name)
@@ -665,6 +669,15 @@ class World:
 
     def contacts(self, link: str) -> list[sensing.Contact]:
         return sensing.contacts(self.model, self.data, self.body_id(link))
+
+    def gazebo_collision_name(self, collision: str) -> str:
+        """A collision's "model::link::collision" as Gazebo names it (a URDF's lumped links and
+        collisions renamed, as in Gazebo's contact messages); other names are returned as they are."""
+        model, _, rest = collision.partition("::")
+        link, _, name = rest.rpartition("::")
+        found = self._models[model].link(link) if model in self._models else None
+        match = next((c for c in found.collisions if c.name == name), None) if found is not None else None
+        return f"{model}::{match.gazebo_name}" if match is not None and match.gazebo_name else collision
 
     def close(self) -> None:
         """Frees the cameras' GL contexts (the world itself holds no other resource)."""
