@@ -119,15 +119,13 @@ class GazeboApi:
         self._states_published = now
         world = self.sim.world
         if self.model_states.get_num_connections() > 0:
-            names = world.model_names()
-            states = [world.model_state(n) for n in names]
-            self.model_states.publish(ModelStates(names, [pose_msg(s.pose) for s in states],
-                                                  [twist_msg(s.linear, s.angular) for s in states]))
+            models = world.model_states()
+            self.model_states.publish(ModelStates(list(models), [pose_msg(s.pose) for s in models.values()],
+                                                  [twist_msg(s.linear, s.angular) for s in models.values()]))
         if self.link_states.get_num_connections() > 0:
-            links = [link for model in world.model_names() for link in world.link_names(model)]
-            states = [world.link_state(n) for n in links]
-            self.link_states.publish(LinkStates(links, [pose_msg(s.pose) for s in states],
-                                                [twist_msg(s.linear, s.angular) for s in states]))
+            links = world.link_states()
+            self.link_states.publish(LinkStates(list(links), [pose_msg(s.pose) for s in links.values()],
+                                                [twist_msg(s.linear, s.angular) for s in links.values()]))
 
     def _on_model_state(self, msg: Any) -> None:
         from gazebo_msgs.srv import SetModelStateRequest

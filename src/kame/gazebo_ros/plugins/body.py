@@ -7,6 +7,7 @@ and joint_state_publisher (sensor_msgs/JointState of the named joints).
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 
@@ -208,8 +209,8 @@ class Bumper(GazeboPlugin):
         self.sensor = sensor
         self.link = context.scoped(context.plugin.link)
         contact = sensor.element.child("contact")
-        names = [c.text.strip() for c in contact.each("collision")] if contact is not None else []
-        self.collisions = {f"{self.link}::{n}" for n in names}
+        # the collisions the sensor names, as SDF writes them or as Gazebo renames a URDF's lumped ones
+        self.collisions = {c.text.strip() for c in contact.each("collision")} if contact is not None else set()
         p = context.parameters("bumper", "bumper plugin missing <{tag}>, defaults to {default}")
         namespace = context.namespace(p)
         topic = p.text("bumperTopicName", "bumper_states")
@@ -227,8 +228,13 @@ class Bumper(GazeboPlugin):
         msg = ContactsState()
         msg.header.stamp = stamp(now)
         msg.header.frame_id = self.frame.lstrip("/")
-        for contact in self.context.world.contacts(self.link):
-            if self.collisions and contact.collision1 not in self.collisions:
+        world = self.context.world
+        for found in world.contacts(self.link):
+            # the collisions named as Gazebo's contact messages name them (a URDF's lumped links)
+            contact = replace(found, collision1=world.gazebo_collision_name(found.collision1),
+                              collision2=world.gazebo_collision_name(found.collision2))
+            mine = {found.collision1.rpartition("::")[2], contact.collision1.rpartition("::")[2]}
+            if self.collisions and not mine & self.collisions:
                 continue
             wrench = Wrench(Vector3(*contact.force), Vector3())
             msg.states.append(ContactState(

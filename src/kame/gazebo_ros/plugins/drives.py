@@ -17,7 +17,6 @@ from typing import Any
 
 from kame.client import process
 from kame.gazebo.poses import Pose
-from kame.gazebo.states import State
 from kame.gazebo_ros.conversions import stamp
 from kame.gazebo_ros.plugins.base import Every, GazeboPlugin, PluginContext
 from kame.gazebo_ros.plugins.parameters import PluginParameterError
@@ -347,9 +346,8 @@ class PlanarMove(GazeboPlugin):
         x, y, rotation = self.command.get()
         state = world.model_state(model)
         pose, yaw = state.pose, _yaw(state.pose)
-        world.set_model_state(model, State(pose, (x * math.cos(yaw) - y * math.sin(yaw),
-                                                  y * math.cos(yaw) + x * math.sin(yaw), state.linear[2]),
-                                           (0.0, 0.0, rotation)))
+        world.set_model_twist(model, (x * math.cos(yaw) - y * math.sin(yaw), y * math.cos(yaw) + x * math.sin(yaw),
+                                      state.linear[2]), (0.0, 0.0, rotation))
         if self.odometry_rate.due(now):
             self.odom.publish(now, pose, (x, y), rotation)
 
