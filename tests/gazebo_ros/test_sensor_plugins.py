@@ -23,6 +23,9 @@ def test_imu_bumper_p3d_drives_depth_camera_and_block_laser(tmp_path: Path) -> N
         assert imu["header"]["frame_id"] == "probe_imu"
         assert imu["linear_acceleration"]["z"] == pytest.approx(9.8, abs=0.1)  # gravity's reaction, at rest
         assert imu["orientation"]["w"] == pytest.approx(1.0, abs=1e-3)
+        body_imu = sim.echo("/probe/imu_body")  # GazeboRosIMU: the body's change of velocity, no gravity
+        assert body_imu["header"]["frame_id"] == "body"
+        assert abs(body_imu["linear_acceleration"]["z"]) < 0.5 and body_imu["orientation"]["w"] == pytest.approx(1.0)
         bumper = sim.echo("/probe/bumper")
         assert bumper["states"] and all("ground_plane" in s["collision2_name"] for s in bumper["states"])
         assert bumper["states"][0]["collision1_name"] == "probe::body::collision"
