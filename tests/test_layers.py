@@ -52,6 +52,7 @@ LAYERS: dict[str, int] = {
     "kame.turtlesim": 1,  # the world: no ROS, no GUI, no clock
     "kame.stage": 1,  # the 2-D robot world and map_server's map files: no ROS, no clock
     "kame.nav": 1,  # the navigation stack's algorithms (amcl's filter, costmaps, planners, SLAM): no ROS, no clock
+    "kame.gazebo": 1,  # the 3-D simulator's world on MuJoCo (SDF, URDF, sensors, camera renders): no ROS, no clock
     # L2 I/O
     "kame.net": 2,
     "kame.bag.reader": 2,  # bag file I/O
@@ -138,6 +139,10 @@ LAYERS: dict[str, int] = {
     "kame.stage.map_server": 4,
     "kame.stage.map_saver": 4,
     "kame.stage.teleop": 4,
+    "kame.gazebo_ros": 4,  # gazebo_ros on kame: the /gazebo node, its plugins, spawn_model
+    "kame.gazebo_ros.command_line": 1,  # gzserver's options, parsed
+    "kame.gazebo_ros.relative": 1,  # poses and twists relative to another entity
+    "kame.gazebo_ros.plugins.parameters": 1,  # a plugin's <plugin> parameters, read as gazebo_ros reads them
     "kame.nav.amcl_node": 4,  # amcl on kame.client and kame.tf_ros
     "kame.nav.move_base_node": 4,
     "kame.nav.costmap_ros": 4,  # move_base's costmaps on kame.client and kame.tf_ros

@@ -233,7 +233,9 @@ def test_list(kame: Runner) -> None:
         assert expected in lines
     srvs = kame("rossrv", "list").stdout.splitlines()
     assert "turtlesim/Spawn" in srvs and "std_srvs/SetBool" in srvs
-    assert not any(s.endswith("Request") for s in srvs)
+    # the services, not their halves (gazebo_msgs/BodyRequest and JointRequest are services of their own)
+    assert "turtlesim/SpawnRequest" not in srvs and not any(s.endswith("Response") for s in srvs)
+    assert "gazebo_msgs/BodyRequest" in srvs
 
 
 def test_package(kame: Runner) -> None:
