@@ -75,6 +75,11 @@ LAYERS: dict[str, int] = {
     "kame.reconfigure.client": 4,
     "kame.image_transport": 1,  # compressed_image_transport's codec (numpy, OpenCV or Pillow)
     "kame.image_transport.republish": 4,  # image_transport's republish node on kame.client
+    "kame.camera": 1,  # the camera packages' pure parts: pixel formats, test pattern, calibration files and URLs
+    "kame.camera.sources": 2,  # frames from V4L2 devices (linuxpy), video files and the test pattern
+    "kame.camera.info_manager": 4,  # camera_info_manager's set_camera_info service on kame.client
+    "kame.camera.image_publisher": 4,  # a driver's image, compressed and camera_info publishers
+    "kame.camera.usb_cam_node": 4,
     "kame.tf": 1,  # transformations and the tf2 buffer core: no clock, no threads
     "kame.interactive_markers": 1,  # interactive markers' server and client protocol and menus: no I/O
     "kame.tf_ros": 3,  # the Buffer that waits, /tf listener and broadcasters on a Node
