@@ -81,6 +81,9 @@ LAYERS: dict[str, int] = {
     "kame.camera.image_publisher": 4,  # a driver's image, compressed and camera_info publishers
     "kame.camera.usb_cam_node": 4,
     "kame.camera.convert": 4,  # camera_calibration_parsers' convert program
+    "kame.camera.image_feed": 4,  # an image topic's newest picture, raw or compressed, for a window
+    "kame.camera.image_view": 4,
+    "kame.camera.image_view_window": 4,  # image_view's Qt window; its model is kame.camera.viewer_model
     "kame.tf": 1,  # transformations and the tf2 buffer core: no clock, no threads
     "kame.interactive_markers": 1,  # interactive markers' server and client protocol and menus: no I/O
     "kame.tf_ros": 3,  # the Buffer that waits, /tf listener and broadcasters on a Node

@@ -29,11 +29,11 @@ class TestPattern:
         self._cv2 = cv2_for("the test pattern (video_device:=testsrc)")
         columns = (np.arange(2 * width) * len(BARS) // width) % len(BARS)
         bars = BARS[columns]  # two periods wide, so any scroll offset is one slice
-        ramp = np.repeat(np.linspace(0, 255, 2 * width).astype(np.uint8)[:, None], 3, axis=1)
+        ramp = np.repeat(np.tile(np.linspace(0, 255, width).astype(np.uint8), 2)[:, None], 3, axis=1)
         ramp_top = height - height // 4
         self._band = np.empty((height, 2 * width, 3), np.uint8)
         self._band[:ramp_top] = bars[None]
-        self._band[ramp_top:] = np.concatenate([ramp[width:], ramp[:width]])[None]
+        self._band[ramp_top:] = ramp[None]
         self._scale = max(height / 480, 0.5)
 
     def frame(self, number: int) -> np.ndarray:

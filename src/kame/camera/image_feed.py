@@ -1,0 +1,63 @@
+"""The newest picture of an image topic, in the transport asked for (raw or compressed), for
+image_view's window: decoded on the subscription's thread, taken by the window, which is woken
+(`on_ready`) only when nothing was waiting."""
+
+from __future__ import annotations
+
+import threading
+from collections.abc import Callable
+from typing import Any
+
+import numpy as np
+
+from kame.camera.pictures import PictureError, to_bgr
+from kame.client import log
+from kame.client.topics import Subscriber
+from kame.image_transport.compressed import CompressionError, decompress
+from sensor_msgs.msg import CompressedImage, Image
+
+TRANSPORTS = ("raw", "compressed")
+
+
+def subscribe_image(topic: str, transport: str, callback: Callable[[Any], None], queue_size: int = 1) -> Subscriber:
+    """image_transport's subscriber: `callback(Image)` from `topic` in `transport`."""
+    if transport not in TRANSPORTS:
+        raise ValueError(f"Unable to load plugin for transport '{transport}': kame's image_transport has "
+                         f"{' and '.join(TRANSPORTS)}")
+    if transport == "raw":
+        return Subscriber(topic, Image, callback, queue_size=queue_size)
+
+    def decoded(message: Any) -> None:
+        try:
+            image = decompress(message)
+        except CompressionError as exc:
+            log.emit_throttle(5.0, log.ERROR, "%s", (exc,))
+            return
+        callback(image)
+
+    return Subscriber(topic + "/compressed", CompressedImage, decoded, queue_size=queue_size)
+
+
+class ImageFeed:
+    def __init__(self, topic: str, transport: str, on_ready: Callable[[], None]) -> None:
+        self.on_ready = on_ready
+        self._newest: np.ndarray | None = None
+        self._lock = threading.Lock()
+        self.subscriber = subscribe_image(topic, transport, self._deliver)
+
+    def _deliver(self, image: Any) -> None:
+        try:
+            picture = to_bgr(image)
+        except PictureError as exc:
+            log.emit_throttle(5.0, log.ERROR, "Unable to convert '%s' image for display: '%s'", (image.encoding, exc))
+            return
+        with self._lock:
+            was_empty = self._newest is None
+            self._newest = picture
+        if was_empty:
+            self.on_ready()
+
+    def take(self) -> np.ndarray | None:
+        with self._lock:
+            picture, self._newest = self._newest, None
+        return picture
