@@ -84,6 +84,9 @@ LAYERS: dict[str, int] = {
     "kame.camera.image_feed": 4,  # an image topic's newest picture, raw or compressed, for a window
     "kame.camera.image_view": 4,
     "kame.camera.image_view_window": 4,  # image_view's Qt window; its model is kame.camera.viewer_model
+    "kame.camera.image_saver": 4,
+    "kame.camera.video_recorder": 4,
+    "kame.camera.extract_images": 4,
     "kame.tf": 1,  # transformations and the tf2 buffer core: no clock, no threads
     "kame.interactive_markers": 1,  # interactive markers' server and client protocol and menus: no I/O
     "kame.tf_ros": 3,  # the Buffer that waits, /tf listener and broadcasters on a Node

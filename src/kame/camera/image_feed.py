@@ -12,6 +12,8 @@ import numpy as np
 
 from kame.camera.pictures import PictureError, to_bgr
 from kame.client import log
+from kame.client.core import get_namespace, resolve_name
+from kame.client.process import get_param
 from kame.client.topics import Subscriber
 from kame.image_transport.compressed import CompressionError, decompress
 from sensor_msgs.msg import CompressedImage, Image
@@ -61,3 +63,18 @@ class ImageFeed:
         with self._lock:
             picture, self._newest = self._newest, None
         return picture
+
+
+def image_topic(program: str) -> str:
+    """The resolved `image` topic, with image_view's programs' warning when it was not remapped."""
+    topic = resolve_name("image")
+    if topic == get_namespace().rstrip("/") + "/image":
+        log.emit(log.WARN, "Topic 'image' has not been remapped! Typical command-line usage:\n"
+                           "\t$ rosrun image_view %s image:=<image topic> [transport]", (program,))
+    return topic
+
+
+def transport_argument(args: list[str]) -> str:
+    """The transport named after the program's name (`image_view image:=... compressed`), else
+    the ~image_transport parameter, else raw, as image_transport's TransportHints read it."""
+    return args[1] if len(args) > 1 else str(get_param("~image_transport", "raw"))

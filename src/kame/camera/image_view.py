@@ -12,11 +12,10 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from kame.camera.image_feed import ImageFeed
+from kame.camera.image_feed import ImageFeed, image_topic, transport_argument
 from kame.camera.opencv import OpenCVMissing, cv2_for
 from kame.camera.viewer_model import ViewerModel, ViewerSettings
 from kame.client import core, log
-from kame.client.core import get_namespace, resolve_name
 from kame.client.process import get_param, init_node, myargv
 
 
@@ -37,11 +36,8 @@ def main(argv: Sequence[str] | None = None) -> int:
         return 1
     init_node("image_view", argv, anonymous=True)
     args = myargv(argv)
-    topic = resolve_name("image")
-    if topic == get_namespace().rstrip("/") + "/image":
-        log.emit(log.WARN, "Topic 'image' has not been remapped! Typical command-line usage:\n"
-                           "\t$ rosrun image_view image_view image:=<image topic> [transport]", ())
-    transport = args[1] if len(args) > 1 else str(get_param("~image_transport", "raw"))
+    topic = image_topic("image_view")
+    transport = transport_argument(args)
     model = ViewerModel(ViewerSettings(topic, str(get_param("~window_name", "")), bool(get_param("~autosize", False)),
                                        str(get_param("~filename_format", "frame%04i.jpg"))))
     app = QApplication.instance() or QApplication(["image_view"])
