@@ -73,7 +73,11 @@ class UsbCam:
         self.publisher = CameraPublisher("~image_raw", "~camera_info")
         self.info = CameraInfoManager(str(params["camera_name"]), str(params["camera_info_url"]))
         if not self.info.is_calibrated():
-            self.info.set_camera_name(settings.device)
+            # upstream renames the camera after its device (which "/dev/video0", not a valid name,
+            # leaves head_camera); kame's test pattern and video files keep camera_name, so that a
+            # calibration COMMITted for them is found again under the same name
+            if settings.device.startswith("/dev/"):
+                self.info.set_camera_name(settings.device)
             self.info.set_camera_info(CameraInfo(width=settings.width, height=settings.height))
         self.capturing = SignalSafeEvent()
         self.capturing.set()
