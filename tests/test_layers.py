@@ -87,7 +87,7 @@ LAYERS: dict[str, int] = {
     "kame.camera.image_saver": 4,
     "kame.camera.video_recorder": 4,
     "kame.camera.extract_images": 4,
-    "kame.camera.cameracalibrator": 4,  # the calibrator node; its model is kame.camera.calibrator, its drawing calibration_display
+    "kame.camera.cameracalibrator": 4,  # its model is kame.camera.calibrator, its drawing calibration_display
     "kame.camera.calibration_window": 4,
     "kame.tf": 1,  # transformations and the tf2 buffer core: no clock, no threads
     "kame.interactive_markers": 1,  # interactive markers' server and client protocol and menus: no I/O

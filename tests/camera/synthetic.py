@@ -62,10 +62,12 @@ def in_view(rvec: tuple[float, float, float], tvec: tuple[float, float, float], 
     outline = np.array([[x, y, 0.0] for x in (-2 * square, BOARD.cols * square)
                         for y in (-2 * square, BOARD.rows * square)])
     steps = np.linspace(0, 1, 9)[:, None]
-    edges = np.concatenate([outline[i] + (outline[j] - outline[i]) * steps for i, j in ((0, 1), (1, 3), (3, 2), (2, 0))])
+    sides = ((0, 1), (1, 3), (3, 2), (2, 0))
+    edges = np.concatenate([outline[i] + (outline[j] - outline[i]) * steps for i, j in sides])
     points, _ = cv2.projectPoints(edges, np.array(rvec), np.array(tvec), k, d)
     u, v = points[:, 0, 0], points[:, 0, 1]
-    return bool((u > margin).all() and (u < WIDTH - margin).all() and (v > margin).all() and (v < HEIGHT - margin).all())
+    inside_u = (u > margin).all() and (u < WIDTH - margin).all()
+    return bool(inside_u and (v > margin).all() and (v < HEIGHT - margin).all())
 
 
 def poses() -> list[tuple[tuple[float, float, float], tuple[float, float, float]]]:
@@ -80,7 +82,7 @@ def poses() -> list[tuple[tuple[float, float, float], tuple[float, float, float]
                 for tilt in ((0.0, 0.0), (0.55, 0.0), (0.0, -0.55), (-0.4, 0.4)):
                     rvec = (tilt[0], tilt[1], 0.04)
                     rotation, _ = cv2.Rodrigues(np.array(rvec))
-                    tvec = np.array([dx, dy, distance]) - rotation @ centre  # the board's centre at (dx, dy, distance)
+                    tvec = np.array([dx, dy, distance]) - rotation @ centre  # its centre at (dx, dy, distance)
                     pose = (rvec, (float(tvec[0]), float(tvec[1]), float(tvec[2])))
                     if in_view(*pose):
                         found.append(pose)
