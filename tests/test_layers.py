@@ -167,6 +167,8 @@ LAYERS: dict[str, int] = {
     "tf.srv": MESSAGES,
     # L6 the ROS programs kame ships (tutorial scripts): user code, free to import anything
     "kame.share": 6,
+    # the launchers of programs Noetic installs in lib/<package> (most have no .py: camera_calibration's do)
+    "kame.lib": 6,
 }
 ONLY_ITSELF = frozenset({"kame"})  # entries that do not cover their submodules
 
