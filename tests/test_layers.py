@@ -89,6 +89,10 @@ LAYERS: dict[str, int] = {
     "kame.camera.extract_images": 4,
     "kame.camera.cameracalibrator": 4,  # its model is kame.camera.calibrator, its drawing calibration_display
     "kame.camera.calibration_window": 4,
+    "kame.camera.cameracheck": 4,
+    "kame.camera.image_proc": 4,  # image_proc's node and its nodelets' programs
+    "kame.camera.image_proc_nodes": 4,
+    "kame.camera.nodelet": 4,  # nodelet's program for kame's nodelets
     "kame.tf": 1,  # transformations and the tf2 buffer core: no clock, no threads
     "kame.interactive_markers": 1,  # interactive markers' server and client protocol and menus: no I/O
     "kame.tf_ros": 3,  # the Buffer that waits, /tf listener and broadcasters on a Node

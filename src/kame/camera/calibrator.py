@@ -14,8 +14,8 @@ Rules (camera_calibration 1.17's calibrator.py, whose behaviour users know):
 - Calibration is OpenCV's calibrateCamera with -k's coefficients (2: k1, k2; 3: plumb_bob's k3;
   more: the rational model), --fix-principal-point, --fix-aspect-ratio and --zero-tangent-dist;
   R is the identity and P the optimal new camera matrix at alpha 0.
-- The linear error of a view is the RMS distance of its corners from the straight lines fitted to
-  each of the board's rows (0 for a perfect rectification).
+- The linear error of a view is the RMS distance of each row's inner corners from the straight
+  line through the row's end corners (0 for a perfect rectification).
 """
 
 from __future__ import annotations
@@ -167,13 +167,12 @@ def object_points(board: Board) -> np.ndarray:
 
 
 def linear_error(corners: np.ndarray, board: Board) -> float:
-    """RMS distance of the corners from the line fitted through each row of the board."""
+    """RMS distance of each row's inner corners from the line through its end corners."""
     errors: list[float] = []
     for row in corners.reshape(board.rows, board.cols, 2).astype(np.float64):
-        centred = row - row.mean(axis=0)
-        _, _, vt = np.linalg.svd(centred)
-        normal = vt[1]  # the direction the row does not run in
-        errors.extend((centred @ normal).tolist())
+        (x1, y1), (x2, y2) = row[0], row[-1]
+        length = math.hypot(x2 - x1, y2 - y1)
+        errors.extend(abs((x2 - x1) * (y1 - y0) - (x1 - x0) * (y2 - y1)) / length for x0, y0 in row[1:-1])
     return math.sqrt(sum(error * error for error in errors) / len(errors))
 
 

@@ -1,6 +1,8 @@
-"""The newest picture of an image topic, in the transport asked for (raw or compressed), for
-image_view's window: decoded on the subscription's thread, taken by the window, which is woken
-(`on_ready`) only when nothing was waiting."""
+"""image_transport's subscribers for kame's camera programs: an image topic in the transport
+asked for (raw or compressed), a camera (image and camera_info paired by stamp), and for
+image_view's window the newest picture, decoded on the subscription's thread and taken by the
+window, which is woken (`on_ready`) only when nothing was waiting. Also the programs' `image`
+topic and transport argument, as image_view's read them."""
 
 from __future__ import annotations
 
@@ -11,12 +13,13 @@ from typing import Any
 import numpy as np
 
 from kame.camera.pictures import PictureError, to_bgr
+from kame.camera.stamp_pairs import StampPairs
 from kame.client import log
 from kame.client.core import get_namespace, resolve_name
 from kame.client.process import get_param
 from kame.client.topics import Subscriber
 from kame.image_transport.compressed import CompressionError, decompress
-from sensor_msgs.msg import CompressedImage, Image
+from sensor_msgs.msg import CameraInfo, CompressedImage, Image
 
 TRANSPORTS = ("raw", "compressed")
 
@@ -78,3 +81,31 @@ def transport_argument(args: list[str]) -> str:
     """The transport named after the program's name (`image_view image:=... compressed`), else
     the ~image_transport parameter, else raw, as image_transport's TransportHints read it."""
     return args[1] if len(args) > 1 else str(get_param("~image_transport", "raw"))
+
+
+class CameraSubscriber:
+    """image_transport's subscribeCamera: `callback(image, info)` for each image of `topic` and the
+    camera_info beside it (same namespace) with the same stamp."""
+
+    def __init__(self, topic: str, transport: str, callback: Callable[[Any, Any], None], queue_size: int = 5) -> None:
+        self.callback = callback
+        self.pairs = StampPairs()
+        self.lock = threading.Lock()
+        self.image = subscribe_image(topic, transport, self._image, queue_size=queue_size)
+        self.info = Subscriber(topic.rsplit("/", 1)[0] + "/camera_info", CameraInfo, self._info, queue_size=queue_size)
+
+    def _image(self, image: Any) -> None:
+        with self.lock:
+            pair = self.pairs.add_image(image)
+        if pair is not None:
+            self.callback(*pair)
+
+    def _info(self, info: Any) -> None:
+        with self.lock:
+            pair = self.pairs.add_info(info)
+        if pair is not None:
+            self.callback(*pair)
+
+    def unregister(self) -> None:
+        self.image.unregister()
+        self.info.unregister()

@@ -1,7 +1,7 @@
-"""image_transport's camera publisher, as a driver has it: `<base>` (sensor_msgs/Image),
-`<base>/compressed` (its compressed transport, parameters and dynamic_reconfigure server as
-compressed_image_transport's) and `camera_info` beside them. Each transport is made only while
-someone subscribes to it, so a camera nobody watches costs its capture and little more."""
+"""image_transport's publishers, as drivers and image_proc have them: `<base>` (sensor_msgs/Image)
+and `<base>/compressed` (its compressed transport, with compressed_image_transport's parameters
+and dynamic_reconfigure server), and for a camera `camera_info` beside them. Each transport is
+made only while someone subscribes to it, so an output nobody watches costs little."""
 
 from __future__ import annotations
 
@@ -15,19 +15,16 @@ from kame.image_transport.republish import CompressedOutput
 from sensor_msgs.msg import CameraInfo, Image
 
 
-class CameraPublisher:
-    def __init__(self, base_topic: str, info_topic: str | None = None) -> None:
+class ImagePublisher:
+    def __init__(self, base_topic: str) -> None:
         base = resolve_name(base_topic)
         self.raw = Publisher(base, Image, queue_size=1)
         self.compressed = CompressedOutput(base)
-        info = info_topic if info_topic is not None else base.rsplit("/", 1)[0] + "/camera_info"
-        self.info = Publisher(resolve_name(info), CameraInfo, queue_size=1)
 
     def wanted(self) -> bool:
-        return bool(self.raw.get_num_connections() or self.compressed.publisher.get_num_connections()
-                    or self.info.get_num_connections())
+        return bool(self.raw.get_num_connections() or self.compressed.publisher.get_num_connections())
 
-    def publish(self, image: Any, info: Any) -> None:
+    def publish(self, image: Any) -> None:
         if self.raw.get_num_connections():
             self.raw.publish(image)
         if self.compressed.publisher.get_num_connections():
@@ -35,5 +32,18 @@ class CameraPublisher:
                 self.compressed.publisher.publish(self.compressed.convert(image))
             except CompressionError as exc:
                 log.emit_throttle(5.0, log.ERROR, "%s", (exc,))
+
+
+class CameraPublisher(ImagePublisher):
+    def __init__(self, base_topic: str, info_topic: str | None = None) -> None:
+        super().__init__(base_topic)
+        info = info_topic if info_topic is not None else self.raw.resolved_name.rsplit("/", 1)[0] + "/camera_info"
+        self.info = Publisher(resolve_name(info), CameraInfo, queue_size=1)
+
+    def wanted(self) -> bool:
+        return super().wanted() or bool(self.info.get_num_connections())
+
+    def publish_camera(self, image: Any, info: Any) -> None:
+        self.publish(image)
         if self.info.get_num_connections():
             self.info.publish(info)

@@ -17,7 +17,8 @@ import numpy as np
 from kame.camera.opencv import cv2_for
 from kame.image_transport.compressed import to_array
 
-BAYER = {"bayer_rggb8": "BayerRG", "bayer_bggr8": "BayerBG", "bayer_gbrg8": "BayerGB", "bayer_grbg8": "BayerGR"}
+# OpenCV names a Bayer pattern by its second row's first two pixels, ROS by its first row's (as cv_bridge maps them)
+BAYER = {"bayer_rggb8": "BayerBG", "bayer_bggr8": "BayerRG", "bayer_gbrg8": "BayerGR", "bayer_grbg8": "BayerGB"}
 
 
 class PictureError(ValueError):

@@ -115,7 +115,7 @@ class UsbCam:
             except (CameraError, FrameError) as exc:
                 log.emit_throttle(5.0, log.WARN, "USB camera did not respond in time: %s", (exc,))
             else:
-                self.publisher.publish(image, info)
+                self.publisher.publish_camera(image, info)
             if self.source.paced:
                 rate.sleep()
 
