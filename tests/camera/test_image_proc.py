@@ -19,7 +19,7 @@ from sensor_msgs.msg import CameraInfo
 from tests.turtlesim.sim import Sim, master
 
 cv2 = pytest.importorskip("cv2")
-from tests.camera.synthetic import BOARD, D, HEIGHT, K, WIDTH, Renderer, poses  # noqa: E402 - needs OpenCV
+from tests.camera.synthetic import BOARD, HEIGHT, WIDTH, D, K, Renderer, poses  # noqa: E402 - needs OpenCV
 
 PROBE = Path(__file__).with_name("probe.py")
 
