@@ -13,7 +13,8 @@ from kame.camera.pictures import format_filename
 from kame.camera.testsrc import BARS
 from kame.camera.viewer_model import LEFT_CLICK_WARNING, ViewerModel, ViewerSettings
 from tests.support.tour import shoot
-from tests.turtlesim.sim import master
+from tests.support import Proc
+from tests.turtlesim.sim import BIN, master
 from tests.turtlesim.xserver import Screenshot, xvfb
 
 pytest.importorskip("cv2")
@@ -92,3 +93,14 @@ def test_right_click_and_s_save_the_shown_picture(qtbot, tmp_path: Path) -> None
     qtbot.mouseClick(window.picture, Qt.MouseButton.LeftButton, pos=QPoint(5, 5))
     qtbot.mouseClick(window.picture, Qt.MouseButton.LeftButton, pos=QPoint(5, 5))
     assert warnings == [LEFT_CLICK_WARNING]
+
+
+def test_the_lessons_launch_file(tmp_path: Path) -> None:
+    """`roslaunch usb_cam usb_cam-test.launch`, as the course's slide has it, with kame's test camera."""
+    with xvfb("800x600") as display, master(tmp_path) as sim:
+        env = {**sim.env, "DISPLAY": display, "QT_QPA_PLATFORM": "xcb"}
+        launch = Proc([str(BIN / "roslaunch"), "usb_cam", "usb_cam-test.launch", "video_device:=testsrc"], env,
+                      cwd=sim.home)
+        sim.procs.append(launch)
+        shot = shoot(display, "/usb_cam/image_raw", "usb_cam_test_launch", shows_the_bars)
+        assert (shot.width, shot.height) == (640, 480)
