@@ -12,8 +12,8 @@ import pytest
 from kame.camera.pictures import format_filename
 from kame.camera.testsrc import BARS
 from kame.camera.viewer_model import LEFT_CLICK_WARNING, ViewerModel, ViewerSettings
-from tests.support.tour import shoot
 from tests.support import Proc
+from tests.support.tour import shoot
 from tests.turtlesim.sim import BIN, master
 from tests.turtlesim.xserver import Screenshot, xvfb
 
