@@ -4,7 +4,9 @@ rate the subscriber gets, and the latency from the frame's stamp (taken once it 
 as usb_cam's grab_image stamps it) to the subscriber's callback; then image_proc's rectify at
 1080p: frames a second of the rectification itself (target >= 30) and of the image_proc node
 end to end (usb_cam testsrc 1080p with a calibration -> image_proc -> a subscriber to
-image_rect_color).
+image_rect_color); and from the stamp to rviz's Camera display on the screen (rviz's
+KAME_RVIZ_STATS: the 3-D view's buffer swap of the frame that took the image; the image
+panel is painted in the same turn of the window's loop), on a private Xvfb when no DISPLAY is set.
 
 CPU from /proc (user + system) over --seconds, after a second of warm-up; the load average is
 printed beside. Run: .venv/bin/python bench/camera_bench.py
@@ -26,6 +28,7 @@ from typing import Any
 
 from bench_procs import cpu_seconds, free_port, stop
 from kame_bytecode import compile_kame
+from rviz_bench import with_display
 
 REPO = Path(__file__).resolve().parents[1]
 BIN = REPO / ".venv" / "bin"
@@ -91,6 +94,43 @@ def measure(env: dict[str, str], home: Path, topic: str, seconds: float, cpu_pid
         result[f"cpu_{name}"] = (cpu_seconds(pid) - before[name]) / elapsed
     stop(sub)
     return result
+
+
+RVIZ_CONFIG = """Visualization Manager:
+  Global Options:
+    Fixed Frame: head_camera
+    Frame Rate: 30
+  Displays:
+    - Class: rviz/Camera
+      Name: Camera
+      Enabled: true
+      Image Topic: /usb_cam/image_raw
+Window Geometry:
+  Width: 1280
+  Height: 800
+"""
+
+
+def rviz_latency(env: dict[str, str], home: Path, seconds: float) -> tuple[float, float, int]:
+    """(p50, p90) seconds from usb_cam's stamp to rviz's frame showing the image in its Camera
+    display (rviz's KAME_RVIZ_STATS), and how many frames it showed."""
+    config, shown = home / "camera.rviz", home / "camera.shown"
+    config.write_text(RVIZ_CONFIG)
+    rviz = subprocess.Popen([str(BIN / "rviz"), "-d", str(config)], env={**env, "KAME_RVIZ_STATS": str(shown)},
+                            cwd=home, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    try:
+        deadline = time.monotonic() + 60
+        while time.monotonic() < deadline and not (shown.exists() and shown.read_text().count("\n") > 30):
+            time.sleep(0.2)  # rviz starting and warming up: no event to wait on from here
+        start = shown.read_text().count("\n") if shown.exists() else 0
+        time.sleep(seconds)
+    finally:
+        stop(rviz)
+    rows = [line.split() for line in shown.read_text().splitlines()[start:]] if shown.exists() else []
+    latencies = sorted(float(row[3]) - float(row[1]) for row in rows if row and row[0] == "/usb_cam/image_raw")
+    if not latencies:
+        return float("nan"), float("nan"), 0
+    return latencies[len(latencies) // 2], latencies[int(len(latencies) * 0.9)], len(latencies)
 
 
 def rectify_rate(frames: int) -> float:
@@ -164,6 +204,9 @@ def main() -> int:
                      ("  rate at the subscriber", f"{cam['rate']:.1f} fps"),
                      ("  stamp -> subscriber callback p50 / p90",
                       f"{1000 * float(cam['lat_p50']):.1f} / {1000 * float(cam['lat_p90']):.1f} ms")]
+            p50, p90, shown = rviz_latency(env, home, options.seconds)
+            rows += [("rviz Camera display, 1080p: stamp -> frame swapped p50 / p90",
+                      f"{1000 * p50:.1f} / {1000 * p90:.1f} ms ({shown / options.seconds:.1f} shown/s)")]
             proc_env = {**env, "ROS_NAMESPACE": "usb_cam"}
             image_proc = subprocess.Popen([str(BIN / "rosrun"), "image_proc", "image_proc"], env=proc_env, cwd=home,
                                           stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
@@ -187,4 +230,4 @@ def main() -> int:
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(with_display(main))
