@@ -1,8 +1,9 @@
 """camera_calibration's window, drawn as its calibrator node draws it (OpenCV on a BGR picture):
-the camera's picture (with the board's corners once found; rectified once calibrated), and a
-white sidebar 100 pixels wide with the X, Y, Size and Skew bars (each parameter's kept range,
-red to yellow as coverage grows, green when enough) and the CALIBRATE, SAVE and COMMIT buttons
-(grey until usable); once calibrated, the sidebar shows the view's linear error ("lin.").
+the camera's picture (a stereo pair's side by side; with the board's corners once found;
+rectified once calibrated), and a white sidebar 100 pixels wide with the X, Y, Size and Skew
+bars (each parameter's kept range, red to yellow as coverage grows, green when enough) and the
+CALIBRATE, SAVE and COMMIT buttons (grey until usable); once calibrated, the sidebar reads out
+the view's errors.
 `button_at` is the window's click: which button a point is on, if it is usable."""
 
 from __future__ import annotations
@@ -40,8 +41,10 @@ def _button(cv2: Any, area: np.ndarray, label: str, enabled: bool) -> None:
 
 
 def render(cv2: Any, picture: np.ndarray, progress: list[tuple[str, float, float, float]], goodenough: bool,
-           calibrated: bool, linear_error: float | None) -> np.ndarray:
-    """The window's picture: `picture` (BGR) with the sidebar on its right."""
+           calibrated: bool, readouts: list[tuple[str, float | None]]) -> np.ndarray:
+    """The window's picture: `picture` (BGR) with the sidebar on its right; once calibrated the
+    sidebar reads out each (label, value): the linear error ("lin.") of a monocular view, the
+    epipolar error ("epi.") and the board's square size ("dim") of a stereo pair."""
     height, width = picture.shape[:2]
     display = np.zeros((max(480, height), width + SIDEBAR, 3), np.uint8)
     display[:height, :width] = picture if picture.ndim == 3 else picture[..., None]
@@ -56,9 +59,10 @@ def render(cv2: Any, picture: np.ndarray, progress: list[tuple[str, float, float
             cv2.line(display, (int(width + low * SIDEBAR), _y(row) + 20), (int(width + high * SIDEBAR), _y(row) + 20),
                      colour, 4)
     else:
-        _text(cv2, display, "lin.", (width, _y(0)))
-        _text(cv2, display, "?" if linear_error is None or linear_error < 0 else f"{linear_error:.2f}",
-              (width, _y(1)))
+        for row, (label, value) in enumerate(readouts):
+            _text(cv2, display, label, (width, _y(2 * row)))
+            _text(cv2, display, "?" if value is None or value < 0 else f"{value:.2f}" if label != "dim"
+                  else f"{value:.3f}", (width, _y(2 * row + 1)))
     return display
 
 

@@ -176,6 +176,36 @@ def linear_error(corners: np.ndarray, board: Board) -> float:
     return math.sqrt(sum(error * error for error in errors) / len(errors))
 
 
+def is_new_view(params: tuple[float, float, float, float], kept: list[tuple[float, float, float, float]]) -> bool:
+    """Whether a view's parameters are more than 0.2 (summed) from every kept view's."""
+    return not kept or min(sum(abs(a - b) for a, b in zip(params, old, strict=True)) for old in kept) > 0.2
+
+
+def coverage(kept: list[tuple[float, float, float, float]]) -> list[tuple[str, float, float, float]]:
+    """(name, lowest, highest, progress 0..1) of each parameter over the kept views."""
+    if not kept:
+        return []
+    values = np.array(kept)
+    lows = [float(values[:, 0].min()), float(values[:, 1].min()), 0.0, 0.0]
+    highs = [float(value) for value in values.max(axis=0)]
+    return [(name, low, high, min((high - low) / span, 1.0))
+            for name, low, high, span in zip(PARAM_NAMES, lows, highs, PARAM_RANGES, strict=True)]
+
+
+def enough(progress: list[tuple[str, float, float, float]], views: int) -> bool:
+    return views >= ENOUGH_VIEWS or (bool(progress) and all(done == 1.0 for *_, done in progress))
+
+
+def intrinsics(cv2: Any, corners: list[np.ndarray], board: Board, size: tuple[int, int], options: Options
+               ) -> tuple[float, np.ndarray, np.ndarray]:
+    """OpenCV's calibrateCamera of one camera's views: (RMS reprojection error, K, D)."""
+    points = [object_points(board)] * len(corners)
+    error, k, d, _, _ = cv2.calibrateCamera(points, corners, size, np.eye(3), None,
+                                            flags=calibration_flags(cv2, options))
+    distortion = d.flat[:8].reshape(-1, 1) if options.k_coefficients > 3 else d.flat[:5].reshape(-1, 1)
+    return float(error), k, distortion
+
+
 @dataclass
 class MonoCalibrator:
     board: Board
@@ -219,37 +249,25 @@ class MonoCalibrator:
         return Detection(corners, params), kept
 
     def is_good_sample(self, params: tuple[float, float, float, float]) -> bool:
-        if not self.views:
-            return True
-        return min(sum(abs(a - b) for a, b in zip(params, kept, strict=True)) for kept, _, _ in self.views) > 0.2
+        return is_new_view(params, [kept for kept, _, _ in self.views])
 
     def progress(self) -> list[tuple[str, float, float, float]]:
         """(name, lowest, highest, progress 0..1) of each parameter over the kept views."""
-        if not self.views:
-            return []
-        values = np.array([params for params, _, _ in self.views])
-        lows = [float(values[:, 0].min()), float(values[:, 1].min()), 0.0, 0.0]
-        highs = [float(value) for value in values.max(axis=0)]
-        return [(name, low, high, min((high - low) / span, 1.0))
-                for name, low, high, span in zip(PARAM_NAMES, lows, highs, PARAM_RANGES, strict=True)]
+        return coverage([params for params, _, _ in self.views])
 
     @property
     def goodenough(self) -> bool:
-        return len(self.views) >= ENOUGH_VIEWS or (bool(self.views) and all(p == 1.0 for *_, p in self.progress()))
+        return enough(self.progress(), len(self.views))
 
     def calibrate(self) -> Calibration:
         if not self.views or self.size is None:
             raise ValueError("Cannot calibrate, no good frames")
-        cv2 = self.cv2
-        corners = [view_corners for _, view_corners, _ in self.views]
-        points = [object_points(self.board)] * len(corners)
-        error, k, d, _, _ = cv2.calibrateCamera(points, corners, self.size, np.eye(3), None,
-                                                flags=calibration_flags(cv2, self.options))
-        distortion = d.flat[:8].reshape(-1, 1) if self.options.k_coefficients > 3 else d.flat[:5].reshape(-1, 1)
-        new_matrix, _ = cv2.getOptimalNewCameraMatrix(k, distortion, self.size, 0.0)
+        error, k, distortion = intrinsics(self.cv2, [corners for _, corners, _ in self.views], self.board, self.size,
+                                          self.options)
+        new_matrix, _ = self.cv2.getOptimalNewCameraMatrix(k, distortion, self.size, 0.0)
         projection = np.zeros((3, 4))
         projection[:, :3] = new_matrix
-        self.calibration = Calibration(k, distortion, np.eye(3), projection, self.size, float(error))
+        self.calibration = Calibration(k, distortion, np.eye(3), projection, self.size, error)
         return self.calibration
 
     def rectify(self, picture: np.ndarray) -> np.ndarray:

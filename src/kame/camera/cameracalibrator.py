@@ -110,13 +110,16 @@ class CalibrationNode:
                     self.arrived.wait()
                 if self.stopping:
                     return
-                image, self.newest = self.newest, None
-            try:
-                picture = to_bgr(image, "camera_calibration")
-            except PictureError as exc:
-                log.emit_throttle(5.0, log.ERROR, "%s", (exc,))
-                continue
-            self.show(self.process(picture))
+                message, self.newest = self.newest, None
+            self.handle_message(message)
+
+    def handle_message(self, image: Any) -> None:
+        try:
+            picture = to_bgr(image, "camera_calibration")
+        except PictureError as exc:
+            log.emit_throttle(5.0, log.ERROR, "%s", (exc,))
+            return
+        self.show(self.process(picture))
 
     def process(self, picture: np.ndarray) -> np.ndarray:
         cv2, board = self.cv2, self.calibrator.board
@@ -141,7 +144,8 @@ class CalibrationNode:
                 print(f"*** Added sample {len(self.calibrator.views)}, p_x = {p_x:.3f}, p_y = {p_y:.3f}, "
                       f"p_size = {p_size:.3f}, skew = {skew:.3f}", flush=True)
             self.picture_width = scrib.shape[1]
-            return render(cv2, scrib, self.calibrator.progress(), self.calibrator.goodenough, calibrated, error)
+            return render(cv2, scrib, self.calibrator.progress(), self.calibrator.goodenough, calibrated,
+                          [("lin.", error)])
 
     def show(self, display: np.ndarray) -> None:
         with self.display_lock:
@@ -174,16 +178,21 @@ class CalibrationNode:
             print(report(calibration))
             print(ost_txt(calibration, self.calibrator.camera_name), flush=True)
 
-    def save(self) -> None:
+    def archive_files(self) -> list[tuple[str, bytes]]:
+        """What SAVE puts in the tarball: the kept views, ost.yaml and ost.txt."""
         with self.lock:
             calibration = self.calibrator.calibration
             views = [grey for _, _, grey in self.calibrator.views]
             name = self.calibrator.camera_name
         if calibration is None:
+            return []
+        return [*((f"left-{index:04d}.png", png(self.cv2, grey)) for index, grey in enumerate(views)),
+                ("ost.yaml", ost_yaml(calibration, name).encode()), ("ost.txt", ost_txt(calibration, name).encode())]
+
+    def save(self) -> None:
+        files = self.archive_files()
+        if not files:
             return
-        files = [(f"left-{index:04d}.png", bytes(self.cv2.imencode(".png", grey)[1].data))
-                 for index, grey in enumerate(views)]
-        files += [("ost.yaml", ost_yaml(calibration, name).encode()), ("ost.txt", ost_txt(calibration, name).encode())]
         with tarfile.open(TARBALL, "w:gz") as archive:
             for file_name, data in files:
                 entry = tarfile.TarInfo(file_name)
@@ -191,23 +200,27 @@ class CalibrationNode:
                 archive.addfile(entry, io.BytesIO(data))
         print(f"('Wrote calibration data to', '{TARBALL}')", flush=True)
 
-    def commit(self) -> bool:
+    def camera_infos(self) -> list[tuple[str, Any]]:
+        """(camera namespace, CameraInfo) of each camera COMMIT sends to."""
         with self.lock:
             calibration = self.calibrator.calibration
-        if calibration is None:
-            return False
-        service = self.camera.rstrip("/") + "/set_camera_info"
-        try:
-            response = ServiceProxy(service, SetCameraInfo)(camera_info(calibration))
-        except (ServiceException, ROSException) as exc:
-            log.emit(log.ERROR, "Service call failed: %s", (exc,))
-            return False
-        if not response.success:
-            log.emit(log.ERROR, "Unable to set camera info for calibration. Failure message: %s",
-                     (response.status_message,))
-            return False
-        print(response, flush=True)
-        return True
+        return [] if calibration is None else [(self.camera, camera_info(calibration))]
+
+    def commit(self) -> bool:
+        """set_camera_info on each camera; True when every one stored its calibration."""
+        infos = self.camera_infos()
+        for camera, info in infos:
+            try:
+                response = ServiceProxy(camera.rstrip("/") + "/set_camera_info", SetCameraInfo)(info)
+            except (ServiceException, ROSException) as exc:
+                log.emit(log.ERROR, "Service call failed: %s", (exc,))
+                return False
+            if not response.success:
+                log.emit(log.ERROR, "Unable to set camera info for calibration. Failure message: %s",
+                         (response.status_message,))
+                return False
+            print(response, flush=True)
+        return bool(infos)
 
     def key(self, text: str) -> None:
         if text in ("q", "\x1b"):
@@ -217,6 +230,10 @@ class CalibrationNode:
             self.cv2.imwrite(name, self.last_display)
             print(f"Saved {name}", flush=True)
             self.dumps += 1
+
+
+def png(cv2: Any, grey: np.ndarray) -> bytes:
+    return bytes(cv2.imencode(".png", grey)[1].data)
 
 
 def check_service(camera: str) -> bool:
