@@ -90,6 +90,7 @@ LAYERS: dict[str, int] = {
     "kame.camera.cameracalibrator": 4,  # its model is kame.camera.calibrator, its drawing calibration_display
     "kame.camera.calibration_window": 4,
     "kame.camera.cameracheck": 4,
+    "kame.camera.stereo_calibration_node": 4,
     "kame.camera.image_proc": 4,  # image_proc's node and its nodelets' programs
     "kame.camera.image_proc_nodes": 4,
     "kame.camera.nodelet": 4,  # nodelet's program for kame's nodelets

@@ -87,3 +87,11 @@ def poses() -> list[tuple[tuple[float, float, float], tuple[float, float, float]
                     if in_view(*pose):
                         found.append(pose)
     return found
+
+
+BASELINE = 0.12  # metres between a stereo pair's cameras, the right one along the left's x
+
+
+def stereo_poses() -> list[tuple[tuple[float, float, float], tuple[float, float, float]]]:
+    """The left camera's poses of the board at which the right camera sees it whole too."""
+    return [(rvec, tvec) for rvec, tvec in poses() if in_view(rvec, (tvec[0] - BASELINE, tvec[1], tvec[2]))]

@@ -1,9 +1,10 @@
 """camera_calibration against a known camera: synthetic chessboard views rendered with a known K
 and distortion go through the calibrator; K comes back within 1 %, the distortion within
 OpenCV's own uncertainty on the same views; ost.yaml and ost.txt read back with kame's parser
-and Debian's. Live under Xvfb: cameracalibrator.py's window collects the views, and clicks on
-CALIBRATE, SAVE and COMMIT calibrate, write /tmp/calibrationdata.tar.gz and store the
-calibration in usb_cam."""
+and Debian's; a stereo pair 12 cm apart comes back with its baseline and rectifies onto shared
+rows. Live under Xvfb: cameracalibrator.py's window (monocular and stereo) collects the views,
+and clicks on CALIBRATE, SAVE and COMMIT calibrate, write /tmp/calibrationdata.tar.gz and store
+the calibration in usb_cam."""
 
 from __future__ import annotations
 
@@ -29,7 +30,8 @@ from tests.turtlesim.sim import master, wait_until
 from tests.turtlesim.xserver import Screenshot, find_shown_window, xvfb
 
 cv2 = pytest.importorskip("cv2")
-from tests.camera.synthetic import BOARD, D, K, Renderer, poses  # noqa: E402 - needs OpenCV
+from kame.camera.stereo_calibrator import StereoCalibrator, epipolar_error, square_size  # noqa: E402
+from tests.camera.synthetic import BASELINE, BOARD, D, K, Renderer, poses, stereo_poses  # noqa: E402 - needs OpenCV
 
 PROBE = Path(__file__).with_name("probe.py")
 VIEWS_NODE = Path(__file__).with_name("views_node.py")
@@ -128,10 +130,10 @@ def click(display: str, title: str, x: int, y: int) -> None:
                    env={"DISPLAY": display}, check=True, timeout=10)
 
 
-def bars_green(shot: Screenshot) -> bool:
+def bars_green(shot: Screenshot, picture_width: int = 640) -> bool:
     """All four bars green and CALIBRATE usable (its button teal, not grey, above its label)."""
-    return shot.rgb(690, 200)[2] < 200 and sum(1 for y in (50, 90, 130, 170) if any(
-        shot.rgb(x, y) == (0, 255, 0) for x in range(640, 740, 2))) == 4
+    return shot.rgb(picture_width + 50, 200)[2] < 200 and sum(1 for y in (50, 90, 130, 170) if any(
+        shot.rgb(x, y) == (0, 255, 0) for x in range(picture_width, picture_width + 100, 2))) == 4
 
 
 @pytest.mark.skipif(shutil.which("xdotool") is None, reason="xdotool clicks the window's buttons")
@@ -175,3 +177,54 @@ def test_calibrate_save_and_commit_in_the_window(tmp_path: Path) -> None:
 def test_a_board_needs_a_size() -> None:
     with pytest.raises(ValueError, match="COLSxROWS"):
         Board.parse("8", 0.1)
+
+
+def test_a_stereo_pair_comes_back() -> None:
+    renderer = Renderer()
+    pair = StereoCalibrator(BOARD)
+    for rvec, tvec in stereo_poses():
+        pair.handle(renderer.view(rvec, tvec), renderer.view(rvec, (tvec[0] - BASELINE, tvec[1], tvec[2])))
+    assert pair.goodenough
+    calibration = pair.calibrate()
+    for side in (calibration.left, calibration.right):
+        assert side.K[0, 0] == pytest.approx(K[0, 0], rel=0.01) and side.K[1, 2] == pytest.approx(K[1, 2], rel=0.01)
+    assert calibration.translation.ravel()[0] == pytest.approx(-BASELINE, rel=0.02)  # the right camera 12 cm along x
+    rvec, tvec = stereo_poses()[3]
+    left, right, _ = pair.handle(renderer.view(rvec, tvec), renderer.view(rvec, (tvec[0] - BASELINE, tvec[1], tvec[2])))
+    assert left is not None and right is not None
+    left, right = pair.rectified_corners(left, right)
+    assert epipolar_error(left, right) < 0.5  # rectified, a corner is on the same row in both
+    assert square_size(cv2, calibration, left, right, BOARD) == pytest.approx(BOARD.square, rel=0.02)
+
+
+@pytest.mark.skipif(shutil.which("xdotool") is None, reason="xdotool clicks the window's buttons")
+def test_stereo_calibrate_save_and_commit_in_the_window(tmp_path: Path) -> None:
+    tarball = Path("/tmp/calibrationdata.tar.gz")
+    with xvfb("1600x900") as display, master(tmp_path) as sim:
+        for side in ("left", "right"):
+            sim.start("usb_cam", "usb_cam_node", f"__name:={side}", "_video_device:=testsrc", "_framerate:=5",
+                      f"_camera_name:={side}")
+        views = Proc([sys.executable, str(VIEWS_NODE), "stereo"], {**sim.env, "PYTHONPATH": str(REPO)}, cwd=sim.home)
+        sim.procs.append(views)
+        views.wait_line("publishing", timeout=60)
+        env = {**sim.env, "DISPLAY": display, "QT_QPA_PLATFORM": "xcb"}
+        calibrator = sim.start("camera_calibration", "cameracalibrator.py", "--size", "8x6", "--square", "0.108",
+                               "left:=/stereo/left/image_raw", "right:=/stereo/right/image_raw",
+                               "left_camera:=/left", "right_camera:=/right", env=env)
+        calibrator.wait_line("OK")
+        shoot(display, "display", "camera_calibration_stereo", lambda shot: bars_green(shot, 1280))
+        tarball.unlink(missing_ok=True)
+        click(display, "display", 1330, 230)
+        calibrator.wait_line("self.R =", timeout=60)
+        shoot(display, "display", "camera_calibration_stereo_calibrated", lambda shot: shot.rgb(1330, 300)[2] < 200)
+        click(display, "display", 1330, 330)
+        calibrator.wait_line("Wrote calibration data to")
+        with tarfile.open(tarball) as archive:
+            names = set(archive.getnames())
+        assert {"left.yaml", "right.yaml", "ost.txt", "left-0000.png", "right-0000.png"} <= names
+        click(display, "display", 1330, 430)
+        calibrator.popen.wait(30)
+        assert "".join(calibrator.out).count("success: True") == 2
+        for side in ("left", "right"):
+            stored = parse((tmp_path / "camera_info" / f"{side}.yaml").read_text(), "yaml")
+            assert stored.info.K[0] == pytest.approx(K[0, 0], rel=0.01)

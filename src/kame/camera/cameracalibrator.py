@@ -48,7 +48,7 @@ def parse_options(args: list[str]) -> argparse.Namespace:
     parser.add_argument("-p", "--pattern", default="chessboard", choices=["chessboard"],
                         help="calibration pattern to detect (kame: chessboard)")
     parser.add_argument("--approximate", type=float, default=0.0, help="allow specified slop (in seconds) when "
-                        "pairing images from unsynchronized stereo cameras (kame: monocular only)")
+                        "pairing images from unsynchronized stereo cameras")
     parser.add_argument("--no-service-check", action="store_true", help="disable check for set_camera_info services "
                         "at startup")
     parser.add_argument("--queue-size", type=int, default=1, help="image queue size")
@@ -88,8 +88,9 @@ class CalibrationNode:
         self.dumps = 0
         self.worker = threading.Thread(target=self._work, name="calibrator")
 
-    def start(self, topic: str, queue_size: int) -> None:
-        self.subscriber = subscribe_image(topic, "raw", self._arrive, queue_size=queue_size)
+    def start(self, topics: list[str], queue_size: int) -> None:
+        """Subscribes to the camera's image topic (a stereo node: the left and the right one)."""
+        self.subscribers = [subscribe_image(topic, "raw", self._arrive, queue_size=queue_size) for topic in topics]
         self.worker.start()
 
     def stop(self) -> None:
@@ -232,6 +233,12 @@ class CalibrationNode:
             self.dumps += 1
 
 
+def remapped(name: str) -> str | None:
+    """The name `name` resolves to when the command line remapped it, else None."""
+    resolved = resolve_name(name)
+    return None if resolved == get_namespace().rstrip("/") + "/" + name else resolved
+
+
 def png(cv2: Any, grey: np.ndarray) -> bytes:
     return bytes(cv2.imencode(".png", grey)[1].data)
 
@@ -269,18 +276,28 @@ def main(argv: Sequence[str] | None = None) -> int:
     calibrator = MonoCalibrator(board, Options(options.k_coefficients, options.fix_principal_point,
                                                options.fix_aspect_ratio, options.zero_tangent_dist,
                                                options.max_chessboard_speed), options.camera_name)
-    camera = resolve_name("camera")
-    remapped = camera != get_namespace().rstrip("/") + "/camera"
-    if not options.no_service_check and remapped and not check_service(camera):
-        core.signal_shutdown("Quit")
-        return 1
+    stereo = remapped("left") is not None
+    cameras = ["left_camera", "right_camera"] if stereo else ["camera"]
+    for camera in cameras:  # upstream waits only for the cameras named on the command line
+        name = remapped(camera)
+        if not options.no_service_check and name is not None and not check_service(name):
+            core.signal_shutdown("Quit")
+            return 1
     app = QApplication.instance() or QApplication(["cameracalibrator"])
     quit_on_signals(app)
-    node = CalibrationNode(cv2, calibrator, camera)
+    if stereo:
+        from kame.camera.stereo_calibration_node import StereoCalibrationNode
+        from kame.camera.stereo_calibrator import StereoCalibrator
+
+        pair = StereoCalibrator(calibrator.board, calibrator.options, calibrator.camera_name)
+        node: CalibrationNode = StereoCalibrationNode(cv2, pair, (resolve_name("left_camera"),
+                                                                 resolve_name("right_camera")), options.approximate)
+    else:
+        node = CalibrationNode(cv2, calibrator, resolve_name("camera"))
     window = CalibrationWindow(node.take_display, node.click, node.key)
     node.on_display = window.display_ready.emit
     core.on_shutdown(lambda *_: QMetaObject.invokeMethod(app, "quit", Qt.ConnectionType.QueuedConnection))
-    node.start(resolve_name("image"), options.queue_size)
+    node.start([resolve_name(topic) for topic in (("left", "right") if stereo else ("image",))], options.queue_size)
     window.show()
     try:
         with core.main_thread_waiting():
