@@ -139,3 +139,18 @@ def test_no_camera_is_one_clear_line(tmp_path: Path) -> None:
         out, err = proc.stop()
         assert proc.popen.returncode == 1
         assert f"Cannot open '{missing}': it does not exist" in out + err and "Traceback" not in out + err
+
+
+def test_without_opencv_one_line_names_the_feature(tmp_path: Path) -> None:
+    hidden = tmp_path / "hidden"
+    (hidden / "cv2").mkdir(parents=True)
+    (hidden / "cv2" / "__init__.py").write_text("raise ModuleNotFoundError(\"No module named 'cv2'\", name='cv2')\n")
+    with master(tmp_path) as sim:
+        env = {**sim.env, "PYTHONPATH": str(hidden)}
+        camera = sim.start("usb_cam", "usb_cam_node", "_video_device:=testsrc", env=env)
+        viewer = sim.start("image_view", "image_view", "image:=/usb_cam/image_raw", env=env)
+        for proc, line in ((camera, "the test pattern (video_device:=testsrc) needs OpenCV: pip install 'kame[camera]'"),
+                           (viewer, "image_view needs OpenCV: pip install 'kame[camera]'")):
+            proc.popen.wait(30)
+            out, err = proc.stop()
+            assert proc.popen.returncode == 1 and line in out + err and "Traceback" not in out + err, out + err
