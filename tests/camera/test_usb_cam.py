@@ -149,8 +149,9 @@ def test_without_opencv_one_line_names_the_feature(tmp_path: Path) -> None:
         env = {**sim.env, "PYTHONPATH": str(hidden)}
         camera = sim.start("usb_cam", "usb_cam_node", "_video_device:=testsrc", env=env)
         viewer = sim.start("image_view", "image_view", "image:=/usb_cam/image_raw", env=env)
-        for proc, line in ((camera, "the test pattern (video_device:=testsrc) needs OpenCV: pip install 'kame[camera]'"),
-                           (viewer, "image_view needs OpenCV: pip install 'kame[camera]'")):
+        install = "needs OpenCV: pip install 'kame[camera]'"
+        for proc, line in ((camera, f"the test pattern (video_device:=testsrc) {install}"),
+                           (viewer, f"image_view {install}")):
             proc.popen.wait(30)
             out, err = proc.stop()
             assert proc.popen.returncode == 1 and line in out + err and "Traceback" not in out + err, out + err
