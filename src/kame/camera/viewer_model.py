@@ -37,11 +37,9 @@ class ViewerModel:
         self.picture: np.ndarray | None = None  # BGR or grey, as it is saved
         self.saved = 0
         self.left_click_warned = False
-        self.shown = 0
 
     def show(self, picture: np.ndarray) -> None:
         self.picture = picture
-        self.shown += 1
 
     def next_filename(self) -> str | None:
         """The name the shown picture is saved under, None while nothing is shown."""
