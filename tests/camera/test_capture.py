@@ -53,6 +53,18 @@ def test_mmap_capture_gives_the_frames_in_order(camera: FakeCamera) -> None:
     assert picture.shape == (48, 64, 3)
 
 
+def test_stop_and_start_capture_stop_and_start_the_stream(camera: FakeCamera) -> None:
+    source = V4L2Source(settings(camera))
+    try:
+        source.read()
+        source.pause()
+        assert not camera.streaming
+        source.resume()
+        assert camera.streaming and source.read() == camera.frames[1]
+    finally:
+        source.close()
+
+
 def test_usb_cams_controls_are_set_by_name(camera: FakeCamera) -> None:
     source = V4L2Source(settings(camera))
     try:

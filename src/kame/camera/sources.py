@@ -48,6 +48,12 @@ class FrameSource(Protocol):
     def read(self) -> bytes:
         """The next frame's bytes in the settings' pixel format."""
 
+    def pause(self) -> None:
+        """Stop capturing for now (~stop_capture): a device stops streaming."""
+
+    def resume(self) -> None:
+        """Capture again (~start_capture)."""
+
     def close(self) -> None:
         """Stop capturing and let the device go."""
 
@@ -67,6 +73,12 @@ class TestPatternSource:
         picture = self.pattern.frame(self.number)
         self.number += 1
         return encode(picture, self.settings.format)
+
+    def pause(self) -> None:
+        return None  # frames are made when read: nothing runs between reads
+
+    def resume(self) -> None:
+        return None
 
     def close(self) -> None:
         return None
@@ -96,6 +108,12 @@ class VideoFileSource:
         if (bgr.shape[1], bgr.shape[0]) != size:
             bgr = self.cv2.resize(bgr, size, interpolation=self.cv2.INTER_AREA)
         return encode(self.cv2.cvtColor(bgr, self.cv2.COLOR_BGR2RGB), self.settings.format)
+
+    def pause(self) -> None:
+        return None  # the file is read frame by frame: it waits where it is
+
+    def resume(self) -> None:
+        return None
 
     def close(self) -> None:
         self.capture.release()
@@ -152,6 +170,17 @@ class V4L2Source:
         except OSError as exc:
             raise CameraError(f"reading '{self.settings.device}' failed: {exc}") from None
         return bytes(frame.data)
+
+    def pause(self) -> None:
+        """STREAMOFF and the buffers freed, as usb_cam's stop_capturing."""
+        self.capture.close()
+
+    def resume(self) -> None:
+        """The buffers queued again and STREAMON, as usb_cam's start_capturing."""
+        try:
+            self.capture.open()
+        except OSError as exc:
+            raise CameraError(device_problem(self.settings.device, exc)) from None
 
     def close(self) -> None:
         try:

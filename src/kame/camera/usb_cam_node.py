@@ -12,8 +12,8 @@ its next frame, the other sources keep the rate with kame.client's Rate.
 
 from __future__ import annotations
 
+import copy
 import sys
-import threading
 from collections.abc import Sequence
 from typing import Any
 
@@ -81,7 +81,6 @@ class UsbCam:
             self.info.set_camera_info(CameraInfo(width=settings.width, height=settings.height))
         self.capturing = SignalSafeEvent()
         self.capturing.set()
-        self.lock = threading.Lock()
         self.services = [Service("~start_capture", Empty, self._start), Service("~stop_capture", Empty, self._stop)]
 
     def _start(self, _request: Any) -> Any:
@@ -98,7 +97,7 @@ class UsbCam:
         image = Image(height=pixels.shape[0], width=pixels.shape[1], encoding=self.settings.format.encoding,
                       is_bigendian=0, step=pixels.shape[1] * (3 if pixels.ndim == 3 else 1), data=pixels.tobytes())
         image.header.stamp, image.header.frame_id = stamp, self.frame_id
-        info = self.info.get_camera_info()
+        info = copy.deepcopy(self.info.get_camera_info())  # a published message is never changed after
         info.header.stamp, info.header.frame_id = stamp, self.frame_id
         return image, info
 
@@ -106,8 +105,16 @@ class UsbCam:
         rate = Rate(self.settings.framerate)
         while not core.is_shutdown():
             if not self.capturing.is_set():
+                self.source.pause()  # here, not in the service's thread: this loop is the source's one reader
                 with core.woken_at_shutdown(self.capturing):
                     self.capturing.wait()
+                if core.is_shutdown():
+                    break
+                try:
+                    self.source.resume()
+                except CameraError as exc:
+                    log.emit(log.ERROR, "%s", (exc,))
+                    break
                 continue
             try:
                 raw = self.source.read()
