@@ -228,3 +228,15 @@ def test_stereo_calibrate_save_and_commit_in_the_window(tmp_path: Path) -> None:
         for side in ("left", "right"):
             stored = parse((tmp_path / "camera_info" / f"{side}.yaml").read_text(), "yaml")
             assert stored.info.K[0] == pytest.approx(K[0, 0], rel=0.01)
+
+
+def test_the_calibrators_options() -> None:
+    from kame.camera.cameracalibrator import parse_options
+
+    options = parse_options(["--size", "8x6", "--square", "0.108", "-k", "3", "--fix-principal-point",
+                             "--zero-tangent-dist", "--no-service-check", "-c", "webcam"])
+    assert (options.size, options.square, options.k_coefficients, options.camera_name) == (["8x6"], [0.108], 3,
+                                                                                            "webcam")
+    assert options.fix_principal_point and options.zero_tangent_dist and options.no_service_check
+    with pytest.raises(SystemExit):
+        parse_options(["--square", "0.108"])  # "You must specify one or more chessboards..."
