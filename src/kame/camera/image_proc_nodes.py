@@ -6,7 +6,9 @@ as image_proc 1.16's (`ROS_NAMESPACE=camera rosrun image_proc image_proc`).
 Topics are upstream's: debayer image_raw -> image_mono, image_color; rectify image_mono (with
 camera_info) -> image_rect; crop_decimate camera/image_raw -> camera_out/image_raw (with their
 camera_info); resize image (and camera_info) -> ~image, ~camera_info. An output is computed only
-while someone subscribes to it. Each nodelet's parameters live in its own namespace (the
+while someone subscribes to it; the inputs stay subscribed (upstream subscribes them only then),
+so in the image_proc node, whose rectifies subscribe to debayer's outputs, image_mono and
+image_color are always made. Each nodelet's parameters live in its own namespace (the
 standalone program's private one; image_proc's <node>_debayer, <node>_rectify_mono,
 <node>_rectify_color), served by kame.reconfigure's Server.
 """
