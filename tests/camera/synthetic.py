@@ -23,7 +23,10 @@ def _rays(k: np.ndarray, d: np.ndarray, width: int, height: int) -> np.ndarray:
     vs = (np.arange(height * s) + 0.5) / s - 0.5
     grid = np.stack(np.meshgrid(us, vs), axis=-1).reshape(-1, 1, 2)
     criteria = (cv2.TERM_CRITERIA_COUNT | cv2.TERM_CRITERIA_EPS, 40, 1e-9)
-    rays: np.ndarray = cv2.undistortPoints(grid, k, d, None, None, None, criteria)
+    # the iterations to convergence: undistortPointsIter before OpenCV 5, undistortPoints' criteria since
+    undistort = getattr(cv2, "undistortPointsIter", None)
+    rays: np.ndarray = (undistort(grid, k, d, None, None, criteria) if undistort is not None
+                        else cv2.undistortPoints(grid, k, d, None, None, None, criteria))
     return rays.reshape(height * s, width * s, 2)
 
 

@@ -139,6 +139,8 @@ class V4L2Source:
         memory = {"mmap": self.video.MemoryMap, "read": self.video.ReadSource, "userptr": self.video.UserPtr}
         if settings.io_method not in memory:
             raise CameraError(f"Unknown IO method '{settings.io_method}'")
+        # blocking: DQBUF waits for the next frame (linuxpy 0.25's non-blocking mmap read calls its select
+        # module as a function)
         self.device = self.video.Device(settings.device, blocking=True)
         try:
             self.device.open()
