@@ -16,7 +16,8 @@ from kame.camera.calibration_files import Calibration, dump
 from kame.camera.calibrator import find_chessboard, linear_error
 from kame.camera.image_processing import CropDecimate, RectifyMaps, Resize, debayer
 from sensor_msgs.msg import CameraInfo
-from tests.turtlesim.sim import Sim, master
+from tests.support import Proc
+from tests.turtlesim.sim import BIN, Sim, master
 
 cv2 = pytest.importorskip("cv2")
 from tests.camera.synthetic import BOARD, HEIGHT, WIDTH, D, K, Renderer, poses  # noqa: E402 - needs OpenCV
@@ -113,3 +114,27 @@ def test_nodelet_standalone_resize(views: list[np.ndarray], tmp_path: Path) -> N
         assert (fields["width"], fields["height"]) == (WIDTH // 2, HEIGHT // 2)
         info = json.loads(sim.run(sys.executable, str(PROBE), "info", "/half/camera_info").stdout)
         assert info["K"][0] == pytest.approx(K[0, 0] / 2)
+
+
+def test_image_procs_launch_file_with_a_nodelet_manager(views: list[np.ndarray], tmp_path: Path) -> None:
+    launch = tmp_path / "camera.launch"
+    launch.write_text("""<launch>
+  <node pkg="nodelet" type="nodelet" name="manager" args="manager" />
+  <group ns="usb_cam">
+    <include file="$(find image_proc)/launch/image_proc.launch">
+      <arg name="manager" value="/manager" />
+    </include>
+  </group>
+</launch>
+""")
+    with master(tmp_path) as sim:
+        chessboard_camera(sim, views, tmp_path)
+        roslaunch = Proc([str(BIN / "roslaunch"), str(launch)], sim.env, cwd=sim.home)
+        sim.procs.append(roslaunch)
+        colour = json.loads(sim.run(sys.executable, str(PROBE), "images", "/usb_cam/image_rect_color", "1",
+                                    str(tmp_path / "rect.npz")).stdout.splitlines()[-1])
+        assert (colour["encoding"], colour["width"]) == ("rgb8", WIDTH)
+        mono = json.loads(sim.run(sys.executable, str(PROBE), "images", "/usb_cam/image_rect", "1",
+                                  str(tmp_path / "mono.npz")).stdout.splitlines()[-1])
+        assert mono["encoding"] == "mono8"
+        assert "interpolation" in sim.run("rosparam", "list", "/usb_cam/rectify_color").stdout
