@@ -17,7 +17,7 @@ from kame.camera.calibrator import find_chessboard, linear_error
 from kame.camera.image_processing import CropDecimate, RectifyMaps, Resize, debayer
 from sensor_msgs.msg import CameraInfo
 from tests.support import Proc
-from tests.turtlesim.sim import BIN, Sim, master
+from tests.turtlesim.sim import BIN, Sim, master, wait_until
 
 cv2 = pytest.importorskip("cv2")
 from tests.camera.synthetic import BOARD, HEIGHT, WIDTH, D, K, Renderer, poses  # noqa: E402 - needs OpenCV
@@ -138,3 +138,21 @@ def test_image_procs_launch_file_with_a_nodelet_manager(views: list[np.ndarray],
                                   str(tmp_path / "mono.npz")).stdout.splitlines()[-1])
         assert mono["encoding"] == "mono8"
         assert "interpolation" in sim.run("rosparam", "list", "/usb_cam/rectify_color").stdout
+
+
+def test_image_proc_listens_to_the_camera_only_while_someone_listens_to_it(tmp_path: Path) -> None:
+    def subscribers() -> str:
+        return sim.run("rostopic", "info", "/usb_cam/image_raw").stdout.split("Subscribers:")[1]
+
+    with master(tmp_path) as sim:
+        sim.start("usb_cam", "usb_cam_node", "_video_device:=testsrc", "_framerate:=10", "_image_width:=160",
+                  "_image_height:=120")
+        sim.start("image_proc", "image_proc", env={**sim.env, "ROS_NAMESPACE": "usb_cam"})
+        wait_until(lambda: "/usb_cam/image_proc" in sim.run("rosnode", "list").stdout, timeout=30,
+                   what="image_proc to register")
+        assert "/usb_cam/image_proc" not in subscribers()
+        fields = json.loads(sim.run(sys.executable, str(PROBE), "images", "/usb_cam/image_color", "2",
+                                    str(tmp_path / "colour.npz")).stdout.splitlines()[-1])
+        assert (fields["encoding"], fields["width"]) == ("rgb8", 160)  # colour passes through debayer
+        wait_until(lambda: "/usb_cam/image_proc" not in subscribers(), timeout=30,
+                   what="image_proc to let the camera go once its listener left")

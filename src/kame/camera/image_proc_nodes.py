@@ -5,10 +5,9 @@ as image_proc 1.16's (`ROS_NAMESPACE=camera rosrun image_proc image_proc`).
 
 Topics are upstream's: debayer image_raw -> image_mono, image_color; rectify image_mono (with
 camera_info) -> image_rect; crop_decimate camera/image_raw -> camera_out/image_raw (with their
-camera_info); resize image (and camera_info) -> ~image, ~camera_info. An output is computed only
-while someone subscribes to it; the inputs stay subscribed (upstream subscribes them only then),
-so in the image_proc node, whose rectifies subscribe to debayer's outputs, image_mono and
-image_color are always made. Each nodelet's parameters live in its own namespace (the
+camera_info); resize image (and camera_info) -> ~image, ~camera_info. As upstream's, a nodelet
+subscribes to its inputs only while someone subscribes to one of its outputs (`LazyInput`), and
+computes an output only while it has subscribers. Each nodelet's parameters live in its own namespace (the
 standalone program's private one; image_proc's <node>_debayer, <node>_rectify_mono,
 <node>_rectify_color), served by kame.reconfigure's Server.
 """
@@ -16,6 +15,7 @@ standalone program's private one; image_proc's <node>_debayer, <node>_rectify_mo
 from __future__ import annotations
 
 import threading
+from collections.abc import Callable
 from typing import Any
 
 from kame.camera.image_feed import CameraSubscriber, subscribe_image
@@ -26,12 +26,36 @@ from kame.camera.opencv import cv2_for
 from kame.camera.pictures import PictureError, to_bgr
 from kame.client import log
 from kame.client.core import resolve_name
-from kame.client.topics import Publisher, Subscriber
+from kame.client.topics import Publisher, SubscribeListener, Subscriber
 from kame.image_transport.compressed import CompressionError, from_array, to_array
 from kame.reconfigure.server import Server
 from sensor_msgs.msg import CameraInfo
 
 MONO = ("mono8", "mono16", "8UC1", "16UC1")
+
+
+class LazyInput(SubscribeListener):
+    """A nodelet's input subscriptions, made when its outputs get their first subscriber and
+    dropped when they have none left (image_transport's connect callbacks)."""
+
+    def __init__(self, subscribe: Callable[[], list[Any]], wanted: Callable[[], bool]) -> None:
+        self.subscribe = subscribe
+        self.wanted = wanted
+        self.inputs: list[Any] = []
+        self.lock = threading.Lock()
+
+    def peer_subscribe(self, topic_name: str, topic_publish: Callable[[Any], None],
+                       peer_publish: Callable[[Any], None]) -> None:
+        with self.lock:
+            if not self.inputs:
+                self.inputs = self.subscribe()
+
+    def peer_unsubscribe(self, topic_name: str, num_peers: int) -> None:
+        with self.lock:
+            if self.inputs and not self.wanted():
+                for subscription in self.inputs:
+                    subscription.unregister()
+                self.inputs = []
 
 
 def _is_colour(encoding: str) -> bool:
@@ -41,10 +65,12 @@ def _is_colour(encoding: str) -> bool:
 class Debayer:
     def __init__(self, namespace: str, parameters: str) -> None:
         self.algorithm = 0
-        self.mono = ImagePublisher(f"{namespace}image_mono")
-        self.color = ImagePublisher(f"{namespace}image_color")
+        raw_topic = resolve_name(f"{namespace}image_raw")
+        self.input = LazyInput(lambda: [subscribe_image(raw_topic, "raw", self._raw)],
+                               lambda: self.mono.wanted() or self.color.wanted())
+        self.mono = ImagePublisher(f"{namespace}image_mono", self.input)
+        self.color = ImagePublisher(f"{namespace}image_color", self.input)
         self.server = Server(debayer_config(), self._configure, parameters)
-        self.subscriber = subscribe_image(resolve_name(f"{namespace}image_raw"), "raw", self._raw)
 
     def _configure(self, config: Any, _level: int) -> Any:
         self.algorithm = int(config["debayer"])
@@ -98,9 +124,11 @@ class Rectify:
         self.interpolation = 1
         self.maps = RectifyMaps()
         self.lock = threading.Lock()  # the maps are made on one pair's thread at a time
-        self.publisher = ImagePublisher(rect_topic)
+        image = resolve_name(image_topic)
+        self.info_topic = image.rsplit("/", 1)[0] + "/camera_info"
+        self.input = LazyInput(lambda: [CameraSubscriber(image, "raw", self._pair)], lambda: self.publisher.wanted())
+        self.publisher = ImagePublisher(rect_topic, self.input)
         self.server = Server(rectify_config(), self._configure, parameters)
-        self.subscriber = CameraSubscriber(resolve_name(image_topic), "raw", self._pair)
 
     def _configure(self, config: Any, _level: int) -> Any:
         self.interpolation = int(config["interpolation"])
@@ -111,7 +139,7 @@ class Rectify:
             return
         if not is_calibrated(info):
             log.emit_throttle(30.0, log.ERROR, "Rectified topic '%s' requested but camera publishing '%s' is "
-                              "uncalibrated", (self.publisher.raw.resolved_name, self.subscriber.info.resolved_name))
+                              "uncalibrated", (self.publisher.raw.resolved_name, self.info_topic))
             return
         if not any(info.D):  # no distortion: the image is its own rectification
             self.publisher.publish(image)
@@ -128,9 +156,10 @@ class Rectify:
 class CropDecimateNode:
     def __init__(self, parameters: str) -> None:
         self.settings = CropDecimate()
-        self.publisher = CameraPublisher("camera_out/image_raw", "camera_out/camera_info")
+        image = resolve_name("camera/image_raw")
+        self.input = LazyInput(lambda: [CameraSubscriber(image, "raw", self._pair)], lambda: self.publisher.wanted())
+        self.publisher = CameraPublisher("camera_out/image_raw", "camera_out/camera_info", self.input)
         self.server = Server(crop_decimate_config(), self._configure, parameters)
-        self.subscriber = CameraSubscriber(resolve_name("camera/image_raw"), "raw", self._pair)
 
     def _configure(self, config: Any, _level: int) -> Any:
         self.settings = CropDecimate(*(int(config[name]) for name in ("decimation_x", "decimation_y", "x_offset",
@@ -153,11 +182,13 @@ class ResizeNode:
     def __init__(self, parameters: str) -> None:
         self.settings = Resize()
         self.info: Any = None
-        self.image_publisher = ImagePublisher("~image")
-        self.info_publisher = Publisher("~camera_info", CameraInfo, queue_size=1)
+        image, info = resolve_name("image"), resolve_name("camera_info")
+        self.input = LazyInput(lambda: [Subscriber(info, CameraInfo, self._info, queue_size=1),
+                                        subscribe_image(image, "raw", self._image)],
+                               lambda: self.image_publisher.wanted() or bool(self.info_publisher.get_num_connections()))
+        self.image_publisher = ImagePublisher("~image", self.input)
+        self.info_publisher = Publisher("~camera_info", CameraInfo, subscriber_listener=self.input, queue_size=1)
         self.server = Server(resize_config(), self._configure, parameters)
-        self.info_subscriber = Subscriber(resolve_name("camera_info"), CameraInfo, self._info, queue_size=1)
-        self.subscriber = subscribe_image(resolve_name("image"), "raw", self._image)
 
     def _configure(self, config: Any, _level: int) -> Any:
         self.settings = Resize(int(config["interpolation"]), bool(config["use_scale"]), float(config["scale_width"]),

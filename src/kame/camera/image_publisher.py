@@ -9,17 +9,19 @@ from typing import Any
 
 from kame.client import log
 from kame.client.core import resolve_name
-from kame.client.topics import Publisher
+from kame.client.topics import Publisher, SubscribeListener
 from kame.image_transport.compressed import CompressionError
 from kame.image_transport.republish import CompressedOutput
 from sensor_msgs.msg import CameraInfo, Image
 
 
 class ImagePublisher:
-    def __init__(self, base_topic: str) -> None:
+    """`listener` hears each subscriber of either transport come and go (image_proc's lazy inputs)."""
+
+    def __init__(self, base_topic: str, listener: SubscribeListener | None = None) -> None:
         base = resolve_name(base_topic)
-        self.raw = Publisher(base, Image, queue_size=1)
-        self.compressed = CompressedOutput(base)
+        self.raw = Publisher(base, Image, subscriber_listener=listener, queue_size=1)
+        self.compressed = CompressedOutput(base, listener)
 
     def wanted(self) -> bool:
         return bool(self.raw.get_num_connections() or self.compressed.publisher.get_num_connections())
@@ -35,10 +37,11 @@ class ImagePublisher:
 
 
 class CameraPublisher(ImagePublisher):
-    def __init__(self, base_topic: str, info_topic: str | None = None) -> None:
-        super().__init__(base_topic)
+    def __init__(self, base_topic: str, info_topic: str | None = None, listener: SubscribeListener | None = None
+                 ) -> None:
+        super().__init__(base_topic, listener)
         info = info_topic if info_topic is not None else self.raw.resolved_name.rsplit("/", 1)[0] + "/camera_info"
-        self.info = Publisher(resolve_name(info), CameraInfo, queue_size=1)
+        self.info = Publisher(resolve_name(info), CameraInfo, subscriber_listener=listener, queue_size=1)
 
     def wanted(self) -> bool:
         return super().wanted() or bool(self.info.get_num_connections())
