@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Installs the system libraries that Qt's X11 platform plugin (PySide6's libqxcb.so) loads, so
 # turtlesim's window can open on a fresh Debian/Ubuntu; with --xvfb also the X server and tools
-# the GUI tests use (Xvfb, xwininfo from x11-utils, xwd from x11-apps, and Mesa's software OpenGL
-# that rviz's 3-D view renders with on Xvfb, and MuJoCo's cameras with through EGL, headless).
+# the GUI tests use (Xvfb, xwininfo from x11-utils, xwd from x11-apps, xdotool clicking the camera
+# calibrator's buttons, and Mesa's software OpenGL that rviz's 3-D view renders with on Xvfb, and
+# MuJoCo's cameras with through EGL, headless).
 # Runs apt-get as root, or through sudo when sudo needs no password; otherwise it says what to
 # install and exits 0 (turtlesim then names the missing library and runs headless).
 # The list is kame.turtlesim.window_probe.QT_X11_PACKAGES (a test keeps the two the same).
@@ -15,8 +16,8 @@ packages=(
 )
 if [ "${1:-}" = --xvfb ]; then
   # libopengl0 with libegl1, libegl-mesa0 and libgl1-mesa-dri: MuJoCo's headless renderer (MUJOCO_GL=egl),
-  # the 3-D simulator's cameras
-  packages+=(xvfb x11-utils x11-apps libgl1-mesa-dri libglx-mesa0 libegl-mesa0 libopengl0)
+  # the 3-D simulator's cameras; xdotool clicks the camera calibrator's buttons
+  packages+=(xvfb x11-utils x11-apps libgl1-mesa-dri libglx-mesa0 libegl-mesa0 libopengl0 xdotool)
 fi
 if ! command -v apt-get >/dev/null 2>&1 || ! command -v dpkg-query >/dev/null 2>&1; then
   echo "install-gui-libs: no apt-get here; Qt's window needs the X11 libraries your system calls" \

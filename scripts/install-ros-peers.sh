@@ -17,6 +17,7 @@ packages=(
   # image_transport's republish (raw only: Debian has no compressed plugin) and cv_bridge with OpenCV,
   # which decode and make the compressed images kame's republish reads and writes (tests/libs/test_image_transport.py)
   image-transport-tools python3-cv-bridge
+  python3-camera-calibration-parsers  # Debian's readCalibration reads kame's YAML and INI calibration files (tests/camera)
   libroscpp-dev libstd-msgs-dev libgeometry-msgs-dev libsensor-msgs-dev libstd-srvs-dev
   ros-std-msgs ros-std-srvs ros-geometry-msgs ros-sensor-msgs ros-nav-msgs ros-rosgraph-msgs
   ros-actionlib-msgs ros-diagnostic-msgs ros-trajectory-msgs ros-visualization-msgs

@@ -11,7 +11,8 @@ from pathlib import Path
 KAME = Path(__file__).resolve().parents[1] / "src" / "kame"
 FACADES = {"rospy", "rosbag", "actionlib", "roslaunch", "genpy", "roslib", "rosgraph", "rospkg", "message_filters",
            "cv_bridge", "rostopic", "rosservice", "rosnode", "rosparam", "rosmsg", "rosmaster",
-           "tf", "tf2_ros", "tf2_geometry_msgs", "tf_conversions", "PyKDL", "interactive_markers"}
+           "tf", "tf2_ros", "tf2_geometry_msgs", "tf_conversions", "PyKDL", "interactive_markers",
+           "camera_calibration_parsers"}
 
 
 def facade_imports(path: Path) -> list[str]:

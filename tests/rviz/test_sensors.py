@@ -152,6 +152,27 @@ def test_the_image_and_camera_panels_show_the_image_and_the_scene_over_it(qtbot:
     assert window.image_panels.panel(camera) is None  # the display went, and its dock with it
 
 
+def test_an_image_panels_paint_is_when_its_image_reached_the_screen(qtbot: Any) -> None:
+    """KAME_RVIZ_STATS: an image shows in its display's panel, which the 3-D view's swap does not
+    follow; each paint of a panel tells the window's shown log."""
+    pytest.importorskip("OpenGL", reason="rviz's window needs PyOpenGL (pip install 'kame[gui]')")
+    pytest.importorskip("PySide6")
+    from kame.rviz.window import RvizWindow
+
+    image = sensors.Image(options={"Image Topic": "/camera/image_raw"})
+    window = RvizWindow(config.Config(fixed_frame="map", displays=[image]), None)
+    qtbot.addWidget(window)
+    window.timer.stop()
+    painted: list[bool] = []
+    window.image_panels.painted = lambda: painted.append(True)
+    image.receive([_image("rgb8", 10, 10, bytes([0, 0, 255]))], 0.0)
+    window.draw(0.0, TREE)
+    panel = window.image_panels.panel(image)
+    assert panel is not None
+    panel.grab()
+    assert painted
+
+
 def test_a_compressed_image_is_read_beside_the_topic_and_decoded_by_the_window(qtbot: Any) -> None:
     pytest.importorskip("PySide6")
     from PySide6.QtCore import QBuffer, QByteArray, QIODevice

@@ -21,7 +21,7 @@ from typing import Any
 from kame.client import log
 from kame.client.core import resolve_name
 from kame.client.process import init_node, myargv, spin
-from kame.client.topics import Publisher, Subscriber
+from kame.client.topics import Publisher, SubscribeListener, Subscriber
 from kame.image_transport.compressed import CompressionError, Settings, compress, decompress, default_codec
 from kame.reconfigure.generator import (
     GeneratedConfig,
@@ -69,9 +69,10 @@ class Output:
 
 
 class CompressedOutput:
-    def __init__(self, base_topic: str) -> None:
+    def __init__(self, base_topic: str, listener: SubscribeListener | None = None) -> None:
         self.settings = Settings()
-        self.publisher = Publisher(base_topic + "/compressed", CompressedImage, queue_size=1)
+        self.publisher = Publisher(base_topic + "/compressed", CompressedImage, subscriber_listener=listener,
+                                   queue_size=1)
         self.server = Server(publisher_config(), self._configure, base_topic + "/compressed")
 
     def _configure(self, config: Any, _level: int) -> Any:

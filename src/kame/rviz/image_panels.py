@@ -4,6 +4,8 @@ the camera sees it (kame.rviz.sensors.Camera.project), at the display's Overlay 
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import numpy as np
 from PySide6.QtCore import QPointF, Qt
 from PySide6.QtGui import QColor, QImage, QPainter, QPen, QPolygonF
@@ -32,6 +34,7 @@ class ImagePanel(QWidget):
     def __init__(self, display: Image) -> None:
         super().__init__()
         self.display = display
+        self.painted: Callable[[], None] | None = None  # after each paint: images reach the screen here
         self.scene = Scene()
         self.setMinimumSize(160, 120)
 
@@ -64,6 +67,8 @@ class ImagePanel(QWidget):
         if isinstance(self.display, Camera):
             self._overlay(painter, self.display, left, top, scale)
         painter.end()
+        if self.painted is not None:
+            self.painted()
 
     def _overlay(self, target: QPainter, camera: Camera, left: float, top: float, scale: float) -> None:
         """The scene drawn opaque on a layer of its own, laid over the image at Overlay Alpha (as
@@ -107,6 +112,7 @@ class ImagePanels:
     def __init__(self, window: QMainWindow) -> None:
         self.window = window
         self.docks: dict[int, tuple[QDockWidget, ImagePanel]] = {}
+        self.painted: Callable[[], None] | None = None  # each panel's paint (rviz's KAME_RVIZ_STATS)
 
     def sync(self, displays: list[Display], scene: Scene) -> None:
         shown = {id(d): d for d in displays if isinstance(d, Image) and d.enabled}
@@ -122,6 +128,7 @@ class ImagePanels:
                 dock.setWidget(panel)
                 self.window.addDockWidget(Qt.DockWidgetArea.LeftDockWidgetArea, dock)
                 self.docks[key] = (dock, panel)
+            self.docks[key][1].painted = self.painted
             self.docks[key][1].show_scene(scene)
 
     def panel(self, display: Display) -> ImagePanel | None:

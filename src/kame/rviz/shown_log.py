@@ -1,5 +1,6 @@
 """KAME_RVIZ_STATS=FILE: rviz writes, for each stamped message it draws, one line when the
-window's frame showing it has been swapped to the screen:
+window's frame showing it has been swapped to the screen (for the Image and Camera displays:
+when their panel has painted it):
 
     TOPIC STAMP TAKEN SHOWN
 

@@ -131,6 +131,7 @@ class RvizWindow(QMainWindow):
         self.shown_log = from_environment(os.environ)  # KAME_RVIZ_STATS: when each message reached the screen
         if self.shown_log is not None:
             self.view.frameSwapped.connect(self.shown_log.swapped)
+            self.image_panels.painted = self.shown_log.swapped  # Image and Camera displays show in their panels
         self.started = time.monotonic()
         self.stats = FrameStats(self.started)
         self.view.frameSwapped.connect(self.stats.frame_shown)  # drawn and shown: a grab is neither

@@ -1,0 +1,76 @@
+"""image_view's image_saver, video_recorder and extract_images on usb_cam's test pattern."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from kame.camera.calibration_files import parse
+from tests.turtlesim.sim import Sim, master
+
+cv2 = pytest.importorskip("cv2")
+
+
+def camera(sim: Sim, rate: int = 15) -> None:
+    sim.start("usb_cam", "usb_cam_node", "_video_device:=testsrc", "_pixel_format:=yuyv", f"_framerate:={rate}",
+              "_image_width:=160", "_image_height:=120")
+
+
+def test_image_saver_saves_every_image_with_its_calibration(tmp_path: Path) -> None:
+    with master(tmp_path) as sim:
+        camera(sim)
+        saver = sim.start("image_view", "image_saver", "image:=/usb_cam/image_raw",
+                          f"_filename_format:={tmp_path}/left%04i.%s")
+        saver.wait_line(f"Saved image {tmp_path}/left0010.jpg", timeout=30)
+        picture = cv2.imread(str(tmp_path / "left0000.jpg"))
+        assert picture.shape == (120, 160, 3)
+        assert picture[60, 2].tolist() == pytest.approx([255, 255, 255], abs=40)  # the white bar, BGR
+        # images that came before the first camera_info are saved alone, the others with it
+        calibrations = sorted(tmp_path.glob("left*.ini"))
+        assert calibrations and calibrations[-1].name == "left0010.ini"
+        calibration = parse(calibrations[-1].read_text(), "ini")
+        assert (calibration.camera_name, calibration.info.width, calibration.info.height) == ("camera", 160, 120)
+
+
+def test_image_saver_saves_on_request(tmp_path: Path) -> None:
+    with master(tmp_path) as sim:
+        camera(sim)
+        saver = sim.start("image_view", "image_saver", "__name:=saver", "image:=/usb_cam/image_raw",
+                          "_save_all_image:=false", f"_filename_format:={tmp_path}/still%02i.png")
+        for number in range(2):
+            sim.run("rosservice", "call", "--wait", "/saver/save")
+            saver.wait_line(f"Saved image {tmp_path}/still{number:02d}.png")
+        # the camera sends 15 images a second: only the two asked for were saved
+        assert sorted(path.name for path in tmp_path.glob("still*.png")) == ["still00.png", "still01.png"]
+
+
+def test_video_recorder_writes_a_video_opencv_reads(tmp_path: Path) -> None:
+    video = tmp_path / "lesson.avi"
+    with master(tmp_path) as sim:
+        camera(sim, rate=20)
+        recorder = sim.start("image_view", "video_recorder", "image:=/usb_cam/image_raw", f"_filename:={video}",
+                             "_fps:=10")
+        recorder.wait_line("Starting to record MJPG video at [160 x 120]@10fps. Press Ctrl+C to stop recording.")
+        sim.run("rostopic", "echo", "-n", "20", "/usb_cam/image_raw/header/seq")  # a second of images
+        out, _ = recorder.stop()
+        assert f"Video saved as {video}" in out
+    capture = cv2.VideoCapture(str(video))
+    frames = []
+    while True:
+        ok, frame = capture.read()
+        if not ok:
+            break
+        frames.append(frame)
+    capture.release()
+    assert len(frames) >= 5 and frames[0].shape == (120, 160, 3)
+    assert frames[0][60, 2].tolist() == pytest.approx([255, 255, 255], abs=40)
+
+
+def test_extract_images(tmp_path: Path) -> None:
+    with master(tmp_path) as sim:
+        camera(sim)
+        extractor = sim.start("image_view", "extract_images", "image:=/usb_cam/image_raw", "_sec_per_frame:=0.2",
+                              f"_filename_format:={tmp_path}/frame%04d.jpg")
+        extractor.wait_line(f"Saved image {tmp_path}/frame0002.jpg", timeout=30)
+        assert cv2.imread(str(tmp_path / "frame0001.jpg")).shape == (120, 160, 3)
