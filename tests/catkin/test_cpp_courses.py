@@ -25,6 +25,11 @@ from kame.catkin.toolchain import Missing, find_toolchain
 from tests.shell.shell_env import clean_env
 from tests.support import Proc, free_port, wait_for_master
 
+# the module's workspace fixture compiles the course packages with g++ (cold, minutes on a 2-core
+# machine beside a second suite): pytest-timeout's 120 s counts a test's fixture set-up, and ran
+# out under that load before any test began
+pytestmark = pytest.mark.timeout(900)
+
 BIN = Path(sys.executable).parent
 COURSE = Path(__file__).resolve().parent / "course_ws"
 CONSOLE_LINE = re.compile(r"^\[ INFO\] \[\d+\.\d{9}\]: (.*)$")

@@ -23,6 +23,9 @@ from tests.support import Proc, free_port, wait_for_master
 BIN = Path(sys.executable).parent
 LINE = re.compile(r"^\[ (INFO|ERROR)\] \[\d+\.\d{9}\]: (.*)$")
 ANSI = re.compile(r"\x1b\[[0-9;]*m")
+# the `kind` fixture's first build compiles twelve programs with g++ (30-80 s quiet on 2 cores, minutes
+# beside a second suite): pytest-timeout's 120 s counts fixture set-up
+pytestmark = pytest.mark.timeout(900)
 CACHE = Path(tempfile.gettempdir()) / "kame-test-cache"  # shared by runs: the programs build once per source
 
 

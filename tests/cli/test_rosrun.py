@@ -160,7 +160,7 @@ def test_rospy_tutorials_talker(tmp_path: Path, exe: str) -> None:
         try:
             assert "hello world" in talker.wait_line("hello world", timeout=20)
         finally:
-            talker.stop()
-        assert talker.popen.returncode in (0, -2)
+            out, err = talker.stop()
+        assert talker.popen.returncode in (0, -2), out + err
     finally:
         master.stop()
