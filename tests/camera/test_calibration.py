@@ -138,13 +138,13 @@ def bars_green(shot: Screenshot, picture_width: int = 640) -> bool:
 
 @pytest.mark.skipif(shutil.which("xdotool") is None, reason="xdotool clicks the window's buttons")
 def test_calibrate_save_and_commit_in_the_window(tmp_path: Path) -> None:
-    tarball = Path("/tmp/calibrationdata.tar.gz")
+    tarball = tmp_path / "calibrationdata.tar.gz"  # the calibrator's TMPDIR: /tmp/... for a user
     with xvfb("1024x768") as display, master(tmp_path) as sim:
         sim.start("usb_cam", "usb_cam_node", "_video_device:=testsrc", "_framerate:=5")
         views = Proc([sys.executable, str(VIEWS_NODE)], {**sim.env, "PYTHONPATH": str(REPO)}, cwd=sim.home)
         sim.procs.append(views)
         views.wait_line("publishing", timeout=60)
-        env = {**sim.env, "DISPLAY": display, "QT_QPA_PLATFORM": "xcb"}
+        env = {**sim.env, "DISPLAY": display, "QT_QPA_PLATFORM": "xcb", "TMPDIR": str(tmp_path)}
         calibrator = sim.start("camera_calibration", "cameracalibrator.py", "--size", "8x6", "--square", "0.108",
                                "image:=/camera/image_raw", "camera:=/usb_cam", env=env)
         calibrator.wait_line("OK")  # usb_cam's set_camera_info was found
@@ -199,7 +199,7 @@ def test_a_stereo_pair_comes_back() -> None:
 
 @pytest.mark.skipif(shutil.which("xdotool") is None, reason="xdotool clicks the window's buttons")
 def test_stereo_calibrate_save_and_commit_in_the_window(tmp_path: Path) -> None:
-    tarball = Path("/tmp/calibrationdata.tar.gz")
+    tarball = tmp_path / "calibrationdata.tar.gz"  # the calibrator's TMPDIR: /tmp/... for a user
     with xvfb("1600x900") as display, master(tmp_path) as sim:
         for side in ("left", "right"):
             sim.start("usb_cam", "usb_cam_node", f"__name:={side}", "_video_device:=testsrc", "_framerate:=5",
@@ -207,7 +207,7 @@ def test_stereo_calibrate_save_and_commit_in_the_window(tmp_path: Path) -> None:
         views = Proc([sys.executable, str(VIEWS_NODE), "stereo"], {**sim.env, "PYTHONPATH": str(REPO)}, cwd=sim.home)
         sim.procs.append(views)
         views.wait_line("publishing", timeout=60)
-        env = {**sim.env, "DISPLAY": display, "QT_QPA_PLATFORM": "xcb"}
+        env = {**sim.env, "DISPLAY": display, "QT_QPA_PLATFORM": "xcb", "TMPDIR": str(tmp_path)}
         calibrator = sim.start("camera_calibration", "cameracalibrator.py", "--size", "8x6", "--square", "0.108",
                                "left:=/stereo/left/image_raw", "right:=/stereo/right/image_raw",
                                "left_camera:=/left", "right_camera:=/right", env=env)

@@ -3,8 +3,8 @@ cameracalibrator.py --size 8x6 --square 0.108 image:=/usb_cam/image_raw camera:=
 
 Each image of `image` goes to the calibrator (kame.camera.calibrator) on a worker thread that
 takes the newest one; the window shows the result with the X, Y, Size and Skew bars. CALIBRATE
-computes the calibration and prints it; SAVE writes /tmp/calibrationdata.tar.gz (the kept views
-as left-NNNN.png, ost.yaml, ost.txt); COMMIT sends it to `camera`/set_camera_info and quits
+computes the calibration and prints it; SAVE writes /tmp/calibrationdata.tar.gz ($TMPDIR if
+set; the kept views as left-NNNN.png, ost.yaml, ost.txt); COMMIT sends it to `camera`/set_camera_info and quits
 when the camera stored it. q or Esc quits, s saves the display as /tmp/dumpN.png.
 """
 
@@ -12,8 +12,10 @@ from __future__ import annotations
 
 import argparse
 import io
+import os
 import sys
 import tarfile
+import tempfile
 import threading
 from collections.abc import Sequence
 from typing import Any
@@ -33,7 +35,11 @@ from kame.client.process import init_node, myargv
 from kame.client.services import ServiceException, ServiceProxy, wait_for_service
 from sensor_msgs.srv import SetCameraInfo
 
-TARBALL = "/tmp/calibrationdata.tar.gz"
+
+def tarball_path() -> str:
+    """Where SAVE writes: /tmp/calibrationdata.tar.gz as upstream, in $TMPDIR when that is set
+    (so two calibrations, or two test runs, at once each keep their own)."""
+    return os.path.join(tempfile.gettempdir(), "calibrationdata.tar.gz")
 
 
 def parse_options(args: list[str]) -> argparse.Namespace:
@@ -194,12 +200,13 @@ class CalibrationNode:
         files = self.archive_files()
         if not files:
             return
-        with tarfile.open(TARBALL, "w:gz") as archive:
+        tarball = tarball_path()
+        with tarfile.open(tarball, "w:gz") as archive:
             for file_name, data in files:
                 entry = tarfile.TarInfo(file_name)
                 entry.size = len(data)
                 archive.addfile(entry, io.BytesIO(data))
-        print(f"('Wrote calibration data to', '{TARBALL}')", flush=True)
+        print(f"('Wrote calibration data to', '{tarball}')", flush=True)
 
     def camera_infos(self) -> list[tuple[str, Any]]:
         """(camera namespace, CameraInfo) of each camera COMMIT sends to."""
