@@ -246,3 +246,23 @@ def test_a_private_parameter_argument_that_is_an_alias_bomb_is_refused(tmp_path:
         assert out.startswith("caught invalid command-line parameters: ~p: YAML aliases"), out + err
     finally:
         master.stop()
+
+
+def test_an_anymsg_subscriber_joins_a_typed_subscription_of_its_topic(tmp_path: Path) -> None:
+    # rostopic hz /clock under /use_sim_time: the node's clock subscribes /clock typed, hz with
+    # AnyMsg; rospy shares one subscription, kame refused the second with ROSException
+    port = free_port()
+    master = start_master(tmp_path, port)
+    code = ("import threading, rospy\nfrom rosgraph_msgs.msg import Clock\nrospy.init_node('joiner')\n"
+            "typed, anything = threading.Event(), threading.Event()\n"
+            "rospy.Subscriber('/c', Clock, lambda m: typed.set())\n"
+            "rospy.Subscriber('/c', rospy.AnyMsg, lambda m: anything.set())\n"
+            "rospy.Publisher('/c', Clock, queue_size=1, latch=True).publish(Clock())\n"
+            "print(typed.wait(20), anything.wait(20), flush=True)\n")
+    try:
+        proc = Proc([sys.executable, "-c", code], ros_env(tmp_path, f"http://127.0.0.1:{port}/"))
+        assert proc.popen.wait(30) == 0
+        out, err = proc.stop()
+        assert out.strip() == "True True", out + err
+    finally:
+        master.stop()

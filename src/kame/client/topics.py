@@ -301,7 +301,8 @@ class Subscriber(Topic):
                                       shared_memory=self.shared_memory)
                 entry = (impl, callbacks, [])
                 _subscriptions[self.resolved_name] = entry
-            elif entry[0].md5sum not in ("*", self.md5sum):
+            elif self.data_class is not AnyMsg and entry[0].md5sum not in ("*", self.md5sum):
+                # an AnyMsg subscriber joins whatever class the topic has (rospy's shared impl)
                 raise ROSException(f"tried to subscribe to [{self.resolved_name}] as [{self.type}], "
                                    f"but it is already subscribed as [{entry[0].type}]")
             entry[2].append(self)
