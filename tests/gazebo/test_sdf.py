@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from tests.gazebo import require_engine
+from tests.gazebo import in_own_process, require_engine
 
 require_engine()
 
@@ -371,6 +371,7 @@ def test_set_model_state_moves_and_launches_a_model() -> None:
 
 
 @pytest.mark.usefixtures("renders")
+@in_own_process
 def test_a_models_twist_is_set_where_it_is() -> None:
     world = World.from_sdf(sdf("<include><uri>model://box</uri><pose>1 2 3 0 0 1</pose></include>"))
     world.physics = Physics(gravity=(0.0, 0.0, 0.0))

@@ -9,7 +9,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from tests.gazebo import require_engine
+from tests.gazebo import in_own_process, require_engine
 
 require_engine()
 
@@ -123,6 +123,7 @@ def red_box(x: float, y: float, z: float, size: float = 0.2) -> str:
 
 
 @pytest.mark.usefixtures("renders")
+@in_own_process
 def test_a_camera_sees_a_red_box_at_the_pixels_its_k_predicts() -> None:
     world = world_with(red_box(3.0, 0.6, 0.8), camera())
     frame = world.camera_frame(only_sensor(world, "cam"))
@@ -148,6 +149,7 @@ def test_a_camera_sees_a_red_box_at_the_pixels_its_k_predicts() -> None:
 
 
 @pytest.mark.usefixtures("renders")
+@in_own_process
 def test_depth_values_equal_distances_along_the_optical_axis() -> None:
     world = world_with(WALLS, camera(160, 120, 1.0, "depth"))
     sensor = only_sensor(world, "cam")
@@ -265,6 +267,7 @@ def test_rays_see_a_collision_mesh_itself_not_its_hull(tmp_path: Path) -> None:
 
 
 @pytest.mark.usefixtures("renders")
+@in_own_process
 def test_camera_noise_is_gaussian_in_intensity() -> None:
     noisy = camera().replace("<clip>", "<noise><type>gaussian</type><mean>0</mean><stddev>0.05</stddev></noise><clip>")
     clean_world, noisy_world = world_with(red_box(3.0, 0.6, 0.8), camera()), world_with(red_box(3.0, 0.6, 0.8), noisy)
@@ -279,6 +282,7 @@ def test_camera_noise_is_gaussian_in_intensity() -> None:
 
 
 @pytest.mark.usefixtures("renders")
+@in_own_process
 def test_a_camera_sees_the_scenes_background() -> None:
     world = World.from_sdf(f"""<sdf version="1.6"><world name="w"><scene><ambient>0.1 0.2 0.3 1</ambient>
       <background>0 0 1 1</background></scene>{camera(32, 24)}</world></sdf>""")

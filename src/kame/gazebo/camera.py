@@ -14,13 +14,12 @@ model just before it renders, since MuJoCo keeps one clip range for the whole mo
 from __future__ import annotations
 
 import math
-import os
 from dataclasses import dataclass
 
 import numpy as np
 
 from kame.gazebo.assembly import VISUAL_GROUP
-from kame.gazebo.engine import mujoco
+from kame.gazebo.engine import BACKEND, gl_context_class, mujoco
 from kame.gazebo.errors import GazeboError
 from kame.gazebo.xmltree import Element
 
@@ -96,7 +95,7 @@ class _Offscreen:
     """One GL context with MuJoCo's offscreen buffer, a scene and the frame's buffers, of one size."""
 
     def __init__(self, model: mujoco.MjModel, width: int, height: int) -> None:
-        self.context = mujoco.GLContext(width, height)
+        self.context = gl_context_class()(width, height)
         self.context.make_current()
         self.renderer = mujoco.MjrContext(model, mujoco.mjtFontScale.mjFONTSCALE_150.value)
         mujoco.mjr_setBuffer(mujoco.mjtFramebuffer.mjFB_OFFSCREEN.value, self.renderer)
@@ -139,7 +138,7 @@ class Cameras:
                 self._offscreen[size] = _Offscreen(model, *size)
             except Exception as exc:  # no GL: PyOpenGL's, EGL's and MuJoCo's errors differ by what is missing
                 raise GazeboError(f"MuJoCo cannot render camera {camera!r} with MUJOCO_GL="
-                                  f"{os.environ.get('MUJOCO_GL', '')}: {exc} (headless rendering needs EGL: "
+                                  f"{BACKEND}: {exc} (headless rendering needs EGL: "
                                   f"apt-get install {' '.join(EGL_PACKAGES)})") from None
         offscreen = self._offscreen[size]
         model.cam_fovy[camera_id] = math.degrees(config.vertical_fov())
