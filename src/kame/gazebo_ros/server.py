@@ -25,6 +25,7 @@ from kame.gazebo.errors import GazeboError
 from kame.gazebo.world import World
 from kame.gazebo_ros import command_line
 from kame.gazebo_ros.api import GazeboApi
+from kame.gazebo_ros.client_feed import ClientFeed
 from kame.gazebo_ros.conversions import stamp
 from kame.gazebo_ros.models import ModelFactory, resources_from, world_file
 from kame.gazebo_ros.plugins import PluginHost
@@ -141,6 +142,7 @@ def run(options: command_line.ServerOptions) -> int:
                      finished=lambda: core.signal_shutdown("--iters reached"))
     host = PluginHost(sim, _info, _warn, _error)
     api: GazeboApi | None = None
+    feed: ClientFeed | None = None  # what gzclient windows draw
     clock = ClockPublisher(_number_param("~pub_clock_frequency", 0.0))
     with sim.lock:
         sim.report_warnings()
@@ -151,13 +153,18 @@ def run(options: command_line.ServerOptions) -> int:
         if bool(process.get_param("~enable_ros_network", True)):
             api = GazeboApi(sim, ModelFactory(sim, host, _warn))
             sim.add_listener(PerformanceMetrics())
+            feed = ClientFeed(sim)
     _info("Finished loading Gazebo ROS API Plugin.")
     if options.paused:
         _info("Simulation paused: /gazebo/unpause_physics runs it")
+    if feed is not None:
+        feed.start()
     sim.start()
     try:
         core.wait_for_shutdown(None)
     finally:
+        if feed is not None:
+            feed.close()
         sim.stop()
         with sim.lock:
             host.stop_all()
