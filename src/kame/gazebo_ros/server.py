@@ -194,11 +194,10 @@ def main(argv: Sequence[str] | None = None) -> int:
 
 
 def gzclient_main(argv: Sequence[str] | None = None) -> int:
-    """gzclient: the 3-D window is not written yet. It says so in one line and leaves the server
-    running (a closed gzclient never stops gzserver in Gazebo either)."""
-    print("gzclient: kame's Gazebo window is not available yet; gzserver keeps simulating "
-          "(watch it in rviz, or with rostopic)", file=sys.stderr)
-    return 0
+    """gzclient: Gazebo's window, kame.gzclient (a node of its own; closing it leaves gzserver running)."""
+    from kame.gzclient.main import main as window_main
+
+    return window_main(argv)
 
 
 def debug_main(argv: Sequence[str] | None = None) -> int:
@@ -212,6 +211,13 @@ def debug_main(argv: Sequence[str] | None = None) -> int:
 
 
 def gazebo_main(argv: Sequence[str] | None = None) -> int:
-    """gazebo: gzserver and gzclient; with no window yet, the server alone after gzclient's line."""
-    gzclient_main(argv)
-    return main(argv)
+    """gazebo: gzserver in this process and gzclient in its own, as Gazebo runs them; a closed window
+    leaves the server running, and the window ends with the server."""
+    from kame.gzclient.main import start_client
+
+    client = start_client(list(sys.argv if argv is None else argv))
+    try:
+        return main(argv)
+    finally:
+        client.terminate()
+        client.wait()

@@ -1,0 +1,63 @@
+"""gzclient's 3-D view: rviz's RenderView drawing the model's scene, with Gazebo's mouse instead
+of rviz's (kame.gzclient.model says which button does what). A left click that lands on a model
+selects it; in the translate or rotate mode its drag moves the model instead of the camera."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+import numpy as np
+from PySide6.QtCore import QPointF, Qt
+from PySide6.QtGui import QMouseEvent, QWheelEvent
+
+from kame.gzclient.model import ClientModel, ModelMove, drag_action, move_camera, view_ray
+from kame.rviz.view import RenderView
+
+
+class GazeboView(RenderView):
+    def __init__(self, model: ClientModel, moved: Callable[[ModelMove], None]) -> None:
+        super().__init__()
+        self.model = model
+        self.camera = model.camera
+        self._moved = moved
+        self._previous: QPointF | None = None
+
+    def _ray(self, event: QMouseEvent) -> tuple[np.ndarray, np.ndarray]:
+        p = event.position()
+        return view_ray(self.camera, p.x(), p.y(), self.width(), self.height())
+
+    def refresh(self) -> None:
+        self.background = self.model.background
+        self.show_scene(self.model.render())
+
+    def mousePressEvent(self, event: QMouseEvent) -> None:
+        self._previous = event.position()
+        shift = bool(event.modifiers() & Qt.KeyboardModifier.ShiftModifier)
+        if event.button() == Qt.MouseButton.LeftButton and not shift and self.model.press(*self._ray(event)):
+            self.refresh()
+
+    def mouseMoveEvent(self, event: QMouseEvent) -> None:
+        if self._previous is None:
+            return
+        if self.model.dragging:
+            move = self.model.drag(*self._ray(event))
+            if move is not None:
+                self._moved(move)
+            return
+        buttons = event.buttons()
+        action = drag_action(bool(buttons & Qt.MouseButton.LeftButton), bool(buttons & Qt.MouseButton.MiddleButton),
+                             bool(buttons & Qt.MouseButton.RightButton),
+                             bool(event.modifiers() & Qt.KeyboardModifier.ShiftModifier))
+        dx, dy = event.position().x() - self._previous.x(), event.position().y() - self._previous.y()
+        self._previous = event.position()
+        if action is not None:
+            move_camera(self.camera, action, dx, dy, self.height())
+            self.update()
+
+    def mouseReleaseEvent(self, event: QMouseEvent) -> None:
+        self.model.release()
+        self._previous = None
+
+    def wheelEvent(self, event: QWheelEvent) -> None:
+        self.camera.zoom(event.angleDelta().y() / 120)
+        self.update()
