@@ -193,13 +193,6 @@ def main(argv: Sequence[str] | None = None) -> int:
         core.signal_shutdown("gzserver exiting")
 
 
-def gzclient_main(argv: Sequence[str] | None = None) -> int:
-    """gzclient: Gazebo's window, kame.gzclient (a node of its own; closing it leaves gzserver running)."""
-    from kame.gzclient.main import main as window_main
-
-    return window_main(argv)
-
-
 def debug_main(argv: Sequence[str] | None = None) -> int:
     """debug (empty_world.launch debug:=true): gazebo_ros runs gzserver under gdb; kame's server is
     Python, so it runs with Python's fault handler instead, which prints every thread's stack on a crash."""

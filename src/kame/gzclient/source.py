@@ -14,11 +14,14 @@ from typing import Any
 
 from kame.client import services, topics
 from kame.client.errors import ROSException
-from kame.gazebo.resources import SHIPPED_MODELS
 from kame.gzclient import scene_message as sm
 from kame.gzclient.model import ModelMove
 from kame.gzclient.scene_message import Quaternion, Vector3
 
+# kame.gazebo's shipped models (its SHIPPED_MODELS), found without importing kame.gazebo: that loads
+# MuJoCo, which sets PYOPENGL_PLATFORM=egl for its renderer, and PyOpenGL then finds no context of
+# Qt's (GLX) to draw the window in
+SHIPPED_MODELS = Path(__file__).resolve().parents[1] / "gazebo" / "models"
 SERVICE_TIMEOUT = 5.0  # seconds to wait for a /gazebo service before saying it is not there
 SHAPES = {"box": "unit_box", "sphere": "unit_sphere", "cylinder": "unit_cylinder"}  # Gazebo's names for them
 
@@ -42,7 +45,7 @@ def _poses(msg: Any) -> Poses:
 
 
 def shape_sdf(shape: str) -> str:
-    return (Path(SHIPPED_MODELS) / shape / "model.sdf").read_text()
+    return (SHIPPED_MODELS / shape / "model.sdf").read_text()
 
 
 class ClientSource:
