@@ -5,12 +5,15 @@ model and passes what the user did to the source; a frame timer takes what arriv
 
 from __future__ import annotations
 
+from typing import Protocol
+
 from PySide6.QtCore import Qt, QTimer
 from PySide6.QtGui import QAction, QActionGroup, QCloseEvent, QKeySequence
 from PySide6.QtWidgets import QLabel, QMainWindow, QToolBar, QToolButton, QWidget
 
-from kame.gzclient.model import ROTATE, SELECT, TRANSLATE, ClientModel, unique_name
-from kame.gzclient.source import SHAPES, ClientSource
+from kame.gzclient.model import ROTATE, SELECT, TRANSLATE, ClientModel, ModelMove, unique_name
+from kame.gzclient.scene_message import Vector3
+from kame.gzclient.source import SHAPES, Update
 from kame.gzclient.status import StatusFigures
 from kame.gzclient.view import GazeboView
 
@@ -18,8 +21,20 @@ FRAME_PERIOD_MS = 33  # the window takes what arrived 30 times a second
 TITLE = "Gazebo"
 
 
+class Source(Protocol):
+    """What the window asks of its ROS side (kame.gzclient.source.ClientSource)."""
+
+    def take(self) -> Update: ...
+    def set_paused(self, paused: bool) -> None: ...
+    def step(self, iterations: int = 1) -> None: ...
+    def reset_world(self) -> None: ...
+    def reset_simulation(self) -> None: ...
+    def move(self, move: ModelMove) -> None: ...
+    def insert(self, shape: str, name: str, position: Vector3) -> None: ...
+
+
 class GzClientWindow(QMainWindow):
-    def __init__(self, source: ClientSource) -> None:
+    def __init__(self, source: Source) -> None:
         super().__init__()
         self.setWindowTitle(TITLE)
         self.source = source
