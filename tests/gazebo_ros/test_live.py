@@ -19,7 +19,9 @@ from tests.gazebo_ros.gazebo_sim import DATA, debian_message_packages, gazebo
 from tests.support import SYSTEM_PYTHON, Proc, have_debian_ros
 from tests.turtlesim.sim import BIN, Sim, wait_until
 
-pytest.importorskip("mujoco", reason="kame[gazebo] (MuJoCo) is not installed")
+# through kame.gazebo.engine, which chooses the headless renderer before MuJoCo loads (a bare `import
+# mujoco` would fix its GL back end for every later test in this process)
+pytest.importorskip("kame.gazebo.engine", reason="kame[gazebo] (MuJoCo) is not installed")
 
 BOX_URDF = """<robot name="box"><link name="base_link">
   <inertial><mass value="1"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial>

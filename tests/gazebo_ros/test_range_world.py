@@ -11,7 +11,9 @@ import pytest
 from tests.support import Proc
 from tests.turtlesim.sim import BIN, master
 
-pytest.importorskip("mujoco", reason="kame[gazebo] (MuJoCo) is not installed")
+# through kame.gazebo.engine, which chooses the headless renderer before MuJoCo loads (a bare `import
+# mujoco` would fix its GL back end for every later test in this process)
+pytest.importorskip("kame.gazebo.engine", reason="kame[gazebo] (MuJoCo) is not installed")
 
 
 def test_the_sonar_reads_its_wall_and_gzclient_says_what_is_missing(tmp_path: Path) -> None:

@@ -14,7 +14,9 @@ from tests.gazebo_ros.gazebo_sim import DATA, gazebo
 from tests.support import Proc
 from tests.turtlesim.sim import BIN, wait_until
 
-pytest.importorskip("mujoco", reason="kame[gazebo] (MuJoCo) is not installed")
+# through kame.gazebo.engine, which chooses the headless renderer before MuJoCo loads (a bare `import
+# mujoco` would fix its GL back end for every later test in this process)
+pytest.importorskip("kame.gazebo.engine", reason="kame[gazebo] (MuJoCo) is not installed")
 
 
 def test_imu_bumper_p3d_drives_depth_camera_and_block_laser(tmp_path: Path) -> None:
