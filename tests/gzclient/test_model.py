@@ -79,7 +79,7 @@ def test_stats_round_trip_and_bad_stats_are_refused() -> None:
 
 
 def test_a_worlds_visuals_become_the_scene_gzclient_draws() -> None:
-    pytest.importorskip("mujoco", reason="kame[gazebo] (MuJoCo) is not installed")
+    pytest.importorskip("kame.gazebo.engine", reason="kame[gazebo] (MuJoCo) is not installed")  # chooses EGL first
     from kame.gazebo.world import World
     from kame.gazebo_ros.client_feed import scene_of
 

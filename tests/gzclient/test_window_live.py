@@ -17,10 +17,10 @@ import pytest
 from tests.gazebo_ros.gazebo_sim import gazebo
 from tests.support import Proc
 from tests.support.tour import shoot
-from tests.turtlesim.sim import BIN, Sim, wait_until
-from tests.turtlesim.xserver import Screenshot, xvfb
+from tests.turtlesim.sim import BIN, Sim, master, wait_until
+from tests.turtlesim.xserver import Screenshot, find_window, xvfb
 
-pytest.importorskip("mujoco", reason="kame[gazebo] (MuJoCo) is not installed")
+pytest.importorskip("kame.gazebo.engine", reason="kame[gazebo] (MuJoCo) is not installed")  # chooses EGL first
 pytest.importorskip("PySide6", reason="kame[gui] is not installed")
 pytest.importorskip("OpenGL", reason="kame[gui] (PyOpenGL) is not installed")
 
@@ -102,3 +102,14 @@ def test_without_a_display_gzclient_says_so_in_one_line(tmp_path: Path) -> None:
     assert result.stderr.strip().splitlines() == [
         "gzclient: No display (DISPLAY is not set): gzclient runs headless, without a window; "
         "gzserver keeps simulating"]
+
+
+def test_gazebo_runs_the_server_and_its_window_which_ends_with_it(tmp_path: Path) -> None:
+    """`rosrun gazebo_ros gazebo WORLD`: the window, a process of its own, draws the server's world
+    although the server's MuJoCo chose EGL for PyOpenGL in the environment the window inherits."""
+    with xvfb("1280x800") as display, master(tmp_path) as sim:
+        server = sim.start("gazebo_ros", "gazebo", str(WORLD), env=dict(sim.env, DISPLAY=display),
+                           wait="Finished loading Gazebo ROS API Plugin.")
+        shoot(display, "Gazebo", "gazebo_server_and_window", ready=lambda shot: red_pixels(shot) > 200)
+        server.stop()
+        wait_until(lambda: find_window(display, "Gazebo") is None, timeout=30, what="the window to end with gazebo")

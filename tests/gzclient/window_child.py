@@ -8,18 +8,21 @@ and "play" (the play/pause button), "step", "close" (the window closes; the node
 
 from __future__ import annotations
 
+import os
 import sys
 
-from PySide6.QtCore import QSocketNotifier, QTimer
-from PySide6.QtWidgets import QApplication
-
-from kame.client import core, process
-from kame.gzclient.main import WINDOW_SIZE
-from kame.gzclient.source import ClientSource
-from kame.gzclient.window import GzClientWindow
+from kame.gzclient.main import WINDOW_SIZE, forget_mujocos_platform
 
 
 def main() -> int:
+    forget_mujocos_platform(os.environ)  # before PyOpenGL loads, as gzclient's main does
+    from PySide6.QtCore import QSocketNotifier, QTimer
+    from PySide6.QtWidgets import QApplication
+
+    from kame.client import core, process
+    from kame.gzclient.source import ClientSource
+    from kame.gzclient.window import GzClientWindow
+
     process.init_node("gazebo_gui", argv=sys.argv)
     app = QApplication(["gzclient"])
     source = ClientSource()

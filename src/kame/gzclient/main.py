@@ -10,7 +10,7 @@ import importlib.util
 import os
 import subprocess
 import sys
-from collections.abc import Sequence
+from collections.abc import MutableMapping, Sequence
 
 NODE_NAME = "gazebo_gui"  # as empty_world.launch names gzclient's node
 WINDOW_SIZE = (1024, 720)
@@ -29,8 +29,18 @@ def no_window_reason(env: dict[str, str]) -> str | None:
     return None
 
 
+def forget_mujocos_platform(env: MutableMapping[str, str]) -> None:
+    """MuJoCo, loaded with MUJOCO_GL=egl, sets PYOPENGL_PLATFORM=egl for its headless renderer, and
+    a gzclient started by gzserver (`gazebo`) or from its environment inherits it: PyOpenGL would then
+    look for an EGL context where Qt made the window's (GLX on X11) and draw nothing. The window's
+    PyOpenGL finds Qt's platform by itself."""
+    if env.get("PYOPENGL_PLATFORM") == "egl" and env.get("MUJOCO_GL") == "egl":
+        del env["PYOPENGL_PLATFORM"]
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     argv = list(sys.argv if argv is None else argv)
+    forget_mujocos_platform(os.environ)
     reason = no_window_reason(dict(os.environ))
     if reason is not None:
         print(f"gzclient: {reason}", file=sys.stderr)
