@@ -72,8 +72,11 @@ def test_a_message_that_is_not_a_scene_is_refused_with_a_reason(text: str) -> No
 
 
 def test_stats_round_trip_and_bad_stats_are_refused() -> None:
-    stats = sm.WorldStats(12.5, 13.0, 12500, True)
+    stats = sm.WorldStats(12.5, 13.0, 12500, False)
     assert sm.decode_stats(sm.encode_stats(stats)) == stats
+    paused = sm.WorldStats(12.5, 13.0, 12500, True, {"m::l": ((1.0, 2.0, 3.0), (0.0, 0.0, 0.0, 1.0))},
+                           {"m": ((1.0, 2.0, 3.0), (0.0, 0.0, 0.0, 1.0))})
+    assert sm.decode_stats(sm.encode_stats(paused)) == paused
     with pytest.raises(sm.SceneMessageError):
         sm.decode_stats('{"sim_time": "soon"}')
 

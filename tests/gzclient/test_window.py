@@ -73,7 +73,7 @@ def test_what_arrives_fills_the_status_bar_and_the_scene(window: tuple[GzClientW
     assert any(batch.kind == "triangles" for batch in shown.view.scene.batches)
     source.arriving = Update(problems=["/gazebo/spawn_sdf_model: refused"])
     shown.take()
-    assert shown.statusBar().currentMessage() == "/gazebo/spawn_sdf_model: refused"
+    assert shown.problem_label.text() == "/gazebo/spawn_sdf_model: refused"
 
 
 def test_play_pause_step_and_the_resets(window: tuple[GzClientWindow, StandInSource]) -> None:

@@ -13,6 +13,7 @@ from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
+import yaml
 
 from tests.gazebo_ros.gazebo_sim import gazebo
 from tests.support import Proc
@@ -51,6 +52,17 @@ def sim_times(proc: Proc) -> list[tuple[str, float]]:
     return found
 
 
+def send(child: Proc, line: str) -> None:
+    assert child.popen.stdin is not None
+    child.popen.stdin.write(line + "\n")
+    child.popen.stdin.flush()
+
+
+def box_position(sim: Sim) -> tuple[float, float]:
+    state = yaml.safe_load(sim.run("rosservice", "call", "/gazebo/get_model_state", "red_box", "world").stdout)
+    return float(state["pose"]["position"]["x"]), float(state["pose"]["position"]["y"])
+
+
 @pytest.fixture(scope="module")
 def live(tmp_path_factory: pytest.TempPathFactory) -> Iterator[tuple[Sim, Proc, str]]:
     home = tmp_path_factory.mktemp("gzclient")
@@ -83,6 +95,15 @@ def test_the_window_draws_the_box_follows_time_pauses_steps_and_closes_leaving_t
     child.popen.stdin.flush()
     wait_until(lambda: any(t > paused_at for _, t in sim_times(child)), timeout=30, what="the step")
     assert max(t for _, t in sim_times(child)) == pytest.approx(paused_at + 0.001, abs=1e-6)  # one max_step_size
+
+    send(child, "drag red_box 1.5 -1")
+    child.wait_line("dragged red_box selected red_box", timeout=30)
+    wait_until(lambda: box_position(sim) == pytest.approx((1.5, -1.0), abs=0.05), timeout=30,
+               what="the dragged box where the mouse left it")
+    send(child, "insert box")  # where the view looks: where the red box was
+    wait_until(lambda: "unit_box" in sim.run("rosservice", "call", "/gazebo/get_world_properties").stdout,
+               timeout=30, what="the inserted box")
+    shoot(display, "Gazebo", "gzclient_dragged_and_inserted", ready=lambda shot: red_pixels(shot) > 200)
 
     child.popen.stdin.write("close\n")
     child.popen.stdin.flush()

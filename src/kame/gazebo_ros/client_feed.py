@@ -1,7 +1,8 @@
 """What gzserver sends its gzclient windows (kame.gzclient.scene_message says the format): the
 latched scene, sent again when a spawn or delete rebuilds the world (World.generation), and the
-world's statistics five times a second, on a thread this module owns (wall-clock paced: the world
-may be paused, and a paused world makes no steps to hang them on). It also takes gzclient's step
+world's statistics five times a second (with every pose while paused), on a thread this module
+owns (wall-clock paced: the world may be paused, and a paused world makes no steps to hang them
+on). It also takes gzclient's step
 button: /gazebo/kame/step steps a paused world so many iterations, as Gazebo's WorldControl
 multi_step does."""
 
@@ -68,7 +69,14 @@ class ClientFeed:
             if now < self._last_sim_time:  # reset_simulation: real time starts again with sim time
                 self._started = time.monotonic()
             self._last_sim_time = now
-            stats = sm.WorldStats(now, time.monotonic() - self._started, world.iterations, self._sim.paused)
+            links = models = None
+            if self._sim.paused:  # no steps, so no link_states: the poses come with the stats
+                links = {name: (state.pose.position, state.pose.orientation)
+                         for name, state in world.link_states().items()}
+                models = {name: (state.pose.position, state.pose.orientation)
+                          for name, state in world.model_states().items()}
+            stats = sm.WorldStats(now, time.monotonic() - self._started, world.iterations, self._sim.paused,
+                                  links, models)
         if scene is not None:
             self._scene.publish(String(sm.encode_scene(scene)))
             self._sent_generation = scene.generation

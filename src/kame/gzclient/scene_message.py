@@ -10,7 +10,10 @@ travel over its transport, which ROS tools cannot read; JSON in a String can be 
   mesh's "triangles" its corners as little-endian float32 x y z, base64 (a 10k-triangle mesh
   is 480 kB in JSON numbers, 480 kB / 0.75 as base64), "" for the other shapes.
 - /gazebo/kame/world_stats (5 times a second of wall time while someone listens): what
-  gzclient's status bar shows. {"sim_time", "real_time", "iterations", "paused"}.
+  gzclient's status bar shows. {"sim_time", "real_time", "iterations", "paused"}; while paused
+  also "links" and "models", {name: [x, y, z, qx, qy, qz, qw]}: gazebo_ros publishes
+  /gazebo/link_states and model_states after steps only, and a model moved or spawned in a paused
+  world must still be drawn where it is.
 
 Pure values both ways: the server encodes, the window's model decodes."""
 
@@ -73,12 +76,17 @@ class SceneMessage:
     visuals: tuple[VisualMessage, ...]
 
 
+Poses = dict[str, tuple[Vector3, Quaternion]]
+
+
 @dataclass(frozen=True)
 class WorldStats:
     sim_time: float  # seconds
     real_time: float  # seconds of wall time the world has been running (paused or not)
     iterations: int
     paused: bool
+    links: Poses | None = None  # while paused: every link's pose, by "model::link"
+    models: Poses | None = None  # while paused: every model's pose
 
 
 def _floats(values: Any, count: int | None, what: str) -> tuple[float, ...]:
@@ -155,16 +163,38 @@ def decode_scene(text: str) -> SceneMessage:
         raise SceneMessageError(f"not a kame scene: {exc!r}") from exc
 
 
+def _pose_lists(poses: Poses) -> dict[str, list[float]]:
+    return {name: [*position, *orientation] for name, (position, orientation) in poses.items()}
+
+
+def _poses(doc: Any) -> Poses | None:
+    if doc is None:
+        return None
+    if not isinstance(doc, dict):
+        raise SceneMessageError(f"poses must be an object of names, not {doc!r}")
+    poses = {}
+    for name, values in doc.items():
+        x, y, z, qx, qy, qz, qw = _floats(values, 7, f"{name}'s pose")
+        poses[str(name)] = ((x, y, z), (qx, qy, qz, qw))
+    return poses
+
+
 def encode_stats(stats: WorldStats) -> str:
-    return json.dumps({"sim_time": stats.sim_time, "real_time": stats.real_time, "iterations": stats.iterations,
-                       "paused": stats.paused})
+    doc: dict[str, Any] = {"sim_time": stats.sim_time, "real_time": stats.real_time, "iterations": stats.iterations,
+                           "paused": stats.paused}
+    if stats.links is not None:
+        doc["links"] = _pose_lists(stats.links)
+    if stats.models is not None:
+        doc["models"] = _pose_lists(stats.models)
+    return json.dumps(doc, separators=(",", ":"))
 
 
 def decode_stats(text: str) -> WorldStats:
     try:
         doc = json.loads(text)
         sim_time, real_time = _floats([doc["sim_time"], doc["real_time"]], 2, "the times")
-        return WorldStats(sim_time, real_time, int(doc["iterations"]), bool(doc["paused"]))
+        return WorldStats(sim_time, real_time, int(doc["iterations"]), bool(doc["paused"]), _poses(doc.get("links")),
+                          _poses(doc.get("models")))
     except (KeyError, TypeError, ValueError) as exc:
         if isinstance(exc, SceneMessageError):
             raise

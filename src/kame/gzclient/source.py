@@ -16,7 +16,7 @@ from kame.client import services, topics
 from kame.client.errors import ROSException
 from kame.gzclient import scene_message as sm
 from kame.gzclient.model import ModelMove
-from kame.gzclient.scene_message import Quaternion, Vector3
+from kame.gzclient.scene_message import Poses, Vector3
 
 # kame.gazebo's shipped models (its SHIPPED_MODELS), found without importing kame.gazebo: that loads
 # MuJoCo, which sets PYOPENGL_PLATFORM=egl for its renderer, and PyOpenGL then finds no context of
@@ -24,8 +24,6 @@ from kame.gzclient.scene_message import Quaternion, Vector3
 SHIPPED_MODELS = Path(__file__).resolve().parents[1] / "gazebo" / "models"
 SERVICE_TIMEOUT = 5.0  # seconds to wait for a /gazebo service before saying it is not there
 SHAPES = {"box": "unit_box", "sphere": "unit_sphere", "cylinder": "unit_cylinder"}  # Gazebo's names for them
-
-Poses = dict[str, tuple[Vector3, Quaternion]]
 
 
 @dataclass
@@ -88,6 +86,10 @@ class ClientSource:
             return
         with self._lock:
             self._update.stats = stats
+            if stats.links is not None:  # a paused world's poses (no link_states while paused)
+                self._update.links = stats.links
+            if stats.models is not None:
+                self._update.models = stats.models
 
     def _on_links(self, msg: Any) -> None:
         poses = _poses(msg)

@@ -18,6 +18,7 @@ from kame.gzclient.status import StatusFigures
 from kame.gzclient.view import GazeboView
 
 FRAME_PERIOD_MS = 33  # the window takes what arrived 30 times a second
+PROBLEM_SHOWN_MS = 10_000  # how long a refused request stays said in the bar
 TITLE = "Gazebo"
 
 
@@ -106,6 +107,13 @@ class GzClientWindow(QMainWindow):
         for label in self.status_labels:
             label.setContentsMargins(8, 0, 8, 0)
             bar.addWidget(label)
+        self.problem_label = QLabel(self)  # a refused request, said in the bar the user is looking at
+        self.problem_label.setStyleSheet("color: #b00000")
+        self.problem_label.setContentsMargins(8, 0, 8, 0)
+        bar.addWidget(self.problem_label)
+        self._problem_timer = QTimer(self)
+        self._problem_timer.setSingleShot(True)
+        self._problem_timer.timeout.connect(self.problem_label.clear)
         self.addToolBar(Qt.ToolBarArea.BottomToolBarArea, bar)
         self._show_status()
 
@@ -135,8 +143,9 @@ class GzClientWindow(QMainWindow):
         if update.stats is not None:
             self.status.update(update.stats)
             self._show_status()
-        for problem in update.problems:
-            self.statusBar().showMessage(problem, 10_000)
+        if update.problems:
+            self.problem_label.setText(update.problems[-1])
+            self._problem_timer.start(PROBLEM_SHOWN_MS)
         self.view.refresh()
 
     def _show_status(self) -> None:
