@@ -134,3 +134,12 @@ def test_gazebo_runs_the_server_and_its_window_which_ends_with_it(tmp_path: Path
         shoot(display, "Gazebo", "gazebo_server_and_window", ready=lambda shot: red_pixels(shot) > 200)
         server.stop()
         wait_until(lambda: find_window(display, "Gazebo") is None, timeout=30, what="the window to end with gazebo")
+
+
+def test_empty_world_launch_with_gui_true_opens_the_window(tmp_path: Path) -> None:
+    with xvfb("1280x800") as display, master(tmp_path) as sim:
+        sim.env["DISPLAY"] = display
+        launch = Proc([str(BIN / "roslaunch"), "gazebo_ros", "empty_world.launch", "gui:=true",
+                       f"world_name:={WORLD}"], sim.env, cwd=tmp_path)
+        sim.procs.append(launch)
+        shoot(display, "Gazebo", "empty_world_launch_gui", ready=lambda shot: red_pixels(shot) > 200)
