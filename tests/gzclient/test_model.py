@@ -19,6 +19,7 @@ from kame.gzclient.model import (
     ZOOM,
     ClientModel,
     drag_action,
+    focus_on,
     unique_name,
     view_ray,
 )
@@ -168,6 +169,17 @@ def test_gazebos_mouse_on_the_camera() -> None:
     assert drag_action(left=False, middle=False, right=False, shift=False) is None
     camera = ClientModel().camera
     assert camera.eye() == pytest.approx((5.0, -5.0, 2.0))  # gzclient's first view
+
+
+def test_orbit_and_wheel_turn_about_the_point_under_the_mouse_without_moving_the_eye() -> None:
+    model = box_model()
+    point = model.surface_point(*ray_at(model, (0.0, 0.0, 1.0)))  # the box's top face
+    assert point is not None and point[2] == pytest.approx(1.0, abs=1e-6)
+    ground = model.surface_point(*ray_at(model, (2.0, 1.0, 0.0)))
+    assert ground == pytest.approx((2.0, 1.0, 0.0), abs=1e-6)
+    eye = model.camera.eye()
+    focus_on(model.camera, point)
+    assert model.camera.eye() == pytest.approx(eye) and model.camera.focal_point == pytest.approx(point)
 
 
 def test_inserted_shapes_are_named_as_gazebo_names_them_and_stand_where_the_view_looks() -> None:

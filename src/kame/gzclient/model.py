@@ -4,7 +4,8 @@ the selection, the ray picking a model under the mouse, the translate and rotate
 become set_model_state requests, and the camera moved by Gazebo's mouse.
 
 Gazebo 11's mouse (its OrbitViewController): a left drag pans, a middle drag or Shift and a left
-drag orbit, a right drag zooms (up: nearer), the wheel zooms. The translate mode drags a model
+drag orbit about the point under the mouse at the press, a right drag zooms (up: nearer), the
+wheel zooms towards the point under the mouse. The translate mode drags a model
 over the horizontal plane through its origin (Gazebo's default, no axis key held); the rotate mode
 turns it about the vertical axis through its origin (the ring Gazebo shows around z)."""
 
@@ -60,6 +61,19 @@ def move_camera(camera: Camera, action: str, dx: float, dy: float, height: int) 
         camera.pan(dx, dy, height)
     elif action == ZOOM:
         camera.zoom(-dy / 20)  # up brings the eye nearer, as Gazebo's right drag
+
+
+def focus_on(camera: Camera, point: np.ndarray) -> None:
+    """Make `point` the orbit's focal point without moving the eye (Gazebo orbits and zooms about
+    what is under the mouse)."""
+    offset = camera.eye() - point
+    distance = float(np.linalg.norm(offset))
+    if distance < 1e-6:
+        return
+    camera.focal_point = np.asarray(point, dtype=float)
+    camera.distance = distance
+    camera.yaw = math.atan2(offset[1], offset[0])
+    camera.pitch = math.asin(max(-1.0, min(1.0, offset[2] / distance)))
 
 
 def view_ray(camera: Camera, x: float, y: float, width: int, height: int) -> tuple[np.ndarray, np.ndarray]:
@@ -261,6 +275,21 @@ class ClientModel:
             if distance is not None and (nearest is None or distance < nearest[0]):
                 nearest = (distance, visual.model)
         return None if nearest is None else nearest[1]
+
+    def surface_point(self, origin: np.ndarray, direction: np.ndarray) -> np.ndarray | None:
+        """The first point the ray meets on any visual, the ground plane's too; else on z = 0."""
+        nearest: float | None = None
+        for visual in self._visuals:
+            triangles = self._world_triangles(visual)
+            if triangles is None:
+                continue
+            distance = ray_triangles(origin, direction, triangles)
+            if distance is not None and (nearest is None or distance < nearest):
+                nearest = distance
+        if nearest is not None:
+            hit: np.ndarray = origin + nearest * direction
+            return hit
+        return horizontal_hit(origin, direction, 0.0)
 
     def select(self, model: str | None) -> None:
         if model != self.selected:

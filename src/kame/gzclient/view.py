@@ -1,5 +1,6 @@
 """gzclient's 3-D view: rviz's RenderView drawing the model's scene, with Gazebo's mouse instead
-of rviz's (kame.gzclient.model says which button does what). A left click that lands on a model
+of rviz's (kame.gzclient.model says which button does what): an orbit and the wheel first take the
+point under the mouse as the focal point, as Gazebo does. A left click that lands on a model
 selects it; in the translate or rotate mode its drag moves the model instead of the camera."""
 
 from __future__ import annotations
@@ -10,7 +11,7 @@ import numpy as np
 from PySide6.QtCore import QPointF, Qt
 from PySide6.QtGui import QMouseEvent, QWheelEvent
 
-from kame.gzclient.model import ClientModel, ModelMove, drag_action, move_camera, view_ray
+from kame.gzclient.model import ORBIT, ClientModel, ModelMove, drag_action, focus_on, move_camera, view_ray
 from kame.rviz.view import RenderView
 
 
@@ -30,10 +31,19 @@ class GazeboView(RenderView):
         self.background = self.model.background
         self.show_scene(self.model.render())
 
+    def _focus_under(self, event: QMouseEvent | QWheelEvent) -> None:
+        p = event.position()
+        point = self.model.surface_point(*view_ray(self.camera, p.x(), p.y(), self.width(), self.height()))
+        if point is not None:
+            focus_on(self.camera, point)
+
     def mousePressEvent(self, event: QMouseEvent) -> None:
         self._previous = event.position()
         shift = bool(event.modifiers() & Qt.KeyboardModifier.ShiftModifier)
-        if event.button() == Qt.MouseButton.LeftButton and not shift and self.model.press(*self._ray(event)):
+        left, middle = event.button() == Qt.MouseButton.LeftButton, event.button() == Qt.MouseButton.MiddleButton
+        if drag_action(left, middle, False, shift) == ORBIT:
+            self._focus_under(event)
+        elif left and self.model.press(*self._ray(event)):
             self.refresh()
 
     def mouseMoveEvent(self, event: QMouseEvent) -> None:
@@ -59,5 +69,6 @@ class GazeboView(RenderView):
         self._previous = None
 
     def wheelEvent(self, event: QWheelEvent) -> None:
+        self._focus_under(event)
         self.camera.zoom(event.angleDelta().y() / 120)
         self.update()
