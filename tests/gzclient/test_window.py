@@ -111,3 +111,44 @@ def test_the_bars_fit_a_small_window(window: tuple[GzClientWindow, StandInSource
     shown.resize(800, 600)
     for bar in shown.findChildren(QToolBar):
         assert bar.sizeHint().width() <= 800, f"the {bar.windowTitle()} bar is clipped"
+
+
+def _drag(view: Any, button: Any, start: tuple[float, float], end: tuple[float, float], shift: bool = False) -> None:
+    from PySide6.QtCore import QPoint, Qt
+    from PySide6.QtTest import QTest
+
+    held = Qt.KeyboardModifier.ShiftModifier if shift else Qt.KeyboardModifier.NoModifier
+    QTest.mousePress(view, button, held, QPoint(round(start[0]), round(start[1])))
+    for fraction in (0.25, 0.5, 0.75, 1.0):
+        x, y = start[0] + fraction * (end[0] - start[0]), start[1] + fraction * (end[1] - start[1])
+        QTest.mouseMove(view, QPoint(round(x), round(y)))
+    QTest.mouseRelease(view, button, held, QPoint(round(end[0]), round(end[1])))
+
+
+def test_the_mouse_as_gazebos(window: tuple[GzClientWindow, StandInSource], qtbot: Any) -> None:
+    import numpy as np
+    from PySide6.QtCore import Qt
+
+    shown, source = window
+    source.arriving = Update(scene=box_scene(), links={"red_box::link": ((0, 0, 0.5), (0, 0, 0, 1))},
+                             models={"red_box": ((0, 0, 0.5), (0, 0, 0, 1))})
+    shown.take()
+    view, camera = shown.view, shown.view.camera
+    qtbot.waitUntil(lambda: view.width() > 100)
+    centre = (view.width() / 2, view.height() / 2)
+    yaw, focal = camera.yaw, camera.focal_point.copy()
+    _drag(view, Qt.MouseButton.MiddleButton, centre, (centre[0] + 100, centre[1]))
+    assert camera.yaw != pytest.approx(yaw), "a middle drag orbits"
+    eye, yaw = camera.eye().copy(), camera.yaw
+    _drag(view, Qt.MouseButton.LeftButton, (50, 50), (150, 50))
+    assert not np.allclose(camera.eye(), eye) and camera.yaw == pytest.approx(yaw), "a left drag pans"
+    assert not np.allclose(camera.focal_point, focal)
+    assert source.asked == [] and shown.model.selected is None  # drags on the ground move no model
+
+    shown.mode_actions[TRANSLATE].trigger()
+    box = camera.project(np.array([(0.0, 0.0, 0.5)]), view.width(), view.height())[0]
+    _drag(view, Qt.MouseButton.LeftButton, (box[0], box[1]), (box[0] + 40, box[1] + 20))
+    moves = [asked[1] for asked in source.asked if asked[0] == "move"]
+    assert moves and all(move.model == "red_box" for move in moves)
+    assert moves[-1].position[2] == pytest.approx(0.5) and moves[-1].position[:2] != pytest.approx((0, 0))
+    assert shown.model.selected == "red_box"
