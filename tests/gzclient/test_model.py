@@ -116,6 +116,14 @@ def test_the_scene_is_the_same_object_until_poses_or_selection_change() -> None:
     assert model.render() is not second
 
 
+def test_the_world_lights_as_opengl_takes_them() -> None:
+    model = box_model()
+    assert model.drawn_models() == ["ground_plane", "red_box"]
+    (sun,) = model.lights
+    towards = np.array([0.5, -0.1, 0.9]) / np.linalg.norm([0.5, -0.1, 0.9])
+    assert sun.position == pytest.approx((*towards, 0.0)) and sun.diffuse == (0.8, 0.8, 0.8, 1)
+
+
 def test_a_link_moves_its_visuals() -> None:
     model = box_model()
     model.set_link_poses({"red_box::link": ((3.0, -1.0, 0.5), (0, 0, 0, 1))})

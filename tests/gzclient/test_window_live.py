@@ -103,6 +103,8 @@ def test_the_window_draws_the_box_follows_time_pauses_steps_and_closes_leaving_t
     send(child, "insert box")  # where the view looks: where the red box was
     wait_until(lambda: "unit_box" in sim.run("rosservice", "call", "/gazebo/get_world_properties").stdout,
                timeout=30, what="the inserted box")
+    wait_until(lambda: any("unit_box" in line.rsplit("drawn ", 1)[-1] for line in list(child.out)), timeout=30,
+               what="the inserted box drawn while paused")
     shoot(display, "Gazebo", "gzclient_dragged_and_inserted", ready=lambda shot: red_pixels(shot) > 200)
 
     child.popen.stdin.write("close\n")

@@ -1,9 +1,9 @@
 """gzclient's window in a process of its own on the display its environment names, as
 `rosrun gazebo_ros gzclient` runs it, for the live test: each time its status bar changes it
-prints `status <button> | <label> | ...`, and it works itself as stdin asks: "pause" and "play"
-(the play/pause button), "step", "insert box", "drag MODEL X Y" (the translate mode, and a left
-drag with the mouse from the model's origin to the pixel of (X, Y) at its height), "close" (the
-window closes; the node ends).
+prints `status <button> | <label> | ... | <problem> | drawn <models>`, and it works itself as
+stdin asks: "pause" and "play" (the play/pause button), "step", "insert box", "drag MODEL X Y"
+(the translate mode, and a left drag with the mouse from the model's origin to the pixel of
+(X, Y) at its height), "close" (the window closes; the node ends).
 
     python -m tests.gzclient.window_child   (ROS_MASTER_URI and DISPLAY from the environment)
 """
@@ -39,7 +39,7 @@ def main() -> int:
 
     def report() -> None:
         line = " | ".join([window.play_button.text()] + [label.text() for label in window.status_labels]
-                          + [window.problem_label.text()])
+                          + [window.problem_label.text(), "drawn " + ",".join(window.model.drawn_models())])
         if line != said[0]:
             said[0] = line
             print(f"status {line}", flush=True)

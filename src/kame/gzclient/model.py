@@ -16,7 +16,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from kame.gzclient.scene_message import Quaternion, SceneMessage, Vector3, VisualMessage
+from kame.gzclient.scene_message import LightMessage, Quaternion, SceneMessage, Vector3, VisualMessage
 from kame.rviz.camera import Camera
 from kame.rviz.scene import (
     Scene,
@@ -33,6 +33,16 @@ GRID_COLOR = (0.45, 0.45, 0.45, 1.0)
 SELECTION_COLOR = (1.0, 1.0, 1.0, 1.0)
 LIGHT_COLOR = (1.0, 0.85, 0.2, 1.0)
 PAN, ORBIT, ZOOM = "pan", "orbit", "zoom"
+MAX_LIGHTS = 8  # OpenGL's fixed pipeline lights at least so many; a world's further lights are left out
+
+
+@dataclass(frozen=True)
+class GlLight:
+    """A world light as OpenGL's fixed pipeline takes it: a position in the world frame, w = 0 for
+    a directional light (then x y z point towards the light), and its diffuse colour. Spot lights
+    light as point lights (no cone), and no light fades with distance."""
+    position: tuple[float, float, float, float]
+    diffuse: tuple[float, float, float, float]
 
 
 def gazebo_camera() -> Camera:
@@ -186,6 +196,8 @@ class ClientModel:
     selected: str | None = None
     world: str = ""
     background: tuple[float, float, float, float] = (0.7, 0.7, 0.7, 1.0)
+    ambient: tuple[float, float, float, float] = (0.4, 0.4, 0.4, 1.0)
+    lights: list[GlLight] = field(default_factory=list)
     _visuals: list[_LinkVisual] = field(default_factory=list)
     _lights: list[tuple[np.ndarray, np.ndarray, str]] = field(default_factory=list)  # position, direction, type
     _links: dict[str, np.ndarray] = field(default_factory=dict)  # link -> 4x4 pose
@@ -198,6 +210,8 @@ class ClientModel:
     def set_scene(self, message: SceneMessage) -> None:
         self.world = message.world
         self.background = message.background
+        self.ambient = message.ambient
+        self.lights = [gl_light(light) for light in message.lights][:MAX_LIGHTS]
         self._visuals = []
         for visual in message.visuals:
             local = apply(pose_matrix(visual.position, visual.orientation), shape_triangles(visual))
@@ -219,6 +233,10 @@ class ClientModel:
 
     def model_names(self) -> list[str]:
         return sorted({visual.model for visual in self._visuals} | set(self._models))
+
+    def drawn_models(self) -> list[str]:
+        """The models with a visual drawn where its link is (its link's pose known)."""
+        return sorted({visual.model for visual in self._visuals if visual.link in self._links})
 
     def model_pose(self, model: str) -> tuple[Vector3, Quaternion] | None:
         return self._models.get(model)
@@ -344,6 +362,15 @@ class ClientModel:
         ground = self.camera.ground_point(width / 2, height / 2, width, height)
         point = ground if ground is not None else self.camera.focal_point
         return float(point[0]), float(point[1]), 0.0
+
+
+def gl_light(light: LightMessage) -> GlLight:
+    if light.type == "directional":
+        towards = -(quaternion_matrix(*light.orientation) @ np.array(light.direction))
+        length = float(np.linalg.norm(towards)) or 1.0
+        return GlLight((float(towards[0] / length), float(towards[1] / length), float(towards[2] / length), 0.0),
+                       light.diffuse)
+    return GlLight((*light.position, 1.0), light.diffuse)
 
 
 def bounding_box_lines(points: np.ndarray) -> np.ndarray:

@@ -8,10 +8,11 @@ from __future__ import annotations
 from collections.abc import Callable
 
 import numpy as np
+from OpenGL import GL
 from PySide6.QtCore import QPointF, Qt
 from PySide6.QtGui import QMouseEvent, QWheelEvent
 
-from kame.gzclient.model import ORBIT, ClientModel, ModelMove, drag_action, focus_on, move_camera, view_ray
+from kame.gzclient.model import MAX_LIGHTS, ORBIT, ClientModel, ModelMove, drag_action, focus_on, move_camera, view_ray
 from kame.rviz.view import RenderView
 
 
@@ -22,10 +23,30 @@ class GazeboView(RenderView):
         self.camera = model.camera
         self._moved = moved
         self._previous: QPointF | None = None
+        self.lighting = self._world_lights
 
     def _ray(self, event: QMouseEvent) -> tuple[np.ndarray, np.ndarray]:
         p = event.position()
         return view_ray(self.camera, p.x(), p.y(), self.width(), self.height())
+
+    def _world_lights(self) -> None:
+        """The world's lights, fixed in the world as the camera moves (rviz lights from the eye), and
+        its ambient light; called in the paint with the view's context current."""
+        GL.glLoadMatrixd(self.camera.view_matrix().T.astype(np.float64))
+        for slot in range(MAX_LIGHTS):
+            light = GL.GL_LIGHT0 + slot
+            if slot >= len(self.model.lights):
+                GL.glDisable(light)
+                continue
+            GL.glLightfv(light, GL.GL_POSITION, self.model.lights[slot].position)
+            GL.glLightfv(light, GL.GL_DIFFUSE, self.model.lights[slot].diffuse)
+            GL.glLightfv(light, GL.GL_AMBIENT, (0.0, 0.0, 0.0, 1.0))
+            GL.glLightfv(light, GL.GL_SPECULAR, (0.0, 0.0, 0.0, 1.0))
+            GL.glEnable(light)
+        GL.glLightModelfv(GL.GL_LIGHT_MODEL_AMBIENT, self.model.ambient)
+        GL.glLightModeli(GL.GL_LIGHT_MODEL_TWO_SIDE, GL.GL_TRUE)  # shapes are not all wound one way
+        GL.glEnable(GL.GL_COLOR_MATERIAL)
+        GL.glColorMaterial(GL.GL_FRONT_AND_BACK, GL.GL_AMBIENT_AND_DIFFUSE)
 
     def refresh(self) -> None:
         self.background = self.model.background
