@@ -194,7 +194,6 @@ class ClientModel:
     camera: Camera = field(default_factory=gazebo_camera)
     mode: str = SELECT
     selected: str | None = None
-    world: str = ""
     background: tuple[float, float, float, float] = (0.7, 0.7, 0.7, 1.0)
     ambient: tuple[float, float, float, float] = (0.4, 0.4, 0.4, 1.0)
     lights: list[GlLight] = field(default_factory=list)
@@ -208,7 +207,6 @@ class ClientModel:
     # -------------------------------------------------------------- what the server says
 
     def set_scene(self, message: SceneMessage) -> None:
-        self.world = message.world
         self.background = message.background
         self.ambient = message.ambient
         self.lights = [gl_light(light) for light in message.lights][:MAX_LIGHTS]
