@@ -47,6 +47,9 @@ class StandInSource:
     def insert(self, shape: str, name: str, position: sm.Vector3) -> None:
         self.asked.append(("insert", shape, name))
 
+    def delete(self, model: str) -> None:
+        self.asked.append(("delete", model))
+
 
 @pytest.fixture
 def window(qtbot: Any) -> tuple[GzClientWindow, StandInSource]:
@@ -152,3 +155,7 @@ def test_the_mouse_as_gazebos(window: tuple[GzClientWindow, StandInSource], qtbo
     assert moves and all(move.model == "red_box" for move in moves)
     assert moves[-1].position[2] == pytest.approx(0.5) and moves[-1].position[:2] != pytest.approx((0, 0))
     assert shown.model.selected == "red_box"
+    shown.delete_action.trigger()
+    assert source.asked[-1] == ("delete", "red_box") and shown.model.selected is None
+    shown.delete_action.trigger()  # nothing selected: nothing asked
+    assert source.asked[-1] == ("delete", "red_box")

@@ -106,6 +106,11 @@ def test_the_window_draws_the_box_follows_time_pauses_steps_and_closes_leaving_t
     wait_until(lambda: any("unit_box" in line.rsplit("drawn ", 1)[-1] for line in list(child.out)), timeout=30,
                what="the inserted box drawn while paused")
     shoot(display, "Gazebo", "gzclient_dragged_and_inserted", ready=lambda shot: red_pixels(shot) > 200)
+    send(child, "delete unit_box")
+    wait_until(lambda: "unit_box" not in sim.run("rosservice", "call", "/gazebo/get_world_properties").stdout,
+               timeout=30, what="the deleted box gone")
+    wait_until(lambda: child.out[-1].rstrip().endswith("drawn ground_plane,red_box"), timeout=30,
+               what="the deleted box no longer drawn")
 
     child.popen.stdin.write("close\n")
     child.popen.stdin.flush()

@@ -1,7 +1,7 @@
 """gzclient's window in a process of its own on the display its environment names, as
 `rosrun gazebo_ros gzclient` runs it, for the live test: each time its status bar changes it
 prints `status <button> | <label> | ... | <problem> | drawn <models>`, and it works itself as
-stdin asks: "pause" and "play" (the play/pause button), "step", "insert box", "drag MODEL X Y"
+stdin asks: "pause" and "play" (the play/pause button), "step", "insert box", "delete MODEL", "drag MODEL X Y"
 (the translate mode, and a left drag with the mouse from the model's origin to the pixel of
 (X, Y) at its height), "close" (the window closes; the node ends).
 
@@ -70,6 +70,9 @@ def main() -> int:
             window.step_button.click()
         elif word == "insert":
             window.insert_actions[line[1]].trigger()
+        elif word == "delete":  # as a click selects it and Edit > Delete
+            window.model.select(line[1])
+            window.delete_action.trigger()
         elif word == "drag":
             drag(line[1], float(line[2]), float(line[3]))
         elif word in ("close", ""):

@@ -1,6 +1,6 @@
 """gzclient's ROS side, on the process's one node (kame.client): it follows the scene, the world
 statistics, /gazebo/link_states and /gazebo/model_states, keeping the newest of each for the
-window to take, and makes the window's requests (pause, step, reset, move, insert) on a thread of
+window to take, and makes the window's requests (pause, step, reset, move, insert, delete) on a thread of
 its own, so a slow or absent gzserver never freezes the window. A move dragged faster than the
 server answers is sent as its newest pose only."""
 
@@ -185,6 +185,12 @@ class ClientSource:
         request.initial_pose.orientation.w = 1.0
         request.reference_frame = "world"
         self._call("spawn_sdf_model", SpawnModel, request)
+
+    def delete(self, model: str) -> None:
+        """Gazebo's Edit > Delete on the selected model."""
+        from gazebo_msgs.srv import DeleteModel, DeleteModelRequest
+
+        self._call("delete_model", DeleteModel, DeleteModelRequest(model))
 
     def close(self) -> None:
         self._calls.shutdown(wait=True, cancel_futures=True)

@@ -1,5 +1,6 @@
 """gzclient's main window, as Gazebo 11 lays it out: the 3-D view, a tool bar above it (the
-select, translate and rotate modes; a box, sphere and cylinder to insert), the Edit menu's resets,
+select, translate and rotate modes; a box, sphere and cylinder to insert), the Edit menu's resets and Delete (the
+selected model),
 and a bar below it with play/pause, step and the status figures. The window only draws the
 model and passes what the user did to the source; a frame timer takes what arrived."""
 
@@ -32,6 +33,7 @@ class Source(Protocol):
     def reset_simulation(self) -> None: ...
     def move(self, move: ModelMove) -> None: ...
     def insert(self, shape: str, name: str, position: Vector3) -> None: ...
+    def delete(self, model: str) -> None: ...
 
 
 class GzClientWindow(QMainWindow):
@@ -87,6 +89,10 @@ class GzClientWindow(QMainWindow):
         self.reset_world_action = edit.addAction("Reset World")
         self.reset_world_action.setShortcut(QKeySequence("Ctrl+R"))
         self.reset_world_action.triggered.connect(self.source.reset_simulation)
+        edit.addSeparator()
+        self.delete_action = edit.addAction("Delete")
+        self.delete_action.setShortcut(QKeySequence(QKeySequence.StandardKey.Delete))
+        self.delete_action.triggered.connect(self.delete_selected)
 
     def _build_time_bar(self) -> None:
         bar = QToolBar("Time", self)
@@ -125,6 +131,11 @@ class GzClientWindow(QMainWindow):
 
     def toggle_paused(self) -> None:
         self.source.set_paused(not self.status.paused)
+
+    def delete_selected(self) -> None:
+        if self.model.selected is not None:
+            self.source.delete(self.model.selected)
+            self.model.select(None)
 
     def insert(self, shape: str) -> None:
         name = unique_name(SHAPES[shape], self.model.model_names())
