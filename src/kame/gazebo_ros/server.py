@@ -6,7 +6,8 @@ Loads the world (a path, or a name on GAZEBO_RESOURCE_PATH such as worlds/empty.
 kame's shipped worlds), starts its models' plugins, steps it on a thread this module owns at the
 world's real_time_factor (paused with -u until /gazebo/unpause_physics), publishes /clock
 (every step, or at ~pub_clock_frequency Hz of simulated time when set), and serves the /gazebo
-API (kame.gazebo_ros.api) and ~performance_metrics unless ~enable_ros_network is false. A world that cannot be read is
+API (kame.gazebo_ros.api), ~performance_metrics and what gzclient windows draw
+(kame.gazebo_ros.client_feed) unless ~enable_ros_network is false. A world that cannot be read is
 an error line, and the server runs on with an empty world, so models can still be spawned.
 """
 
