@@ -1,7 +1,8 @@
 """`gzclient` (also `rosrun gazebo_ros gzclient`, and the window of `gazebo` and of
 empty_world.launch with gui:=true): Gazebo's window, a process of its own, the ROS node
-/gazebo_gui. It draws what gzserver sends and works the world through /gazebo's services;
-closing it leaves gzserver running, as in Gazebo. Without a display, or without the gui extra
+/gazebo_gui (empty_world.launch's name; /gazebo_gui_<pid>_<ms> from rosrun). It draws what
+gzserver sends and works the world through /gazebo's services; closing it leaves gzserver
+running, as in Gazebo. Without a display, or without the gui extra
 (PySide6, PyOpenGL), it says so in one line and ends: the server runs on."""
 
 from __future__ import annotations
@@ -12,7 +13,9 @@ import subprocess
 import sys
 from collections.abc import MutableMapping, Sequence
 
-NODE_NAME = "gazebo_gui"  # as empty_world.launch names gzclient's node
+# as empty_world.launch names gzclient's node; anonymous unless a launch file names it, so that two
+# windows on one server (`gazebo`, then `gzclient`) do not push each other off the graph
+NODE_NAME = "gazebo_gui"
 WINDOW_SIZE = (1024, 720)
 
 
@@ -52,7 +55,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     from kame.gzclient.window import GzClientWindow
     from kame.qt_quit import quit_on_signals
 
-    process.init_node(NODE_NAME, argv=argv)
+    process.init_node(NODE_NAME, argv=argv, anonymous=True)
     app = QApplication.instance() or QApplication(["gzclient"])
     quit_on_signals(app)
     source = ClientSource()
