@@ -198,7 +198,7 @@ class ClientModel:
     ambient: tuple[float, float, float, float] = (0.4, 0.4, 0.4, 1.0)
     lights: list[GlLight] = field(default_factory=list)
     _visuals: list[_LinkVisual] = field(default_factory=list)
-    _lights: list[tuple[np.ndarray, np.ndarray, str]] = field(default_factory=list)  # position, direction, type
+    _light_markers: list[tuple[np.ndarray, np.ndarray, str]] = field(default_factory=list)  # position, direction, type
     _links: dict[str, np.ndarray] = field(default_factory=dict)  # link -> 4x4 pose
     _models: dict[str, tuple[Vector3, Quaternion]] = field(default_factory=dict)
     _drag: _Drag | None = None
@@ -214,10 +214,10 @@ class ClientModel:
         for visual in message.visuals:
             local = apply(pose_matrix(visual.position, visual.orientation), shape_triangles(visual))
             self._visuals.append(_LinkVisual(visual.link, visual.model, local, visual.color, visual.kind == "plane"))
-        self._lights = []
+        self._light_markers = []
         for light in message.lights:
             rotation = quaternion_matrix(*light.orientation)
-            self._lights.append((np.array(light.position), rotation @ np.array(light.direction), light.type))
+            self._light_markers.append((np.array(light.position), rotation @ np.array(light.direction), light.type))
         if self.selected is not None and self.selected not in self.model_names():
             self.selected = None
         self._scene = None
@@ -265,7 +265,7 @@ class ClientModel:
         grid = [[(t, -half, lift), (t, half, lift)] for t in ticks] + [[(-half, t, lift), (half, t, lift)]
                                                                           for t in ticks]
         scene.add("lines", grid, GRID_COLOR, 1.0)
-        for position, direction, kind in self._lights:  # Gazebo's light markers: where and which way
+        for position, direction, kind in self._light_markers:  # Gazebo's light markers: where and which way
             tip = position + 0.5 * direction / max(1e-9, float(np.linalg.norm(direction)))
             scene.add("lines", [position, tip], LIGHT_COLOR, 2.0)
             if kind != "directional":
