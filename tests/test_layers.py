@@ -162,6 +162,10 @@ LAYERS: dict[str, int] = {
     "kame.gazebo_ros.command_line": 1,  # gzserver's options, parsed
     "kame.gazebo_ros.relative": 1,  # poses and twists relative to another entity
     "kame.gazebo_ros.plugins.parameters": 1,  # a plugin's <plugin> parameters, read as gazebo_ros reads them
+    "kame.gzclient": 4,  # gzclient: Gazebo's window (Qt, OpenGL through rviz's view) and its ROS side
+    "kame.gzclient.scene_message": 1,  # what gzserver sends its windows, as JSON in std_msgs/String
+    "kame.gzclient.model": 1,  # the window's scene graph, picking, model drags and Gazebo's mouse: no Qt
+    "kame.gzclient.status": 1,  # the status bar's figures and Gazebo's time format
     "kame.nav.amcl_node": 4,  # amcl on kame.client and kame.tf_ros
     "kame.nav.move_base_node": 4,
     "kame.nav.costmap_ros": 4,  # move_base's costmaps on kame.client and kame.tf_ros

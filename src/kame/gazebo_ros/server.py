@@ -6,7 +6,8 @@ Loads the world (a path, or a name on GAZEBO_RESOURCE_PATH such as worlds/empty.
 kame's shipped worlds), starts its models' plugins, steps it on a thread this module owns at the
 world's real_time_factor (paused with -u until /gazebo/unpause_physics), publishes /clock
 (every step, or at ~pub_clock_frequency Hz of simulated time when set), and serves the /gazebo
-API (kame.gazebo_ros.api) and ~performance_metrics unless ~enable_ros_network is false. A world that cannot be read is
+API (kame.gazebo_ros.api), ~performance_metrics and what gzclient windows draw
+(kame.gazebo_ros.client_feed) unless ~enable_ros_network is false. A world that cannot be read is
 an error line, and the server runs on with an empty world, so models can still be spawned.
 """
 
@@ -25,6 +26,7 @@ from kame.gazebo.errors import GazeboError
 from kame.gazebo.world import World
 from kame.gazebo_ros import command_line
 from kame.gazebo_ros.api import GazeboApi
+from kame.gazebo_ros.client_feed import ClientFeed
 from kame.gazebo_ros.conversions import stamp
 from kame.gazebo_ros.models import ModelFactory, resources_from, world_file
 from kame.gazebo_ros.plugins import PluginHost
@@ -141,6 +143,7 @@ def run(options: command_line.ServerOptions) -> int:
                      finished=lambda: core.signal_shutdown("--iters reached"))
     host = PluginHost(sim, _info, _warn, _error)
     api: GazeboApi | None = None
+    feed: ClientFeed | None = None  # what gzclient windows draw
     clock = ClockPublisher(_number_param("~pub_clock_frequency", 0.0))
     with sim.lock:
         sim.report_warnings()
@@ -151,13 +154,18 @@ def run(options: command_line.ServerOptions) -> int:
         if bool(process.get_param("~enable_ros_network", True)):
             api = GazeboApi(sim, ModelFactory(sim, host, _warn))
             sim.add_listener(PerformanceMetrics())
+            feed = ClientFeed(sim)
     _info("Finished loading Gazebo ROS API Plugin.")
     if options.paused:
         _info("Simulation paused: /gazebo/unpause_physics runs it")
+    if feed is not None:
+        feed.start()
     sim.start()
     try:
         core.wait_for_shutdown(None)
     finally:
+        if feed is not None:
+            feed.close()
         sim.stop()
         with sim.lock:
             host.stop_all()
@@ -186,14 +194,6 @@ def main(argv: Sequence[str] | None = None) -> int:
         core.signal_shutdown("gzserver exiting")
 
 
-def gzclient_main(argv: Sequence[str] | None = None) -> int:
-    """gzclient: the 3-D window is not written yet. It says so in one line and leaves the server
-    running (a closed gzclient never stops gzserver in Gazebo either)."""
-    print("gzclient: kame's Gazebo window is not available yet; gzserver keeps simulating "
-          "(watch it in rviz, or with rostopic)", file=sys.stderr)
-    return 0
-
-
 def debug_main(argv: Sequence[str] | None = None) -> int:
     """debug (empty_world.launch debug:=true): gazebo_ros runs gzserver under gdb; kame's server is
     Python, so it runs with Python's fault handler instead, which prints every thread's stack on a crash."""
@@ -205,6 +205,13 @@ def debug_main(argv: Sequence[str] | None = None) -> int:
 
 
 def gazebo_main(argv: Sequence[str] | None = None) -> int:
-    """gazebo: gzserver and gzclient; with no window yet, the server alone after gzclient's line."""
-    gzclient_main(argv)
-    return main(argv)
+    """gazebo: gzserver in this process and gzclient in its own, as Gazebo runs them; a closed window
+    leaves the server running, and the window ends with the server."""
+    from kame.gzclient.main import start_client
+
+    client = start_client(list(sys.argv if argv is None else argv))
+    try:
+        return main(argv)
+    finally:
+        client.terminate()
+        client.wait()

@@ -88,6 +88,7 @@ class RenderView(QOpenGLWindow):
         self.scene = Scene()
         self.background = (48 / 255, 48 / 255, 48 / 255, 1.0)
         self.tool = INTERACT
+        self.lighting: Callable[[], None] = _headlight  # lights the scene (rviz: one at the eye; gzclient: the world's)
         self._textures: dict[int, tuple[np.ndarray, int]] = {}  # GL textures by their image's id, kept while drawn
         self._gpu = GpuBatches()
         self._last: QPointF | None = None
@@ -152,7 +153,7 @@ class RenderView(QOpenGLWindow):
         GL.glLoadMatrixd(self.camera.projection_matrix(width, height).T.astype(np.float64))
         GL.glMatrixMode(GL.GL_MODELVIEW)
         GL.glLoadIdentity()
-        _headlight()  # set in eye space: it moves with the camera, as rviz's default light
+        self.lighting()  # rviz's is set in eye space: it moves with the camera, as rviz's default light
         GL.glLoadMatrixd(self.camera.view_matrix().T.astype(np.float64))
         GL.glDepthMask(GL.GL_FALSE)  # maps lie under what shares their plane (the grid), as in rviz
         drawn = set()
