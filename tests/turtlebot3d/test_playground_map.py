@@ -1,16 +1,16 @@
 """amcl_demo's map of the 3-D playground is the world's own: worlds/playground.world's walls, boxes
-and cylinders, rasterised cell by cell from the SDF as kame.gazebo reads it, are
-worlds/playground.yaml's occupied cells (the map both worlds share, so the lessons' maps look alike)."""
+and cylinders, rasterised cell by cell from the SDF, are worlds/playground.yaml's occupied cells
+(the map both worlds share, so the lessons' maps look alike). The SDF is read with ElementTree, not
+kame.gazebo, whose MuJoCo import would set PYOPENGL_PLATFORM for every later test's children."""
 
 from __future__ import annotations
 
 import math
+import xml.etree.ElementTree as ElementTree
 from pathlib import Path
 
 import numpy as np
 
-from kame.gazebo.resources import Resources, read_xml
-from kame.gazebo.sdf import SdfReader
 from kame.stage import mapfile
 from tests.support import REPO
 
@@ -27,24 +27,24 @@ def test_the_shipped_map_is_the_worlds_geometry_seen_from_above() -> None:
     xs = grid.origin[0] + (xs + 0.5) * grid.resolution  # each cell's centre, row 0 at the map's bottom
     ys = grid.origin[1] + (ys + 0.5) * grid.resolution
 
-    world = SdfReader(Resources()).world(read_xml(str(WORLDS / "playground.world")))
+    world = ElementTree.parse(WORLDS / "playground.world").getroot().find("world")
+    assert world is not None
     solid = np.zeros_like(grid.cells, dtype=bool)
     shapes = 0
-    for model in world.models:
-        for link in model.links:
-            for collision in link.collisions:
-                x, y, z = model.pose.position
-                geometry = collision.geometry
-                if geometry.kind == "box":
-                    size_x, size_y, height = geometry.size
-                    solid |= (abs(xs - x) < size_x / 2) & (abs(ys - y) < size_y / 2)
-                elif geometry.kind == "cylinder":
-                    radius, height = geometry.size
-                    solid |= np.hypot(xs - x, ys - y) < radius
-                else:
-                    continue
-                assert model.static and z - height / 2 < 0.01 and z + height / 2 > 0.5, model.name  # seen by the scan
-                shapes += 1
+    for model in world.iter("model"):
+        x, y, z = (float(v) for v in model.findtext("pose", "").split()[:3])
+        box, cylinder = model.find("link/collision/geometry/box"), model.find("link/collision/geometry/cylinder")
+        if box is not None:
+            size_x, size_y, height = (float(v) for v in box.findtext("size", "").split())
+            solid |= (abs(xs - x) < size_x / 2) & (abs(ys - y) < size_y / 2)
+        elif cylinder is not None:
+            radius, height = float(cylinder.findtext("radius", "")), float(cylinder.findtext("length", ""))
+            solid |= np.hypot(xs - x, ys - y) < radius
+        else:
+            continue
+        assert model.findtext("static") == "true", model.get("name")
+        assert z - height / 2 < 0.01 and z + height / 2 > 0.5, model.get("name")  # standing, and seen by the scan
+        shapes += 1
     assert shapes == 12  # four walls, three boxes, five cylinders
     occupied = grid.cells == 100
     differing = solid != occupied
