@@ -91,6 +91,18 @@ def test_cmd_vel_drives_the_kobuki_and_odom_follows(world: tuple[Sim, Proc]) -> 
     assert math.dist(odom, truth) < 0.05  # the wheels' odometry keeps to the ground truth on a short run
 
 
+def test_depthimage_to_laserscan_as_upstreams_launch_files_load_it(world: tuple[Sim, Proc]) -> None:
+    from tests.stage.sim import echo
+
+    sim, _ = world
+    sim.procs.append(Proc([str(BIN / "rosrun"), "nodelet", "nodelet", "load",
+                           "depthimage_to_laserscan/DepthImageToLaserScanNodelet", "laserscan_nodelet_manager",
+                           "__name:=depthimage_to_laserscan_nodelet", "_output_frame_id:=camera_link",
+                           "image:=/camera/depth/image_raw", "scan:=/scan_of_the_nodelet"], sim.env, cwd=sim.home))
+    scan = echo(sim, "/scan_of_the_nodelet", "--noarr")
+    assert scan["header"]["frame_id"] == "camera_link" and scan["range_min"] == pytest.approx(0.45)
+
+
 def test_gmapping_demo_maps_the_playgrounds_walls(world: tuple[Sim, Proc]) -> None:
     from kame.stage import mapfile
 
