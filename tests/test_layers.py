@@ -76,6 +76,10 @@ LAYERS: dict[str, int] = {
     "kame.reconfigure.client": 4,
     "kame.image_transport": 1,  # compressed_image_transport's codec (numpy, OpenCV or Pillow)
     "kame.image_transport.republish": 4,  # image_transport's republish node on kame.client
+    "kame.depthimage_to_laserscan": 1,  # a depth image's middle rows as a laser scan (numpy)
+    "kame.depthimage_to_laserscan.node": 4,  # depthimage_to_laserscan's node on kame.client
+    "kame.cmd_vel_mux": 1,  # yocs_cmd_vel_mux's rule: which velocity commander drives
+    "kame.cmd_vel_mux.node": 4,  # yocs_cmd_vel_mux's node on kame.client
     "kame.camera": 1,  # the camera packages' pure parts: pixel formats, test pattern, calibration files and URLs
     "kame.camera.sources": 2,  # frames from V4L2 devices (linuxpy), video files and the test pattern
     "kame.camera.info_manager": 4,  # camera_info_manager's set_camera_info service on kame.client

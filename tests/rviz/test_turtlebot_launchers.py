@@ -59,7 +59,8 @@ def test_view_robot_shows_the_turtlebot_world(tmp_path: Path) -> None:
     from tests.turtlesim.xserver import xvfb
 
     with master(tmp_path) as sim, xvfb("1600x1000") as display:
-        world = Proc([str(BIN / "roslaunch"), "turtlebot_gazebo", "turtlebot_world.launch"], sim.env, cwd=sim.home)
+        world = Proc([str(BIN / "roslaunch"), "turtlebot_gazebo", "turtlebot_world.launch", "simulator:=stage"],
+                     sim.env, cwd=sim.home)
         sim.procs.append(world)
         world.wait_line("Simulating [robot_0]", timeout=60)
         windowed = dict(sim.env, DISPLAY=display)
@@ -108,7 +109,8 @@ def test_view_navigation_shows_amcl_demo(tmp_path: Path) -> None:
     from tests.turtlesim.xserver import xvfb
 
     with master(tmp_path) as sim, xvfb("1600x1000") as display:
-        world = Proc([str(BIN / "roslaunch"), "turtlebot_gazebo", "turtlebot_world.launch"], sim.env, cwd=sim.home)
+        world = Proc([str(BIN / "roslaunch"), "turtlebot_gazebo", "turtlebot_world.launch", "simulator:=stage"],
+                     sim.env, cwd=sim.home)
         sim.procs.append(world)
         world.wait_line("Simulating [robot_0]", timeout=60)
         sim.procs.append(Proc([str(BIN / "roslaunch"), "turtlebot_gazebo", "amcl_demo.launch"], sim.env, cwd=sim.home))

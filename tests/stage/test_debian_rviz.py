@@ -107,7 +107,8 @@ def test_rviz_shows_the_robot_scan_and_map(tmp_path: Path, viewer: str) -> None:
     with master(tmp_path) as sim, xvfb("1024x768") as display:
         rosout = Proc([str(BIN / "rostopic"), "echo", "/rosout"], sim.env, cwd=sim.home)
         sim.procs.append(rosout)
-        world = Proc([str(BIN / "roslaunch"), "turtlebot_gazebo", "turtlebot_world.launch", "gui:=false"], sim.env,
+        world = Proc([str(BIN / "roslaunch"), "turtlebot_gazebo", "turtlebot_world.launch", "gui:=false",
+                      "simulator:=stage"], sim.env,
                      cwd=sim.home)
         sim.procs.append(world)
         world.wait_line("Simulating [robot_0]", timeout=60)

@@ -74,7 +74,8 @@ def assert_scan_hits_walls(scan: dict[str, Any]) -> None:
 @pytest.mark.skipif(shutil.which("tmux") is None, reason="tmux is not installed")
 def test_turtlebot_world_and_keyboard_teleop(tmp_path: Path) -> None:
     with master(tmp_path) as sim:
-        world = Proc([str(BIN / "roslaunch"), "turtlebot_gazebo", "turtlebot_world.launch"], sim.env, cwd=sim.home)
+        world = Proc([str(BIN / "roslaunch"), "turtlebot_gazebo", "turtlebot_world.launch", "simulator:=stage"],
+                     sim.env, cwd=sim.home)
         sim.procs.append(world)
         world.wait_line("standing in for Gazebo", timeout=30)
         world.wait_line("Simulating [robot_0]", timeout=30)

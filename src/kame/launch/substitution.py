@@ -7,12 +7,16 @@ Rules (roslaunch's substitution_args):
 - `$(eval EXPR)` must be the whole value: a Python expression over the launch's args (bare names,
   typed as <param> values are, or `arg('n')`), env/optenv/find/anon/dirname, true/false and the
   math names; builtins are limited to list, dict, map, str, float, int; `__` is refused.
+  kame adds `installed('module')`: whether Python can import that module, so kame's own launch
+  files choose what an optional extra brings (turtlebot_world.launch: the 3-D world with
+  kame[gazebo]'s MuJoCo, else the 2-D one); it looks the module up without importing it.
 - `$(anon name)` gives the same value for the same name everywhere in one launch.
 Pure: the environment, the package finder and the anonymous-name maker are passed in.
 """
 
 from __future__ import annotations
 
+import importlib.util
 import math
 import os
 from collections.abc import Callable, Mapping
@@ -143,6 +147,7 @@ class Substituter:
             "anon": self.anon,
             "arg": lambda name: convert_value(arg_value(name, args), "auto"),
             "dirname": lambda: self.dirname(filename),
+            "installed": installed,
         }
         functions.update({k: v for k, v in vars(math).items() if not k.startswith("_")})
         scope = _Scope(args, functions)
@@ -152,6 +157,14 @@ class Substituter:
             raise
         except Exception as exc:
             raise LaunchError(f"$(eval {expression}) failed: {type(exc).__name__}: {exc}") from exc
+
+
+def installed(module: str) -> bool:
+    """Whether Python finds the module (without importing it)."""
+    try:
+        return importlib.util.find_spec(str(module)) is not None
+    except (ImportError, ValueError):  # a parent package that fails, or a blocked import
+        return False
 
 
 def arg_value(name: str, args: Mapping[str, str]) -> str:

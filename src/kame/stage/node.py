@@ -41,6 +41,7 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import Any
 
+from kame.launch.substitution import installed
 from kame.names import is_legal_base_name
 from kame.net.feed import ChildFeed
 from kame.net.window import window_problem
@@ -61,6 +62,8 @@ class SetupError(ValueError):
     """A command line or parameter the simulator cannot start with."""
 
 
+# the one line a TurtleBot user without MuJoCo sees (turtlebot_world.launch runs the 3-D world with it)
+GAZEBO_HINT = "For the 3-D TurtleBot world on kame's Gazebo: pip install 'kame[gazebo]'"
 WINDOW_PERIOD = 0.05  # seconds of wall time between the window's frames (20 Hz)
 
 
@@ -432,6 +435,8 @@ def main(argv: Sequence[str] | None = None) -> int:
             runtime.info("This is kame's 2-D world (stageros) standing in for %s: a flat world from %s, "
                          "with odometry, a laser scanner and walls, and no 3-D physics.",
                          options.stand_in_for.capitalize(), options.map_path)
+            if options.stand_in_for == "gazebo" and not installed("mujoco"):
+                runtime.info("%s", GAZEBO_HINT)
         world, from_file = make_world(options.map_path)
         extra = runtime.get_param("~extra_cmd_vel_topics", [])
         if not isinstance(extra, list) or not all(isinstance(t, str) for t in extra):

@@ -15,13 +15,14 @@ from kame.gazebo import description as d
 from kame.gazebo_ros.plugins.base import GazeboPlugin, PluginContext
 from kame.gazebo_ros.plugins.body import Bumper, Imu, ImuSensor, JointStatePublisher, P3d
 from kame.gazebo_ros.plugins.camera import Camera, DepthCamera
-from kame.gazebo_ros.plugins.drives import DiffDrive, PlanarMove, SkidSteerDrive
+from kame.gazebo_ros.plugins.drives import DiffDrive, Kobuki, PlanarMove, SkidSteerDrive
 from kame.gazebo_ros.plugins.parameters import PluginParameterError
 from kame.gazebo_ros.plugins.ray import BlockLaser, Laser, Range
 from kame.gazebo_ros.simulation import Simulation
 
 PLUGINS: dict[str, type[GazeboPlugin]] = {
     "libgazebo_ros_diff_drive.so": DiffDrive,
+    "libgazebo_ros_kobuki.so": Kobuki,
     "libgazebo_ros_skid_steer_drive.so": SkidSteerDrive,
     "libgazebo_ros_planar_move.so": PlanarMove,
     "libgazebo_ros_laser.so": Laser,

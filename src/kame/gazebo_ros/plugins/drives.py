@@ -1,7 +1,7 @@
-"""The drive plugins: diff_drive, skid_steer_drive and planar_move, with odometry and tf as they
-publish them.
+"""The drive plugins: diff_drive, skid_steer_drive, planar_move and the Kobuki's (the TurtleBot's
+base, kobuki_gazebo_plugins' libgazebo_ros_kobuki.so), with odometry and tf as they publish them.
 
-diff_drive and skid_steer_drive turn the wheel joints: each wheel joint's velocity actuator is
+diff_drive, Kobuki's and skid_steer_drive turn the wheel joints: each wheel joint's velocity actuator is
 asked for the wheel's speed (up to wheelTorque, at most wheelAcceleration faster each second),
 and the world's physics moves the robot on its wheels. planar_move sets the model's velocity in
 the plane directly, as Gazebo's does. Odometry is the model's pose in the world (gazebo_ros's
@@ -24,6 +24,7 @@ from kame.gazebo_ros.plugins.parameters import PluginParameterError
 # gazebo_ros_skid_steer_drive and planar_move print their own missing-parameter lines
 SKID_MISSING = 'GazeboRosSkidSteerDrive Plugin (ns = {ns}) missing <{tag}>, defaults to "{default}"'
 PLANAR_MISSING = "PlanarMovePlugin (ns = {ns}) missing <{tag}>, defaults to {default}"
+KOBUKI_MISSING = "{info}: couldn't find <{tag}>, using {default}"
 
 
 def _yaw(pose: Pose) -> float:
@@ -135,6 +136,7 @@ class _WheelDrive(GazeboPlugin):
     torque: float
     acceleration: float
     legacy: bool
+    timeout = math.inf  # seconds of simulated time without a command before the wheels stop
 
     def _start_drive(self, namespace: str, command_topic: str, rate: float) -> None:
         from geometry_msgs.msg import Twist
@@ -161,6 +163,8 @@ class _WheelDrive(GazeboPlugin):
         return x - half, x + half
 
     def _drive(self, now: float) -> None:
+        if now - self.command.received > self.timeout:
+            self.command.stop()
         targets = self._targets()
         elapsed = max(0.0, now - self.last_update)
         self.last_update = now
@@ -182,45 +186,23 @@ class _WheelDrive(GazeboPlugin):
         self.rate.restart()
 
 
-class DiffDrive(_WheelDrive):
-    """libgazebo_ros_diff_drive.so."""
+class _TwoWheelDrive(_WheelDrive):
+    """What diff_drive and Kobuki's plugin share: two wheels, odometry from the world or the
+    wheels' encoders, the wheels' joint states."""
 
-    def __init__(self, context: PluginContext) -> None:
-        super().__init__(context)
-        probe = context.parameters("DiffDrive")
-        namespace = context.namespace(probe)
-        self.info = f"DiffDrive(ns = /{namespace}/)" if namespace else "DiffDrive(ns = //)"
-        p = context.parameters(self.info)
-        self.left = [p.text("leftJoint", "left_joint")]
-        self.right = [p.text("rightJoint", "right_joint")]
-        self.separation = p.number("wheelSeparation", 0.34)
-        self.diameter = p.number("wheelDiameter", 0.15)
-        self.acceleration = p.number("wheelAcceleration", 0.0)
-        self.torque = p.number("wheelTorque", 5.0)
-        command_topic = p.text("commandTopic", "cmd_vel")
-        odometry_topic = p.text("odometryTopic", "odom")
-        odometry_frame = p.text("odometryFrame", "odom")
-        base_frame = p.text("robotBaseFrame", "base_footprint")
-        self.publish_wheel_tf = p.flag("publishWheelTF", False)
-        self.publish_wheel_joint_state = p.flag("publishWheelJointState", False)
-        self.legacy = p.flag("legacyMode", True)
-        publish_odom_tf = p.flag("publishOdomTF", True)
-        rate = p.number("updateRate", 100.0)
-        source = p.text("odometrySource", "world").lower()
-        if source not in ("world", "encoder"):
-            raise PluginParameterError(f"{self.info}: <odometrySource> must be world or encoder, not {source!r}")
-        self.encoder = source == "encoder"
-        if self.diameter <= 0 or self.separation <= 0:
-            raise PluginParameterError(f"{self.info}: <wheelDiameter> and <wheelSeparation> must be above 0")
-        context.report(p)
+    publish_wheel_joint_state: bool
+    encoder: bool
+
+    def _start_two_wheels(self, namespace: str, command_topic: str, rate: float, odometry_topic: str,
+                          odometry_frame: str, base_frame: str, publish_odom_tf: bool) -> None:
         self._start_drive(namespace, command_topic, rate)
         self.odom = _Odometry(self, namespace, odometry_topic, odometry_frame, base_frame, publish_odom_tf)
-        context.info(f"{self.info}: Advertise odom on {odometry_topic} ")
+        self.context.info(f"{self.info}: Advertise odom on {odometry_topic} ")
         self.joint_states: Any = None
         if self.publish_wheel_joint_state:
             from sensor_msgs.msg import JointState
 
-            self.joint_states = self.own(context.publisher(namespace, "joint_states", JointState))
+            self.joint_states = self.own(self.context.publisher(namespace, "joint_states", JointState))
         self._encoder_pose = (0.0, 0.0, 0.0)
 
     def update(self, now: float) -> None:
@@ -270,6 +252,72 @@ class DiffDrive(_WheelDrive):
     def reset(self) -> None:
         super().reset()
         self._encoder_pose = (0.0, 0.0, 0.0)
+
+
+class DiffDrive(_TwoWheelDrive):
+    """libgazebo_ros_diff_drive.so."""
+
+    def __init__(self, context: PluginContext) -> None:
+        super().__init__(context)
+        probe = context.parameters("DiffDrive")
+        namespace = context.namespace(probe)
+        self.info = f"DiffDrive(ns = /{namespace}/)" if namespace else "DiffDrive(ns = //)"
+        p = context.parameters(self.info)
+        self.left = [p.text("leftJoint", "left_joint")]
+        self.right = [p.text("rightJoint", "right_joint")]
+        self.separation = p.number("wheelSeparation", 0.34)
+        self.diameter = p.number("wheelDiameter", 0.15)
+        self.acceleration = p.number("wheelAcceleration", 0.0)
+        self.torque = p.number("wheelTorque", 5.0)
+        command_topic = p.text("commandTopic", "cmd_vel")
+        odometry_topic = p.text("odometryTopic", "odom")
+        odometry_frame = p.text("odometryFrame", "odom")
+        base_frame = p.text("robotBaseFrame", "base_footprint")
+        self.publish_wheel_tf = p.flag("publishWheelTF", False)
+        self.publish_wheel_joint_state = p.flag("publishWheelJointState", False)
+        self.legacy = p.flag("legacyMode", True)
+        publish_odom_tf = p.flag("publishOdomTF", True)
+        rate = p.number("updateRate", 100.0)
+        source = p.text("odometrySource", "world").lower()
+        if source not in ("world", "encoder"):
+            raise PluginParameterError(f"{self.info}: <odometrySource> must be world or encoder, not {source!r}")
+        self.encoder = source == "encoder"
+        if self.diameter <= 0 or self.separation <= 0:
+            raise PluginParameterError(f"{self.info}: <wheelDiameter> and <wheelSeparation> must be above 0")
+        context.report(p)
+        self._start_two_wheels(namespace, command_topic, rate, odometry_topic, odometry_frame, base_frame,
+                               publish_odom_tf)
+
+
+class Kobuki(_TwoWheelDrive):
+    """libgazebo_ros_kobuki.so (kobuki_gazebo_plugins), on diff drive's wheels: its parameters, its
+    command topic under the model's name (spawned as mobile_base: mobile_base/commands/velocity),
+    odom and the odom -> base_footprint transform, the wheels' joint_states, odometry from the wheel
+    encoders, and a stop when no command came for velocity_command_timeout seconds. Its cliff
+    sensors, IMU and kobuki_msgs events are not in kame (a URDF's bumper contact sensor with
+    libgazebo_ros_bumper.so reports contacts)."""
+
+    def __init__(self, context: PluginContext) -> None:
+        super().__init__(context)
+        self.info = "GazeboRosKobuki"
+        p = context.parameters(self.info, KOBUKI_MISSING)
+        self.left = [p.text("left_wheel_joint_name", "wheel_left_joint")]
+        self.right = [p.text("right_wheel_joint_name", "wheel_right_joint")]
+        self.separation = p.number("wheel_separation", 0.23)
+        self.diameter = p.number("wheel_diameter", 0.07)
+        self.torque = p.number("torque", 1.0)
+        self.timeout = p.number("velocity_command_timeout", 0.6)
+        publish_tf = p.flag("publish_tf", True)
+        self.acceleration = 0.0
+        self.legacy = False
+        self.encoder = True
+        self.publish_wheel_joint_state = True
+        if self.diameter <= 0 or self.separation <= 0:
+            raise PluginParameterError(f"{self.info}: <wheel_diameter> and <wheel_separation> must be above 0")
+        context.report(p)
+        # the plugin's private NodeHandle is the model's name; odom and joint_states are global
+        self._start_two_wheels("", f"/{context.model_name()}/commands/velocity", 50.0, "odom", "odom",
+                               "base_footprint", publish_tf)
 
 
 class SkidSteerDrive(_WheelDrive):
