@@ -370,8 +370,6 @@ def test_set_model_state_moves_and_launches_a_model() -> None:
     assert world.model_state("box").pose.rpy()[2] == pytest.approx(1.5, rel=1e-3)
 
 
-@pytest.mark.usefixtures("renders")
-@in_own_process
 def test_a_models_twist_is_set_where_it_is() -> None:
     world = World.from_sdf(sdf("<include><uri>model://box</uri><pose>1 2 3 0 0 1</pose></include>"))
     world.physics = Physics(gravity=(0.0, 0.0, 0.0))
@@ -383,6 +381,8 @@ def test_a_models_twist_is_set_where_it_is() -> None:
     assert world.model_state("box").pose.rpy()[2] == pytest.approx(1.2, rel=1e-3)
 
 
+@pytest.mark.usefixtures("renders")
+@in_own_process
 def test_world_and_sensor_plugins_and_physics_are_read() -> None:
     world = World.from_sdf(sdf("""<physics type="ode"><max_step_size>0.002</max_step_size>
       <real_time_update_rate>500</real_time_update_rate><real_time_factor>2</real_time_factor></physics>
