@@ -7,6 +7,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-ros-peers.sh
 bash scripts/install-gui-libs.sh --xvfb  # turtlesim's window, tested under Xvfb
+bash scripts/install-web-peers.sh  # headless Chromium and the npm web clients the bridges are tested with
 python=${KAME_PYTHON:-python3}
 venv=.venv
 if [ ! -x "$venv/bin/python" ]; then
