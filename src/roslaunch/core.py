@@ -23,6 +23,7 @@ from xmlrpc.client import MultiCall, ServerProxy
 
 import rosgraph
 import rospkg
+from kame.launch.model import node_problem
 from kame.launch.runner import machine_is_local
 from kame.launch.scripting import Node as _ScriptNode
 from kame.launch.scripting import RLException
@@ -279,18 +280,10 @@ class Node(_ScriptNode):
         self.remap_args = remap_args or []  # the caller's own list, as ROS keeps it
         self.env_args = env_args or []
         self.process_name: str | None = None
-        if self.respawn and self.required:
-            raise ValueError("respawn and required cannot both be set to true")
-        if self.name and "/" in self.name:
-            raise ValueError("node name cannot contain a namespace")
-        if not self.package.strip():
-            raise ValueError("package must be non-empty")
-        if not self.type.strip():
-            raise ValueError("type must be non-empty")
-        if self.output not in ("log", "screen", None):
-            raise ValueError("output must be one of 'log', 'screen'")
-        if self.cwd not in ("ROS_HOME", "node", None):
-            raise ValueError("cwd must be one of 'ROS_HOME', 'node'")
+        problem = node_problem(self.package, self.type, self.name, self.respawn, self.required, self.output,
+                               self.cwd)
+        if problem is not None:
+            raise ValueError(problem)
 
     def xmltype(self) -> str:
         return "node"

@@ -3,7 +3,9 @@ the factories for a node's process (create_node_process) and the master's (creat
 
 Rules (roslaunch's nodeprocess, with its console wording; kame's supervisor keeps the same):
 - A process runs in its own session (process group), and on Linux gets SIGTERM should this
-  program die outright (kame.net.process.die_with_parent).
+  program die outright (kame.net.process.die_with_parent) when it was started from a thread that
+  lives as long as the launch (the main thread, a ProcessMonitor's); the signal is the forking
+  thread's, so one started from a server's request thread (a child's `launch`) goes without.
 - Its output goes to `<log dir>/<run_id>/<name>-stdout.log` unless output is screen; a node gets
   `__log:=<log dir>/<run_id>/<name>.log`. Its working directory is ROS_HOME, or with cwd="node"
   its program's folder.
@@ -20,7 +22,9 @@ import os
 import signal
 import subprocess
 import sys
+import threading
 import time
+from collections.abc import Callable
 from typing import IO, Any
 
 import rosgraph.names
@@ -31,7 +35,7 @@ from roslaunch.core import *  # noqa: F403 (ROS's nodeprocess re-exports core's 
 from roslaunch.core import Master, Node, RLException, is_child_mode, printerrlog, printlog_bold, setup_env
 from roslaunch.core import __all__ as _core_names
 from roslaunch.node_args import create_local_process_args
-from roslaunch.pmon import FatalProcessLaunch, Process
+from roslaunch.pmon import FatalProcessLaunch, Process, ProcessMonitor
 
 __all__ = [*_core_names, "DEFAULT_TIMEOUT_SIGINT", "DEFAULT_TIMEOUT_SIGTERM", "NUM_WORKERS", "FatalProcessLaunch",
            "LocalProcess", "Process", "create_local_process_args", "create_master_process", "create_node_process"]
@@ -81,6 +85,16 @@ def create_node_process(run_id: str, node: Node, master_uri: str, sigint_timeout
     return LocalProcess(run_id, node.package, name, args, env, node.output != "screen", respawn=node.respawn,
                         respawn_delay=node.respawn_delay, required=node.required, cwd=node.cwd,
                         sigint_timeout=sigint_timeout, sigterm_timeout=sigterm_timeout)
+
+
+def _death_signal() -> Callable[[], None] | None:
+    """die_with_parent when this thread lives as long as the launch (the main thread, a process
+    monitor's): the signal is tied to the forking thread, and a process started from a server's
+    request thread would get it when that call returns."""
+    thread = threading.current_thread()
+    if thread is threading.main_thread() or isinstance(thread, ProcessMonitor):
+        return die_with_parent()
+    return None
 
 
 class LocalProcess(Process):
@@ -167,7 +181,7 @@ class LocalProcess(Process):
             os.makedirs(cwd, exist_ok=True)
             try:
                 self.popen = subprocess.Popen(self.args, cwd=cwd, stdout=out, stderr=err, env=self.env,
-                                              close_fds=True, start_new_session=True, preexec_fn=die_with_parent())
+                                              close_fds=True, start_new_session=True, preexec_fn=_death_signal())
             except OSError as exc:
                 self.started = True
                 if exc.errno == errno.ENOEXEC:

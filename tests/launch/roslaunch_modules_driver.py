@@ -234,7 +234,17 @@ def files_section(launch: str) -> dict[str, Any]:
                          '<l><a if="true"/><a unless="1"/><a if="$(arg who)"/><a/><a if="1" unless="0"/></l>'
                      ).documentElement.getElementsByTagName("a")],
         "xml loader": [isinstance(xml, roslaunch.loader.Loader)],
+        "xml nodes": [outcome(lambda n=n: load_node_xml(n)) for n in (
+            'pkg="p" type="t" name="n" respawn="true" required="true"', 'pkg="p" type="" name="n"',
+            'pkg="" type="t" name="n"', 'pkg="p" type="t" name="a/b"', 'pkg="p" type="t" name="n" cwd="x"',
+            'pkg="p" type="t" name="n" output="file"', 'pkg="p" type="t" name="n" cwd="ros_home"')],
     }
+
+
+def load_node_xml(attrs: str) -> list[Any]:
+    config = roslaunch.config.ROSLaunchConfig()
+    roslaunch.xmlloader.XmlLoader().load_string(f"<launch><node {attrs}/></launch>", config, verbose=False)
+    return [[n.name, n.cwd, n.output] for n in config.nodes]
 
 
 def process_section(launch: str) -> dict[str, Any]:

@@ -33,6 +33,8 @@ from kame.node.remote_poll import REMOTE_POLL_PERIOD
 from kame.param_yaml import ParamValueError, check
 
 CALLER = "/roslaunch"
+# the core's nodes, which kame runs from its own modules (roscore.xml's rosout has no package here)
+CORE_PROGRAMS = {("rosout", "rosout"): (sys.executable, "-m", "kame.cli.rosout")}
 MASTER_START_TIMEOUT = 10.0
 
 
@@ -189,7 +191,7 @@ class LaunchRun:
     async def _core_nodes(self) -> None:
         rosout = Node("rosout", "rosout", "rosout", respawn=True)
         self.counter += 1
-        spec = plan.plan_process(rosout, self.counter, [sys.executable, "-m", "kame.cli.rosout"], self.options.env,
+        spec = plan.plan_process(rosout, self.counter, list(CORE_PROGRAMS["rosout", "rosout"]), self.options.env,
                                  self.options.master_uri, self.options.run_dir, self.options.ros_home)
         if await self.monitor.add(Child(spec, self.options.run_dir, core=True)):
             say("started core service [/rosout]")
@@ -299,6 +301,8 @@ def find_program(package_name: str, node_type: str, env: Mapping[str, str]) -> l
     """The argv that runs node `node_type` of `package_name`; LaunchError in roslaunch's words when
     there is none (PackageNotFound for an unknown package)."""
     package = executables.packages(env).get(package_name)
+    if package is None and (package_name, node_type) in CORE_PROGRAMS:
+        return list(CORE_PROGRAMS[package_name, node_type])
     if package is None:
         raise PackageNotFound("\n".join([package_name, *(f"ROS path [{i}]={p}"
                                                            for i, p in enumerate(executables.ros_paths(env)))]))
