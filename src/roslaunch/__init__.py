@@ -15,7 +15,6 @@ from logging import Logger
 from types import ModuleType
 
 import rospkg
-from rosmaster import DEFAULT_MASTER_PORT, NUM_WORKERS
 from roslaunch import core as roslaunch_core
 from roslaunch import param_dump as roslaunch_param_dump
 from roslaunch.config import ROSLaunchConfig
@@ -26,6 +25,7 @@ from roslaunch.parent import ROSLaunchParent
 from roslaunch.pmon import Process
 from roslaunch.scriptapi import ROSLaunch
 from roslaunch.xmlloader import XmlLoader, XmlParseException
+from rosmaster import DEFAULT_MASTER_PORT, NUM_WORKERS
 
 NAME = "roslaunch"
 
@@ -84,8 +84,19 @@ def main(argv: Sequence[str] | None = None) -> None:
 
 
 # the modules a ROS program reaches through `import roslaunch` (roslaunch.parent.ROSLaunchParent, ...)
-from roslaunch import (arg_dump, child, depends, netapi, node_args, remote, remoteprocess,  # noqa: E402
-                       roslaunch_logs, rlutil, server, substitution_args)
+from roslaunch import (  # noqa: E402
+    arg_dump,
+    child,
+    depends,
+    netapi,
+    node_args,
+    remote,
+    remoteprocess,
+    rlutil,
+    roslaunch_logs,
+    server,
+    substitution_args,
+)
 
 _SUBMODULES = (arg_dump, child, depends, netapi, node_args, remote, remoteprocess, roslaunch_logs, rlutil, server,
                substitution_args)

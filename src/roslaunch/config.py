@@ -18,9 +18,20 @@ from kame.launch.model import Node as ModelNode
 from kame.launch.remote import ENV_LOADER
 from kame.launch.runner import core_params
 from rosgraph.network import create_local_xmlrpc_uri
+from roslaunch.core import (
+    PHASE_SETUP,
+    Executable,
+    Machine,
+    Master,
+    Node,
+    Param,
+    RLException,
+    RosbinExecutable,
+    Test,
+    is_machine_local,
+    local_machine,
+)
 from rosmaster import DEFAULT_MASTER_PORT
-from roslaunch.core import (PHASE_SETUP, Executable, Machine, Master, Node, Param, RLException, RosbinExecutable, Test,
-                            is_machine_local, local_machine)
 
 __all__ = ["DEFAULT_MASTER_PORT", "ROSLaunchConfig", "calculate_env_loader", "get_roscore_filename",
            "load_config_default", "load_roscore", "local_machine", "namespaces_of", "replay"]

@@ -8,7 +8,8 @@ Rules (roslaunch's core, checked against Debian's on the same inputs):
 - Node is kame's scripting Node (kame.launch.scripting), so ROSLaunch.launch takes it.
 - printlog/printlog_bold/printerrlog print as kame's supervisor does (a closed stream is no
   error), after telling each handler added; a handler that raises is skipped, as in ROS.
-- Master.get() is an XML-RPC ServerProxy on the master, as ROS's.
+- Master.get() is a ServerProxy on the master (kame.net.server_proxy: the stdlib's calling convention
+  over kame's XML-RPC client), get_multi() a MultiCall.
 """
 
 from __future__ import annotations
@@ -19,7 +20,6 @@ import uuid
 from collections.abc import Callable, Mapping
 from typing import Any, TypeVar
 from xml.sax.saxutils import escape
-from xmlrpc.client import MultiCall, ServerProxy
 
 import rosgraph
 import rospkg
@@ -28,6 +28,7 @@ from kame.launch.runner import machine_is_local
 from kame.launch.scripting import Node as _ScriptNode
 from kame.launch.scripting import RLException
 from kame.launch.supervisor import say, say_bold, say_error
+from kame.net.server_proxy import MultiCall, ServerProxy
 from rosgraph.network import create_local_xmlrpc_uri, parse_http_host_and_port
 
 __all__ = ["PHASE_RUN", "PHASE_SETUP", "PHASE_TEARDOWN", "TEST_TIME_LIMIT_DEFAULT", "Executable", "Machine", "Master",
@@ -298,8 +299,8 @@ class Node(_ScriptNode):
         tag = self.xmltype()
         attrs = " ".join(f'{a}="{_xml_escape(v)}"' for a, v in self.xmlattrs() if v is not None and a not in skip)
         text = f"<{tag} {attrs}>\n"
-        text += "".join('  <remap from="%s" to="%s" />\n' % tuple(r) for r in self.remap_args)
-        text += "".join('  <env name="%s" value="%s" />\n' % tuple(e) for e in self.env_args)
+        text += "".join(f'  <remap from="{r[0]}" to="{r[1]}" />\n' for r in self.remap_args)
+        text += "".join(f'  <env name="{e[0]}" value="{e[1]}" />\n' for e in self.env_args)
         return text + f"</{tag}>"
 
     def to_xml(self) -> str:

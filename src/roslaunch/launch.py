@@ -30,11 +30,30 @@ from kame.launch.runner import master_answers
 from kame.launch.server import uri_param
 from kame.node.remote_poll import REMOTE_POLL_PERIOD, poll_remote
 from roslaunch.core import *  # noqa: F403 (ROS's launch re-exports core's names)
-from roslaunch.core import (PHASE_SETUP, Executable, Master, Node, RLException, RosbinExecutable, Test,
-                            get_ros_root, is_machine_local, printerrlog, printlog, printlog_bold, setup_env)
+from roslaunch.core import (
+    PHASE_SETUP,
+    Executable,
+    Master,
+    Node,
+    RLException,
+    RosbinExecutable,
+    Test,
+    get_ros_root,
+    is_machine_local,
+    printerrlog,
+    printlog,
+    printlog_bold,
+    setup_env,
+)
 from roslaunch.core import __all__ as _core_names
-from roslaunch.nodeprocess import (DEFAULT_TIMEOUT_SIGINT, DEFAULT_TIMEOUT_SIGTERM, NUM_WORKERS, LocalProcess,
-                                   create_master_process, create_node_process)
+from roslaunch.nodeprocess import (
+    DEFAULT_TIMEOUT_SIGINT,
+    DEFAULT_TIMEOUT_SIGTERM,
+    NUM_WORKERS,
+    LocalProcess,
+    create_master_process,
+    create_node_process,
+)
 from roslaunch.pmon import ProcessListener, ProcessMonitor, start_process_monitor
 from roslaunch.rlutil import update_terminal_name
 

@@ -16,7 +16,6 @@ from collections.abc import Callable, Sequence
 from copy import deepcopy
 from types import ModuleType
 from typing import Any
-from xmlrpc.client import Binary
 
 import yaml
 
@@ -212,15 +211,15 @@ class Loader:
 
     def param_value(self, verbose: bool, name: str, ptype: str, value: str | None, textfile: str | None,
                     binfile: str | None, command: str | None) -> Any:
-        """The value of a <param>, from its value, textfile, binfile (an XML-RPC Binary) or command."""
+        """The value of a <param>, from its value, textfile, binfile (its bytes) or command."""
         if value is not None:
             return convert_value(value.strip(), ptype)
         if textfile is not None:
             with open(textfile) as f:
                 return convert_value(f.read(), ptype)
-        if binfile is not None:
+        if binfile is not None:  # bytes: what kame's XML-RPC sends as base64 (ROS's loader wraps them in a Binary)
             with open(binfile, "rb") as b:
-                return Binary(b.read())
+                return b.read()
         if command is not None:
             if verbose:
                 print(f"... executing command param [{command}]")

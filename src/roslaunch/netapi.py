@@ -4,10 +4,11 @@ processes each one reports (list_processes)."""
 from __future__ import annotations
 
 from collections.abc import Sequence
-from xmlrpc.client import ServerProxy
+from typing import Any
 
 import rosgraph
 import rosgraph.network
+from kame.net.server_proxy import ServerProxy
 
 __all__ = ["NetProcess", "ServerProxy", "get_roslaunch_uris", "list_processes"]
 
@@ -39,7 +40,8 @@ def list_processes(roslaunch_uris: Sequence[str] | None = None) -> list[NetProce
     procs: list[NetProcess] = []
     for uri in uris:
         try:
-            code, _, val = ServerProxy(uri).list_processes()
+            reply: Any = ServerProxy(uri).list_processes()
+            code, _, val = reply
         except Exception:  # as ROS: a server gone away lists nothing
             continue
         if code == 1:

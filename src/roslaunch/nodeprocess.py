@@ -30,12 +30,12 @@ from typing import IO, Any
 import rosgraph.names
 import rospkg
 from kame.net.process import die_with_parent
-from rosmaster import NUM_WORKERS
 from roslaunch.core import *  # noqa: F403 (ROS's nodeprocess re-exports core's names)
 from roslaunch.core import Master, Node, RLException, is_child_mode, printerrlog, printlog_bold, setup_env
 from roslaunch.core import __all__ as _core_names
 from roslaunch.node_args import create_local_process_args
 from roslaunch.pmon import FatalProcessLaunch, Process, ProcessMonitor
+from rosmaster import NUM_WORKERS
 
 __all__ = [*_core_names, "DEFAULT_TIMEOUT_SIGINT", "DEFAULT_TIMEOUT_SIGTERM", "NUM_WORKERS", "FatalProcessLaunch",
            "LocalProcess", "Process", "create_local_process_args", "create_master_process", "create_node_process"]

@@ -17,6 +17,7 @@ __all__ = ["DEFAULT_TIMEOUT_SIGINT", "DEFAULT_TIMEOUT_SIGTERM", "RLException", "
 class ROSRemoteRunner(ROSRemoteRunnerIF):
     """Not available on kame: NotImplementedError (NO_XMLRPC_CHILD says why)."""
 
-    def __init__(self, run_id: str, rosconfig: Any, pm: Any, server: Any, sigint_timeout: float = DEFAULT_TIMEOUT_SIGINT,
+    def __init__(self, run_id: str, rosconfig: Any, pm: Any, server: Any,
+                 sigint_timeout: float = DEFAULT_TIMEOUT_SIGINT,
                  sigterm_timeout: float = DEFAULT_TIMEOUT_SIGTERM) -> None:
         raise NotImplementedError(NO_XMLRPC_CHILD)

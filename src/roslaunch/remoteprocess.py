@@ -6,8 +6,8 @@ from __future__ import annotations
 import logging
 import os
 from typing import Any
-from xmlrpc.client import ServerProxy
 
+from kame.net.server_proxy import ServerProxy
 from kame.net.ssh import SSH_CONNECT_TIMEOUT, _user_config, known_hosts_problem
 from roslaunch.core import printerrlog, printlog
 from roslaunch.nodeprocess import DEFAULT_TIMEOUT_SIGINT, DEFAULT_TIMEOUT_SIGTERM
@@ -37,5 +37,6 @@ class SSHChildROSLaunchProcess(ChildROSLaunchProcess):
     """Not available on kame: NotImplementedError (NO_XMLRPC_CHILD says why)."""
 
     def __init__(self, run_id: str, name: str, server_uri: str, machine: Any, master_uri: str | None = None,
-                 sigint_timeout: float = DEFAULT_TIMEOUT_SIGINT, sigterm_timeout: float = DEFAULT_TIMEOUT_SIGTERM) -> None:
+                 sigint_timeout: float = DEFAULT_TIMEOUT_SIGINT,
+                 sigterm_timeout: float = DEFAULT_TIMEOUT_SIGTERM) -> None:
         raise NotImplementedError(NO_XMLRPC_CHILD)

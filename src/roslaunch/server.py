@@ -20,15 +20,21 @@ import traceback
 from collections.abc import Callable
 from typing import Any
 from urllib.parse import urlparse
-from xmlrpc.client import ServerProxy
 
 from kame.launch.server import RpcHandlerServer
 from kame.launch.supervisor import say, say_bold, say_error
 from kame.net.address import host_addresses
-from rosgraph_msgs.msg import Log
+from kame.net.server_proxy import ServerProxy
 from rosgraph.network import parse_http_host_and_port
-from roslaunch.core import (RLException, add_printerrlog_handler, add_printlog_handler, printerrlog, printlog,
-                            printlog_bold)
+from rosgraph_msgs.msg import Log
+from roslaunch.core import (
+    RLException,
+    add_printerrlog_handler,
+    add_printlog_handler,
+    printerrlog,
+    printlog,
+    printlog_bold,
+)
 from roslaunch.launch import ROSLaunchRunner
 from roslaunch.nodeprocess import DEFAULT_TIMEOUT_SIGINT, DEFAULT_TIMEOUT_SIGTERM
 from roslaunch.pmon import Process, ProcessListener
@@ -272,7 +278,8 @@ class ROSLaunchChildNode(ROSLaunchNode):
         name = self.name
         server = ServerProxy(self.server_uri)
         try:
-            code, msg, _ = server.register(name, self.uri)
+            reply: Any = server.register(name, self.uri)
+            code, msg, _ = reply
         except Exception as exc:
             raise RLException(f"Exception while registering with roslaunch parent [{self.server_uri}]: "
                               f"{traceback.format_exc()}") from exc

@@ -16,8 +16,8 @@ from typing import Any
 from kame.cli.roslaunch import anonymous_name, loader_host
 from kame.launch.errors import ArgError, LaunchError, PackageNotFound
 from kame.launch.substitution import Substituter
-from rospkg import ResourceNotFound
 from roslaunch.loader import convert_value
+from rospkg import ResourceNotFound
 
 __all__ = ["ArgException", "StringIO", "SubstitutionException", "convert_value", "resolve_args"]
 

@@ -20,11 +20,11 @@ from kame.launch.errors import LaunchError
 from kame.launch.loader import LaunchLoader
 from kame.launch.model import LaunchConfig
 from rosgraph.names import get_ros_namespace, is_legal_name, is_private, make_global_ns, ns_join
-from rospkg import ResourceNotFound
 from roslaunch import loader, substitution_args
 from roslaunch.config import replay
 from roslaunch.core import Machine, Node, Param, RLException, Test
 from roslaunch.substitution_args import ArgException, SubstitutionException
+from rospkg import ResourceNotFound
 
 __all__ = ["CLEAR_PARAMS", "NS", "ArgException", "DomNode", "Machine", "Node", "Param", "ResourceNotFound",
            "SubstitutionException", "Test", "XmlLoader", "XmlParseException", "get_ros_namespace", "ifunless",

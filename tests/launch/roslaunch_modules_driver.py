@@ -14,8 +14,10 @@ import sys
 import threading
 import time
 import traceback
+from collections.abc import Callable
 from contextlib import redirect_stderr, redirect_stdout
-from typing import Any, Callable
+from typing import Any
+from xml.dom.minidom import parseString
 
 import roslaunch
 import roslaunch.arg_dump
@@ -107,6 +109,11 @@ def core_section(_: str) -> dict[str, Any]:
     }
 
 
+def base64_value(value: Any) -> bytes:
+    """A binfile's value: ROS's loader gives an xmlrpc.client.Binary, kame's the bytes it sends as base64."""
+    return value if isinstance(value, bytes) else value.data
+
+
 class Config:
     """A stand-in ROSLaunchConfig recording what a Loader adds."""
 
@@ -164,7 +171,7 @@ def loader_section(launch: str) -> dict[str, Any]:
     env_error = outcome(lambda: loader.load_env(rosparam_ctx, config, "", "v"))
     pvalues = [outcome(lambda: loader.param_value(False, "n", "auto", " 5 ", None, None, None)),
                outcome(lambda: loader.param_value(False, "n", "str", None, launch, None, None)[:8]),
-               outcome(lambda: type(loader.param_value(False, "n", "auto", None, None, launch, None)).__name__),
+               outcome(lambda: base64_value(loader.param_value(False, "n", "auto", None, None, launch, None))),
                outcome(lambda: loader.param_value(False, "n", "int", None, None, None, "echo 42")),
                outcome(lambda: loader.param_value(False, "n", "auto", None, None, None, "false")),
                outcome(lambda: loader.param_value(False, "n", "auto", None, None, None, None))]
@@ -205,7 +212,7 @@ def files_section(launch: str) -> dict[str, Any]:
     loader = roslaunch.xmlloader.XmlLoader(resolve_anon=False)
     config = roslaunch.config.load_config_default([launch], None, loader=loader, verbose=False,
                                                   assign_machines=False)
-    node = [n for n in config.nodes if n.name == "first"][0]
+    node = next(n for n in config.nodes if n.name == "first")
     node.machine = roslaunch.core.local_machine()
     base, file_deps, missing = roslaunch.depends.roslaunch_deps([launch])
     xml = roslaunch.xmlloader.XmlLoader()
@@ -219,7 +226,7 @@ def files_section(launch: str) -> dict[str, Any]:
         "node args": outcome(lambda: roslaunch.node_args.get_node_args("/g/second", [launch])),
         "node args missing": outcome(lambda: roslaunch.node_args.get_node_args("/nope", [launch])),
         "missing program": outcome(lambda: roslaunch.node_args.create_local_process_args(
-            [n for n in config.nodes if n.name == "ghost"][0], node.machine)),
+            next(n for n in config.nodes if n.name == "ghost"), node.machine)),
         "depends": [base, {os.path.basename(k): [sorted(v.nodes), sorted(v.includes), sorted(v.pkgs)]
                            for k, v in file_deps.items()}, {k: sorted(v) for k, v in missing.items()}],
         "check": without_ros_paths(roslaunch.rlutil.check_roslaunch(launch)),
@@ -229,10 +236,9 @@ def files_section(launch: str) -> dict[str, Any]:
                           outcome(lambda: roslaunch.config.namespaces_of(1))],
         "root context": [xml.root_context.ns, xml.root_context.resolve_dict.get("arg"),
                          sorted(xml.root_context.resolve_dict.get("arg_doc", {}).items())],
-        "ifunless": [outcome(lambda: roslaunch.xmlloader.ifunless_test(xml, tag, xml.root_context)) for tag in
-                     __import__("xml.dom.minidom").dom.minidom.parseString(
-                         '<l><a if="true"/><a unless="1"/><a if="$(arg who)"/><a/><a if="1" unless="0"/></l>'
-                     ).documentElement.getElementsByTagName("a")],
+        "ifunless": [outcome(lambda tag=tag: roslaunch.xmlloader.ifunless_test(xml, tag, xml.root_context))
+                     for tag in parseString('<l><a if="true"/><a unless="1"/><a if="$(arg who)"/><a/>'
+                                            '<a if="1" unless="0"/></l>').documentElement.getElementsByTagName("a")],
         "xml loader": [isinstance(xml, roslaunch.loader.Loader)],
         "xml nodes": [outcome(lambda n=n: load_node_xml(n)) for n in (
             'pkg="p" type="t" name="n" respawn="true" required="true"', 'pkg="p" type="" name="n"',
@@ -277,8 +283,8 @@ def process_section(launch: str) -> dict[str, Any]:
     pm.add_process_listener(Listener())
     pm.start()
     env = dict(os.environ)
-    dead = roslaunch.nodeprocess.LocalProcess("rid", "rl_pkg", "dead", ["/bin/sh", "-c", "sleep 0.5; exit 3"], env, False,
-                                              is_node=False)
+    dead = roslaunch.nodeprocess.LocalProcess("rid", "rl_pkg", "dead", ["/bin/sh", "-c", "sleep 0.5; exit 3"], env,
+                                              False, is_node=False)
     again = roslaunch.nodeprocess.LocalProcess("rid", "rl_pkg", "again", ["/bin/sh", "-c", "exit 0"], env, False,
                                                respawn=True, respawn_delay=0.0, is_node=False)
     sleeper = roslaunch.nodeprocess.LocalProcess("rid", "rl_pkg", "sleeper", ["/bin/sleep", "30"], env, False,

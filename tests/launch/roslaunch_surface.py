@@ -7,8 +7,8 @@ directive such as print_function, not a name a program uses).
 """
 
 from __future__ import annotations
-
 import __future__
+
 import importlib
 import json
 import os

@@ -173,7 +173,7 @@ def test_the_remote_runner_says_why_it_cannot_work() -> None:
 
     for make in (lambda: roslaunch.remote.ROSRemoteRunner("r", None, None, None),
                  lambda: roslaunch.remoteprocess.SSHChildROSLaunchProcess("r", "n", "http://h:1/", None)):
-        with pytest.raises(NotImplementedError, match="kame.launch.remote"):
+        with pytest.raises(NotImplementedError, match=r"kame\.launch\.remote"):
             make()
 
 
