@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import logging
 import os
+import threading
 import traceback
 from collections.abc import Callable
 from typing import Any
@@ -47,17 +48,18 @@ __all__ = ["DEFAULT_TIMEOUT_SIGINT", "DEFAULT_TIMEOUT_SIGTERM", "ChildROSLaunchP
 Answer = tuple[int, str, Any]
 
 
-class ChildROSLaunchProcess:
-    """A roslaunch child on another machine, as the parent knows it: its URI once it registers."""
+class ChildROSLaunchProcess(Process):
+    """A roslaunch child on another machine, as the parent knows it: its URI once it registers
+    (`registered` is set then)."""
 
     def __init__(self, name: str, args: list[Any], env: dict[str, str]) -> None:
-        self.name = name
-        self.args = args
-        self.env = env
+        super().__init__("roslaunch", name, args, env, False)
         self.uri: str | None = None
+        self.registered = threading.Event()
 
     def set_uri(self, uri: str) -> None:
         self.uri = uri
+        self.registered.set()
 
 
 class ROSLaunchBaseHandler:

@@ -167,14 +167,44 @@ def test_no_public_name_of_debians_roslaunch_is_missing() -> None:
     assert roslaunch_surface.missing(roslaunch_surface.debian_surface(), roslaunch_surface.surface()) == {}
 
 
-def test_the_remote_runner_says_why_it_cannot_work() -> None:
-    import roslaunch.remote
-    import roslaunch.remoteprocess
+@pytest.mark.skipif(not (Path("/usr/bin/roslaunch").exists() and debian.has("roslaunch.child")),
+                    reason="Debian's roslaunch is not installed")
+def test_the_remote_runner_drives_a_ros_child(tmp_path: Path) -> None:
+    """ROSRemoteRunner and SSHChildROSLaunchProcess with Debian's `roslaunch -c` as the other
+    machine's child (run here in place of over SSH): it registers, runs its node, reports its death."""
+    loader = tmp_path / "env.sh"
+    loader.write_text("#!/bin/sh\n# the other machine's ROS 1\nexport PATH=/usr/bin:/bin\n"
+                      'unset PYTHONPATH VIRTUAL_ENV\nexec "$@"\n')
+    loader.chmod(0o755)
+    run = answer(sys.executable, str(HERE / "roslaunch_remote_driver.py"), str(loader), tmp=tmp_path)
+    assert run == {"child": ["127.0.0.1-0", True, ["roslaunch", "-c", "127.0.0.1-0"], True],
+                   "launched": [["Process<far_node"], []], "died": True, "heard": [["far_node", 6]], "answer": 42,
+                   "child after stop": [False, True]}
 
-    for make in (lambda: roslaunch.remote.ROSRemoteRunner("r", None, None, None),
-                 lambda: roslaunch.remoteprocess.SSHChildROSLaunchProcess("r", "n", "http://h:1/", None)):
-        with pytest.raises(NotImplementedError, match=r"kame\.launch\.remote"):
-            make()
+
+def test_an_unreachable_machine_fails_the_launch(tmp_path: Path) -> None:
+    """SSHChildROSLaunchProcess over kame's SSH to a port where nothing listens: start() is False and
+    ROSRemoteRunner ends the launch with ROS's words."""
+    code = f"""
+import roslaunch.config, roslaunch.pmon, roslaunch.remote, roslaunch.server
+xml = ('<launch><machine name="far" address="127.0.0.1" user="someone_else" ssh-port="{free_port()}" '
+       'env-loader="/bin/env"/><node machine="far" pkg="p" type="t" name="n"/></launch>')
+config = roslaunch.config.load_config_default([], None, roslaunch_strs=[xml])
+pm = roslaunch.pmon.start_process_monitor()
+server = roslaunch.server.ROSLaunchParentNode(config, pm)
+server.start()
+try:
+    roslaunch.remote.ROSRemoteRunner("r", config, pm, server).start_children()
+except roslaunch.core.RLException as exc:
+    print("RLException:", exc)
+finally:
+    server.shutdown("over")
+    roslaunch.pmon.pmon_shutdown()
+"""
+    env = {**ros_env(tmp_path), "ROSLAUNCH_SSH_UNKNOWN": "1"}
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env, timeout=60)
+    assert "RLException: unable to start remote roslaunch child: 127.0.0.1-0" in done.stdout, done.stderr
+    assert "remote[127.0.0.1-0]: failed to launch on far:" in done.stderr
 
 
 def test_scriptapi_takes_roslaunch_core_nodes() -> None:
@@ -184,3 +214,29 @@ def test_scriptapi_takes_roslaunch_core_nodes() -> None:
 
     assert issubclass(roslaunch.core.Node, kame.launch.scripting.Node)
     assert roslaunch.scriptapi.Node is roslaunch.core.Node
+
+
+def test_master_get_calls_a_real_master(tmp_path: Path) -> None:
+    """Master.get() and get_multi() against kame's master: answers, a multicall, a fault."""
+    from kame.protocol.xmlrpc import Fault
+    from roslaunch.core import Master
+    from tests.support import kame_command, running, wait_for_master
+
+    port = free_port()
+    uri = f"http://127.0.0.1:{port}/"
+    with running(kame_command("kame.cli.rosmaster", "--core", "-p", str(port)), ros_env(tmp_path, uri)) as proc:
+        wait_for_master(uri, proc=proc)
+        master = Master(uri=uri)
+        assert master.is_running()
+        assert master.get().setParam("/t", "/x", 5)[0] == 1
+        multi = master.get_multi()
+        multi.getParam("/t", "/x")
+        multi.hasParam("/t", "/nope")
+        multi.noSuchMethod()
+        answers = multi()
+        assert next(answers)[2] == 5 and next(answers)[2] is False
+        with pytest.raises(Fault):
+            next(answers)
+        with master.get() as proxy:
+            assert proxy.getPid("/t")[0] == 1 and "ServerProxy for" in repr(proxy)
+            proxy("close")()
