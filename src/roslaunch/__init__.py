@@ -84,19 +84,5 @@ def main(argv: Sequence[str] | None = None) -> None:
 
 
 # the modules a ROS program reaches through `import roslaunch` (roslaunch.parent.ROSLaunchParent, ...)
-from roslaunch import (  # noqa: E402
-    arg_dump,
-    child,
-    depends,
-    netapi,
-    node_args,
-    remote,
-    remoteprocess,
-    rlutil,
-    roslaunch_logs,
-    server,
-    substitution_args,
-)
-
-_SUBMODULES = (arg_dump, child, depends, netapi, node_args, remote, remoteprocess, roslaunch_logs, rlutil, server,
-               substitution_args)
+from roslaunch import (arg_dump, child, depends, netapi, node_args, remote, remoteprocess, rlutil,  # noqa: E402, F401
+                       roslaunch_logs, server, substitution_args)
