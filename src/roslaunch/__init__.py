@@ -84,5 +84,16 @@ def main(argv: Sequence[str] | None = None) -> None:
 
 
 # the modules a ROS program reaches through `import roslaunch` (roslaunch.parent.ROSLaunchParent, ...)
-from roslaunch import (arg_dump, child, depends, netapi, node_args, remote, remoteprocess, rlutil,  # noqa: E402, F401
-                       roslaunch_logs, server, substitution_args)
+from roslaunch import (  # noqa: E402, F401
+    arg_dump,
+    child,
+    depends,
+    netapi,
+    node_args,
+    remote,
+    remoteprocess,
+    rlutil,
+    roslaunch_logs,
+    server,
+    substitution_args,
+)
