@@ -185,7 +185,7 @@ def _shown(value: Any) -> str:
 
 def _node(model: ModelNode) -> Node:
     kwargs: dict[str, Any] = {"namespace": model.namespace, "machine_name": model.machine_name, "args": model.args,
-                              "remap_args": list(model.remap_args), "env_args": list(model.env_args),
+                              "remap_args": [list(r) for r in model.remap_args], "env_args": list(model.env_args),
                               "cwd": model.cwd, "launch_prefix": model.launch_prefix, "filename": model.filename}
     if model.test_name is not None:
         return Test(model.test_name, model.package, model.type, name=model.name, time_limit=model.time_limit,

@@ -240,6 +240,8 @@ def files_section(launch: str) -> dict[str, Any]:
                      for tag in parseString('<l><a if="true"/><a unless="1"/><a if="$(arg who)"/><a/>'
                                             '<a if="1" unless="0"/></l>').documentElement.getElementsByTagName("a")],
         "xml loader": [isinstance(xml, roslaunch.loader.Loader)],
+        "remap args": [[type(n.remap_args).__name__, [type(r).__name__ for r in n.remap_args], n.remap_args]
+                       for n in xml_config.nodes],
         "xml nodes": [outcome(lambda n=n: load_node_xml(n)) for n in (
             'pkg="p" type="t" name="n" respawn="true" required="true"', 'pkg="p" type="" name="n"',
             'pkg="" type="t" name="n"', 'pkg="p" type="t" name="a/b"', 'pkg="p" type="t" name="n" cwd="x"',

@@ -122,6 +122,7 @@ def test_files_node_args_depends_check(tmp_path: Path) -> None:
     assert "cannot find node [missing_node] in package [rl_pkg]" in files["check"]
     assert files["args"] == {"code": ["the exit status", "3"], "who": [None, None]}
     assert "rate: 7" in files["dump_params"][1] and "who: me" in files["dump_params"][1]
+    assert files["remap args"][0] == ["list", ["list"], [["a", "b"]]]
     assert [n[0] for n in files["xml nodes"][:6]] == ["XmlParseException"] * 6
     assert files["xml nodes"][6] == [["n", "ROS_HOME", None]]
 
@@ -167,14 +168,35 @@ def test_no_public_name_of_debians_roslaunch_is_missing() -> None:
     assert roslaunch_surface.missing(roslaunch_surface.debian_surface(), roslaunch_surface.surface()) == {}
 
 
-@pytest.mark.skipif(not (Path("/usr/bin/roslaunch").exists() and debian.has("roslaunch.child")),
-                    reason="Debian's roslaunch is not installed")
-def test_the_remote_runner_drives_a_ros_child(tmp_path: Path) -> None:
-    """ROSRemoteRunner and SSHChildROSLaunchProcess with Debian's `roslaunch -c` as the other
-    machine's child (run here in place of over SSH): it registers, runs its node, reports its death."""
+KAME_CHILD = """#!{python}
+# roslaunch -c NAME -u SERVER_URI --run_id ID --sigint-timeout S --sigterm-timeout T, on kame's roslaunch.child
+import argparse
+import roslaunch.child
+
+parser = argparse.ArgumentParser()
+for flag in ("-c", "-u", "--run_id", "--sigint-timeout", "--sigterm-timeout"):
+    parser.add_argument(flag)
+a = parser.parse_args()
+roslaunch.child.ROSLaunchChild(a.run_id, a.c, a.u, float(a.sigint_timeout), float(a.sigterm_timeout)).run()
+"""
+
+
+@pytest.mark.parametrize("child", ["debian", "kame"])
+def test_the_remote_runner_drives_a_child(child: str, tmp_path: Path) -> None:
+    """ROSRemoteRunner and SSHChildROSLaunchProcess with a child run here in place of over SSH:
+    Debian's `roslaunch -c`, or kame's ROSLaunchChild. It registers, runs its node, reports its death."""
     loader = tmp_path / "env.sh"
-    loader.write_text("#!/bin/sh\n# the other machine's ROS 1\nexport PATH=/usr/bin:/bin\n"
-                      'unset PYTHONPATH VIRTUAL_ENV\nexec "$@"\n')
+    if child == "debian":
+        if not (Path("/usr/bin/roslaunch").exists() and debian.has("roslaunch.child")):
+            pytest.skip("Debian's roslaunch is not installed")
+        setup = "export PATH=/usr/bin:/bin\nunset PYTHONPATH VIRTUAL_ENV"
+    else:
+        bin_dir = tmp_path / "bin"
+        bin_dir.mkdir()
+        (bin_dir / "roslaunch").write_text(KAME_CHILD.format(python=sys.executable))
+        (bin_dir / "roslaunch").chmod(0o755)
+        setup = f'export PATH="{bin_dir}:$PATH"'
+    loader.write_text(f'#!/bin/sh\n# the other machine\'s ROS 1\n{setup}\nexec "$@"\n')
     loader.chmod(0o755)
     run = answer(sys.executable, str(HERE / "roslaunch_remote_driver.py"), str(loader), tmp=tmp_path)
     assert run == {"child": ["127.0.0.1-0", True, ["roslaunch", "-c", "127.0.0.1-0"], True],
