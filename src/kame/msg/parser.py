@@ -32,7 +32,7 @@ from kame.msg.spec import (
 _BASE_NAME = re.compile(r"[A-Za-z][A-Za-z0-9_]*\Z")
 _TYPE_NAME = re.compile(r"(?:[A-Za-z][A-Za-z0-9_]*/)?[A-Za-z][A-Za-z0-9_]*\Z")
 _ARRAY_SUFFIX = re.compile(r"\[(\d*)\]\Z")
-_INT_RANGES: dict[str, tuple[int, int]] = {
+INT_RANGES: dict[str, tuple[int, int]] = {
     "int8": (-(2**7), 2**7 - 1),
     "byte": (-(2**7), 2**7 - 1),
     "uint8": (0, 2**8 - 1),
@@ -106,7 +106,7 @@ def _constant_value(type_name: str, text: str, where: str) -> bool | int | float
             return bool(ast.literal_eval(text))
         except (ValueError, SyntaxError):
             raise MsgDefinitionError(f"{where}: invalid bool constant value '{text}'") from None
-    low, high = _INT_RANGES[type_name]
+    low, high = INT_RANGES[type_name]
     try:
         value = int(text)
     except ValueError:
@@ -171,7 +171,9 @@ def parse_msg(text: str, full_name: str, source: str = "") -> MsgSpec:
     return MsgSpec(full_name, tuple(fields), tuple(constants), text, source)
 
 
-def _split_sections(text: str) -> list[str]:
+def split_sections(text: str) -> list[str]:
+    """The parts of a .srv or .action text between its lines starting with `---`, each line
+    ending in a newline (genmsg's split, which keeps comments)."""
     sections: list[list[str]] = [[]]
     for line in text.split("\n"):
         if line.startswith(SERVICE_SEPARATOR):
@@ -182,7 +184,7 @@ def _split_sections(text: str) -> list[str]:
 
 
 def parse_srv(text: str, full_name: str, source: str = "") -> SrvSpec:
-    sections = _split_sections(text)
+    sections = split_sections(text)
     label = source or full_name
     if len(sections) != 2:
         raise MsgDefinitionError(
@@ -195,7 +197,7 @@ def parse_srv(text: str, full_name: str, source: str = "") -> SrvSpec:
 
 def action_message_texts(text: str, short_name: str, source: str = "") -> dict[str, str]:
     """genaction's seven message texts for the action `short_name`, by message short name."""
-    sections = _split_sections(text)
+    sections = split_sections(text)
     if len(sections) != 3:
         raise MsgDefinitionError(
             f"{source or short_name}: an action needs exactly two '---' lines (goal, result, feedback), "
