@@ -157,3 +157,49 @@ def test_bag_connection_records_carry_ros_definitions(tmp_path: Path) -> None:
     assert theirs["conns"]["/header"][2] == theirs["classes"]["/header"]
     check = _debian(["/usr/bin/rosbag", "check", str(path)])
     assert "does not need any migrations" in check.stdout, check.stdout + check.stderr
+
+
+KAME_PUBLISHER = r"""
+import rospy
+from geometry_msgs.msg import PoseStamped
+rospy.init_node("kame_definitions_publisher")
+pub = rospy.Publisher("/pose", PoseStamped, latch=True, queue_size=1)
+pub.publish(PoseStamped())
+print("published", flush=True)
+rospy.spin()
+"""
+
+DEBIAN_SUBSCRIBER = r"""
+import json, rospy
+from geometry_msgs.msg import PoseStamped
+rospy.init_node("debian_definitions_listener")
+raw = rospy.wait_for_message("/pose", rospy.AnyMsg, timeout=30)
+header = raw._connection_header
+print(json.dumps({"definition": header["message_definition"], "md5sum": header["md5sum"],
+                  "genpy": PoseStamped._full_text}))
+"""
+
+
+@debian_rosbag
+def test_connection_header_carries_ros_definition(tmp_path: Path) -> None:
+    """A kame publisher's connection header, as Debian's rospy receives it: the definition its
+    own genpy class carries."""
+    import sys
+
+    from tests.support import free_port, ros_env, running, wait_for_master
+
+    port = free_port()
+    uri = f"http://127.0.0.1:{port}/"
+    env = ros_env(tmp_path / "home", uri)
+    with running([sys.executable, "-m", "kame.cli.rosmaster", "--core", "-p", str(port)], env) as master:
+        wait_for_master(uri, proc=master)
+        with running([sys.executable, "-c", KAME_PUBLISHER], env) as publisher:
+            publisher.wait_line("published")
+            done = subprocess.run([SYSTEM_PYTHON, "-c", DEBIAN_SUBSCRIBER], env=env, capture_output=True,
+                                  text=True, timeout=60)
+    assert done.returncode == 0, done.stderr
+    theirs = json.loads(done.stdout)
+    from geometry_msgs.msg import PoseStamped
+
+    assert theirs["definition"] == theirs["genpy"] == PoseStamped._full_text
+    assert theirs["md5sum"] == PoseStamped._md5sum
