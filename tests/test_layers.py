@@ -24,7 +24,8 @@ from pathlib import Path
 
 SRC = Path(__file__).resolve().parents[1] / "src"
 
-FACADES = ("rospy", "rosbag", "actionlib", "roslaunch", "genpy", "roslib", "rostest", "rosunit", "message_filters",
+FACADES = ("rospy", "rosbag", "actionlib", "roslaunch", "genpy", "genmsg", "roslib", "rostest", "rosunit",
+           "message_filters",
            "rosgraph", "rospkg", "rostopic", "rosservice", "rosnode", "rosparam", "rosmsg",
            "cv_bridge", "rosmaster", "tf", "tf2_ros", "tf2_geometry_msgs", "tf_conversions", "PyKDL",
            "interactive_markers", "camera_calibration_parsers")
