@@ -1,6 +1,7 @@
 """The TurtleBot in 3-D: `roslaunch turtlebot_gazebo turtlebot_world.launch` on kame's Gazebo
 (headless), its Kinect's topics against the playground's known walls, cmd_vel driving the Kobuki
-with /odom following the ground truth, gmapping_demo mapping the walls while it turns, amcl_demo
+with /odom following the ground truth, the Kobuki's IMU, cliff and bumper events on kobuki's topics,
+gmapping_demo mapping the walls while it turns, amcl_demo
 localising on the playground's map and move_base driving to a goal, `roslaunch turtlebot_teleop
 keyboard_teleop.launch` in a real terminal (tmux) driving it with keys, and the 2-D world with its
 one line when MuJoCo cannot be imported. The demos run unchanged on the 3-D world; each is
@@ -97,6 +98,26 @@ def test_cmd_vel_drives_the_kobuki_and_odom_follows(world: tuple[Sim, Proc]) -> 
     odom, truth = driven["odom"], driven["truth"]
     assert odom[0] >= 0.6 and abs(odom[1]) < 0.05
     assert math.dist(odom, truth) < 0.05  # the wheels' odometry keeps to the ground truth on a short run
+
+
+def test_the_kobukis_imu_cliff_and_bumper_events_on_its_own_topics(world: tuple[Sim, Proc]) -> None:
+    sim, _ = world
+    seen = probe(sim, "kobuki", timeout=120)
+    imu = seen["imu"]
+    assert imu["frame"] == "gyro_link" and imu["acceleration_z"] == pytest.approx(9.8, abs=0.3)
+    assert abs(math.remainder(imu["heading"] - imu["truth_heading"], 2 * math.pi)) < 0.02
+    assert imu["covariance"] == [1e6, 0.0, 0.0, 0.0, 1e6, 0.0, 0.0, 0.0, 0.05]
+    # lifted: each of the three sensors (LEFT 0, CENTER 1, RIGHT 2) says CLIFF (1) once, then FLOOR (0) once
+    cliff = [tuple(e[:2]) for e in seen["cliff"]]
+    assert sorted(cliff) == [(0, 0), (0, 1), (1, 0), (1, 1), (2, 0), (2, 1)], cliff
+    assert all(cliff.index((s, 1)) < cliff.index((s, 0)) for s in range(3))
+    # mm to the floor: nothing within the rays' 0.15 m, then the first reading under the 0.04 m threshold
+    # as it falls (at 50 Hz and 2.4 m/s, anywhere from 40 mm down to the casters pressed into the floor)
+    bottoms = {tuple(e[:2]): e[2] for e in seen["cliff"]}
+    assert all(bottoms[(s, 1)] == 150 and 10 < bottoms[(s, 0)] < 40 for s in range(3)), bottoms
+    # into a box straight ahead: the centre bumper pressed (1), and released (0) when the box goes
+    bumper = [tuple(e) for e in seen["bumper"]]
+    assert bumper[0] == (1, 1) and bumper[-1] == (1, 0), bumper
 
 
 def test_depthimage_to_laserscan_as_upstreams_launch_files_load_it(world: tuple[Sim, Proc]) -> None:
