@@ -20,11 +20,20 @@ of --seconds each:
 Each window reports the real-time factor (simulated seconds of /clock per wall second), the
 messages received per simulated second (30 for the images, 30 for /scan), each process's CPU
 share of one core and gzserver's simulated seconds per CPU second (what a core of its own gives).
+
+    .venv/bin/python bench/turtlebot3d_bench.py --profile [--seconds 5]
+
+Where gzserver's time goes, in this process without ROS: the playground and the TurtleBot
+(robot_description from turtlebot_description's xacro) stepped for --seconds of simulated time,
+the Kinect at 30 Hz doing what its plugin does per frame (one render of colour and depth, read
+back; the depth cut to the plugin's range as NaN; both images serialized as sensor_msgs/Image; the
+PointCloud2 built and serialized), each part timed, with the plugin's own functions.
 """
 
 from __future__ import annotations
 
 import argparse
+import math
 import os
 import re
 import subprocess
@@ -136,12 +145,69 @@ def respawn_at_30_hz() -> None:
         model_name="mobile_base", model_xml=faster, robot_namespace="", initial_pose=pose, reference_frame="world")
 
 
+def profile(seconds: float) -> None:
+    """The per-frame parts of the Kinect's plugin, timed against the physics steps."""
+    import io
+
+    from kame.gazebo import Pose, World
+    from kame.gazebo_ros.models import resources_from
+    from kame.gazebo_ros.plugins.camera import depth_in_range, point_cloud_bytes
+    from sensor_msgs.msg import Image, PointCloud2
+
+    resources = resources_from(os.environ)
+    assert resources.find_package is not None
+    share, robots = (Path(resources.find_package(name) or "") for name in ("turtlebot_gazebo", "turtlebot_description"))
+    description = subprocess.run([str(BIN / "xacro"), str(robots / "robots" / "kobuki_hexagons_kinect.urdf.xacro")],
+                                 capture_output=True, text=True, check=True).stdout
+    world = World.from_file(str(share / "worlds" / "playground.world"), resources)
+    world.spawn_urdf(description, "mobile_base", Pose())
+    camera = next(s for s in world.sensors() if s.type == "depth")
+    f = 320 / math.tan(camera.config.child("camera").number("horizontal_fov", 1.047) / 2)
+    world.drive_joint("mobile_base::wheel_left_joint", 4.0, 1.0)
+    world.drive_joint("mobile_base::wheel_right_joint", 6.0, 1.0)
+    parts = dict.fromkeys(("physics steps", "render + readback", "depth cut to range", "images serialized",
+                           "point cloud built + serialized"), 0.0)
+    frames = round(seconds * 30)
+    steps_per_frame = round(1 / 30 / world.physics.max_step_size)
+    started = time.perf_counter()
+    for _ in range(frames):
+        mark = time.perf_counter()
+        world.step(steps_per_frame)
+        now = time.perf_counter()
+        parts["physics steps"] += now - mark
+        frame = world.camera_frame(camera, rgb=True, depth=True)
+        mark, now = now, time.perf_counter()
+        parts["render + readback"] += now - mark
+        depth = depth_in_range(frame.depth, 0.4, 8.0)
+        mark, now = now, time.perf_counter()
+        parts["depth cut to range"] += now - mark
+        for pixels, encoding in ((frame.rgb, "rgb8"), (depth, "32FC1")):
+            msg = Image(height=480, width=640, encoding=encoding, step=pixels.strides[0], data=pixels.tobytes())
+            msg.serialize(io.BytesIO())
+        mark, now = now, time.perf_counter()
+        parts["images serialized"] += now - mark
+        cloud = point_cloud_bytes(depth, frame.rgb, f, 320.0, 240.0)
+        PointCloud2(height=480, width=640, point_step=16, row_step=16 * 640, data=cloud).serialize(io.BytesIO())
+        parts["point cloud built + serialized"] += time.perf_counter() - now
+    wall = time.perf_counter() - started
+    world.close()
+    print(f"{frames} frames over {seconds:.1f} simulated s in {wall:.2f} s of wall time "
+          f"(real-time factor {seconds / wall:.2f} for these parts alone), load average {os.getloadavg()[0]:.1f}")
+    for part, spent in parts.items():
+        print(f"  {part:32s} {1000 * spent / frames:7.2f} ms a frame  {100 * spent / wall:5.1f}%")
+
+
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--seconds", type=float, default=20.0)
+    parser.add_argument("--profile", action="store_true", help="where gzserver's time goes, in this process")
     parser.add_argument("--points", action="store_true", help="also subscribe to /camera/depth/points")
     parser.add_argument("--home", type=Path, default=Path("/tmp/kame-turtlebot3d-bench"))
     args = parser.parse_args()
+    if args.profile:
+        os.environ.setdefault("MUJOCO_GL", "egl")
+        profile(args.seconds)
+        return 0
     args.home.mkdir(parents=True, exist_ok=True)
     port = free_port()
     env = {**os.environ, "ROS_MASTER_URI": f"http://127.0.0.1:{port}/", "ROS_HOSTNAME": "127.0.0.1",
