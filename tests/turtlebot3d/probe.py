@@ -6,7 +6,8 @@ one JSON line about what it saw, so the test process never holds a node.
     probe.py map SECONDS             turn in place at 0.6 rad/s for SECONDS of simulated time, and
                                      the first /map made after them
     probe.py kobuki                  the Kobuki's IMU; its cliff events while lifted 0.3 m and dropped;
-                                     its bumper events driving into a box spawned ahead, then deleted
+                                     its bumper events driving into a box spawned ahead, then deleted;
+                                     commands/motor_power off and on, commands/reset_odometry
 """
 
 from __future__ import annotations
@@ -23,9 +24,10 @@ import rospy
 from gazebo_msgs.msg import ModelState, ModelStates
 from gazebo_msgs.srv import DeleteModel, GetModelState, SetModelState, SpawnModel
 from geometry_msgs.msg import Pose, Twist
-from kobuki_msgs.msg import BumperEvent, CliffEvent
+from kobuki_msgs.msg import BumperEvent, CliffEvent, MotorPower
 from nav_msgs.msg import OccupancyGrid, Odometry
 from sensor_msgs.msg import CameraInfo, Image, Imu, LaserScan, PointCloud2
+from std_msgs.msg import Empty
 
 
 def sensors() -> dict[str, Any]:
@@ -143,11 +145,42 @@ def kobuki() -> dict[str, Any]:
     commands.publish(Twist())
     rospy.ServiceProxy("/gazebo/delete_model", DeleteModel)("bump_box")
     released = until(bumps, [(BumperEvent.CENTER, BumperEvent.RELEASED)], "the centre bumper released")
-    return {"imu": {"frame": imu.header.frame_id, "acceleration_z": imu.linear_acceleration.z,
+    motors = motor_power_and_odometry_reset()
+    return {"motors": motors, "imu": {"frame": imu.header.frame_id, "acceleration_z": imu.linear_acceleration.z,
                     "heading": math.atan2(2 * (imu.orientation.w * imu.orientation.z),
                                           1 - 2 * imu.orientation.z ** 2), "truth_heading": heading,
                     "covariance": list(imu.orientation_covariance)},
             "cliff": cliff_events, "bumper": pressed + released}
+
+
+def motor_power_and_odometry_reset() -> dict[str, float]:
+    """How far the Kobuki goes in a simulated second of commands with its motors off, then on; and
+    /odom's distance from its origin after commands/reset_odometry."""
+    power = rospy.Publisher("/mobile_base/commands/motor_power", MotorPower, queue_size=1, latch=True)
+    reset = rospy.Publisher("/mobile_base/commands/reset_odometry", Empty, queue_size=1, latch=True)
+    commands = rospy.Publisher("/mobile_base/commands/velocity", Twist, queue_size=1)
+    forward = Twist()
+    forward.linear.x = 0.2
+    state = rospy.ServiceProxy("/gazebo/get_model_state", GetModelState)
+    moved = {}
+    for label, setting in (("off", MotorPower.OFF), ("on", MotorPower.ON)):
+        power.publish(MotorPower(state=setting))
+        rospy.sleep(0.2)  # simulated time: the latched setting has reached the plugin
+        start = state("mobile_base", "world").pose.position
+        rate = rospy.Rate(10)
+        for _ in range(10):  # a simulated second of 0.2 m/s
+            commands.publish(forward)
+            rate.sleep()
+        end = state("mobile_base", "world").pose.position
+        moved[label] = math.hypot(end.x - start.x, end.y - start.y)
+    commands.publish(Twist())
+    odometry: queue.Queue[Any] = events("/odom", Odometry)
+    reset.publish(Empty())
+    for _ in range(200):  # /odom at 50 Hz: within 4 s of simulated time its origin is back
+        position = odometry.get(timeout=30).pose.pose.position
+        if math.hypot(position.x, position.y) < 0.01:
+            break
+    return {"moved_off": moved["off"], "moved_on": moved["on"], "odom_after_reset": math.hypot(position.x, position.y)}
 
 
 def main() -> None:

@@ -100,7 +100,7 @@ def test_cmd_vel_drives_the_kobuki_and_odom_follows(world: tuple[Sim, Proc]) -> 
     assert math.dist(odom, truth) < 0.05  # the wheels' odometry keeps to the ground truth on a short run
 
 
-def test_the_kobukis_imu_cliff_and_bumper_events_on_its_own_topics(world: tuple[Sim, Proc]) -> None:
+def test_the_kobukis_imu_cliff_and_bumper_events_and_commands_on_its_own_topics(world: tuple[Sim, Proc]) -> None:
     sim, _ = world
     seen = probe(sim, "kobuki", timeout=120)
     imu = seen["imu"]
@@ -118,6 +118,9 @@ def test_the_kobukis_imu_cliff_and_bumper_events_on_its_own_topics(world: tuple[
     # into a box straight ahead: the centre bumper pressed (1), and released (0) when the box goes
     bumper = [tuple(e) for e in seen["bumper"]]
     assert bumper[0] == (1, 1) and bumper[-1] == (1, 0), bumper
+    motors = seen["motors"]
+    assert motors["moved_off"] < 0.01 and motors["moved_on"] > 0.1, motors  # motor_power off holds it still
+    assert motors["odom_after_reset"] < 0.01, motors  # reset_odometry: /odom from its origin again
 
 
 def test_depthimage_to_laserscan_as_upstreams_launch_files_load_it(world: tuple[Sim, Proc]) -> None:
