@@ -14,14 +14,17 @@ Rules:
   `max_frames` frames and `max_bytes` bytes; when it is full the oldest frame is dropped and
   counted. One sender thread per client writes them, so a slow client costs only its own frames.
 - Threads: the server's accept thread and, per client, the library's handler thread and our
-  sender thread. `close()` stops accepting, closes every connection and joins them all.
+  sender thread. `close()` stops accepting, closes every connection and joins them all; a sender
+  still blocked on a client that reads nothing has the socket shut down under it.
 This module moves frames; what they mean is the handler's business.
 """
 
 from __future__ import annotations
 
 import collections
+import contextlib
 import logging
+import socket
 import ssl
 import threading
 from collections.abc import Callable
@@ -37,6 +40,8 @@ from kame.net import peers
 log = logging.getLogger("kame.net.websocket_listener")
 
 Frame = str | bytes
+CLOSE_TIMEOUT = 2.0  # how long a closing handshake may wait on the client before its TCP connection is cut
+SENDER_GRACE = 1.0  # how long a client's sender may take to finish its frame when the client goes
 
 
 @dataclass(frozen=True)
@@ -119,7 +124,12 @@ class Client:
             self._queue.clear()
             self._queued_bytes = 0
             self._ready.notify()
-        if threading.current_thread() is not self._sender:
+        if threading.current_thread() is self._sender:
+            return
+        self._sender.join(SENDER_GRACE)
+        if self._sender.is_alive():  # blocked writing to a peer that does not read: break the socket under it
+            with contextlib.suppress(OSError):
+                self.connection.socket.shutdown(socket.SHUT_RDWR)
             self._sender.join()
 
 
@@ -147,7 +157,8 @@ class WebSocketListener:
         self._lock = threading.Lock()
         self._server: Server = serve(self._handle, host, port, ssl=_tls_context(tls) if tls else None,
                                      process_request=self._check_peer, max_size=limits.max_message_size,
-                                     max_queue=limits.max_queue, compression=None)
+                                     max_queue=limits.max_queue, compression=None,
+                                     close_timeout=CLOSE_TIMEOUT)
         self.port: int = self._server.socket.getsockname()[1]
         self._thread = threading.Thread(target=self._server.serve_forever, name="kame-ws-accept", daemon=True)
 
@@ -185,6 +196,8 @@ class WebSocketListener:
 
     def close(self) -> None:
         """Stop accepting, close every client (1001, going away) and join every thread."""
+        for client in self.clients():  # first, so that no close handshake waits behind a stuck send
+            client._stop_sender()
         self._server.shutdown()
         if self._thread.is_alive():
             self._thread.join()
