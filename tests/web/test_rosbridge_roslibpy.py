@@ -212,3 +212,16 @@ def test_set_level_and_fragments_from_a_client(graph: Graph) -> None:
         for num, part in enumerate(parts):
             ws.send(json.dumps({"op": "fragment", "id": "f1", "data": part, "num": num, "total": len(parts)}))
         assert json.loads(ws.recv(timeout=20))["op"] == "publish"
+
+
+def test_fragment_size_cuts_what_the_bridge_sends(graph: Graph) -> None:
+    with connect(graph.url, open_timeout=20) as ws:
+        ws.send(json.dumps({"op": "subscribe", "topic": "/turtle1/pose", "type": "turtlesim/Pose",
+                            "fragment_size": 20}))
+        first = json.loads(ws.recv(timeout=20))
+        assert first["op"] == "fragment" and first["num"] == 0 and first["total"] > 1
+        parts = [first] + [json.loads(ws.recv(timeout=20)) for _ in range(first["total"] - 1)]
+        assert [p["num"] for p in parts] == list(range(first["total"]))
+        assert all(len(p["data"]) <= 20 and p["id"] == first["id"] for p in parts)
+        whole = json.loads("".join(p["data"] for p in parts))
+        assert whole["op"] == "publish" and whole["topic"] == "/turtle1/pose"
