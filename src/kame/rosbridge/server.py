@@ -72,10 +72,13 @@ class _Logged(Session):
     def __init__(self, shared: Shared, client: Client, listener: WebSocketListener) -> None:
         super().__init__(shared, client.send, client.peer)
         self._listener = listener
+        self._client = client
 
     def on_close(self) -> None:
         super().on_close()
-        log.emit(log.INFO, "Client disconnected. %d clients total.", (len(self._listener.clients()),))
+        # past its queue's bound (~max_queue_frames, ~max_queue_bytes) a client loses its oldest frames
+        log.emit(log.INFO, "Client disconnected. %d clients total. %d frames sent to it, %d dropped.",
+                 (len(self._listener.clients()), self._client.sent, self._client.dropped))
 
 
 def main(argv: Sequence[str] | None = None) -> int:
