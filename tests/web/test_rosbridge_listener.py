@@ -43,7 +43,8 @@ def test_frames_go_both_ways_and_close_joins_everything() -> None:
     finally:
         listener.close()
     assert sessions[0].closed.is_set()
-    assert not [t for t in threading.enumerate() if t.name.startswith("kame-ws")]
+    left = [t.name for t in threading.enumerate() if t.name.startswith("kame-ws")]
+    assert not left, left
 
 
 def test_a_refused_peer_gets_403() -> None:

@@ -113,7 +113,9 @@ def test_cbor_uses_typed_arrays_and_bytes() -> None:
 
 @pytest.mark.parametrize("frame,words", [
     ("{not json", "malformed JSON"),
-    (b"\xff\xff", "malformed CBOR"),
+    (b"\xa1", "malformed CBOR"),  # a map cut short
+    (b"\x5b\x00\x00\x00\x10\x00\x00\x00\x00", "malformed CBOR"),  # announces 64 GiB of bytes, sends none
+    ("[" * 100_000, "malformed JSON"),  # nested past the parser's recursion
     ("[1, 2]", "not an object"),
     ('{"topic": "/a"}', "no 'op'"),
 ])

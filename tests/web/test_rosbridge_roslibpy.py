@@ -174,7 +174,7 @@ def _status(ws: Any) -> dict[str, Any]:
 
 @pytest.mark.parametrize("frame,words", [
     ("{not json", "malformed JSON"),
-    (b"\xff\x00garbage", "malformed CBOR"),
+    (b"\xa2\x62op", "malformed CBOR"),
     ('{"op": "teleport", "id": "t1"}', "Unknown operation: teleport"),
     ('{"op": "subscribe", "topic": 42, "id": "s1"}', "Expected field 'topic' to be a string"),
     ('{"op": "subscribe", "topic": "/turtle1/pose", "throttle_rate": "fast"}', "throttle_rate"),
