@@ -3,7 +3,11 @@ bound on what a client may send, the bounded queue a client that does not read i
 
 from __future__ import annotations
 
+import shutil
+import ssl
+import subprocess
 import threading
+from pathlib import Path
 
 import pytest
 from websockets.exceptions import ConnectionClosedError, InvalidStatus
@@ -94,5 +98,24 @@ def test_a_client_that_does_not_read_is_held_to_its_queue() -> None:
             assert clients[0].dropped > 1000
             assert ws.recv(timeout=5) == frame  # and the client still gets the newest ones
             listener.close()  # its sender, blocked on a client that stopped reading, is cut off
+    finally:
+        listener.close()
+
+
+def test_wss_with_a_certificate_and_its_key(tmp_path: Path) -> None:
+    openssl = shutil.which("openssl")
+    if openssl is None:
+        pytest.skip("no openssl to make a certificate")
+    cert, key = tmp_path / "cert.pem", tmp_path / "key.pem"
+    subprocess.run([openssl, "req", "-x509", "-newkey", "rsa:2048", "-nodes", "-keyout", str(key), "-out", str(cert),
+                    "-days", "1", "-subj", "/CN=127.0.0.1", "-addext", "subjectAltName=IP:127.0.0.1"],
+                   check=True, capture_output=True)
+    listener = WebSocketListener("127.0.0.1", 0, Echo, tls=(str(cert), str(key)))
+    listener.start()
+    try:
+        trusted = ssl.create_default_context(cafile=str(cert))
+        with connect(f"wss://127.0.0.1:{listener.port}", ssl=trusted) as ws:
+            ws.send("over TLS")
+            assert ws.recv(timeout=5) == "over TLS"
     finally:
         listener.close()

@@ -225,3 +225,27 @@ def test_fragment_size_cuts_what_the_bridge_sends(graph: Graph) -> None:
         assert all(len(p["data"]) <= 20 and p["id"] == first["id"] for p in parts)
         whole = json.loads("".join(p["data"] for p in parts))
         assert whole["op"] == "publish" and whole["topic"] == "/turtle1/pose"
+
+
+def test_a_clients_calls_in_progress_are_bounded(graph: Graph) -> None:
+    from kame.rosbridge.session import MAX_CALLS_IN_PROGRESS
+
+    with connect(graph.url, open_timeout=20) as provider, connect(graph.url, open_timeout=20) as caller:
+        provider.send(json.dumps({"op": "advertise_service", "service": "/never_answers",
+                                  "type": "std_srvs/Empty"}))
+        caller.send(json.dumps({"op": "call_service", "service": "/never_answers", "id": "probe"}))
+        assert json.loads(provider.recv(timeout=20))["op"] == "call_service"  # the service is up: it was asked
+        for n in range(MAX_CALLS_IN_PROGRESS - 1):
+            caller.send(json.dumps({"op": "call_service", "service": "/never_answers", "id": f"c{n}"}))
+        caller.send(json.dumps({"op": "call_service", "service": "/never_answers", "id": "one too many"}))
+        refused = json.loads(caller.recv(timeout=20))
+        assert refused["op"] == "status" and refused["id"] == "one too many"
+        assert "already in progress" in refused["msg"]
+        provider.close()  # its service goes, and every call waiting on it fails
+        answers = set()
+        while len(answers) < MAX_CALLS_IN_PROGRESS:
+            op = json.loads(caller.recv(timeout=30))
+            if op["op"] == "service_response":
+                assert op["result"] is False
+                answers.add(op["id"])
+        assert "probe" in answers

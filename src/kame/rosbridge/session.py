@@ -28,6 +28,7 @@ from kame.rosbridge.services import AdvertisedService, call_service
 from kame.rosbridge.topics import ClientSubscription, Latest, Pacer, SubscribeOptions, ros_now
 
 log = logging.getLogger("kame.rosbridge")
+MAX_CALLS_IN_PROGRESS = 32  # a client's call_service ops waiting or running; past it, a status error
 
 
 @dataclass
@@ -58,6 +59,7 @@ class Session:
         self._lock = threading.Lock()
         self._closed = False
         self._request_ids = itertools.count(1)
+        self._calls_in_progress = 0
         self._ops: dict[str, Callable[[protocol.Fields], None]] = {
             "advertise": self._advertise, "unadvertise": self._unadvertise, "publish": self._publish,
             "subscribe": self._subscribe, "unsubscribe": self._unsubscribe, "call_service": self._call_service,
@@ -203,7 +205,23 @@ class Session:
         type_name = fields.string("type", "")
         op_id = fields.id
 
+        with self._lock:
+            if self._calls_in_progress >= MAX_CALLS_IN_PROGRESS:
+                raise protocol.ProtocolError(f"call_service: {MAX_CALLS_IN_PROGRESS} calls of this client are "
+                                             "already in progress", fields.name, op_id)
+            self._calls_in_progress += 1
+
         def run() -> None:
+            try:
+                answer_call()
+            except Exception as exc:  # the pool would keep it to itself: the client is told
+                log.exception("call_service %s failed", service)
+                self.status("error", f"call_service {service}: {exc}", op_id)
+            finally:
+                with self._lock:
+                    self._calls_in_progress -= 1
+
+        def answer_call() -> None:
             answer = call_service(self.shared.graph, service, type_name, args, op_id)
             text = protocol.encode_json(answer)
             if compression == "png":
