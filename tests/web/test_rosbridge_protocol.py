@@ -149,6 +149,9 @@ def test_fragments_and_their_reassembly() -> None:
     assert results[:-1] == [None] * (len(ops) - 1)
     assert results[-1] == text
     assert protocol.fragments(text, 0, "m") == [text]
+    many = protocol.fragments("z" * 5000, 1, "m2")
+    assert len(many) == protocol.MAX_FRAGMENTS
+    assert "".join(json.loads(f)["data"] for f in many) == "z" * 5000
 
 
 def test_defragmenter_is_bounded() -> None:

@@ -28,6 +28,7 @@ import cbor2
 STATUS_LEVELS = ("info", "warning", "error", "none")
 DEFAULT_STATUS_LEVEL = "error"  # rosbridge's: only errors unless the client asks for more
 COMPRESSIONS = ("none", "png", "cbor", "cbor-raw")
+MAX_FRAGMENTS = 1000  # a message is cut into at most this many fragments, whatever fragment_size asks
 
 
 class ProtocolError(ValueError):
@@ -127,9 +128,12 @@ def wants_status(client_level: str, level: str) -> bool:
 
 
 def fragments(text: str, size: int, message_id: str) -> list[str]:
-    """`text` as-is when it fits in `size` characters, else as "fragment" ops of that size."""
+    """`text` as-is when it fits in `size` characters, else as "fragment" ops of that size (larger
+    when that would make more than MAX_FRAGMENTS: a tiny fragment_size must not cost us a frame
+    per character)."""
     if size <= 0 or len(text) <= size:
         return [text]
+    size = max(size, -(-len(text) // MAX_FRAGMENTS))
     parts = [text[i:i + size] for i in range(0, len(text), size)]
     return [encode_json({"op": "fragment", "id": message_id, "data": part, "num": num, "total": len(parts)})
             for num, part in enumerate(parts)]

@@ -28,6 +28,7 @@ from kame.rosbridge.services import AdvertisedService, call_service
 from kame.rosbridge.topics import ClientSubscription, Latest, Pacer, SubscribeOptions, ros_now
 
 log = logging.getLogger("kame.rosbridge")
+MAX_QUEUE_LENGTH = 1000  # a subscription's queue_length is at most this (its messages are held for the client)
 MAX_CALLS_IN_PROGRESS = 32  # a client's call_service ops waiting or running; past it, a status error
 
 
@@ -172,7 +173,8 @@ class Session:
 
     def _subscribe(self, fields: protocol.Fields) -> None:
         topic = self._topic(fields)
-        options = SubscribeOptions(fields.number("throttle_rate", 0.0), fields.integer("queue_length", 0) or 0,
+        queue_length = min(fields.integer("queue_length", 0) or 0, MAX_QUEUE_LENGTH)
+        options = SubscribeOptions(fields.number("throttle_rate", 0.0), queue_length,
                                    fields.integer("fragment_size", 0) or 0, fields.compression())
         with self._lock:
             subscription = self.subscriptions.get(topic)
