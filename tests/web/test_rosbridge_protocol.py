@@ -158,12 +158,13 @@ def test_defragmenter_is_bounded() -> None:
     joined = protocol.Defragmenter(max_bytes=10, max_messages=2)
     with pytest.raises(protocol.ProtocolError, match="larger than 10"):
         joined.add({"op": "fragment", "id": "a", "data": "x" * 11, "num": 0, "total": 2})
-    joined.add({"op": "fragment", "id": "b", "data": "x", "num": 0, "total": 2})
-    joined.add({"op": "fragment", "id": "c", "data": "x", "num": 0, "total": 2})
-    with pytest.raises(protocol.ProtocolError, match="at once"):
-        joined.add({"op": "fragment", "id": "d", "data": "x", "num": 0, "total": 2})
+    joined.add({"op": "fragment", "id": "b", "data": "b", "num": 0, "total": 2})
+    joined.add({"op": "fragment", "id": "c", "data": "c", "num": 0, "total": 2})
+    joined.add({"op": "fragment", "id": "d", "data": "d", "num": 0, "total": 2})  # "b", the oldest, is given up
+    assert joined.add({"op": "fragment", "id": "c", "data": "C", "num": 1, "total": 2}) == "cC"
+    assert joined.add({"op": "fragment", "id": "b", "data": "B", "num": 1, "total": 2}) is None  # begun anew
     with pytest.raises(protocol.ProtocolError, match="num"):
-        joined.add({"op": "fragment", "id": "b", "data": "x", "num": 5, "total": 2})
+        joined.add({"op": "fragment", "id": "d", "data": "x", "num": 5, "total": 2})
 
 
 def test_png_compression_is_rosbridges() -> None:

@@ -11,7 +11,8 @@ Rules:
   "fragment" ops; the "png" compression is rosbridge's: the JSON's bytes as the pixels of an
   RGB image padded with newlines, PNG-encoded (Pillow), base64.
 - Incoming fragments are put back together by `Defragmenter`, bounded in bytes and in messages
-  being assembled at once, so a client cannot make us hold more than it is allowed to send.
+  being assembled at once (past that the oldest unfinished one is given up, as rosbridge's
+  fragment_timeout would), so a client cannot make us hold more than it is allowed to send.
 """
 
 from __future__ import annotations
@@ -181,9 +182,8 @@ class Defragmenter:
                                 "fragment", message_id)
         assembly = self._assemblies.get(key)
         if assembly is None:
-            if len(self._assemblies) >= self.max_messages:
-                raise ProtocolError(f"fragment: more than {self.max_messages} fragmented messages at once",
-                                    "fragment", message_id)
+            if len(self._assemblies) >= self.max_messages:  # the oldest unfinished one is given up
+                del self._assemblies[next(iter(self._assemblies))]
             assembly = self._assemblies[key] = _Assembly(total)
         if assembly.total != total:
             del self._assemblies[key]

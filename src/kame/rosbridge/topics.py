@@ -11,6 +11,7 @@
 
 from __future__ import annotations
 
+import collections
 import io
 import itertools
 import threading
@@ -88,17 +89,28 @@ class Latest:
     def __init__(self) -> None:
         self._lock = threading.Lock()
         self._by_topic: dict[str, Encodings] = {}
+        self._holders: collections.Counter[str] = collections.Counter()
 
     def of(self, topic: str, msg: Message) -> Encodings:
         with self._lock:
             current = self._by_topic.get(topic)
             if current is None or current.msg is not msg:
-                current = self._by_topic[topic] = Encodings(topic, msg, time.time())
+                current = Encodings(topic, msg, time.time())
+                if self._holders[topic]:
+                    self._by_topic[topic] = current
             return current
 
-    def forget(self, topic: str) -> None:
+    def hold(self, topic: str) -> None:
+        """A subscription of `topic` begins: its newest message is kept while any is left."""
         with self._lock:
-            self._by_topic.pop(topic, None)
+            self._holders[topic] += 1
+
+    def release(self, topic: str) -> None:
+        with self._lock:
+            self._holders[topic] -= 1
+            if self._holders[topic] <= 0:
+                del self._holders[topic]
+                self._by_topic.pop(topic, None)
 
 
 class ClientSubscription:
@@ -114,7 +126,12 @@ class ClientSubscription:
         self.requests: dict[Any, SubscribeOptions] = {}
         self.options = SubscribeOptions()
         self.pacing: Pacing[Encodings] = Pacing()
-        self.subscriber = Subscriber(topic, message_class, self._deliver, queue_size=1000)
+        latest.hold(topic)
+        try:
+            self.subscriber = Subscriber(topic, message_class, self._deliver, queue_size=1000)
+        except BaseException:
+            latest.release(topic)
+            raise
 
     def add(self, op_id: Any, options: SubscribeOptions) -> None:
         with self._lock:
@@ -164,6 +181,7 @@ class ClientSubscription:
     def close(self) -> None:
         self._pacer.forget(self)
         self.subscriber.unregister()
+        self._latest.release(self.topic)
 
 
 class Pacer:
