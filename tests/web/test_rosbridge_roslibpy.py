@@ -249,3 +249,44 @@ def test_a_clients_calls_in_progress_are_bounded(graph: Graph) -> None:
                 assert op["result"] is False
                 answers.add(op["id"])
         assert "probe" in answers
+
+
+def test_debians_tools_hear_and_call_what_roslibpy_provides(ros: Any, graph: Graph) -> None:
+    if not have_debian_ros():
+        pytest.skip("Debian's ROS tools are not installed (scripts/install-ros-peers.sh)")
+    talk = roslibpy.Topic(ros, "/web_says", "std_msgs/String")
+    talk.advertise()
+    echo = subprocess.Popen([SYSTEM_PYTHON, "/usr/bin/rostopic", "echo", "-n", "1", "/web_says"], env=graph.env,
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        for _ in range(300):
+            talk.publish(roslibpy.Message({"data": "from the web"}))
+            try:
+                out, err = echo.communicate(timeout=0.1)
+                break
+            except subprocess.TimeoutExpired:
+                continue
+        else:
+            raise AssertionError("Debian's rostopic echo heard nothing")
+        assert "data: \"from the web\"" in out, err
+    finally:
+        if echo.poll() is None:
+            echo.kill()
+            echo.wait()
+        talk.unadvertise()
+
+    def flag(request: dict[str, Any], response: dict[str, Any]) -> bool:
+        response.update(success=request["data"], message="set from the web")
+        return True
+
+    service = roslibpy.Service(ros, "/web_flag", "std_srvs/SetBool")
+    service.advertise(flag)
+    try:
+        for _ in range(100):
+            called = subprocess.run([SYSTEM_PYTHON, "/usr/bin/rosservice", "call", "/web_flag", "true"],
+                                    env=graph.env, capture_output=True, text=True, timeout=60)
+            if called.returncode == 0 or "not available" not in called.stderr:
+                break
+        assert called.stdout.split() == ["success:", "True", "message:", '"set', "from", "the", 'web"'], called.stderr
+    finally:
+        service.unadvertise()
