@@ -11,6 +11,8 @@ kame's master, `rosrun rosbridge_server rosbridge_websocket` (kame's) and a rosp
 - Load: --rate Hz of those small messages for --seconds to --clients roslibjs clients (one Node
   process): per client the messages received of those published, and the frames the bridge
   says it dropped for each (past ~max_queue_frames, 1000 by default).
+- A stalled client: one that subscribes to 20 Hz of 1 MB messages and reads nothing, beside a
+  roslibjs client that reads: what the reader got, and the bridge's memory (VmRSS, VmHWM).
 Needs node and tests/web/node_modules (scripts/install-web-peers.sh). Bounded: each part runs
 --seconds plus start-up, then every process is stopped.
 """
@@ -42,13 +44,14 @@ PUBLISHER = """
 import sys, time, rospy
 from std_msgs.msg import String
 rate, seconds, wanted = float(sys.argv[1]), float(sys.argv[2]), int(sys.argv[3])
+padding = ' ' + 'x' * int(sys.argv[4]) if len(sys.argv) > 4 else ''
 rospy.init_node('bench_talker')
 pub = rospy.Publisher('/bench', String, queue_size=1000)
 while pub.get_num_connections() < wanted and not rospy.is_shutdown():
     rospy.sleep(0.01)
 period, start, n = 1.0 / rate, time.monotonic(), 0
 while time.monotonic() - start < seconds:
-    pub.publish(String('%d %.6f' % (n, time.time())))
+    pub.publish(String('%d %.6f%s' % (n, time.time(), padding)))
     n += 1
     delay = start + n * period - time.monotonic()
     if delay > 0:
@@ -142,6 +145,29 @@ def load(url: str, options: argparse.Namespace, env: dict[str, str], bridge_log:
     print(f"  frames the bridge dropped, per client: {dropped[-options.clients:]}")
 
 
+def stalled(url: str, options: argparse.Namespace, env: dict[str, str], bridge_pid: int) -> None:
+    """A client that subscribes to 1 MB messages and then reads nothing, beside one that reads."""
+    from websockets.sync.client import connect
+
+    before = _vm(bridge_pid, "VmRSS")
+    with connect(url, max_queue=1, open_timeout=20) as stuck:
+        stuck.send(json.dumps({"op": "subscribe", "topic": "/bench", "type": "std_msgs/String"}))
+        reader = node_clients(url, 1, options.seconds + 3, env)
+        publisher = python(sys.executable, PUBLISHER, "20", str(options.seconds), "1", str(1_000_000), env=env)
+        published_out, _ = publisher.communicate(timeout=options.seconds + 60)
+        out, _ = reader.communicate(timeout=options.seconds + 30)
+        during = _vm(bridge_pid, "VmRSS")
+    published = int(published_out.split()[1])
+    print(f"  published {published} messages of 1 MB; the reading client got {json.loads(out)[0]['received']}; "
+          f"bridge VmRSS {before / 1024:.0f} MB before, {during / 1024:.0f} MB with the stalled client "
+          f"(its queue: 64 MiB at most), peak VmHWM {_vm(bridge_pid, 'VmHWM') / 1024:.0f} MB")
+
+
+def _vm(pid: int, field: str) -> int:
+    with open(f"/proc/{pid}/status") as status:
+        return next(int(line.split()[1]) for line in status if line.startswith(field))
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--seconds", type=float, default=10.0)
@@ -181,6 +207,8 @@ def main() -> None:
         latency(url, options, env, debian_env)
         print(f"Load: {options.clients} roslibjs clients, {options.rate:.0f} Hz of small messages:")
         load(url, options, env, bridge_log)
+        print("A client that stops reading, 20 Hz of 1 MB messages:")
+        stalled(url, options, env, bridge.pid)
         print(f"load average after: {os.getloadavg()[0]:.1f}")
     finally:
         for proc in procs:
