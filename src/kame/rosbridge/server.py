@@ -7,7 +7,7 @@ listens), ~ssl with ~certfile and ~keyfile (wss://), ~max_message_size (the larg
 client may send; "None" is kame's bound, 10 MiB), ~topics_glob and ~services_glob; kame's own:
 ~max_queue_frames and ~max_queue_bytes, each client's bound of frames waiting to go out.
 ~authenticate is rosauth's MAC handshake, which kame does not have: asked for, the node says so
-and stops rather than serve without the check that was asked for.
+and stops rather than serve without the check that was asked for; so does ~bson_only_mode (BSON).
 """
 
 from __future__ import annotations
@@ -87,6 +87,10 @@ def main(argv: Sequence[str] | None = None) -> int:
     if _flag(get_param("~authenticate", False)):
         log.emit(log.FATAL, "~authenticate: rosauth's MAC handshake is not part of kame; refusing to serve "
                  "without the authentication that was asked for", ())
+        return 1
+    if _flag(get_param("~bson_only_mode", False)):
+        log.emit(log.FATAL, "~bson_only_mode: kame's bridge speaks JSON and CBOR, not BSON; refusing to serve "
+                 "clients that were set up for BSON only", ())
         return 1
     port = _number(get_param("~port", DEFAULT_PORT), DEFAULT_PORT)
     address = str(get_param("~address", "") or "")
