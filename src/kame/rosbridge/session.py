@@ -17,6 +17,7 @@ from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 from typing import Any
 
+from kame.client import log as client_log
 from kame.client.errors import ROSException
 from kame.client.topics import Publisher
 from kame.msg.errors import MessageError
@@ -58,7 +59,6 @@ class Session:
         self.services: dict[str, AdvertisedService] = {}
         self.defragmenter = protocol.Defragmenter(shared.max_message_size)
         self._lock = threading.Lock()
-        self._closed = False
         self._request_ids = itertools.count(1)
         self._calls_in_progress = 0
         self._ops: dict[str, Callable[[protocol.Fields], None]] = {
@@ -98,8 +98,8 @@ class Session:
         return self._send(frame)
 
     def status(self, level: str, message: str, op_id: Any = None) -> None:
-        if level == "error":
-            log.warning("[Client %s] %s", self.peer, message)
+        if level == "error":  # at most one line a second, whatever a client sends
+            client_log.emit_throttle(1.0, client_log.WARN, "[Client %s] %s", (self.peer, message))
         if protocol.wants_status(self.status_level, level):
             self.send_op(protocol.status(level, message, op_id))
 
@@ -290,7 +290,6 @@ class Session:
 
     def on_close(self) -> None:
         with self._lock:
-            self._closed = True
             subscriptions, self.subscriptions = list(self.subscriptions.values()), {}
             publishers, self.publishers = list(self.publishers.values()), {}
         services, self.services = list(self.services.values()), {}
