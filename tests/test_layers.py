@@ -57,6 +57,7 @@ LAYERS: dict[str, int] = {
     "kame.net": 2,
     "kame.bag.reader": 2,  # bag file I/O
     "kame.bag.writer": 2,
+    "kame.bag.mcap_file": 2,  # MCAP files through the mcap library: reading as a bag, converting
     "kame.launch.supervisor": 2,
     "kame.launch.server": 2,  # the roslaunch XML-RPC server
     "kame.catkin": 2,

@@ -87,7 +87,8 @@ class Graph:
         plan = json.dumps({"url": f"ws://127.0.0.1:{self.port}", "steps": list(steps)})
         done = subprocess.run(["node", str(CLIENT), plan], cwd=WEB, capture_output=True, text=True, timeout=timeout)
         lines = [json.loads(line) for line in done.stdout.splitlines() if line.startswith("{")]
-        assert done.returncode == 0 and lines and lines[-1] == {"done": True}, (done.stdout[-3000:], done.stderr[-3000:])
+        assert done.returncode == 0 and lines and lines[-1] == {"done": True}, (done.stdout[-3000:],
+                                                                                done.stderr[-3000:])
         return lines[1:-1]
 
     def stop(self) -> None:
@@ -168,6 +169,11 @@ def test_a_1080p_image_arrives_byte_for_byte(graph: Graph) -> None:
         assert message["data"] == {"length": len(data), "checksum": checksum(data)}
 
 
+def advertise(channel_id: int, topic: str, encoding: str, schema_name: str) -> str:
+    return json.dumps({"op": "advertise", "channels": [{"id": channel_id, "topic": topic, "encoding": encoding,
+                                                        "schemaName": schema_name}]})
+
+
 def test_errors_get_a_status_and_the_bridge_goes_on(graph: Graph) -> None:
     graph.start(kame_command("kame.cli.rosrun", "turtlesim", "turtlesim_node"), "Spawning turtle")
     graph.bridge()
@@ -176,9 +182,9 @@ def test_errors_get_a_status_and_the_bridge_goes_on(graph: Graph) -> None:
         {"raw": '{"op": "bogus"}'},
         {"raw": '{"op": "subscribe", "subscriptions": "all"}'},
         {"raw": '{"op": "subscribe", "subscriptions": [{"id": 1, "channelId": 999}]}'},
-        {"raw": '{"op": "advertise", "channels": [{"id": 1, "topic": "/x", "encoding": "ros1", "schemaName": "no/Such"}]}'},
-        {"raw": '{"op": "advertise", "channels": [{"id": 2, "topic": "/y", "encoding": "json", "schemaName": "std_msgs/String"}]}'},
-        {"send": '{"op": "advertise", "channels": [{"id": 3, "topic": "/z", "encoding": "ros1", "schemaName": "std_msgs/Int32"}]}'},
+        {"raw": advertise(1, "/x", "ros1", "no/Such")},
+        {"raw": advertise(2, "/y", "json", "std_msgs/String")},
+        {"send": advertise(3, "/z", "ros1", "std_msgs/Int32")},
         {"rawBinary": [1, 3, 0, 0, 0, 1, 2]},  # 2 bytes are no Int32
         {"rawBinary": [9, 0, 0]},
         {"rawBinary": [2, 1, 0]},
@@ -201,7 +207,8 @@ def test_errors_get_a_status_and_the_bridge_goes_on(graph: Graph) -> None:
 def test_debian_rospy_through_the_bridge(graph: Graph) -> None:
     graph.start([SYSTEM_PYTHON, str(PEER)], "ready")
     graph.bridge()
-    chatter, flag = graph.client({"subscribe": "/chatter", "count": 3}, {"call": "/set_flag", "request": {"data": True}})
+    chatter, flag = graph.client({"subscribe": "/chatter", "count": 3},
+                                 {"call": "/set_flag", "request": {"data": True}})
     assert chatter["schemaName"] == "std_msgs/String"
     texts = [m["data"] for m in chatter["messages"]]
     first = int(texts[0].split()[1])
