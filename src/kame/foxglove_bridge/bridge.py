@@ -144,6 +144,8 @@ class FoxgloveBridge:
                 job()
             except (OSError, MasterError) as exc:
                 log.warning("foxglove_bridge: the master could not be asked: %s", exc)
+            except Exception:  # one request's failure must not end the thread every client relies on
+                log.exception("foxglove_bridge: a request failed")
             if job == self._update_graph:
                 deadline = time.monotonic() + period
 
@@ -212,7 +214,8 @@ class FoxgloveBridge:
             session = self._sessions.pop(client.id, None)
         if session is None:
             return
-        log.info("foxglove_bridge: client %s disconnected", client.peer)
+        log.info("foxglove_bridge: client %s disconnected (%d messages dropped at its send buffer limit)",
+                 client.peer, client.dropped)
         self._later(lambda: self._forget(session))
 
     def _forget(self, session: _Session) -> None:
