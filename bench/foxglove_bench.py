@@ -59,7 +59,10 @@ with connect(sys.argv[1], subprotocols=["foxglove.websocket.v1"], max_size=None,
                 ws.send(json.dumps({"op": "subscribe", "subscriptions": [{"id": 1, "channelId": ids[0]}]}))
                 break
     print("stuck", flush=True)
-    sys.stdin.read()  # never reads the socket again; ends when the bench closes our stdin
+    try:
+        sys.stdin.read()  # never reads the socket again; ends when the bench closes our stdin
+    except KeyboardInterrupt:
+        pass
 """
 
 

@@ -58,7 +58,7 @@ class HubClient:
         self._loop = loop
         self._limit = send_buffer_limit
         self._lock = threading.Lock()
-        self._queued = 0  # bytes handed to send_* and not yet taken by the socket
+        self._queued = 0  # bytes handed to send_* and not yet handed to the socket's write buffer
         self._outgoing: deque[str | bytes] = deque()
         self._wake = asyncio.Event()  # set on the loop when _outgoing has something
         self._gone = False
@@ -108,11 +108,9 @@ class HubClient:
             self._wake.clear()
             while self._outgoing:
                 message = self._outgoing.popleft()
-                try:
-                    await self._connection.send(message)
-                finally:
-                    with self._lock:
-                        self._queued -= len(message)
+                with self._lock:  # from here on the socket's write buffer counts it
+                    self._queued -= len(message)
+                await self._connection.send(message)
 
     def _ended(self) -> None:
         with self._lock:
