@@ -96,7 +96,7 @@ async function subscribeStep(step) {
     `${count} messages on ${step.subscribe}`);
   client.unsubscribe(id);
   emit({ topic: step.subscribe, schemaName: channel.schemaName, encoding: channel.encoding,
-    schemaEncoding: channel.schemaEncoding,
+    schemaEncoding: channel.schemaEncoding, schema: channel.schema,
     messages: got.slice(0, count).map((m) => plain(reader.readMessage(m.data))) });
 }
 

@@ -216,6 +216,20 @@ def test_debian_rospy_through_the_bridge(graph: Graph) -> None:
     assert flag["response"] == {"success": True, "message": "flag True"}
 
 
+def test_debian_roscpp_through_the_bridge(graph: Graph) -> None:
+    from ..support.roscpp import build_peers, roscpp_flags
+
+    flags = roscpp_flags()
+    if flags is None:
+        pytest.skip("g++ or roscpp's headers (pkg-config roscpp std_msgs) are not installed")
+    graph.start([str(build_peers(flags)["talker"])], "ready")
+    graph.bridge()
+    (chatter,) = graph.client({"subscribe": "/chatter", "count": 2})
+    assert chatter["schemaName"] == "std_msgs/String" and chatter["schema"] == definition("std_msgs/String")
+    first = int(chatter["messages"][0]["data"].split()[1])
+    assert [m["data"] for m in chatter["messages"]] == [f"hello {first}", f"hello {first + 1}"]
+
+
 def test_sim_time_is_broadcast(tmp_path: Path) -> None:
     graph = Graph(tmp_path, sim_time=True)
     try:
