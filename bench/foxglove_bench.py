@@ -155,12 +155,19 @@ def main() -> int:
         bridge_cores = (cpu_seconds(bridge.pid) - cpu_start) / (time.monotonic() - wall_start)
         client.wait(30)
         rss_after = rss_mb(bridge.pid)
+        dropped = "?"
+        assert bridge.stdout is not None
+        for line in bridge.stdout:  # the bridge says what it dropped for the client when it leaves
+            if "disconnected (" in line:
+                dropped = line.split("disconnected (", 1)[1].split()[0]
+                break
         if stuck is not None and stuck.stdin is not None:
             stuck.stdin.close()
         print(f"foxglove_bridge, 1080p rgb8 at {args.rate:.0f} Hz, {args.seconds:.0f} s, send buffer limit "
               f"{args.send_buffer_limit / 1e6:.0f} MB, load average {os.getloadavg()[0]:.1f}")
         throughput = measured["bytes"] / measured["seconds"] / 1e6
-        print(f"  client received   {measured['fps']:6.1f} fps  ({throughput:.0f} MB/s)")
+        print(f"  client received   {measured['fps']:6.1f} fps  ({throughput:.0f} MB/s; the bridge dropped {dropped} "
+              "at its send buffer limit, warm-up included)")
         print(f"  bridge CPU        {bridge_cores:6.2f} cores")
         print(f"  client CPU        {measured['clientCpu']:6.2f} cores (Node, ws-protocol)")
         print(f"  bridge VmRSS      {rss_before:6.0f} MB before, {rss_after:.0f} MB after"

@@ -48,6 +48,7 @@ def read_config() -> BridgeConfig:
 
 def main(argv: Sequence[str] | None = None) -> int:
     init_node("foxglove_bridge", list(sys.argv if argv is None else argv))
+    log.route_program_logs("kame.foxglove_bridge")
     if get_param("~tls", False):
         log.emit(log.ERROR, "foxglove_bridge: tls is not supported by kame's bridge (plain ws:// only)", ())
         return 1
