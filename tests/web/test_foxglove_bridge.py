@@ -203,6 +203,24 @@ def test_errors_get_a_status_and_the_bridge_goes_on(graph: Graph) -> None:
     assert statuses[-1]["messages"][0]["x"] == pytest.approx(5.544445, abs=1e-5)
 
 
+def test_whitelists_and_capabilities_are_the_launch_files(graph: Graph) -> None:
+    graph.start(kame_command("kame.cli.rosrun", "turtlesim", "turtlesim_node"), "Spawning turtle")
+    graph.bridge("topic_whitelist:=['/turtle1/pose']", "capabilities:=[clientPublish]")
+    plan = json.dumps({"url": f"ws://127.0.0.1:{graph.port}", "steps": [
+        {"subscribe": "/turtle1/pose", "count": 1},
+        {"raw": json.dumps({"op": "getParameters", "parameterNames": []})},
+        {"raw": json.dumps({"op": "subscribeConnectionGraph"})},
+        {"raw": json.dumps({"op": "advertise", "channels": [{"id": 1, "topic": "/turtle1/pose", "encoding": "ros1",
+                                                            "schemaName": "std_msgs/String"}]})}]})
+    done = subprocess.run(["node", str(CLIENT), plan], cwd=WEB, capture_output=True, text=True, timeout=60)
+    info, pose, params, net, *_ = [json.loads(line) for line in done.stdout.splitlines()]
+    assert info["serverInfo"]["capabilities"] == ["clientPublish"], done.stderr
+    assert pose["topic"] == "/turtle1/pose"
+    assert params["status"]["message"] == "the server does not have the capability 'parameters'"
+    assert net["status"]["message"] == "the server does not have the capability 'connectionGraph'"
+    assert "/turtle1/color_sensor" not in done.stdout  # not whitelisted: never advertised
+
+
 @pytest.mark.skipif(not have_debian_ros(), reason="Debian's ROS 1 (rospy) is not installed")
 def test_debian_rospy_through_the_bridge(graph: Graph) -> None:
     graph.start([SYSTEM_PYTHON, str(PEER)], "ready")

@@ -162,3 +162,31 @@ def test_the_hub_asks_the_peer_allowlist() -> None:
     finally:
         peers.configure(None)
         hub.close()
+
+
+def test_the_hub_bounds_what_a_client_sends() -> None:
+    from websockets.exceptions import ConnectionClosedError
+    from websockets.sync.client import connect
+
+    from kame.net.websocket_hub import HubClient, WebSocketHub
+
+    class Echo:
+        def opened(self, client: HubClient) -> None: ...
+
+        def received(self, client: HubClient, message: str | bytes) -> None:
+            client.send_control(message)
+
+        def closed(self, client: HubClient) -> None: ...
+
+    hub = WebSocketHub("127.0.0.1", 0, wsp.SUBPROTOCOL, Echo(), "foxglove_bridge", 1000, 1000)
+    try:
+        with connect(f"ws://127.0.0.1:{hub.port}", subprotocols=[wsp.SUBPROTOCOL]) as ws:  # type: ignore[list-item]
+            assert ws.subprotocol == wsp.SUBPROTOCOL
+            ws.send(b"x" * 1000)
+            assert ws.recv(timeout=10) == b"x" * 1000
+            ws.send(b"x" * 1001)
+            with pytest.raises(ConnectionClosedError) as closed:
+                ws.recv(timeout=10)
+            assert closed.value.rcvd is not None and closed.value.rcvd.code == 1009  # message too big
+    finally:
+        hub.close()

@@ -274,6 +274,9 @@ class FoxgloveBridge:
                 if subscription_id in session.subscriptions:
                     client.send_control(wsp.status(wsp.ERROR, f"subscription {subscription_id} is already in use"))
                     continue
+                if channel_id in session.subscriptions.values():
+                    client.send_control(wsp.status(wsp.WARNING, f"already subscribed to channel {channel_id}"))
+                    continue
                 session.subscriptions[subscription_id] = channel_id
                 subscribers = self._subscribers.setdefault(channel_id, {})
                 subscribers[client.id] = subscription_id
