@@ -209,3 +209,38 @@ def test_rosbag_play_plays_mcap(recorded: Path, tmp_path: Path) -> None:
     texts = [line[len("data: "):] for line in printed.splitlines() if line.startswith("data:")]
     first = int(texts[0].split()[1])
     assert texts == [f"hello {first + i}" for i in range(3)]
+
+
+def test_rosbag_record_mcap(tmp_path: Path) -> None:
+    """`rosbag record --mcap` writes what the mcap library reads, with the ros1 profile."""
+    from mcap.reader import make_reader
+    from mcap_ros1.decoder import DecoderFactory
+
+    uri = f"http://127.0.0.1:{free_port()}/"
+    env = ros_env(tmp_path / "home", uri)
+    master = Proc(kame_command("kame.cli.rosmaster", "--core", "-p", uri.rsplit(":", 1)[1][:-1]), env)
+    source = None
+    try:
+        wait_for_master(uri, proc=master)
+        source = Proc([sys.executable, "-c", PUBLISHER], env)
+        source.wait_line("ready", timeout=30)
+        record = subprocess.run(kame_command("kame.cli.rosbag", "record", "--mcap", "-q", "-O", "live.mcap", "-l", "5",
+                                             "/chatter", "/camera/image_raw"),
+                                cwd=tmp_path, env=env, capture_output=True, text=True, timeout=60)
+        assert record.returncode == 0, record.stderr
+    finally:
+        if source is not None:
+            source.stop()
+        master.stop()
+    with open(tmp_path / "live.mcap", "rb") as f:
+        reader = make_reader(f, decoder_factories=[DecoderFactory()])
+        assert reader.get_header().profile == "ros1"
+        decoded = list(reader.iter_decoded_messages(log_time_order=True))
+    topics = [c.topic for _, c, _, _ in decoded]
+    assert topics.count("/chatter") == 5 and topics.count("/camera/image_raw") == 5
+    texts = [m.data for _, c, _, m in decoded if c.topic == "/chatter"]
+    first = int(texts[0].split()[1])
+    assert texts == [f"hello {first + i}" for i in range(5)]
+    assert all(c.metadata["callerid"] == "/source" for _, c, _, _ in decoded)
+    info = rosbag("info", str(tmp_path / "live.mcap"), cwd=tmp_path).stdout
+    assert "messages:     10" in info

@@ -7,6 +7,7 @@ the TCPROS bytes, as a bag holds them).
   messages in log-time order as raw bytes, counts and times from the file's summary. The summary
   stands in for a bag's index: the whole file is one ChunkInfo (its time span, its counts per
   channel), and each MCAP chunk a ChunkHeader (its compression and sizes).
+- `McapWriter` is what `rosbag record --mcap` writes through.
 - `bag_to_mcap` and `mcap_to_bag` convert (`rosbag convert`): message bytes, receive times and
   connection headers are carried over unchanged, so a round trip gives back the same messages.
   A channel's metadata is its connection header less topic, type and message_definition (as
@@ -28,7 +29,7 @@ from kame.bag.reader import BagReader, MessageView, RawMessage, is_mcap
 from kame.bag.records import ChunkHeader, ChunkInfo, Connection
 from kame.bag.writer import BagWriter
 
-__all__ = ["McapReader", "bag_to_mcap", "is_mcap", "mcap_to_bag"]
+__all__ = ["McapReader", "McapWriter", "bag_to_mcap", "is_mcap", "mcap_to_bag"]
 
 PROFILE = "ros1"
 ROS1_SCHEMA = "ros1msg"
@@ -148,6 +149,55 @@ def _md5sum(schema: Schema) -> str:
     except Exception:  # a definition kame cannot read: the type is still listed, its md5sum unknown
         return "*"
     return "*" if cls is None else str(cls._md5sum)
+
+
+class McapWriter:
+    """What `rosbag record --mcap` writes through: a BagWriter's add_connection, write,
+    write_pending, size and close, into an MCAP file. A connection becomes a channel whose schema
+    is (type, definition) and whose metadata is the rest of its header. The open chunk (up to
+    `chunk_size` bytes) is in memory until it is full or the file is closed: MCAP has no
+    equivalent of `rosbag reindex`, so a recorder killed outright loses it."""
+
+    def __init__(self, path: str, compression: str = "zstd", chunk_size: int = 768 * 1024) -> None:
+        if compression not in _COMPRESSIONS:
+            raise BagError(f"unknown MCAP compression [{compression}] (none, lz4 or zstd)")
+        self._file = open(path, "wb")
+        try:
+            self._writer = Writer(self._file, chunk_size=chunk_size, compression=_COMPRESSIONS[compression])
+            self._writer.start(profile=PROFILE, library="kame")
+        except BaseException:
+            self._file.close()
+            raise
+        self._schemas: dict[tuple[str, str], int] = {}
+        self._sequence = 0
+
+    def add_connection(self, topic: str, header: dict[str, str]) -> int:
+        key = (header.get("type", ""), header.get("message_definition", ""))
+        schema_id = self._schemas.get(key)
+        if schema_id is None:
+            schema_id = self._schemas[key] = self._writer.register_schema(key[0], ROS1_SCHEMA, key[1].encode())
+        metadata = {k: v for k, v in header.items() if k not in _HEADER_IN_SCHEMA}
+        return int(self._writer.register_channel(topic, ROS1_MESSAGES, schema_id, metadata))
+
+    def write(self, conn_id: int, secs: int, nsecs: int, data: bytes | memoryview, owned: bool = False) -> None:
+        stamp = secs * 1_000_000_000 + nsecs
+        self._writer.add_message(conn_id, stamp, bytes(data), stamp, sequence=self._sequence)
+        self._sequence += 1
+
+    def write_pending(self) -> None:
+        self._file.flush()
+
+    @property
+    def size(self) -> int:
+        return self._file.tell()
+
+    def close(self) -> None:
+        if self._file.closed:
+            return
+        try:
+            self._writer.finish()  # type: ignore[no-untyped-call]
+        finally:
+            self._file.close()
 
 
 def bag_to_mcap(in_path: str, out_path: str, compression: str = "zstd",
