@@ -38,6 +38,7 @@ def test_client_requests_are_read() -> None:
 @pytest.mark.parametrize(("frame", "error"), [
     ("[", "not JSON"),
     ("[1]", "a text message must be a JSON object with an 'op'"),
+    ("[" * 100_000, "not JSON: nested too deeply"),
     ('{"op":"fly"}', "unknown op 'fly'"),
     ('{"op":"subscribe"}', "subscribe: missing field 'subscriptions'"),
     ('{"op":"subscribe","subscriptions":[{"id":-1,"channelId":1}]}',
@@ -190,3 +191,44 @@ def test_the_hub_bounds_what_a_client_sends() -> None:
             assert closed.value.rcvd is not None and closed.value.rcvd.code == 1009  # message too big
     finally:
         hub.close()
+
+
+def _json_values() -> Any:
+    from hypothesis import strategies as st
+
+    scalars = (st.none() | st.booleans() | st.integers(-(2**40), 2**40) | st.floats(allow_nan=False)
+               | st.text(max_size=8))
+    return st.recursive(scalars, lambda inner: st.lists(inner, max_size=4)
+                        | st.dictionaries(st.sampled_from(["op", "id", "channelId", "subscriptions", "channels",
+                                                          "topic", "encoding", "schemaName", "parameterNames",
+                                                          "parameters", "name", "value", "type", "subscriptionIds",
+                                                          "channelIds"]), inner, max_size=5), max_leaves=12)
+
+
+def test_any_frame_is_a_request_or_the_clients_fault() -> None:
+    """Whatever a client sends, the parser answers with a request or a ProtocolError (a status),
+    never another exception that would end its connection."""
+    from hypothesis import given
+    from hypothesis import strategies as st
+
+    ops = st.sampled_from(["subscribe", "unsubscribe", "advertise", "unadvertise", "getParameters", "setParameters",
+                           "subscribeParameterUpdates", "subscribeConnectionGraph", "bogus"])
+
+    @given(st.one_of(st.text(max_size=40), _json_values().map(json.dumps),
+                     st.builds(lambda op, rest: json.dumps({**rest, "op": op}) if isinstance(rest, dict) else op,
+                               ops, _json_values())))
+    def text(frame: str) -> None:
+        try:
+            wsp.parse_text(frame)
+        except wsp.ProtocolError:
+            pass
+
+    @given(st.binary(max_size=40))
+    def binary(frame: bytes) -> None:
+        try:
+            wsp.parse_binary(frame)
+        except wsp.ProtocolError:
+            pass
+
+    text()
+    binary()

@@ -176,6 +176,8 @@ def parse_text(text: str) -> Request:
         message = json.loads(text)
     except ValueError as exc:
         raise ProtocolError(f"not JSON: {exc}") from None
+    except RecursionError:  # arrays in arrays, deeper than the parser goes
+        raise ProtocolError("not JSON: nested too deeply") from None
     if not isinstance(message, dict) or not isinstance(message.get("op"), str):
         raise ProtocolError("a text message must be a JSON object with an 'op'")
     op: str = message["op"]
