@@ -186,6 +186,7 @@ def test_errors_get_a_status_and_the_bridge_goes_on(graph: Graph) -> None:
         {"raw": advertise(2, "/y", "json", "std_msgs/String")},
         {"send": advertise(3, "/z", "ros1", "std_msgs/Int32")},
         {"rawBinary": [1, 3, 0, 0, 0, 1, 2]},  # 2 bytes are no Int32
+        {"raw": advertise(4, "/has space", "ros1", "std_msgs/String")},
         {"rawBinary": [9, 0, 0]},
         {"rawBinary": [2, 1, 0]},
         {"subscribe": "/turtle1/pose", "count": 1})
@@ -198,8 +199,9 @@ def test_errors_get_a_status_and_the_bridge_goes_on(graph: Graph) -> None:
     assert texts[4] == "unknown message type 'no/Such'"
     assert texts[5] == "unsupported encoding 'json': only 'ros1' is"
     assert texts[6].startswith("a message on /z is not a valid std_msgs/Int32")
-    assert texts[7] == "unknown binary opcode 9"
-    assert texts[8] == "service call request shorter than its header"
+    assert texts[7] == "the topic '/has space' may not be published"
+    assert texts[8] == "unknown binary opcode 9"
+    assert texts[9] == "service call request shorter than its header"
     assert statuses[-1]["messages"][0]["x"] == pytest.approx(5.544445, abs=1e-5)
 
 

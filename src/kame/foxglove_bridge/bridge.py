@@ -370,8 +370,9 @@ class FoxgloveBridge:
                 raise wsp.ProtocolError(f"unsupported encoding '{channel.encoding}': only 'ros1' is")
             if channel.id in session.advertised:
                 raise wsp.ProtocolError(f"client channel {channel.id} is already advertised")
-            topic = names.canonicalize(channel.topic) if names.is_global(channel.topic) else ""
-            if not topic or not allowed(topic, self._client_topics):
+            topic = names.canonicalize(channel.topic)
+            if not names.is_global(topic) or not names.is_legal_name(topic) or topic == "/" \
+                    or not allowed(topic, self._client_topics):
                 raise wsp.ProtocolError(f"the topic '{channel.topic}' may not be published")
             try:
                 cls = message_class(channel.schema_name)
