@@ -125,6 +125,7 @@ class FoxgloveBridge:
                                 config.send_buffer_limit, config.send_buffer_limit)
         node.on_param_update.append(self._param_updated)
         self._worker = node.spawn(self._work, "kame-foxglove-bridge")
+        node.add_shutdown_hook(lambda reason: self.close())  # before the node joins its threads
 
     # ------------------------------------------------------------------ the bridge's own thread
 
@@ -507,6 +508,7 @@ class FoxgloveBridge:
                                                                     state.services, [], []))
 
     def close(self) -> None:
+        """Stop serving: the clients are disconnected, the bridge's threads end (again: nothing)."""
         self._stop.set()
         self._jobs.put(None)
         self.hub.close()
