@@ -223,6 +223,26 @@ def test_whitelists_and_capabilities_are_the_launch_files(graph: Graph) -> None:
     assert "/turtle1/color_sensor" not in done.stdout  # not whitelisted: never advertised
 
 
+def test_a_flood_of_requests_is_bounded(graph: Graph) -> None:
+    """300 getParameters sent at once: the bridge takes at most 64 of a client's requests waiting
+    on ROS and answers the rest with a status, and every request gets one answer or the other."""
+    from websockets.sync.client import connect
+
+    graph.bridge()
+    with connect(f"ws://127.0.0.1:{graph.port}", subprotocols=["foxglove.websocket.v1"]) as ws:  # type: ignore[list-item]
+        for i in range(300):
+            ws.send(json.dumps({"op": "getParameters", "parameterNames": [], "id": str(i)}))
+        answered, refused = 0, 0
+        while answered + refused < 300:
+            message = json.loads(ws.recv(timeout=60))
+            if message["op"] == "parameterValues":
+                answered += 1
+            elif message["op"] == "status":
+                assert message["message"] == "too many requests waiting (at most 64): this one was dropped"
+                refused += 1
+    assert refused > 0 and answered >= 64, (answered, refused)
+
+
 @pytest.mark.skipif(not have_debian_ros(), reason="Debian's ROS 1 (rospy) is not installed")
 def test_debian_rospy_through_the_bridge(graph: Graph) -> None:
     graph.start([SYSTEM_PYTHON, str(PEER)], "ready")

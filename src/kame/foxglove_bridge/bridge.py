@@ -44,6 +44,7 @@ log = logging.getLogger("kame.foxglove_bridge")
 
 SERVICE_PROBE_TIMEOUT = 0.25  # seconds: Noetic's service_type_retrieval_timeout_ms
 SERVICE_CALL_TIMEOUT = 30.0
+MAX_PENDING = 64  # a client's requests waiting on ROS at once, its service calls included
 
 
 @dataclass(frozen=True)
@@ -86,6 +87,7 @@ class _Session:
     advertised: dict[int, tuple[wsp.ClientChannel, Any]] = field(default_factory=dict)  # with its class
     parameters: set[str] = field(default_factory=set)
     graph: bool = False
+    pending: int = 0  # requests handed to the bridge's threads and not yet done
 
 
 @dataclass
@@ -241,26 +243,49 @@ class FoxgloveBridge:
         if capability not in self.capabilities:
             raise wsp.ProtocolError(f"the server does not have the capability '{capability}'")
 
+    def _counted(self, session: _Session, job: Callable[[], None]) -> Callable[[], None]:
+        """`job`, counted against the client's MAX_PENDING: a client cannot make the bridge hold an
+        unbounded backlog of its requests (or threads for its service calls)."""
+        with self._lock:
+            if session.pending >= MAX_PENDING:
+                raise wsp.ProtocolError(f"too many requests waiting (at most {MAX_PENDING}): this one was dropped")
+            session.pending += 1
+
+        def run() -> None:
+            try:
+                job()
+            finally:
+                with self._lock:
+                    session.pending -= 1
+
+        return run
+
     def _dispatch(self, session: _Session, request: wsp.Request) -> None:
         if isinstance(request, wsp.Subscribe):
-            self._later(lambda: self._subscribe(session, request))
+            self._later(self._counted(session, lambda: self._subscribe(session, request)))
         elif isinstance(request, wsp.Unsubscribe):
-            self._later(lambda: self._unsubscribe(session, request))
+            self._later(self._counted(session, lambda: self._unsubscribe(session, request)))
         elif isinstance(request, (wsp.ClientAdvertise, wsp.ClientUnadvertise, wsp.ClientMessageData)):
             self._need("clientPublish")
             self._client_publish(session, request)
         elif isinstance(request, (wsp.GetParameters, wsp.SetParameters)):
             self._need("parameters")
-            self._later(lambda: self._parameters(session, request))
+            self._later(self._counted(session, lambda: self._parameters(session, request)))
         elif isinstance(request, wsp.ParameterUpdates):
             self._need("parametersSubscribe")
-            self._later(lambda: self._parameter_updates(session, request))
+            self._later(self._counted(session, lambda: self._parameter_updates(session, request)))
         elif isinstance(request, wsp.ConnectionGraphUpdates):
             self._need("connectionGraph")
-            self._later(lambda: self._graph_updates(session, request.subscribe))
+            self._later(self._counted(session, lambda: self._graph_updates(session, request.subscribe)))
         else:
+            assert isinstance(request, wsp.ServiceCallRequest)
             self._need("services")
-            self._calls.submit(lambda: self._call_service(session, request))
+            try:
+                call = self._counted(session, lambda: self._call_service(session, request))
+            except wsp.ProtocolError as exc:
+                session.client.send_control(wsp.service_call_failure(request.service_id, request.call_id, str(exc)))
+                return
+            self._calls.submit(call)
 
     # ------------------------------------------------------------------ topics to clients
 
@@ -356,7 +381,8 @@ class FoxgloveBridge:
             if target is not None and target.cls is cls:
                 target.publication.publish_payload(request.data)
             else:  # the advertisement is still on its way to the master: publish after it
-                self._later(functools.partial(self._publish, channel.topic, cls, request.data))
+                self._later(self._counted(session, functools.partial(self._publish, channel.topic, cls,
+                                                                     request.data)))
             return
         if isinstance(request, wsp.ClientUnadvertise):
             for channel_id in request.channel_ids:
@@ -383,7 +409,7 @@ class FoxgloveBridge:
                 raise wsp.ProtocolError(f"unknown message type '{channel.schema_name}'")
             session.advertised[channel.id] = (wsp.ClientChannel(channel.id, topic, channel.encoding,
                                                                 channel.schema_name), cls)
-            self._later(functools.partial(self._take_publication, client, topic, cls))
+            self._later(self._counted(session, functools.partial(self._take_publication, client, topic, cls)))
 
     def _take_publication(self, client: HubClient, topic: str, cls: Any) -> None:
         with self._lock:
@@ -414,8 +440,7 @@ class FoxgloveBridge:
 
     # ------------------------------------------------------------------ services
 
-    def _call_service(self, session: _Session, request: wsp.Request) -> None:
-        assert isinstance(request, wsp.ServiceCallRequest)
+    def _call_service(self, session: _Session, request: wsp.ServiceCallRequest) -> None:
         client = session.client
         with self._lock:
             service = self.offer.service(request.service_id)
