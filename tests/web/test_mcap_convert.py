@@ -244,3 +244,25 @@ def test_rosbag_record_mcap(tmp_path: Path) -> None:
     assert all(c.metadata["callerid"] == "/source" for _, c, _, _ in decoded)
     info = rosbag("info", str(tmp_path / "live.mcap"), cwd=tmp_path).stdout
     assert "messages:     10" in info
+
+
+def test_kame_reads_an_mcap_written_by_mcap_ros1(tmp_path: Path) -> None:
+    """An MCAP file from another writer (mcap-ros1-support's, whose channels carry no md5sum):
+    the Bag API and rosbag info read it, the md5sum made from the schema."""
+    from mcap_ros1.writer import Writer
+
+    from kame.client.bag import Bag
+    from std_msgs.msg import String
+
+    path = tmp_path / "theirs.mcap"
+    with open(path, "wb") as f:
+        writer = Writer(f)
+        for i in range(3):
+            writer.write_message("/chatter", String(data=f"x{i}"), log_time=10**9 + i, publish_time=10**9 + i)
+        writer.finish()
+    with Bag(str(path)) as bag:
+        assert [(t, m.data, s.to_nsec()) for t, m, s in bag.read_messages()] == [
+            ("/chatter", f"x{i}", 10**9 + i) for i in range(3)]
+        assert bag.get_type_and_topic_info().msg_types == {"std_msgs/String": String._md5sum}
+    info = [" ".join(line.split()) for line in rosbag("info", str(path), cwd=tmp_path).stdout.splitlines()]
+    assert "topics: /chatter 3 msgs : std_msgs/String" in info
