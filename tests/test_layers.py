@@ -58,6 +58,7 @@ LAYERS: dict[str, int] = {
     "kame.net": 2,
     "kame.bag.reader": 2,  # bag file I/O
     "kame.bag.writer": 2,
+    "kame.bag.mcap_file": 2,  # MCAP files through the mcap library: reading as a bag, converting
     "kame.launch.supervisor": 2,
     "kame.launch.server": 2,  # the roslaunch XML-RPC server
     "kame.catkin": 2,
@@ -81,6 +82,9 @@ LAYERS: dict[str, int] = {
     "kame.depthimage_to_laserscan.node": 4,  # depthimage_to_laserscan's node on kame.client
     "kame.cmd_vel_mux": 1,  # yocs_cmd_vel_mux's rule: which velocity commander drives
     "kame.cmd_vel_mux.node": 4,  # yocs_cmd_vel_mux's node on kame.client
+    "kame.foxglove_bridge": 1,  # Foxglove's ws-protocol (sans-IO) and what the bridge offers: no I/O
+    "kame.foxglove_bridge.bridge": 4,  # foxglove_bridge: kame's node glued to kame.net.websocket_hub
+    "kame.foxglove_bridge.node": 4,  # the foxglove_bridge program on kame.client
     "kame.camera": 1,  # the camera packages' pure parts: pixel formats, test pattern, calibration files and URLs
     "kame.camera.sources": 2,  # frames from V4L2 devices (linuxpy), video files and the test pattern
     "kame.camera.info_manager": 4,  # camera_info_manager's set_camera_info service on kame.client

@@ -18,10 +18,12 @@ __all__ = ["BagSummary", "human_readable_size", "info_text", "info_yaml", "yaml_
 
 class BagSummary:
     # A plain class, as the record types: `rosbag info` must not pay for importing dataclasses.
-    __slots__ = ("chunk_headers", "chunk_infos", "connections", "frequencies", "path", "size")
+    __slots__ = ("chunk_headers", "chunk_infos", "connections", "frequencies", "path", "size", "version")
 
     def __init__(self, path: str, size: int, connections: dict[int, Connection], chunk_infos: list[ChunkInfo],
-                 chunk_headers: list[ChunkHeader], frequencies: dict[str, float] | None = None) -> None:
+                 chunk_headers: list[ChunkHeader], frequencies: dict[str, float] | None = None,
+                 version: str = "2.0") -> None:
+        self.version = version  # "mcap" for an MCAP file (kame.bag.mcap_file)
         self.path = path
         self.size = size
         self.connections = connections
@@ -115,7 +117,7 @@ def _span(s: BagSummary) -> tuple[float, float]:
 
 
 def info_text(s: BagSummary) -> str:
-    rows: list[tuple[str, str]] = [("path", s.path), ("version", "2.0")]
+    rows: list[tuple[str, str]] = [("path", s.path), ("version", s.version)]
     if not s.chunk_infos:
         rows.append(("size", human_readable_size(s.size)))
     else:
@@ -180,7 +182,7 @@ def info_text(s: BagSummary) -> str:
 
 
 def info_yaml(s: BagSummary) -> str:
-    out = f"path: {s.path}\nversion: 2.0\n"
+    out = f"path: {s.path}\nversion: {s.version}\n"
     if not s.chunk_infos:
         return out + f"size: {s.size}\nindexed: False\n"
     start, end = _span(s)

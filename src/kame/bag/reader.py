@@ -26,7 +26,7 @@ import itertools
 import os
 import struct
 from collections.abc import Callable, Iterable, Iterator
-from typing import BinaryIO
+from typing import TYPE_CHECKING, BinaryIO
 
 from kame.bag import records
 from kame.bag.compression import decompress
@@ -34,7 +34,12 @@ from kame.bag.errors import BagError, BagFormatError, BagUnindexedError
 from kame.bag.records import ChunkHeader, ChunkInfo, Connection
 from kame.protocol.header import TcprosError, decode_header_fields_raw
 
-__all__ = ["BagReader", "MessageView", "RawMessage"]
+if TYPE_CHECKING:
+    from kame.bag.mcap_file import McapReader
+
+__all__ = ["BagReader", "MessageView", "RawMessage", "is_mcap", "open_reader"]
+
+MCAP_MAGIC = b"\x89MCAP0\r\n"
 
 Time = tuple[int, int]
 #: (connection, secs, nsecs, data, chunk position, offset in the uncompressed chunk)
@@ -465,6 +470,22 @@ class BagReader:
     @property
     def end_time(self) -> Time | None:
         return max((info.end for info in self.chunk_infos), default=None)
+
+
+def is_mcap(path: str | os.PathLike[str]) -> bool:
+    """Whether the file starts as an MCAP file does."""
+    with open(path, "rb") as f:
+        return f.read(len(MCAP_MAGIC)) == MCAP_MAGIC
+
+
+def open_reader(path: str | os.PathLike[str], allow_unindexed: bool = False) -> BagReader | McapReader:
+    """The reader for a bag 2.0 file or, by its first bytes, an MCAP file (kame.bag.mcap_file,
+    imported only then: reading bags needs neither the `mcap` library nor its import time)."""
+    if is_mcap(path):
+        from kame.bag.mcap_file import McapReader
+
+        return McapReader(path)
+    return BagReader(path, allow_unindexed=allow_unindexed)
 
 
 def _whole_records(data: bytes | memoryview) -> Iterator[records.Record]:

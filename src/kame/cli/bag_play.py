@@ -20,15 +20,18 @@ import sys
 import threading
 import time
 from collections.abc import Iterator
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from kame import names
 from kame.bag.errors import BagError
-from kame.bag.reader import BagReader, MessageView
+from kame.bag.reader import BagReader, MessageView, open_reader
 from kame.cli._console import console
 from kame.cli._node import ToolNode
 from kame.cli._options import OptionParser
 from kame.node.topics import Publication, serialize_payload
+
+if TYPE_CHECKING:
+    from kame.bag.mcap_file import McapReader
 
 
 def parser() -> OptionParser:
@@ -94,7 +97,7 @@ class Keyboard:
             self.fd = -1
 
 
-def _merged(readers: list[BagReader], topics: list[str], start: tuple[int, int] | None,
+def _merged(readers: list[BagReader | McapReader], topics: list[str], start: tuple[int, int] | None,
             end: tuple[int, int] | None) -> Iterator[MessageView]:
     """The messages to play in time order, their data as views of the bag's chunks (no copies)."""
     streams = []
@@ -111,7 +114,7 @@ def _ns(t: tuple[int, int]) -> int:
 
 
 class Player:
-    def __init__(self, tool: ToolNode, options: Any, readers: list[BagReader]) -> None:
+    def __init__(self, tool: ToolNode, options: Any, readers: list[BagReader | McapReader]) -> None:
         self.tool = tool
         self.node = tool.node
         self.options = options
@@ -277,7 +280,7 @@ def main(argv: list[str]) -> int:
     for path in bags:
         console("INFO", f"Opening {path}")
         try:
-            readers.append(BagReader(path))
+            readers.append(open_reader(path))
         except (BagError, OSError) as exc:
             console("FATAL", f"Error opening file: {path}" if isinstance(exc, OSError) else str(exc))
             return 1

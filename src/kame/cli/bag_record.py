@@ -30,7 +30,7 @@ import os
 import re
 import threading
 import time
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from kame import names
 from kame.bag.writer import BagWriter
@@ -39,6 +39,9 @@ from kame.cli._node import ToolNode
 from kame.cli._options import OptionParser
 from kame.node.master_proxy import MasterError
 from kame.node.node import Node
+
+if TYPE_CHECKING:
+    from kame.bag.mcap_file import McapWriter
 
 FLUSH_INTERVAL = 0.5  # seconds: at most this much is lost when the recorder is killed
 
@@ -88,6 +91,8 @@ def parser() -> OptionParser:
     p.add_argument("--node", dest="node", type=str, action="store", help="record all topics subscribed to by a specific node")
     p.add_argument("-j", "--bz2", dest="compression", default="none", action="store_const", const="bz2", help="use BZ2 compression")
     p.add_argument("--lz4", dest="compression", action="store_const", const="lz4", help="use LZ4 compression")
+    p.add_argument("--mcap", dest="mcap", default=False, action="store_true",
+                   help="record to MCAP (name.mcap; zstd, or --lz4; kame's, needs the web extra)")
     p.add_argument("--tcpnodelay", dest="tcpnodelay", action="store_true", help="Use the TCP_NODELAY transport hint when subscribing to topics.")
     p.add_argument("--udp", dest="udp", action="store_true", help="Use the UDP transport hint when subscribing to topics.")
     p.add_argument("--repeat-latched", dest="repeat_latched", action="store_true",
@@ -103,24 +108,25 @@ class BagNamer:
     """Output names: `-O name` -> name.bag, `-o pre` -> pre_<stamp>.bag, else <stamp>.bag;
     with --split an `_N` before `.bag`."""
 
-    def __init__(self, prefix: str | None, name: str | None, split: bool) -> None:
+    def __init__(self, prefix: str | None, name: str | None, split: bool, suffix: str = ".bag") -> None:
         self.prefix = prefix
         self.name = name
         self.split = split
+        self.suffix = suffix  # .mcap with --mcap
         self.index = 0
 
     def next(self) -> str:
         if self.name:
-            base = self.name[:-4] if self.name.endswith(".bag") else self.name
+            base = self.name.removesuffix(self.suffix)
         elif self.prefix:
-            base = self.prefix[:-4] if self.prefix.endswith(".bag") else self.prefix
+            base = self.prefix.removesuffix(self.suffix)
             base = f"{base}_{_stamp()}"
         else:
             base = _stamp()
         if self.split:
             base = f"{base}_{self.index}"
         self.index += 1
-        return base + ".bag"
+        return base + self.suffix
 
 
 # -a, -e and --node: a new topic sends no event, so the master is asked again once a second, as rosbag does
@@ -140,7 +146,7 @@ class Recorder:
         self.subscribed: set[str] = set()
         self.counts: dict[str, int] = {}
         self.dropped = 0
-        self.namer = BagNamer(options.prefix, options.name, bool(options.split))
+        self.namer = BagNamer(options.prefix, options.name, bool(options.split), ".mcap" if options.mcap else ".bag")
         self.max_size = int(options.size * 1024 * 1024) if options.split and options.size else 0
         self.max_duration = _duration_arg(options.duration) if options.duration else 0.0
         self.exclude = re.compile(options.exclude_regex) if options.exclude_regex else None
@@ -220,18 +226,25 @@ class Recorder:
 
     # ------------------------------------------------------------------ writing
 
-    def _open(self) -> tuple[BagWriter, str]:
+    def _open(self) -> tuple[BagWriter | McapWriter, str]:
         path = self.namer.next()
         try:  # no folder is made for it, as with rosbag's recorder
-            writer = BagWriter(path + ".active", "w", self.options.compression, self.options.chunksize * 1024,
-                               drop_behind=True)
+            writer: BagWriter | McapWriter
+            if self.options.mcap:
+                from kame.bag.mcap_file import McapWriter
+
+                compression = "lz4" if self.options.compression == "lz4" else "zstd"
+                writer = McapWriter(path + ".active", compression, self.options.chunksize * 1024)
+            else:
+                writer = BagWriter(path + ".active", "w", self.options.compression, self.options.chunksize * 1024,
+                                   drop_behind=True)
         except OSError as exc:
             raise RecordingFailed(f"Error opening file: {path}.active") from exc
         if not self.options.quiet:
             console("INFO", f"Recording to '{path}'.")
         return writer, path
 
-    def _close(self, writer: BagWriter, path: str) -> None:
+    def _close(self, writer: BagWriter | McapWriter, path: str) -> None:
         try:
             writer.close()
             os.replace(path + ".active", path)
@@ -333,6 +346,8 @@ def main(argv: list[str]) -> int:
         p.error("Specifying a count is not valid with automatic topic subscription.")
     if options.prefix and options.name:
         p.error("Can't set both prefix and name.")
+    if options.mcap and options.compression == "bz2":
+        p.error("MCAP has no BZ2 compression: use --lz4, or none of them for zstd.")
     if options.split and not options.size and not options.duration:
         p.error("Split specified without giving a maximum duration or size")
     if options.size is not None and options.size <= 0:

@@ -1,11 +1,12 @@
 # ruff: noqa: E501  (option help texts are rosbag's, one option per line)
-"""rosbag: info, record, play, filter, compress, decompress, reindex, check, fix.
+"""rosbag: info, record, play, filter, compress, decompress, reindex, check, fix, and convert.
 
 Behaviour and texts follow rosbag 1.15 (ros1-user-behaviour spec §9): its optparse usage errors
 (exit 2), `ERROR reading X: ...` for bad bags, `info` in rosbag's layout or YAML, compress/
 decompress/reindex rewriting in place and keeping `name.orig.bag`. record and play live in
 kame.cli.bag_record and kame.cli.bag_play. `info` imports no message code: it reads the index
-and prints, so it answers at once even for very large bags.
+and prints, so it answers at once even for very large bags. info, play and the Bag API also read
+MCAP files (kame.bag.mcap_file); `convert` (beyond rosbag 1.15) writes a bag as MCAP or back.
 """
 
 from __future__ import annotations
@@ -23,7 +24,7 @@ if TYPE_CHECKING:
     from kame.cli._options import OptionParser
 
 NAME = "rosbag"
-COMMANDS = ("check", "compress", "decompress", "filter", "fix", "help", "info", "play", "record", "reindex")
+COMMANDS = ("check", "compress", "convert", "decompress", "filter", "fix", "help", "info", "play", "record", "reindex")
 
 
 def _parser(usage: str, description: str = "") -> OptionParser:
@@ -79,10 +80,11 @@ def _info_summary(path: str, frequencies: bool) -> BagSummary:
         with Bag(path, "r") as bag:
             return bag.summary(frequencies=True)
     from kame.bag.info import BagSummary
-    from kame.bag.reader import BagReader
+    from kame.bag.reader import BagReader, open_reader
 
-    with BagReader(path) as reader:
-        return BagSummary(path, reader.size, reader.connections, reader.chunk_infos, reader.chunk_headers())
+    with open_reader(path) as reader:
+        return BagSummary(path, reader.size, reader.connections, reader.chunk_infos, reader.chunk_headers(),
+                          version="2.0" if isinstance(reader, BagReader) else "mcap")
 
 
 def cmd_info(argv: list[str]) -> int:
@@ -382,6 +384,41 @@ def cmd_record(argv: list[str]) -> int:
     return record_main(argv)
 
 
+def cmd_convert(argv: list[str]) -> int:
+    parser = _parser("rosbag convert [options] INFILE OUTFILE",
+                     "Convert a bag to MCAP (OUTFILE ending in .mcap) or an MCAP file to a bag; message bytes, "
+                     "receive times and connection headers are kept.")
+    parser.add_argument("--compression", dest="compression", default=None, choices=["none", "lz4", "zstd", "bz2"],
+                        help="compression of the output (MCAP: zstd, lz4 or none; default zstd; bag: none, bz2 or lz4; default none)")
+    parser.add_argument("-q", "--quiet", dest="quiet", default=False, action="store_true", help="suppress noncritical messages")
+    options = parser.parse_args(argv)
+    if len(options.args) != 2:
+        parser.error("You must specify an input file and an output file.")
+    in_path, out_path = options.args
+    if os.path.abspath(in_path) == os.path.abspath(out_path):
+        parser.error("The output file must differ from the input file.")
+    try:
+        from kame.bag.mcap_file import bag_to_mcap, is_mcap, mcap_to_bag
+    except ModuleNotFoundError as exc:
+        print(f"rosbag convert needs the mcap library, kame's 'web' extra (pip install 'kame[web]'): {exc}",
+              file=sys.stderr)
+        return 1
+    progress = _progress(out_path, options.quiet)
+    try:
+        if is_mcap(in_path):
+            if options.compression in ("zstd",):
+                parser.error("A bag's compression is none, bz2 or lz4.")
+            mcap_to_bag(in_path, out_path, options.compression or "none", progress)
+        else:
+            if options.compression == "bz2":
+                parser.error("MCAP's compression is zstd, lz4 or none.")
+            bag_to_mcap(in_path, out_path, options.compression or "zstd", progress)
+    except (BagError, OSError) as exc:
+        print(f"ERROR converting {in_path}: {exc}", file=sys.stderr)
+        return 1
+    return 0
+
+
 def cmd_play(argv: list[str]) -> int:
     from kame.cli.bag_play import main as play_main
 
@@ -395,6 +432,7 @@ A bag is a file format in ROS for storing ROS message data. The rosbag command c
 Available subcommands:
    check  \tDetermine whether a bag is playable in the current system, or if it can be migrated.
    compress  \tCompress one or more bag files.
+   convert  \tConvert a bag to MCAP, or an MCAP file to a bag.
    decompress  \tDecompress one or more bag files.
    filter  \tFilter the contents of the bag.
    fix  \tRepair the messages in a bag file so that it can be played in the current system.
@@ -408,7 +446,8 @@ For additional information, see http://wiki.ros.org/rosbag
 """
 
 _COMMANDS: dict[str, Callable[[list[str]], int]] = {
-    "check": cmd_check, "compress": cmd_compress, "decompress": cmd_decompress, "filter": cmd_filter,
+    "check": cmd_check, "compress": cmd_compress, "convert": cmd_convert, "decompress": cmd_decompress,
+    "filter": cmd_filter,
     "fix": cmd_fix, "info": cmd_info, "play": cmd_play, "record": cmd_record, "reindex": cmd_reindex,
 }
 

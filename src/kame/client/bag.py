@@ -14,17 +14,20 @@ import os
 import statistics
 import time
 from collections.abc import Callable, Iterator
-from typing import Any, BinaryIO
+from typing import TYPE_CHECKING, Any, BinaryIO
 
 from kame.bag.compression import COMPRESSIONS
 from kame.bag.errors import BagError, BagFormatError, BagUnindexedError
 from kame.bag.info import BagSummary, info_text, info_yaml, yaml_key
-from kame.bag.reader import BagReader
+from kame.bag.reader import BagReader, open_reader
 from kame.bag.records import Connection
 from kame.bag.writer import DEFAULT_CHUNK_THRESHOLD, BagWriter
 from kame.client.clock import Time
 from kame.msg.errors import MessageError
 from kame.msg.lookup import class_for, installed_class
+
+if TYPE_CHECKING:
+    from kame.bag.mcap_file import McapReader
 
 __all__ = [
     "Bag",
@@ -110,12 +113,12 @@ class Bag:
         self._mode = mode
         self._compression = compression
         self._chunk_threshold = chunk_threshold
-        self._reader: BagReader | None = None
+        self._reader: BagReader | McapReader | None = None
         self._writer: BagWriter | None = None
         self._topic_conns: dict[str, int] = {}
         if mode == "r":
             try:
-                self._reader = BagReader(self._filename, allow_unindexed=allow_unindexed)
+                self._reader = open_reader(self._filename, allow_unindexed=allow_unindexed)
             except FileNotFoundError:
                 raise
         elif mode == "w":
@@ -185,7 +188,7 @@ class Bag:
         if self._writer is not None:
             self._writer.chunk_threshold = value
 
-    def _read_side(self) -> BagReader:
+    def _read_side(self) -> BagReader | McapReader:
         if self._reader is None:
             if self._writer is not None and not self._writer.closed:
                 raise ValueError("the bag is open for writing; close it before reading")
@@ -316,7 +319,7 @@ class Bag:
         reader = self._read_side()
         freqs = self._frequencies(sorted({c.topic for c in reader.connections.values()})) if frequencies else None
         return BagSummary(self._filename, self.size, reader.connections, reader.chunk_infos, reader.chunk_headers(),
-                          freqs)
+                          freqs, "2.0" if isinstance(reader, BagReader) else "mcap")
 
     def __str__(self) -> str:
         return info_text(self.summary())

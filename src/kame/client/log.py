@@ -187,6 +187,16 @@ def route_runtime_logs() -> None:
         runtime.propagate = False  # the handler writes them to the node's log file already
 
 
+def route_program_logs(name: str) -> None:
+    """A program's own logger (`name`, under "kame") from INFO up to the console and /rosout, as
+    its ROS original's ROS_INFO lines are (foxglove_bridge's clients coming and going)."""
+    logger = logging.getLogger(name)
+    if not any(isinstance(h, _RuntimeRecords) for h in logger.handlers):
+        logger.setLevel(logging.INFO)
+        logger.addHandler(_RuntimeRecords(logging.INFO))
+        logger.propagate = False
+
+
 def emit_once(level: int, msg: Any, args: tuple[Any, ...]) -> None:
     caller = _caller(3)
     with _lock:
