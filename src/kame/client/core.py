@@ -25,10 +25,12 @@ _caller_id = "/unnamed"
 _namespace = environ.namespace(os.environ)
 _remappings: dict[str, str] = {}
 _shutdown = threading.Event()
+_shutdown_requested = threading.Event()  # set as signal_shutdown starts, before the pre-shutdown hooks
 _node_down = threading.Event()  # set once signal_shutdown has unregistered and closed the node
 _shutdown_reason = ""
 _shutdown_hooks: list[Callable[..., Any]] = []
 _preshutdown_hooks: list[Callable[..., Any]] = []
+_client_shutdown_hooks: list[Callable[[], Any]] = []  # run first, with no argument (rospy's client hooks)
 _hooks_lock = threading.Lock()
 _initialized = False
 
@@ -72,6 +74,18 @@ def is_initialized() -> bool:
     return _initialized
 
 
+def set_initialized(initialized: bool) -> None:
+    """What is_initialized answers from now on (init_node sets it)."""
+    global _initialized
+    _initialized = initialized
+
+
+def set_remappings(remappings: dict[str, str]) -> None:
+    """The resolved remappings resolve_name applies from now on (init_node sets them)."""
+    global _remappings
+    _remappings = dict(remappings)
+
+
 def get_caller_id() -> str:
     return _caller_id
 
@@ -103,7 +117,8 @@ def is_shutdown() -> bool:
 
 
 def is_shutdown_requested() -> bool:
-    return _shutdown.is_set()
+    """True from the moment signal_shutdown starts (while the pre-shutdown hooks run, before is_shutdown)."""
+    return _shutdown_requested.is_set()
 
 
 _main_waiting = 0  # >0 while the main thread blocks in one of our waits
@@ -168,9 +183,33 @@ def on_shutdown(hook: Callable[..., Any]) -> None:
         _shutdown_hooks.append(hook)
 
 
-def add_preshutdown_hook(hook: Callable[..., Any]) -> None:
+def _add_hook(hook: Callable[..., Any], hooks: list[Callable[..., Any]], with_reason: bool) -> None:
+    if not callable(hook):
+        raise TypeError(f"shutdown hook [{hook}] must be a function or callable object: {type(hook)}")
     with _hooks_lock:
-        _preshutdown_hooks.append(hook)
+        if not _shutdown.is_set():
+            hooks.append(hook)
+            return
+    log.warning("a shutdown hook was added after shutdown")
+    if with_reason:
+        hook("already shutdown")
+    else:
+        hook()
+
+
+def add_preshutdown_hook(hook: Callable[[str], Any]) -> None:
+    """Run `hook(reason)` as shutdown starts, before is_shutdown() is true (it may still publish)."""
+    _add_hook(hook, _preshutdown_hooks, with_reason=True)
+
+
+def add_shutdown_hook(hook: Callable[[str], Any]) -> None:
+    """Run `hook(reason)` once is_shutdown() is true, before the node unregisters."""
+    _add_hook(hook, _shutdown_hooks, with_reason=True)
+
+
+def add_client_shutdown_hook(hook: Callable[[], Any]) -> None:
+    """Run `hook()` first when shutdown starts, before the pre-shutdown hooks."""
+    _add_hook(hook, _client_shutdown_hooks, with_reason=False)
 
 
 def _call_hook(hook: Callable[..., Any], reason: str) -> None:
@@ -187,10 +226,17 @@ def signal_shutdown(reason: str) -> None:
     """Shut the node down: hooks run, everything is unregistered, waits are interrupted."""
     global _shutdown_reason
     with _hooks_lock:
-        if _shutdown.is_set():
+        if _shutdown_requested.is_set():
             return
         _shutdown_reason = reason
-        pre = list(_preshutdown_hooks)
+        _shutdown_requested.set()
+        client, _client_shutdown_hooks[:] = list(_client_shutdown_hooks), []
+        pre, _preshutdown_hooks[:] = list(_preshutdown_hooks), []
+    for client_hook in client:
+        try:
+            client_hook()
+        except Exception:
+            log.exception("shutdown hook %s failed", client_hook)
     for hook in pre:
         _call_hook(hook, reason)
     with _hooks_lock:

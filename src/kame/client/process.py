@@ -78,7 +78,7 @@ def rospy_ctrl_c() -> None:
     _interrupt_busy_main = False
 
 
-def _install_signal_handlers() -> None:
+def install_signal_handlers() -> None:
     def handler(signum: int, frame: Any) -> None:
         # The shutdown runs on a thread of its own: the interrupted main thread may hold a lock
         # the shutdown needs (it may be in the middle of a publish). A main thread waiting in
@@ -168,7 +168,7 @@ def init_node(name: str, argv: list[str] | None = None, anonymous: bool = False,
         if log_level is not None:
             _log.set_level(log_level)
         if not disable_signals:
-            _install_signal_handlers()
+            install_signal_handlers()
         node = Node(config)
         node.on_shutdown_request = core.signal_shutdown
         node.on_shutdown_call = _print_shutdown_call

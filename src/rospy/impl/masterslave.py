@@ -21,6 +21,13 @@ __all__ = ["ROSHandler"]
 class ROSHandler:
     """This process's node's slave API; each method takes the caller's ID first."""
 
+    # the arguments (after the caller ID) of each method that are names: MasterProxy resolves them
+    _remap_table: dict[str, list[int]] = {"requestTopic": [0]}
+
+    @classmethod
+    def remappings(cls, method_name: str) -> list[int]:
+        return cls._remap_table.get(method_name, [])
+
     def __init__(self, name: str, master_uri: str) -> None:
         self.name = name
         self.master_uri = master_uri
