@@ -3,8 +3,10 @@ TCPROSPub are the connection headers a subscriber sends and a publisher answers 
 TCPROS codec writes them: kame.protocol.tcpros); TCPROSHandler is the protocol's entry in
 requestTopic, answering with this process's node's TCPROS server.
 
-The connections themselves (rospy's TCPROSTransport, create_transport, QueuedConnection) are
-kame's node's (kame.node.topics), which keeps no such objects to hand out.
+topic_connection_handler gives a subscriber's connection (its header read by a TCPROSServer)
+to this node's publication, which serves it as any other (kame.node.topics). TCPROSTransport,
+with TCPROSSub as its protocol, subscribes on a connection of its own
+(rospy.impl.tcpros_base); kame's Subscriber makes and keeps its connections itself.
 """
 
 from __future__ import annotations
@@ -14,11 +16,22 @@ from typing import Any
 from kame.client import core
 from kame.client.errors import ROSInitException, TransportInitError
 from kame.msg.message import Message
+from kame.protocol import tcpros
 from kame.protocol.tcpros import TopicSpec, publisher_reply_fields, subscriber_header_fields
-from rospy.impl.tcpros_base import DEFAULT_BUFF_SIZE, TCPROS
+from rospy.core import logdebug, logerr, logwarn, rospyerr
+from rospy.impl.tcpros_base import (
+    DEFAULT_BUFF_SIZE,
+    TCPROS,
+    TCPROSTransport,
+    TCPROSTransportProtocol,
+    get_tcpros_server_address,
+    start_tcpros_server,
+)
 from rospy.impl.transport import INBOUND, OUTBOUND
 
-__all__ = ["TCPROSHandler", "TCPROSPub", "TCPROSSub"]
+__all__ = ["DEFAULT_BUFF_SIZE", "INBOUND", "OUTBOUND", "TCPROS", "TCPROSHandler", "TCPROSPub", "TCPROSSub",
+           "TCPROSTransport", "TCPROSTransportProtocol", "get_tcpros_server_address", "logdebug", "logerr", "logwarn",
+           "rospyerr", "start_tcpros_server"]
 
 
 def _message_class(data_class: Any) -> Any:
@@ -27,15 +40,12 @@ def _message_class(data_class: Any) -> Any:
     return data_class
 
 
-class TCPROSSub:
+class TCPROSSub(TCPROSTransportProtocol):
     """A subscription's side of a connection to a publisher of `resolved_name`."""
 
     def __init__(self, resolved_name: str, recv_data_class: Any, queue_size: int | None = None,
                  buff_size: int = DEFAULT_BUFF_SIZE, tcp_nodelay: bool = False) -> None:
-        self.resolved_name = resolved_name
-        self.recv_data_class = _message_class(recv_data_class)
-        self.queue_size = queue_size
-        self.buff_size = buff_size
+        super().__init__(resolved_name, _message_class(recv_data_class), queue_size, buff_size)
         self.tcp_nodelay = tcp_nodelay
         self.direction = INBOUND
 
@@ -47,13 +57,13 @@ class TCPROSSub:
                                         tcp_nodelay=self.tcp_nodelay)
 
 
-class TCPROSPub:
+class TCPROSPub(TCPROSTransportProtocol):
     """A publication's side of a connection: the header it answers a subscriber with
     (`headers` added, overriding, as rospy's Publisher(headers=...))."""
 
     def __init__(self, resolved_name: str, pub_data_class: Any, is_latch: bool = False,
                  headers: dict[str, str] | None = None) -> None:
-        self.resolved_name = resolved_name
+        super().__init__(resolved_name, None)
         self.pub_data_class = _message_class(pub_data_class)
         self.is_latch = is_latch
         self.headers = headers or {}
@@ -89,3 +99,12 @@ class TCPROSHandler:
         if node is None:
             raise ROSInitException("TCPROS is served by the node: call init_node() first")
         return 1, f"ready on {node.config.host}:{node.tcpros_port}", [TCPROS, node.config.host, node.tcpros_port]
+
+    def topic_connection_handler(self, sock: Any, client_addr: Any, header: dict[str, str]) -> str | None:
+        """Give a subscriber's connection, whose header `header` was read, to this node's
+        publication of its topic; the reason it is refused, or None once the publication has it."""
+        node = core.get_node()
+        if node is None:
+            refused = tcpros.accept_subscriber(header, callerid=core.get_caller_id(), publications={})
+            return refused.error if isinstance(refused, tcpros.Rejected) else "node not initialized"
+        return node.connect_subscriber(sock, header)
