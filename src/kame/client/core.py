@@ -10,6 +10,7 @@ import atexit
 import contextlib
 import logging
 import os
+import sys
 import threading
 from collections.abc import Callable, Iterator
 from typing import Any
@@ -21,8 +22,9 @@ from kame.net.signal_wake import main_thread_wait
 from kame.node.node import Node
 
 _node: Node | None = None
-_caller_id = "/unnamed"
-_namespace = environ.namespace(os.environ)
+# before init_node, as rospy: the namespace of `__ns:=` or ROS_NAMESPACE, and a caller ID in it
+_namespace = environ.namespace(os.environ, names.parse_args(sys.argv).special)
+_caller_id = names.ns_join(_namespace, "unnamed")
 _remappings: dict[str, str] = {}
 _shutdown = threading.Event()
 _shutdown_requested = threading.Event()  # set as signal_shutdown starts, before the pre-shutdown hooks

@@ -68,8 +68,8 @@ class RegistrationListeners:
         self.lock = threading.Lock()
 
     def add_listener(self, listener: RegistrationListener) -> None:
-        if not isinstance(listener, RegistrationListener):
-            raise TypeError(f"not a RegistrationListener: {listener!r}")
+        if not isinstance(listener, RegistrationListener):  # rospy asserts it
+            raise AssertionError(f"not a RegistrationListener: {listener!r}")
         with self.lock:
             self.listeners.append(listener)
 
