@@ -2,9 +2,12 @@
 
 from __future__ import annotations
 
+from threading import Lock
 from typing import Any
 
 from kame import names as _names
+from kame.client import log as _log
+from kame.client.core import on_shutdown
 from kame.client.errors import ROSInitException
 from kame.client.process import (
     DEFAULT_MASTER_URI,
@@ -22,9 +25,20 @@ from kame.client.process import (
     spin,
     wait_for_message,
 )
+from kame.client.services import Service
+from rospy._logging import logdebug, logerr, loginfo, logwarn
+from rospy.core import _lazy_names
 
 __all__ = [
+    "DEBUG",
     "DEFAULT_MASTER_URI",
+    "ERROR",
+    "FATAL",
+    "INFO",
+    "TIMEOUT_READY",
+    "WARN",
+    "Lock",
+    "Service",
     "delete_param",
     "get_master",
     "get_param",
@@ -34,12 +48,30 @@ __all__ = [
     "has_param",
     "init_node",
     "load_command_line_node_params",
+    "logdebug",
+    "logerr",
+    "loginfo",
+    "logwarn",
     "myargv",
+    "on_shutdown",
     "search_param",
     "set_param",
     "spin",
     "wait_for_message",
 ]
+
+TIMEOUT_READY = 15.0  # rospy's wait, in seconds, for a node to be ready
+DEBUG = _log.DEBUG
+INFO = _log.INFO
+WARN = _log.WARN
+ERROR = _log.ERROR
+FATAL = _log.FATAL
+
+# the logger services' message classes load when a program asks for them
+__getattr__ = _lazy_names(__name__, {
+    "GetLoggers": ("roscpp.srv", "GetLoggers"), "GetLoggersResponse": ("roscpp.srv", "GetLoggersResponse"),
+    "SetLoggerLevel": ("roscpp.srv", "SetLoggerLevel"),
+    "SetLoggerLevelResponse": ("roscpp.srv", "SetLoggerLevelResponse"), "Logger": ("roscpp.msg", "Logger")})
 
 
 def load_command_line_node_params(argv: list[str]) -> dict[str, Any]:

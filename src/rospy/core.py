@@ -55,17 +55,31 @@ _client_shutdown_hooks = _core._client_shutdown_hooks
 _LAZY = {"md5": ("hashlib", "md5"), "Log": ("rosgraph_msgs.msg", "Log")}
 
 
+def _lazy_names(module_name: str, lazy: dict[str, tuple[str, str]] | None = None) -> Callable[[str], Any]:
+    """A module's __getattr__ that loads rospy.core's `md5` and `Log` (and `lazy`'s names) when
+    first asked for: the modules that re-export rospy.core use it too."""
+    names = {**_LAZY, **(lazy or {})}
+
+    def __getattr__(name: str) -> Any:
+        if name not in names:
+            raise AttributeError(f"module {module_name!r} has no attribute {name!r}")
+        import importlib
+
+        module, attribute = names[name]
+        return getattr(importlib.import_module(module), attribute)
+
+    return __getattr__
+
+
+_lazy = _lazy_names(__name__)
+
+
 def __getattr__(name: str) -> Any:
     if name == "_shutdown_flag":
         return _core.is_shutdown()
     if name == "_in_shutdown":
         return _core.is_shutdown_requested()
-    if name in _LAZY:
-        import importlib
-
-        module, attribute = _LAZY[name]
-        return getattr(importlib.import_module(module), attribute)
-    raise AttributeError(f"module 'rospy.core' has no attribute {name!r}")
+    return _lazy(name)
 
 
 def deprecated(func: Callable[..., Any]) -> Callable[..., Any]:

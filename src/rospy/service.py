@@ -22,7 +22,7 @@ from kame.client.services import (
 )
 from rospy.core import *  # noqa: F403  (rospy.service re-exports rospy.core, as rospy's)
 from rospy.core import __all__ as _core_names
-from rospy.core import resolve_name
+from rospy.core import _lazy_names, resolve_name
 from rospy.impl.registration import Registration, get_registration_listeners, set_service_manager
 from rospy.impl.transport import *  # noqa: F403
 from rospy.impl.transport import __all__ as _transport_names
@@ -98,3 +98,5 @@ class ServiceManager:
 
 
 set_service_manager(ServiceManager())
+
+__getattr__ = _lazy_names(__name__)

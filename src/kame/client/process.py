@@ -181,15 +181,23 @@ def init_node(name: str, argv: list[str] | None = None, anonymous: bool = False,
         set_param(key, value)
     core.run_deferred()
     if not disable_rosout:
-        _start_rosout(node)
+        start_rosout(node)
     if not disable_rostime:
-        _start_time(node)
+        start_time(node)
     else:
         clock.set_rostime_initialized(True)
     _start_logger_services()
 
 
-def _start_rosout(node: Node) -> None:
+_started: set[str] = set()  # "rosout", "time": what start_rosout and start_time have done
+
+
+def start_rosout(node: Node) -> None:
+    """Publish the process's log lines on /rosout as `node` (once; init_node calls it unless disable_rosout)."""
+    with _init_lock:
+        if "rosout" in _started:
+            return
+        _started.add("rosout")
     from kame.client.topics import Publisher
     from rosgraph_msgs.msg import Log
 
@@ -210,7 +218,13 @@ def _start_rosout(node: Node) -> None:
     _log.set_rosout_publisher(publish)
 
 
-def _start_time(node: Node) -> None:
+def start_time(node: Node) -> None:
+    """Follow /clock when /use_sim_time is true; ROS time is then initialized (once; init_node
+    calls it unless disable_rostime)."""
+    with _init_lock:
+        if "time" in _started:
+            return
+        _started.add("time")
     try:
         use_sim_time = bool(get_param("/use_sim_time", False))
     except Exception:

@@ -37,7 +37,7 @@ from kame.net.workers import WorkerPool
 from kame.protocol.tcpros import encode_header, error_header_fields
 from rospy.core import *  # noqa: F403  (rospy.impl.tcpros_base re-exports rospy.core, as rospy's)
 from rospy.core import __all__ as _core_names
-from rospy.core import is_shutdown, is_shutdown_requested, logdebug, logwarn
+from rospy.core import _lazy_names, is_shutdown, is_shutdown_requested, logdebug, logwarn
 from rospy.impl.transport import BIDIRECTIONAL, Transport
 from rospy.msg import deserialize_messages, serialize_message
 
@@ -409,3 +409,5 @@ class TCPROSTransport(Transport):
             self.socket.close()
         self.socket = self.read_buff = self.write_buff = self.protocol = None
         super().close()
+
+__getattr__ = _lazy_names(__name__)

@@ -11,6 +11,8 @@ with TCPROSSub as its protocol, subscribes on a connection of its own
 
 from __future__ import annotations
 
+import threading
+from collections.abc import Callable
 from typing import Any
 
 from kame.client import core
@@ -18,7 +20,7 @@ from kame.client.errors import ROSInitException, TransportInitError
 from kame.msg.message import Message
 from kame.protocol import tcpros
 from kame.protocol.tcpros import TopicSpec, publisher_reply_fields, subscriber_header_fields
-from rospy.core import logdebug, logerr, logwarn, rospyerr
+from rospy.core import _ServerProxy, logdebug, logerr, logwarn, rospyerr
 from rospy.impl.tcpros_base import (
     DEFAULT_BUFF_SIZE,
     TCPROS,
@@ -29,9 +31,10 @@ from rospy.impl.tcpros_base import (
 )
 from rospy.impl.transport import INBOUND, OUTBOUND
 
-__all__ = ["DEFAULT_BUFF_SIZE", "INBOUND", "OUTBOUND", "TCPROS", "TCPROSHandler", "TCPROSPub", "TCPROSSub",
-           "TCPROSTransport", "TCPROSTransportProtocol", "get_tcpros_server_address", "logdebug", "logerr", "logwarn",
-           "rospyerr", "start_tcpros_server"]
+__all__ = ["DEFAULT_BUFF_SIZE", "INBOUND", "OUTBOUND", "TCPROS", "QueuedConnection", "ServerProxy", "TCPROSHandler",
+           "TCPROSPub", "TCPROSSub", "TCPROSTransport", "TCPROSTransportProtocol", "check_if_still_publisher",
+           "get_tcpros_server_address", "logdebug", "logerr", "logwarn", "robust_connect_subscriber", "rospyerr",
+           "start_tcpros_server"]
 
 
 def _message_class(data_class: Any) -> Any:
@@ -108,3 +111,86 @@ class TCPROSHandler:
             refused = tcpros.accept_subscriber(header, callerid=core.get_caller_id(), publications={})
             return refused.error if isinstance(refused, tcpros.Rejected) else "node not initialized"
         return node.connect_subscriber(sock, header)
+
+
+class QueuedConnection:
+    """A connection whose write_data queues (the oldest dropped past `queue_size`, 0: unbounded)
+    and returns at once; a thread of its own writes the queue out and ends when the connection
+    closes. A write that failed raises at the next write_data. Other attributes are the connection's."""
+
+    def __init__(self, connection: Any, queue_size: int) -> None:
+        self._connection = connection
+        self._queue_size = queue_size
+        self._lock = threading.Lock()
+        self._cond_data_available = threading.Condition(self._lock)
+        self._connection.set_cleanup_callback(self._closed_connection_callback)
+        self._queue: list[bytes] = []
+        self._error: BaseException | None = None
+        self._thread = threading.Thread(target=self._run, name=f"rospy-queued-{connection.name}", daemon=True)
+        self._thread.start()
+
+    def _closed_connection_callback(self, connection: Any) -> None:
+        with self._lock:
+            self._cond_data_available.notify()
+
+    def __getattr__(self, name: str) -> Any:
+        if name.startswith("__"):
+            raise AttributeError(name)
+        return getattr(self._connection, name)
+
+    def write_data(self, data: bytes) -> bool:
+        with self._lock:
+            if self._error is not None:
+                error, self._error = self._error, None
+                raise error
+            if self._queue_size > 0 and len(self._queue) == self._queue_size:
+                del self._queue[0]
+            self._queue.append(data)
+            self._cond_data_available.notify()
+        return True
+
+    def _run(self) -> None:
+        while not self._connection.done:
+            with self._lock:
+                while not self._queue and not self._connection.done:
+                    self._cond_data_available.wait()
+                queue, self._queue = self._queue, []
+            for data in queue:
+                try:
+                    self._connection.write_data(data)
+                except Exception as exc:
+                    with self._lock:
+                        self._error = exc
+
+
+ServerProxy = _ServerProxy  # rospy's is xmlrpc.client's; kame's calls go through its own XML-RPC client
+
+
+def check_if_still_publisher(resolved_topic_name: str, pub_uri: str) -> bool:
+    """True when the node at `pub_uri` says it publishes `resolved_topic_name`."""
+    try:
+        code, _msg, val = ServerProxy(pub_uri).getPublications(core.get_caller_id())
+    except Exception:
+        return False
+    return code == 1 and any(topic == resolved_topic_name for topic, _type in val)
+
+
+def robust_connect_subscriber(conn: Any, dest_addr: str, dest_port: int, pub_uri: str,
+                              receive_cb: Callable[[list[Any], Any], None], resolved_topic_name: str) -> None:
+    """Connect `conn` to the publisher, trying again ever more slowly (0.5 s doubling to 30 s)
+    while `pub_uri` still publishes the topic, then give its messages to `receive_cb` until it ends."""
+    interval = 0.5
+    while conn.socket is None and not conn.done and not core.is_shutdown():
+        try:
+            conn.connect(dest_addr, dest_port, pub_uri, timeout=60.0)
+        except TransportInitError as exc:
+            if conn.protocol is None:
+                conn.done = True
+                break
+            rospyerr("unable to create subscriber transport: %s.  Will try again in %ss", exc, interval)
+            interval = min(interval * 2, 30.0)
+            if core.wait_for_shutdown(interval):
+                break
+            conn.done = not check_if_still_publisher(resolved_topic_name, pub_uri)
+    if not conn.done:
+        conn.receive_loop(receive_cb)
