@@ -5,6 +5,7 @@ import io
 import json
 import socket
 import sys
+import threading
 
 sys.argv = ["prog", "chatter:=/talk", "~p:=q", "__ns:=/n", "_x:=1"]
 
@@ -191,6 +192,92 @@ out["cleared"] = listeners.listeners
 registration.set_topic_manager("tm")
 registration.set_service_manager("sm")
 out["managers"] = [registration.get_topic_manager(), registration.get_service_manager()]
+
+# rospy.client's names, the ROS clock's condition
+import rospy.client  # noqa: E402
+import rospy.rostime  # noqa: E402
+
+out["client"] = [rospy.client.TIMEOUT_READY, [rospy.client.DEBUG, rospy.client.INFO, rospy.client.WARN,
+                 rospy.client.ERROR, rospy.client.FATAL], rospy.client.GetLoggers._type, rospy.client.Logger._type,
+                 rospy.client.SetLoggerLevelResponse._type, rospy.client.Log._type,
+                 rospy.client.Service is rospy.Service]
+cond = rospy.rostime.get_rostime_cond()
+woken = []
+
+
+def wait_for_change():
+    with cond:
+        ready.set()
+        woken.append(cond.wait(30))
+
+
+ready = threading.Event()
+waiter = threading.Thread(target=wait_for_change)
+waiter.start()
+ready.wait(30)
+with cond:  # the waiter is in cond.wait once it gave the lock up
+    pass
+rospy.rostime._set_rostime(rospy.Time(3, 4))
+waiter.join(30)
+rospy.rostime.switch_to_wallclock()
+out["rostime_cond"] = woken
+
+# masterslave's API validation
+import rospy.impl.masterslave as masterslave  # noqa: E402
+
+
+class Api(masterslave.XmlRpcHandler):
+    @masterslave.apivalidate(0, (core.is_topic("topic"), None))
+    def call(self, caller_id, topic, other):
+        return 1, "fine", [topic, other]
+
+    @masterslave.apivalidate(-1, ())
+    def broken(self, caller_id):
+        raise RuntimeError("inside")
+
+
+api = Api()
+out["apivalidate"] = [api.call("/me", "chat", 5), api.call("/me", "/", 5), api.call("/me"), api.call(),
+                      api.call(3, "chat", 5), api.broken("/me"), api.call.__name__,
+                      [masterslave.STATUS, masterslave.MSG, masterslave.VAL, masterslave.LOG_API],
+                      masterslave.is_publishers_list("p"), api._ready("http://x:1/"), api._shutdown("r")]
+
+# Poller and QueuedConnection
+from rospy.impl.tcpros_pubsub import QueuedConnection  # noqa: E402
+from rospy.topics import Poller  # noqa: E402
+
+left, right = socket.socketpair()
+poller = Poller()
+poller.add_fd(right.fileno())
+out["poller"] = [list(poller.error_iter())]
+left.close()
+out["poller"].append(list(poller.error_iter()) == [right.fileno()])
+poller.remove_fd(right.fileno())
+out["poller"].append(list(poller.error_iter()))
+right.close()
+
+
+class Collecting(transport.Transport):
+    def __init__(self):
+        super().__init__(transport.OUTBOUND, "collect")
+        self.written = []
+        self.all_written = threading.Event()
+
+    def write_data(self, data):
+        self.written.append(data.decode())
+        if data == b"last":
+            self.all_written.set()
+        return True
+
+
+target = Collecting()
+queued = QueuedConnection(target, 2)
+out["queued"] = [queued.write_data(b"a"), queued.name, queued.direction]
+queued.write_data(b"last")
+target.all_written.wait(30)
+target.close()
+queued._thread.join(30)
+out["queued"] += [target.written[0], target.written[-1], queued._thread.is_alive()]
 
 # shutdown: hook order and the flags each hook sees
 seen = []

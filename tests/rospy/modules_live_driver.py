@@ -127,5 +127,75 @@ publishers = dict(master.getSystemState()[2][0])
 out["reg_manager"] = [publishers.get("/told"), dict(master.getTopicTypes()[2]).get("/told")]
 manager.reg_removed("/told", "std_msgs/Empty", registration.Registration.PUB)
 out["reg_manager"].append(dict(master.getSystemState()[2][0]).get("/told"))
+# topic statistics, measured and published on /statistics
+from rosgraph_msgs.msg import TopicStatistics  # noqa: E402
+from rospy.impl.statistics import SubscriberStatisticsLogger  # noqa: E402
+
+statistics, got_statistics = [], threading.Event()
+
+
+def heard_statistics(msg):
+    # what depends on timing (traffic in the window, deliveries, periods) is checked for its range
+    statistics.append([msg.topic, msg.node_sub, msg.node_pub, msg.traffic in (0, 100), msg.delivered_msgs > 0,
+                       msg.dropped_msgs, msg.window_stop >= msg.window_start, msg.period_mean.to_sec() >= 0])
+    got_statistics.set()
+
+
+rospy.Subscriber("/statistics", TopicStatistics, heard_statistics)
+
+
+class Named:
+    name = "/measured"
+
+
+rospy.set_param("/enable_statistics", False)
+measuring = SubscriberStatisticsLogger(Named())
+out["statistics"] = [SubscriberStatisticsLogger.is_enabled(), measuring.min_elements, measuring.max_window]
+rospy.set_param("/enable_statistics", True)
+out["statistics"].append(SubscriberStatisticsLogger.is_enabled())
+while not got_statistics.wait(0.2):  # until /statistics reaches our own subscriber
+    measuring.callback(String(data="m"), "/somebody", 100)
+out["statistics"].append(statistics[0])
+measuring.shutdown()
+out["statistics"].append(measuring.connections)
+
+# publishers asked, connections kept up, the node's logger services
+import subprocess  # noqa: E402
+import sys  # noqa: E402
+
+from rospy.impl import init, rosout, simtime  # noqa: E402
+from rospy.impl.tcpros_pubsub import check_if_still_publisher, robust_connect_subscriber  # noqa: E402
+from rospy.logger_level_service_caller import LoggerLevelServiceCaller, ROSConsoleException  # noqa: E402
+
+me = rospy.get_node_uri()
+out["still_publisher"] = [check_if_still_publisher("/latched", me), check_if_still_publisher("/nothing", me),
+                          check_if_still_publisher("/latched", "http://127.0.0.1:1/")]
+received = []
+link = tcpros_base.TCPROSTransport(TCPROSSub("/latched", String), "/latched")
+
+
+def keep(msgs, connection):
+    received.extend(m.data for m in msgs)
+    connection.close()
+
+
+robust_connect_subscriber(link, host, port, me, keep, "/latched")
+out["robust"] = [received, link.done]
+caller = LoggerLevelServiceCaller()
+loggers = caller.get_loggers("/modules_live")
+out["loggers"] = ["/modules_live" in caller.get_node_names(), "rosout" in loggers, caller.get_levels()]
+try:
+    caller.get_loggers("/no_such_node")
+except ROSConsoleException as exc:
+    out["loggers"].append(str(exc).split(":")[0])
+console = subprocess.run([sys.executable, "-c", "import rospy.rosconsole as c; c.main()", "list", "/modules_live"],
+                         capture_output=True, text=True, timeout=60)
+out["rosconsole"] = [console.returncode, "rosout" in console.stdout.split()]
+out["init"] = [rosout.init_rosout() is not False, simtime.init_simtime(), init.DEFAULT_MASTER_URI,
+               init.DEFAULT_NODE_PORT]
+other = init.start_node(os.environ, "/ns/started")
+code, _, started = rospy.core.xmlrpcapi(other.uri).getName("/modules_live")
+out["start_node"] = [code, started]
+other.shutdown("done")
 print(json.dumps(out))
 rospy.signal_shutdown("done")

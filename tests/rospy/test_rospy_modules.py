@@ -135,6 +135,25 @@ def test_registration_listeners_and_service_manager(offline: dict[str, Any]) -> 
     assert offline["cleared"] == [] and offline["managers"] == ["tm", "sm"]
 
 
+def test_client_names_and_clock_condition(offline: dict[str, Any]) -> None:
+    assert offline["client"] == [15.0, [1, 2, 4, 8, 16], "roscpp/GetLoggers", "roscpp/Logger",
+                                 "roscpp/SetLoggerLevelResponse", "rosgraph_msgs/Log", True]
+    assert offline["rostime_cond"] == [True]  # _set_rostime woke the waiter
+
+
+def test_apivalidate(offline: dict[str, Any]) -> None:
+    assert offline["apivalidate"] == [
+        [1, "fine", ["/chat", 5]], [-1, "ERROR: parameter [topic] cannot be the global namespace", 0],
+        [-1, "Error: bad call arity", 0], [-1, "missing required caller_id parameter", 0],
+        [-1, "caller_id must be a string", 0], [0, "Internal failure: inside", -1], "call", [0, 1, 2, True],
+        ["is_publishers_list", "p"], None, None]
+
+
+def test_poller_and_queued_connection(offline: dict[str, Any]) -> None:
+    assert offline["poller"] == [[], True, []]  # the hang-up is seen once the peer closed
+    assert offline["queued"] == [True, "collect", "o", "a", "last", False]  # its thread ends with the connection
+
+
 @pytest.mark.skipif(not HAS_DEBIAN, reason="Debian's rospy is not installed")
 def test_offline_answers_as_debians(offline: dict[str, Any]) -> None:
     assert run(DRIVER, str(debian.SYSTEM_PYTHON), {"ROS_MASTER_URI": "http://127.0.0.1:1/"}) == offline
@@ -181,6 +200,27 @@ def test_tcpros_transport_subscribes_and_calls(live: dict[str, Any]) -> None:
 
 def test_reg_manager_tells_the_master(live: dict[str, Any]) -> None:
     assert live["reg_manager"] == [["/modules_live"], "std_msgs/Empty", None]
+
+
+def test_statistics_published(live: dict[str, Any]) -> None:
+    assert live["statistics"] == [False, 10, 64, True, ["/measured", "/modules_live", "/somebody", True, True, 0,
+                                                        True, True], {}]
+
+
+def test_publisher_checks_and_robust_connect(live: dict[str, Any]) -> None:
+    assert live["still_publisher"] == [True, False, False]
+    assert live["robust"] == [["kept"], True]
+
+
+def test_logger_levels_and_rosconsole(live: dict[str, Any]) -> None:
+    assert live["loggers"] == [True, True, ["debug", "info", "warn", "error", "fatal"],
+                               "node '/no_such_node' doesn't exist or doesn't support query"]
+    assert live["rosconsole"] == [0, True]
+
+
+def test_init_rosout_simtime_and_start_node(live: dict[str, Any]) -> None:
+    assert live["init"] == [True, True, "http://localhost:11311/", 0]
+    assert live["start_node"] == [1, "/ns/started"]
 
 
 @pytest.mark.skipif(not HAS_DEBIAN, reason="Debian's rospy is not installed")
