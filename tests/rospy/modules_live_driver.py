@@ -197,5 +197,20 @@ other = init.start_node(os.environ, "/ns/started")
 code, _, started = rospy.core.xmlrpcapi(other.uri).getName("/modules_live")
 out["start_node"] = [code, started]
 other.shutdown("done")
+# a service that rospy code registers with the process's ServiceManager reaches the master
+import rospy.service  # noqa: E402
+
+manual = rospy.service._Service("/manual", SetBool)
+manual.uri = master.lookupService("/switch")[2]
+services = registration.get_service_manager()
+services.register("/manual", manual)
+out["service_manager"] = [master.lookupService("/manual")[0], ["/manual", manual.uri] in
+                          [list(pair) for pair in services.get_services()], services.get_service("/manual") is manual]
+try:
+    services.register("/switch", manual)
+except rospy.ServiceException as exc:
+    out["service_manager"].append(str(exc))
+services.unregister("/manual", manual)
+out["service_manager"] += [master.lookupService("/manual")[0], services.get_service("/manual")]
 print(json.dumps(out))
 rospy.signal_shutdown("done")

@@ -30,7 +30,8 @@ def run(script: Path, python: str, env: dict[str, str]) -> dict[str, Any]:
     environment = {**debian.debian_env(), **env}
     result = subprocess.run([python, str(script)], capture_output=True, text=True, env=environment, timeout=90)
     assert result.returncode == 0, result.stderr
-    answer: dict[str, Any] = json.loads(result.stdout.splitlines()[-1])
+    # the answer is the last JSON line: rospy's start_node prints the shutdown request its node may get
+    answer: dict[str, Any] = json.loads([line for line in result.stdout.splitlines() if line.startswith("{")][-1])
     return answer
 
 
@@ -216,6 +217,10 @@ def test_logger_levels_and_rosconsole(live: dict[str, Any]) -> None:
     assert live["loggers"] == [True, True, ["debug", "info", "warn", "error", "fatal"],
                                "node '/no_such_node' doesn't exist or doesn't support query"]
     assert live["rosconsole"] == [0, True]
+
+
+def test_service_manager_registers_with_the_master(live: dict[str, Any]) -> None:
+    assert live["service_manager"] == [1, True, True, "service [/switch] already registered", -1, None]
 
 
 def test_init_rosout_simtime_and_start_node(live: dict[str, Any]) -> None:

@@ -5,9 +5,12 @@
   calls the listeners' reg_added / reg_removed, as rospy's topic and service managers do.
 - get_topic_manager() answers from the node's tables (`[[topic, type], ...]`) until
   set_topic_manager() puts another in its place; the service manager is rospy.service's.
-- RegManager is rospy's registrar: a listener that tells the master of each registration it
-  hears, through rospy.core.xmlrpcapi. kame's node registers its own topics and services, so
-  init_node starts none; one made by a program registers what it is told of.
+- The process's listeners start with a registrar that tells the master, as the node, of what
+  rospy code announces itself (ServiceManager.register, a topic manager of its own): rospy's
+  RegManager does that for init_node's node. RegManager itself is a listener that tells the
+  master of each registration it hears, through rospy.core.xmlrpcapi: kame's node registers its
+  own topics and services, so init_node starts none; one made by a program registers what it is
+  told of.
 """
 
 from __future__ import annotations
@@ -74,22 +77,24 @@ class RegistrationListeners:
             self.listeners.append(listener)
 
     def notify_removed(self, resolved_name: str, data_type_or_uri: str, reg_type: str) -> None:
-        with self.lock:
-            listeners = list(self.listeners)
-        for listener in listeners:
-            try:
-                listener.reg_removed(resolved_name, data_type_or_uri, reg_type)
-            except Exception:
-                logging.getLogger("rospy.registration").exception("error notifying listener of removal")
+        self._notify(False, resolved_name, data_type_or_uri, reg_type)
 
     def notify_added(self, resolved_name: str, data_type: str, reg_type: str) -> None:
+        self._notify(True, resolved_name, data_type, reg_type)
+
+    def _notify(self, added: bool, resolved_name: str, data_type_or_uri: str, reg_type: str,
+                skip: RegistrationListener | None = None) -> None:
         with self.lock:
-            listeners = list(self.listeners)
+            listeners = [listener for listener in self.listeners if listener is not skip]
         for listener in listeners:
             try:
-                listener.reg_added(resolved_name, data_type, reg_type)
+                if added:
+                    listener.reg_added(resolved_name, data_type_or_uri, reg_type)
+                else:
+                    listener.reg_removed(resolved_name, data_type_or_uri, reg_type)
             except Exception:
-                logging.getLogger("rospy.registration").exception("error notifying listener of registration")
+                logging.getLogger("rospy.registration").exception("error notifying listener of %s",
+                                                                  "registration" if added else "removal")
 
     def clear(self) -> None:
         with self.lock:
@@ -98,12 +103,41 @@ class RegistrationListeners:
 
 _registration_listeners = RegistrationListeners()
 
+_REGISTER = {Registration.PUB: "registerPublisher", Registration.SUB: "registerSubscriber",
+             Registration.SRV: "registerService"}
+_UNREGISTER = {Registration.PUB: "unregisterPublisher", Registration.SUB: "unregisterSubscriber",
+               Registration.SRV: "unregisterService"}
+
+
+def _owned(node: Any, resolved_name: str, reg_type: str) -> bool:
+    tables = {Registration.PUB: node.publications, Registration.SUB: node.subscriptions,
+              Registration.SRV: node.services}
+    return resolved_name in tables.get(reg_type, {})
+
+
+class _NodeRegistrar(RegistrationListener):
+    """What rospy's RegManager does for the process: a registration that rospy code announces
+    itself (a ServiceManager's register, a topic manager of its own) is told to the master as
+    this node. It does not hear the node's own (_heard skips it): the node tells the master."""
+
+    def reg_added(self, resolved_name: str, data_type_or_uri: str, reg_type: str) -> None:
+        node = core.get_node()
+        if node is not None and not _owned(node, resolved_name, reg_type):
+            node.master.call(_REGISTER[reg_type], resolved_name, data_type_or_uri, node.uri)
+
+    def reg_removed(self, resolved_name: str, data_type_or_uri: str, reg_type: str) -> None:
+        node = core.get_node()
+        if node is not None and not _owned(node, resolved_name, reg_type):
+            node.master.call(_UNREGISTER[reg_type], resolved_name,
+                             data_type_or_uri if reg_type == Registration.SRV else node.uri)
+
+
+_registrar = _NodeRegistrar()
+_registration_listeners.add_listener(_registrar)
+
 
 def _heard(added: bool, resolved_name: str, type_or_uri: str, kind: str) -> None:
-    if added:
-        _registration_listeners.notify_added(resolved_name, type_or_uri, kind)
-    else:
-        _registration_listeners.notify_removed(resolved_name, type_or_uri, kind)
+    _registration_listeners._notify(added, resolved_name, type_or_uri, kind, skip=_registrar)
 
 
 core.defer_until_initialized(lambda node: node.on_registration.append(_heard))
