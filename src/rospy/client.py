@@ -7,7 +7,6 @@ from typing import Any
 
 from kame import names as _names
 from kame.client import log as _log
-from kame.client.core import on_shutdown
 from kame.client.errors import ROSInitException
 from kame.client.process import (
     DEFAULT_MASTER_URI,
@@ -27,7 +26,7 @@ from kame.client.process import (
 )
 from kame.client.services import Service
 from rospy._logging import logdebug, logerr, loginfo, logwarn
-from rospy.core import _lazy_names
+from rospy.core import _lazy_names, on_shutdown
 
 __all__ = [
     "DEBUG",

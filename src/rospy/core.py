@@ -26,7 +26,6 @@ from kame.client.core import (
     is_initialized,
     is_shutdown,
     is_shutdown_requested,
-    on_shutdown,
     set_initialized,
     signal_shutdown,
     wait_for_shutdown,
@@ -80,6 +79,12 @@ def __getattr__(name: str) -> Any:
     if name == "_in_shutdown":
         return _core.is_shutdown_requested()
     return _lazy(name)
+
+
+def on_shutdown(h: Callable[..., Any]) -> None:
+    """Call `h()` when the node shuts down, before it begins its teardown (is_shutdown() is still
+    false: it may publish); `h(reason)` if it takes the reason. At once if it already has."""
+    add_client_shutdown_hook(h)
 
 
 def deprecated(func: Callable[..., Any]) -> Callable[..., Any]:

@@ -291,6 +291,7 @@ def look(tag):
 core.add_shutdown_hook(look("shutdown"))
 core.add_preshutdown_hook(look("pre"))
 core.add_client_shutdown_hook(look("client"))
+rospy.on_shutdown(lambda: look("on_shutdown")())  # rospy's hooks take no argument
 out["hook_lists"] = [len(core._shutdown_hooks) >= 1, len(core._preshutdown_hooks) >= 1,
                      len(core._client_shutdown_hooks) >= 1]
 out["before"] = [core.is_shutdown(), core._shutdown_flag, core._in_shutdown]

@@ -69,8 +69,10 @@ def test_names_tables(offline: dict[str, Any]) -> None:
 
 
 def test_shutdown_hooks_order_and_flags(offline: dict[str, Any]) -> None:
-    # client hooks (no argument) first, then pre-shutdown hooks before is_shutdown, then shutdown hooks
+    # client hooks (rospy.on_shutdown's, no argument) first, then pre-shutdown hooks before
+    # is_shutdown, then shutdown hooks
     assert offline["seen"] == [["client", [], False, True, False, True],
+                               ["on_shutdown", [], False, True, False, True],
                                ["pre", ["driver done"], False, True, False, True],
                                ["shutdown", ["driver done"], True, True, True, True],
                                ["late", ["already shutdown"], True, True, True, True]]

@@ -32,7 +32,7 @@ _node_down = threading.Event()  # set once signal_shutdown has unregistered and 
 _shutdown_reason = ""
 _shutdown_hooks: list[Callable[..., Any]] = []
 _preshutdown_hooks: list[Callable[..., Any]] = []
-_client_shutdown_hooks: list[Callable[[], Any]] = []  # run first, with no argument (rospy's client hooks)
+_client_shutdown_hooks: list[Callable[..., Any]] = []  # run first (rospy's client hooks: its on_shutdown)
 _hooks_lock = threading.Lock()
 _initialized = False
 
@@ -196,7 +196,7 @@ def _add_hook(hook: Callable[..., Any], hooks: list[Callable[..., Any]], with_re
     if with_reason:
         hook("already shutdown")
     else:
-        hook()
+        _call_client_hook(hook, "already shutdown")
 
 
 def add_preshutdown_hook(hook: Callable[[str], Any]) -> None:
@@ -209,8 +209,9 @@ def add_shutdown_hook(hook: Callable[[str], Any]) -> None:
     _add_hook(hook, _shutdown_hooks, with_reason=True)
 
 
-def add_client_shutdown_hook(hook: Callable[[], Any]) -> None:
-    """Run `hook()` first when shutdown starts, before the pre-shutdown hooks."""
+def add_client_shutdown_hook(hook: Callable[..., Any]) -> None:
+    """Run `hook()` (or `hook(reason)`, if it takes one) first when shutdown starts, before the
+    pre-shutdown hooks and while is_shutdown() is still false: rospy's on_shutdown."""
     _add_hook(hook, _client_shutdown_hooks, with_reason=False)
 
 
@@ -220,6 +221,17 @@ def _call_hook(hook: Callable[..., Any], reason: str) -> None:
             hook(reason)
         else:
             hook()
+    except Exception:
+        log.exception("shutdown hook %s failed", hook)
+
+
+def _call_client_hook(hook: Callable[..., Any], reason: str) -> None:
+    """`hook()` as rospy calls its on_shutdown hooks; `hook(reason)` for one that needs an argument."""
+    try:
+        if accepts(hook, 0):
+            hook()
+        else:
+            hook(reason)
     except Exception:
         log.exception("shutdown hook %s failed", hook)
 
@@ -235,10 +247,7 @@ def signal_shutdown(reason: str) -> None:
         client, _client_shutdown_hooks[:] = list(_client_shutdown_hooks), []
         pre, _preshutdown_hooks[:] = list(_preshutdown_hooks), []
     for client_hook in client:
-        try:
-            client_hook()
-        except Exception:
-            log.exception("shutdown hook %s failed", client_hook)
+        _call_client_hook(client_hook, reason)
     for hook in pre:
         _call_hook(hook, reason)
     with _hooks_lock:
