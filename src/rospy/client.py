@@ -2,16 +2,20 @@
 
 from __future__ import annotations
 
+import os
+import sys
+from collections.abc import Mapping
 from threading import Lock
 from typing import Any
 
+from kame import environ as _environ
 from kame import names as _names
+from kame.client import core as _core
 from kame.client import log as _log
 from kame.client.errors import ROSInitException
 from kame.client.process import (
     DEFAULT_MASTER_URI,
     delete_param,
-    get_master,
     get_param,
     get_param_cached,
     get_param_names,
@@ -71,6 +75,24 @@ __getattr__ = _lazy_names(__name__, {
     "GetLoggers": ("roscpp.srv", "GetLoggers"), "GetLoggersResponse": ("roscpp.srv", "GetLoggersResponse"),
     "SetLoggerLevel": ("roscpp.srv", "SetLoggerLevel"),
     "SetLoggerLevelResponse": ("roscpp.srv", "SetLoggerLevelResponse"), "Logger": ("roscpp.msg", "Logger")})
+
+_master_proxy: Any = None
+_master_proxy_lock = Lock()
+
+
+def get_master(env: Mapping[str, str] = os.environ) -> Any:
+    """The master as a rospy.msproxy.MasterProxy (this node's, else `env`'s ROS_MASTER_URI or the
+    command line's `__master:=`), made once per process."""
+    global _master_proxy
+    from rospy.msproxy import MasterProxy
+
+    with _master_proxy_lock:
+        if _master_proxy is None:
+            node = _core.get_node()
+            uri = node.config.master_uri if node is not None else _environ.master_uri(
+                env, _names.parse_args(sys.argv).special)
+            _master_proxy = MasterProxy(uri)
+    return _master_proxy
 
 
 def load_command_line_node_params(argv: list[str]) -> dict[str, Any]:

@@ -54,6 +54,8 @@ out["events"] = list(events)
 
 master = rospy.MasterProxy(os.environ["ROS_MASTER_URI"])
 code, _, pid = master.getPid()
+out["get_master"] = [isinstance(rospy.get_master(), rospy.MasterProxy), rospy.get_master() is rospy.get_master(),
+                     rospy.get_master().getPid()[2] == pid, "/nothing" in rospy.get_master()]
 master["/live/p"] = {"a": 1}
 out["master_proxy"] = [code, isinstance(pid, int), master["/live/p"], master["live/p/a"], "/live/p" in master,
                        "/live/none" in master, master.search_param("p"), "/live/p/a" in list(master)]

@@ -187,6 +187,7 @@ def test_registration_listener_hears_the_node(live: dict[str, Any]) -> None:
 
 
 def test_master_proxy_and_param_cache(live: dict[str, Any]) -> None:
+    assert live["get_master"] == [True, True, True, False]  # rospy.get_master() is a MasterProxy
     assert live["master_proxy"] == [1, True, {"a": 1}, 1, True, False, None, True, ["KeyError", "'/live/p'"],
                                     ["KeyError", "'/live/p'"], 1]
     assert live["cache"] == [5, 5, 7, 8, False]
