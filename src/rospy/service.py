@@ -11,12 +11,14 @@ from __future__ import annotations
 
 import logging
 import threading
+from abc import ABCMeta
 from typing import Any
 
 from kame.client import core as _client_core
 from kame.client.services import (
     Service,
     ServiceException,
+    ServiceImpl,
     ServiceProxy,
     wait_for_service,
 )
@@ -33,8 +35,9 @@ __all__ = [*_core_names, *_transport_names, "Registration", "Service", "ServiceE
 logger = logging.getLogger("rospy.service")
 
 
-class _Service:
-    """A service's resolved name, class, request and response classes and URI."""
+class _Service(metaclass=ABCMeta):  # noqa: B024  (an ABC for its register(), with nothing abstract)
+    """A service's resolved name, class, request and response classes and URI (kame's Service is
+    one: registered below)."""
 
     def __init__(self, name: str, service_class: Any) -> None:
         self.resolved_name = resolve_name(name)
@@ -97,6 +100,7 @@ class ServiceManager:
         return found
 
 
+_Service.register(ServiceImpl)
 set_service_manager(ServiceManager())
 
 __getattr__ = _lazy_names(__name__)

@@ -195,10 +195,6 @@ console = subprocess.run([sys.executable, "-c", "import rospy.rosconsole as c; c
 out["rosconsole"] = [console.returncode, "rosout" in console.stdout.split()]
 out["init"] = [rosout.init_rosout() is not False, simtime.init_simtime(), init.DEFAULT_MASTER_URI,
                init.DEFAULT_NODE_PORT]
-other = init.start_node(os.environ, "/ns/started")
-code, _, started = rospy.core.xmlrpcapi(other.uri).getName("/modules_live")
-out["start_node"] = [code, started]
-other.shutdown("done")
 # a service that rospy code registers with the process's ServiceManager reaches the master
 import rospy.service  # noqa: E402
 
@@ -213,6 +209,13 @@ try:
 except rospy.ServiceException as exc:
     out["service_manager"].append(str(exc))
 services.unregister("/manual", manual)
-out["service_manager"] += [master.lookupService("/manual")[0], services.get_service("/manual")]
+out["service_manager"] += [master.lookupService("/manual")[0], services.get_service("/manual"),
+                           isinstance(srv, rospy.service._Service), srv.uri == master.lookupService("/switch")[2]]
+# last: rospy's start_node registers the process's topics and services again for its node, which
+# the master then shuts down (a node of the same name registered), unregistering them all
+other = init.start_node(os.environ, "/ns/started")
+code, _, started = rospy.core.xmlrpcapi(other.uri).getName("/modules_live")
+out["start_node"] = [code, started]
+other.shutdown("done")
 print(json.dumps(out))
 rospy.signal_shutdown("done")

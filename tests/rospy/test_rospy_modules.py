@@ -223,7 +223,7 @@ def test_logger_levels_and_rosconsole(live: dict[str, Any]) -> None:
 
 
 def test_service_manager_registers_with_the_master(live: dict[str, Any]) -> None:
-    assert live["service_manager"] == [1, True, True, "service [/switch] already registered", -1, None]
+    assert live["service_manager"] == [1, True, True, "service [/switch] already registered", -1, None, True, True]
 
 
 def test_init_rosout_simtime_and_start_node(live: dict[str, Any]) -> None:
