@@ -33,6 +33,20 @@ def attempt(call):
         return [type(exc).__name__, str(exc)]
 
 
+# logging to a file, Header and the log calls where rospy has them
+import os  # noqa: E402
+import tempfile  # noqa: E402
+
+os.environ["ROS_LOG_DIR"] = tempfile.mkdtemp()
+core.configure_logging("/ns/node")
+out["configure_logging"] = [os.path.basename(core._log_filename), os.path.dirname(core._log_filename) ==
+                            os.environ["ROS_LOG_DIR"], attempt(lambda: core.configure_logging("/"))]
+from std_msgs.msg import Header  # noqa: E402
+
+out["top_level"] = [rospy.Header is Header, rospy.MasterProxy.__module__, rospy.loginfo is core.loginfo,
+                    rospy.logerr_throttle is core.logerr_throttle, rospy.get_ros_root is core.get_ros_root,
+                    core.xmlrpcapi("http://127.0.0.1:1/").__class__.__name__ != ""]
+
 out["rosrpc"] = [attempt(lambda u=u: list(rospy.parse_rosrpc_uri(u))) for u in (
     "rosrpc://host:1234", "rosrpc://host:1234/path", "http://host:1", "rosrpc://host", "rosrpc://host:port",
     "rosrpc://a:1:2")]

@@ -57,6 +57,9 @@ def test_core_names(offline: dict[str, Any]) -> None:
     assert offline["initialized"] == [False, True]
     assert offline["xmlrpcapi"] == [True, True, True, False]
     assert offline["bad_hook"][0] == "TypeError"
+    assert offline["configure_logging"] == ["ns_node.log", True,
+                                            ["ROSException", "invalid configure_logging parameter: /"]]
+    assert offline["top_level"] == [True, "rospy.msproxy", True, True, True, True]
 
 
 def test_names_tables(offline: dict[str, Any]) -> None:
