@@ -69,7 +69,6 @@ from rospy.exceptions import (
     TransportTerminated,
 )
 from rospy.msg import AnyMsg
-from rospy.msproxy import MasterProxy
 from rospy.numpy_msg import numpy_msg
 from rospy.rostime import Duration, Time, get_rostime, get_time
 from rospy.service import Service, ServiceException, ServiceProxy, wait_for_service
@@ -84,10 +83,15 @@ FATAL = _log.FATAL
 
 
 def __getattr__(name: str) -> type:
-    if name == "Header":  # std_msgs' module loads when a program asks for it, not with rospy
+    # std_msgs' Header and the master's proxy load when a program asks for them, not with rospy
+    if name == "Header":
         from std_msgs.msg import Header
 
         return Header
+    if name == "MasterProxy":
+        from rospy.msproxy import MasterProxy
+
+        return MasterProxy
     raise AttributeError(f"module 'rospy' has no attribute {name!r}")
 
 

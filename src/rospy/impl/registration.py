@@ -209,9 +209,12 @@ def set_service_manager(sm: Any) -> None:
 
 
 def get_service_manager() -> Any:
-    """The process's service manager (rospy.service's ServiceManager unless one was set)."""
+    """The process's service manager (a rospy.service.ServiceManager unless one was set)."""
+    global _service_manager
     if _service_manager is None:
-        import rospy.service  # noqa: F401  (it sets its ServiceManager as the process's, as rospy's)
+        from rospy.service import ServiceManager
+
+        _service_manager = ServiceManager()
     return _service_manager
 
 
