@@ -418,7 +418,7 @@ def test_pub_errors(graph: Graph) -> None:
     assert one_error(results[3]).startswith("ERROR: Too many arguments:\n * Given: [[1, 2, 3], [1, 2, 3], [4]]\n")
     assert one_error(results[4]) == ("ERROR: Unable to publish message. One of the fields has an incorrect type:\n"
                                      "  field data must be an integer type (int32), got str 'hello'\n\n"
-                                     "msg file:\nint32 data\n\n")
+                                     "msg file:\nint32 data\n")  # Int32.msg has no final newline
     assert one_error(results[5]).startswith("ERROR: Field [linear] is a message")
     assert one_error(results[6], 2).endswith("rostopic: error: You cannot select both -r and -1 (--once)\n")
     assert "rostopic: error: Argument error: while parsing a flow sequence" in one_error(results[7], 2)
