@@ -68,31 +68,21 @@ from rospy.exceptions import (
     TransportInitError,
     TransportTerminated,
 )
+from rospy.impl import tcpros_service as _impl_tcpros_service  # noqa: F401  (loaded by rospy's too)
 from rospy.msg import AnyMsg
+from rospy.msproxy import MasterProxy
 from rospy.numpy_msg import numpy_msg
 from rospy.rostime import Duration, Time, get_rostime, get_time
 from rospy.service import Service, ServiceException, ServiceProxy, wait_for_service
 from rospy.timer import Rate, Timer, TimerEvent, sleep
 from rospy.topics import Publisher, SubscribeListener, Subscriber
+from std_msgs.msg import Header
 
 DEBUG = _log.DEBUG
 INFO = _log.INFO
 WARN = _log.WARN
 ERROR = _log.ERROR
 FATAL = _log.FATAL
-
-
-def __getattr__(name: str) -> type:
-    # std_msgs' Header and the master's proxy load when a program asks for them, not with rospy
-    if name == "Header":
-        from std_msgs.msg import Header
-
-        return Header
-    if name == "MasterProxy":
-        from rospy.msproxy import MasterProxy
-
-        return MasterProxy
-    raise AttributeError(f"module 'rospy' has no attribute {name!r}")
 
 
 _process.rospy_ctrl_c()  # a program that imports rospy takes Ctrl-C as rospy does: no exception, a shutdown

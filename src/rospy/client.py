@@ -29,8 +29,14 @@ from kame.client.process import (
     wait_for_message,
 )
 from kame.client.services import Service
+from roscpp.msg import Logger
+from roscpp.srv import GetLoggers, GetLoggersResponse, SetLoggerLevel, SetLoggerLevelResponse
+from rosgraph_msgs.msg import Log
 from rospy._logging import logdebug, logerr, loginfo, logwarn
 from rospy.core import _lazy_names, on_shutdown
+from rospy.impl import init as _init  # noqa: F401  (rospy.client loads these, as rospy's)
+from rospy.impl import rosout as _rosout  # noqa: F401
+from rospy.impl import simtime as _simtime  # noqa: F401
 
 __all__ = [
     "DEBUG",
@@ -40,8 +46,14 @@ __all__ = [
     "INFO",
     "TIMEOUT_READY",
     "WARN",
+    "GetLoggers",
+    "GetLoggersResponse",
     "Lock",
+    "Log",
+    "Logger",
     "Service",
+    "SetLoggerLevel",
+    "SetLoggerLevelResponse",
     "delete_param",
     "get_master",
     "get_param",
@@ -70,11 +82,7 @@ WARN = _log.WARN
 ERROR = _log.ERROR
 FATAL = _log.FATAL
 
-# the logger services' message classes load when a program asks for them
-__getattr__ = _lazy_names(__name__, {
-    "GetLoggers": ("roscpp.srv", "GetLoggers"), "GetLoggersResponse": ("roscpp.srv", "GetLoggersResponse"),
-    "SetLoggerLevel": ("roscpp.srv", "SetLoggerLevel"),
-    "SetLoggerLevelResponse": ("roscpp.srv", "SetLoggerLevelResponse"), "Logger": ("roscpp.msg", "Logger")})
+__getattr__ = _lazy_names(__name__)
 
 _master_proxy: Any = None
 _master_proxy_lock = Lock()

@@ -3,8 +3,7 @@
 
 The shutdown hook lists are kame.client.core's own lists, and `_shutdown_flag` / `_in_shutdown`
 read its state, so what rospy code appends or reads is what kame's shutdown runs and sets.
-`md5` and `Log` (hashlib, the rosgraph_msgs module) load when first asked for: `import rospy`
-stays cheap.
+`md5` (hashlib, with OpenSSL) loads when first asked for: `import rospy` stays cheap.
 """
 
 from __future__ import annotations
@@ -31,13 +30,14 @@ from kame.client.core import (
     wait_for_shutdown,
 )
 from kame.client.errors import ROSException
+from rosgraph_msgs.msg import Log
 from rospy._logging import *  # noqa: F403  (rospy.core is where rospy's log calls live)
 from rospy._logging import __all__ as _logging_names
 from rospy.names import *  # noqa: F403  (rospy.core re-exports rospy.names, as rospy's does)
 from rospy.names import ParameterInvalid, get_mappings, valid_name_validator_resolved
 from rospy.names import __all__ as _names_names
 
-__all__ = [*_names_names, *_logging_names, "MASTER_NAME", "ROSRPC", "NullHandler", "add_client_shutdown_hook",
+__all__ = [*_names_names, *_logging_names, "MASTER_NAME", "Log", "ROSRPC", "NullHandler", "add_client_shutdown_hook",
            "add_preshutdown_hook", "add_shutdown_hook", "configure_logging", "deprecated", "get_node",
            "get_node_uri", "get_ros_root", "is_initialized", "is_shutdown", "is_shutdown_requested", "is_topic",
            "on_shutdown", "parse_rosrpc_uri", "partial", "register_signals", "set_initialized", "set_node_uri",
@@ -51,12 +51,12 @@ _shutdown_hooks = _core._shutdown_hooks
 _preshutdown_hooks = _core._preshutdown_hooks
 _client_shutdown_hooks = _core._client_shutdown_hooks
 
-_LAZY = {"md5": ("hashlib", "md5"), "Log": ("rosgraph_msgs.msg", "Log")}
+_LAZY = {"md5": ("hashlib", "md5")}
 
 
 def _lazy_names(module_name: str, lazy: dict[str, tuple[str, str]] | None = None) -> Callable[[str], Any]:
-    """A module's __getattr__ that loads rospy.core's `md5` and `Log` (and `lazy`'s names) when
-    first asked for: the modules that re-export rospy.core use it too."""
+    """A module's __getattr__ that loads rospy.core's `md5` (and `lazy`'s names) when first asked
+    for: the modules that re-export rospy.core use it too."""
     names = {**_LAZY, **(lazy or {})}
 
     def __getattr__(name: str) -> Any:

@@ -1,8 +1,8 @@
 """rospy.service: Service, ServiceProxy, wait_for_service (kame.client.services), and rospy's
 registry of services: ServiceManager and _Service, the base of a service's description.
 
-The process's ServiceManager (rospy.impl.registration.get_service_manager() makes it) holds what
-rospy code registers with it and answers for the services kame's node serves too (Service
+The process's ServiceManager (set as the service manager when this module loads, as rospy's) holds
+what rospy code registers with it and answers for the services kame's node serves too (Service
 registers with the node, which tells the registration listeners, as rospy's
 ServiceManager.register does).
 """
@@ -25,16 +25,14 @@ from kame.client.services import (
 from rospy.core import *  # noqa: F403  (rospy.service re-exports rospy.core, as rospy's)
 from rospy.core import __all__ as _core_names
 from rospy.core import _lazy_names, resolve_name
+from rospy.impl.registration import Registration, get_registration_listeners, set_service_manager
 from rospy.impl.transport import *  # noqa: F403
 from rospy.impl.transport import __all__ as _transport_names
 
-_REGISTRATION = ("Registration", "get_registration_listeners", "set_service_manager")  # loaded when asked for
-
-__all__ = [*_core_names, *_transport_names, *_REGISTRATION, "Service", "ServiceException", "ServiceManager",
-           "ServiceProxy", "logger", "wait_for_service"]
+__all__ = [*_core_names, *_transport_names, "Registration", "Service", "ServiceException", "ServiceManager",
+           "ServiceProxy", "get_registration_listeners", "logger", "set_service_manager", "wait_for_service"]
 
 logger = logging.getLogger("rospy.service")
-_SRV = "srv"  # rospy.impl.registration.Registration.SRV
 
 
 class _Service(metaclass=ABCMeta):  # noqa: B024  (an ABC for its register(), with nothing abstract)
@@ -56,11 +54,7 @@ class ServiceManager:
     def __init__(self, registration_listeners: Any = None) -> None:
         self.map: dict[str, Any] = {}
         self.lock = threading.RLock()
-        if registration_listeners is None:
-            from rospy.impl.registration import get_registration_listeners
-
-            registration_listeners = get_registration_listeners()
-        self.registration_listeners = registration_listeners
+        self.registration_listeners = registration_listeners or get_registration_listeners()
 
     @staticmethod
     def _node_services() -> dict[str, str]:
@@ -87,7 +81,7 @@ class ServiceManager:
                 err = f"service [{resolved_service_name}] already registered"
             else:
                 self.map[resolved_service_name] = service
-            self.registration_listeners.notify_added(resolved_service_name, service.uri, _SRV)
+            self.registration_listeners.notify_added(resolved_service_name, service.uri, Registration.SRV)
         if err:
             raise ServiceException(err)
 
@@ -95,7 +89,7 @@ class ServiceManager:
         with self.lock:
             if self.map.get(resolved_service_name) == service:
                 del self.map[resolved_service_name]
-            self.registration_listeners.notify_removed(resolved_service_name, service.uri, _SRV)
+            self.registration_listeners.notify_removed(resolved_service_name, service.uri, Registration.SRV)
 
     def get_service(self, resolved_service_name: str) -> Any:
         """The service held as `resolved_service_name` (the node's server for one kame serves), or None."""
@@ -107,6 +101,5 @@ class ServiceManager:
 
 
 _Service.register(ServiceImpl)
-# rospy.impl.registration's names load when first asked for; its get_service_manager() makes this
-# module's ServiceManager the process's, as importing rospy's rospy.service does
-__getattr__ = _lazy_names(__name__, {name: ("rospy.impl.registration", name) for name in _REGISTRATION})
+set_service_manager(ServiceManager())
+__getattr__ = _lazy_names(__name__)

@@ -20,18 +20,17 @@ from kame.msg.message import Message
 from rospy.core import *  # noqa: F403  (rospy.topics re-exports rospy.core, as rospy's)
 from rospy.core import __all__ as _core_names
 from rospy.core import _lazy_names
+from rospy.impl.registration import Registration, get_registration_listeners, get_topic_manager, set_topic_manager
+from rospy.impl.statistics import SubscriberStatisticsLogger
+from rospy.impl.tcpros import DEFAULT_BUFF_SIZE, get_tcpros_handler
+from rospy.impl.tcpros_pubsub import QueuedConnection
 from rospy.msg import args_kwds_to_message, serialize_message
 
-# rospy.impl's names, by module: they load when first asked for (a program that only publishes
-# and subscribes never loads them)
-_IMPL = {"Registration": "registration", "get_registration_listeners": "registration",
-         "get_topic_manager": "registration", "set_topic_manager": "registration",
-         "SubscriberStatisticsLogger": "statistics", "DEFAULT_BUFF_SIZE": "tcpros", "get_tcpros_handler": "tcpros",
-         "QueuedConnection": "tcpros_pubsub"}
-
-__all__ = [*_core_names, *_IMPL, "BytesIO", "Message", "Poller", "Publisher", "ROSSerializationException", "StringIO",
-           "SubscribeListener", "Subscriber", "Topic", "TransportTerminated", "args_kwds_to_message", "chain",
-           "python3", "serialize_message"]
+__all__ = [*_core_names, "DEFAULT_BUFF_SIZE", "BytesIO", "Message", "Poller", "Publisher", "QueuedConnection",
+           "ROSSerializationException", "Registration", "StringIO", "SubscribeListener", "Subscriber",
+           "SubscriberStatisticsLogger", "Topic", "TransportTerminated", "args_kwds_to_message", "chain",
+           "get_registration_listeners", "get_tcpros_handler", "get_topic_manager", "python3", "serialize_message",
+           "set_topic_manager"]
 
 python3 = 1
 
@@ -57,4 +56,4 @@ class Poller:
                 yield fd
 
 
-__getattr__ = _lazy_names(__name__, {name: (f"rospy.impl.{module}", name) for name, module in _IMPL.items()})
+__getattr__ = _lazy_names(__name__)

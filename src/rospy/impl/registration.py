@@ -209,12 +209,9 @@ def set_service_manager(sm: Any) -> None:
 
 
 def get_service_manager() -> Any:
-    """The process's service manager (a rospy.service.ServiceManager unless one was set)."""
-    global _service_manager
+    """The process's service manager (rospy.service's ServiceManager unless one was set)."""
     if _service_manager is None:
-        from rospy.service import ServiceManager
-
-        _service_manager = ServiceManager()
+        import rospy.service  # noqa: F401  (it sets its ServiceManager as the process's, as rospy's)
     return _service_manager
 
 

@@ -16,11 +16,12 @@ from kame.client import core, log, process
 from kame.client.clock import Time
 from kame.client.errors import ROSException
 from kame.client.topics import Publisher, Subscriber
+from rosgraph_msgs.msg import Log
 from rospy.core import _lazy_names, get_caller_id
 from rospy.impl.registration import get_topic_manager
 
-__all__ = ["Publisher", "ROSException", "RosOutHandler", "Subscriber", "Time", "get_caller_id", "get_topic_manager",
-           "init_rosout", "load_rosout_handlers"]
+__all__ = ["Log", "Publisher", "ROSException", "RosOutHandler", "Subscriber", "Time", "get_caller_id",
+           "get_topic_manager", "init_rosout", "load_rosout_handlers"]
 
 
 def init_rosout() -> bool:

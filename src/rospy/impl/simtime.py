@@ -5,9 +5,9 @@ topic and parameter, and whether the parameter is on."""
 from __future__ import annotations
 
 from kame.client import core, process
-from rospy.core import _lazy_names
+from rosgraph_msgs.msg import Clock
 
-__all__ = ["init_simtime"]
+__all__ = ["Clock", "init_simtime"]
 
 _ROSCLOCK = "/clock"
 _USE_SIMTIME = "/use_sim_time"
@@ -24,5 +24,3 @@ def init_simtime() -> bool:
     core.defer_until_initialized(process.start_time)
     return True
 
-
-__getattr__ = _lazy_names(__name__, {"Clock": ("rosgraph_msgs.msg", "Clock")})

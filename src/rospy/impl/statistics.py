@@ -15,11 +15,9 @@ from typing import Any
 from kame.client import core
 from kame.client.clock import Duration, Time
 from kame.client.process import get_param
-from rospy.core import _lazy_names
+from rosgraph_msgs.msg import TopicStatistics
 
-__all__ = ["ConnectionStatisticsLogger", "SubscriberStatisticsLogger", "sqrt"]
-
-__getattr__ = _lazy_names(__name__, {"TopicStatistics": ("rosgraph_msgs.msg", "TopicStatistics")})
+__all__ = ["ConnectionStatisticsLogger", "SubscriberStatisticsLogger", "TopicStatistics", "sqrt"]
 
 _logger = logging.getLogger("rospy.impl.statistics")
 
@@ -75,12 +73,10 @@ class ConnectionStatisticsLogger:
 
     def __init__(self, topic: str, subscriber: str, publisher: str) -> None:
         from kame.client.topics import Publisher
-        from rosgraph_msgs.msg import TopicStatistics
 
         self.topic = topic
         self.subscriber = subscriber
         self.publisher = publisher
-        self._message_class = TopicStatistics
         self.pub = Publisher("/statistics", TopicStatistics, queue_size=10)
         self.last_pub_time = Time(0)
         self.pub_frequency = Duration(1.0)
@@ -94,7 +90,7 @@ class ConnectionStatisticsLogger:
 
     def sendStatistics(self, subscriber_statistics_logger: SubscriberStatisticsLogger) -> None:
         curtime = Time.now()
-        msg = self._message_class()
+        msg = TopicStatistics()
         msg.topic = self.topic
         msg.node_sub = self.subscriber
         msg.node_pub = self.publisher
