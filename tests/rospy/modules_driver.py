@@ -165,8 +165,11 @@ client.read_messages(response, msgs, None)
 error = io.BytesIO()
 error.write(b"\x00\x04\x00\x00\x00boom")
 out["service_read"] = [[str(m) for m in msgs], attempt(lambda: client.read_messages(error, [], None))]
-out["tcpros_handler"] = [tcpros.get_tcpros_handler() is tcpros.get_tcpros_handler(),
-                         tcpros.get_tcpros_handler().get_supported(), tcpros.get_tcpros_handler().supports("UDPROS")]
+tcpros_handler = tcpros.get_tcpros_handler()
+out["tcpros_handler"] = [tcpros_handler is tcpros.get_tcpros_handler(), tcpros_handler.get_supported(),
+                         tcpros_handler.supports("UDPROS"), tcpros_handler.shutdown(),
+                         list(tcpros_handler.create_transport("/t", "http://h:1/", "bad")),
+                         list(tcpros_handler.create_transport("/t", "http://h:1/", ["UDPROS", "h", 1]))]
 proto = tcpros_base.TCPROSTransportProtocol("/t", String, queue_size=3)
 out["protocol"] = [proto.get_header_fields(), proto.direction, proto.buff_size,
                    attempt(lambda: tcpros_base.TCPROSTransportProtocol("/t", dict))]

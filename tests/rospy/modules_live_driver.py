@@ -211,6 +211,14 @@ except rospy.ServiceException as exc:
 services.unregister("/manual", manual)
 out["service_manager"] += [master.lookupService("/manual")[0], services.get_service("/manual"),
                            isinstance(srv, rospy.service._Service), srv.uri == master.lookupService("/switch")[2]]
+# the TCPROS handler connects a subscription to one more publisher (kame's only: rospy's own
+# subscription here is connected already, so its answer depends on its threads' timing)
+heard_again, heard_event = [], threading.Event()
+rospy.Subscriber("/latched", String, lambda m: (heard_again.append(m.data), heard_event.set()))
+heard_event.wait(10)
+created = tcpros.get_tcpros_handler().create_transport("/latched", me, ["TCPROS", host, port])
+out["create_transport"] = [created[0], created[2] == port, heard_again[:1]]
+
 # last: rospy's start_node registers the process's topics and services again for its node, which
 # the master then shuts down (a node of the same name registered), unregistering them all
 other = init.start_node(os.environ, "/ns/started")

@@ -88,6 +88,24 @@ class TCPROSHandler:
     def set_tcp_nodelay(self, resolved_name: str, tcp_nodelay: bool) -> None:
         self.tcp_nodelay_map[resolved_name] = tcp_nodelay
 
+    def shutdown(self) -> None:
+        """Nothing to stop: the connections are the node's, which ends them."""
+
+    def create_transport(self, resolved_name: str, pub_uri: str, protocol_params: Any) -> tuple[int, str, int]:
+        """Connect this node's subscription of `resolved_name` to the publisher at `pub_uri` too
+        (its link negotiates TCPROS with that node itself); (1, ..., port) once it is connecting."""
+        if type(protocol_params) is not list or len(protocol_params) != 3:
+            return 0, "ERROR: invalid TCPROS parameters", 0
+        if protocol_params[0] != TCPROS:
+            return 0, f"INTERNAL ERROR: protocol id is not TCPROS: {protocol_params[0]}", 0
+        node = core.get_node()
+        sub = node.subscriptions.get(resolved_name) if node is not None else None
+        if sub is None:
+            return 0, f"ERROR: not subscribed to [{resolved_name}]", 0
+        sub.add_publisher(pub_uri)
+        link = sub.links.get(pub_uri)
+        return 1, f"Connected topic[{resolved_name}]. Transport impl[{type(link).__name__}]", protocol_params[2]
+
     def supports(self, protocol: str) -> bool:
         return protocol == TCPROS
 
