@@ -1,5 +1,7 @@
 """rospy.rostime: Time, Duration and the ROS clock (kame.client.clock)."""
 
+from threading import Condition
+
 from kame.client.clock import (
     Duration,
     Time,
@@ -7,6 +9,7 @@ from kame.client.clock import (
     get_time,
     is_rostime_initialized,
     is_sim_time,
+    rostime_changed,
     set_rostime_initialized,
     set_sim_time,
     wallsleep,
@@ -16,6 +19,7 @@ __all__ = [
     "Duration",
     "Time",
     "get_rostime",
+    "get_rostime_cond",
     "get_time",
     "is_rostime_initialized",
     "is_sim_time",
@@ -24,6 +28,11 @@ __all__ = [
     "switch_to_wallclock",
     "wallsleep",
 ]
+
+
+def get_rostime_cond() -> Condition:
+    """The condition notified at each change of ROS time (a /clock message, the switch to the wall clock)."""
+    return rostime_changed
 
 
 def is_wallclock() -> bool:

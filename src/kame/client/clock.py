@@ -34,6 +34,7 @@ _initialized = False
 
 
 _wakers: set[threading.Event] = set()  # events set at every change of simulated time (woken_at_change)
+rostime_changed = threading.Condition()  # notified at every change of simulated time (rospy's get_rostime_cond)
 
 
 def set_sim_time(value: _values.Time | None) -> None:
@@ -43,6 +44,8 @@ def set_sim_time(value: _values.Time | None) -> None:
         _sim_time = value
         for waker in _wakers:
             waker.set()
+    with rostime_changed:
+        rostime_changed.notify_all()
 
 
 @contextlib.contextmanager

@@ -10,6 +10,7 @@ import atexit
 import contextlib
 import logging
 import os
+import sys
 import threading
 from collections.abc import Callable, Iterator
 from typing import Any
@@ -21,14 +22,17 @@ from kame.net.signal_wake import main_thread_wait
 from kame.node.node import Node
 
 _node: Node | None = None
-_caller_id = "/unnamed"
-_namespace = environ.namespace(os.environ)
+# before init_node, as rospy: the namespace of `__ns:=` or ROS_NAMESPACE, and a caller ID in it
+_namespace = environ.namespace(os.environ, names.parse_args(sys.argv).special)
+_caller_id = names.ns_join(_namespace, "unnamed")
 _remappings: dict[str, str] = {}
 _shutdown = threading.Event()
+_shutdown_requested = threading.Event()  # set as signal_shutdown starts, before the pre-shutdown hooks
 _node_down = threading.Event()  # set once signal_shutdown has unregistered and closed the node
 _shutdown_reason = ""
 _shutdown_hooks: list[Callable[..., Any]] = []
 _preshutdown_hooks: list[Callable[..., Any]] = []
+_client_shutdown_hooks: list[Callable[..., Any]] = []  # run first (rospy's client hooks: its on_shutdown)
 _hooks_lock = threading.Lock()
 _initialized = False
 
@@ -72,6 +76,18 @@ def is_initialized() -> bool:
     return _initialized
 
 
+def set_initialized(initialized: bool) -> None:
+    """What is_initialized answers from now on (init_node sets it)."""
+    global _initialized
+    _initialized = initialized
+
+
+def set_remappings(remappings: dict[str, str]) -> None:
+    """The resolved remappings resolve_name applies from now on (init_node sets them)."""
+    global _remappings
+    _remappings = dict(remappings)
+
+
 def get_caller_id() -> str:
     return _caller_id
 
@@ -103,7 +119,8 @@ def is_shutdown() -> bool:
 
 
 def is_shutdown_requested() -> bool:
-    return _shutdown.is_set()
+    """True from the moment signal_shutdown starts (while the pre-shutdown hooks run, before is_shutdown)."""
+    return _shutdown_requested.is_set()
 
 
 _main_waiting = 0  # >0 while the main thread blocks in one of our waits
@@ -168,9 +185,34 @@ def on_shutdown(hook: Callable[..., Any]) -> None:
         _shutdown_hooks.append(hook)
 
 
-def add_preshutdown_hook(hook: Callable[..., Any]) -> None:
+def _add_hook(hook: Callable[..., Any], hooks: list[Callable[..., Any]], with_reason: bool) -> None:
+    if not callable(hook):
+        raise TypeError(f"shutdown hook [{hook}] must be a function or callable object: {type(hook)}")
     with _hooks_lock:
-        _preshutdown_hooks.append(hook)
+        if not _shutdown.is_set():
+            hooks.append(hook)
+            return
+    log.warning("a shutdown hook was added after shutdown")
+    if with_reason:
+        hook("already shutdown")
+    else:
+        _call_client_hook(hook, "already shutdown")
+
+
+def add_preshutdown_hook(hook: Callable[[str], Any]) -> None:
+    """Run `hook(reason)` as shutdown starts, before is_shutdown() is true (it may still publish)."""
+    _add_hook(hook, _preshutdown_hooks, with_reason=True)
+
+
+def add_shutdown_hook(hook: Callable[[str], Any]) -> None:
+    """Run `hook(reason)` once is_shutdown() is true, before the node unregisters."""
+    _add_hook(hook, _shutdown_hooks, with_reason=True)
+
+
+def add_client_shutdown_hook(hook: Callable[..., Any]) -> None:
+    """Run `hook()` (or `hook(reason)`, if it takes one) first when shutdown starts, before the
+    pre-shutdown hooks and while is_shutdown() is still false: rospy's on_shutdown."""
+    _add_hook(hook, _client_shutdown_hooks, with_reason=False)
 
 
 def _call_hook(hook: Callable[..., Any], reason: str) -> None:
@@ -183,14 +225,29 @@ def _call_hook(hook: Callable[..., Any], reason: str) -> None:
         log.exception("shutdown hook %s failed", hook)
 
 
+def _call_client_hook(hook: Callable[..., Any], reason: str) -> None:
+    """`hook()` as rospy calls its on_shutdown hooks; `hook(reason)` for one that needs an argument."""
+    try:
+        if accepts(hook, 0):
+            hook()
+        else:
+            hook(reason)
+    except Exception:
+        log.exception("shutdown hook %s failed", hook)
+
+
 def signal_shutdown(reason: str) -> None:
     """Shut the node down: hooks run, everything is unregistered, waits are interrupted."""
     global _shutdown_reason
     with _hooks_lock:
-        if _shutdown.is_set():
+        if _shutdown_requested.is_set():
             return
         _shutdown_reason = reason
-        pre = list(_preshutdown_hooks)
+        _shutdown_requested.set()
+        client, _client_shutdown_hooks[:] = list(_client_shutdown_hooks), []
+        pre, _preshutdown_hooks[:] = list(_preshutdown_hooks), []
+    for client_hook in client:
+        _call_client_hook(client_hook, reason)
     for hook in pre:
         _call_hook(hook, reason)
     with _hooks_lock:

@@ -78,7 +78,7 @@ def rospy_ctrl_c() -> None:
     _interrupt_busy_main = False
 
 
-def _install_signal_handlers() -> None:
+def install_signal_handlers() -> None:
     def handler(signum: int, frame: Any) -> None:
         # The shutdown runs on a thread of its own: the interrupted main thread may hold a lock
         # the shutdown needs (it may be in the middle of a publish). A main thread waiting in
@@ -168,7 +168,7 @@ def init_node(name: str, argv: list[str] | None = None, anonymous: bool = False,
         if log_level is not None:
             _log.set_level(log_level)
         if not disable_signals:
-            _install_signal_handlers()
+            install_signal_handlers()
         node = Node(config)
         node.on_shutdown_request = core.signal_shutdown
         node.on_shutdown_call = _print_shutdown_call
@@ -181,15 +181,23 @@ def init_node(name: str, argv: list[str] | None = None, anonymous: bool = False,
         set_param(key, value)
     core.run_deferred()
     if not disable_rosout:
-        _start_rosout(node)
+        start_rosout(node)
     if not disable_rostime:
-        _start_time(node)
+        start_time(node)
     else:
         clock.set_rostime_initialized(True)
     _start_logger_services()
 
 
-def _start_rosout(node: Node) -> None:
+_started: set[str] = set()  # "rosout", "time": what start_rosout and start_time have done
+
+
+def start_rosout(node: Node) -> None:
+    """Publish the process's log lines on /rosout as `node` (once; init_node calls it unless disable_rosout)."""
+    with _init_lock:
+        if "rosout" in _started:
+            return
+        _started.add("rosout")
     from kame.client.topics import Publisher
     from rosgraph_msgs.msg import Log
 
@@ -210,7 +218,13 @@ def _start_rosout(node: Node) -> None:
     _log.set_rosout_publisher(publish)
 
 
-def _start_time(node: Node) -> None:
+def start_time(node: Node) -> None:
+    """Follow /clock when /use_sim_time is true; ROS time is then initialized (once; init_node
+    calls it unless disable_rostime)."""
+    with _init_lock:
+        if "time" in _started:
+            return
+        _started.add("time")
     try:
         use_sim_time = bool(get_param("/use_sim_time", False))
     except Exception:

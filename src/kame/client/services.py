@@ -74,6 +74,7 @@ class ServiceImpl:
         self.handler = handler
         self.error_handler = error_handler
         self._node = _node()
+        self.uri = self._node.service_uri  # where clients connect (rosrpc://host:port), as rospy's
         self._node.advertise_service(self.resolved_name, service_class._type, service_class._md5sum, self._handle)
 
     def _handle(self, data: bytes) -> tuple[bool, bytes | str]:

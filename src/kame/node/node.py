@@ -85,6 +85,9 @@ class Node:
         # keys whose subscribeParam is on its way: the latest paramUpdate for each, if any came
         self._param_pending: dict[str, Any] = {}
         self.on_param_update: list[Callable[[str, Any], None]] = []
+        # told (added, resolved name, type or service URI, "pub" | "sub" | "srv") of each registration
+        # with the master and each removal: rospy's registration listeners hear them through it
+        self.on_registration: list[Callable[[bool, str, str, str], None]] = []
         self.on_shutdown_request: Callable[[str], None] = self.shutdown
         # told the caller and message of a shutdown call before the shutdown starts (rospy prints them)
         self.on_shutdown_call: Callable[[str, str], None] | None = None
@@ -134,6 +137,13 @@ class Node:
     def add_shutdown_hook(self, hook: Callable[[str], None]) -> None:
         self._shutdown_hooks.append(hook)
 
+    def _registration_changed(self, added: bool, name: str, type_or_uri: str, kind: str) -> None:
+        for listener in list(self.on_registration):
+            try:
+                listener(added, name, type_or_uri, kind)
+            except Exception:
+                log.exception("registration listener %s failed", listener)
+
     # ------------------------------------------------------------------ topics
 
     def advertise(self, topic: str, type: str, md5sum: str, definition: str, latch: bool = False,
@@ -147,6 +157,7 @@ class Node:
         subscribers that do not ask for it either way in their header (as rospy's)."""
         with self._lock:
             pub = self.publications.get(topic)
+            new = pub is None
             if pub is None:
                 pub = Publication(self, topic, type, md5sum, definition, latch, queue_size, dict(headers or {}),
                                   tcp_nodelay)
@@ -160,6 +171,8 @@ class Node:
             if on_disconnect is not None:
                 pub.on_disconnect.append(on_disconnect)
         self.master.call("registerPublisher", topic, type, self.uri)
+        if new:
+            self._registration_changed(True, topic, type, "pub")
         return pub
 
     def unadvertise(self, topic: str) -> None:
@@ -169,6 +182,7 @@ class Node:
             return
         pub.close()
         self._best_effort("unregisterPublisher", topic, self.uri)
+        self._registration_changed(False, topic, pub.type, "pub")
 
     def subscribe(self, topic: str, type: str, md5sum: str, definition: str, deliver: Callback,
                   queue_size: int | None = None, tcp_nodelay: bool = False,
@@ -189,6 +203,7 @@ class Node:
             self.subscriptions[topic] = sub
         publishers = self.master.call("registerSubscriber", topic, type, self.uri)
         sub.registered([str(uri) for uri in publishers], updates_before=0)
+        self._registration_changed(True, topic, type, "sub")
         return sub
 
     def unsubscribe(self, topic: str) -> None:
@@ -198,6 +213,7 @@ class Node:
             return
         sub.close()
         self._best_effort("unregisterSubscriber", topic, self.uri)
+        self._registration_changed(False, topic, sub.type, "sub")
 
     # ------------------------------------------------------------------ services
 
@@ -208,6 +224,7 @@ class Node:
             server = ServiceServer(name, type, md5sum, handler)
             self.services[name] = server
         self.master.call("registerService", name, self.service_uri, self.uri)
+        self._registration_changed(True, name, self.service_uri, "srv")
         return server
 
     def unadvertise_service(self, name: str) -> None:
@@ -217,6 +234,7 @@ class Node:
             return
         server.close()
         self._best_effort("unregisterService", name, self.service_uri)
+        self._registration_changed(False, name, self.service_uri, "srv")
 
     @property
     def service_uri(self) -> str:
@@ -260,32 +278,13 @@ class Node:
         kind = tcpros.classify_connection(header)
         try:
             if kind == "topic":
-                with self._lock:
-                    specs = {topic: pub.spec for topic, pub in self.publications.items()}
-                accepted = tcpros.accept_subscriber(header, callerid=self.name, publications=specs)
-                if isinstance(accepted, tcpros.Rejected):
-                    self._refuse(sock, accepted.error, header)
-                    return
-                pub = self.publications.get(accepted.topic)
-                if pub is None:
-                    self._refuse(sock, f"[{self.name}] is not a publisher of [{accepted.topic}]", header)
-                    return
-                use_shm = False
-                if shmros.HEADER_FIELD in header:  # a kame subscriber's offer: nobody else loads kame.net.shm
-                    from kame.net import shm
-
-                    use_shm = shmros.accept(header, shm.local_token())
-                pub.attach(sock, accepted, use_shm)
+                error = self.connect_subscriber(sock, header)
             elif kind == "service":
-                with self._lock:
-                    service_specs = {name: server.spec for name, server in self.services.items()}
-                service_ok = tcpros.accept_service_client(header, callerid=self.name, services=service_specs)
-                if isinstance(service_ok, tcpros.Rejected):
-                    self._refuse(sock, service_ok.error, header)
-                    return
-                self.services[service_ok.service].attach(sock, service_ok)
+                error = self.connect_service_client(sock, header)
             else:
-                self._refuse(sock, kind.error, header)
+                error = kind.error
+            if error is not None:
+                self._refuse(sock, error, header)
         except (OSError, KeyError) as exc:
             log.debug("connection ended during the handshake: %s", exc)
             sock.close()
@@ -294,6 +293,36 @@ class Node:
             log.exception("TCPROS connection from %s for %s failed", header.get("callerid", "?"),
                           header.get("topic") or header.get("service") or "?")
             sock.close()
+
+    def connect_subscriber(self, sock: socket.socket, header: dict[str, str]) -> str | None:
+        """Serve the subscriber whose connection header `header` came on `sock` from our publication;
+        the reason it is refused, or None once the publication owns `sock`."""
+        with self._lock:
+            specs = {topic: pub.spec for topic, pub in self.publications.items()}
+        accepted = tcpros.accept_subscriber(header, callerid=self.name, publications=specs)
+        if isinstance(accepted, tcpros.Rejected):
+            return accepted.error
+        pub = self.publications.get(accepted.topic)
+        if pub is None:
+            return f"[{self.name}] is not a publisher of [{accepted.topic}]"
+        use_shm = False
+        if shmros.HEADER_FIELD in header:  # a kame subscriber's offer: nobody else loads kame.net.shm
+            from kame.net import shm
+
+            use_shm = shmros.accept(header, shm.local_token())
+        pub.attach(sock, accepted, use_shm)
+        return None
+
+    def connect_service_client(self, sock: socket.socket, header: dict[str, str]) -> str | None:
+        """Serve the service client whose connection header `header` came on `sock`; the reason it is
+        refused, or None once the service owns `sock`."""
+        with self._lock:
+            service_specs = {name: server.spec for name, server in self.services.items()}
+        service_ok = tcpros.accept_service_client(header, callerid=self.name, services=service_specs)
+        if isinstance(service_ok, tcpros.Rejected):
+            return service_ok.error
+        self.services[service_ok.service].attach(sock, service_ok)
+        return None
 
     def _refuse(self, sock: socket.socket, text: str, header: dict[str, str]) -> None:
         log.error("refusing connection from %s: %s", header.get("callerid", "?"), text)

@@ -464,6 +464,13 @@ class Subscription:
         latched = [(link.latched_payload(), link.header) for link in links if link.connected]
         return [(payload, header) for payload, header in latched if payload is not None]
 
+    def add_publisher(self, uri: str) -> None:
+        """Connect to the publisher at `uri` too (keeping the others), as rospy's create_transport."""
+        with self._lock:
+            uris = list(self.links)
+        if uri not in uris:
+            self.set_publishers([*uris, uri])
+
     def set_publishers(self, uris: list[str]) -> None:
         """The master's complete list of publishers: connect to new ones, drop the gone."""
         wanted = set(uris)
