@@ -21,9 +21,11 @@ needs_debian_messages = pytest.mark.skipif(not all((p / "package.xml").exists() 
                                            reason="Debian's ros-std-msgs, geometry-msgs and std-srvs are not installed")
 
 
-def run(python: str | Path, driver: str, env: dict[str, str] | None = None) -> Any:
-    full_env = {**debian.debian_env(), "ROS_ROOT": "/usr/share/ros",
-                "ROS_PACKAGE_PATH": ":".join(str(p) for p in DEBIAN_PACKAGES), **(env or {})}
+def run(python: str | Path, driver: str, env: dict[str, str | None] | None = None) -> Any:
+    """`driver`'s answer under `python`, with `env` over the environment (None: unset)."""
+    merged = {**debian.debian_env(), "ROS_ROOT": "/usr/share/ros",
+              "ROS_PACKAGE_PATH": ":".join(str(p) for p in DEBIAN_PACKAGES), **(env or {})}
+    full_env = {key: value for key, value in merged.items() if value is not None}
     done = subprocess.run([str(python), str(HERE / driver)], capture_output=True, text=True, env=full_env, timeout=120)
     assert done.returncode == 0, done.stderr
     return json.loads(done.stdout)
@@ -67,3 +69,54 @@ def test_roslib_message_classes(roslib_kame: Any, roslib_ros: Any) -> None:
     assert roslib_kame["message"]["messages"][0] == [
         "raised", "ValueError", "message type is missing package name: String"]
     assert roslib_kame["message"] == roslib_ros["message"]
+
+
+ROS_LOGGING_CONF = Path("/usr/share/rosgraph/conf")
+
+
+def rosgraph_answers(python: str | Path, folder: Path, etc_dir: Path) -> Any:
+    for sub in ("log", "home"):
+        (folder / sub).mkdir(parents=True)
+    return run(python, "rosgraph_modules_driver.py", {
+        "ROS_IP": "127.0.0.1", "ROS_LOG_DIR": str(folder / "log"), "ROS_HOME": str(folder / "home"),
+        "ROS_ETC_DIR": str(etc_dir), "ROS_PYTHON_LOG_CONFIG_FILE": None, "ROSCONSOLE_FORMAT": None})
+
+
+@pytest.fixture(scope="module")
+def rosgraph_kame(tmp_path_factory: pytest.TempPathFactory) -> Any:
+    return rosgraph_answers(sys.executable, tmp_path_factory.mktemp("rosgraph"), ROS_LOGGING_CONF)
+
+
+@pytest.fixture(scope="module")
+def rosgraph_ros(tmp_path_factory: pytest.TempPathFactory) -> Any:
+    if not (debian.has("rosgraph.xmlrpc") and (ROS_LOGGING_CONF / "python_logging.conf").exists()):
+        pytest.skip("Debian's python3-rosgraph is not installed")
+    return rosgraph_answers(debian.SYSTEM_PYTHON, tmp_path_factory.mktemp("rosgraph"), ROS_LOGGING_CONF)
+
+
+def test_master_calls_go_through_a_substitutable_handle(rosgraph_kame: Any, rosgraph_ros: Any) -> None:
+    assert rosgraph_kame["master"]["calls"][0] == ["getPid", "/probe"]
+    assert rosgraph_kame["master"]["param"] == ["raised", "MasterError", "no such param"]
+    assert rosgraph_kame["master"] == rosgraph_ros["master"]
+
+
+def test_xmlrpc_node_serves_a_handler(rosgraph_kame: Any, rosgraph_ros: Any) -> None:
+    assert rosgraph_kame["xmlrpc"]["add"] == 5 and rosgraph_kame["xmlrpc"]["events"] == ["ready", "shutdown done"]
+    assert rosgraph_kame["xmlrpc"] == rosgraph_ros["xmlrpc"]
+
+
+def test_configure_logging_installs_the_rosout_handlers(rosgraph_kame: Any, rosgraph_ros: Any) -> None:
+    assert rosgraph_kame["logging"]["rosout"] == ["INFO", True, [["RosStreamHandler", "DEBUG"]]]
+    assert rosgraph_kame["logging"] == rosgraph_ros["logging"]
+
+
+def test_ros_stream_handler_and_rospy_logger(rosgraph_kame: Any, rosgraph_ros: Any) -> None:
+    assert rosgraph_kame["stream"]["stderr"][0].startswith("[WARN] probe.stream /unnamed ")
+    assert rosgraph_kame["stream"] == rosgraph_ros["stream"]
+
+
+def test_without_a_configuration_file_kame_uses_ros_default(tmp_path: Path, rosgraph_kame: Any) -> None:
+    """No python_logging.conf anywhere: kame's built-in copy of ROS's gives the same loggers."""
+    empty = tmp_path / "etc"
+    empty.mkdir()
+    assert rosgraph_answers(sys.executable, tmp_path / "run", empty)["logging"] == rosgraph_kame["logging"]
