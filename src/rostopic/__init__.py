@@ -16,13 +16,13 @@ from kame.cli.rostopic import _common
 from kame.cli.rostopic.info import info_text
 from kame.cli.topic_stats import BandwidthStats, DelayStats, RateStats, format_rate, format_rate_table
 from kame.client import clock, core, log
-from kame.msg import lookup
+from kame.msg import echo, lookup
 from kame.msg.errors import MessageError
 from kame.msg.fieldpath import FieldPath, FieldPathError
 from kame.rostime import Time
 
 __all__ = ["ROSTopicBandwidth", "ROSTopicDelay", "ROSTopicException", "ROSTopicHz", "ROSTopicIOException",
-           "get_info_text", "get_topic_class", "get_topic_list", "get_topic_type", "msgevalgen"]
+           "create_field_filter", "get_info_text", "get_topic_class", "get_topic_list", "get_topic_type", "msgevalgen"]
 
 
 class ROSTopicException(Exception):
@@ -34,6 +34,8 @@ class ROSTopicIOException(ROSTopicException):
 
 
 def _evaluator(path: FieldPath | None) -> Callable[[Any], Any] | None:
+    """The field `path` picks out of a message; a field the message lacks (or an index past an
+    array's end) is said on stderr and gives None, as rostopic's msgeval."""
     if path is None:
         return None
 
@@ -41,20 +43,51 @@ def _evaluator(path: FieldPath | None) -> Callable[[Any], Any] | None:
         try:
             return path.evaluate(msg)
         except FieldPathError as exc:
-            raise ROSTopicException(str(exc)) from None
+            print(exc, file=sys.stderr)
+            return None
 
     return msgeval
 
 
 def msgevalgen(pattern: str) -> Callable[[Any], Any] | None:
-    """A function picking the field `pattern` (`/pose/x`, `/ranges[0:3]`) out of a message, or
-    None when the pattern names no field."""
+    """A function picking the field `pattern` (`/pose/x`, `/ranges[0:3]`) out of a message; None
+    when the pattern names no field, or is malformed (then said on stderr), as rostopic's."""
     from kame.msg.fieldpath import parse_field_path
 
     try:
         return _evaluator(parse_field_path(pattern))
     except FieldPathError as exc:
-        raise ROSTopicException(str(exc)) from None
+        print(exc, file=sys.stderr)
+        return None
+
+
+def create_field_filter(echo_nostr: bool, echo_noarr: bool) -> Callable[[Any], Iterator[str]]:
+    """The fields of a message `rostopic echo` prints: without arrays (`echo_noarr`) and
+    strings (`echo_nostr`)."""
+    def field_filter(val: Any) -> Iterator[str]:
+        for name, slot_type in zip(val.__slots__, val._slot_types, strict=False):
+            if echo_noarr and "[" in slot_type:
+                continue
+            if echo_nostr and "string" in slot_type:
+                continue
+            yield name
+
+    return field_filter
+
+
+def _str_plot_fields(val: Any, f: str, field_filter: Callable[[Any], Any] | None) -> str:
+    """The CSV header `rostopic echo -p` prints (after its `%`): `time,` and the field names under `f`."""
+    return "time," + (echo.csv_names(val, f, field_filter) or "")
+
+
+def _str_plot(val: Any, time_offset: Time | None = None, current_time: Time | None = None,
+              field_filter: Callable[[Any], Any] | None = None, type_information: str | None = None,
+              fixed_numeric_width: int | None = None, value_transform: Any = None) -> str:
+    """One CSV line of `rostopic echo -p`: the time in ns (`current_time`, else the header's
+    stamp, else ROS time now; less `time_offset`), then the values."""
+    if current_time is None and not getattr(val, "_has_header", False):
+        current_time = clock.get_rostime()  # ROSInitException before init_node, as rospy's
+    return echo.csv_row(val, current_time or Time(), time_offset, field_filter, receipt_time=current_time)
 
 
 @contextmanager
