@@ -15,6 +15,9 @@ from collections.abc import Callable
 from typing import Any
 
 import rosgraph.masterapi
+import rosgraph.names
+import rosgraph.network
+import rosgraph.rosenv
 import rosgraph.roslogging
 import rosgraph.xmlrpc
 
@@ -126,8 +129,29 @@ def stream_lines() -> dict[str, Any]:
     return {"stdout": stdout.getvalue().splitlines(), "stderr": stderr.getvalue().splitlines()}
 
 
+def network_and_names() -> dict[str, Any]:
+    import socket
+
+    sender, receiver = socket.socketpair()
+    with sender, receiver:
+        sent = rosgraph.network.write_ros_handshake_header(sender, {"callerid": "/me", "topic": "/t"})
+        sender.sendall(b"\x02\x00\x00\x00hi")
+        buffer = io.BytesIO()
+        header = rosgraph.network.read_ros_handshake_header(receiver, buffer, 65536)
+        sender.shutdown(socket.SHUT_WR)
+        closed = outcome(lambda: rosgraph.network.read_ros_handshake_header(receiver, io.BytesIO(), 65536))
+    names = ["/a/b", "~p", "a", "1a", "a-b", "_x:=y", "__name:=n", "a:=b", "/a/b:=c", "a b"]
+    patterns = [rosgraph.names.NAME_LEGAL_CHARS_P, rosgraph.names.BASE_NAME_LEGAL_CHARS_P,
+                rosgraph.names.REMAP_PATTERN]
+    return {"sent": sent, "header": header, "left": buffer.getvalue().hex(), "closed": closed,
+            "patterns": [[bool(p.match(n)) for n in names] for p in patterns],
+            "constants": [rosgraph.network.ROS_IP, rosgraph.network.ROS_HOSTNAME, rosgraph.network.ROS_IPV6,
+                          rosgraph.network.SIOCGIFCONF, rosgraph.network.SIOCGIFADDR, rosgraph.network.python3,
+                          rosgraph.network.logger.name, rosgraph.rosenv.DEFAULT_MASTER_PORT]}
+
+
 def main() -> None:
-    out = {"master": master(), "xmlrpc": xmlrpc_node(), "logging": logging_setup(), "stream": stream_lines()}
+    out = {"network": network_and_names(), "master": master(), "xmlrpc": xmlrpc_node(), "logging": logging_setup(), "stream": stream_lines()}
     sys.stdout.write(json.dumps(out))
 
 

@@ -100,6 +100,12 @@ def test_master_calls_go_through_a_substitutable_handle(rosgraph_kame: Any, rosg
     assert rosgraph_kame["master"] == rosgraph_ros["master"]
 
 
+def test_handshake_headers_and_name_patterns(rosgraph_kame: Any, rosgraph_ros: Any) -> None:
+    assert rosgraph_kame["network"]["header"] == {"callerid": "/me", "topic": "/t"}
+    assert rosgraph_kame["network"]["left"] == "020000006869"
+    assert rosgraph_kame["network"] == rosgraph_ros["network"]
+
+
 def test_xmlrpc_node_serves_a_handler(rosgraph_kame: Any, rosgraph_ros: Any) -> None:
     assert rosgraph_kame["xmlrpc"]["add"] == 5 and rosgraph_kame["xmlrpc"]["events"] == ["ready", "shutdown done"]
     assert rosgraph_kame["xmlrpc"] == rosgraph_ros["xmlrpc"]
