@@ -12,8 +12,8 @@ tests/test_module_surface.py holds the answer to README's "ROS Python modules: n
 """
 
 from __future__ import annotations
-
 import __future__
+
 import argparse
 import importlib
 import inspect

@@ -151,7 +151,8 @@ def network_and_names() -> dict[str, Any]:
 
 
 def main() -> None:
-    out = {"network": network_and_names(), "master": master(), "xmlrpc": xmlrpc_node(), "logging": logging_setup(), "stream": stream_lines()}
+    out = {"network": network_and_names(), "master": master(), "xmlrpc": xmlrpc_node(), "logging": logging_setup(),
+           "stream": stream_lines()}
     sys.stdout.write(json.dumps(out))
 
 
