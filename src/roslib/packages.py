@@ -7,6 +7,7 @@ import os
 import stat
 from collections.abc import Callable, Mapping
 from pathlib import Path
+from subprocess import PIPE, Popen  # roslib.packages' own imports, which code reaches for
 
 import rospkg
 from kame.catkin.executables import find_node as _find_node
@@ -17,9 +18,24 @@ MANIFEST_FILE = "manifest.xml"
 PACKAGE_FILE = "package.xml"
 SRC_DIR = "src"
 
-__all__ = ["MANIFEST_FILE", "PACKAGE_FILE", "ROS_PACKAGE_PATH", "ROS_ROOT", "SRC_DIR", "InvalidROSPkgException",
-           "MultipleNodesException", "ROSPkgException", "find_node", "find_resource", "get_dir_pkg", "get_pkg_dir",
-           "get_pkg_subdir", "resource_file"]
+__all__ = [
+    "MANIFEST_FILE",
+    "PACKAGE_FILE",
+    "PIPE",
+    "ROS_PACKAGE_PATH",
+    "ROS_ROOT",
+    "SRC_DIR",
+    "InvalidROSPkgException",
+    "MultipleNodesException",
+    "Popen",
+    "ROSPkgException",
+    "find_node",
+    "find_resource",
+    "get_dir_pkg",
+    "get_pkg_dir",
+    "get_pkg_subdir",
+    "resource_file",
+]
 
 
 class ROSPkgException(Exception):

@@ -103,8 +103,44 @@ def message_answers() -> dict[str, Any]:
     }
 
 
+def small_modules() -> dict[str, Any]:
+    import warnings
+
+    import roslib
+    import roslib.exceptions
+    import roslib.names
+    import roslib.resources
+    import roslib.scriptutil
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        import roslib.rosenv as rosenv
+
+        env = {"ROS_ROOT": "/r", "ROS_MASTER_URI": "http://m:1/", "ROS_HOME": "/h"}
+        envs = [rosenv.get_ros_root(env=env), rosenv.get_ros_root(False, env={}), rosenv.get_ros_package_path(env=env),
+                outcome(lambda: rosenv.get_ros_package_path(True, env={})), rosenv.get_master_uri(env=env, argv=[]),
+                rosenv.get_master_uri(env=env, argv=["__master:=http://x:2/"]),
+                outcome(lambda: rosenv.get_master_uri(env=env, argv=["__master:="])),
+                outcome(lambda: rosenv.get_master_uri(env={}, argv=[])), rosenv.get_ros_home(env),
+                rosenv.get_log_dir(env), rosenv.get_log_dir({"ROS_LOG_DIR": "/l"}), rosenv.get_test_results_dir(env),
+                outcome(lambda: rosenv.get_ros_root(env={}))[:2]]
+        resolved = [roslib.scriptutil.script_resolve_name("tool", n) for n in ("", "/g", "~p", "rel")]
+    interactive = [roslib.is_interactive()]
+    roslib.set_interactive(True)
+    interactive.append(roslib.is_interactive())
+    names = ["/a/b", "~p", "a", "1a", "a-b", "a/b", "a_b"]
+    patterns = [roslib.names.RESOURCE_NAME_LEGAL_CHARS_P, roslib.names.NAME_LEGAL_CHARS_P,
+                roslib.names.BASE_NAME_LEGAL_CHARS_P, roslib.names.BASE_RESOURCE_NAME_LEGAL_CHARS_P]
+    return {"rosenv": envs, "resolved": resolved, "interactive": interactive,
+            "patterns": [[bool(p.match(n)) for n in names] for p in patterns],
+            "resources": sorted(roslib.resources.list_package_resources("std_srvs", False, "srv")),
+            "resources_filtered": sorted(roslib.resources.list_package_resources(
+                "geometry_msgs", False, "msg", lambda f: f.endswith("Stamped.msg"))),
+            "exception": issubclass(roslib.exceptions.ROSLibException, Exception)}
+
+
 def main() -> None:
-    out = {"gentools": gentools_answers(), "srvs": srvs_answers(), "msgs": msgs_answers(),
+    out = {"small": small_modules(), "gentools": gentools_answers(), "srvs": srvs_answers(), "msgs": msgs_answers(),
            "message": message_answers()}
     sys.stdout = io.StringIO()  # what loading printed is not the answer
     sys.__stdout__.write(json.dumps(out))

@@ -65,6 +65,13 @@ def test_roslib_msgs_helpers(roslib_kame: Any, roslib_ros: Any) -> None:
 
 
 @needs_debian_messages
+def test_roslib_small_modules(roslib_kame: Any, roslib_ros: Any) -> None:
+    """rosenv, resources, scriptutil, the names' patterns and set_interactive."""
+    assert roslib_kame["small"]["resources"] == ["Empty.srv", "SetBool.srv", "Trigger.srv"]
+    assert roslib_kame["small"] == roslib_ros["small"]
+
+
+@needs_debian_messages
 def test_roslib_message_classes(roslib_kame: Any, roslib_ros: Any) -> None:
     assert roslib_kame["message"]["messages"][0] == [
         "raised", "ValueError", "message type is missing package name: String"]
