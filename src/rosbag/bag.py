@@ -10,6 +10,7 @@ from __future__ import annotations
 import os
 import struct
 from collections.abc import Callable, Mapping
+from io import BytesIO as StringIO
 from typing import IO, Any, TypeVar
 
 from kame.bag import records
@@ -34,6 +35,7 @@ __all__ = [
     "Bag",
     "BagMessage",
     "BagMessageWithConnectionHeader",
+    "ComparableMixin",
     "Compression",
     "CompressionTuple",
     "ROSBagEncryptException",
@@ -41,10 +43,14 @@ __all__ = [
     "ROSBagException",
     "ROSBagFormatException",
     "ROSBagUnindexedException",
+    "StringIO",
     "TopicTuple",
     "TypesAndTopicsTuple",
+    "found_lz4",
     "message_class",
 ]
+
+found_lz4 = True  # kame's lz4 chunks: the lz4 package is one of kame's dependencies
 
 _OP_MSG_DEF = records.OP_MSG_DEF
 _OP_MSG_DATA = records.OP_MSG_DATA
@@ -242,3 +248,35 @@ def _read_record_data(f: IO[bytes]) -> bytes:
         return _read_sized(f)
     except ROSBagException as ex:
         raise ROSBagFormatException(f"Error reading record data: {ex}") from ex
+
+
+class ComparableMixin:
+    """Comparisons by `_cmpkey()`, which a subclass defines (rosbag's index entries and chunk infos)."""
+
+    __slots__: list[str] = []
+
+    def _compare(self, other: object, method: Callable[[Any, Any], bool]) -> Any:
+        try:
+            return method(self._cmpkey(), other._cmpkey())  # type: ignore[attr-defined]
+        except (AttributeError, TypeError):  # no _cmpkey, or keys of different types
+            return NotImplemented
+
+    def __lt__(self, other: object) -> Any:
+        return self._compare(other, lambda s, o: s < o)
+
+    def __le__(self, other: object) -> Any:
+        return self._compare(other, lambda s, o: s <= o)
+
+    def __eq__(self, other: object) -> Any:
+        return self._compare(other, lambda s, o: s == o)
+
+    def __ge__(self, other: object) -> Any:
+        return self._compare(other, lambda s, o: s >= o)
+
+    def __gt__(self, other: object) -> Any:
+        return self._compare(other, lambda s, o: s > o)
+
+    def __ne__(self, other: object) -> Any:
+        return self._compare(other, lambda s, o: s != o)
+
+    __hash__ = None  # type: ignore[assignment]  # as rosbag's: compared, not hashed

@@ -5,14 +5,21 @@ its master queries, pings and shutdown requests (and prints what they print).
 
 from __future__ import annotations
 
+import re
+import sys
 from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
+from optparse import OptionParser
 
+import rosgraph.names
+from kame.cli import _nodeinfo
 from kame.cli import rosnode as _rosnode
 from kame.cli._tool import ToolError
+from rosgraph.masterapi import ServerProxy
 
-__all__ = ["ROSNodeException", "ROSNodeIOException", "get_api_uri", "get_node_names", "kill_nodes",
-           "rosnode_ping", "rosnode_ping_all"]
+__all__ = ["CONNECTION_PATTERN", "ID", "NAME", "OptionParser", "ROSNodeException", "ROSNodeIOException", "ServerProxy",
+           "get_api_uri", "get_node_info_description", "get_node_names", "kill_nodes", "rosnode_cleanup",
+           "rosnode_info", "rosnode_listnodes", "rosnode_ping", "rosnode_ping_all", "rosnodemain"]
 
 
 class ROSNodeException(Exception):
@@ -68,3 +75,46 @@ def kill_nodes(node_names: Sequence[str]) -> tuple[list[str], list[str]]:
     with _graph() as graph:
         failed = _rosnode.kill(graph, list(node_names))
     return [name for name in node_names if name not in failed], failed
+
+
+# ---------------------------------------------------------------- rosnode's command parts
+
+NAME = _rosnode.NAME
+ID = _rosnode.ID
+CONNECTION_PATTERN = re.compile(r"\w+ connection on port (\d+) to \[(.*) on socket (\d+)\]")
+
+
+def get_node_info_description(node_name: str) -> str:
+    """What `rosnode info -q` prints for the node: its publications, subscriptions and services."""
+    with _graph() as graph:
+        master = graph.master
+        return _nodeinfo.describe(node_name, master.system_state(), master.call("getPublishedTopics", "/"))
+
+
+def rosnode_info(node_name: str, quiet: bool = False) -> None:
+    """Print `rosnode info` for the node (`quiet`: without asking the node itself)."""
+    with _graph() as graph:
+        _rosnode.info(graph, rosgraph.names.script_resolve_name(NAME, node_name), quiet)
+
+
+def rosnode_listnodes(namespace: str | None = None, list_uri: bool = False, list_all: bool = False) -> None:
+    """Print the node names (under `namespace`), with their URIs (`list_all`) or the URIs only."""
+    with _graph() as graph:
+        nodes = graph.nodes(namespace)
+        if list_all:
+            print("\n".join(f"{graph.uri(n) or 'unknown address'} \t{n}" for n in nodes))
+        elif list_uri:
+            print("\n".join(graph.uri(n) or "unknown address" for n in nodes))
+        else:
+            print("\n".join(nodes))
+
+
+def rosnode_cleanup() -> None:
+    """`rosnode cleanup`: offer to purge the nodes that do not answer from the master."""
+    with _graph() as graph:
+        _rosnode.cleanup(graph)
+
+
+def rosnodemain(argv: Sequence[str] | None = None) -> None:
+    """The rosnode command on `argv` (sys.argv: the program, then the command); ends the process."""
+    sys.exit(_rosnode.main(None if argv is None else list(argv)[1:]))

@@ -10,8 +10,12 @@ import threading
 import time
 from collections.abc import Callable, Iterator, Sequence
 from contextlib import contextmanager
+from operator import itemgetter
 from typing import Any
+from urllib.parse import urlparse
+from xmlrpc.client import Fault
 
+from kame.cli import rostopic as _command
 from kame.cli.rostopic import _common
 from kame.cli.rostopic.info import info_text
 from kame.cli.topic_stats import BandwidthStats, DelayStats, RateStats, format_rate, format_rate_table
@@ -21,8 +25,14 @@ from kame.msg.errors import MessageError
 from kame.msg.fieldpath import FieldPath, FieldPathError
 from kame.rostime import Time
 
-__all__ = ["ROSTopicBandwidth", "ROSTopicDelay", "ROSTopicException", "ROSTopicHz", "ROSTopicIOException",
-           "create_field_filter", "get_info_text", "get_topic_class", "get_topic_list", "get_topic_type", "msgevalgen"]
+__all__ = ["NAME", "SUBSCRIBER_TIMEOUT", "Fault", "ROSTopicBandwidth", "ROSTopicDelay", "ROSTopicException",
+           "ROSTopicHz", "ROSTopicIOException", "create_field_filter", "create_value_transform", "find_by_type",
+           "get_api", "get_info_text", "get_topic_class", "get_topic_list", "get_topic_type", "itemgetter", "long",
+           "msgevalgen", "rostopicmain", "urlparse"]
+
+NAME = "rostopic"
+SUBSCRIBER_TIMEOUT = 5.0
+long = int
 
 
 class ROSTopicException(Exception):
@@ -268,3 +278,31 @@ class ROSTopicDelay:
             report = self._stats.report()
         if report is not None:
             print(report)
+
+
+def create_value_transform(echo_nostr: bool, echo_noarr: bool) -> Callable[..., Any]:
+    """`rostopic echo --nostr/--noarr`'s transform: a message whose strings and arrays (as asked)
+    are replaced by `<string length: N>` and `<array type: T, length: N>`."""
+    def value_transform(val: Any, type_information: str | None = None) -> Any:
+        return echo.transform(val, type_information, echo_nostr, echo_noarr)
+
+    return value_transform
+
+
+def get_api(master: Any, caller_id: str) -> str:
+    """The XML-RPC URI of node `caller_id`; ROSTopicIOException when the master cannot be reached."""
+    try:
+        return str(master.lookupNode(caller_id))
+    except OSError:
+        raise ROSTopicIOException("Unable to communicate with master!") from None
+
+
+def find_by_type(topic_type: str) -> list[str]:
+    """The published topics of type `topic_type`."""
+    with _master_session():
+        return [name for name, found in _common.topic_types() if found == topic_type]
+
+
+def rostopicmain(argv: Sequence[str] | None = None) -> None:
+    """The rostopic command on `argv` (sys.argv: the program, then the command); ends the process."""
+    sys.exit(_command.main(None if argv is None else list(argv)))

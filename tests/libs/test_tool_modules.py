@@ -267,3 +267,44 @@ def test_kames_modules_on_a_debian_rospy_node(tmp_path: Path, monkeypatch: pytes
         if node is not None:
             node.stop()
         master.stop()
+
+
+def test_the_tools_command_parts(on_graph: dict[str, str], capsys: Any) -> None:
+    """The command-side names of rostopic, rosservice and rosnode that ROS code also calls."""
+    from rospy_tutorials.srv import AddTwoInts
+
+    assert rostopic.find_by_type("std_msgs/String") == ["/chatter"]
+    assert rostopic.get_api(rosgraph.Master("/test"), "/tools_node").startswith("http://")
+    assert rosservice.rosservice_find("rospy_tutorials/AddTwoInts") == ["/add_two_ints"]
+    assert rosservice.has_service_args("/add_two_ints") and rosservice.get_service_args("/add_two_ints") == "a b"
+    headers = rosservice.get_service_headers("/add_two_ints", str(rosservice.get_service_uri("/add_two_ints")))
+    assert (headers["type"], headers["md5sum"]) == ("rospy_tutorials/AddTwoInts", AddTwoInts._md5sum)
+    with pytest.raises(rosservice.ROSServiceException, match="invalid RPC URI"):
+        rosservice.get_service_headers("/x", "http://nowhere")
+    assert "Publications: \n * /chatter [std_msgs/String]" in rosnode.get_node_info_description("/tools_node")
+    capsys.readouterr()
+    rosnode.rosnode_listnodes()
+    assert capsys.readouterr().out == "/tools_node\n"
+    rosnode.rosnode_listnodes(list_all=True)
+    assert capsys.readouterr().out.endswith(" \t/tools_node\n")
+
+
+def test_rosparam_yaml_hooks_and_printing(capsys: Any) -> None:
+    import xmlrpc.client
+
+    import yaml
+
+    class Loader(yaml.SafeLoader):
+        pass
+
+    Loader.add_constructor("!radians", rosparam.construct_angle_radians)
+    Loader.add_constructor("!degrees", rosparam.construct_angle_degrees)
+    Loader.add_constructor("tag:yaml.org,2002:binary", rosparam.construct_yaml_binary)
+    loaded = yaml.load("a: !radians pi/2\nb: !degrees 180\nc: !!binary aGk=\n", Loader=Loader)
+    assert loaded["a"] == pytest.approx(1.5707963) and loaded["b"] == pytest.approx(3.14159265)
+    assert isinstance(loaded["c"], xmlrpc.client.Binary) and loaded["c"].data == b"hi"
+    with pytest.raises(rosparam.RosParamException, match="invalid radian expression"):
+        yaml.load("a: !radians __import__('os')\n", Loader=Loader)
+    assert rosparam.pattern.match("rad(pi)") and not rosparam.pattern.match("deg(90)")
+    rosparam.print_params({"a": 1, "n": {"b": "x"}}, "/ns")
+    assert capsys.readouterr().out == "/ns/a=1\n/ns/n/b=x\n"
