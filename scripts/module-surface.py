@@ -21,6 +21,7 @@ import json
 import os
 import subprocess
 import sys
+import warnings
 from pathlib import Path
 
 DEBIAN_PYTHON = "/usr/bin/python3"
@@ -46,13 +47,19 @@ def public_names(module: object) -> list[str]:
                   and not isinstance(value, __future__._Feature))
 
 
+def _import(name: str) -> object:
+    with warnings.catch_warnings():  # deprecated modules (roslib.rosenv, ...) are imported on purpose
+        warnings.simplefilter("ignore")
+        return importlib.import_module(name)
+
+
 def list_names(packages: list[str]) -> dict[str, list[str] | None]:
     """Each module's public names; None for a module that does not import here."""
     listing: dict[str, list[str] | None] = {}
     for package in packages:
         for name in module_names(package):
             try:
-                listing[name] = public_names(importlib.import_module(name))
+                listing[name] = public_names(_import(name))
             except Exception:  # a module whose import needs what this machine lacks is skipped, not fatal
                 listing[name] = None
     return listing
@@ -78,7 +85,7 @@ def missing(listing: dict[str, list[str] | None]) -> list[str]:
         if names is None:
             continue
         try:
-            module: object | None = importlib.import_module(module_name)
+            module: object | None = _import(module_name)
         except ImportError:
             module = None
             lacking.append(module_name)
