@@ -9,12 +9,11 @@ from __future__ import annotations
 
 import logging
 import os
-import socket
 import struct
 import sys
 from collections.abc import Mapping
 from io import BytesIO
-from typing import IO
+from typing import IO, Any
 from urllib.parse import urlparse
 
 from kame.net import address as _address
@@ -60,7 +59,7 @@ class ROSHandshakeException(Exception):
     """A malformed TCPROS connection header."""
 
 
-def read_ros_handshake_header(sock: socket.socket, b: IO[bytes], buff_size: int) -> dict[str, str]:
+def read_ros_handshake_header(sock: Any, b: IO[bytes], buff_size: int) -> dict[str, str]:
     """A connection header read off blocking `sock`; what came after it is left in buffer `b`.
     `buff_size` is unused: kame reads the header as it arrives."""
     try:
@@ -75,7 +74,7 @@ def read_ros_handshake_header(sock: socket.socket, b: IO[bytes], buff_size: int)
     return fields
 
 
-def write_ros_handshake_header(sock: socket.socket, header: Mapping[str | bytes, str | bytes]) -> int:
+def write_ros_handshake_header(sock: Any, header: Mapping[str | bytes, str | bytes]) -> int:
     """Send a connection header on blocking `sock`; the bytes sent."""
     data = encode_ros_handshake_header(header)
     sock.sendall(data)

@@ -6,7 +6,7 @@ ROS_HOSTNAME, else the host name, else the local address, as rosgraph chooses), 
 `handler._ready(uri)` and serves on the server's own threads; `shutdown(reason)` calls
 `handler._shutdown(reason)` and closes them. `run()` is `start()` that blocks until shutdown.
 `ServerProxy` is xmlrpc.client's calling style (`proxy.getPid(caller_id)`) over kame's
-XML-RPC client, faults raised as xmlrpc.client.Fault.
+XML-RPC client (kame.net.server_proxy), faults raised as xmlrpc.client.Fault.
 The socketserver classes ROS builds on are not kame's (see README, "ROS Python modules:
 names not provided").
 """
@@ -14,14 +14,13 @@ names not provided").
 from __future__ import annotations
 
 import logging
-import socket
 import threading
-import xmlrpc.client
 from collections.abc import Callable
 from typing import Any
 
+from kame.net.interfaces import hostname
 from kame.net.rpc_server import RpcServer
-from kame.net.xmlrpc_client import XmlRpcProxy
+from kame.net.server_proxy import ServerProxy
 from kame.protocol.xmlrpc import Fault, MalformedError, decode_request, encode_fault, encode_response
 
 from . import network
@@ -33,49 +32,6 @@ log = logging.getLogger("xmlrpc")
 
 def isstring(s: object) -> bool:
     return isinstance(s, str)
-
-
-class ServerProxy:
-    """A remote XML-RPC server whose methods are attributes: `ServerProxy(uri).getPid("/me")`.
-    Calls wait socket.getdefaulttimeout() (10 s when it is unset); a fault raises
-    xmlrpc.client.Fault, an unreachable server OSError."""
-
-    def __init__(self, uri: str, *args: Any, **kwargs: Any) -> None:
-        timeout = socket.getdefaulttimeout()
-        self._proxy = XmlRpcProxy(uri, timeout=10.0 if timeout is None else timeout)
-
-    def _call(self, method: str, *params: Any) -> Any:
-        try:
-            return self._proxy.call(method, *params)
-        except Fault as fault:
-            raise xmlrpc.client.Fault(fault.code, fault.message) from None
-
-    def __getattr__(self, name: str) -> _Method:
-        if name.startswith("__"):
-            raise AttributeError(name)
-        return _Method(self._call, name)
-
-    def __repr__(self) -> str:
-        return f"<ServerProxy for {self._proxy.uri}>"
-
-    def __call__(self, attr: str) -> Any:
-        if attr == "close":  # xmlrpc.client's way to close the connection
-            return self._proxy.close
-        raise AttributeError(f"Attribute {attr!r} not found")
-
-
-class _Method:
-    """A remote method; its attributes are dotted names (`proxy.system.multicall`)."""
-
-    def __init__(self, send: Callable[..., Any], name: str) -> None:
-        self._send = send
-        self._name = name
-
-    def __getattr__(self, name: str) -> _Method:
-        return _Method(self._send, f"{self._name}.{name}")
-
-    def __call__(self, *args: Any) -> Any:
-        return self._send(self._name, *args)
 
 
 class XmlRpcHandler:
@@ -163,9 +119,9 @@ class XmlRpcNode:
         override = network.get_address_override()
         if override:
             return override
-        hostname = socket.gethostname()
-        if hostname and hostname != "localhost" and not hostname.startswith("127.") and hostname != "::":
-            return hostname
+        name = hostname()
+        if name and name != "localhost" and not name.startswith("127.") and name != "::":
+            return name
         return network.get_local_address()
 
     def _method(self, name: str) -> Callable[..., Any] | None:

@@ -13,13 +13,13 @@ import sys
 from collections.abc import Sequence
 from optparse import OptionParser
 from typing import Any
-from xmlrpc.client import Binary
 
 import yaml
 
 import rosgraph
 from kame import names, param_yaml
 from kame.cli import rosparam as _command
+from kame.net.server_proxy import Binary
 
 __all__ = ["GLOBALNS", "NAME", "NS", "Binary", "OptionParser", "RosParamException", "RosParamIOException",
            "construct_angle_degrees", "construct_angle_radians", "construct_yaml_binary", "delete_param", "dump_params",

@@ -13,7 +13,6 @@ from contextlib import contextmanager
 from operator import itemgetter
 from typing import Any
 from urllib.parse import urlparse
-from xmlrpc.client import Fault
 
 from kame.cli import rostopic as _command
 from kame.cli.rostopic import _common
@@ -23,6 +22,7 @@ from kame.client import clock, core, log
 from kame.msg import echo, lookup
 from kame.msg.errors import MessageError
 from kame.msg.fieldpath import FieldPath, FieldPathError
+from kame.net.server_proxy import Fault
 from kame.rostime import Time
 
 __all__ = ["NAME", "SUBSCRIBER_TIMEOUT", "Fault", "ROSTopicBandwidth", "ROSTopicDelay", "ROSTopicException",

@@ -14,7 +14,6 @@ from __future__ import annotations
 import itertools
 import logging
 import random
-import socket
 import sys
 import threading
 import time
@@ -210,17 +209,15 @@ class Graph:
             self.bad_nodes[node].type = BadNode.WONKY
 
     def _node_refresh_businfo(self, node: str, api: ServerProxy, bad_node: bool = False) -> bool:
+        """`api`'s getBusInfo into the edges (rosgraph's waits 1 s, 0.2 s for a bad node: the
+        proxies _node_refresh makes wait as long)."""
         if bad_node:
             self._unmark_bad_node(node)
-        old_timeout = socket.getdefaulttimeout()
-        socket.setdefaulttimeout(0.2 if bad_node else 1.0)  # read by ServerProxy's calls, as xmlrpc.client's
         try:
             code, msg, bus_info = api.getBusInfo(_ROS_NAME)
         except Exception as exc:  # whatever went wrong, the node is bad
             self._mark_bad_node(node, str(exc))
             code, msg, bus_info = -1, str(exc), []
-        finally:
-            socket.setdefaulttimeout(old_timeout)
         if code != 1:
             logger.error("cannot get stats info from node [%s]: %s", node, msg)
             return False
@@ -240,7 +237,9 @@ class Graph:
 
     def _node_refresh(self, node: str, bad_node: bool = False) -> bool:
         uri = self._node_uri_refresh(node)
-        return uri is not None and self._node_refresh_businfo(node, ServerProxy(uri), bad_node)
+        if uri is None:
+            return False
+        return self._node_refresh_businfo(node, ServerProxy(uri, timeout=0.2 if bad_node else 1.0), bad_node)
 
     def _node_uri_refresh(self, node: str) -> str | None:
         try:
