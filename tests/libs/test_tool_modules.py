@@ -308,3 +308,28 @@ def test_rosparam_yaml_hooks_and_printing(capsys: Any) -> None:
     assert rosparam.pattern.match("rad(pi)") and not rosparam.pattern.match("deg(90)")
     rosparam.print_params({"a": 1, "n": {"b": "x"}}, "/ns")
     assert capsys.readouterr().out == "/ns/a=1\n/ns/n/b=x\n"
+
+
+def test_rosnode_machines_and_connections(on_graph: dict[str, str]) -> None:
+    master = rosgraph.Master("/test")
+    assert rosnode.get_machines_by_nodes() == ["127.0.0.1"]
+    assert rosnode.get_nodes_by_machine("127.0.0.1") == ["/tools_node"]
+    assert rosnode.get_nodes_by_machine("localhost") == ["/tools_node"]
+    with pytest.raises(rosnode.ROSNodeException, match="cannot resolve machine name"):
+        rosnode.get_nodes_by_machine("no-such-host.invalid")
+    uri = str(master.lookupNode("/tools_node"))
+    state = master.getSystemState()
+    assert rosnode.lookup_uri(master, state, "/chatter", uri) == f"/tools_node ({uri})"
+    assert rosnode.lookup_uri(master, state, "/chatter", "http://elsewhere:1/") == "http://elsewhere:1/"
+    assert rosnode.get_node_connection_info_description(uri, master).startswith("Pid: ")
+    with pytest.raises(rosnode.ROSNodeIOException, match="Communication with node"):
+        rosnode.get_node_connection_info_description(f"http://127.0.0.1:{free_port()}/", master)
+
+
+def test_rosnode_cleanup_lists_leave_the_listed_alone(on_graph: dict[str, str], capsys: Any) -> None:
+    master = rosgraph.Master("/test")
+    before = master.getSystemState()
+    rosnode.cleanup_master_blacklist(master, ["/ghost"])
+    assert capsys.readouterr().out == "Unregistering /ghost\n"
+    rosnode.cleanup_master_whitelist(master, ["/tools_node"])
+    assert master.getSystemState() == before
