@@ -125,13 +125,18 @@ def small_modules() -> dict[str, Any]:
                 rosenv.get_log_dir(env), rosenv.get_log_dir({"ROS_LOG_DIR": "/l"}), rosenv.get_test_results_dir(env),
                 outcome(lambda: rosenv.get_ros_root(env={}))[:2]]
         resolved = [roslib.scriptutil.script_resolve_name("tool", n) for n in ("", "/g", "~p", "rel")]
+        import roslib.rospack as rospack
+
+        rospack_answers = [rospack.rospack_depends_1("geometry_msgs"), rospack.rospack_depends("geometry_msgs"),
+                           sorted(rospack.rospack_depends_on_1("std_msgs")), rospack.rospack_plugins("std_msgs"),
+                           outcome(lambda: rospack.rospackexec(["find", "no_such_package"])), rospack.python3]
     interactive = [roslib.is_interactive()]
     roslib.set_interactive(True)
     interactive.append(roslib.is_interactive())
     names = ["/a/b", "~p", "a", "1a", "a-b", "a/b", "a_b"]
     patterns = [roslib.names.RESOURCE_NAME_LEGAL_CHARS_P, roslib.names.NAME_LEGAL_CHARS_P,
                 roslib.names.BASE_NAME_LEGAL_CHARS_P, roslib.names.BASE_RESOURCE_NAME_LEGAL_CHARS_P]
-    return {"rosenv": envs, "resolved": resolved, "interactive": interactive,
+    return {"rosenv": envs, "resolved": resolved, "interactive": interactive, "rospack": rospack_answers,
             "patterns": [[bool(p.match(n)) for n in names] for p in patterns],
             "resources": sorted(roslib.resources.list_package_resources("std_srvs", False, "srv")),
             "resources_filtered": sorted(roslib.resources.list_package_resources(
