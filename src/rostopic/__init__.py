@@ -5,6 +5,7 @@ this module shares its master queries and statistics.
 
 from __future__ import annotations
 
+import os
 import sys
 import threading
 import time
@@ -14,11 +15,15 @@ from operator import itemgetter
 from typing import Any
 from urllib.parse import urlparse
 
+import rosgraph.names
+import roslib.message
 from kame.cli import rostopic as _command
 from kame.cli.rostopic import _common
+from kame.cli.rostopic import pub as _pub
 from kame.cli.rostopic.info import info_text
 from kame.cli.topic_stats import BandwidthStats, DelayStats, RateStats, format_rate, format_rate_table
 from kame.client import clock, core, log
+from kame.client.topics import Publisher
 from kame.msg import echo, lookup
 from kame.msg.errors import MessageError
 from kame.msg.fieldpath import FieldPath, FieldPathError
@@ -26,9 +31,10 @@ from kame.net.server_proxy import Fault
 from kame.rostime import Time
 
 __all__ = ["NAME", "SUBSCRIBER_TIMEOUT", "Fault", "ROSTopicBandwidth", "ROSTopicDelay", "ROSTopicException",
-           "ROSTopicHz", "ROSTopicIOException", "create_field_filter", "create_value_transform", "find_by_type",
-           "get_api", "get_info_text", "get_topic_class", "get_topic_list", "get_topic_type", "itemgetter", "long",
-           "msgevalgen", "rostopicmain", "urlparse"]
+           "ROSTopicHz", "ROSTopicIOException", "argv_publish", "create_field_filter", "create_publisher",
+           "create_value_transform", "file_yaml_arg", "find_by_type", "get_api", "get_info_text", "get_topic_class",
+           "get_topic_list", "get_topic_type", "itemgetter", "long", "msgevalgen", "param_publish_once",
+           "publish_message", "rostopicmain", "stdin_publish", "stdin_yaml_arg", "urlparse", "wait_for_subscriber"]
 
 NAME = "rostopic"
 SUBSCRIBER_TIMEOUT = 5.0
@@ -306,3 +312,88 @@ def find_by_type(topic_type: str) -> list[str]:
 def rostopicmain(argv: Sequence[str] | None = None) -> None:
     """The rostopic command on `argv` (sys.argv: the program, then the command); ends the process."""
     sys.exit(_command.main(None if argv is None else list(argv)))
+
+
+# ---------------------------------------------------------------- rostopic pub's parts
+
+
+@contextmanager
+def _pub_errors() -> Iterator[None]:
+    """rostopic pub's failures as rostopic's exception."""
+    try:
+        yield
+    except _common.RostopicError as exc:
+        raise ROSTopicException(str(exc)) from None
+
+
+def create_publisher(topic_name: str, topic_type: str, latch: bool, disable_rostime: bool = True) -> tuple[Any, Any]:
+    """(a Publisher of `topic_type` on `topic_name`, the message class), this process made the
+    anonymous node `rostopic` first, without /rosout, as `rostopic pub` does."""
+    topic_name = rosgraph.names.script_resolve_name(NAME, topic_name)
+    try:
+        msg_class = roslib.message.get_message_class(topic_type)
+    except ValueError:
+        raise ROSTopicException(f"invalid topic type: {topic_type}") from None
+    if msg_class is None:
+        package = topic_type.split("/")[0] if "/" in topic_type else None
+        raise ROSTopicException(f"invalid message type: {topic_type}.\n"
+                                f"If this is a valid message type, perhaps you need to type 'rosmake {package}'")
+    _common.init_node(disable_rosout=True, disable_rostime=disable_rostime)
+    return Publisher(topic_name, msg_class, latch=latch, queue_size=100), msg_class
+
+
+def publish_message(pub: Any, msg_class: Any, pub_args: list[Any], rate: float | None = None, once: bool = False,
+                    verbose: bool = False, substitute_keywords: bool = False) -> None:
+    """A `msg_class` message filled from `pub_args` (YAML values; `now` and `auto` stand for the
+    time and a header) published on `pub`: latched and, unless `once`, until shutdown; or `rate`
+    times a second until shutdown."""
+    with _pub_errors():
+        _pub.Publishing(pub, msg_class, verbose).publish_message(pub_args, rate, once, substitute_keywords)
+
+
+def argv_publish(pub: Any, msg_class: Any, pub_args: list[Any], rate: float | None, once: bool, verbose: bool,
+                 substitute_keywords: bool = False) -> None:
+    """publish_message; with `once`, then stay 3 s for subscribers to get it."""
+    publish_message(pub, msg_class, pub_args, rate, once, verbose=verbose, substitute_keywords=substitute_keywords)
+    if once:
+        _common.wait_shutdown(_pub.ONCE_DELAY)
+
+
+def wait_for_subscriber(pub: Any, timeout: float) -> None:
+    """Until `pub` has a subscriber, `timeout` seconds pass or the node shuts down."""
+    _pub.wait_for_subscriber(pub, timeout)
+
+
+def file_yaml_arg(filename: str) -> Callable[[], Iterator[list[Any]]]:
+    """A function iterating over the YAML documents of `filename`, each as a list of pub args."""
+    if not os.path.isfile(filename):
+        raise ROSTopicException(f"file does not exist: {filename}")
+
+    def bagy_iter() -> Iterator[list[Any]]:
+        with _pub_errors():
+            documents = _pub.yaml_documents_from_file(filename)
+        for document in documents:
+            yield [document]
+
+    return bagy_iter
+
+
+def stdin_yaml_arg() -> Iterator[Any]:
+    """The YAML documents read from stdin, each ended by a `---` line, until its end or shutdown."""
+    return _pub.yaml_documents_from_stdin()
+
+
+def stdin_publish(pub: Any, msg_class: Any, rate: float | None, once: bool, filename: str | None,
+                  verbose: bool) -> None:
+    """Publish the YAML documents of `filename` (stdin when None) as `rostopic pub -f` does."""
+    with _pub_errors():
+        _pub.publish_input(_pub.Publishing(pub, msg_class, verbose), rate, once, filename)
+
+
+def param_publish_once(pub: Any, msg_class: Any, param_name: str, verbose: bool) -> None:
+    """Publish the message the parameter `param_name` holds (`rostopic pub -p` once)."""
+    import rospy
+
+    if not rospy.has_param(param_name):
+        raise ROSTopicException(f"parameter does not exist: {param_name}")
+    argv_publish(pub, msg_class, rospy.get_param(param_name), None, True, verbose)

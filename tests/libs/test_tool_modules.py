@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import json
 import random
+import subprocess
 import sys
 from collections.abc import Iterator
 from pathlib import Path
@@ -333,3 +334,23 @@ def test_rosnode_cleanup_lists_leave_the_listed_alone(on_graph: dict[str, str], 
     assert capsys.readouterr().out == "Unregistering /ghost\n"
     rosnode.cleanup_master_whitelist(master, ["/tools_node"])
     assert master.getSystemState() == before
+
+
+def test_rostopic_publishing_functions(graph: dict[str, str], tmp_path: Path) -> None:
+    documents = tmp_path / "docs.yaml"
+    documents.write_text("data: one\n---\ndata: two\n")
+    publisher = Proc([sys.executable, str(Path(__file__).with_name("rostopic_pub_driver.py")), str(documents)], graph)
+    try:
+        publisher.wait_line("published")
+        echo = subprocess.run(kame_command("kame.cli.rostopic", "echo", "-n", "1", "/facade_out"), env=graph,
+                              capture_output=True, text=True, timeout=60)
+        assert echo.stdout == 'data: "hi"\n---\n', echo.stderr
+        assert publisher.wait_line("subscribers:") == "subscribers: 1\n"
+        out = "".join(publisher.out)
+        assert "bad type: invalid message type: std_msgs/Nope." in out
+        assert "class: std_msgs/String /facade_out" in out
+        assert "bad args: Too many arguments:" in out
+        assert "file: [[{'data': 'one'}], [{'data': 'two'}]]" in out
+        assert "no param: parameter does not exist: /no_such_param" in out
+    finally:
+        publisher.stop()
