@@ -24,7 +24,7 @@ from rosgraph.masterapi import ServerProxy
 __all__ = ["CONNECTION_PATTERN", "ID", "NAME", "OptionParser", "ROSNodeException", "ROSNodeIOException", "ServerProxy",
            "cleanup_master_blacklist", "cleanup_master_whitelist", "get_api_uri", "get_machines_by_nodes",
            "get_node_connection_info_description", "get_node_info_description", "get_node_names",
-           "get_nodes_by_machine", "kill_nodes", "lookup_uri", "rosnode_cleanup", "rosnode_info",
+           "get_nodes_by_machine", "kill_nodes", "lookup_uri", "rosnode_cleanup", "rosnode_debugnode", "rosnode_info",
            "rosnode_listnodes", "rosnode_ping", "rosnode_ping_all", "rosnodemain"]
 
 
@@ -101,6 +101,9 @@ def rosnode_info(node_name: str, quiet: bool = False) -> None:
     """Print `rosnode info` for the node (`quiet`: without asking the node itself)."""
     with _graph() as graph:
         _rosnode.info(graph, rosgraph.names.script_resolve_name(NAME, node_name), quiet)
+
+
+rosnode_debugnode = rosnode_info  # rosnode's own alias
 
 
 def rosnode_listnodes(namespace: str | None = None, list_uri: bool = False, list_all: bool = False) -> None:
