@@ -133,3 +133,43 @@ def test_without_a_configuration_file_kame_uses_ros_default(tmp_path: Path, rosg
     empty = tmp_path / "etc"
     empty.mkdir()
     assert rosgraph_answers(sys.executable, tmp_path / "run", empty)["logging"] == rosgraph_kame["logging"]
+
+
+def rosbuild_tree(root: Path) -> Path:
+    """A stack `mystack` (stack.xml) holding a package `mypkg` (manifest.xml, and package.xml for rospkg)."""
+    package = root / "mystack" / "mypkg"
+    package.mkdir(parents=True)
+    (root / "mystack" / "stack.xml").write_text(
+        '<stack>\n  <description brief="A stack">The <b>stack</b></description>\n  <author>Ann</author>'
+        '<license url="http://l">BSD</license>\n  <version>1.2.3</version>\n  <depend stack="ros"/>\n</stack>\n')
+    (package / "manifest.xml").write_text(
+        '<package>\n  <description brief="brief one">Some <em>XHTML</em> text</description>\n'
+        '  <author>Bob, Carol</author>\n  <license url="http://bsd">BSD</license>\n'
+        '  <review status="experimental" notes="none yet"/>\n  <url>http://wiki</url>\n  <logo>logo.png</logo>\n'
+        '  <depend package="roscpp"/><depend package="std_msgs"/><depend thirdparty="boost"/>\n'
+        '  <rosdep name="eigen"/>\n  <platform os="ubuntu" version="20.04" notes="lts"/>\n'
+        '  <export><cpp cflags="-I${prefix}/include" lflags="-lx"/><python path="src"/></export>\n'
+        '  <versioncontrol type="git" url="http://repo"/>\n  <unknowntag/>\n</package>\n')
+    (package / "package.xml").write_text(
+        '<package format="2"><name>mypkg</name><version>0.0.1</version><description>x</description>'
+        '<maintainer email="a@b.c">a</maintainer><license>BSD</license></package>\n')
+    return root
+
+
+def manifest_answers(python: str | Path, root: Path) -> Any:
+    env = {**debian.debian_env(), "ROS_ROOT": "/usr/share/ros", "ROS_PACKAGE_PATH": str(root)}
+    done = subprocess.run([str(python), str(HERE / "roslib_manifest_driver.py")], input=json.dumps({"root": str(root)}),
+                          capture_output=True, text=True, env=env, timeout=120)
+    assert done.returncode == 0, done.stderr
+    return json.loads(done.stdout)
+
+
+def test_roslib_rosbuild_manifests(tmp_path: Path) -> None:
+    root = rosbuild_tree(tmp_path / "tree")
+    ours = manifest_answers(sys.executable, root)
+    assert ours["manifest"]["depends"] == ["roscpp", "std_msgs"] and ours["manifest"]["cpp_flags"] == [
+        "-I${prefix}/include"]
+    assert ours["stack_version"] == ["1.2.3", None] and ours["stack_of"] == "mystack"
+    assert ours["version_in_manifest"][:2] == ["raised", "ManifestException"]
+    if debian.has("roslib.manifestlib"):
+        assert ours == manifest_answers(debian.SYSTEM_PYTHON, root)
