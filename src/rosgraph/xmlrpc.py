@@ -7,8 +7,8 @@ ROS_HOSTNAME, else the host name, else the local address, as rosgraph chooses), 
 `handler._shutdown(reason)` and closes them. `run()` is `start()` that blocks until shutdown.
 `ServerProxy` is xmlrpc.client's calling style (`proxy.getPid(caller_id)`) over kame's
 XML-RPC client (kame.net.server_proxy), faults raised as xmlrpc.client.Fault.
-The socketserver classes ROS builds on are not kame's (see README, "ROS Python modules:
-names not provided").
+The standard library's servers rosgraph builds on (ThreadingXMLRPCServer, ...) are here for
+code that serves with them itself (kame.net.xmlrpc_servers).
 """
 
 from __future__ import annotations
@@ -21,11 +21,19 @@ from typing import Any
 from kame.net.interfaces import hostname
 from kame.net.rpc_server import RpcServer
 from kame.net.server_proxy import ServerProxy
+from kame.net.xmlrpc_servers import (
+    ForkingXMLRPCServer,
+    SilenceableXMLRPCRequestHandler,
+    SimpleXMLRPCRequestHandler,
+    SimpleXMLRPCServer,
+    ThreadingXMLRPCServer,
+)
 from kame.protocol.xmlrpc import Fault, MalformedError, decode_request, encode_fault, encode_response
 
 from . import network
 
-__all__ = ["ServerProxy", "XmlRpcHandler", "XmlRpcNode", "isstring"]
+__all__ = ["ForkingXMLRPCServer", "ServerProxy", "SilenceableXMLRPCRequestHandler", "SimpleXMLRPCRequestHandler",
+           "SimpleXMLRPCServer", "ThreadingXMLRPCServer", "XmlRpcHandler", "XmlRpcNode", "isstring"]
 
 log = logging.getLogger("xmlrpc")
 

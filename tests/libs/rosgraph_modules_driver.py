@@ -150,9 +150,32 @@ def network_and_names() -> dict[str, Any]:
                           rosgraph.network.logger.name, rosgraph.rosenv.DEFAULT_MASTER_PORT]}
 
 
+def stdlib_servers() -> dict[str, Any]:
+    """rosgraph.xmlrpc's ThreadingXMLRPCServer serving a function, called by xmlrpc.client."""
+    import xmlrpc.client
+
+    server = rosgraph.xmlrpc.ThreadingXMLRPCServer(("127.0.0.1", 0), False)
+    server.register_function(lambda a, b: a * b, "mul")
+    serving = threading.Thread(target=server.serve_forever)
+    serving.start()
+    try:
+        proxy = xmlrpc.client.ServerProxy(f"http://127.0.0.1:{server.server_address[1]}/")
+        product = proxy.mul(6, 7)
+    finally:
+        server.shutdown()
+        serving.join()
+        server.server_close()
+    return {"product": product, "daemon_threads": server.daemon_threads, "reuse": server.allow_reuse_address,
+            "protocol": rosgraph.xmlrpc.SilenceableXMLRPCRequestHandler.protocol_version,
+            "bases": [issubclass(rosgraph.xmlrpc.ThreadingXMLRPCServer, rosgraph.xmlrpc.SimpleXMLRPCServer),
+                      issubclass(rosgraph.xmlrpc.ForkingXMLRPCServer, rosgraph.xmlrpc.SimpleXMLRPCServer),
+                      issubclass(rosgraph.xmlrpc.SilenceableXMLRPCRequestHandler,
+                                 rosgraph.xmlrpc.SimpleXMLRPCRequestHandler)]}
+
+
 def main() -> None:
     out = {"network": network_and_names(), "master": master(), "xmlrpc": xmlrpc_node(), "logging": logging_setup(),
-           "stream": stream_lines()}
+           "stream": stream_lines(), "servers": stdlib_servers()}
     sys.stdout.write(json.dumps(out))
 
 

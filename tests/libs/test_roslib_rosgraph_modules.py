@@ -118,6 +118,11 @@ def test_xmlrpc_node_serves_a_handler(rosgraph_kame: Any, rosgraph_ros: Any) -> 
     assert rosgraph_kame["xmlrpc"] == rosgraph_ros["xmlrpc"]
 
 
+def test_the_standard_library_servers(rosgraph_kame: Any, rosgraph_ros: Any) -> None:
+    assert rosgraph_kame["servers"]["product"] == 42
+    assert rosgraph_kame["servers"] == rosgraph_ros["servers"]
+
+
 def test_configure_logging_installs_the_rosout_handlers(rosgraph_kame: Any, rosgraph_ros: Any) -> None:
     assert rosgraph_kame["logging"]["rosout"] == ["INFO", True, [["RosStreamHandler", "DEBUG"]]]
     assert rosgraph_kame["logging"] == rosgraph_ros["logging"]
