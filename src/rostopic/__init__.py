@@ -30,9 +30,9 @@ from kame.msg.fieldpath import FieldPath, FieldPathError
 from kame.net.server_proxy import Fault
 from kame.rostime import Time
 
-__all__ = ["NAME", "SUBSCRIBER_TIMEOUT", "Fault", "ROSTopicBandwidth", "ROSTopicDelay", "ROSTopicException",
-           "ROSTopicHz", "ROSTopicIOException", "argv_publish", "create_field_filter", "create_publisher",
-           "create_value_transform", "file_yaml_arg", "find_by_type", "get_api", "get_info_text", "get_topic_class",
+__all__ = ["NAME", "SUBSCRIBER_TIMEOUT", "CallbackEcho", "Fault", "ROSTopicBandwidth", "ROSTopicDelay",
+           "ROSTopicException", "ROSTopicHz", "ROSTopicIOException", "argv_publish", "create_field_filter",
+           "create_publisher", "create_value_transform", "file_yaml_arg", "find_by_type", "get_api", "get_info_text", "get_topic_class",
            "get_topic_list", "get_topic_type", "itemgetter", "long", "msgevalgen", "param_publish_once",
            "publish_message", "rostopicmain", "stdin_publish", "stdin_yaml_arg", "urlparse", "wait_for_subscriber"]
 
@@ -397,3 +397,81 @@ def param_publish_once(pub: Any, msg_class: Any, param_name: str, verbose: bool)
     if not rospy.has_param(param_name):
         raise ROSTopicException(f"parameter does not exist: {param_name}")
     argv_publish(pub, msg_class, rospy.get_param(param_name), None, True, verbose)
+
+
+class CallbackEcho:
+    """`rostopic echo`'s subscriber callback: prints each message (or the field `msg_eval`
+    picks) as YAML, or as CSV with `plot`, up to `count` messages; `done` once it is through."""
+
+    def __init__(self, topic: str, msg_eval: Callable[[Any], Any] | None, plot: bool = False,
+                 filter_fn: Callable[[Any], bool] | None = None, echo_clear: bool = False,
+                 echo_all_topics: bool = False, offset_time: bool = False, count: int | None = None,
+                 field_filter_fn: Callable[[Any], Any] | None = None, fixed_numeric_width: int | None = None,
+                 value_transform_fn: Callable[..., Any] | None = None) -> None:
+        self.topic = topic[:-1] if topic and topic[-1] == "/" else topic
+        self.msg_eval = msg_eval
+        self.plot = plot
+        self.filter_fn = filter_fn
+        self.fixed_numeric_width = fixed_numeric_width
+        self.prefix = "\033[2J\033[;H" if echo_clear and not plot else ""
+        self.suffix = "" if plot else "\n---"  # the YAML document separator
+        self.echo_all_topics = echo_all_topics
+        self.offset_time = offset_time
+        self.done = False
+        self.max_count = count
+        self.count = 0
+        self.str_fn: Callable[..., str] = _str_plot if plot else self.custom_strify_message
+        self.field_filter = field_filter_fn
+        self.value_transform = value_transform_fn
+        self.first = True
+        self.last_topic: str | None = None
+        self.last_msg_eval: Callable[[Any], Any] | None = None
+
+    def custom_strify_message(self, val: Any, indent: str = "", time_offset: Time | None = None,
+                              current_time: Time | None = None, field_filter: Callable[[Any], Any] | None = None,
+                              type_information: str | None = None, fixed_numeric_width: int | None = None,
+                              value_transform: Callable[..., Any] | None = None) -> str:
+        """The YAML of `val` (a uint8[] field as numbers)."""
+        if type_information and type_information.startswith("uint8[") and isinstance(val, (str, bytes)):
+            val = [ord(x) if isinstance(x, str) else x for x in val]
+        if value_transform is not None:
+            val = value_transform(val, type_information)
+        return echo.to_yaml(val, indent, time_offset, field_filter, fixed_numeric_width)
+
+    def callback(self, data: Any, callback_args: dict[str, Any], current_time: Time | None = None) -> None:
+        """Print `data`, a message of topic callback_args['topic'] (a field's type may be given as
+        callback_args['type_information']); any failure ends the echo (`done`), as rostopic's."""
+        topic = callback_args["topic"]
+        type_information = callback_args.get("type_information")
+        if self.filter_fn is not None and not self.filter_fn(data):
+            return
+        if self.max_count is not None and self.count >= self.max_count:
+            self.done = True
+            return
+        try:
+            msg_eval = self.msg_eval
+            if topic != self.topic:
+                if self.topic.startswith(topic + "/"):  # the echo names a field of this topic
+                    if topic != self.last_topic:
+                        self.last_msg_eval = msgevalgen(self.topic[len(topic):])
+                        self.last_topic = topic
+                    msg_eval = self.last_msg_eval
+                elif not self.echo_all_topics:
+                    return
+            if msg_eval is not None:
+                data = msg_eval(data)
+            if data is not None:
+                self.count += 1
+                if self.plot and self.first:
+                    sys.stdout.write("%" + _str_plot_fields(data, "field", self.field_filter) + "\n")
+                    self.first = False
+                time_offset = clock.get_rostime() if self.offset_time else None
+                sys.stdout.write(self.prefix + self.str_fn(
+                    data, time_offset=time_offset, current_time=current_time, field_filter=self.field_filter,
+                    type_information=type_information, fixed_numeric_width=self.fixed_numeric_width,
+                    value_transform=self.value_transform) + self.suffix + "\n")
+                sys.stdout.flush()
+            if self.max_count is not None and self.count >= self.max_count:
+                self.done = True
+        except Exception:  # rostopic's: whatever fails (a closed pipe, a bad field) ends the echo
+            self.done = True

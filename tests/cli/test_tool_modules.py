@@ -81,6 +81,13 @@ def test_rostopic_msgevalgen(kame: Any, ros: Any) -> None:
 
 
 @needs_debian
+def test_rostopic_callback_echo(kame: Any, ros: Any) -> None:
+    assert kame["echo"]["count"][1:] == [1, True]
+    assert kame["echo"]["plot"][0].startswith("%time,field.header.seq,")
+    assert kame["echo"] == ros["echo"]
+
+
+@needs_debian
 def test_rosmsg_prototype(kame: Any, ros: Any) -> None:
     assert kame["rosmsg"]["prototype"]["msg Probe"] == [["exit", 1], "", "Ambiguous message name Probe"]
     assert kame["rosmsg"]["prototype"] == ros["rosmsg"]["prototype"]

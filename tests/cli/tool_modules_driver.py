@@ -72,6 +72,38 @@ def rostopic_answers() -> dict[str, Any]:
     return out
 
 
+def echo_answers() -> dict[str, Any]:
+    """rostopic.CallbackEcho's callback, called by hand as rostopic's tests do."""
+    pose, joints, array, text = messages()
+    at = genpy.Time(10, 0)
+    cases = {
+        "yaml": (dict(topic="/pose", msg_eval=None), [(pose, "/pose"), (text, "/other")]),
+        "field": (dict(topic="/pose/pose/position", msg_eval=None), [(pose, "/pose")]),
+        "plot": (dict(topic="/joints", msg_eval=None, plot=True), [(joints, "/joints"), (joints, "/joints")]),
+        "count": (dict(topic="/a", msg_eval=None, count=1), [(array, "/a"), (array, "/a")]),
+        "all_topics": (dict(topic="/a", msg_eval=None, echo_all_topics=True), [(text, "/b")]),
+        "filter": (dict(topic="/a", msg_eval=None, filter_fn=lambda m: m.data == "hi"),
+                   [(text, "/a"), (String(data="no"), "/a")]),
+        "nostr": (dict(topic="/j", msg_eval=None, value_transform_fn=rostopic.create_value_transform(True, True)),
+                  [(joints, "/j")]),
+        "width": (dict(topic="/p", msg_eval=rostopic.msgevalgen("/pose/position"), fixed_numeric_width=6),
+                  [(pose, "/p")]),
+        "plot_filtered": (dict(topic="/j", msg_eval=None, plot=True, field_filter_fn=rostopic.create_field_filter(
+            True, True)), [(joints, "/j")]),
+    }
+    out = {}
+    for name, (options, calls) in cases.items():
+        echo = rostopic.CallbackEcho(**options)  # type: ignore[arg-type]
+
+        def run(echo: Any = echo, calls: Any = calls) -> None:
+            for msg, topic in calls:
+                echo.callback(msg, {"topic": topic}, current_time=at)
+
+        result = captured(run)
+        out[name] = [result[1], echo.count, echo.done]
+    return out
+
+
 def rosmsg_answers() -> dict[str, Any]:
     rospack = rospkg.RosPack()
     prototypes = {" ".join(args): captured(lambda args=args: rosmsg.rosmsg_cmd_prototype(args)) for args in (
@@ -111,7 +143,7 @@ def rosmsg_answers() -> dict[str, Any]:
 
 
 def main() -> None:
-    sys.stdout.write(json.dumps({"rostopic": rostopic_answers(), "rosmsg": rosmsg_answers()}))
+    sys.stdout.write(json.dumps({"rostopic": rostopic_answers(), "rosmsg": rosmsg_answers(), "echo": echo_answers()}))
 
 
 if __name__ == "__main__":
