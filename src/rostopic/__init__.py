@@ -32,9 +32,10 @@ from kame.rostime import Time
 
 __all__ = ["NAME", "SUBSCRIBER_TIMEOUT", "CallbackEcho", "Fault", "ROSTopicBandwidth", "ROSTopicDelay",
            "ROSTopicException", "ROSTopicHz", "ROSTopicIOException", "argv_publish", "create_field_filter",
-           "create_publisher", "create_value_transform", "file_yaml_arg", "find_by_type", "get_api", "get_info_text", "get_topic_class",
-           "get_topic_list", "get_topic_type", "itemgetter", "long", "msgevalgen", "param_publish_once",
-           "publish_message", "rostopicmain", "stdin_publish", "stdin_yaml_arg", "urlparse", "wait_for_subscriber"]
+           "create_publisher", "create_value_transform", "file_yaml_arg", "find_by_type", "get_api", "get_info_text",
+           "get_topic_class", "get_topic_list", "get_topic_type", "itemgetter", "long", "msgevalgen",
+           "param_publish_once", "publish_message", "rostopicmain", "stdin_publish", "stdin_yaml_arg", "urlparse",
+           "wait_for_subscriber"]
 
 NAME = "rostopic"
 SUBSCRIBER_TIMEOUT = 5.0
