@@ -125,6 +125,66 @@ def record_helpers(folder: str) -> dict[str, Any]:
     return out
 
 
+def captured(call: Callable[[], Any]) -> list[Any]:
+    """[what `call` returned or raised, its stdout, its stderr]."""
+    import contextlib
+
+    out, err = io.StringIO(), io.StringIO()
+    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+        result = outcome(call)
+    return [result, out.getvalue(), err.getvalue()]
+
+
+def main_parts(folder: str) -> dict[str, Any]:
+    """rosbag.rosbag_main's reusable parts: bag_op with its ops, ProgressMeter, RosbagCmds, callbacks."""
+    import contextlib
+    import optparse
+
+    import rosbag.rosbag_main as main_module
+
+    path = os.path.join(folder, "op.bag")
+    with rosbag.Bag(path, "w") as bag:
+        for i in range(3):
+            bag.write("/op", String(f"m{i}"), genpy.Time(i + 1))
+
+    def compress(inbag: Any, outbag: Any, quiet: bool) -> None:
+        main_module.change_compression_op(inbag, outbag, "bz2", quiet)
+
+    compressed = captured(lambda: main_module.bag_op([path], False, True, lambda b: False, compress, quiet=True))
+    with rosbag.Bag(path) as bag:
+        after = [bag.get_compression_info().compression, messages(bag)]
+    again = captured(lambda: main_module.bag_op([path], False, True, lambda b: False, compress, quiet=True))
+    out_dir = os.path.join(folder, "out")
+    os.mkdir(out_dir)
+    reindexed = captured(lambda: main_module.bag_op([path], True, True, lambda b: True, main_module.reindex_op,
+                                                    output_dir=out_dir, quiet=True))
+    with rosbag.Bag(os.path.join(out_dir, "op.bag")) as bag:
+        reindexed_messages = messages(bag)
+    missing = captured(lambda: main_module.bag_op([os.path.join(folder, "none.bag")], False, True, lambda b: False,
+                                                  compress, quiet=True))
+    os.environ["COLUMNS"] = "60"
+    meter = captured(lambda: main_module.ProgressMeter("/some/where/long/enough/x.bag", 4096).finish())
+    cmds = main_module.RosbagCmds()
+    cmds.add_cmd("info", lambda argv: print("info", argv), "Summarize bags.")
+    parser = optparse.OptionParser()
+    parser.add_option("--topics", dest="topics", default=[], callback=main_module.handle_topics, action="callback")
+    parser.add_option("--pause-topics", dest="pause_topics", default=[], callback=main_module.handle_pause_topics,
+                      action="callback")
+    parser.add_option("--split", dest="split", default=False, callback=main_module.handle_split, action="callback")
+    parser.add_option("--size", dest="size", type="int", default=0)
+    parser.add_option("-x", dest="x", default=False, action="store_true")
+    warned = io.StringIO()
+    with contextlib.redirect_stderr(warned):
+        options, args = parser.parse_args(["--topics", "/a", "/b", "--pause-topics", "/c", "-x", "--split", "12", "f"])
+    answer = {"compressed": [compressed, after, os.path.exists(path.replace(".bag", ".orig.bag"))], "again": again,
+            "reindexed": [reindexed, reindexed_messages], "missing": missing, "meter": meter,
+            "cmds": [cmds.get_valid_cmds(), captured(lambda: cmds.help_cmd([])), captured(lambda: cmds.help_cmd(["x"])),
+                     captured(lambda: cmds.help_cmd(["info"])), sorted(cmds)],
+            "options": [options.topics, options.pause_topics, options.split, options.size, args, warned.getvalue()],
+            "trans": captured(lambda: main_module.print_trans(String, None, 1))}
+    return json.loads(json.dumps(answer).replace(folder, "FOLDER"))
+
+
 def any_msg() -> Any:
     return outcome(lambda: AnyMsg().serialize(io.BytesIO()))
 
@@ -132,7 +192,8 @@ def any_msg() -> Any:
 def main() -> None:
     folder = json.load(sys.stdin)["folder"]
     json.dump({"file_objects": file_objects(folder), "argument_checks": argument_checks(folder),
-               "times": times(folder), "record_helpers": record_helpers(folder), "any_msg": any_msg()}, sys.stdout)
+               "times": times(folder), "record_helpers": record_helpers(folder), "any_msg": any_msg(),
+               "main_parts": main_parts(folder)}, sys.stdout)
 
 
 if __name__ == "__main__":

@@ -56,3 +56,10 @@ def test_record_helpers_and_private_attributes(kame: Any, ros: Any) -> None:
 
 def test_an_uninitialised_anymsg_raises_rosexception(kame: Any, ros: Any) -> None:
     assert kame["any_msg"] == ["raised", "ROSException", "AnyMsg is not initialized"] == ros["any_msg"]
+
+
+def test_rosbag_main_parts(kame: Any, ros: Any) -> None:
+    """bag_op with change_compression_op and reindex_op, ProgressMeter, RosbagCmds, the option callbacks."""
+    assert kame["main_parts"]["compressed"][1][0] == "bz2" and kame["main_parts"]["compressed"][2]
+    assert kame["main_parts"]["options"][:4] == [["/a", "/b"], ["/c"], True, 12]
+    assert kame["main_parts"] == ros["main_parts"]
