@@ -12,6 +12,7 @@ from typing import Any
 
 import rospkg
 from kame.catkin.executables import find_node as _find_node
+from kame.catkin.find_in_workspaces import find_in_workspaces as catkin_find
 from kame.msg.catalog import Package
 from rospkg.environment import ROS_PACKAGE_PATH, ROS_ROOT
 
@@ -30,6 +31,7 @@ __all__ = [
     "MultipleNodesException",
     "Popen",
     "ROSPkgException",
+    "catkin_find",
     "find_node",
     "find_resource",
     "get_dir_pkg",

@@ -24,6 +24,7 @@ import roslib
 import roslib.message
 import rospkg
 from genpy.dynamic import generate_dynamic
+from kame.catkin.find_in_workspaces import find_in_workspaces
 from kame.cli import rosmsg as _command
 from kame.msg import lookup
 from kame.msg.catalog import MsgCatalog
@@ -34,16 +35,15 @@ from kame.rostime import Time, TVal
 from rospkg import ResourceNotFound, get_ros_paths
 
 # what `from rosmsg import *` gives with ROS's rosmsg (which has no __all__: every public name,
-# the modules it imports too), but for genmsg and catkin's find_in_workspaces (README, "ROS
-# Python modules: names not provided")
+# the modules it imports too), but for genmsg (README, "ROS Python modules: names not provided")
 __all__ = ["MAX_DEFAULT_NON_FLOW_ITEMS", "MODE_MSG", "MODE_SRV", "OptionParser", "ROSMsgException",
-           "RosMsgProtoArgsException", "RosMsgProtoException", "StringIO", "collections", "construct_ordered_mapping",
-           "construct_yaml_map_with_ordered_dict", "create_names_filter", "fullusage", "generate_dynamic",
-           "get_array_type_instance", "get_msg_text", "get_srv_text", "get_yaml_for_msg", "init_rosmsg_proto",
-           "inspect", "iterate_packages", "list_msgs", "list_srvs", "list_types", "os", "represent_ordered_mapping",
-           "roslib", "rosmsg_cmd_list", "rosmsg_cmd_md5", "rosmsg_cmd_package", "rosmsg_cmd_packages",
-           "rosmsg_cmd_prototype", "rosmsg_cmd_show", "rosmsg_debug", "rosmsg_md5", "rosmsg_search", "rosmsgmain",
-           "rospkg", "sys", "yaml"]
+           "RosMsgProtoArgsException", "RosMsgProtoException", "StringIO", "collections",
+           "construct_ordered_mapping", "construct_yaml_map_with_ordered_dict", "create_names_filter",
+           "find_in_workspaces", "fullusage", "generate_dynamic", "get_array_type_instance", "get_msg_text",
+           "get_srv_text", "get_yaml_for_msg", "init_rosmsg_proto", "inspect", "iterate_packages", "list_msgs",
+           "list_srvs", "list_types", "os", "represent_ordered_mapping", "roslib", "rosmsg_cmd_list",
+           "rosmsg_cmd_md5", "rosmsg_cmd_package", "rosmsg_cmd_packages", "rosmsg_cmd_prototype", "rosmsg_cmd_show",
+           "rosmsg_debug", "rosmsg_md5", "rosmsg_search", "rosmsgmain", "rospkg", "sys", "yaml"]
 
 MODE_MSG = ".msg"
 MODE_SRV = ".srv"

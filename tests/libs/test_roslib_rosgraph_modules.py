@@ -178,3 +178,25 @@ def test_roslib_rosbuild_manifests(tmp_path: Path) -> None:
     assert ours["version_in_manifest"][:2] == ["raised", "ManifestException"]
     if debian.has("roslib.manifestlib"):
         assert ours == manifest_answers(debian.SYSTEM_PYTHON, root)
+
+
+def catkin_find_answers(python: str | Path, root: Path) -> Any:
+    env = {**debian.debian_env(), "CMAKE_PREFIX_PATH": str(root / "devel")}
+    done = subprocess.run([str(python), str(HERE / "catkin_find_driver.py")], input=json.dumps({"root": str(root)}),
+                          capture_output=True, text=True, env=env, timeout=120)
+    assert done.returncode == 0, done.stderr
+    return json.loads(done.stdout)
+
+
+def test_catkin_find_in_workspaces(tmp_path: Path) -> None:
+    """A devel space whose .catkin names a source space: a package found in either."""
+    (tmp_path / "src" / "pkg_src").mkdir(parents=True)
+    (tmp_path / "src" / "pkg_src" / "package.xml").write_text(
+        '<package format="2"><name>pkg_src</name><version>0.0.1</version><description>x</description>'
+        '<maintainer email="me@example.com">a</maintainer><license>BSD</license></package>\n')
+    (tmp_path / "devel" / "share" / "pkg_devel" / "msg").mkdir(parents=True)
+    (tmp_path / "devel" / ".catkin").write_text(str(tmp_path / "src"))
+    ours = catkin_find_answers(sys.executable, tmp_path)
+    assert ours["cases"][0] == ["ROOT/src/pkg_src"] and ours["cases"][1] == ["ROOT/devel/share/pkg_devel/msg"]
+    if debian.has("catkin.find_in_workspaces", "rosmsg"):
+        assert ours == catkin_find_answers(debian.SYSTEM_PYTHON, tmp_path)
