@@ -35,7 +35,7 @@ from kame.rostime import Time, TVal
 from rospkg import ResourceNotFound, get_ros_paths
 
 # what `from rosmsg import *` gives with ROS's rosmsg (which has no __all__: every public name,
-# the modules it imports too), but for genmsg (README, "ROS Python modules: names not provided")
+# the modules it imports too), but for the genmsg module (README, "ROS Python modules: names not provided")
 __all__ = ["MAX_DEFAULT_NON_FLOW_ITEMS", "MODE_MSG", "MODE_SRV", "OptionParser", "ROSMsgException",
            "RosMsgProtoArgsException", "RosMsgProtoException", "StringIO", "collections",
            "construct_ordered_mapping", "construct_yaml_map_with_ordered_dict", "create_names_filter",
@@ -43,7 +43,7 @@ __all__ = ["MAX_DEFAULT_NON_FLOW_ITEMS", "MODE_MSG", "MODE_SRV", "OptionParser",
            "get_srv_text", "get_yaml_for_msg", "init_rosmsg_proto", "inspect", "iterate_packages", "list_msgs",
            "list_srvs", "list_types", "os", "represent_ordered_mapping", "roslib", "rosmsg_cmd_list",
            "rosmsg_cmd_md5", "rosmsg_cmd_package", "rosmsg_cmd_packages", "rosmsg_cmd_prototype", "rosmsg_cmd_show",
-           "rosmsg_debug", "rosmsg_md5", "rosmsg_search", "rosmsgmain", "rospkg", "sys", "yaml"]
+           "rosmsg_debug", "rosmsg_md5", "rosmsg_search", "rosmsgmain", "rospkg", "spec_to_str", "sys", "yaml"]
 
 MODE_MSG = ".msg"
 MODE_SRV = ".srv"
@@ -405,3 +405,22 @@ def rosmsgmain(mode: str = MODE_MSG) -> None:
         print(f"Invalid mode: {mode}", file=sys.stderr)
         sys.exit(1)
     sys.exit(_command.main_rosmsg() if mode == MODE_MSG else _command.main_rossrv())
+
+
+_BUILTIN_TYPES = ("int8", "uint8", "int16", "uint16", "int32", "uint32", "int64", "uint64", "float32", "float64",
+                  "string", "bool", "char", "byte", "time", "duration")
+
+
+def spec_to_str(msg_context: Any, spec: Any, buff: StringIO | None = None, indent: str = "") -> str:
+    """A spec's constants and fields, each embedded message's fields below it, indented: the text
+    `rosmsg show -b` prints. `msg_context` answers get_registered(type) (genmsg's MsgContext, or
+    roslib.msgs); `spec` has constants, types and names (genmsg's MsgSpec, or roslib.msgs')."""
+    buff = StringIO() if buff is None else buff
+    for c in spec.constants:
+        buff.write(f"{indent}{c.type} {c.name}={c.val_text}\n")
+    for type_, name in zip(spec.types, spec.names, strict=False):
+        buff.write(f"{indent}{type_} {name}\n")
+        base_type = type_[:type_.find("[")] if "[" in type_ else type_
+        if base_type not in _BUILTIN_TYPES:
+            spec_to_str(msg_context, msg_context.get_registered(base_type), buff, indent + "  ")
+    return buff.getvalue()

@@ -39,6 +39,12 @@ def gentools_answers() -> dict[str, Any]:
                      "md5_v2": gentools.compute_md5_v2(deps), "full_text": gentools.compute_full_text(deps)}
         if name.endswith(".msg"):
             out[name]["md5_text"] = gentools.compute_md5_text(deps, deps["spec"])
+    import rosmsg
+
+    _, pose = msgs.load_by_type("geometry_msgs/PoseStamped")
+    gentools.get_dependencies(pose, "geometry_msgs")  # registers what it embeds
+    constants = msgs.load_from_string("int32 A=1\nstring S=x\ngeometry_msgs/Point[] p\n", "pkg")
+    out["spec_to_str"] = [rosmsg.spec_to_str(msgs, pose), rosmsg.spec_to_str(msgs, constants, indent="> ")]
     spec = msgs.load_from_string("Header header\nint32 x\n", "pkg")
     no_files = gentools.get_dependencies(spec, "std_msgs", compute_files=False)
     out["no_files"] = [sorted(no_files), gentools.compute_md5(no_files)]

@@ -48,6 +48,7 @@ def test_roslib_gentools(roslib_kame: Any, roslib_ros: Any) -> None:
     pose = roslib_kame["gentools"]["geometry_msgs/msg/PoseStamped.msg"]
     assert pose["md5"] == "d3812c3cbc69362b77dc0b19b345f8f5" and pose["uniquedeps"][0] == "std_msgs/Header"
     assert roslib_kame["gentools"]["std_srvs/srv/SetBool.srv"]["md5"] == "09fb03525b03e7ea1fd3992bafd87e16"
+    assert roslib_kame["gentools"]["spec_to_str"][0].startswith("Header header\n  uint32 seq\n  time stamp\n")
     assert roslib_kame["gentools"] == roslib_ros["gentools"]
 
 
