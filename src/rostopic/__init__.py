@@ -30,12 +30,39 @@ from kame.msg.fieldpath import FieldPath, FieldPathError
 from kame.net.server_proxy import Fault
 from kame.rostime import Time
 
-__all__ = ["NAME", "SUBSCRIBER_TIMEOUT", "CallbackEcho", "Fault", "ROSTopicBandwidth", "ROSTopicDelay",
-           "ROSTopicException", "ROSTopicHz", "ROSTopicIOException", "argv_publish", "create_field_filter",
-           "create_publisher", "create_value_transform", "file_yaml_arg", "find_by_type", "get_api", "get_info_text",
-           "get_topic_class", "get_topic_list", "get_topic_type", "itemgetter", "long", "msgevalgen",
-           "param_publish_once", "publish_message", "rostopicmain", "stdin_publish", "stdin_yaml_arg", "urlparse",
-           "wait_for_subscriber"]
+__all__ = [
+    "NAME",
+    "SUBSCRIBER_TIMEOUT",
+    "CallbackEcho",
+    "Fault",
+    "ROSTopicBandwidth",
+    "ROSTopicDelay",
+    "ROSTopicException",
+    "ROSTopicHz",
+    "ROSTopicIOException",
+    "argv_publish",
+    "create_field_filter",
+    "create_publisher",
+    "create_value_transform",
+    "file_yaml_arg",
+    "find_by_type",
+    "get_api",
+    "get_info_text",
+    "get_topic_class",
+    "get_topic_list",
+    "get_topic_type",
+    "itemgetter",
+    "long",
+    "msgevalgen",
+    "param_publish",
+    "param_publish_once",
+    "publish_message",
+    "rostopicmain",
+    "stdin_publish",
+    "stdin_yaml_arg",
+    "urlparse",
+    "wait_for_subscriber",
+]
 
 NAME = "rostopic"
 SUBSCRIBER_TIMEOUT = 5.0
@@ -476,3 +503,73 @@ class CallbackEcho:
                 self.done = True
         except Exception:  # rostopic's: whatever fails (a closed pipe, a bad field) ends the echo
             self.done = True
+
+
+class _ParamNotifier:
+    """The values a parameter takes, as the master's paramUpdate calls bring them: the whole
+    value, or a part of it below the parameter (merged into the last value)."""
+
+    def __init__(self, param_name: str, value: Any = None) -> None:
+        self.lock = threading.Condition()
+        self.param_name = param_name
+        self.updates: list[Any] = []
+        self.value = value
+
+    def __call__(self, key: str, value: Any) -> None:
+        with self.lock:
+            if key.rstrip("/") != self.param_name.rstrip("/"):
+                if not key.startswith(self.param_name.rstrip("/") + "/"):
+                    return  # another parameter's update
+                parts = [p for p in key[len(self.param_name):].split("/") if p]
+                node = self.value
+                for part in parts[:-1]:
+                    node = node.setdefault(part, {})
+                node[parts[-1]] = value
+            else:
+                self.value = value
+            self.updates.append(self.value)
+            self.lock.notify_all()
+
+
+def _as_pub_args(value: Any, param_name: str) -> list[Any]:
+    if isinstance(value, dict):
+        return [value]
+    if not isinstance(value, list):
+        raise ROSTopicException(f"Parameter [{param_name}] in not a valid type")
+    return value
+
+
+def param_publish(pub: Any, msg_class: Any, param_name: str, rate: float | None, verbose: bool) -> None:
+    """`rostopic pub -p`: publish the message the parameter holds, and again each time it changes
+    (the master tells this node: subscribeParam); with `rate`, that many times a second."""
+    import rospy
+
+    node = core.get_node()
+    if node is None or not rospy.has_param(param_name):
+        raise ROSTopicException(f"parameter does not exist: {param_name}")
+    resolved = rospy.resolve_name(param_name)
+    notifier = _ParamNotifier(resolved)
+    node.on_param_update.append(notifier)
+    try:
+        with notifier.lock:
+            notifier.value = node.cached_param(resolved)
+        pub_args = _as_pub_args(notifier.value, param_name)
+        rate_ = rospy.Rate(rate) if rate is not None else None
+        publish = True
+        while not rospy.is_shutdown():
+            if publish:
+                try:
+                    publish_message(pub, msg_class, pub_args, None, True, verbose=verbose)
+                except ValueError as exc:
+                    sys.stderr.write(f"{exc}\n")
+                    break
+            with notifier.lock:
+                if rate_ is None and not notifier.updates:
+                    notifier.lock.wait(1.0)  # a change, or a second to look at shutdown again
+                publish = rate_ is not None or bool(notifier.updates)
+                if notifier.updates:
+                    pub_args = _as_pub_args(notifier.updates.pop(0), param_name)
+            if rate_ is not None:
+                rate_.sleep()
+    finally:
+        node.on_param_update.remove(notifier)

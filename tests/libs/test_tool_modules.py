@@ -354,3 +354,16 @@ def test_rostopic_publishing_functions(graph: dict[str, str], tmp_path: Path) ->
         assert "no param: parameter does not exist: /no_such_param" in out
     finally:
         publisher.stop()
+
+
+def test_rostopic_param_publish(graph: dict[str, str]) -> None:
+    publisher = Proc([sys.executable, str(Path(__file__).with_name("rostopic_param_driver.py"))], graph)
+    try:
+        assert publisher.wait_line("heard") == "heard p1\n"
+        done = subprocess.run(kame_command("kame.cli.rosparam", "set", "/facade_msg/data", "p2"), env=graph,
+                              capture_output=True, text=True, timeout=60)
+        assert done.returncode == 0, done.stderr
+        assert publisher.wait_line("heard p2") == "heard p2\n"
+        assert publisher.wait_line("stopped") == "stopped True\n"
+    finally:
+        publisher.stop()
