@@ -23,7 +23,8 @@ case ${KAME_DEPS:-} in
     # the floor there is the first that installs: 1.23.2); the pure-Python ones from source
     "${pip[@]}" uv
     "$venv/bin/uv" pip install -q --python "$venv/bin/python" --resolution lowest-direct --only-binary :all: \
-      --no-binary urdf-parser-py --no-binary pycollada --no-binary xacro -e '.[test,gui,robot,sim,image]'
+      --no-binary urdf-parser-py --no-binary pycollada --no-binary xacro --no-binary empy \
+      -e '.[test,gui,robot,sim,image]'
     ;;
   *) echo "KAME_DEPS must be newest or oldest, not '$KAME_DEPS'" >&2; exit 2 ;;
 esac

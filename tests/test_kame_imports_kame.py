@@ -9,7 +9,8 @@ import ast
 from pathlib import Path
 
 KAME = Path(__file__).resolve().parents[1] / "src" / "kame"
-FACADES = {"rospy", "rosbag", "actionlib", "roslaunch", "genpy", "roslib", "rosgraph", "rospkg", "message_filters",
+FACADES = {"rospy", "rosbag", "actionlib", "roslaunch", "genpy", "genmsg", "roslib", "rosgraph", "rospkg",
+           "message_filters",
            "cv_bridge", "rostopic", "rosservice", "rosnode", "rosparam", "rosmsg", "rosmaster",
            "tf", "tf2_ros", "tf2_geometry_msgs", "tf_conversions", "PyKDL", "interactive_markers",
            "camera_calibration_parsers"}

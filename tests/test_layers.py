@@ -24,7 +24,8 @@ from pathlib import Path
 
 SRC = Path(__file__).resolve().parents[1] / "src"
 
-FACADES = ("rospy", "rosbag", "actionlib", "roslaunch", "genpy", "roslib", "rostest", "rosunit", "message_filters",
+FACADES = ("rospy", "rosbag", "actionlib", "roslaunch", "genpy", "genmsg", "roslib", "rostest", "rosunit",
+           "message_filters",
            "rosgraph", "rospkg", "rostopic", "rosservice", "rosnode", "rosparam", "rosmsg",
            "cv_bridge", "rosmaster", "tf", "tf2_ros", "tf2_geometry_msgs", "tf_conversions", "PyKDL",
            "interactive_markers", "camera_calibration_parsers")
@@ -170,6 +171,13 @@ LAYERS: dict[str, int] = {
     "kame.gzclient.scene_message": 1,  # what gzserver sends its windows, as JSON in std_msgs/String
     "kame.gzclient.model": 1,  # the window's scene graph, picking, model drags and Gazebo's mouse: no Qt
     "kame.gzclient.status": 1,  # the status bar's figures and Gazebo's time format
+    "kame.rosbridge": 1,  # rosbridge's protocol, message encodings, pacing, rosapi's TypeDefs: no I/O, no clock
+    "kame.rosbridge.session": 4,  # one rosbridge client's ops against ROS, on kame.client
+    "kame.rosbridge.topics": 4,
+    "kame.rosbridge.services": 4,
+    "kame.rosbridge.graph": 4,
+    "kame.rosbridge.server": 4,  # rosbridge_websocket: the node and its WebSocket listener
+    "kame.rosbridge.rosapi": 4,  # rosapi_node
     "kame.nav.amcl_node": 4,  # amcl on kame.client and kame.tf_ros
     "kame.nav.move_base_node": 4,
     "kame.nav.costmap_ros": 4,  # move_base's costmaps on kame.client and kame.tf_ros

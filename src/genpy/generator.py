@@ -6,21 +6,27 @@ with kame's codegen (kame.msg.build): the modules are those kame-genmsg writes.
 it does not name come from the packages kame ships.
 
 The helpers genpy's generator is made of answer as genpy's do: compute_pkg_type, compute_import,
-compute_constructor, default_value (Python expressions, as text, in genpy's spelling) and
-make_python_safe. Their `msg_context` is anything with genmsg's MsgContext's is_registered and
-get_registered (roslib.msgs itself, whose register() fills it). msg_generator and srv_generator
-yield the lines of kame's module for a spec; they read the types it uses from `search_path`,
-not from `msg_context`.
+compute_constructor, default_value (Python expressions, as text, in genpy's spelling),
+make_python_safe, flatten, and the serializer code writers (serialize_fn_generator and the
+*_serializer_generator family: the lines genpy writes). Their `msg_context` is genmsg's MsgContext
+(kame's genmsg) or anything with its is_registered and get_registered (roslib.msgs itself).
+msg_generator and srv_generator yield the lines of kame's module for a spec; they read the types
+it uses from `search_path`, not from `msg_context`.
 """
 
 from __future__ import annotations
 
 import os
+import struct
 import sys
 from collections.abc import Callable, Iterable, Iterator, Mapping
 from pathlib import Path
 from typing import Any, Protocol
 
+import genmsg
+from genmsg import SEP, Constant, InvalidMsgSpec, MsgContext, MsgGenerationException, MsgSpec
+from genmsg.base import log
+from genmsg.msgs import DURATION, HEADER, TIME, is_builtin, is_header_type, parse_type
 from genpy.base import SIMPLE_TYPES, is_simple
 from genpy.generate_numpy import NUMPY_DTYPE, pack_numpy, unpack_numpy
 from genpy.generate_struct import (
@@ -41,18 +47,18 @@ from kame.msg.catalog import SHARE_DIR, MsgCatalog, Package, find_packages
 from kame.msg.codegen import python_name
 from kame.msg.errors import MessageError
 from kame.msg.parser import is_legal_base_name, parse_msg, parse_srv
-from roslib.msgs import HEADER, SEP, Constant, MsgSpec, is_builtin, is_header_type, parse_type
 
-__all__ = ["NUMPY_DTYPE", "SIMPLE_TYPES", "Generator", "MsgGenerationException", "MsgGenerator", "SrvGenerator",
-           "clear_patterns", "compute_constructor", "compute_import", "compute_outfile_name", "compute_pkg_type",
-           "compute_resource_name", "compute_struct_pattern", "default_value", "get_patterns", "get_special",
-           "int32_pack", "int32_unpack", "is_simple", "is_special", "make_python_safe", "msg_generator", "pack",
-           "pack2", "pack_numpy", "reduce_pattern", "srv_generator", "unpack", "unpack2", "unpack3",
-           "unpack_numpy"]
-
-
-class MsgGenerationException(Exception):
-    """A package or definition that cannot be generated."""
+__all__ = ["INDENT", "NUMPY_DTYPE", "SIMPLE_TYPES", "Generator", "InvalidMsgSpec", "MsgContext",
+           "MsgGenerationException",
+           "MsgGenerator", "SrvGenerator", "array_serializer_generator", "clear_patterns",
+           "complex_serializer_generator", "compute_constructor", "compute_full_text_escaped", "compute_import",
+           "compute_outfile_name", "compute_pkg_type", "compute_post_deserialize", "compute_resource_name",
+           "compute_struct_pattern", "default_value", "deserialize_fn_generator", "flatten", "get_patterns",
+           "get_registered_ex", "get_special", "int32_pack", "int32_unpack", "is_simple", "is_special",
+           "len_serializer_generator", "log", "make_python_safe", "msg_generator", "next_var", "pack", "pack2",
+           "pack_numpy", "pop_context", "push_context", "reduce_pattern", "reset_var", "serialize_fn_generator",
+           "serializer_generator", "simple_serializer_generator", "srv_generator", "string_serializer_generator",
+           "unpack", "unpack2", "unpack3", "unpack_numpy"]
 
 
 def compute_resource_name(filename: str, ext: str) -> str:
@@ -72,7 +78,7 @@ def _remap_reserved(field_name: str) -> str:
     return prefix + dot + python_name(name) if prefix else python_name(field_name)
 
 
-class MsgContext(Protocol):
+class _Context(Protocol):
     def is_registered(self, full_msg_type: str) -> bool: ...
 
     def get_registered(self, full_msg_type: str) -> Any: ...
@@ -93,8 +99,8 @@ class Special:
 
 _SPECIAL_TYPES = {
     HEADER: Special("std_msgs.msg._Header.Header()", None, "import std_msgs.msg"),
-    "time": Special("genpy.Time()", "%s.canon()", "import genpy"),
-    "duration": Special("genpy.Duration()", "%s.canon()", "import genpy"),
+    TIME: Special("genpy.Time()", "%s.canon()", "import genpy"),
+    DURATION: Special("genpy.Duration()", "%s.canon()", "import genpy"),
 }
 _INTEGERS = ("byte", "int8", "int16", "int32", "int64", "char", "uint8", "uint16", "uint32", "uint64")
 
@@ -123,7 +129,7 @@ def _bare(type_: str) -> str:
     return type_.partition("[")[0]
 
 
-def compute_constructor(msg_context: MsgContext, package: str, type_: str) -> str | None:
+def compute_constructor(msg_context: _Context, package: str, type_: str) -> str | None:
     """The expression building a `type_` (in `package`): None for an array or an unknown type."""
     special = get_special(type_)
     if special is not None:
@@ -136,7 +142,7 @@ def compute_constructor(msg_context: MsgContext, package: str, type_: str) -> st
     return f"{base_pkg}.msg.{base_type}()"
 
 
-def default_value(msg_context: MsgContext, field_type: str, default_package: str) -> str | None:
+def default_value(msg_context: _Context, field_type: str, default_package: str) -> str | None:
     """A field's default as genpy writes it in a generated module (`'0.'`, `"b''"`,
     `'[0] * 3'`, `'std_msgs.msg.Header()'`); None for a type `msg_context` does not know."""
     if field_type in _INTEGERS:
@@ -164,13 +170,11 @@ def default_value(msg_context: MsgContext, field_type: str, default_package: str
 
 def make_python_safe(spec: Any) -> MsgSpec:
     """The spec with fields and constants named like Python keywords renamed (`from_`)."""
-    package, _, short = str(spec.full_name).rpartition(SEP)
     constants = [Constant(c.type, _remap_reserved(c.name), c.val, c.val_text) for c in spec.constants]
-    return MsgSpec(list(spec.types), [_remap_reserved(n) for n in spec.names], constants, spec.text,
-                   spec.full_name, short, package)
+    return MsgSpec(list(spec.types), [_remap_reserved(n) for n in spec.names], constants, spec.text, spec.full_name)
 
 
-def compute_import(msg_context: MsgContext, package: str, type_: str) -> list[str]:
+def compute_import(msg_context: _Context, package: str, type_: str) -> list[str]:
     """The import statements a module of `package` needs to use `type_`, its own types' first
     (each once); none for a primitive or a type `msg_context` does not know."""
     orig_base_type = _bare(type_)
@@ -190,7 +194,7 @@ def compute_import(msg_context: MsgContext, package: str, type_: str) -> list[st
     return imports
 
 
-def msg_generator(msg_context: MsgContext, spec: Any, search_path: Mapping[str, Iterable[str]]) -> Iterator[str]:
+def msg_generator(msg_context: _Context, spec: Any, search_path: Mapping[str, Iterable[str]]) -> Iterator[str]:
     """The lines of the module of the message `spec` (types it uses from `search_path`)."""
     package = str(spec.full_name).partition(SEP)[0]
     catalog = _catalog(package, (), search_path)
@@ -202,7 +206,7 @@ def msg_generator(msg_context: MsgContext, spec: Any, search_path: Mapping[str, 
     yield from text.splitlines()
 
 
-def srv_generator(msg_context: MsgContext, spec: Any, search_path: Mapping[str, Iterable[str]]) -> Iterator[str]:
+def srv_generator(msg_context: _Context, spec: Any, search_path: Mapping[str, Iterable[str]]) -> Iterator[str]:
     """The lines of the module of the service `spec`: request, response and service classes."""
     package = str(spec.full_name).partition(SEP)[0]
     catalog = _catalog(package, (), search_path)
@@ -272,3 +276,315 @@ class SrvGenerator(Generator):
 
     def __init__(self) -> None:
         super().__init__("services", ".srv", service_module)
+
+
+def get_registered_ex(msg_context: _Context, type_: str) -> Any:
+    """msg_context.get_registered, with any failure as MsgGenerationException."""
+    try:
+        return msg_context.get_registered(type_)
+    except Exception:
+        raise MsgGenerationException(
+            f"Unknown type [{type_}]. Please check that the manifest.xml correctly declares dependencies.") from None
+
+
+def flatten(msg_context: _Context, msg: Any) -> MsgSpec:
+    """The spec with each embedded (non-array) message's fields in place of it ('pose.position.x'):
+    not a real message, the field list genpy's serializers batch into struct calls."""
+    new_types: list[str] = []
+    new_names: list[str] = []
+    for t, n in zip(msg.types, msg.names, strict=True):
+        _, is_array, _ = parse_type(t)
+        if not is_array and msg_context.is_registered(t):
+            sub = flatten(msg_context, msg_context.get_registered(t))
+            new_types.extend(sub.types)
+            new_names.extend(f"{n}.{n2}" for n2 in sub.names)
+        else:
+            new_types.append(t)
+            new_names.append(n)
+    return MsgSpec(new_types, new_names, msg.constants, msg.text, msg.full_name)
+
+
+def compute_post_deserialize(type_: str, varname: str) -> str | None:
+    """The statement fixing up `varname` after it is read (`x.canon()` for time and duration)."""
+    special = get_special(type_)
+    return special.get_post_deserialize(varname) if special is not None else None
+
+
+def compute_full_text_escaped(msg_context: Any, spec: Any) -> str:
+    """genmsg's full text, safe inside a triple-quoted Python string."""
+    return str(genmsg.compute_full_text(msg_context, spec)).replace('"""', r'\"\"\"')
+
+
+# genpy's serializer code writers: the lines of Python a genpy-style module's serialize() and
+# deserialize() are made of, as genpy 0.6.16 writes them (kame's own modules are written by
+# kame.msg.codegen; these serve tools that emit genpy's code). They share genpy's module-level
+# state, as its callers expect: the field-reference context ('self.', '_v1.'), pushed and popped
+# while descending into embedded messages, and the temporary-variable counter.
+
+INDENT = "  "
+_BYTES_TYPES = ("uint8", "char")
+
+_serial_context = ""
+_context_stack: list[str] = []
+_counter = 0
+
+
+def next_var() -> str:
+    """A fresh temporary name: _v1, _v2, ..."""
+    global _counter
+    _counter += 1
+    return f"_v{_counter}"
+
+
+def reset_var() -> None:
+    global _counter
+    _counter = 0
+
+
+def push_context(context: str) -> None:
+    """Make `context` the prefix of field references until pop_context."""
+    global _serial_context
+    _context_stack.append(_serial_context)
+    _serial_context = context
+
+
+def pop_context() -> None:
+    global _serial_context
+    _serial_context = _context_stack.pop()
+
+
+def len_serializer_generator(var: str, is_string: bool, serialize: bool) -> Iterator[str]:
+    """An array's or string's uint32 length: computed (and written, but for a string, whose
+    length goes out with its bytes) or read."""
+    if serialize:
+        yield f"length = len({var})"
+        if not is_string:
+            yield int32_pack("length")
+    else:
+        yield "start = end"
+        yield "end += 4"
+        yield int32_unpack("length", "str[start:end]")
+
+
+def string_serializer_generator(package: str, type_: str, name: str, serialize: bool) -> Iterator[str]:
+    """A string, or a uint8/char array (bytes), with its length unless the array is fixed."""
+    if _serial_context and serialize:
+        yield f"_x = {_serial_context}{name}"  # read once, used twice
+        var = "_x"
+    else:
+        var = _serial_context + name
+    base_type, _, array_len = parse_type(type_)
+    if base_type not in _BYTES_TYPES or array_len is None:
+        yield from len_serializer_generator(var, True, serialize)
+    if serialize:
+        if base_type in _BYTES_TYPES:
+            yield "# - if encoded as a list instead, serialize as bytes instead of string"
+            yield f"if type({var}) in [list, tuple]:"
+            if array_len is None:
+                yield INDENT + pack2("'<I%sB'%length", f"length, *{var}")
+                yield "else:"
+                yield INDENT + pack2("'<I%ss'%length", f"length, {var}")
+            else:
+                yield INDENT + pack(f"{array_len}B", f"*{var}")
+                yield "else:"
+                yield INDENT + pack(f"{array_len}s", var)
+        else:
+            yield f"if python3 or type({var}) == unicode:"
+            yield INDENT + f"{var} = {var}.encode('utf-8')"
+            yield INDENT + f"length = len({var})"
+            yield pack2("'<I%ss'%length", f"length, {var}")
+        return
+    yield "start = end"
+    if array_len is not None:
+        yield f"end += {array_len}"
+        yield f"{var} = str[start:end]"
+        return
+    yield "end += length"
+    if base_type in _BYTES_TYPES:
+        yield f"{var} = str[start:end]"
+    else:
+        yield "if python3:"
+        yield INDENT + f"{var} = str[start:end].decode('utf-8', 'rosmsg')"
+        yield "else:"
+        yield INDENT + f"{var} = str[start:end]"
+
+
+def _simple_array(var: str, base_type: str, array_len: int | None, serialize: bool, is_numpy: bool) -> Iterator[str]:
+    """An array of one struct code, in one struct call (numpy's buffer for is_numpy)."""
+    code = compute_struct_pattern([base_type])
+    if array_len is None:
+        yield f"pattern = '<%s{code}'%length"
+        if serialize:
+            yield pack_numpy(var) if is_numpy else pack2("pattern", "*" + var)
+        else:
+            yield "start = end"
+            yield "s = struct.Struct(pattern)"
+            yield "end += s.size"
+            yield (unpack_numpy(var, "length", NUMPY_DTYPE[base_type], "str[start:end]") if is_numpy
+                   else unpack3(var, "s", "str[start:end]"))
+    else:
+        pattern = f"{array_len}{code}"
+        if serialize:
+            yield pack_numpy(var) if is_numpy else pack(pattern, "*" + var)
+        else:
+            yield "start = end"
+            yield f"end += {struct.calcsize('<' + pattern)}"
+            yield (unpack_numpy(var, str(array_len), NUMPY_DTYPE[base_type], "str[start:end]") if is_numpy
+                   else unpack(var, pattern, "str[start:end]"))
+    if not serialize and base_type == "bool":
+        yield f"{var} = list(map(bool, {var}))"
+
+
+def array_serializer_generator(msg_context: Any, package: str, type_: str, name: str, serialize: bool,
+                               is_numpy: bool) -> Iterator[str]:
+    """An array field: bytes as a string, simple types in one struct call, strings and messages
+    one element at a time. MsgGenerationException for a type that is not an array."""
+    base_type, is_array, array_len = parse_type(type_)
+    if not is_array:
+        raise MsgGenerationException(f"Invalid array spec: {type_}")
+    if base_type in _BYTES_TYPES:
+        yield from string_serializer_generator(package, type_, name, serialize)
+        return
+    var = _serial_context + name
+    if array_len is None:
+        yield from len_serializer_generator(var, False, serialize)
+    if is_simple(base_type):
+        yield from _simple_array(var, base_type, array_len, serialize, is_numpy)
+        return
+    loop_var = f"val{len(_context_stack)}"
+    factory: Iterator[str]
+    if base_type == "string":
+        push_context("")
+        factory = string_serializer_generator(package, base_type, loop_var, serialize)
+    else:
+        push_context(f"{loop_var}.")
+        factory = serializer_generator(msg_context, make_python_safe(get_registered_ex(msg_context, base_type)),
+                                       serialize, is_numpy)
+    if serialize:
+        if array_len is not None:
+            yield f"if len({var}) != {array_len}:"
+            yield INDENT + ("self._check_types(ValueError(\"Expecting %s items but found %s when writing '%s'\" % "
+                            f"({array_len}, len({var}), '{var}')))")
+        yield f"for {loop_var} in {var}:"
+    else:
+        yield f"{var} = []"
+        yield "for i in range(0, length):" if array_len is None else f"for i in range(0, {array_len}):"
+        if base_type != "string":
+            yield INDENT + f"{loop_var} = {compute_constructor(msg_context, package, base_type)}"
+    for line in factory:
+        yield INDENT + line
+    if not serialize:
+        yield INDENT + f"{var}.append({loop_var})"
+    pop_context()
+
+
+def complex_serializer_generator(msg_context: Any, package: str, type_: str, name: str, serialize: bool,
+                                 is_numpy: bool) -> Iterator[str]:
+    """A field that is not simple: an array, a string, or an embedded message (descended into
+    under a fresh temporary). MsgGenerationException for a type `msg_context` does not know."""
+    _, is_array, _ = parse_type(type_)
+    if is_array:
+        yield from array_serializer_generator(msg_context, package, type_, name, serialize, is_numpy)
+        return
+    if type_ == "string":
+        yield from string_serializer_generator(package, type_, name, serialize)
+        return
+    if not is_special(type_):
+        pkg, base_type = compute_pkg_type(package, type_)
+        type_ = f"{pkg}/{base_type}"
+    if not msg_context.is_registered(type_):
+        raise MsgGenerationException(f"Unknown type: {type_}. Package context is {package}")
+    ctx_var = next_var()
+    yield f"{ctx_var} = {_serial_context}{name}"
+    push_context(ctx_var + ".")
+    yield from serializer_generator(msg_context, make_python_safe(get_registered_ex(msg_context, type_)), serialize,
+                                    is_numpy)
+    pop_context()
+
+
+def simple_serializer_generator(msg_context: Any, spec: Any, start: int, end: int, serialize: bool) -> Iterator[str]:
+    """Fields start..end-1 of `spec`, all simple, in one struct call (bools read back as bool)."""
+    names = spec.names[start:end]
+    if end - start > 1 and _serial_context.endswith("."):
+        yield "_x = " + _serial_context[:-1]
+        vars_ = "_x." + ", _x.".join(names)
+    elif serialize and end - start == 1 and _serial_context.endswith("."):
+        yield f"_x = {_serial_context}{names[0]}"
+        vars_ = "_x"
+    else:
+        vars_ = _serial_context + (", " + _serial_context).join(names)
+    pattern = str(compute_struct_pattern(spec.types[start:end]))
+    if serialize:
+        yield pack(pattern, vars_)
+        return
+    yield "start = end"
+    yield f"end += {struct.calcsize('<' + str(reduce_pattern(pattern)))}"
+    yield unpack(f"({vars_},)", pattern, "str[start:end]")
+    for field_name, field_type in zip(names, spec.types[start:end], strict=True):
+        if field_type == "bool":
+            var = _serial_context + field_name
+            yield f"{var} = bool({var})"
+
+
+_MAX_CHUNK = 255  # fields in one struct call at most
+
+
+def serializer_generator(msg_context: Any, spec: Any, serialize: bool, is_numpy: bool) -> Iterator[str]:
+    """The unindented body (de)serializing `spec`: runs of simple fields in struct calls (255 at
+    most), each other field by complex_serializer_generator."""
+    if spec is None:
+        raise MsgGenerationException("spec is none")
+    names, types = spec.names, spec.types
+    if serialize and not names:
+        yield "pass"
+        return
+    curr = 0
+    for i, full_type in enumerate(types):
+        if is_simple(full_type):
+            continue
+        for chunk_start in range(curr, i, _MAX_CHUNK):
+            yield from simple_serializer_generator(msg_context, spec, chunk_start, min(chunk_start + _MAX_CHUNK, i),
+                                                   serialize)
+        curr = i + 1
+        yield from complex_serializer_generator(msg_context, spec.package, full_type, names[i], serialize, is_numpy)
+    for chunk_start in range(curr, len(types), _MAX_CHUNK):
+        yield from simple_serializer_generator(msg_context, spec, chunk_start,
+                                               min(chunk_start + _MAX_CHUNK, len(types)), serialize)
+
+
+def serialize_fn_generator(msg_context: Any, spec: Any, is_numpy: bool = False) -> Iterator[str]:
+    """The body of a genpy module's serialize(): the flattened spec's fields written in a try
+    whose struct and type errors become _check_types' explanations."""
+    yield "try:"
+    push_context("self.")
+    for line in serializer_generator(msg_context, make_python_safe(flatten(msg_context, spec)), True, is_numpy):
+        yield "  " + line
+    pop_context()
+    yield ("except struct.error as se: self._check_types(struct.error(\"%s: '%s' when writing '%s'\" % "
+           "(type(se), str(se), str(locals().get('_x', self)))))")
+    yield ("except TypeError as te: self._check_types(ValueError(\"%s: '%s' when writing '%s'\" % "
+           "(type(te), str(te), str(locals().get('_x', self)))))")
+
+
+def deserialize_fn_generator(msg_context: Any, spec: Any, is_numpy: bool = False) -> Iterator[str]:
+    """The body of a genpy module's deserialize(): embedded messages built, the flattened spec's
+    fields read, times made canonical; a short buffer is genpy.DeserializationError."""
+    yield "if python3:"
+    yield INDENT + 'codecs.lookup_error("rosmsg").msg_type = self._type'
+    yield "try:"
+    for type_, name in spec.fields():
+        if msg_context.is_registered(type_):
+            yield f"  if self.{name} is None:"
+            yield f"    self.{name} = {compute_constructor(msg_context, spec.package, type_)}"
+    yield "  end = 0"
+    push_context("self.")
+    for line in serializer_generator(msg_context, make_python_safe(flatten(msg_context, spec)), False, is_numpy):
+        yield "  " + line
+    pop_context()
+    for type_, name in spec.fields():
+        code = compute_post_deserialize(type_, f"self.{name}")
+        if code:
+            yield f"  {code}"
+    yield "  return self"
+    yield "except struct.error as e:"
+    yield "  raise genpy.DeserializationError(e)  # most likely buffer underfill"

@@ -3,6 +3,8 @@ arguments, and message classes by type name."""
 
 from __future__ import annotations
 
+import codecs
+import logging
 import struct
 from collections.abc import Mapping
 from io import StringIO
@@ -15,13 +17,40 @@ from kame.msg.errors import MessageError as MessageException
 from kame.msg.fill import fill_message_args as _fill_message_args
 from kame.msg.fill import printable_message_args
 from kame.msg.message import Message, strify_message
+from kame.rostime import Duration, Time, TVal
 from roslib.message import get_message_class, get_service_class
 
-__all__ = ["DeserializationError", "Message", "MessageException", "SerializationError", "check_type",
-           "fill_message_args", "get_message_class", "get_printable_message_args", "get_service_class",
-           "strify_message", "struct_I"]
+__all__ = ["DeserializationError", "Duration", "Message", "MessageException", "RosMsgUnicodeErrors",
+           "SerializationError", "TVal", "Time", "check_type", "fill_message_args", "get_message_class",
+           "get_printable_message_args", "get_service_class", "isstring", "strify_message", "struct_I"]
 
 struct_I = struct.Struct("<I")  # the length prefix genpy-style generated code reads
+
+
+class RosMsgUnicodeErrors:
+    """The 'rosmsg' codec error handler genpy-style generated code decodes strings with: bad
+    UTF-8 is replaced, and said once per message type on the 'rosout' logger. The code sets
+    `msg_type` (codecs.lookup_error("rosmsg").msg_type = self._type) before decoding."""
+
+    def __init__(self) -> None:
+        self.msg_type: str | None = None
+        self._warned: set[str | None] = set()
+
+    def __call__(self, err: UnicodeError) -> tuple[str | bytes, int]:
+        if self.msg_type not in self._warned:
+            self._warned.add(self.msg_type)
+            extra = f"message {self.msg_type}" if self.msg_type else "unknown message"
+            logging.getLogger("rosout").error("Characters replaced when decoding %s (will print only once): %s",
+                                              extra, err)
+        return codecs.replace_errors(err)
+
+
+codecs.register_error("rosmsg", RosMsgUnicodeErrors())
+
+
+def isstring(s: Any) -> bool:
+    """True for a str (genpy's Python 2 and 3 helper)."""
+    return isinstance(s, str)
 
 _WIDTHS = {"byte": 8, "char": 8, "int8": 8, "uint8": 8, "int16": 16, "uint16": 16, "int32": 32, "uint32": 32,
            "int64": 64, "uint64": 64}

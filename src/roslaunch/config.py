@@ -11,14 +11,66 @@ import os
 from collections.abc import Sequence
 from typing import Any
 
-from kame.cli.roslaunch import load_config
-from kame.launch.errors import LaunchError
-from kame.launch.model import Executable, LaunchConfig
+import rospkg
+from kame.launch.model import Executable as ModelExecutable
+from kame.launch.model import LaunchConfig
 from kame.launch.model import Node as ModelNode
 from kame.launch.remote import ENV_LOADER
-from roslaunch.core import Machine, Master, Node, Param, RLException, Test, is_machine_local
+from kame.launch.runner import core_params
+from rosgraph.network import create_local_xmlrpc_uri
+from roslaunch.core import (
+    PHASE_SETUP,
+    Executable,
+    Machine,
+    Master,
+    Node,
+    Param,
+    RLException,
+    RosbinExecutable,
+    Test,
+    is_machine_local,
+    local_machine,
+)
+from rosmaster import DEFAULT_MASTER_PORT
 
-__all__ = ["ROSLaunchConfig", "load_config_default", "replay"]
+__all__ = ["DEFAULT_MASTER_PORT", "ROSLaunchConfig", "calculate_env_loader", "get_roscore_filename",
+           "load_config_default", "load_roscore", "local_machine", "namespaces_of", "replay"]
+
+
+def namespaces_of(name: str) -> list[str]:
+    """`/a/b/c` -> `['/', '/a', '/a/b']`; ValueError for None, TypeError for a non-string."""
+    if name is None:
+        raise ValueError("name")
+    if not isinstance(name, str):
+        raise TypeError("name")
+    if not name:
+        return ["/"]
+    splits = [x for x in name.split("/") if x]
+    return ["/"] + ["/" + "/".join(splits[:i]) for i in range(1, len(splits))]
+
+
+def get_roscore_filename() -> str:
+    """The roscore.xml ROS reads: /etc/ros's, else the roslaunch package's. kame's roslaunch and
+    load_roscore do not read it: kame's core is declared in code (kame.launch.runner.core_params)."""
+    filename = os.path.join(rospkg.get_etc_ros_dir(), "roscore.xml")
+    if os.path.isfile(filename):
+        return filename
+    return os.path.join(rospkg.RosPack().get_path("roslaunch"), "resources", "roscore.xml")
+
+
+def load_roscore(loader: Any, config: Any, verbose: bool = True) -> None:
+    """The core into `config`, as kame's roscore runs it: /rosversion, /rosdistro and rosout."""
+    core = LaunchConfig()
+    for param in core_params():
+        core.add_param(param)
+    core.add_node(ModelNode("rosout", "rosout", "rosout", respawn=True), core=True)
+    replay(core, config, verbose)
+
+
+def calculate_env_loader(env: Any = None) -> str:
+    """The env-loader of machines that name none: kame's shell/env.sh (ROS's is
+    /opt/ros/<distro>/env.sh; kame's sets up kame's environment on the other machine)."""
+    return str(ENV_LOADER)
 
 
 class ROSLaunchConfig:
@@ -62,7 +114,7 @@ class ROSLaunchConfig:
         """False when a machine of that name is there already, the same; RLException when different.
         A machine without an env-loader gets the one kame's roslaunch runs its nodes with."""
         if not m.env_loader:
-            m.env_loader = str(ENV_LOADER)
+            m.env_loader = calculate_env_loader()
         known = self.machines.get(m.name)
         if known is not None:
             if known.config_key() != m.config_key():
@@ -133,13 +185,18 @@ def _shown(value: Any) -> str:
 
 def _node(model: ModelNode) -> Node:
     kwargs: dict[str, Any] = {"namespace": model.namespace, "machine_name": model.machine_name, "args": model.args,
-                              "remap_args": list(model.remap_args), "env_args": list(model.env_args),
+                              "remap_args": [list(r) for r in model.remap_args], "env_args": list(model.env_args),
                               "cwd": model.cwd, "launch_prefix": model.launch_prefix, "filename": model.filename}
     if model.test_name is not None:
         return Test(model.test_name, model.package, model.type, name=model.name, time_limit=model.time_limit,
                     retry=model.retry, **kwargs)
     return Node(model.package, model.type, name=model.name, respawn=model.respawn, respawn_delay=model.respawn_delay,
                 output=model.output, required=model.required, **kwargs)
+
+
+def _executable(exe: ModelExecutable) -> Executable:
+    """A setup command of kame's loader (rosparam dump/delete) as roslaunch's loader makes it."""
+    return RosbinExecutable(exe.command, exe.args, PHASE_SETUP)
 
 
 def replay(config: LaunchConfig, ros_config: Any, verbose: bool = False) -> None:
@@ -155,7 +212,7 @@ def replay(config: LaunchConfig, ros_config: Any, verbose: bool = False) -> None
     for name in config.clear_params:
         ros_config.add_clear_param(name)
     for exe in config.executables:
-        ros_config.add_executable(exe)
+        ros_config.add_executable(_executable(exe))
     for node in config.core_nodes:
         ros_config.add_node(_node(node), core=True, verbose=verbose)
     for node in config.nodes:
@@ -169,23 +226,29 @@ def replay(config: LaunchConfig, ros_config: Any, verbose: bool = False) -> None
 def load_config_default(roslaunch_files: Sequence[Any], port: int | None, roslaunch_strs: Sequence[str] | None = None,
                         loader: Any = None, verbose: bool = False, assign_machines: bool = True,
                         ignore_unset_args: bool = False) -> ROSLaunchConfig:
-    """The configuration of the core (rosout, /run_id's siblings) and of each file (or `(file, args)`)
-    and XML string, as roslaunch loads them; RLException when one cannot be loaded."""
-    files, argv = [], ["roslaunch"]
-    for entry in roslaunch_files:
-        if isinstance(entry, tuple):
-            files.append(entry[0])
-            argv += list(entry[1])
-        else:
-            files.append(entry)
-    try:
-        config, _ = load_config(files, argv, os.environ, strings=list(roslaunch_strs or []), verbose=verbose)
-    except LaunchError as exc:
-        raise RLException(str(exc)) from exc
-    ros_config = ROSLaunchConfig()
+    """The core (load_roscore), then each file (with sys.argv's `name:=value` args, or a `(file, args)`
+    pair's own) and XML string, read by `loader` (an XmlLoader by default) as roslaunch does;
+    RLException when one cannot be loaded."""
+    from roslaunch.loader import LoadException
+    from roslaunch.xmlloader import XmlLoader, XmlParseException
+
+    config = ROSLaunchConfig()
     if port:
-        ros_config.master = Master(uri=f"http://{ros_config.master.get_host()}:{port}/")
-    replay(config, ros_config, verbose)
+        config.master.uri = create_local_xmlrpc_uri(port)
+    loader = loader or XmlLoader()
+    loader.ignore_unset_args = ignore_unset_args
+    load_roscore(loader, config, verbose=verbose)
+    for entry in roslaunch_files:
+        f, args = entry if isinstance(entry, tuple) else (entry, None)
+        try:
+            loader.load(f, config, argv=args, verbose=verbose)
+        except (XmlParseException, LoadException) as exc:
+            raise RLException(str(exc)) from exc
+    for launch_str in roslaunch_strs or []:
+        try:
+            loader.load_string(launch_str, config)
+        except (XmlParseException, LoadException) as exc:
+            raise RLException(f"Launch string: {launch_str}\nException: {exc}") from exc
     if assign_machines:
-        ros_config.assign_machines()
-    return ros_config
+        config.assign_machines()
+    return config

@@ -1,47 +1,65 @@
 """roslaunch.server: the XML-RPC server of a roslaunch, as roslaunch's API names it, on kame's
 (kame.launch.server). A handler object answers the calls: each public method is an XML-RPC
 method of that name (get_pid, list_processes, process_info, get_node_names; the parent's
-register, list_children, process_died, log), reading the processes from a process monitor `pm`
-(any object with roslaunch's ProcessMonitor methods: get_process_names_with_spawn_count,
-get_process, get_active_names).
+register, list_children, process_died, log; the child's launch and shutdown), reading the
+processes from a process monitor `pm` (roslaunch.pmon's ProcessMonitor, or any object with its
+methods).
 
-kame's own roslaunch runs kame's server directly, and starts the nodes of other machines over
-its SSH connection rather than through a child roslaunch calling back: the child side
-(ROSLaunchChildHandler, ROSLaunchChildNode, whose `launch` runs launch XML sent by the parent)
-has nothing of kame's to stand on and is not here.
+The child side is ROS's: ROSLaunchChildNode serves, registers with its parent's server, and its
+handler's `launch(xml)` loads the XML sent and runs it with ROSLaunchRunner on the child's
+process monitor; the child's printlog lines and its processes' deaths go to the parent (log,
+process_died). kame's own roslaunch reaches other machines otherwise (kame.launch.remote: the
+nodes as JSON over the SSH channel), so no port of the parent has to be reachable from them.
 """
 
 from __future__ import annotations
 
 import logging
 import os
+import threading
+import traceback
 from collections.abc import Callable
 from typing import Any
+from urllib.parse import urlparse
 
 from kame.launch.server import RpcHandlerServer
 from kame.launch.supervisor import say, say_bold, say_error
 from kame.net.address import host_addresses
+from kame.net.server_proxy import ServerProxy
+from rosgraph.network import parse_http_host_and_port
 from rosgraph_msgs.msg import Log
-from roslaunch.core import RLException
-from roslaunch.pmon import ProcessListener
+from roslaunch.core import (
+    RLException,
+    add_printerrlog_handler,
+    add_printlog_handler,
+    printerrlog,
+    printlog,
+    printlog_bold,
+)
+from roslaunch.launch import ROSLaunchRunner
+from roslaunch.nodeprocess import DEFAULT_TIMEOUT_SIGINT, DEFAULT_TIMEOUT_SIGTERM
+from roslaunch.pmon import Process, ProcessListener
 
-__all__ = ["ChildROSLaunchProcess", "ProcessListener", "ROSLaunchBaseHandler", "ROSLaunchNode",
-           "ROSLaunchParentHandler", "ROSLaunchParentNode"]
+__all__ = ["DEFAULT_TIMEOUT_SIGINT", "DEFAULT_TIMEOUT_SIGTERM", "ChildROSLaunchProcess", "Process", "ProcessListener",
+           "ROSLaunchBaseHandler", "ROSLaunchChildHandler", "ROSLaunchChildNode", "ROSLaunchNode",
+           "ROSLaunchParentHandler", "ROSLaunchParentNode", "ROSLaunchRunner", "ServerProxy", "add_printerrlog_handler",
+           "add_printlog_handler", "printerrlog", "printlog", "printlog_bold", "urlparse"]
 
 Answer = tuple[int, str, Any]
 
 
-class ChildROSLaunchProcess:
-    """A roslaunch child on another machine, as the parent knows it: its URI once it registers."""
+class ChildROSLaunchProcess(Process):
+    """A roslaunch child on another machine, as the parent knows it: its URI once it registers
+    (`registered` is set then)."""
 
     def __init__(self, name: str, args: list[Any], env: dict[str, str]) -> None:
-        self.name = name
-        self.args = args
-        self.env = env
+        super().__init__("roslaunch", name, args, env, False)
         self.uri: str | None = None
+        self.registered = threading.Event()
 
     def set_uri(self, uri: str) -> None:
         self.uri = uri
+        self.registered.set()
 
 
 class ROSLaunchBaseHandler:
@@ -167,3 +185,113 @@ class ROSLaunchParentNode(ROSLaunchNode):
     def add_process_listener(self, l: ProcessListener) -> None:  # noqa: E741 (upstream's name)
         """Hear of the children's processes dying (before they start)."""
         self.listeners.append(l)
+
+
+class ROSLaunchChildHandler(ROSLaunchBaseHandler):
+    """The child roslaunch's calls: launch (the XML its parent sends) and shutdown."""
+
+    def __init__(self, run_id: str, name: str, server_uri: str, pm: Any, sigint_timeout: float = DEFAULT_TIMEOUT_SIGINT,
+                 sigterm_timeout: float = DEFAULT_TIMEOUT_SIGTERM) -> None:
+        super().__init__(pm)
+        if server_uri is None:
+            raise RLException("server_uri is not initialized")
+        if parse_http_host_and_port(server_uri)[1] <= 0:
+            raise RLException(f"ERROR: roslaunch server URI is not a valid XML-RPC URI. Value is [{server_uri}]")
+        self.run_id = run_id
+        self.name = name
+        self.server_uri = server_uri
+        self.sigint_timeout = sigint_timeout
+        self.sigterm_timeout = sigterm_timeout
+        self.server = ServerProxy(server_uri)
+
+    def _shutdown(self, reason: str) -> Answer:
+        if self.pm is not None:
+            self.pm.shutdown()
+            self.pm.join()
+            self.pm = None
+        return 1, "", 1
+
+    def shutdown(self) -> Answer:
+        """Stop the child's processes."""
+        self._shutdown("external call")
+        return 1, "success", 1
+
+    def _log(self, level: int, message: str) -> None:
+        self.logger.debug(message)
+        try:
+            self.server.log(str(self.name), level, str(message))
+        except Exception:  # the parent gone: the child's own log still has it
+            self.logger.error(traceback.format_exc())
+
+    def launch(self, launch_xml: str) -> Answer:
+        """Run the nodes of `launch_xml` (parameters and master are the parent's): [succeeded, failed]."""
+        from roslaunch.config import ROSLaunchConfig
+        from roslaunch.xmlloader import XmlLoader, XmlParseException
+
+        if self.pm is None:
+            return 0, "uninitialized", -1
+        rosconfig = ROSLaunchConfig()
+        try:
+            XmlLoader().load_string(launch_xml, rosconfig)
+        except XmlParseException as exc:
+            return -1, f"ERROR: {exc}", [[], []]
+        rosconfig.assign_machines()
+        try:
+            self._log(Log.INFO, "launching nodes...")
+            runner = ROSLaunchRunner(self.run_id, rosconfig, server_uri=self.server_uri, pmon=self.pm, is_child=True,
+                                     sigint_timeout=self.sigint_timeout, sigterm_timeout=self.sigterm_timeout)
+            succeeded, failed = runner.launch()
+            self._log(Log.INFO, "... done launching nodes")
+            self.pm.registrations_complete()
+            return 1, "launched", [succeeded, failed]
+        except Exception:  # as ROS: the parent is told what went wrong
+            return 0, f"ERROR: {traceback.format_exc()}", [[], []]
+
+
+class _ProcessListenerForwarder(ProcessListener):
+    """The child's process deaths, told to the parent."""
+
+    def __init__(self, server: ServerProxy) -> None:
+        self.server = server
+
+    def process_died(self, process_name: str, exit_code: int | None) -> None:
+        try:
+            self.server.process_died(process_name, exit_code if exit_code is not None else -1)
+        except Exception:
+            logging.getLogger("roslaunch.server").error(traceback.format_exc())
+
+
+class ROSLaunchChildNode(ROSLaunchNode):
+    """A child roslaunch's server: it registers with its parent's at `server_uri` once started."""
+
+    def __init__(self, run_id: str, name: str, server_uri: str, pm: Any, sigint_timeout: float = DEFAULT_TIMEOUT_SIGINT,
+                 sigterm_timeout: float = DEFAULT_TIMEOUT_SIGTERM) -> None:
+        self.logger = logging.getLogger("roslaunch.server")
+        self.run_id = run_id
+        self.name = name
+        self.server_uri = server_uri
+        self.pm = pm
+        if self.pm is None:
+            raise RLException("cannot create child node: pm is not initialized")
+        super().__init__(ROSLaunchChildHandler(run_id, name, server_uri, pm, sigint_timeout=sigint_timeout,
+                                               sigterm_timeout=sigterm_timeout))
+
+    def _register_with_server(self) -> None:
+        name = self.name
+        server = ServerProxy(self.server_uri)
+        try:
+            reply: Any = server.register(name, self.uri)
+            code, msg, _ = reply
+        except Exception as exc:
+            raise RLException(f"Exception while registering with roslaunch parent [{self.server_uri}]: "
+                              f"{traceback.format_exc()}") from exc
+        if code != 1:
+            raise RLException(f"unable to register with roslaunch server: {msg}")
+        add_printlog_handler(lambda msg: server.log(name, Log.INFO, msg))
+        add_printerrlog_handler(lambda msg: server.log(name, Log.ERROR, msg))
+        self.pm.add_process_listener(_ProcessListenerForwarder(server))
+
+    def start(self) -> None:
+        """Serve, then register with the parent."""
+        super().start()
+        self._register_with_server()

@@ -19,7 +19,6 @@ import yaml
 import rosgraph
 from kame import names, param_yaml
 from kame.cli import rosparam as _command
-from kame.net.server_proxy import Binary
 
 __all__ = ["GLOBALNS", "NAME", "NS", "Binary", "OptionParser", "RosParamException", "RosParamIOException",
            "construct_angle_degrees", "construct_angle_radians", "construct_yaml_binary", "delete_param", "dump_params",
@@ -136,6 +135,16 @@ def list_params(ns: str) -> list[str]:
 
 NAME = "rosparam"
 NS = NS_KEY
+
+
+class Binary(bytes):
+    """Binary data as the parameter server holds it (xmlrpc.client's Binary: the bytes are in
+    `data`); bytes itself, so kame's XML-RPC client sends it as base64."""
+
+    @property
+    def data(self) -> bytes:
+        return bytes(self)
+
 GLOBALNS = rosgraph.names.GLOBALNS
 get_ros_namespace = rosgraph.names.get_ros_namespace
 make_caller_id = rosgraph.names.make_caller_id

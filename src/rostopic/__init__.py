@@ -27,7 +27,7 @@ from kame.client.topics import Publisher
 from kame.msg import echo, lookup
 from kame.msg.errors import MessageError
 from kame.msg.fieldpath import FieldPath, FieldPathError
-from kame.net.server_proxy import Fault
+from kame.protocol.xmlrpc import Fault  # what a fault of kame's XML-RPC calls raises
 from kame.rostime import Time
 
 __all__ = [

@@ -188,10 +188,13 @@ def test_rossrv_show(kame: Runner) -> None:
     assert kame("rossrv", "show", "Spawn").stdout == "[turtlesim/Spawn]:\n" + SPAWN
 
 
-def test_raw_of_kame_package_is_its_comment_free_text(kame: Runner) -> None:
-    assert kame("rosmsg", "show", "-r", "geometry_msgs/Twist").stdout == "Vector3 linear\nVector3 angular\n\n"
+def test_raw_of_kame_package_is_upstreams_file(kame: Runner) -> None:
+    # kame's geometry_msgs/Twist.msg is upstream's file byte for byte, comment and spacing included
+    text = "# This expresses velocity in free space broken into its linear and angular parts.\n" \
+           "Vector3  linear\nVector3  angular\n"
+    assert kame("rosmsg", "show", "-r", "geometry_msgs/Twist").stdout == text + "\n"
     raw = kame("rosmsg", "show", "--raw", "Twist").stdout
-    assert raw == "[geometry_msgs/Twist]:\nVector3 linear\nVector3 angular\n\n"
+    assert raw == "[geometry_msgs/Twist]:\n" + text + "\n"
 
 
 def test_user_package_on_ros_package_path(kame: Runner, workspace: Path) -> None:

@@ -1,5 +1,6 @@
 """The world's physics against closed forms: free fall, a pendulum's period, a box sliding to a
-stop with friction, and a two-wheeled body driven along an arc."""
+stop with friction (and with <mu2> apart from <mu>), a two-wheeled body driven along an arc, and
+a joint's <velocity> limit against applied efforts and drives."""
 
 from __future__ import annotations
 
@@ -81,12 +82,12 @@ def test_a_small_angle_pendulums_period_within_one_percent() -> None:
     assert period == pytest.approx(2 * math.pi * math.sqrt(length / G), rel=0.01)
 
 
-def test_a_sliding_box_stops_at_v_squared_over_two_mu_g() -> None:
-    mu, speed = 0.5, 2.0
+def slide(mu: float, mu2: float, speed: float) -> tuple[World, float]:
+    """A 0.2 m box set sliding along x on the ground: the world, and how far it went."""
     box = f"""<model name="box"><pose>0 0 0.1 0 0 0</pose><link name="link">
       <inertial><mass>1</mass><inertia><ixx>0.0067</ixx><iyy>0.0067</iyy><izz>0.0067</izz></inertia></inertial>
       <collision name="collision"><geometry><box><size>0.2 0.2 0.2</size></box></geometry>
-        <surface><friction><ode><mu>{mu}</mu><mu2>{mu}</mu2></ode></friction></surface></collision></link></model>"""
+        <surface><friction><ode><mu>{mu}</mu><mu2>{mu2}</mu2></ode></friction></surface></collision></link></model>"""
     world = World.from_sdf(sdf_world(GROUND + box))
     world.step(200)  # settle on the ground
     start = world.model_state("box").pose
@@ -95,9 +96,57 @@ def test_a_sliding_box_stops_at_v_squared_over_two_mu_g() -> None:
         world.step(10)
         if abs(world.model_state("box").linear[0]) < 1e-3:
             break
-    distance = world.model_state("box").pose.position[0] - start.position[0]
-    # the ground plane's mu is 100: the box's 0.5 is what counts, as ODE takes the smaller
+    return world, world.model_state("box").pose.position[0] - start.position[0]
+
+
+def test_a_sliding_box_stops_at_v_squared_over_two_mu_g() -> None:
+    mu, speed = 0.5, 2.0
+    world, distance = slide(mu, mu, speed)
+    # the ground plane's mu is 100 (mu2 50): the box's 0.5 is what counts, as ODE takes the smaller
     assert distance == pytest.approx(speed ** 2 / (2 * mu * G), rel=0.05)
+    assert world.take_warnings() == []  # the ground plane's mu2 apart from its mu matters nowhere
+
+
+def test_mu2_apart_from_mu_takes_the_smaller_and_says_so() -> None:
+    # MuJoCo's friction is isotropic: the box grips as ODE's weaker direction would
+    speed = 2.0
+    for mu, mu2 in ((1.0, 0.25), (0.25, 1.0)):
+        world, distance = slide(mu, mu2, speed)
+        assert distance == pytest.approx(speed ** 2 / (2 * 0.25 * G), rel=0.05), (mu, mu2)
+        warnings = world.take_warnings()
+        assert len(warnings) == 1 and "'box'" in warnings[0] and "link::collision" in warnings[0], warnings
+        assert "mu2" in warnings[0] and "smaller" in warnings[0]
+
+
+def spinner(velocity_limit: float) -> World:
+    """A disc on a vertical hinge (no gravity along it), its <limit><velocity> given."""
+    return World.from_sdf(sdf_world(f"""<model name="spinner"><link name="disc"><pose>0 0 1 0 0 0</pose>
+      <inertial><mass>1</mass><inertia><ixx>0.01</ixx><iyy>0.01</iyy><izz>0.01</izz></inertia></inertial>
+      <visual name="v"><geometry><cylinder><radius>0.1</radius><length>0.02</length></cylinder></geometry></visual>
+      </link><joint name="hinge" type="revolute"><parent>world</parent><child>disc</child><axis><xyz>0 0 1</xyz>
+      <limit><lower>-1e16</lower><upper>1e16</upper><velocity>{velocity_limit}</velocity></limit></axis></joint>
+      </model>"""))
+
+
+def test_a_joints_velocity_limit_holds_against_efforts_and_drives() -> None:
+    world = spinner(2.0)
+    world.apply_joint_effort("spinner::hinge", 1.0, None, 1.0)  # unlimited: 100 rad/s^2 for a second
+    world.step(1000)
+    speed = world.joint_state("spinner::hinge").velocity[0]
+    assert 1.9 < speed < 2.0 + 100 * world.physics.max_step_size + 1e-9  # at most a step's push past it
+    world.clear_joint_forces()
+    world.apply_joint_effort("spinner::hinge", -1.0, None, 2.0)
+    world.step(2000)
+    assert -2.2 < world.joint_state("spinner::hinge").velocity[0] < -1.9  # the other way too
+    world.clear_joint_forces()
+    world.drive_joint("spinner::hinge", 10.0, 1.0)
+    world.step(500)
+    assert world.joint_state("spinner::hinge").velocity[0] == pytest.approx(2.0, abs=0.01)
+
+    free = spinner(-1.0)  # below 0: no limit, as SDF's default
+    free.apply_joint_effort("spinner::hinge", 1.0, None, 1.0)
+    free.step(1000)
+    assert free.joint_state("spinner::hinge").velocity[0] == pytest.approx(100.0, rel=0.01)
 
 
 def two_wheeler(radius: float = 0.05, separation: float = 0.3) -> str:

@@ -62,6 +62,26 @@ def test_laser_ranges_reach_the_walls_within_a_centimetre() -> None:
     world.close()
 
 
+def test_rays_skip_the_links_welded_to_the_sensors_but_see_other_models() -> None:
+    # a Kobuki's cliff sensor: a link on a fixed joint inside the base's collision, looking down.
+    # Gazebo lumps the two links into one, whose collisions its rays skip: the ray reads the floor
+    base = """<model name="base"><pose>0 0 0 0 0 0</pose><link name="base_link"><pose>0 0 0.1 0 0 0</pose>
+      <inertial><mass>1</mass><inertia><ixx>0.01</ixx><iyy>0.01</iyy><izz>0.01</izz></inertia></inertial>
+      <collision name="body"><geometry><box><size>0.4 0.4 0.1</size></box></geometry></collision></link>
+      <link name="cliff_link"><pose>0.1 0 0.1 0 1.5707963 0</pose>
+      <inertial><mass>0.001</mass><inertia><ixx>1e-6</ixx><iyy>1e-6</iyy><izz>1e-6</izz></inertia></inertial>
+      <sensor name="cliff" type="ray"><ray><scan><horizontal><samples>3</samples><min_angle>-0.04</min_angle>
+        <max_angle>0.04</max_angle></horizontal></scan><range><min>0.01</min><max>1</max></range></ray></sensor></link>
+      <joint name="cliff_joint" type="fixed"><parent>base_link</parent><child>cliff_link</child></joint></model>"""
+    floor = """<model name="floor"><static>true</static><link name="link"><collision name="c">
+      <pose>0 0 -0.05 0 0 0</pose><geometry><box><size>5 5 0.1</size></box></geometry></collision></link></model>"""
+    world = world_with(floor, base)
+    ranges = world.ray_scan(only_sensor(world, "cliff")).ranges[0]
+    assert ranges[1] == pytest.approx(0.1, abs=1e-6)  # the floor, not the base's underside 0.05 below
+    assert np.allclose(ranges, 0.1 / np.cos(np.array([-0.04, 0.0, 0.04])), atol=1e-6)
+    world.close()
+
+
 def test_laser_noise_is_gaussian_with_its_mean_and_stddev_and_replays() -> None:
     noise = "<noise><type>gaussian</type><mean>0.05</mean><stddev>0.02</stddev></noise>"
     ranges = []

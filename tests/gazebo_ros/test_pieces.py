@@ -79,3 +79,22 @@ def test_spawn_model_package_to_model_and_model_kinds() -> None:
     assert model_kind(urdf) == "urdf"
     assert model_kind('<sdf version="1.6"><model name="m"/></sdf>') == "sdf"
     assert model_kind("<robot") is None and model_kind("<world/>") is None
+
+
+def test_depth_cut_to_range_and_the_point_cloud_of_a_depth_camera() -> None:
+    import numpy as np
+
+    from kame.gazebo_ros.plugins.camera import depth_in_range, point_cloud_bytes
+
+    depth = depth_in_range(np.array([[0.3, 2.0, 9.0], [np.inf, 4.0, 1.0]]), 0.4, 8.0)
+    assert depth.dtype == np.float32
+    assert np.isnan(depth[0, 0]) and np.isnan(depth[0, 2]) and np.isnan(depth[1, 0])  # near, far, nothing
+    rgb = np.array([[[1, 2, 3], [10, 20, 30], [0, 0, 0]], [[0, 0, 0], [255, 128, 7], [9, 8, 7]]], dtype=np.uint8)
+    f, cx, cy = 2.0, 1.0, 0.5
+    points = np.frombuffer(point_cloud_bytes(depth, rgb, f, cx, cy), dtype="<f4").reshape(2, 3, 4)
+    # pixel (row 1, column 2) at 1 m: x = (2 - cx) / f, y = (1 - cy) / f, z = 1, rgb packed 0x00RRGGBB
+    assert points[1, 2, :3].tolist() == [0.5, 0.25, 1.0]
+    assert points[1, 1, :3].tolist() == [0.0, 1.0, 4.0]
+    assert points[1, 1, 3:].view("<u4")[0] == (255 << 16) | (128 << 8) | 7
+    assert points[0, 1, 3:].view("<u4")[0] == (10 << 16) | (20 << 8) | 30
+    assert np.isnan(points[0, 0, :3]).all()  # a cut depth is a NaN point (is_dense false)

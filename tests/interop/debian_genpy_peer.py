@@ -14,9 +14,8 @@ import sys
 
 import genmsg
 import genmsg.msg_loader
-from genmsg import gentools
-
 import genpy
+from genmsg import gentools
 
 SHARE = "/usr/share"
 

@@ -96,12 +96,12 @@ def test_errors_name_the_source_file() -> None:
         parse_msg("int32 x\nflaot32\n", "p/T", "/ws/p/msg/T.msg")
 
 
-def test_service_sections_and_comment_stripping() -> None:
+def test_service_sections_keep_comments() -> None:
     srv = parse_srv("int64 a # first\nstring S=x # y\n---  trailing\nint64 sum\n", "p/Add")
     assert srv.request.full_name == "p/AddRequest"
     assert srv.response.full_name == "p/AddResponse"
-    assert srv.request.constants[0].value == "x"  # .srv lines lose comments before parsing
-    assert srv.request.text == "int64 a\nstring S=x\n"
+    assert srv.request.constants[0].value == "x # y"  # genmsg 0.6.0 keeps a .srv's comments, as a .msg's
+    assert srv.request.text == "int64 a # first\nstring S=x # y\n"
     assert [f.name for f in srv.response.fields] == ["sum"]
 
 

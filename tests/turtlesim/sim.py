@@ -42,7 +42,7 @@ class Sim:
         return proc
 
     def echo(self, topic: str) -> dict[str, Any]:
-        out = self.run("rostopic", "echo", "-n", "1", topic, timeout=10).stdout
+        out = self.run("rostopic", "echo", "-n", "1", topic, timeout=30).stdout
         data = yaml.safe_load(out.split("---")[0])
         assert isinstance(data, dict), out
         return data
@@ -51,7 +51,7 @@ class Sim:
         return self.echo(f"/{turtle}/pose")
 
 
-def wait_until(predicate: Callable[[], bool], timeout: float = 10.0, what: str = "condition") -> None:
+def wait_until(predicate: Callable[[], bool], timeout: float = 30.0, what: str = "condition") -> None:
     deadline = time.monotonic() + timeout
     while not predicate():
         if time.monotonic() > deadline:

@@ -23,7 +23,7 @@ class GoalID(_Message):
     _type = 'actionlib_msgs/GoalID'
     _md5sum = '302881f31927c1df708a2dbab0e80ee8'
     _has_header = False
-    _full_text = 'time stamp\nstring id\n'
+    _full_text = '# The stamp should store the time at which this goal was requested.\n# It is used by an action server when it tries to preempt all\n# goals that were requested before a certain time\ntime stamp\n\n# The id provides a way to associate feedback and\n# result message with specific goal requests. The id\n# specified must be unique.\nstring id\n\n'
     _slot_classes = {}
 
     def __init__(self, *args, **kwds):

@@ -25,7 +25,7 @@ class DiagnosticStatus(_Message):
     _type = 'diagnostic_msgs/DiagnosticStatus'
     _md5sum = 'd0ce08bc6e5ba34c7754f563a9cabaf1'
     _has_header = False
-    _full_text = 'byte OK=0\nbyte WARN=1\nbyte ERROR=2\nbyte STALE=3\nbyte level\nstring name\nstring message\nstring hardware_id\nKeyValue[] values\n\n================================================================================\nMSG: diagnostic_msgs/KeyValue\nstring key\nstring value\n'
+    _full_text = '# This message holds the status of an individual component of the robot.\n# \n\n# Possible levels of operations\nbyte OK=0\nbyte WARN=1\nbyte ERROR=2\nbyte STALE=3\n\nbyte level # level of operation enumerated above \nstring name # a description of the test/component reporting\nstring message # a description of the status\nstring hardware_id # a hardware unique string\nKeyValue[] values # an array of values associated with the status\n\n\n================================================================================\nMSG: diagnostic_msgs/KeyValue\nstring key # what to label this value when viewing\nstring value # a value to track over time\n'
     OK = 0
     WARN = 1
     ERROR = 2

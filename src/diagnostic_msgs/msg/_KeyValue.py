@@ -23,7 +23,7 @@ class KeyValue(_Message):
     _type = 'diagnostic_msgs/KeyValue'
     _md5sum = 'cf57fdc6617a881a88c16e768132149c'
     _has_header = False
-    _full_text = 'string key\nstring value\n'
+    _full_text = 'string key # what to label this value when viewing\nstring value # a value to track over time\n'
     _slot_classes = {}
 
     def __init__(self, *args, **kwds):

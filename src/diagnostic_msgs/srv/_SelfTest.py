@@ -72,7 +72,7 @@ class SelfTestResponse(_Message):
     _type = 'diagnostic_msgs/SelfTestResponse'
     _md5sum = 'ac21b1bab7ab17546986536c22eb34e9'
     _has_header = False
-    _full_text = 'string id\nbyte passed\nDiagnosticStatus[] status\n\n\n================================================================================\nMSG: diagnostic_msgs/DiagnosticStatus\nbyte OK=0\nbyte WARN=1\nbyte ERROR=2\nbyte STALE=3\nbyte level\nstring name\nstring message\nstring hardware_id\nKeyValue[] values\n\n================================================================================\nMSG: diagnostic_msgs/KeyValue\nstring key\nstring value\n'
+    _full_text = 'string id\nbyte passed\nDiagnosticStatus[] status\n\n\n================================================================================\nMSG: diagnostic_msgs/DiagnosticStatus\n# This message holds the status of an individual component of the robot.\n# \n\n# Possible levels of operations\nbyte OK=0\nbyte WARN=1\nbyte ERROR=2\nbyte STALE=3\n\nbyte level # level of operation enumerated above \nstring name # a description of the test/component reporting\nstring message # a description of the status\nstring hardware_id # a hardware unique string\nKeyValue[] values # an array of values associated with the status\n\n\n================================================================================\nMSG: diagnostic_msgs/KeyValue\nstring key # what to label this value when viewing\nstring value # a value to track over time\n'
     _slot_classes = {'status': _T_diagnostic_msgs__DiagnosticStatus}
 
     def __init__(self, *args, **kwds):

@@ -28,7 +28,7 @@ class PerformanceMetrics(_Message):
     _type = 'gazebo_msgs/PerformanceMetrics'
     _md5sum = '884f71fd5037b886ec5e126b83c4425a'
     _has_header = True
-    _full_text = 'Header header\n\nfloat64 real_time_factor\ngazebo_msgs/SensorPerformanceMetric[] sensors\n\n================================================================================\nMSG: std_msgs/Header\nuint32 seq\ntime stamp\nstring frame_id\n\n================================================================================\nMSG: gazebo_msgs/SensorPerformanceMetric\nstring name\nfloat64 sim_update_rate\nfloat64 real_update_rate\nfloat64 fps\n'
+    _full_text = "Header header\n\nfloat64 real_time_factor\ngazebo_msgs/SensorPerformanceMetric[] sensors\n\n================================================================================\nMSG: std_msgs/Header\n# Standard metadata for higher-level stamped data types.\n# This is generally used to communicate timestamped data \n# in a particular coordinate frame.\n# \n# sequence ID: consecutively increasing ID \nuint32 seq\n#Two-integer timestamp that is expressed as:\n# * stamp.sec: seconds (stamp_secs) since epoch (in Python the variable is called 'secs')\n# * stamp.nsec: nanoseconds since stamp_secs (in Python the variable is called 'nsecs')\n# time-handling sugar is provided by the client library\ntime stamp\n#Frame this data is associated with\nstring frame_id\n\n================================================================================\nMSG: gazebo_msgs/SensorPerformanceMetric\nstring name\nfloat64 sim_update_rate\nfloat64 real_update_rate\nfloat64 fps\n"
     _slot_classes = {'header': _T_std_msgs__Header, 'sensors': _T_gazebo_msgs__SensorPerformanceMetric}
 
     def __init__(self, *args, **kwds):

@@ -26,7 +26,7 @@ class ApplyJointEffortRequest(_Message):
     _type = 'gazebo_msgs/ApplyJointEffortRequest'
     _md5sum = '2c3396ab9af67a509ecd2167a8fe41a2'
     _has_header = False
-    _full_text = '\nstring joint_name\nfloat64 effort\ntime start_time\n\nduration duration\n\n\n\n\n'
+    _full_text = '# set urdf joint effort\nstring joint_name           # joint to apply wrench (linear force and torque)\nfloat64 effort              # effort to apply\ntime start_time             # optional wrench application start time (seconds)\n                            # if start_time < current time, start as soon as possible\nduration duration           # optional duration of wrench application time (seconds)\n                            # if duration < 0, apply wrench continuously without end\n                            # if duration = 0, do nothing\n                            # if duration < step size, assume step size and\n                            # display warning in status_message\n'
     _slot_classes = {}
 
     def __init__(self, *args, **kwds):
@@ -105,7 +105,7 @@ class ApplyJointEffortResponse(_Message):
     _type = 'gazebo_msgs/ApplyJointEffortResponse'
     _md5sum = '2ec6f3eff0161f4257b808b12bc830c2'
     _has_header = False
-    _full_text = 'bool success\nstring status_message\n\n'
+    _full_text = 'bool success                # return true if set wrench successful\nstring status_message       # comments if available\n\n'
     _slot_classes = {}
 
     def __init__(self, *args, **kwds):

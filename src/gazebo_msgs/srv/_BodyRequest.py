@@ -23,7 +23,7 @@ class BodyRequestRequest(_Message):
     _type = 'gazebo_msgs/BodyRequestRequest'
     _md5sum = '5eade9afe7f232d78005bd0cafeab755'
     _has_header = False
-    _full_text = 'string body_name\n'
+    _full_text = 'string body_name   # name of the body requested. body names are prefixed by model name, e.g. pr2::base_link\n'
     _slot_classes = {}
 
     def __init__(self, *args, **kwds):

@@ -25,7 +25,7 @@ class DeleteLightRequest(_Message):
     _type = 'gazebo_msgs/DeleteLightRequest'
     _md5sum = '4fb676dfb4741fc866365702a859441c'
     _has_header = False
-    _full_text = 'string light_name\n'
+    _full_text = 'string light_name                 # name of the light to be deleted\n'
     _slot_classes = {}
 
     def __init__(self, *args, **kwds):
@@ -85,7 +85,7 @@ class DeleteLightResponse(_Message):
     _type = 'gazebo_msgs/DeleteLightResponse'
     _md5sum = '2ec6f3eff0161f4257b808b12bc830c2'
     _has_header = False
-    _full_text = 'bool success\nstring status_message\n\n'
+    _full_text = 'bool success                      # return true if deletion is successful\nstring status_message             # comments if available\n\n'
     _slot_classes = {}
 
     def __init__(self, *args, **kwds):

@@ -25,7 +25,7 @@ class DeleteModelRequest(_Message):
     _type = 'gazebo_msgs/DeleteModelRequest'
     _md5sum = 'ea31c8eab6fc401383cf528a7c0984ba'
     _has_header = False
-    _full_text = 'string model_name\n'
+    _full_text = 'string model_name                 # name of the Gazebo Model to be deleted\n'
     _slot_classes = {}
 
     def __init__(self, *args, **kwds):
@@ -85,7 +85,7 @@ class DeleteModelResponse(_Message):
     _type = 'gazebo_msgs/DeleteModelResponse'
     _md5sum = '2ec6f3eff0161f4257b808b12bc830c2'
     _has_header = False
-    _full_text = 'bool success\nstring status_message\n\n'
+    _full_text = 'bool success                      # return true if deletion is successful\nstring status_message             # comments if available\n\n'
     _slot_classes = {}
 
     def __init__(self, *args, **kwds):

@@ -28,7 +28,7 @@ class GetJointPropertiesRequest(_Message):
     _type = 'gazebo_msgs/GetJointPropertiesRequest'
     _md5sum = '0be1351618e1dc030eb7959d9a4902de'
     _has_header = False
-    _full_text = 'string joint_name\n'
+    _full_text = 'string joint_name                    # name of joint\n'
     _slot_classes = {}
 
     def __init__(self, *args, **kwds):
@@ -88,7 +88,7 @@ class GetJointPropertiesResponse(_Message):
     _type = 'gazebo_msgs/GetJointPropertiesResponse'
     _md5sum = 'cd7b30a39faa372283dc94c5f6457f82'
     _has_header = False
-    _full_text = '\nuint8 type\nuint8 REVOLUTE    = 0\nuint8 CONTINUOUS  = 1\nuint8 PRISMATIC   = 2\nuint8 FIXED       = 3\nuint8 BALL        = 4\nuint8 UNIVERSAL   = 5\n\nfloat64[] damping\n\nfloat64[] position\nfloat64[] rate\n\nbool success\nstring status_message\n\n'
+    _full_text = '# joint type\nuint8 type\nuint8 REVOLUTE    = 0                # single DOF\nuint8 CONTINUOUS  = 1                # single DOF (revolute w/o joints)\nuint8 PRISMATIC   = 2                # single DOF\nuint8 FIXED       = 3                # 0 DOF\nuint8 BALL        = 4                # 3 DOF\nuint8 UNIVERSAL   = 5                # 2 DOF\n# dynamics properties\nfloat64[] damping\n# joint state\nfloat64[] position\nfloat64[] rate\n# service return status\nbool success                         # return true if get successful\nstring status_message                # comments if available\n\n'
     REVOLUTE = 0
     CONTINUOUS = 1
     PRISMATIC = 2

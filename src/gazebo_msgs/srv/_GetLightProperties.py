@@ -26,7 +26,7 @@ class GetLightPropertiesRequest(_Message):
     _type = 'gazebo_msgs/GetLightPropertiesRequest'
     _md5sum = '4fb676dfb4741fc866365702a859441c'
     _has_header = False
-    _full_text = 'string light_name\n'
+    _full_text = 'string light_name                    # name of Gazebo Light\n'
     _slot_classes = {}
 
     def __init__(self, *args, **kwds):
@@ -86,7 +86,7 @@ class GetLightPropertiesResponse(_Message):
     _type = 'gazebo_msgs/GetLightPropertiesResponse'
     _md5sum = '9a19ddd5aab4c13b7643d1722c709f1f'
     _has_header = False
-    _full_text = 'std_msgs/ColorRGBA diffuse\nfloat64 attenuation_constant\nfloat64 attenuation_linear\nfloat64 attenuation_quadratic\nbool success\nstring status_message\n\n\n================================================================================\nMSG: std_msgs/ColorRGBA\nfloat32 r\nfloat32 g\nfloat32 b\nfloat32 a\n'
+    _full_text = 'std_msgs/ColorRGBA diffuse           # diffuse color as red, green, blue, alpha\nfloat64 attenuation_constant\nfloat64 attenuation_linear\nfloat64 attenuation_quadratic\nbool success                         # return true if get successful\nstring status_message                # comments if available\n\n\n================================================================================\nMSG: std_msgs/ColorRGBA\nfloat32 r\nfloat32 g\nfloat32 b\nfloat32 a\n'
     _slot_classes = {'diffuse': _T_std_msgs__ColorRGBA}
 
     def __init__(self, *args, **kwds):

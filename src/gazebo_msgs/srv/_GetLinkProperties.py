@@ -28,7 +28,7 @@ class GetLinkPropertiesRequest(_Message):
     _type = 'gazebo_msgs/GetLinkPropertiesRequest'
     _md5sum = '7d82d60381f1b66a30f2157f60884345'
     _has_header = False
-    _full_text = 'string link_name\n\n'
+    _full_text = 'string link_name          # name of link\n                          # link names are prefixed by model name, e.g. pr2::base_link\n'
     _slot_classes = {}
 
     def __init__(self, *args, **kwds):
@@ -88,7 +88,7 @@ class GetLinkPropertiesResponse(_Message):
     _type = 'gazebo_msgs/GetLinkPropertiesResponse'
     _md5sum = 'a8619f92d17cfcc3958c0fd13299443d'
     _has_header = False
-    _full_text = 'geometry_msgs/Pose com\n\n\nbool gravity_mode\nfloat64 mass\nfloat64 ixx\nfloat64 ixy\nfloat64 ixz\nfloat64 iyy\nfloat64 iyz\nfloat64 izz\nbool success\nstring status_message\n\n\n================================================================================\nMSG: geometry_msgs/Pose\nPoint position\nQuaternion orientation\n\n================================================================================\nMSG: geometry_msgs/Point\nfloat64 x\nfloat64 y\nfloat64 z\n\n================================================================================\nMSG: geometry_msgs/Quaternion\nfloat64 x\nfloat64 y\nfloat64 z\nfloat64 w\n'
+    _full_text = 'geometry_msgs/Pose com    # center of mass location in link frame\n                          # and orientation of the moment of inertias\n                          # relative to the link frame\nbool gravity_mode         # set gravity mode on/off\nfloat64 mass              # linear mass of link\nfloat64 ixx               # moment of inertia\nfloat64 ixy               # moment of inertia\nfloat64 ixz               # moment of inertia\nfloat64 iyy               # moment of inertia\nfloat64 iyz               # moment of inertia\nfloat64 izz               # moment of inertia\nbool success              # return true if get info is successful\nstring status_message     # comments if available\n\n\n================================================================================\nMSG: geometry_msgs/Pose\n# A representation of pose in free space, composed of position and orientation. \nPoint position\nQuaternion orientation\n\n================================================================================\nMSG: geometry_msgs/Point\n# This contains the position of a point in free space\nfloat64 x\nfloat64 y\nfloat64 z\n\n================================================================================\nMSG: geometry_msgs/Quaternion\n# This represents an orientation in free space in quaternion form.\n\nfloat64 x\nfloat64 y\nfloat64 z\nfloat64 w\n'
     _slot_classes = {'com': _T_geometry_msgs__Pose}
 
     def __init__(self, *args, **kwds):

@@ -25,7 +25,7 @@ class GetModelPropertiesRequest(_Message):
     _type = 'gazebo_msgs/GetModelPropertiesRequest'
     _md5sum = 'ea31c8eab6fc401383cf528a7c0984ba'
     _has_header = False
-    _full_text = 'string model_name\n'
+    _full_text = 'string model_name                    # name of Gazebo Model\n'
     _slot_classes = {}
 
     def __init__(self, *args, **kwds):
@@ -85,7 +85,7 @@ class GetModelPropertiesResponse(_Message):
     _type = 'gazebo_msgs/GetModelPropertiesResponse'
     _md5sum = 'b7f370938ef77b464b95f1bab3ec5028'
     _has_header = False
-    _full_text = 'string parent_model_name\nstring canonical_body_name\nstring[] body_names\nstring[] geom_names\nstring[] joint_names\nstring[] child_model_names\nbool is_static\nbool success\nstring status_message\n\n'
+    _full_text = 'string parent_model_name             # parent model\nstring canonical_body_name           # name of canonical body, body names are prefixed by model name, e.g. pr2::base_link\nstring[] body_names                  # list of bodies, body names are prefixed by model name, e.g. pr2::base_link\nstring[] geom_names                  # list of geoms\nstring[] joint_names                 # list of joints attached to the model\nstring[] child_model_names           # list of child models\nbool is_static                       # returns true if model is static\nbool success                         # return true if get successful\nstring status_message                # comments if available\n\n'
     _slot_classes = {}
 
     def __init__(self, *args, **kwds):

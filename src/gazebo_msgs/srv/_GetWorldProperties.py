@@ -72,7 +72,7 @@ class GetWorldPropertiesResponse(_Message):
     _type = 'gazebo_msgs/GetWorldPropertiesResponse'
     _md5sum = '36bb0f2eccf4d8be971410c22818ba3f'
     _has_header = False
-    _full_text = 'float64 sim_time\nstring[] model_names\nbool rendering_enabled\nbool success\nstring status_message\n\n'
+    _full_text = 'float64 sim_time                     # current sim time\nstring[] model_names                 # list of models in the world\nbool rendering_enabled               # if X is used\nbool success                         # return true if get successful\nstring status_message                # comments if available\n\n'
     _slot_classes = {}
 
     def __init__(self, *args, **kwds):

@@ -23,7 +23,7 @@ class JointRequestRequest(_Message):
     _type = 'gazebo_msgs/JointRequestRequest'
     _md5sum = '0be1351618e1dc030eb7959d9a4902de'
     _has_header = False
-    _full_text = 'string joint_name\n'
+    _full_text = 'string joint_name   # name of the joint requested\n'
     _slot_classes = {}
 
     def __init__(self, *args, **kwds):

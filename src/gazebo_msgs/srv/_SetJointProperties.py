@@ -28,7 +28,7 @@ class SetJointPropertiesRequest(_Message):
     _type = 'gazebo_msgs/SetJointPropertiesRequest'
     _md5sum = '331fd8f35fd27e3c1421175590258e26'
     _has_header = False
-    _full_text = 'string joint_name\ngazebo_msgs/ODEJointProperties ode_joint_config\n\n================================================================================\nMSG: gazebo_msgs/ODEJointProperties\n# access to low level joint properties, change these at your own risk\nfloat64[] damping             # joint damping\nfloat64[] hiStop              # joint limit\nfloat64[] loStop              # joint limit\nfloat64[] erp                 # set joint erp\nfloat64[] cfm                 # set joint cfm\nfloat64[] stop_erp            # set joint erp for joint limit "contact" joint\nfloat64[] stop_cfm            # set joint cfm for joint limit "contact" joint\nfloat64[] fudge_factor        # joint fudge_factor applied at limits, see ODE manual for info.\nfloat64[] fmax                # ode joint param fmax\nfloat64[] vel                 # ode joint param vel\n'
+    _full_text = 'string joint_name                               # name of joint\ngazebo_msgs/ODEJointProperties ode_joint_config # access to ODE joint dynamics properties\n\n================================================================================\nMSG: gazebo_msgs/ODEJointProperties\n# access to low level joint properties, change these at your own risk\nfloat64[] damping             # joint damping\nfloat64[] hiStop              # joint limit\nfloat64[] loStop              # joint limit\nfloat64[] erp                 # set joint erp\nfloat64[] cfm                 # set joint cfm\nfloat64[] stop_erp            # set joint erp for joint limit "contact" joint\nfloat64[] stop_cfm            # set joint cfm for joint limit "contact" joint\nfloat64[] fudge_factor        # joint fudge_factor applied at limits, see ODE manual for info.\nfloat64[] fmax                # ode joint param fmax\nfloat64[] vel                 # ode joint param vel\n'
     _slot_classes = {'ode_joint_config': _T_gazebo_msgs__ODEJointProperties}
 
     def __init__(self, *args, **kwds):
@@ -235,7 +235,7 @@ class SetJointPropertiesResponse(_Message):
     _type = 'gazebo_msgs/SetJointPropertiesResponse'
     _md5sum = '2ec6f3eff0161f4257b808b12bc830c2'
     _has_header = False
-    _full_text = 'bool success\nstring status_message\n\n'
+    _full_text = 'bool success                                    # return true if get successful\nstring status_message                           # comments if available\n\n'
     _slot_classes = {}
 
     def __init__(self, *args, **kwds):

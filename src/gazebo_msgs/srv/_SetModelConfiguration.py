@@ -27,7 +27,7 @@ class SetModelConfigurationRequest(_Message):
     _type = 'gazebo_msgs/SetModelConfigurationRequest'
     _md5sum = '160eae60f51fabff255480c70afa289f'
     _has_header = False
-    _full_text = '\nstring model_name\nstring urdf_param_name\n\nstring[] joint_names\nfloat64[] joint_positions\n'
+    _full_text = '# Set joint positions for a model\nstring model_name           # model to set state\nstring urdf_param_name      # UNUSED\n\nstring[] joint_names        # list of joints to set positions.  if joint is not listed here, preserve current position.\nfloat64[] joint_positions   # set to this position.\n'
     _slot_classes = {}
 
     def __init__(self, *args, **kwds):
@@ -169,7 +169,7 @@ class SetModelConfigurationResponse(_Message):
     _type = 'gazebo_msgs/SetModelConfigurationResponse'
     _md5sum = '2ec6f3eff0161f4257b808b12bc830c2'
     _has_header = False
-    _full_text = 'bool success\nstring status_message\n\n'
+    _full_text = 'bool success                # return true if setting state successful\nstring status_message       # comments if available\n\n'
     _slot_classes = {}
 
     def __init__(self, *args, **kwds):

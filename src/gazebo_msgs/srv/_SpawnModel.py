@@ -29,7 +29,7 @@ class SpawnModelRequest(_Message):
     _type = 'gazebo_msgs/SpawnModelRequest'
     _md5sum = '6d0eba5753761cd57e6263a056b79930'
     _has_header = False
-    _full_text = 'string model_name\nstring model_xml\nstring robot_namespace\ngeometry_msgs/Pose initial_pose\nstring reference_frame\n\n\n\n\n================================================================================\nMSG: geometry_msgs/Pose\nPoint position\nQuaternion orientation\n\n================================================================================\nMSG: geometry_msgs/Point\nfloat64 x\nfloat64 y\nfloat64 z\n\n================================================================================\nMSG: geometry_msgs/Quaternion\nfloat64 x\nfloat64 y\nfloat64 z\nfloat64 w\n'
+    _full_text = 'string model_name                 # name of the model to be spawn\nstring model_xml                  # this should be an urdf or gazebo xml\nstring robot_namespace            # spawn robot and all ROS interfaces under this namespace\ngeometry_msgs/Pose initial_pose   # only applied to canonical body\nstring reference_frame            # initial_pose is defined relative to the frame of this model/body\n                                  # if left empty or "world", then gazebo world frame is used\n                                  # if non-existent model/body is specified, an error is returned\n                                  #   and the model is not spawned\n\n================================================================================\nMSG: geometry_msgs/Pose\n# A representation of pose in free space, composed of position and orientation. \nPoint position\nQuaternion orientation\n\n================================================================================\nMSG: geometry_msgs/Point\n# This contains the position of a point in free space\nfloat64 x\nfloat64 y\nfloat64 z\n\n================================================================================\nMSG: geometry_msgs/Quaternion\n# This represents an orientation in free space in quaternion form.\n\nfloat64 x\nfloat64 y\nfloat64 z\nfloat64 w\n'
     _slot_classes = {'initial_pose': _T_geometry_msgs__Pose}
 
     def __init__(self, *args, **kwds):
@@ -149,7 +149,7 @@ class SpawnModelResponse(_Message):
     _type = 'gazebo_msgs/SpawnModelResponse'
     _md5sum = '2ec6f3eff0161f4257b808b12bc830c2'
     _has_header = False
-    _full_text = 'bool success\nstring status_message\n\n'
+    _full_text = 'bool success                      # return true if spawn successful\nstring status_message             # comments if available\n\n'
     _slot_classes = {}
 
     def __init__(self, *args, **kwds):

@@ -24,7 +24,7 @@ class Accel(_Message):
     _type = 'geometry_msgs/Accel'
     _md5sum = '9f195f881246fdfa2798d1d3eebca84a'
     _has_header = False
-    _full_text = 'Vector3 linear\nVector3 angular\n\n================================================================================\nMSG: geometry_msgs/Vector3\nfloat64 x\nfloat64 y\nfloat64 z\n'
+    _full_text = '# This expresses acceleration in free space broken into its linear and angular parts.\nVector3  linear\nVector3  angular\n\n================================================================================\nMSG: geometry_msgs/Vector3\n# This represents a vector in free space. \n# It is only meant to represent a direction. Therefore, it does not\n# make sense to apply a translation to it (e.g., when applying a \n# generic rigid transformation to a Vector3, tf2 will only apply the\n# rotation). If you want your data to be translatable too, use the\n# geometry_msgs/Point message instead.\n\nfloat64 x\nfloat64 y\nfloat64 z'
     _slot_classes = {'linear': _T_geometry_msgs__Vector3, 'angular': _T_geometry_msgs__Vector3}
 
     def __init__(self, *args, **kwds):

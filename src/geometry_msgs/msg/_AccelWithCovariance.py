@@ -27,7 +27,7 @@ class AccelWithCovariance(_Message):
     _type = 'geometry_msgs/AccelWithCovariance'
     _md5sum = 'ad5a718d699c6be72a02b8d6a139f334'
     _has_header = False
-    _full_text = 'Accel accel\nfloat64[36] covariance\n\n================================================================================\nMSG: geometry_msgs/Accel\nVector3 linear\nVector3 angular\n\n================================================================================\nMSG: geometry_msgs/Vector3\nfloat64 x\nfloat64 y\nfloat64 z\n'
+    _full_text = '# This expresses acceleration in free space with uncertainty.\n\nAccel accel\n\n# Row-major representation of the 6x6 covariance matrix\n# The orientation parameters use a fixed-axis representation.\n# In order, the parameters are:\n# (x, y, z, rotation about X axis, rotation about Y axis, rotation about Z axis)\nfloat64[36] covariance\n\n================================================================================\nMSG: geometry_msgs/Accel\n# This expresses acceleration in free space broken into its linear and angular parts.\nVector3  linear\nVector3  angular\n\n================================================================================\nMSG: geometry_msgs/Vector3\n# This represents a vector in free space. \n# It is only meant to represent a direction. Therefore, it does not\n# make sense to apply a translation to it (e.g., when applying a \n# generic rigid transformation to a Vector3, tf2 will only apply the\n# rotation). If you want your data to be translatable too, use the\n# geometry_msgs/Point message instead.\n\nfloat64 x\nfloat64 y\nfloat64 z'
     _slot_classes = {'accel': _T_geometry_msgs__Accel}
 
     def __init__(self, *args, **kwds):

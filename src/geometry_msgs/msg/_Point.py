@@ -23,7 +23,7 @@ class Point(_Message):
     _type = 'geometry_msgs/Point'
     _md5sum = '4a842b65f413084dc2b10fb484ea7f17'
     _has_header = False
-    _full_text = 'float64 x\nfloat64 y\nfloat64 z\n'
+    _full_text = '# This contains the position of a point in free space\nfloat64 x\nfloat64 y\nfloat64 z\n'
     _slot_classes = {}
 
     def __init__(self, *args, **kwds):

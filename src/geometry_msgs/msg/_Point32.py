@@ -23,7 +23,7 @@ class Point32(_Message):
     _type = 'geometry_msgs/Point32'
     _md5sum = 'cc153912f1453b708d221682bc23d9ac'
     _has_header = False
-    _full_text = 'float32 x\nfloat32 y\nfloat32 z\n'
+    _full_text = '# This contains the position of a point in free space(with 32 bits of precision).\n# It is recommeded to use Point wherever possible instead of Point32.  \n# \n# This recommendation is to promote interoperability.  \n#\n# This message is designed to take up less space when sending\n# lots of points at once, as in the case of a PointCloud.  \n\nfloat32 x\nfloat32 y\nfloat32 z'
     _slot_classes = {}
 
     def __init__(self, *args, **kwds):

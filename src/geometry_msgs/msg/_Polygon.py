@@ -25,7 +25,7 @@ class Polygon(_Message):
     _type = 'geometry_msgs/Polygon'
     _md5sum = 'cd60a26494a087f577976f0329fa120e'
     _has_header = False
-    _full_text = 'Point32[] points\n\n================================================================================\nMSG: geometry_msgs/Point32\nfloat32 x\nfloat32 y\nfloat32 z\n'
+    _full_text = '#A specification of a polygon where the first and last points are assumed to be connected\nPoint32[] points\n\n================================================================================\nMSG: geometry_msgs/Point32\n# This contains the position of a point in free space(with 32 bits of precision).\n# It is recommeded to use Point wherever possible instead of Point32.  \n# \n# This recommendation is to promote interoperability.  \n#\n# This message is designed to take up less space when sending\n# lots of points at once, as in the case of a PointCloud.  \n\nfloat32 x\nfloat32 y\nfloat32 z'
     _slot_classes = {'points': _T_geometry_msgs__Point32}
 
     def __init__(self, *args, **kwds):

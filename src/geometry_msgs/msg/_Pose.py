@@ -25,7 +25,7 @@ class Pose(_Message):
     _type = 'geometry_msgs/Pose'
     _md5sum = 'e45d45a5a1ce597b249e23fb30fc871f'
     _has_header = False
-    _full_text = 'Point position\nQuaternion orientation\n\n================================================================================\nMSG: geometry_msgs/Point\nfloat64 x\nfloat64 y\nfloat64 z\n\n================================================================================\nMSG: geometry_msgs/Quaternion\nfloat64 x\nfloat64 y\nfloat64 z\nfloat64 w\n'
+    _full_text = '# A representation of pose in free space, composed of position and orientation. \nPoint position\nQuaternion orientation\n\n================================================================================\nMSG: geometry_msgs/Point\n# This contains the position of a point in free space\nfloat64 x\nfloat64 y\nfloat64 z\n\n================================================================================\nMSG: geometry_msgs/Quaternion\n# This represents an orientation in free space in quaternion form.\n\nfloat64 x\nfloat64 y\nfloat64 z\nfloat64 w\n'
     _slot_classes = {'position': _T_geometry_msgs__Point, 'orientation': _T_geometry_msgs__Quaternion}
 
     def __init__(self, *args, **kwds):

@@ -28,7 +28,7 @@ class PoseWithCovariance(_Message):
     _type = 'geometry_msgs/PoseWithCovariance'
     _md5sum = 'c23e848cf1b7533a8d7c259073a97e6f'
     _has_header = False
-    _full_text = 'Pose pose\nfloat64[36] covariance\n\n================================================================================\nMSG: geometry_msgs/Pose\nPoint position\nQuaternion orientation\n\n================================================================================\nMSG: geometry_msgs/Point\nfloat64 x\nfloat64 y\nfloat64 z\n\n================================================================================\nMSG: geometry_msgs/Quaternion\nfloat64 x\nfloat64 y\nfloat64 z\nfloat64 w\n'
+    _full_text = '# This represents a pose in free space with uncertainty.\n\nPose pose\n\n# Row-major representation of the 6x6 covariance matrix\n# The orientation parameters use a fixed-axis representation.\n# In order, the parameters are:\n# (x, y, z, rotation about X axis, rotation about Y axis, rotation about Z axis)\nfloat64[36] covariance\n\n================================================================================\nMSG: geometry_msgs/Pose\n# A representation of pose in free space, composed of position and orientation. \nPoint position\nQuaternion orientation\n\n================================================================================\nMSG: geometry_msgs/Point\n# This contains the position of a point in free space\nfloat64 x\nfloat64 y\nfloat64 z\n\n================================================================================\nMSG: geometry_msgs/Quaternion\n# This represents an orientation in free space in quaternion form.\n\nfloat64 x\nfloat64 y\nfloat64 z\nfloat64 w\n'
     _slot_classes = {'pose': _T_geometry_msgs__Pose}
 
     def __init__(self, *args, **kwds):

@@ -23,7 +23,7 @@ class Quaternion(_Message):
     _type = 'geometry_msgs/Quaternion'
     _md5sum = 'a779879fadf0160734f906b8c19c7004'
     _has_header = False
-    _full_text = 'float64 x\nfloat64 y\nfloat64 z\nfloat64 w\n'
+    _full_text = '# This represents an orientation in free space in quaternion form.\n\nfloat64 x\nfloat64 y\nfloat64 z\nfloat64 w\n'
     _slot_classes = {}
 
     def __init__(self, *args, **kwds):

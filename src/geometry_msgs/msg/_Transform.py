@@ -25,7 +25,7 @@ class Transform(_Message):
     _type = 'geometry_msgs/Transform'
     _md5sum = 'ac9eff44abf714214112b05d54a3cf9b'
     _has_header = False
-    _full_text = 'Vector3 translation\nQuaternion rotation\n\n================================================================================\nMSG: geometry_msgs/Vector3\nfloat64 x\nfloat64 y\nfloat64 z\n\n================================================================================\nMSG: geometry_msgs/Quaternion\nfloat64 x\nfloat64 y\nfloat64 z\nfloat64 w\n'
+    _full_text = '# This represents the transform between two coordinate frames in free space.\n\nVector3 translation\nQuaternion rotation\n\n================================================================================\nMSG: geometry_msgs/Vector3\n# This represents a vector in free space. \n# It is only meant to represent a direction. Therefore, it does not\n# make sense to apply a translation to it (e.g., when applying a \n# generic rigid transformation to a Vector3, tf2 will only apply the\n# rotation). If you want your data to be translatable too, use the\n# geometry_msgs/Point message instead.\n\nfloat64 x\nfloat64 y\nfloat64 z\n================================================================================\nMSG: geometry_msgs/Quaternion\n# This represents an orientation in free space in quaternion form.\n\nfloat64 x\nfloat64 y\nfloat64 z\nfloat64 w\n'
     _slot_classes = {'translation': _T_geometry_msgs__Vector3, 'rotation': _T_geometry_msgs__Quaternion}
 
     def __init__(self, *args, **kwds):

@@ -27,7 +27,7 @@ class TwistWithCovariance(_Message):
     _type = 'geometry_msgs/TwistWithCovariance'
     _md5sum = '1fe8a28e6890a4cc3ae4c3ca5c7d82e6'
     _has_header = False
-    _full_text = 'Twist twist\nfloat64[36] covariance\n\n================================================================================\nMSG: geometry_msgs/Twist\nVector3 linear\nVector3 angular\n\n================================================================================\nMSG: geometry_msgs/Vector3\nfloat64 x\nfloat64 y\nfloat64 z\n'
+    _full_text = '# This expresses velocity in free space with uncertainty.\n\nTwist twist\n\n# Row-major representation of the 6x6 covariance matrix\n# The orientation parameters use a fixed-axis representation.\n# In order, the parameters are:\n# (x, y, z, rotation about X axis, rotation about Y axis, rotation about Z axis)\nfloat64[36] covariance\n\n================================================================================\nMSG: geometry_msgs/Twist\n# This expresses velocity in free space broken into its linear and angular parts.\nVector3  linear\nVector3  angular\n\n================================================================================\nMSG: geometry_msgs/Vector3\n# This represents a vector in free space. \n# It is only meant to represent a direction. Therefore, it does not\n# make sense to apply a translation to it (e.g., when applying a \n# generic rigid transformation to a Vector3, tf2 will only apply the\n# rotation). If you want your data to be translatable too, use the\n# geometry_msgs/Point message instead.\n\nfloat64 x\nfloat64 y\nfloat64 z'
     _slot_classes = {'twist': _T_geometry_msgs__Twist}
 
     def __init__(self, *args, **kwds):

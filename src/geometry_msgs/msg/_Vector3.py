@@ -23,7 +23,7 @@ class Vector3(_Message):
     _type = 'geometry_msgs/Vector3'
     _md5sum = '4a842b65f413084dc2b10fb484ea7f17'
     _has_header = False
-    _full_text = 'float64 x\nfloat64 y\nfloat64 z\n'
+    _full_text = '# This represents a vector in free space. \n# It is only meant to represent a direction. Therefore, it does not\n# make sense to apply a translation to it (e.g., when applying a \n# generic rigid transformation to a Vector3, tf2 will only apply the\n# rotation). If you want your data to be translatable too, use the\n# geometry_msgs/Point message instead.\n\nfloat64 x\nfloat64 y\nfloat64 z'
     _slot_classes = {}
 
     def __init__(self, *args, **kwds):

@@ -24,7 +24,7 @@ class Wrench(_Message):
     _type = 'geometry_msgs/Wrench'
     _md5sum = '4f539cf138b23283b520fd271b567936'
     _has_header = False
-    _full_text = 'Vector3 force\nVector3 torque\n\n================================================================================\nMSG: geometry_msgs/Vector3\nfloat64 x\nfloat64 y\nfloat64 z\n'
+    _full_text = '# This represents force in free space, separated into\n# its linear and angular parts.\nVector3  force\nVector3  torque\n\n================================================================================\nMSG: geometry_msgs/Vector3\n# This represents a vector in free space. \n# It is only meant to represent a direction. Therefore, it does not\n# make sense to apply a translation to it (e.g., when applying a \n# generic rigid transformation to a Vector3, tf2 will only apply the\n# rotation). If you want your data to be translatable too, use the\n# geometry_msgs/Point message instead.\n\nfloat64 x\nfloat64 y\nfloat64 z'
     _slot_classes = {'force': _T_geometry_msgs__Vector3, 'torque': _T_geometry_msgs__Vector3}
 
     def __init__(self, *args, **kwds):

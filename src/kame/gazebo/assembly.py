@@ -13,8 +13,14 @@ How Gazebo's concepts map onto MuJoCo's:
   see the mesh itself). Inertia is the link's <inertial>, never computed from geoms.
 - Friction: Gazebo (ODE) takes the smaller `mu` of two touching surfaces, MuJoCo the larger,
   unless one geom has a higher priority: so a collision's priority ranks its mu, lowest mu
-  highest (`rank_friction`). `mu2` (the second direction) is not simulated: MuJoCo's friction
-  is isotropic with the cone used here.
+  highest (`rank_friction`). `mu2` (ODE's second direction, across <fdir1> or an axis ODE picks
+  from the contact normal) cannot be simulated apart: MuJoCo's friction is isotropic with the
+  cone used here, its contact frame's axes are its colliders' choice. A collision takes the
+  smaller of its mu and mu2, so a contact grips as the weaker of ODE's two directions (ODE takes
+  the smaller per direction of the two surfaces; the smaller of those is this): nothing slides
+  in kame that would hold in Gazebo in one direction only, never the other way round. A model
+  whose smaller coefficient is below 1 (Gazebo's default, where it matters against ordinary
+  surfaces) is warned about once.
 - Every hinge and slide joint has a velocity actuator, idle (gain 0) until a drive asks for
   it: MuJoCo integrates an actuator's velocity gain implicitly, so a stiff wheel drive stays
   stable where a force computed outside the step would not.
@@ -76,6 +82,7 @@ def add_model(spec: mujoco.MjSpec, model: d.Model, load_mesh: MeshLoader, warnin
         children.setdefault(joint.parent, []).append(child)
     roots = [name for name in links if name not in parent_joint or parent_joint[name].parent == "world"]
     placed: set[str] = set()
+    anisotropic: list[str] = []
 
     def add(name: str, parent_body: mujoco.MjsBody, parent_pose: Pose) -> None:
         link = links[name]
@@ -92,6 +99,7 @@ def add_model(spec: mujoco.MjSpec, model: d.Model, load_mesh: MeshLoader, warnin
         elif joint is None and not model.static:
             body.add_freejoint(name=free_joint_name(f"{model.name}::{name}"))
         _geoms(spec, body, model.name, link, load_mesh)
+        anisotropic.extend(f"{name}::{c.name}" for c in link.collisions if min(c.mu2, 1.0) != min(c.mu, 1.0))
         placed.add(name)
         for child in children.get(name, []):
             if child in placed:
@@ -103,6 +111,9 @@ def add_model(spec: mujoco.MjSpec, model: d.Model, load_mesh: MeshLoader, warnin
     for name in links:
         if name not in placed:  # only reachable through a loop: hang it on a free joint of its own
             add(name, spec.worldbody, Pose())
+    if anisotropic:
+        warnings.append(f"model {model.name!r}: collisions {', '.join(anisotropic)} give <mu2> apart from <mu>; "
+                        "MuJoCo's friction is the same in every direction, so each takes the smaller")
     _exclude_self_collisions(spec, model)
 
 
@@ -178,8 +189,9 @@ def _geoms(spec: mujoco.MjSpec, body: mujoco.MjsBody, model: str, link: d.Link, 
     for collision in link.collisions:
         geom = _geom(spec, body, collision.geometry, collision.pose, unique(f"{prefix}::{collision.name}"), load_mesh)
         geom.group = COLLISION_GROUP
-        geom.friction = (collision.mu, 0.005, 0.0001)
-        if collision.mu <= 0:  # frictionless (a caster's mu 0): MuJoCo's friction cone of mu 0 is degenerate and
+        mu = min(collision.mu, collision.mu2)
+        geom.friction = (mu, 0.005, 0.0001)
+        if mu <= 0:  # frictionless (a caster's mu 0): MuJoCo's friction cone of mu 0 is degenerate and
             geom.condim = 1  # its solver diverges on it; a normal-only contact is what mu 0 means
         geom.mass = 0.0
         geom.rgba = (0.5, 0.5, 0.5, 1.0)  # rays skip transparent geoms; cameras hide this group instead

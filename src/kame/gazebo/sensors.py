@@ -2,7 +2,9 @@
 range (sonar, IR), IMU, contacts (bumper); cameras are in kame.gazebo.camera.
 
 - Rays are cast by MuJoCo (mj_multiRay) against collision shapes, from the sensor's origin,
-  ignoring the sensor's own link. A ray's reading starts at the range's min (nearer hits are not
+  ignoring the sensor's own link and the links welded to it by fixed joints (Gazebo lumps those
+  into one link, whose collisions its rays skip: a URDF's cliff sensor inside the base sees the
+  floor, not the base). A ray's reading starts at the range's min (nearer hits are not
   seen, as Gazebo's rays start there); beyond max (or no hit) it is +inf. `samples` x
   `resolution` rays are cast over [min_angle, max_angle], horizontal and vertical. Gaussian
   noise (mean, stddev) is added to finite readings, then clipped to [min, max]; none without a
@@ -34,6 +36,7 @@ from kame.gazebo.xmltree import Element
 
 _COLLISIONS = np.zeros(6, dtype=np.uint8)
 _COLLISIONS[COLLISION_GROUP] = 1
+MAX_RECASTS = 8  # a ray passes at most this many welded links' collisions (and the range's min)
 
 
 @dataclass(frozen=True)
@@ -126,11 +129,21 @@ def cast(model: mujoco.MjModel, data: mujoco.MjData, origin: Pose, body: int, di
     geoms = np.empty(count, dtype=np.int32)
     mujoco.mj_multiRay(model, data, start, world_directions.ravel().copy(), _COLLISIONS, 1, body, geoms, found,
                        None, count, range_max)
+    weld = model.body_weldid[body]  # 0 when the link is fixed to the world: then only its own body is skipped
+    welded = (model.body_weldid[model.geom_bodyid[geoms]] == weld) & (weld != 0)
     geom = np.empty(1, dtype=np.int32)
-    for i in np.flatnonzero((found >= 0) & (found < range_min)):  # seen past: cast again from range_min out
+    for i in np.flatnonzero((found >= 0) & ((found < range_min) | welded)):  # seen past: cast again beyond
         direction = world_directions[i]
-        beyond = mujoco.mj_ray(model, data, start + direction * range_min, direction, _COLLISIONS, 1, body, geom)
-        found[i] = beyond + range_min if beyond >= 0 else -1.0
+        begin, distance, hit_body = 0.0, float(found[i]), int(model.geom_bodyid[geoms[i]])
+        for _ in range(MAX_RECASTS):
+            at = begin + distance
+            if distance < 0 or (at >= range_min and (weld == 0 or model.body_weldid[hit_body] != weld)):
+                break
+            # nearer than the range's min: from there; a welded link's collision: on past it
+            begin, skipped = (range_min, body) if at < range_min else (at, hit_body)
+            distance = mujoco.mj_ray(model, data, start + direction * begin, direction, _COLLISIONS, 1, skipped, geom)
+            hit_body = int(model.geom_bodyid[geom[0]])
+        found[i] = begin + distance if distance >= 0 else -1.0
     ranges = np.where(found < 0, np.inf, found)
     ranges[ranges > range_max] = np.inf
     return ranges

@@ -34,8 +34,12 @@ API (what the gazebo_ros side calls; names of links and joints are "model::link"
 - A World is not thread-safe: its owner (the node) calls it from one thread at a time, and renders
   cameras from one thread (an EGL context is current in one thread). `close()` frees the cameras'
   GL contexts.
-- Contacts are those of the last step's collision pass; velocity limits of joints are not enforced
-  (effort limits are, on applied efforts); <kinematic> links are simulated as dynamic ones.
+- Contacts are those of the last step's collision pass; <kinematic> links are simulated as dynamic ones.
+- Joint limits: an applied effort is cut to the joint's <effort>, and dropped while the joint
+  turns faster than its <velocity> in the effort's direction (Gazebo's
+  Joint::CheckAndTruncateForce); a drive's velocity is held within <velocity> too (Gazebo's ODE
+  motor is not: there a drive past the limit gets it). A joint moved by other forces (gravity, a
+  push) may exceed it, as in Gazebo.
 """
 
 from __future__ import annotations
@@ -596,6 +600,9 @@ class World:
         # it drives through and the wheels chatter and slip, ten times softer it lags
         inertia = float(self.model.dof_M0[self.model.jnt_dofadr[jid]])
         gain = DRIVE_STIFFNESS * inertia / self.physics.max_step_size if max_effort > 0 else 0.0
+        limit = self.joint_description(joint).axis.velocity
+        if limit >= 0:
+            velocity = max(-limit, min(limit, velocity))
         self.model.actuator_gainprm[actuator, 0] = gain
         self.model.actuator_biasprm[actuator, 2] = -gain
         self.model.actuator_forcelimited[actuator] = 1
@@ -622,10 +629,14 @@ class World:
                 self.data.xfrc_applied[body, 3:] += torque + np.cross(at - self.data.xipos[body], force)
         for effort in self._efforts:
             if effort.start <= now < effort.end:
-                jid = self._joint_id(effort.target)
-                limit = self.joint_description(effort.target).axis.effort
-                value = effort.values[0] if limit < 0 else max(-limit, min(limit, effort.values[0]))
-                self.data.qfrc_applied[self.model.jnt_dofadr[jid]] += value
+                dof = self.model.jnt_dofadr[self._joint_id(effort.target)]
+                axis = self.joint_description(effort.target).axis
+                value = effort.values[0] if axis.effort < 0 else max(-axis.effort, min(axis.effort, effort.values[0]))
+                speed = self.data.qvel[dof]
+                if axis.velocity >= 0 and ((speed > axis.velocity and value > 0) or
+                                           (speed < -axis.velocity and value < 0)):
+                    value = 0.0  # past its velocity limit, no effort drives it further
+                self.data.qfrc_applied[dof] += value
         self._wrenches = [w for w in self._wrenches if w.end > now]
         self._efforts = [e for e in self._efforts if e.end > now]
         self._forces_applied = True

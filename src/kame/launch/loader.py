@@ -30,7 +30,7 @@ import yaml
 from kame import names
 from kame.launch import xmltree
 from kame.launch.errors import ArgError, LaunchError, PackageNotFound
-from kame.launch.model import Executable, LaunchConfig, Machine, Node, Param
+from kame.launch.model import Executable, LaunchConfig, Machine, Node, Param, node_problem
 from kame.launch.substitution import Substituter
 from kame.launch.values import bool_attr, convert_value, float_attr
 from kame.launch.xmltree import Element
@@ -393,14 +393,20 @@ class LaunchLoader:
                 else:
                     self.config.errors.append(f"WARN: unrecognized '{t.tag}' child tag in the parent tag element: "
                                               f"{tag.toxml()}")
+            output = "log" if is_test else self._opt(tag, ctx, "output")
+            cwd = self._opt(tag, ctx, "cwd")
+            cwd = "ROS_HOME" if cwd == "ros_home" else cwd
+            problem = node_problem(pkg, node_type, name, respawn, required, output, cwd)
+            if problem is not None:
+                raise LaunchError(problem)
             for p in (*ctx.params, *param_ns.params):
                 key = p.key[1:] if names.is_private(p.key) else p.key
                 self.config.add_param(Param(param_ns.ns + key, p.value), verbose=self.verbose)
             return Node(pkg, node_type, name, namespace=child.ns, machine_name=machine,
                         args=self._opt(tag, ctx, "args") or "",
                         respawn=respawn, respawn_delay=respawn_delay, remap_args=remap_ctx.remap_args(),
-                        env_args=list(env_ctx.env_args), output=self._opt(tag, ctx, "output"),
-                        cwd=self._opt(tag, ctx, "cwd"), launch_prefix=self._opt(tag, ctx, "launch-prefix"),
+                        env_args=list(env_ctx.env_args), output=None if is_test else output,
+                        cwd=cwd, launch_prefix=self._opt(tag, ctx, "launch-prefix"),
                         required=required, filename=ctx.filename, line=tag.line, test_name=test_name,
                         time_limit=time_limit, retry=retry)
         except (ArgError, PackageNotFound):

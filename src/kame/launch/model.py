@@ -62,6 +62,25 @@ class Machine:
     timeout: float | None = None
 
 
+def node_problem(package: str, node_type: str, name: str | None, respawn: bool, required: bool,
+                 output: str | None, cwd: str | None) -> str | None:
+    """Why roslaunch refuses a node with these attributes (cwd already with `ros_home` as ROS_HOME),
+    in its words and order; None when it takes it."""
+    if respawn and required:
+        return "respawn and required cannot both be set to true"
+    if name and "/" in name:
+        return "node name cannot contain a namespace"
+    if not package.strip():
+        return "package must be non-empty"
+    if not node_type.strip():
+        return "type must be non-empty"
+    if output not in ("log", "screen", None):
+        return "output must be one of 'log', 'screen'"
+    if cwd not in ("ROS_HOME", "node", None):
+        return "cwd must be one of 'ROS_HOME', 'node'"
+    return None
+
+
 LOCAL_ADDRESSES = frozenset({"localhost", "127.0.0.1", "::1", "0.0.0.0"})
 
 

@@ -21,7 +21,7 @@ from kame.catkin import executables
 from kame.cli.roscore import ROS_DISTRO, ROS_VERSION
 from kame.cli.rosmaster import log_dir, ros_home
 from kame.launch import plan
-from kame.launch.errors import LaunchError
+from kame.launch.errors import LaunchError, PackageNotFound
 from kame.launch.model import LOCAL_ADDRESSES, LaunchConfig, Node, Param
 from kame.launch.remote import RemoteChild
 from kame.launch.server import LaunchServer, ProcessState
@@ -33,6 +33,8 @@ from kame.node.remote_poll import REMOTE_POLL_PERIOD
 from kame.param_yaml import ParamValueError, check
 
 CALLER = "/roslaunch"
+# the core's nodes, which kame runs from its own modules (roscore.xml's rosout has no package here)
+CORE_PROGRAMS = {("rosout", "rosout"): (sys.executable, "-m", "kame.cli.rosout")}
 MASTER_START_TIMEOUT = 10.0
 
 
@@ -189,7 +191,7 @@ class LaunchRun:
     async def _core_nodes(self) -> None:
         rosout = Node("rosout", "rosout", "rosout", respawn=True)
         self.counter += 1
-        spec = plan.plan_process(rosout, self.counter, [sys.executable, "-m", "kame.cli.rosout"], self.options.env,
+        spec = plan.plan_process(rosout, self.counter, list(CORE_PROGRAMS["rosout", "rosout"]), self.options.env,
                                  self.options.master_uri, self.options.run_dir, self.options.ros_home)
         if await self.monitor.add(Child(spec, self.options.run_dir, core=True)):
             say("started core service [/rosout]")
@@ -215,16 +217,7 @@ class LaunchRun:
 
     def program(self, node: Node) -> list[str]:
         """The program of `node`; LaunchError in roslaunch's words when there is none."""
-        env = self.options.env
-        package = executables.packages(env).get(node.package)
-        if package is None:
-            raise LaunchError("\n".join([node.package, *(f"ROS path [{i}]={p}"
-                                                          for i, p in enumerate(executables.ros_paths(env)))]))
-        hits = executables.find_node(package, node.type, env)
-        if not hits:
-            raise LaunchError(f"Cannot locate node of type [{node.type}] in package [{node.package}]. Make sure "
-                              "file exists in package path and permission is set to executable (chmod +x)")
-        return executables.command_for(hits[0])
+        return find_program(node.package, node.type, self.options.env)
 
     async def launch_node(self, node: Node) -> Child | None:
         if self.options.force_required:
@@ -302,6 +295,22 @@ class LaunchRun:
             pass  # the master went first, or never had it (the launch failed before setting it)
         finally:
             proxy.close()
+
+
+def find_program(package_name: str, node_type: str, env: Mapping[str, str]) -> list[str]:
+    """The argv that runs node `node_type` of `package_name`; LaunchError in roslaunch's words when
+    there is none (PackageNotFound for an unknown package)."""
+    package = executables.packages(env).get(package_name)
+    if package is None and (package_name, node_type) in CORE_PROGRAMS:
+        return list(CORE_PROGRAMS[package_name, node_type])
+    if package is None:
+        raise PackageNotFound("\n".join([package_name, *(f"ROS path [{i}]={p}"
+                                                           for i, p in enumerate(executables.ros_paths(env)))]))
+    hits = executables.find_node(package, node_type, env)
+    if not hits:
+        raise LaunchError(f"Cannot locate node of type [{node_type}] in package [{package_name}]. Make sure "
+                          "file exists in package path and permission is set to executable (chmod +x)")
+    return executables.command_for(hits[0])
 
 
 def address_is_local(address: str) -> bool:

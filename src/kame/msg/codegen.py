@@ -330,14 +330,17 @@ class _Deserializer:
             return
         if base in _CODES:
             item_size = struct.calcsize("<" + _CODES[base][1])
-            if self.use_numpy:
+            # bool arrays read as lists of bools, numpy or not, as genpy's (list(map(bool, ...)))
+            as_list = base == "bool"
+            if self.use_numpy and not as_list:
                 code.emit(f"{target} = _np.frombuffer(_buf, {_DTYPES[base]!r}, {count}, {self.pos()})")
-            elif length is None:
-                ref = self.structs.array_ref(f"<%d{_CODES[base][1]}")
-                code.emit(f"{target} = {ref}[_n].unpack_from(_buf, {self.pos()})")
             else:
-                ref = self.structs.ref(f"<{length}{_CODES[base][1]}")
-                code.emit(f"{target} = {ref}.unpack_from(_buf, {self.pos()})")
+                if length is None:
+                    ref = self.structs.array_ref(f"<%d{_CODES[base][1]}") + "[_n]"
+                else:
+                    ref = self.structs.ref(f"<{length}{_CODES[base][1]}")
+                read = f"{ref}.unpack_from(_buf, {self.pos()})"
+                code.emit(f"{target} = list({read})" if as_list else f"{target} = {read}")
             if length is None:
                 nbytes = f"_n * {item_size}" if item_size > 1 else "_n"
                 if self.dynamic:

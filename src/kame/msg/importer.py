@@ -26,6 +26,7 @@ from typing import Any
 from kame.msg.catalog import SHARE_DIR, MsgCatalog, Package, find_packages, package_path_roots
 from kame.msg.errors import MsgNotFoundError
 from kame.msg.loader import compile_classes, dependency_order, make_service_class
+from kame.msg.md5 import all_dependencies
 from kame.msg.spec import MsgSpec
 
 _KINDS = ("msg", "srv")
@@ -63,8 +64,11 @@ def _message_classes(catalog: MsgCatalog, specs: list[MsgSpec], module_name: str
         catalog.check_dependencies(spec)
     own = {spec.full_name for spec in specs}
     ordered = dependency_order(specs, catalog.msg_spec, skip=lambda dep: dep not in own)
+    # every type the classes build, nested ones included: the generated code makes a field's
+    # field's message itself (a service's request holding pkg/A, whose field is other_pkg/B)
     external = {
-        dep: _external_class(dep) for spec in ordered for dep in spec.message_dependencies() if dep not in own
+        dep: _external_class(dep) for spec in ordered for dep in all_dependencies(spec, catalog.msg_spec)
+        if dep not in own
     }
     return compile_classes(
         ordered, catalog.msg_spec, lambda s: catalog.md5sum(s.full_name),

@@ -37,6 +37,11 @@ class Message:
     _slot_types: ClassVar[tuple[str, ...]] = ()
     _slot_classes: ClassVar[dict[str, type[Message]]] = {}
 
+    def __init__(self, *args: Any, **kwds: Any) -> None:
+        """genpy's base constructor: every field positionally, or some by keyword (the rest None),
+        never both; a subclass fills its defaults after calling it."""
+        init_fields(self, args, kwds)
+
     def _get_types(self) -> tuple[str, ...]:
         return self._slot_types
 

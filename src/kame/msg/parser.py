@@ -5,8 +5,8 @@ Rules (genmsg's, which decide md5sums, so they are kept exactly):
 - a line holding `=` (after comments are cut) is a constant, else a field `TYPE NAME`
   separated by spaces (a tab between them is an error, as in genmsg);
 - a string constant's value is everything after the first `=`, stripped, `#` included;
-- in a .srv, comments are cut from every line before it is split at the first line starting
-  with `---`, so the request and response texts carry no comments;
+- a .srv is split at the lines starting with `---`; the request and response texts keep their
+  comments (genmsg 0.6.0's rule, Noetic's last: its `_full_text` shows them);
 - an .action expands into seven messages whose texts start with genaction's header line.
 Errors name the source and line: `Pose.msg:3: 'flaot32' is not a known type`.
 """
@@ -32,7 +32,7 @@ from kame.msg.spec import (
 _BASE_NAME = re.compile(r"[A-Za-z][A-Za-z0-9_]*\Z")
 _TYPE_NAME = re.compile(r"(?:[A-Za-z][A-Za-z0-9_]*/)?[A-Za-z][A-Za-z0-9_]*\Z")
 _ARRAY_SUFFIX = re.compile(r"\[(\d*)\]\Z")
-_INT_RANGES: dict[str, tuple[int, int]] = {
+INT_RANGES: dict[str, tuple[int, int]] = {
     "int8": (-(2**7), 2**7 - 1),
     "byte": (-(2**7), 2**7 - 1),
     "uint8": (0, 2**8 - 1),
@@ -106,7 +106,7 @@ def _constant_value(type_name: str, text: str, where: str) -> bool | int | float
             return bool(ast.literal_eval(text))
         except (ValueError, SyntaxError):
             raise MsgDefinitionError(f"{where}: invalid bool constant value '{text}'") from None
-    low, high = _INT_RANGES[type_name]
+    low, high = INT_RANGES[type_name]
     try:
         value = int(text)
     except ValueError:
@@ -171,11 +171,11 @@ def parse_msg(text: str, full_name: str, source: str = "") -> MsgSpec:
     return MsgSpec(full_name, tuple(fields), tuple(constants), text, source)
 
 
-def _split_sections(text: str, strip_comments: bool) -> list[str]:
+def split_sections(text: str) -> list[str]:
+    """The parts of a .srv or .action text between its lines starting with `---`, each line
+    ending in a newline (genmsg's split, which keeps comments)."""
     sections: list[list[str]] = [[]]
     for line in text.split("\n"):
-        if strip_comments:
-            line = _strip_comment(line)
         if line.startswith(SERVICE_SEPARATOR):
             sections.append([])
         else:
@@ -184,7 +184,7 @@ def _split_sections(text: str, strip_comments: bool) -> list[str]:
 
 
 def parse_srv(text: str, full_name: str, source: str = "") -> SrvSpec:
-    sections = _split_sections(text, strip_comments=True)
+    sections = split_sections(text)
     label = source or full_name
     if len(sections) != 2:
         raise MsgDefinitionError(
@@ -197,7 +197,7 @@ def parse_srv(text: str, full_name: str, source: str = "") -> SrvSpec:
 
 def action_message_texts(text: str, short_name: str, source: str = "") -> dict[str, str]:
     """genaction's seven message texts for the action `short_name`, by message short name."""
-    sections = _split_sections(text, strip_comments=False)
+    sections = split_sections(text)
     if len(sections) != 3:
         raise MsgDefinitionError(
             f"{source or short_name}: an action needs exactly two '---' lines (goal, result, feedback), "

@@ -25,7 +25,7 @@ class AddBoxRequest(_Message):
     _type = 'kame_stage_msgs/AddBoxRequest'
     _md5sum = '54aa38fed272c0fe397b15f837ba06cc'
     _has_header = False
-    _full_text = '\n\nfloat64 x\nfloat64 y\nfloat64 width\nfloat64 depth\n'
+    _full_text = "# An axis-aligned box that the world's map does not show, placed while the simulation runs\n# (as one drops a box into Gazebo): centre (x, y) in the map frame, width along x, depth along y.\nfloat64 x\nfloat64 y\nfloat64 width\nfloat64 depth\n"
     _slot_classes = {}
 
     def __init__(self, *args, **kwds):

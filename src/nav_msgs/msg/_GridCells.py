@@ -27,7 +27,7 @@ class GridCells(_Message):
     _type = 'nav_msgs/GridCells'
     _md5sum = 'b9e4f5df6d28e272ebde00a3994830f5'
     _has_header = True
-    _full_text = 'Header header\nfloat32 cell_width\nfloat32 cell_height\ngeometry_msgs/Point[] cells\n\n================================================================================\nMSG: std_msgs/Header\nuint32 seq\ntime stamp\nstring frame_id\n\n================================================================================\nMSG: geometry_msgs/Point\nfloat64 x\nfloat64 y\nfloat64 z\n'
+    _full_text = "#an array of cells in a 2D grid\nHeader header\nfloat32 cell_width\nfloat32 cell_height\ngeometry_msgs/Point[] cells\n\n================================================================================\nMSG: std_msgs/Header\n# Standard metadata for higher-level stamped data types.\n# This is generally used to communicate timestamped data \n# in a particular coordinate frame.\n# \n# sequence ID: consecutively increasing ID \nuint32 seq\n#Two-integer timestamp that is expressed as:\n# * stamp.sec: seconds (stamp_secs) since epoch (in Python the variable is called 'secs')\n# * stamp.nsec: nanoseconds since stamp_secs (in Python the variable is called 'nsecs')\n# time-handling sugar is provided by the client library\ntime stamp\n#Frame this data is associated with\nstring frame_id\n\n================================================================================\nMSG: geometry_msgs/Point\n# This contains the position of a point in free space\nfloat64 x\nfloat64 y\nfloat64 z\n"
     _slot_classes = {'header': _T_std_msgs__Header, 'cells': _T_geometry_msgs__Point}
 
     def __init__(self, *args, **kwds):

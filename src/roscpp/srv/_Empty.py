@@ -68,7 +68,7 @@ class EmptyResponse(_Message):
     _type = 'roscpp/EmptyResponse'
     _md5sum = 'd41d8cd98f00b204e9800998ecf8427e'
     _has_header = False
-    _full_text = '\n'
+    _full_text = ''
     _slot_classes = {}
 
     def __init__(self, *args, **kwds):

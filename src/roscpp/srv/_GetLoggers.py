@@ -70,7 +70,7 @@ class GetLoggersResponse(_Message):
     _type = 'roscpp/GetLoggersResponse'
     _md5sum = '32e97e85527d4678a8f9279894bb64b0'
     _has_header = False
-    _full_text = 'Logger[] loggers\n\n\n================================================================================\nMSG: roscpp/Logger\nstring name\nstring level\n'
+    _full_text = 'Logger[] loggers\n\n================================================================================\nMSG: roscpp/Logger\nstring name\nstring level\n'
     _slot_classes = {'loggers': _T_roscpp__Logger}
 
     def __init__(self, *args, **kwds):

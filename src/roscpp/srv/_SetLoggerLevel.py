@@ -96,7 +96,7 @@ class SetLoggerLevelResponse(_Message):
     _type = 'roscpp/SetLoggerLevelResponse'
     _md5sum = 'd41d8cd98f00b204e9800998ecf8427e'
     _has_header = False
-    _full_text = '\n'
+    _full_text = ''
     _slot_classes = {}
 
     def __init__(self, *args, **kwds):

@@ -23,7 +23,7 @@ class Clock(_Message):
     _type = 'rosgraph_msgs/Clock'
     _md5sum = 'a9c97c1d230cfc112e270351a944ee47'
     _has_header = False
-    _full_text = 'time clock\n'
+    _full_text = '# roslib/Clock is used for publishing simulated time in ROS. \n# This message simply communicates the current time.\n# For more information, see http://www.ros.org/wiki/Clock\ntime clock\n'
     _slot_classes = {}
 
     def __init__(self, *args, **kwds):

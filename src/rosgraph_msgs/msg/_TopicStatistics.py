@@ -24,7 +24,7 @@ class TopicStatistics(_Message):
     _type = 'rosgraph_msgs/TopicStatistics'
     _md5sum = '10152ed868c5097a5e2e4a89d7daa710'
     _has_header = False
-    _full_text = 'string topic\nstring node_pub\nstring node_sub\ntime window_start\ntime window_stop\nint32 delivered_msgs\nint32 dropped_msgs\nint32 traffic\nduration period_mean\nduration period_stddev\nduration period_max\nduration stamp_age_mean\nduration stamp_age_stddev\nduration stamp_age_max\n'
+    _full_text = '# name of the topic\nstring topic\n\n# node id of the publisher\nstring node_pub\n\n# node id of the subscriber\nstring node_sub\n\n# the statistics apply to this time window\ntime window_start\ntime window_stop\n\n# number of messages delivered during the window\nint32 delivered_msgs\n# numbers of messages dropped during the window\nint32 dropped_msgs\n\n# traffic during the window, in bytes\nint32 traffic\n\n# mean/stddev/max period between two messages\nduration period_mean\nduration period_stddev\nduration period_max\n\n# mean/stddev/max age of the message based on the\n# timestamp in the message header. In case the\n# message does not have a header, it will be 0.\nduration stamp_age_mean\nduration stamp_age_stddev\nduration stamp_age_max\n'
     _slot_classes = {}
 
     def __init__(self, *args, **kwds):

@@ -25,7 +25,7 @@ class HeaderString(_Message):
     _type = 'rospy_tutorials/HeaderString'
     _md5sum = 'c99a9440709e4d4a9716d55b8270d5e7'
     _has_header = True
-    _full_text = 'Header header\nstring data\n\n================================================================================\nMSG: std_msgs/Header\nuint32 seq\ntime stamp\nstring frame_id\n'
+    _full_text = "Header header\nstring data\n\n================================================================================\nMSG: std_msgs/Header\n# Standard metadata for higher-level stamped data types.\n# This is generally used to communicate timestamped data \n# in a particular coordinate frame.\n# \n# sequence ID: consecutively increasing ID \nuint32 seq\n#Two-integer timestamp that is expressed as:\n# * stamp.sec: seconds (stamp_secs) since epoch (in Python the variable is called 'secs')\n# * stamp.nsec: nanoseconds since stamp_secs (in Python the variable is called 'nsecs')\n# time-handling sugar is provided by the client library\ntime stamp\n#Frame this data is associated with\nstring frame_id\n"
     _slot_classes = {'header': _T_std_msgs__Header}
 
     def __init__(self, *args, **kwds):

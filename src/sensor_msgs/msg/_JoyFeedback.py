@@ -23,7 +23,7 @@ class JoyFeedback(_Message):
     _type = 'sensor_msgs/JoyFeedback'
     _md5sum = 'f4dcd73460360d98f36e55ee7f2e46f1'
     _has_header = False
-    _full_text = 'uint8 TYPE_LED=0\nuint8 TYPE_RUMBLE=1\nuint8 TYPE_BUZZER=2\nuint8 type\nuint8 id\nfloat32 intensity\n'
+    _full_text = '# Declare of the type of feedback\nuint8 TYPE_LED    = 0\nuint8 TYPE_RUMBLE = 1\nuint8 TYPE_BUZZER = 2\n\nuint8 type\n\n# This will hold an id number for each type of each feedback.\n# Example, the first led would be id=0, the second would be id=1\nuint8 id\n\n# Intensity of the feedback, from 0.0 to 1.0, inclusive.  If device is\n# actually binary, driver should treat 0<=x<0.5 as off, 0.5<=x<=1 as on.\nfloat32 intensity\n\n'
     TYPE_LED = 0
     TYPE_RUMBLE = 1
     TYPE_BUZZER = 2

@@ -25,7 +25,7 @@ class JoyFeedbackArray(_Message):
     _type = 'sensor_msgs/JoyFeedbackArray'
     _md5sum = 'cde5730a895b1fc4dee6f91b754b213d'
     _has_header = False
-    _full_text = 'JoyFeedback[] array\n\n================================================================================\nMSG: sensor_msgs/JoyFeedback\nuint8 TYPE_LED=0\nuint8 TYPE_RUMBLE=1\nuint8 TYPE_BUZZER=2\nuint8 type\nuint8 id\nfloat32 intensity\n'
+    _full_text = '# This message publishes values for multiple feedback at once. \nJoyFeedback[] array\n================================================================================\nMSG: sensor_msgs/JoyFeedback\n# Declare of the type of feedback\nuint8 TYPE_LED    = 0\nuint8 TYPE_RUMBLE = 1\nuint8 TYPE_BUZZER = 2\n\nuint8 type\n\n# This will hold an id number for each type of each feedback.\n# Example, the first led would be id=0, the second would be id=1\nuint8 id\n\n# Intensity of the feedback, from 0.0 to 1.0, inclusive.  If device is\n# actually binary, driver should treat 0<=x<0.5 as off, 0.5<=x<=1 as on.\nfloat32 intensity\n\n'
     _slot_classes = {'array': _T_sensor_msgs__JoyFeedback}
 
     def __init__(self, *args, **kwds):

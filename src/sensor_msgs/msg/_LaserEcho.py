@@ -25,7 +25,7 @@ class LaserEcho(_Message):
     _type = 'sensor_msgs/LaserEcho'
     _md5sum = '8bc5ae449b200fba4d552b4225586696'
     _has_header = False
-    _full_text = 'float32[] echoes\n'
+    _full_text = '# This message is a submessage of MultiEchoLaserScan and is not intended\n# to be used separately.\n\nfloat32[] echoes  # Multiple values of ranges or intensities.\n                  # Each array represents data from the same angle increment.'
     _slot_classes = {}
 
     def __init__(self, *args, **kwds):

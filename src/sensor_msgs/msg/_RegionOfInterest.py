@@ -24,7 +24,7 @@ class RegionOfInterest(_Message):
     _type = 'sensor_msgs/RegionOfInterest'
     _md5sum = 'bdb633039d588fcccb441a4d43ccfe09'
     _has_header = False
-    _full_text = 'uint32 x_offset\nuint32 y_offset\nuint32 height\nuint32 width\nbool do_rectify\n'
+    _full_text = '# This message is used to specify a region of interest within an image.\n#\n# When used to specify the ROI setting of the camera when the image was\n# taken, the height and width fields should either match the height and\n# width fields for the associated image; or height = width = 0\n# indicates that the full resolution image was captured.\n\nuint32 x_offset  # Leftmost pixel of the ROI\n                 # (0 if the ROI includes the left edge of the image)\nuint32 y_offset  # Topmost pixel of the ROI\n                 # (0 if the ROI includes the top edge of the image)\nuint32 height    # Height of ROI\nuint32 width     # Width of ROI\n\n# True if a distinct rectified ROI should be calculated from the "raw"\n# ROI in this message. Typically this should be False if the full image\n# is captured (ROI not used), and True if a subwindow is captured (ROI\n# used).\nbool do_rectify\n'
     _slot_classes = {}
 
     def __init__(self, *args, **kwds):

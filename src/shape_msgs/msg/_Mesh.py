@@ -27,7 +27,7 @@ class Mesh(_Message):
     _type = 'shape_msgs/Mesh'
     _md5sum = '1ffdae9486cd3316a121c578b47a85cc'
     _has_header = False
-    _full_text = 'MeshTriangle[] triangles\ngeometry_msgs/Point[] vertices\n\n================================================================================\nMSG: shape_msgs/MeshTriangle\nuint32[3] vertex_indices\n\n================================================================================\nMSG: geometry_msgs/Point\nfloat64 x\nfloat64 y\nfloat64 z\n'
+    _full_text = "# Definition of a mesh\n\n# list of triangles; the index values refer to positions in vertices[]\nMeshTriangle[] triangles\n\n# the actual vertices that make up the mesh\ngeometry_msgs/Point[] vertices\n\n================================================================================\nMSG: shape_msgs/MeshTriangle\n# Definition of a triangle's vertices\nuint32[3] vertex_indices\n\n================================================================================\nMSG: geometry_msgs/Point\n# This contains the position of a point in free space\nfloat64 x\nfloat64 y\nfloat64 z\n"
     _slot_classes = {'triangles': _T_shape_msgs__MeshTriangle, 'vertices': _T_geometry_msgs__Point}
 
     def __init__(self, *args, **kwds):

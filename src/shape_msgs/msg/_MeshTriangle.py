@@ -23,7 +23,7 @@ class MeshTriangle(_Message):
     _type = 'shape_msgs/MeshTriangle'
     _md5sum = '23688b2e6d2de3d32fe8af104a903253'
     _has_header = False
-    _full_text = 'uint32[3] vertex_indices\n'
+    _full_text = "# Definition of a triangle's vertices\nuint32[3] vertex_indices\n"
     _slot_classes = {}
 
     def __init__(self, *args, **kwds):

@@ -23,7 +23,7 @@ class Plane(_Message):
     _type = 'shape_msgs/Plane'
     _md5sum = '2c1b92ed8f31492f8e73f6a4a44ca796'
     _has_header = False
-    _full_text = 'float64[4] coef\n'
+    _full_text = '# Representation of a plane, using the plane equation ax + by + cz + d = 0\n\n# a := coef[0]\n# b := coef[1]\n# c := coef[2]\n# d := coef[3]\n\nfloat64[4] coef\n'
     _slot_classes = {}
 
     def __init__(self, *args, **kwds):

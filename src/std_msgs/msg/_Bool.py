@@ -24,7 +24,7 @@ class Bool(_Message):
     _type = 'std_msgs/Bool'
     _md5sum = '8b94c1b53db61fb6aed406028ad6332a'
     _has_header = False
-    _full_text = 'bool data\n'
+    _full_text = 'bool data'
     _slot_classes = {}
 
     def __init__(self, *args, **kwds):

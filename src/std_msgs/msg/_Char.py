@@ -23,7 +23,7 @@ class Char(_Message):
     _type = 'std_msgs/Char'
     _md5sum = '1bf77f25acecdedba0e224b162199717'
     _has_header = False
-    _full_text = 'char data\n'
+    _full_text = 'char data'
     _slot_classes = {}
 
     def __init__(self, *args, **kwds):

@@ -23,7 +23,7 @@ class Float32(_Message):
     _type = 'std_msgs/Float32'
     _md5sum = '73fcbf46b49191e672908e50842a83d4'
     _has_header = False
-    _full_text = 'float32 data\n'
+    _full_text = 'float32 data'
     _slot_classes = {}
 
     def __init__(self, *args, **kwds):

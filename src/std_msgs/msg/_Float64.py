@@ -23,7 +23,7 @@ class Float64(_Message):
     _type = 'std_msgs/Float64'
     _md5sum = 'fdb28210bfa9d7c91146260178d9a584'
     _has_header = False
-    _full_text = 'float64 data\n'
+    _full_text = 'float64 data'
     _slot_classes = {}
 
     def __init__(self, *args, **kwds):

@@ -23,7 +23,7 @@ class Header(_Message):
     _type = 'std_msgs/Header'
     _md5sum = '2176decaecbce78abc3b96ef049fabed'
     _has_header = False
-    _full_text = 'uint32 seq\ntime stamp\nstring frame_id\n'
+    _full_text = "# Standard metadata for higher-level stamped data types.\n# This is generally used to communicate timestamped data \n# in a particular coordinate frame.\n# \n# sequence ID: consecutively increasing ID \nuint32 seq\n#Two-integer timestamp that is expressed as:\n# * stamp.sec: seconds (stamp_secs) since epoch (in Python the variable is called 'secs')\n# * stamp.nsec: nanoseconds since stamp_secs (in Python the variable is called 'nsecs')\n# time-handling sugar is provided by the client library\ntime stamp\n#Frame this data is associated with\nstring frame_id\n"
     _slot_classes = {}
 
     def __init__(self, *args, **kwds):

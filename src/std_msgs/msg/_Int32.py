@@ -23,7 +23,7 @@ class Int32(_Message):
     _type = 'std_msgs/Int32'
     _md5sum = 'da5909fbe378aeaf85e547e830cc1bb7'
     _has_header = False
-    _full_text = 'int32 data\n'
+    _full_text = 'int32 data'
     _slot_classes = {}
 
     def __init__(self, *args, **kwds):

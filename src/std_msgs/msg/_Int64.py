@@ -23,7 +23,7 @@ class Int64(_Message):
     _type = 'std_msgs/Int64'
     _md5sum = '34add168574510e6e17f5d23ecc077ef'
     _has_header = False
-    _full_text = 'int64 data\n'
+    _full_text = 'int64 data'
     _slot_classes = {}
 
     def __init__(self, *args, **kwds):

@@ -24,7 +24,7 @@ class MultiArrayDimension(_Message):
     _type = 'std_msgs/MultiArrayDimension'
     _md5sum = '4cd0c83a8683deae40ecdac60e53bfa8'
     _has_header = False
-    _full_text = 'string label\nuint32 size\nuint32 stride\n'
+    _full_text = 'string label   # label of given dimension\nuint32 size    # size of given dimension (in type units)\nuint32 stride  # stride of given dimension'
     _slot_classes = {}
 
     def __init__(self, *args, **kwds):

@@ -23,7 +23,7 @@ class UInt32(_Message):
     _type = 'std_msgs/UInt32'
     _md5sum = '304a39449588c7f8ce2df6e8001c5fce'
     _has_header = False
-    _full_text = 'uint32 data\n'
+    _full_text = 'uint32 data'
     _slot_classes = {}
 
     def __init__(self, *args, **kwds):

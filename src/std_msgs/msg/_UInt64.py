@@ -23,7 +23,7 @@ class UInt64(_Message):
     _type = 'std_msgs/UInt64'
     _md5sum = '1b2a79973e8bf53d7b53acb71299cb57'
     _has_header = False
-    _full_text = 'uint64 data\n'
+    _full_text = 'uint64 data'
     _slot_classes = {}
 
     def __init__(self, *args, **kwds):

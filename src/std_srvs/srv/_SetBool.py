@@ -26,7 +26,7 @@ class SetBoolRequest(_Message):
     _type = 'std_srvs/SetBoolRequest'
     _md5sum = '8b94c1b53db61fb6aed406028ad6332a'
     _has_header = False
-    _full_text = 'bool data\n'
+    _full_text = 'bool data # e.g. for hardware enabling / disabling\n'
     _slot_classes = {}
 
     def __init__(self, *args, **kwds):
@@ -75,7 +75,7 @@ class SetBoolResponse(_Message):
     _type = 'std_srvs/SetBoolResponse'
     _md5sum = '937c9679a518e3a18d831e57125ea522'
     _has_header = False
-    _full_text = 'bool success\nstring message\n\n'
+    _full_text = 'bool success   # indicate successful run of triggered service\nstring message # informational, e.g. for error messages\n\n'
     _slot_classes = {}
 
     def __init__(self, *args, **kwds):

@@ -70,7 +70,7 @@ class TriggerResponse(_Message):
     _type = 'std_srvs/TriggerResponse'
     _md5sum = '937c9679a518e3a18d831e57125ea522'
     _has_header = False
-    _full_text = 'bool success\nstring message\n\n'
+    _full_text = 'bool success   # indicate successful run of triggered service\nstring message # informational, e.g. for error messages\n\n'
     _slot_classes = {}
 
     def __init__(self, *args, **kwds):

@@ -23,7 +23,7 @@ class TF2Error(_Message):
     _type = 'tf2_msgs/TF2Error'
     _md5sum = 'bc6848fd6fd750c92e38575618a4917d'
     _has_header = False
-    _full_text = 'uint8 NO_ERROR=0\nuint8 LOOKUP_ERROR=1\nuint8 CONNECTIVITY_ERROR=2\nuint8 EXTRAPOLATION_ERROR=3\nuint8 INVALID_ARGUMENT_ERROR=4\nuint8 TIMEOUT_ERROR=5\nuint8 TRANSFORM_ERROR=6\nuint8 error\nstring error_string\n'
+    _full_text = 'uint8 NO_ERROR = 0\nuint8 LOOKUP_ERROR = 1\nuint8 CONNECTIVITY_ERROR = 2\nuint8 EXTRAPOLATION_ERROR = 3\nuint8 INVALID_ARGUMENT_ERROR = 4\nuint8 TIMEOUT_ERROR = 5\nuint8 TRANSFORM_ERROR = 6\n\nuint8 error\nstring error_string\n'
     NO_ERROR = 0
     LOOKUP_ERROR = 1
     CONNECTIVITY_ERROR = 2

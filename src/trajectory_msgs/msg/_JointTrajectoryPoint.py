@@ -26,7 +26,7 @@ class JointTrajectoryPoint(_Message):
     _type = 'trajectory_msgs/JointTrajectoryPoint'
     _md5sum = 'f3cd1e1c4d320c79d6985c904ae5dcd3'
     _has_header = False
-    _full_text = 'float64[] positions\nfloat64[] velocities\nfloat64[] accelerations\nfloat64[] effort\nduration time_from_start\n'
+    _full_text = '# Each trajectory point specifies either positions[, velocities[, accelerations]]\n# or positions[, effort] for the trajectory to be executed.\n# All specified values are in the same order as the joint names in JointTrajectory.msg\n\nfloat64[] positions\nfloat64[] velocities\nfloat64[] accelerations\nfloat64[] effort\nduration time_from_start\n'
     _slot_classes = {}
 
     def __init__(self, *args, **kwds):

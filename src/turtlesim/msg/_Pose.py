@@ -23,7 +23,7 @@ class Pose(_Message):
     _type = 'turtlesim/Pose'
     _md5sum = '863b248d5016ca62ea2e895ae5265cf9'
     _has_header = False
-    _full_text = 'float32 x\nfloat32 y\nfloat32 theta\nfloat32 linear_velocity\nfloat32 angular_velocity\n'
+    _full_text = 'float32 x\nfloat32 y\nfloat32 theta\n\nfloat32 linear_velocity\nfloat32 angular_velocity\n'
     _slot_classes = {}
 
     def __init__(self, *args, **kwds):

@@ -15,7 +15,8 @@ from kame.gazebo import description as d
 from kame.gazebo_ros.plugins.base import GazeboPlugin, PluginContext
 from kame.gazebo_ros.plugins.body import Bumper, Imu, ImuSensor, JointStatePublisher, P3d
 from kame.gazebo_ros.plugins.camera import Camera, DepthCamera
-from kame.gazebo_ros.plugins.drives import DiffDrive, Kobuki, PlanarMove, SkidSteerDrive
+from kame.gazebo_ros.plugins.drives import DiffDrive, PlanarMove, SkidSteerDrive
+from kame.gazebo_ros.plugins.kobuki import Kobuki
 from kame.gazebo_ros.plugins.parameters import PluginParameterError
 from kame.gazebo_ros.plugins.ray import BlockLaser, Laser, Range
 from kame.gazebo_ros.simulation import Simulation

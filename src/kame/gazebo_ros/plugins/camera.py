@@ -13,6 +13,7 @@ openni_kinect leaves them.
 
 from __future__ import annotations
 
+import functools
 from typing import Any
 
 import numpy as np
@@ -24,6 +25,39 @@ from kame.gazebo_ros.plugins.parameters import PluginParameterError
 CAMERA_MISSING = "Camera plugin missing <{tag}>, defaults to {default}"
 ENCODINGS = {"R8G8B8": "rgb8", "RGB_INT8": "rgb8", "B8G8R8": "bgr8", "BGR_INT8": "bgr8", "L8": "mono8",
              "L_INT8": "mono8"}
+
+
+def depth_in_range(depth: np.ndarray, near: float, far: float) -> np.ndarray:
+    """Depths (float32 metres) outside (near, far) or not finite as NaN, as openni_kinect leaves them."""
+    depth = np.asarray(depth, dtype=np.float32)
+    kept = (depth > near) & (depth < far) & np.isfinite(depth)
+    cut: np.ndarray = np.where(kept, depth, np.float32(np.nan))
+    return cut
+
+
+@functools.lru_cache(maxsize=4)
+def _optical_rays(height: int, width: int, f: float, cx: float, cy: float) -> tuple[np.ndarray, np.ndarray]:
+    """Each pixel's (x / z, y / z) in the optical frame: made once per camera, not per frame."""
+    rows, columns = np.indices((height, width), dtype=np.float32)
+    return (columns - np.float32(cx)) / np.float32(f), (rows - np.float32(cy)) / np.float32(f)
+
+
+def point_cloud_bytes(depth: np.ndarray, rgb: np.ndarray, f: float, cx: float, cy: float) -> bytes:
+    """PointCloud2 data of x y z rgb (float32 each, rgb packed as openni_kinect packs it) in the
+    optical frame, one point a pixel, row by row."""
+    height, width = depth.shape
+    across, down = _optical_rays(height, width, f, cx, cy)
+    points = np.empty((height, width, 4), dtype=np.float32)
+    np.multiply(across, depth, out=points[:, :, 0])
+    np.multiply(down, depth, out=points[:, :, 1])
+    points[:, :, 2] = depth
+    colour = points[:, :, 3].view(np.uint32)
+    colour[:] = rgb[:, :, 0]
+    colour <<= 8
+    colour |= rgb[:, :, 1]
+    colour <<= 8
+    colour |= rgb[:, :, 2]
+    return points.tobytes()
 
 
 class Camera(GazeboPlugin):
@@ -145,23 +179,12 @@ class DepthCamera(Camera):
         from sensor_msgs.msg import PointCloud2, PointField
 
         config = frame.config
-        depth = np.asarray(frame.depth, dtype=np.float32)
-        kept = (depth > self.cutoff) & (depth < self.cutoff_max) & np.isfinite(depth)
-        depth = np.where(kept, depth, np.float32(np.nan)).astype(np.float32)
+        depth = depth_in_range(frame.depth, self.cutoff, self.cutoff_max)
         self.depth_image.publish(self._image(depth, "32FC1", now))
         info = self._camera_info(config, now)
         self.depth_info.publish(info)
         if self.points.get_num_connections() == 0:
             return
-        f, cx, cy = info.K[0], info.K[2], info.K[5]
-        rows, columns = np.indices(depth.shape, dtype=np.float32)
-        cloud = np.zeros(depth.shape, dtype=[("x", "<f4"), ("y", "<f4"), ("z", "<f4"), ("rgb", "<f4")])
-        cloud["x"] = (columns - cx) * depth / f
-        cloud["y"] = (rows - cy) * depth / f
-        cloud["z"] = depth
-        rgb = frame.rgb.astype(np.uint32)
-        packed = (rgb[:, :, 0] << 16) | (rgb[:, :, 1] << 8) | rgb[:, :, 2]
-        cloud["rgb"] = packed.view(np.float32)
         msg = PointCloud2()
         msg.header.stamp = stamp(now)
         msg.header.frame_id = self.frame
@@ -171,6 +194,6 @@ class DepthCamera(Camera):
         msg.is_bigendian = False
         msg.point_step = 16
         msg.row_step = 16 * depth.shape[1]
-        msg.data = cloud.tobytes()
+        msg.data = point_cloud_bytes(depth, frame.rgb, info.K[0], info.K[2], info.K[5])
         msg.is_dense = False
         self.points.publish(msg)

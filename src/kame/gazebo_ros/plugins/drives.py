@@ -1,5 +1,5 @@
-"""The drive plugins: diff_drive, skid_steer_drive, planar_move and the Kobuki's (the TurtleBot's
-base, kobuki_gazebo_plugins' libgazebo_ros_kobuki.so), with odometry and tf as they publish them.
+"""The drive plugins: diff_drive, skid_steer_drive and planar_move, and what the Kobuki's
+(kame.gazebo_ros.plugins.kobuki) drives with, with odometry and tf as they publish them.
 
 diff_drive, Kobuki's and skid_steer_drive turn the wheel joints: each wheel joint's velocity actuator is
 asked for the wheel's speed (up to wheelTorque, at most wheelAcceleration faster each second),
@@ -27,7 +27,7 @@ PLANAR_MISSING = "PlanarMovePlugin (ns = {ns}) missing <{tag}>, defaults to {def
 KOBUKI_MISSING = "{info}: couldn't find <{tag}>, using {default}"
 
 
-def _yaw(pose: Pose) -> float:
+def yaw_of(pose: Pose) -> float:
     x, y, z, w = pose.orientation
     return math.atan2(2 * (w * z + x * y), 1 - 2 * (y * y + z * z))
 
@@ -186,7 +186,7 @@ class _WheelDrive(GazeboPlugin):
         self.rate.restart()
 
 
-class _TwoWheelDrive(_WheelDrive):
+class TwoWheelDrive(_WheelDrive):
     """What diff_drive and Kobuki's plugin share: two wheels, odometry from the world or the
     wheels' encoders, the wheels' joint states."""
 
@@ -206,8 +206,11 @@ class _TwoWheelDrive(_WheelDrive):
         self._encoder_pose = (0.0, 0.0, 0.0)
 
     def update(self, now: float) -> None:
-        if not self.rate.due(now):
-            return
+        if self.rate.due(now):
+            self.step_wheels(now)
+
+    def step_wheels(self, now: float) -> None:
+        """The wheels driven as commanded, odometry and the wheels' joint states published."""
         elapsed = now - self.last_update
         self._drive(now)
         world = self.context.world
@@ -222,7 +225,7 @@ class _TwoWheelDrive(_WheelDrive):
             state = world.model_state(model)
             pose = state.pose
             (vx, vy, _), angular = state.linear, state.angular[2]
-            yaw = _yaw(pose)
+            yaw = yaw_of(pose)
             linear = (vx * math.cos(yaw) + vy * math.sin(yaw), -vx * math.sin(yaw) + vy * math.cos(yaw))
         self.odom.publish(now, pose, linear, angular)
         if self.joint_states is not None:
@@ -249,12 +252,15 @@ class _TwoWheelDrive(_WheelDrive):
         self._encoder_pose = (x + distance * math.cos(yaw + turn / 2), y + distance * math.sin(yaw + turn / 2),
                               yaw + turn)
 
-    def reset(self) -> None:
-        super().reset()
+    def reset_encoders(self) -> None:
         self._encoder_pose = (0.0, 0.0, 0.0)
 
+    def reset(self) -> None:
+        super().reset()
+        self.reset_encoders()
 
-class DiffDrive(_TwoWheelDrive):
+
+class DiffDrive(TwoWheelDrive):
     """libgazebo_ros_diff_drive.so."""
 
     def __init__(self, context: PluginContext) -> None:
@@ -287,37 +293,6 @@ class DiffDrive(_TwoWheelDrive):
         context.report(p)
         self._start_two_wheels(namespace, command_topic, rate, odometry_topic, odometry_frame, base_frame,
                                publish_odom_tf)
-
-
-class Kobuki(_TwoWheelDrive):
-    """libgazebo_ros_kobuki.so (kobuki_gazebo_plugins), on diff drive's wheels: its parameters, its
-    command topic under the model's name (spawned as mobile_base: mobile_base/commands/velocity),
-    odom and the odom -> base_footprint transform, the wheels' joint_states, odometry from the wheel
-    encoders, and a stop when no command came for velocity_command_timeout seconds. Its cliff
-    sensors, IMU and kobuki_msgs events are not in kame (a URDF's bumper contact sensor with
-    libgazebo_ros_bumper.so reports contacts)."""
-
-    def __init__(self, context: PluginContext) -> None:
-        super().__init__(context)
-        self.info = "GazeboRosKobuki"
-        p = context.parameters(self.info, KOBUKI_MISSING)
-        self.left = [p.text("left_wheel_joint_name", "wheel_left_joint")]
-        self.right = [p.text("right_wheel_joint_name", "wheel_right_joint")]
-        self.separation = p.number("wheel_separation", 0.23)
-        self.diameter = p.number("wheel_diameter", 0.07)
-        self.torque = p.number("torque", 1.0)
-        self.timeout = p.number("velocity_command_timeout", 0.6)
-        publish_tf = p.flag("publish_tf", True)
-        self.acceleration = 0.0
-        self.legacy = False
-        self.encoder = True
-        self.publish_wheel_joint_state = True
-        if self.diameter <= 0 or self.separation <= 0:
-            raise PluginParameterError(f"{self.info}: <wheel_diameter> and <wheel_separation> must be above 0")
-        context.report(p)
-        # the plugin's private NodeHandle is the model's name; odom and joint_states are global
-        self._start_two_wheels("", f"/{context.model_name()}/commands/velocity", 50.0, "odom", "odom",
-                               "base_footprint", publish_tf)
 
 
 class SkidSteerDrive(_WheelDrive):
@@ -357,7 +332,7 @@ class SkidSteerDrive(_WheelDrive):
         world = self.context.world
         model = self.context.model_name()
         state = world.model_state(model)
-        (vx, vy, _), yaw = state.linear, _yaw(state.pose)
+        (vx, vy, _), yaw = state.linear, yaw_of(state.pose)
         self.odom.publish(now, state.pose, (vx * math.cos(yaw) + vy * math.sin(yaw),
                                             -vx * math.sin(yaw) + vy * math.cos(yaw)), state.angular[2])
 
@@ -393,7 +368,7 @@ class PlanarMove(GazeboPlugin):
             self.command.stop()
         x, y, rotation = self.command.get()
         state = world.model_state(model)
-        pose, yaw = state.pose, _yaw(state.pose)
+        pose, yaw = state.pose, yaw_of(state.pose)
         world.set_model_twist(model, (x * math.cos(yaw) - y * math.sin(yaw), y * math.cos(yaw) + x * math.sin(yaw),
                                       state.linear[2]), (0.0, 0.0, rotation))
         if self.odometry_rate.due(now):
