@@ -14,6 +14,7 @@ from rosbag.bag import (
     ROSBagFormatException,
     ROSBagUnindexedException,
 )
+from rosbag.rosbag_main import rosbagmain
 
 __all__ = [
     "Bag",
@@ -24,4 +25,5 @@ __all__ = [
     "ROSBagException",
     "ROSBagFormatException",
     "ROSBagUnindexedException",
+    "rosbagmain",
 ]

@@ -1,21 +1,23 @@
 """rosgraph.masterapi: the master's XML-RPC API with its return codes checked.
 
 Each call passes this handle's caller_id and returns the answer's value; code -1 raises
-MasterError, code 0 MasterFailure (both MasterException), as rosgraph does. The calls go
-through kame's XML-RPC client; an unreachable master raises OSError (socket.error).
+MasterError, code 0 MasterFailure (both MasterException), as rosgraph does. Each call is
+`getattr(self.handle, method)(caller_id, ...)`, as rosgraph's, so code and tests may put their
+own object in `handle`; the default handle is rosgraph.xmlrpc.ServerProxy, kame's XML-RPC
+client; an unreachable master raises OSError (socket.error).
 """
 
 from __future__ import annotations
 
 from typing import Any
 
-from kame.net.xmlrpc_client import XmlRpcProxy
-
 from .names import make_caller_id
 from .network import parse_http_host_and_port
 from .rosenv import get_master_uri
+from .xmlrpc import ServerProxy
 
-__all__ = ["Error", "Failure", "Master", "MasterError", "MasterException", "MasterFailure", "is_online"]
+__all__ = ["Error", "Failure", "Master", "MasterError", "MasterException", "MasterFailure", "ROSMasterException",
+           "ServerProxy", "is_online"]
 
 
 class MasterException(Exception):
@@ -32,6 +34,7 @@ class MasterError(MasterException):
 
 Error = MasterError
 Failure = MasterFailure
+ROSMasterException = MasterException
 
 
 def is_online(master_uri: str | None = None) -> bool:
@@ -56,7 +59,7 @@ class Master:
         except ValueError:
             raise ValueError(f"invalid master URI: {master_uri}") from None
         self.master_uri = master_uri
-        self.handle = XmlRpcProxy(master_uri)
+        self.handle: Any = ServerProxy(master_uri)
 
     def is_online(self) -> bool:
         try:
@@ -74,7 +77,7 @@ class Master:
         raise MasterFailure(msg)
 
     def _call(self, method: str, *args: Any) -> Any:
-        return self._succeed(self.handle.call(method, self.caller_id, *args))
+        return self._succeed(getattr(self.handle, method)(self.caller_id, *args))
 
     # parameter server
     def deleteParam(self, key: str) -> Any:

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import os
 import random
+import re
 import sys
 from collections.abc import Mapping, Sequence
 
@@ -19,11 +20,39 @@ GLOBALNS = _names.GLOBAL_NS
 PRIV_NAME = _names.PRIVATE_PREFIX
 REMAP = _names.REMAP
 ANYTYPE = _names.ANY_TYPE
+# rosgraph's own patterns, which code matches names against directly
+NAME_LEGAL_CHARS_P = re.compile(r"^[\~\/A-Za-z][\w\/]*$")
+BASE_NAME_LEGAL_CHARS_P = re.compile(r"^[A-Za-z][\w]*$")
+REMAP_PATTERN = re.compile(r"^([\~\/A-Za-z]|_|__)[\w\/]*" + REMAP + ".*")
 
-__all__ = ["ANYTYPE", "GLOBALNS", "MSG_EXT", "PRIV_NAME", "REMAP", "SEP", "SRV_EXT", "anonymous_name",
-           "canonicalize_name", "get_ros_namespace", "is_global", "is_legal_base_name", "is_legal_name",
-           "is_legal_remap", "is_private", "isstring", "load_mappings", "make_caller_id", "make_global_ns",
-           "namespace", "ns_join", "resolve_name", "script_resolve_name"]
+__all__ = [
+    "ANYTYPE",
+    "BASE_NAME_LEGAL_CHARS_P",
+    "GLOBALNS",
+    "MSG_EXT",
+    "NAME_LEGAL_CHARS_P",
+    "PRIV_NAME",
+    "REMAP",
+    "REMAP_PATTERN",
+    "SEP",
+    "SRV_EXT",
+    "anonymous_name",
+    "canonicalize_name",
+    "get_ros_namespace",
+    "is_global",
+    "is_legal_base_name",
+    "is_legal_name",
+    "is_legal_remap",
+    "is_private",
+    "isstring",
+    "load_mappings",
+    "make_caller_id",
+    "make_global_ns",
+    "namespace",
+    "ns_join",
+    "resolve_name",
+    "script_resolve_name",
+]
 
 
 def isstring(s: object) -> bool:

@@ -7,23 +7,78 @@ read_/write_ros_handshake_header are not offered: kame's own connections do that
 
 from __future__ import annotations
 
+import logging
 import os
 import struct
 import sys
 from collections.abc import Mapping
+from io import BytesIO
+from typing import IO, Any
 from urllib.parse import urlparse
 
 from kame.net import address as _address
+from kame.net.handshake import HandshakeError, read_header_and_rest
 from kame.net.interfaces import local_addresses
 from kame.protocol.header import TcprosError, decode_header_fields, encode_header
 
-__all__ = ["ROSHandshakeException", "create_local_xmlrpc_uri", "decode_ros_handshake_header",
-           "encode_ros_handshake_header", "get_address_override", "get_bind_address", "get_host_name",
-           "get_local_address", "get_local_addresses", "is_local_address", "parse_http_host_and_port", "use_ipv6"]
+from .rosenv import ROS_HOSTNAME, ROS_IP, ROS_IPV6
+
+__all__ = [
+    "ROS_HOSTNAME",
+    "ROS_IP",
+    "ROS_IPV6",
+    "SIOCGIFADDR",
+    "SIOCGIFCONF",
+    "BytesIO",
+    "ROSHandshakeException",
+    "create_local_xmlrpc_uri",
+    "decode_ros_handshake_header",
+    "encode_ros_handshake_header",
+    "get_address_override",
+    "get_bind_address",
+    "get_host_name",
+    "get_local_address",
+    "get_local_addresses",
+    "is_local_address",
+    "logger",
+    "parse_http_host_and_port",
+    "python3",
+    "read_ros_handshake_header",
+    "use_ipv6",
+    "write_ros_handshake_header",
+]
+
+
+SIOCGIFCONF = 0x8912  # the ioctls rosgraph lists interfaces with (kame asks kame.net.interfaces)
+SIOCGIFADDR = 0x8915
+python3 = 1
+logger = logging.getLogger("rosgraph.network")
 
 
 class ROSHandshakeException(Exception):
     """A malformed TCPROS connection header."""
+
+
+def read_ros_handshake_header(sock: Any, b: IO[bytes], buff_size: int) -> dict[str, str]:
+    """A connection header read off blocking `sock`; what came after it is left in buffer `b`.
+    `buff_size` is unused: kame reads the header as it arrives."""
+    try:
+        fields, rest = read_header_and_rest(sock)
+    except HandshakeError as exc:
+        raise ROSHandshakeException(f"connection from sender terminated before handshake header received. "
+                                    f"{b.tell()} bytes were received. Please check sender for additional details."
+                                    if "closed" in str(exc) else str(exc)) from exc
+    b.seek(0)
+    b.truncate()
+    b.write(rest)
+    return fields
+
+
+def write_ros_handshake_header(sock: Any, header: Mapping[str | bytes, str | bytes]) -> int:
+    """Send a connection header on blocking `sock`; the bytes sent."""
+    data = encode_ros_handshake_header(header)
+    sock.sendall(data)
+    return len(data)
 
 
 def parse_http_host_and_port(url: str) -> tuple[str, int]:

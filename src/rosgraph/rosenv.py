@@ -13,9 +13,10 @@ ROS_IP = "ROS_IP"
 ROS_IPV6 = "ROS_IPV6"
 ROS_HOSTNAME = "ROS_HOSTNAME"
 ROS_NAMESPACE = "ROS_NAMESPACE"
+DEFAULT_MASTER_PORT = 11311
 
-__all__ = ["DEFAULT_MASTER_URI", "ROS_HOSTNAME", "ROS_IP", "ROS_IPV6", "ROS_MASTER_URI", "ROS_NAMESPACE",
-           "get_master_uri"]
+__all__ = ["DEFAULT_MASTER_PORT", "DEFAULT_MASTER_URI", "ROS_HOSTNAME", "ROS_IP", "ROS_IPV6", "ROS_MASTER_URI",
+           "ROS_NAMESPACE", "get_master_uri"]
 
 
 def get_master_uri(env: Mapping[str, str] | None = None, argv: Sequence[str] | None = None) -> str:

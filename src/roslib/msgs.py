@@ -6,22 +6,30 @@ from .msg text, files or type names; the definitions are parsed and checked by k
 from __future__ import annotations
 
 import os
+import sys
 from io import StringIO
 from typing import Any
 
+import rospkg
+from kame import param_yaml
 from kame.msg.errors import MessageError
-from kame.msg.parser import parse_msg, split_array_type
+from kame.msg.parser import parse_msg
 from roslib import names as _names
 from roslib import packages as _packages
 
-__all__ = ["BUILTIN_TYPES", "DURATION", "EXT", "HEADER", "PRIMITIVE_TYPES", "RESERVED_TYPES", "SEP", "TIME",
-           "Constant", "Field", "MsgSpec", "MsgSpecException", "base_msg_type", "get_registered", "is_builtin",
-           "is_header_type", "is_registered", "is_valid_constant_type", "is_valid_msg_field_name",
-           "is_valid_msg_type", "list_msg_types", "load_by_type", "load_from_file", "load_from_string", "msg_file",
-           "parse_type", "register", "resolve_type"]
+__all__ = ["BUILTIN_TYPES", "COMMENTCHAR", "CONSTCHAR", "DURATION", "DURATION_MSG", "EXT", "EXTENDED_BUILTINS",
+           "HEADER", "PRIMITIVE_TYPES", "RESERVED_TYPES", "SEP", "TIME", "TIME_MSG", "VERBOSE",
+           "Constant", "Field", "MsgSpec", "MsgSpecException", "base_msg_type", "get_pkg_msg_specs", "get_registered",
+           "is_builtin", "is_header_type", "is_registered", "is_valid_constant_type", "is_valid_msg_field_name",
+           "is_valid_msg_type", "is_verbose", "list_msg_types", "load_by_type", "load_from_file", "load_from_string",
+           "load_package", "load_package_dependencies", "msg_file", "parse_type", "register", "reinit",
+           "resolve_type", "set_verbose"]
 
 EXT = ".msg"
 SEP = "/"
+CONSTCHAR = "="
+COMMENTCHAR = "#"
+VERBOSE = False
 HEADER = "Header"
 TIME = "time"
 DURATION = "duration"
@@ -29,11 +37,25 @@ PRIMITIVE_TYPES = ["int8", "uint8", "int16", "uint16", "int32", "uint32", "int64
                    "string", "bool", "char", "byte"]
 BUILTIN_TYPES = [*PRIMITIVE_TYPES, TIME, DURATION]
 RESERVED_TYPES = [*BUILTIN_TYPES, HEADER]
+TIME_MSG = "uint32 secs\nuint32 nsecs"
+DURATION_MSG = "int32 secs\nint32 nsecs"
+_INT_BITS = {"int8": 8, "uint8": 8, "int16": 16, "uint16": 16, "int32": 32, "uint32": 32, "int64": 64,
+             "uint64": 64, "byte": 8, "char": 8}
 _LOCAL = "roslib_msgs_local"  # the package kame's parser is given when the spec has none
 
 
 class MsgSpecException(Exception):
     """A message definition that cannot be parsed, or a type that cannot be found."""
+
+
+def is_verbose() -> bool:
+    """Whether loading says what it loads on stdout (set_verbose)."""
+    return VERBOSE
+
+
+def set_verbose(v: bool) -> None:
+    global VERBOSE
+    VERBOSE = v
 
 
 def base_msg_type(type_: str | None) -> str | None:
@@ -54,15 +76,21 @@ def resolve_type(type_: str, package_context: str) -> str:
 
 
 def parse_type(type_: str) -> tuple[str, bool, int | None]:
-    """(base type, is array, fixed length or None); MsgSpecException for no type or a bad dimension."""
+    """(base type, is array, fixed length or None); MsgSpecException for no type or a bad dimension
+    (rosbuild's reading, character for character: 'a[' is a bad dimension, 'a]' a plain type)."""
     if not type_:
         raise MsgSpecException("Invalid empty type")
-    if type_.count("[") > 1:
+    if "[" not in type_:
+        return type_, False, None
+    splits = type_.split("[")
+    if len(splits) > 2:
         raise MsgSpecException(f"Currently only support 1-dimensional array types: {type_}")
+    if type_.endswith("[]"):
+        return type_[:-2], True, None
     try:
-        return split_array_type(type_)
-    except (MessageError, ValueError):
-        raise MsgSpecException(f"Invalid array dimension: [{type_[type_.find('[') + 1:-1]}]") from None
+        return splits[0], True, int(splits[1][:-1])
+    except ValueError:
+        raise MsgSpecException(f"Invalid array dimension: [{splits[1][:-1]}]") from None
 
 
 def is_valid_msg_type(x: str) -> bool:
@@ -258,3 +286,105 @@ def get_registered(msg_type_name: str, default_package: str | None = None) -> Ms
 
 def register(msg_type_name: str, msg_spec: MsgSpec) -> None:
     REGISTERED_TYPES[msg_type_name] = msg_spec
+
+
+EXTENDED_BUILTINS = {TIME: load_from_string(TIME_MSG), DURATION: load_from_string(DURATION_MSG)}
+_loaded_packages: list[str] = []
+_initialized = False
+
+
+def _init() -> None:
+    """Register Header (as Header, std_msgs/Header and roslib/Header) and time and duration, once."""
+    global _initialized
+    if _initialized:
+        return
+    std_msgs_dir = _packages.get_pkg_dir("std_msgs", required=False)
+    if std_msgs_dir is None:
+        raise MsgSpecException(f"Unable to locate roslib: {EXT} files cannot be loaded")
+    header = os.path.join(std_msgs_dir, "msg", HEADER + EXT)
+    if not os.path.isfile(header):
+        sys.stderr.write(f"ERROR: cannot locate {HEADER}{EXT}. Expected to find it at '{header}'\n")
+        return
+    spec = load_from_file(header, "")[1]
+    for name in (HEADER, "std_msgs/" + HEADER, "roslib/" + HEADER):
+        register(name, spec)
+    for name, builtin in EXTENDED_BUILTINS.items():
+        register(name, builtin)
+    _initialized = True
+
+
+def reinit() -> None:
+    """Forget every registered type and loaded package, then register the builtins again."""
+    global _initialized
+    _initialized = False
+    del _loaded_packages[:]
+    REGISTERED_TYPES.clear()
+    _init()
+
+
+def _convert_val(type_: str, val: str) -> Any:
+    """A constant's value from its text: ValueError when it does not convert, MsgSpecException when
+    an integer is out of its type's range or the type takes no constants."""
+    if type_ in ("float32", "float64"):
+        return float(val)
+    if type_ == "string":
+        return val.strip()
+    bits = _INT_BITS.get(type_)
+    if bits is not None:
+        if type_[0] == "u" or type_ == "char":
+            lower, upper = 0, 2**bits - 1
+        else:
+            upper = 2 ** (bits - 1) - 1
+            lower = -upper - 1
+        value = int(val)
+        if value > upper or value < lower:
+            raise MsgSpecException(f"cannot coerce [{value}] to {type_} (out of bounds)")
+        return value
+    if type_ == "bool":
+        return bool(param_yaml.safe_load(val))  # rosbuild evaluates the text; YAML reads its literals
+    raise MsgSpecException(f"invalid constant type: [{type_}]")
+
+
+def get_pkg_msg_specs(package: str) -> tuple[list[tuple[str, MsgSpec]], list[str]]:
+    """(('pkg/Type', spec) for each message of `package`, the types that failed to load)."""
+    _init()
+    specs = []
+    failures = []
+    for type_ in list_msg_types(package, False):
+        try:
+            specs.append(load_from_file(msg_file(package, type_), package))
+        except Exception as exc:  # rosbuild reports each broken file and goes on
+            failures.append(type_)
+            print(f"ERROR: unable to load {type_}, {exc}")
+    return specs, failures
+
+
+def load_package_dependencies(package: str, load_recursive: bool = False) -> None:
+    """Register the messages of the packages `package` depends on (directly; all with `load_recursive`).
+    rosbuild read the direct ones from manifest.xml, which catkin packages lack (it raised
+    InvalidROSPkgException for them); kame asks rospack."""
+    _init()
+    if VERBOSE:
+        print("Load dependencies for package", package)
+    depends = rospkg.RosPack().get_depends(package, implicit=load_recursive)
+    for depend in depends:
+        if depend in _loaded_packages or depend == package:
+            continue
+        _loaded_packages.append(depend)
+        for key, spec in get_pkg_msg_specs(depend)[0]:
+            register(key, spec)
+
+
+def load_package(package: str) -> None:
+    """Register the messages of `package`, under their short and full names."""
+    _init()
+    if VERBOSE:
+        print("Load package", package)
+    if package in _loaded_packages:
+        if VERBOSE:
+            print(f"Package {package} is already loaded")
+        return
+    _loaded_packages.append(package)
+    for key, spec in get_pkg_msg_specs(package)[0]:
+        register(key, spec)
+        register(package + _names.PRN_SEPARATOR + key, spec)

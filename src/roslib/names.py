@@ -26,16 +26,50 @@ from rosgraph.names import (
     resolve_name,
 )
 
+# roslib's own patterns, which code matches names against directly
+RESOURCE_NAME_LEGAL_CHARS_P = re.compile(r"^[A-Za-z][\w_\/]*$")
+NAME_LEGAL_CHARS_P = re.compile(r"^[\~\/A-Za-z][\w_\/]*$")
+BASE_NAME_LEGAL_CHARS_P = re.compile(r"^[A-Za-z][\w_]*$")
+BASE_RESOURCE_NAME_LEGAL_CHARS_P = re.compile(r"^[A-Za-z][\w_]*$")
+
 PRN_SEPARATOR = "/"
 TYPE_SEPARATOR = PRN_SEPARATOR
 _RESOURCE_NAME = re.compile(r"[A-Za-z][\w/]*\Z")
 _RESOURCE_BASE_NAME = re.compile(r"[A-Za-z]\w*\Z")
 
-__all__ = ["ANYTYPE", "GLOBALNS", "PRIV_NAME", "PRN_SEPARATOR", "REMAP", "SEP", "TYPE_SEPARATOR", "anonymous_name",
-           "canonicalize_name", "get_ros_namespace", "is_global", "is_legal_base_name", "is_legal_name",
-           "is_legal_resource_base_name", "is_legal_resource_name", "is_private", "isstring", "load_mappings",
-           "make_caller_id", "make_global_ns", "namespace", "ns_join", "package_resource_name", "resolve_name",
-           "resource_name", "resource_name_base", "resource_name_package"]
+__all__ = [
+    "ANYTYPE",
+    "BASE_NAME_LEGAL_CHARS_P",
+    "BASE_RESOURCE_NAME_LEGAL_CHARS_P",
+    "GLOBALNS",
+    "NAME_LEGAL_CHARS_P",
+    "PRIV_NAME",
+    "PRN_SEPARATOR",
+    "REMAP",
+    "RESOURCE_NAME_LEGAL_CHARS_P",
+    "SEP",
+    "TYPE_SEPARATOR",
+    "anonymous_name",
+    "canonicalize_name",
+    "get_ros_namespace",
+    "is_global",
+    "is_legal_base_name",
+    "is_legal_name",
+    "is_legal_resource_base_name",
+    "is_legal_resource_name",
+    "is_private",
+    "isstring",
+    "load_mappings",
+    "make_caller_id",
+    "make_global_ns",
+    "namespace",
+    "ns_join",
+    "package_resource_name",
+    "resolve_name",
+    "resource_name",
+    "resource_name_base",
+    "resource_name_package",
+]
 
 
 def resource_name(res_pkg_name: str, name: str, my_pkg: str | None = None) -> str:

@@ -7,9 +7,12 @@ import os
 import stat
 from collections.abc import Callable, Mapping
 from pathlib import Path
+from subprocess import PIPE, Popen  # roslib.packages' own imports, which code reaches for
+from typing import Any
 
 import rospkg
 from kame.catkin.executables import find_node as _find_node
+from kame.catkin.find_in_workspaces import find_in_workspaces as catkin_find
 from kame.msg.catalog import Package
 from rospkg.environment import ROS_PACKAGE_PATH, ROS_ROOT
 
@@ -17,9 +20,25 @@ MANIFEST_FILE = "manifest.xml"
 PACKAGE_FILE = "package.xml"
 SRC_DIR = "src"
 
-__all__ = ["MANIFEST_FILE", "PACKAGE_FILE", "ROS_PACKAGE_PATH", "ROS_ROOT", "SRC_DIR", "InvalidROSPkgException",
-           "MultipleNodesException", "ROSPkgException", "find_node", "find_resource", "get_dir_pkg", "get_pkg_dir",
-           "get_pkg_subdir", "resource_file"]
+__all__ = [
+    "MANIFEST_FILE",
+    "PACKAGE_FILE",
+    "PIPE",
+    "ROS_PACKAGE_PATH",
+    "ROS_ROOT",
+    "SRC_DIR",
+    "InvalidROSPkgException",
+    "MultipleNodesException",
+    "Popen",
+    "ROSPkgException",
+    "catkin_find",
+    "find_node",
+    "find_resource",
+    "get_dir_pkg",
+    "get_pkg_dir",
+    "get_pkg_subdir",
+    "resource_file",
+]
 
 
 class ROSPkgException(Exception):
@@ -148,3 +167,32 @@ def find_node(pkg: str, node_type: str, rospack: rospkg.RosPack | None = None) -
     rospack = rospkg.RosPack() if rospack is None else rospack
     package = Package(pkg, Path(rospack.get_path(pkg)))
     return [str(path) for path in _find_node(package, node_type, os.environ)]
+
+
+def list_pkgs_by_path(path: str, packages: list[str] | None = None, cache: dict[str, Any] | None = None,
+                      env: Mapping[str, str] | None = None) -> list[str]:
+    """The rosbuild packages (folders with a manifest.xml) under `path`, appended to `packages`;
+    `cache` gets each one's (folder, ROS_ROOT, ROS_PACKAGE_PATH)."""
+    packages = [] if packages is None else packages
+    env = os.environ if env is None else env
+    ros_root, ros_package_path = env[ROS_ROOT], env.get(ROS_PACKAGE_PATH, "")
+    for folder, dirs, files in os.walk(os.path.abspath(path), topdown=True):
+        if MANIFEST_FILE in files:
+            package = os.path.basename(folder)
+            if package not in packages:
+                packages.append(package)
+                if cache is not None:
+                    cache[package] = folder, ros_root, ros_package_path
+            del dirs[:]
+            continue
+        if "rospack_nosubdirs" in files:
+            del dirs[:]
+            continue
+        for hidden in (".svn", ".git"):
+            if hidden in dirs:
+                dirs.remove(hidden)
+        for sub in dirs:
+            linked = os.path.join(folder, sub)
+            if os.path.islink(linked):  # os.walk does not follow links; rosbuild did
+                packages.extend(list_pkgs_by_path(linked, cache=cache))
+    return packages

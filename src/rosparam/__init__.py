@@ -6,14 +6,25 @@ kame.cli.rosparam; both read YAML with ROS's rules (kame.param_yaml: !radians, !
 
 from __future__ import annotations
 
+import base64
 import os
+import re
+import sys
+from collections.abc import Sequence
+from optparse import OptionParser
 from typing import Any
+
+import yaml
 
 import rosgraph
 from kame import names, param_yaml
+from kame.cli import rosparam as _command
 
-__all__ = ["RosParamException", "RosParamIOException", "delete_param", "get_param", "get_param_server",
-           "list_params", "load_file", "load_str", "set_param", "set_param_raw", "upload_params"]
+__all__ = ["GLOBALNS", "NAME", "NS", "Binary", "OptionParser", "RosParamException", "RosParamIOException",
+           "construct_angle_degrees", "construct_angle_radians", "construct_yaml_binary", "delete_param", "dump_params",
+           "get_param", "get_param_server", "get_ros_namespace", "list_params", "load_file", "load_str",
+           "make_caller_id", "make_global_ns", "ns_join", "pattern", "print_params", "represent_foo",
+           "represent_xml_binary", "script_resolve_name", "set_param", "set_param_raw", "upload_params", "yamlmain"]
 
 NS_KEY = "_ns"
 
@@ -118,3 +129,86 @@ def list_params(ns: str) -> list[str]:
     prefix = names.make_global_ns(ns)
     found = [str(name) for name in _call("getParamNames")]
     return sorted(name for name in found if ns == "/" or name == ns.rstrip("/") or name.startswith(prefix))
+
+
+# ---------------------------------------------------------------- rosparam's YAML hooks and command
+
+NAME = "rosparam"
+NS = NS_KEY
+
+
+class Binary(bytes):
+    """Binary data as the parameter server holds it (xmlrpc.client's Binary: the bytes are in
+    `data`); bytes itself, so kame's XML-RPC client sends it as base64."""
+
+    @property
+    def data(self) -> bytes:
+        return bytes(self)
+
+GLOBALNS = rosgraph.names.GLOBALNS
+get_ros_namespace = rosgraph.names.get_ros_namespace
+make_caller_id = rosgraph.names.make_caller_id
+make_global_ns = rosgraph.names.make_global_ns
+ns_join = rosgraph.names.ns_join
+script_resolve_name = rosgraph.names.script_resolve_name
+pattern = re.compile(r"^rad\([^\)]*\)$")  # rosparam's last-bound pattern: `rad(...)`, the implicit !radians
+
+
+def represent_xml_binary(loader: Any, data: Binary) -> Any:
+    """YAML for an XML-RPC Binary: base64, as rosparam dumps it. rosparam registers its hooks with
+    pyyaml as it is imported; kame's rosparam reads YAML with kame.param_yaml and leaves pyyaml as is."""
+    return loader.represent_scalar("tag:yaml.org,2002:binary", base64.b64encode(data.data), style="|")
+
+
+def represent_foo(loader: Any, data: Any) -> Any:
+    return loader.represent_scalar("#", data)
+
+
+def construct_yaml_binary(loader: Any, node: Any) -> Binary:
+    """YAML binary data as an XML-RPC Binary, as the parameter server stores it."""
+    return Binary(loader.construct_yaml_binary(node))
+
+
+def construct_angle_radians(loader: Any, node: Any) -> float:
+    """`rad(pi/2)` or `pi/2` in radians (arithmetic and pi only, not Python as rosparam's eval)."""
+    try:
+        return param_yaml.radians(str(loader.construct_scalar(node)))
+    except param_yaml.ParamValueError as exc:
+        raise RosParamException(str(exc)) from None
+
+
+def construct_angle_degrees(loader: Any, node: Any) -> float:
+    """`deg(90)` or `90` in radians."""
+    try:
+        return param_yaml.degrees(str(loader.construct_scalar(node)))
+    except param_yaml.ParamValueError as exc:
+        raise RosParamException(str(exc)) from None
+
+
+def print_params(params: Any, ns: str) -> None:
+    """Each leaf of `params` as `ns/key=value` (a value that is no dict: as it is)."""
+    if isinstance(params, dict):
+        for key, value in params.items():
+            if isinstance(value, dict):
+                print_params(value, ns_join(ns, key))
+            else:
+                print(f"{ns_join(ns, key)}={value}")
+    else:
+        print(params)
+
+
+def dump_params(filename: str | None, param: str, verbose: bool = False) -> None:
+    """Write the parameter (or namespace) `param` as YAML to `filename` (stdout when empty)."""
+    tree = get_param(param)
+    if verbose:
+        print_params(tree, param)
+    if not filename:
+        yaml.dump(tree, sys.stdout)
+        return
+    with open(filename, "w") as f:
+        yaml.dump(tree, f)
+
+
+def yamlmain(argv: Sequence[str] | None = None) -> None:
+    """The rosparam command on `argv` (sys.argv: the program, then the command); ends the process."""
+    sys.exit(_command.main(None if argv is None else list(argv)[1:]))

@@ -9,21 +9,32 @@ node name if it has one, without registering a node otherwise.
 
 from __future__ import annotations
 
+import sys
 import time
 from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
+from io import BytesIO as BufferType
+from optparse import OptionParser
 from typing import Any
 
+import rosgraph.names
+from kame.cli import rosservice as _command
 from kame.cli._tool import ToolError
 from kame.cli.rosservice import ID, Tool, _srv_text, arg_summary, load_service_class
 from kame.client import clock, core
 from kame.client.errors import ROSSerializationException
 from kame.client.services import ServiceException, ServiceProxy
 from kame.msg.fill import FillError, fill_message_args, printable_message_args
+from kame.net.handshake import HandshakeError, read_header, write_header
+from kame.net.stream import connect
+from kame.node.services import ServiceError, parse_rosrpc
+from kame.protocol import tcpros
 from kame.rostime import Time
 
-__all__ = ["ROSServiceException", "ROSServiceIOException", "call_service", "get_service_class_by_name",
-           "get_service_list", "get_service_node", "get_service_type", "get_service_uri"]
+__all__ = ["NAME", "BufferType", "OptionParser", "ROSServiceException", "ROSServiceIOException", "call_service",
+           "get_service_args", "get_service_class_by_name", "get_service_headers", "get_service_list",
+           "get_service_node", "get_service_type", "get_service_uri", "has_service_args", "rosservice_find",
+           "rosservicemain"]
 
 
 class ROSServiceException(Exception):
@@ -123,3 +134,64 @@ def call_service(service_name: str, service_args: Sequence[Any], service_class: 
                                   f"  {exc}\n\nsrv file:\n{_srv_text(service_class._type)}") from None
     finally:
         proxy.close()
+
+
+# ---------------------------------------------------------------- rosservice's command parts
+
+NAME = "rosservice"
+
+
+def get_service_headers(service_name: str, service_uri: str) -> dict[str, str]:
+    """The TCPROS header service `service_name` at `service_uri` (rosrpc://host:port) answers a
+    probe with (its type, md5sum, ...)."""
+    try:
+        host, port = parse_rosrpc(service_uri)
+    except ServiceError:
+        raise ROSServiceException(f"service [{service_name}] has an invalid RPC URI [{service_uri}]") from None
+    try:
+        sock = connect(host, port, timeout=5.0)
+    except OSError as exc:
+        raise ROSServiceIOException(f"Unable to communicate with service [{service_name}], address "
+                                    f"[{service_uri}]") from exc
+    try:
+        sock.settimeout(5.0)
+        write_header(sock, tcpros.service_probe_header_fields(callerid=ID, service=service_name))
+        return read_header(sock)
+    except (OSError, HandshakeError) as exc:
+        raise ROSServiceIOException(f"Unable to communicate with service [{service_name}], address "
+                                    f"[{service_uri}]") from exc
+    finally:
+        sock.close()
+
+
+def rosservice_find(service_type: str) -> list[str]:
+    """The services whose type is `service_type`."""
+    with _tool() as t:
+        matches = []
+        for name, _providers in t.services():
+            try:
+                found = t.type(name)
+            except ToolError:  # a service that does not answer is not a match, as rosservice's
+                continue
+            if found == service_type:
+                matches.append(name)
+        return matches
+
+
+def has_service_args(service_name: str, service_class: Any = None) -> bool:
+    """Whether the service's request has fields."""
+    name = rosgraph.names.script_resolve_name(NAME, service_name)
+    if service_class is None:
+        service_class = get_service_class_by_name(name)
+    return len(service_class._request_class.__slots__) > 0
+
+
+def get_service_args(service_name: str) -> str:
+    """The request's fields as `rosservice args` prints them."""
+    name = rosgraph.names.script_resolve_name(NAME, service_name)
+    return printable_message_args(get_service_class_by_name(name)._request_class)
+
+
+def rosservicemain(argv: Sequence[str] = sys.argv) -> None:
+    """The rosservice command on `argv` (the program, then the command); ends the process."""
+    sys.exit(_command.main(list(argv)[1:]))

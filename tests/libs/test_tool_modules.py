@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import json
 import random
+import subprocess
 import sys
 from collections.abc import Iterator
 from pathlib import Path
@@ -267,3 +268,100 @@ def test_kames_modules_on_a_debian_rospy_node(tmp_path: Path, monkeypatch: pytes
         if node is not None:
             node.stop()
         master.stop()
+
+
+def test_the_tools_command_parts(on_graph: dict[str, str], capsys: Any) -> None:
+    """The command-side names of rostopic, rosservice and rosnode that ROS code also calls."""
+    from rospy_tutorials.srv import AddTwoInts
+
+    assert rostopic.find_by_type("std_msgs/String") == ["/chatter"]
+    assert rostopic.get_api(rosgraph.Master("/test"), "/tools_node").startswith("http://")
+    assert rosservice.rosservice_find("rospy_tutorials/AddTwoInts") == ["/add_two_ints"]
+    assert rosservice.has_service_args("/add_two_ints") and rosservice.get_service_args("/add_two_ints") == "a b"
+    headers = rosservice.get_service_headers("/add_two_ints", str(rosservice.get_service_uri("/add_two_ints")))
+    assert (headers["type"], headers["md5sum"]) == ("rospy_tutorials/AddTwoInts", AddTwoInts._md5sum)
+    with pytest.raises(rosservice.ROSServiceException, match="invalid RPC URI"):
+        rosservice.get_service_headers("/x", "http://nowhere")
+    assert "Publications: \n * /chatter [std_msgs/String]" in rosnode.get_node_info_description("/tools_node")
+    capsys.readouterr()
+    rosnode.rosnode_listnodes()
+    assert capsys.readouterr().out == "/tools_node\n"
+    rosnode.rosnode_listnodes(list_all=True)
+    assert capsys.readouterr().out.endswith(" \t/tools_node\n")
+
+
+def test_rosparam_yaml_hooks_and_printing(capsys: Any) -> None:
+    import yaml
+
+    class Loader(yaml.SafeLoader):
+        pass
+
+    Loader.add_constructor("!radians", rosparam.construct_angle_radians)
+    Loader.add_constructor("!degrees", rosparam.construct_angle_degrees)
+    Loader.add_constructor("tag:yaml.org,2002:binary", rosparam.construct_yaml_binary)
+    loaded = yaml.load("a: !radians pi/2\nb: !degrees 180\nc: !!binary aGk=\n", Loader=Loader)
+    assert loaded["a"] == pytest.approx(1.5707963) and loaded["b"] == pytest.approx(3.14159265)
+    assert isinstance(loaded["c"], rosparam.Binary) and loaded["c"].data == b"hi"
+    with pytest.raises(rosparam.RosParamException, match="invalid radian expression"):
+        yaml.load("a: !radians __import__('os')\n", Loader=Loader)
+    assert rosparam.pattern.match("rad(pi)") and not rosparam.pattern.match("deg(90)")
+    rosparam.print_params({"a": 1, "n": {"b": "x"}}, "/ns")
+    assert capsys.readouterr().out == "/ns/a=1\n/ns/n/b=x\n"
+
+
+def test_rosnode_machines_and_connections(on_graph: dict[str, str]) -> None:
+    master = rosgraph.Master("/test")
+    assert rosnode.get_machines_by_nodes() == ["127.0.0.1"]
+    assert rosnode.get_nodes_by_machine("127.0.0.1") == ["/tools_node"]
+    assert rosnode.get_nodes_by_machine("localhost") == ["/tools_node"]
+    with pytest.raises(rosnode.ROSNodeException, match="cannot resolve machine name"):
+        rosnode.get_nodes_by_machine("no-such-host.invalid")
+    uri = str(master.lookupNode("/tools_node"))
+    state = master.getSystemState()
+    assert rosnode.lookup_uri(master, state, "/chatter", uri) == f"/tools_node ({uri})"
+    assert rosnode.lookup_uri(master, state, "/chatter", "http://elsewhere:1/") == "http://elsewhere:1/"
+    assert rosnode.get_node_connection_info_description(uri, master).startswith("Pid: ")
+    with pytest.raises(rosnode.ROSNodeIOException, match="Communication with node"):
+        rosnode.get_node_connection_info_description(f"http://127.0.0.1:{free_port()}/", master)
+
+
+def test_rosnode_cleanup_lists_leave_the_listed_alone(on_graph: dict[str, str], capsys: Any) -> None:
+    master = rosgraph.Master("/test")
+    before = master.getSystemState()
+    rosnode.cleanup_master_blacklist(master, ["/ghost"])
+    assert capsys.readouterr().out == "Unregistering /ghost\n"
+    rosnode.cleanup_master_whitelist(master, ["/tools_node"])
+    assert master.getSystemState() == before
+
+
+def test_rostopic_publishing_functions(graph: dict[str, str], tmp_path: Path) -> None:
+    documents = tmp_path / "docs.yaml"
+    documents.write_text("data: one\n---\ndata: two\n")
+    publisher = Proc([sys.executable, str(Path(__file__).with_name("rostopic_pub_driver.py")), str(documents)], graph)
+    try:
+        publisher.wait_line("published")
+        echo = subprocess.run(kame_command("kame.cli.rostopic", "echo", "-n", "1", "/facade_out"), env=graph,
+                              capture_output=True, text=True, timeout=60)
+        assert echo.stdout == 'data: "hi"\n---\n', echo.stderr
+        assert publisher.wait_line("subscriber came:", timeout=60) == "subscriber came: True\n"
+        out = "".join(publisher.out)
+        assert "bad type: invalid message type: std_msgs/Nope." in out
+        assert "class: std_msgs/String /facade_out" in out
+        assert "bad args: Too many arguments:" in out
+        assert "file: [[{'data': 'one'}], [{'data': 'two'}]]" in out
+        assert "no param: parameter does not exist: /no_such_param" in out
+    finally:
+        publisher.stop()
+
+
+def test_rostopic_param_publish(graph: dict[str, str]) -> None:
+    publisher = Proc([sys.executable, str(Path(__file__).with_name("rostopic_param_driver.py"))], graph)
+    try:
+        assert publisher.wait_line("heard") == "heard p1\n"
+        done = subprocess.run(kame_command("kame.cli.rosparam", "set", "/facade_msg/data", "p2"), env=graph,
+                              capture_output=True, text=True, timeout=60)
+        assert done.returncode == 0, done.stderr
+        assert publisher.wait_line("heard p2") == "heard p2\n"
+        assert publisher.wait_line("stopped") == "stopped True\n"
+    finally:
+        publisher.stop()

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import io
 
+import pytest
+
 import genpy
 import genpy.dynamic
 import genpy.message
@@ -34,7 +36,8 @@ def test_roslib_lookups() -> None:
     assert roslib.message.get_message_class("Header")._type == "std_msgs/Header"
     assert roslib.message.get_service_class("std_srvs/SetBool") is SetBool
     assert roslib.message.get_message_class("no_such_pkg/Nope") is None
-    assert roslib.message.get_message_class("malformed") is None
+    with pytest.raises(ValueError, match="missing package name"):  # genpy's, through roslib's
+        roslib.message.get_message_class("malformed")
 
 
 def test_importing_a_package_brings_its_modules_as_in_ros() -> None:

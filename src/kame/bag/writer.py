@@ -35,7 +35,7 @@ import os
 import struct
 import time
 from collections.abc import Mapping, Sequence
-from typing import BinaryIO
+from typing import BinaryIO, cast
 
 from kame.bag import records
 from kame.bag.compression import COMPRESSIONS, compress
@@ -54,14 +54,23 @@ _STREAM_BATCH = 64 * 1024  # an open uncompressed chunk goes to disk in batches 
 
 
 class BagWriter:
-    """Writes a bag to `path` ('w': a new file; 'a': append to an indexed bag)."""
+    """Writes a bag to `path` ('w': a new file; 'a': append to an indexed bag).
 
-    def __init__(self, path: str | os.PathLike[str], mode: str = "w", compression: str = "none",
+    `path` may also be an open binary file with a descriptor (rosbag's `Bag(f, 'w')`): it is
+    written through a duplicate of its descriptor, from its start ('w'); closing the writer
+    leaves the caller's file open."""
+
+    def __init__(self, path: str | os.PathLike[str] | BinaryIO, mode: str = "w", compression: str = "none",
                  chunk_threshold: int = DEFAULT_CHUNK_THRESHOLD, allow_unindexed: bool = False,
                  drop_behind: bool = False) -> None:
         if compression not in COMPRESSIONS:
             raise BagError(f"unsupported compression type: {compression}")
-        self.path = os.fspath(path)
+        self._caller_file: BinaryIO | None = None
+        if isinstance(path, (str, os.PathLike)):
+            self.path = os.fspath(path)
+        else:
+            self._caller_file = path
+            self.path = str(getattr(path, "name", "<stream>"))
         self.compression = compression
         self.chunk_threshold = chunk_threshold
         self.connections: dict[int, Connection] = {}
@@ -79,7 +88,9 @@ class BagWriter:
         self._chunk_end: tuple[int, int] = (0, 0)
         self.closed = False
         if mode == "w":
-            self._file: BinaryIO = open(self.path, "wb", buffering=0)  # chunks go out whole, by writev
+            self._file: BinaryIO = self._open_file("wb")  # chunks go out whole, by writev
+            self._file.seek(0)
+            self._file.truncate()
             self._file.write(records.MAGIC + records.file_header_record(0, 0, 0))
             self._pos = records.FIRST_RECORD_POS
         elif mode == "a":
@@ -94,14 +105,15 @@ class BagWriter:
         one after its last intact chunk (the index is rebuilt and written on close)."""
         from kame.bag.reader import BagReader
 
-        with BagReader(self.path, allow_unindexed=allow_unindexed) as reader:
+        source = self.path if self._caller_file is None else self._caller_file
+        with BagReader(source, allow_unindexed=allow_unindexed) as reader:
             self.connections = dict(reader.connections)
             self.chunk_infos = list(reader.chunk_infos)
             index_pos = reader.index_pos
             torn = reader.torn
             torn_entries = reader.chunk_entries(torn.pos) if torn is not None else []
         self._written = set(self.connections)
-        self._file = open(self.path, "r+b", buffering=0)
+        self._file = self._open_file("r+b")
         self._file.seek(len(records.MAGIC))
         self._file.write(records.file_header_record(0, 0, 0))  # not closed until we say so
         self._file.truncate(index_pos)
@@ -115,6 +127,13 @@ class BagWriter:
                 by_conn.setdefault(conn_id, []).append(records.pack_index_entry(secs, nsecs, offset))
             self._write([records.index_data_record(conn_id, b"".join(entries), len(entries))
                          for conn_id, entries in by_conn.items()])
+
+    def _open_file(self, mode: str) -> BinaryIO:
+        if self._caller_file is None:
+            return cast(BinaryIO, open(self.path, mode, buffering=0))
+        self._caller_file.flush()  # what the caller wrote through its buffer lands before our records
+        duplicate: BinaryIO = open(os.dup(self._caller_file.fileno()), "r+b", buffering=0)
+        return duplicate
 
     # ------------------------------------------------------------------ writing
 
@@ -261,6 +280,19 @@ class BagWriter:
 
     def flush(self) -> None:
         self.flush_chunk()
+
+    def index(self) -> list[ChunkInfo]:
+        """The chunks written so far and the open one (at the position it will have): the
+        times and counts a reader of the finished bag would find."""
+        if self._chunk_start is None:
+            return list(self.chunk_infos)
+        pos = self._pos if self._chunk_pos is None else self._chunk_pos
+        return [*self.chunk_infos, ChunkInfo(pos, self._chunk_start, self._chunk_end, dict(self._chunk_counts))]
+
+    @property
+    def file(self) -> BinaryIO:
+        """The file the records go to (unbuffered; its position is the end of what is written)."""
+        return self._file
 
     @property
     def size(self) -> int:

@@ -20,7 +20,7 @@ from kame.bag.compression import COMPRESSIONS
 from kame.bag.errors import BagError, BagFormatError, BagUnindexedError
 from kame.bag.info import BagSummary, info_text, info_yaml, yaml_key
 from kame.bag.reader import BagReader, open_reader
-from kame.bag.records import Connection
+from kame.bag.records import MAGIC, ChunkInfo, Connection
 from kame.bag.writer import DEFAULT_CHUNK_THRESHOLD, BagWriter
 from kame.client.clock import Time
 from kame.msg.errors import MessageError
@@ -95,56 +95,54 @@ class Bag:
     def __init__(self, f: str | os.PathLike[str] | BinaryIO, mode: str = "r", compression: str = Compression.NONE,
                  chunk_threshold: int = DEFAULT_CHUNK_THRESHOLD, allow_unindexed: bool = False,
                  options: dict[str, Any] | None = None, skip_index: bool = False) -> None:
-        if options:
+        # rosbag's checks, in its order, before any file is touched
+        if options is not None:
+            if type(options) is not dict:
+                raise ValueError("options must be of type dict")
             compression = options.get("compression", compression)
             chunk_threshold = options.get("chunk_threshold", chunk_threshold)
         if compression not in COMPRESSIONS:
             raise ValueError(f"compression must be one of: {', '.join(COMPRESSIONS)}")
-        if mode not in ("r", "w", "a"):
-            raise ValueError(f'mode "{mode}" is invalid')
+        if chunk_threshold < 0:
+            raise ValueError("chunk_threshold must be greater than or equal to zero")
         if not f:
             raise ValueError("filename (or stream) is invalid")
-        if not isinstance(f, (str, os.PathLike)):  # an open file: read through it (rosbag's streams)
-            if mode != "r":
-                raise ValueError("kame's Bag writes to a file name, not a stream")
-            self._init_from(f, compression, chunk_threshold, allow_unindexed)
-            return
-        self._filename = os.fspath(f)
+        if mode not in ("r", "w", "a"):
+            raise ValueError(f'mode "{mode}" is invalid')
+        self._caller_file: BinaryIO | None = None
+        self._filename: str | None = None  # rosbag's for a file object
+        if isinstance(f, (str, os.PathLike)):
+            self._filename = os.fspath(f)
+        else:
+            try:
+                f.fileno()
+            except (AttributeError, OSError):
+                raise ValueError("kame's Bag reads and writes a file with a descriptor, not a stream "
+                                 "such as io.BytesIO") from None
+            self._caller_file = f
         self._mode = mode
         self._compression = compression
         self._chunk_threshold = chunk_threshold
         self._reader: BagReader | McapReader | None = None
         self._writer: BagWriter | None = None
         self._topic_conns: dict[str, int] = {}
+        self._read_file: BinaryIO | None = None  # `_file` of a bag opened by name for reading
+        source: str | BinaryIO = self._caller_file if self._caller_file is not None else self._filename or ""
         if mode == "r":
-            try:
-                self._reader = open_reader(self._filename, allow_unindexed=allow_unindexed)
-            except FileNotFoundError:
-                raise
-        elif mode == "w":
-            self._writer = BagWriter(self._filename, "w", compression, chunk_threshold)
+            if self._caller_file is not None:
+                self._reader = BagReader(self._caller_file, allow_unindexed=allow_unindexed)
+            else:  # by name: a bag 2.0 or, by its first bytes, an MCAP file
+                self._reader = open_reader(self._filename or "", allow_unindexed=allow_unindexed)
+        elif mode == "w" or (self._filename is not None and
+                             (not os.path.exists(self._filename) or os.path.getsize(self._filename) == 0)):
+            self._writer = BagWriter(source, "w", compression, chunk_threshold)
         else:
-            if not os.path.exists(self._filename) or os.path.getsize(self._filename) == 0:
-                self._writer = BagWriter(self._filename, "w", compression, chunk_threshold)
-            else:
-                self._writer = BagWriter(self._filename, "a", compression, chunk_threshold,
-                                         allow_unindexed=allow_unindexed)
-                for conn in self._writer.connections.values():
-                    self._topic_conns.setdefault(conn.topic, conn.id)
-
-    def _init_from(self, stream: BinaryIO, compression: str, chunk_threshold: int, allow_unindexed: bool) -> None:
-        self._filename = str(getattr(stream, "name", ""))
-        self._mode = "r"
-        self._compression = compression
-        self._chunk_threshold = chunk_threshold
-        self._writer = None
-        self._topic_conns = {}
-        self._reader = BagReader(stream, allow_unindexed=allow_unindexed)
-
-    # ------------------------------------------------------------------ properties
+            self._writer = BagWriter(source, "a", compression, chunk_threshold, allow_unindexed=allow_unindexed)
+            for conn in self._writer.connections.values():
+                self._topic_conns.setdefault(conn.topic, conn.id)
 
     @property
-    def filename(self) -> str:
+    def filename(self) -> str | None:
         return self._filename
 
     @property
@@ -154,6 +152,21 @@ class Bag:
     @property
     def version(self) -> int:
         return 200
+
+    # rosbag's private attributes, which its reindex and migration code (and scripts copied
+    # from them) reach for: the open file, the file header record's offset, the format version
+    _version = 200
+    _file_header_pos = len(MAGIC)
+
+    @property
+    def _file(self) -> BinaryIO:
+        if self._caller_file is not None:
+            return self._caller_file
+        if self._writer is not None:
+            return self._writer.file
+        if self._read_file is None:
+            self._read_file = open(self._filename or "", "rb")  # closed by close()
+        return self._read_file
 
     @property
     def size(self) -> int:
@@ -214,6 +227,9 @@ class Bag:
             self._writer.close()
         if self._reader is not None:
             self._reader.close()
+        for file in (self._read_file, self._caller_file):  # rosbag closes a file it was given, too
+            if file is not None:
+                file.close()
 
     def flush(self) -> None:
         if self._writer is not None:
@@ -262,20 +278,38 @@ class Bag:
             else:
                 yield new_tuple(result_type, (conn.topic, msg, t))
 
+    def _index(self) -> tuple[dict[int, Connection], list[ChunkInfo]]:
+        """The connections and chunks of the index, which rosbag keeps (and answers from) while
+        writing and after closing."""
+        if self._writer is not None:
+            return self._writer.connections, self._writer.index()
+        reader = self._read_side()
+        return reader.connections, reader.chunk_infos
+
+    def _time_chunks(self) -> list[ChunkInfo]:
+        """The chunks rosbag takes a bag's start and end from: the first's start, the last's end
+        (in file order, not the earliest and latest); while writing, the chunks already written,
+        or the open one before there are any."""
+        chunks = self._writer.chunk_infos if self._writer is not None else []
+        chunks = chunks or self._index()[1]
+        if not chunks:
+            raise BagError("Bag contains no message")
+        return chunks
+
     def get_message_count(self, topic_filters: Any = None) -> int:
-        return self._read_side().message_count(topic_filters)
+        connections, chunks = self._index()
+        if isinstance(topic_filters, str):
+            topic_filters = [topic_filters]
+        ids = {c.id for c in connections.values() if topic_filters is None or c.topic in topic_filters}
+        return sum(n for info in chunks for conn_id, n in info.counts.items() if conn_id in ids)
 
     def get_start_time(self) -> float:
-        t = self._read_side().start_time
-        if t is None:
-            raise BagError("Bag contains no message")
-        return t[0] + t[1] / 1e9
+        secs, nsecs = self._time_chunks()[0].start
+        return secs + nsecs / 1e9
 
     def get_end_time(self) -> float:
-        t = self._read_side().end_time
-        if t is None:
-            raise BagError("Bag contains no message")
-        return t[0] + t[1] / 1e9
+        secs, nsecs = self._time_chunks()[-1].end
+        return secs + nsecs / 1e9
 
     def _frequencies(self, topics: list[str]) -> dict[str, float]:
         reader = self._read_side()
@@ -318,8 +352,8 @@ class Bag:
     def summary(self, frequencies: bool = False) -> BagSummary:
         reader = self._read_side()
         freqs = self._frequencies(sorted({c.topic for c in reader.connections.values()})) if frequencies else None
-        return BagSummary(self._filename, self.size, reader.connections, reader.chunk_infos, reader.chunk_headers(),
-                          freqs, "2.0" if isinstance(reader, BagReader) else "mcap")
+        return BagSummary(self._filename or "", self.size, reader.connections, reader.chunk_infos,
+                          reader.chunk_headers(), freqs, "2.0" if isinstance(reader, BagReader) else "mcap")
 
     def __str__(self) -> str:
         return info_text(self.summary())

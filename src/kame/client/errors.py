@@ -1,10 +1,6 @@
 """The client's exceptions, under rospy's names (ROSException, ROSInterruptException, ...)."""
 
-from kame.msg.errors import DeserializationError, SerializationError
-
-
-class ROSException(Exception):
-    """Base exception class for ROS clients."""
+from kame.msg.errors import DeserializationError, ROSException, SerializationError
 
 
 class ROSSerializationException(ROSException):

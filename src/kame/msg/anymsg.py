@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from kame.msg.errors import MessageError, SerializationError
+from kame.msg.errors import MessageError, ROSException
 from kame.msg.message import Message
 
 
@@ -28,7 +28,7 @@ class AnyMsg(Message):
 
     def serialize(self, buff: Any) -> None:
         if self._buff is None:
-            raise SerializationError("AnyMsg is not initialized")
+            raise ROSException("AnyMsg is not initialized")
         buff.write(self._buff)
 
     def deserialize(self, data: Any) -> AnyMsg:

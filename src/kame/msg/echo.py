@@ -168,12 +168,12 @@ def _fields_of(val: Any, field_filter: FieldFilter | None) -> list[tuple[str, An
     return [(name, getattr(val, name)) for name in val.__slots__ if wanted is None or name in wanted]
 
 
-def _csv_names(val: Any, label: str, field_filter: FieldFilter | None) -> str | None:
+def csv_names(val: Any, label: str, field_filter: FieldFilter | None) -> str | None:
     kind = type(val)
     if kind in (bool, int, float) or isinstance(val, TVal) or isinstance(val, str):
         return label
     if isinstance(val, Message):
-        subs = [_csv_names(v, f"{label}.{name}", field_filter) for name, v in _fields_of(val, field_filter)]
+        subs = [csv_names(v, f"{label}.{name}", field_filter) for name, v in _fields_of(val, field_filter)]
         found = [s for s in subs if s is not None]
         return ",".join(found) if found else None
     if kind in (list, tuple):
@@ -183,7 +183,7 @@ def _csv_names(val: Any, label: str, field_filter: FieldFilter | None) -> str | 
         if type(first) in (bool, int, float) or isinstance(first, (TVal, str)):
             return ",".join(f"{label}{i}" for i in range(len(val)))
         if isinstance(first, Message):
-            subs = [_csv_names(v, f"{label}{i}", field_filter) for i, v in enumerate(val)]
+            subs = [csv_names(v, f"{label}{i}", field_filter) for i, v in enumerate(val)]
             found = [s for s in subs if s]
             return ",".join(found) if found else None
     return None
@@ -222,7 +222,7 @@ def _csv_values(val: Any, time_offset: Time | None, field_filter: FieldFilter | 
 
 def csv_header(val: Any, field_filter: FieldFilter | None = None) -> str:
     """`%time,field.x,field.y`: the first line rostopic echo -p prints."""
-    names = _csv_names(val, "field", field_filter)
+    names = csv_names(val, "field", field_filter)
     return "%time," + (names if names is not None else "")
 
 

@@ -1,6 +1,11 @@
 """The errors of the message layer, one family per concern, each raised `from` its cause."""
 
 
+class ROSException(Exception):
+    """Base exception class for ROS clients (rospy.ROSException). It lives here, at the floor,
+    because a message raises it too: an AnyMsg serialized before it holds any bytes, as rospy's."""
+
+
 class MessageError(Exception):
     """Base of every error raised by kame.msg (genpy calls this MessageException)."""
 

@@ -70,12 +70,18 @@ def make_message(cls: type[Message], pub_args: list[Any]) -> Message:
 
 
 class Publishing:
-    def __init__(self, topic: str, cls: type[Message], latch: bool, verbose: bool) -> None:
+    """Publishing `cls` messages through `pub` (a kame.client Publisher: rospy's)."""
+
+    def __init__(self, pub: Any, cls: type[Message], verbose: bool) -> None:
+        self.pub = pub
         self.cls = cls
         self.verbose = verbose
+
+    @classmethod
+    def advertise(cls, topic: str, msg_class: type[Message], latch: bool, verbose: bool) -> Publishing:
         from kame.client.topics import Publisher
 
-        self.pub = Publisher(topic, cls, latch=latch, queue_size=100)
+        return cls(Publisher(topic, msg_class, latch=latch, queue_size=100), msg_class, verbose)
 
     def publish(self, msg: Message) -> None:
         self.pub.publish(msg)
@@ -104,28 +110,32 @@ class Publishing:
                 break
 
     def wait_for_subscriber(self, timeout: float) -> None:
-        """Until a subscriber connects, `timeout` seconds pass or the node shuts down."""
-        from kame.client import core
-
-        connected = threading.Event()
-        impl = self.pub.impl
-        if impl is None:
-            return
-
-        def callback(link: Any) -> None:
-            connected.set()
-
-        impl.add_connect_callback(callback)
-        try:
-            with core.woken_at_shutdown(connected):
-                if impl.links:
-                    return
-                connected.wait(timeout)
-        finally:
-            impl.remove_connect_callback(callback)
+        wait_for_subscriber(self.pub, timeout)
 
 
-def _yaml_documents_from_file(path: str) -> list[Any]:
+def wait_for_subscriber(pub: Any, timeout: float) -> None:
+    """Until a subscriber connects to `pub`, `timeout` seconds pass or the node shuts down."""
+    from kame.client import core
+
+    connected = threading.Event()
+    impl = pub.impl
+    if impl is None:
+        return
+
+    def callback(link: Any) -> None:
+        connected.set()
+
+    impl.add_connect_callback(callback)
+    try:
+        with core.woken_at_shutdown(connected):
+            if impl.links:
+                return
+            connected.wait(timeout)
+    finally:
+        impl.remove_connect_callback(callback)
+
+
+def yaml_documents_from_file(path: str) -> list[Any]:
     if not os.path.isfile(path):
         raise RostopicError(f"file does not exist: {path}")
     try:
@@ -140,7 +150,7 @@ def _yaml_documents_from_file(path: str) -> list[Any]:
         raise RostopicError(f"cannot read {path}: {exc.strerror}") from None
 
 
-def _yaml_documents_from_stdin() -> Iterator[Any]:
+def yaml_documents_from_stdin() -> Iterator[Any]:
     """YAML documents on stdin separated by `---` lines; a trailing partial one is dropped."""
     buff = ""
     while not is_shutdown():
@@ -221,7 +231,7 @@ def cmd_pub(args: list[str]) -> None:
     else:
         make_message(cls, pub_args)  # bad arguments are reported before anything registers
     init_node(disable_rosout=True, disable_rostime=not options.use_rostime)
-    publishing = Publishing(script_resolve_name(topic), cls, latch, options.verbose)
+    publishing = Publishing.advertise(script_resolve_name(topic), cls, latch, options.verbose)
     if not from_input:
         publishing.publish_message(pub_args, rate, options.once, options.substitute_keywords)
         if options.once:
@@ -229,18 +239,20 @@ def cmd_pub(args: list[str]) -> None:
         return
     if rate is None and not options.latch and not options.once:
         rate = 10.0
-    _publish_input(publishing, rate, options.once, options.file)
+    publish_input(publishing, rate, options.once, options.file)
 
 
-def _publish_input(publishing: Publishing, rate: float | None, once: bool, path: str | None) -> None:
+def publish_input(publishing: Publishing, rate: float | None, once: bool, path: str | None) -> None:
+    """Publish the YAML documents of file `path` (stdin when None), `rate` a second (as fast as
+    they come when None), after waiting up to SUBSCRIBER_TIMEOUT for a subscriber."""
     documents: Iterator[Any]
     exactly_one = False
     if path:
-        loaded = _yaml_documents_from_file(path)
+        loaded = yaml_documents_from_file(path)
         exactly_one = len(loaded) == 1
         documents = iter(loaded)
     else:
-        documents = _yaml_documents_from_stdin()
+        documents = yaml_documents_from_stdin()
     from kame.client import errors, timer
     r = timer.Rate(rate) if rate is not None else None
     publishing.wait_for_subscriber(SUBSCRIBER_TIMEOUT)

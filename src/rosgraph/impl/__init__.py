@@ -1,0 +1,1 @@
+"""rosgraph.impl: the graph model rosgraph's command and rqt_graph's dot code read."""
