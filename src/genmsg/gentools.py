@@ -4,6 +4,8 @@ a MsgContext holds."""
 
 from __future__ import annotations
 
+from io import StringIO as StringIO  # genmsg.gentools' name, imported from it by old code
+
 from genmsg import base, msgs, names
 from genmsg.base import InvalidMsgSpec
 from genmsg.msg_loader import MsgContext, load_depends

@@ -8,6 +8,7 @@ from __future__ import annotations
 import ast
 import os
 from collections.abc import Mapping, Sequence
+from io import StringIO as StringIO  # genmsg.msg_loader's name, imported from it by old code
 from typing import Any
 
 from genmsg.base import COMMENTCHAR, CONSTCHAR, EXT_MSG, EXT_SRV, IODELIM, SEP, InvalidMsgSpec, log

@@ -7,6 +7,7 @@ import codecs
 import logging
 import struct
 from collections.abc import Mapping
+from importlib import reload as reload  # genpy's names from its Python 2 days, which code for both imports
 from io import StringIO
 from typing import Any
 
@@ -19,6 +20,8 @@ from kame.msg.fill import printable_message_args
 from kame.msg.message import Message, strify_message
 from kame.rostime import Duration, Time, TVal
 from roslib.message import get_message_class, get_service_class
+
+long = int
 
 __all__ = ["DeserializationError", "Duration", "Message", "MessageException", "RosMsgUnicodeErrors",
            "SerializationError", "TVal", "Time", "check_type", "fill_message_args", "get_message_class",

@@ -21,7 +21,6 @@ from tests.support import free_port, ros_env
 HERE = Path(__file__).resolve().parent
 DRIVER = HERE / "roslaunch_modules_driver.py"
 RUN_DRIVER = HERE / "roslaunch_run_driver.py"
-SURFACE = HERE / "roslaunch_surface.py"
 LAUNCH = HERE / "rl_pkg" / "launch" / "demo.launch"
 NEEDS_DEBIAN = pytest.mark.skipif(not debian.has("roslaunch.loader", "roslaunch.pmon"),
                                   reason="Debian's python3-roslaunch is not installed")
@@ -156,16 +155,6 @@ def test_a_launch_through_the_runner_and_a_child(tmp_path: Path) -> None:
 @NEEDS_DEBIAN
 def test_a_launch_as_debians_runner_runs_it(tmp_path: Path) -> None:
     assert run_launch(sys.executable, tmp_path) == run_launch(str(debian.SYSTEM_PYTHON), tmp_path)
-
-
-@NEEDS_DEBIAN
-def test_no_public_name_of_debians_roslaunch_is_missing() -> None:
-    sys.path.insert(0, str(HERE))
-    try:
-        import roslaunch_surface
-    finally:
-        sys.path.remove(str(HERE))
-    assert roslaunch_surface.missing(roslaunch_surface.debian_surface(), roslaunch_surface.surface()) == {}
 
 
 KAME_CHILD = """#!{python}

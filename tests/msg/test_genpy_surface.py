@@ -1,11 +1,10 @@
-"""genpy's surface as Debian's: no public name of Debian's genpy and genmsg modules missing,
+"""genpy's surface as Debian's (that no public name is missing is tests/test_module_surface.py's):
 genpy.Message's base constructor, bool arrays read back as lists, the 'rosmsg' decoding handler,
 generate_initpy and genpy_main (tests/msg/genpy_surface_driver.py run by both interpreters), and a
 service whose request holds another package's message, generated without a NameError."""
 
 from __future__ import annotations
 
-import importlib.util
 import subprocess
 import sys
 import textwrap
@@ -15,23 +14,9 @@ from typing import Any
 import pytest
 
 from tests.libs import debian
-from tests.support import REPO
 
 DRIVER = Path(__file__).with_name("genpy_surface_driver.py")
 have_genpy = pytest.mark.skipif(not debian.has("genpy", "genmsg"), reason="Debian's genpy is not installed")
-
-
-def _missing_names() -> Any:
-    spec = importlib.util.spec_from_file_location("missing_names", REPO / "scripts" / "missing-names.py")
-    assert spec is not None and spec.loader is not None
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
-
-
-@have_genpy
-def test_no_public_name_of_debians_genpy_and_genmsg_is_missing() -> None:
-    assert _missing_names().missing(["genpy", "genmsg"]) == {}
 
 
 @pytest.fixture(scope="module")
