@@ -148,7 +148,7 @@ def test_calibrate_save_and_commit_in_the_window(tmp_path: Path) -> None:
         calibrator = sim.start("camera_calibration", "cameracalibrator.py", "--size", "8x6", "--square", "0.108",
                                "image:=/camera/image_raw", "camera:=/usb_cam", env=env)
         calibrator.wait_line("OK")  # usb_cam's set_camera_info was found
-        shoot(display, "display", "camera_calibration_collecting", bars_green)
+        shoot(display, "display", "camera_calibration_collecting", bars_green, program=calibrator)
         tarball.unlink(missing_ok=True)
         click(display, "display", 690, 230)
         calibrator.wait_line("**** Calibrating ****")

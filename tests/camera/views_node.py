@@ -1,8 +1,12 @@
 """Publishes the synthetic chessboard views (tests/camera/synthetic.py) on /camera/image_raw as
-mono8 Images, one after the other and round again, at 10 Hz (plain rospy, as a user's camera).
+mono8 Images at 10 Hz, every view once a round in an order shuffled anew each round (plain rospy,
+as a user's camera). Shuffled because the calibrator drops the frames that come while it looks
+at one: in a fixed order, a calibrator that takes two frames' time sees every other view and
+nothing else, round after round (on a busy machine, never the whole range of sizes).
 With `stereo`: the views of a pair 0.12 m apart on /stereo/left/image_raw and
 /stereo/right/image_raw, each pair with one stamp."""
 
+import random
 import sys
 
 import rospy
@@ -31,10 +35,13 @@ if __name__ == "__main__":
     publishers = [rospy.Publisher(topic, Image, queue_size=1) for topic in topics]
     print(f"publishing {len(views)} views", flush=True)
     rate = rospy.Rate(10)
-    number = 0
+    shuffle = random.Random(0)  # the same rounds every run
+    order: list[int] = []
     while not rospy.is_shutdown():
+        if not order:
+            order = list(range(len(views)))
+            shuffle.shuffle(order)
         stamp = rospy.Time.now()
-        for publisher, view in zip(publishers, views[number % len(views)], strict=True):
+        for publisher, view in zip(publishers, views[order.pop()], strict=True):
             publisher.publish(image(view, stamp))
-        number += 1
         rate.sleep()

@@ -81,7 +81,7 @@ def test_the_window_draws_the_box_follows_time_pauses_steps_and_closes_leaving_t
                  cwd=Path(__file__).resolve().parents[2], stdin=subprocess.PIPE)
     sim.procs.append(child)
     assert child.popen.stdin is not None
-    shoot(display, "Gazebo", "gzclient_red_box", ready=lambda shot: red_pixels(shot) > 200)
+    shoot(display, "Gazebo", "gzclient_red_box", ready=lambda shot: red_pixels(shot) > 200, program=child)
     wait_until(lambda: len({t for _, t in sim_times(child)}) >= 3, timeout=30, what="sim time to advance")
     times = [t for _, t in sim_times(child)]
     assert times == sorted(times) and times[-1] > times[0]

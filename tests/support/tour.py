@@ -15,7 +15,7 @@ import zlib
 from collections.abc import Callable
 from pathlib import Path
 
-from tests.support import REPO
+from tests.support import REPO, Proc
 from tests.turtlesim.xserver import Screenshot, find_shown_window, screenshot
 
 SHOT_PERIOD = 0.3  # seconds between two reads of a window that does not show what is wanted yet
@@ -47,9 +47,9 @@ def png(shot: Screenshot) -> bytes:
 
 
 def shoot(display: str, title: str, name: str, ready: Callable[[Screenshot], bool] = lambda shot: True,
-          timeout: float = 60.0) -> Screenshot:
+          timeout: float = 60.0, program: Proc | None = None) -> Screenshot:
     """Waits for the window called `title` to be mapped and to pass `ready`, and saves it as
-    `name`.png in the tour folder."""
+    `name`.png in the tour folder. A failure tells what `program` (the window's) said last."""
     deadline = time.monotonic() + timeout
     shot: Screenshot | None = None
     while time.monotonic() < deadline:
@@ -60,8 +60,13 @@ def shoot(display: str, title: str, name: str, ready: Callable[[Screenshot], boo
                 (tour_dir() / f"{name}.png").write_bytes(png(shot))
                 return shot
         time.sleep(SHOT_PERIOD)
+    if shot is not None:  # what it showed instead, to look at
+        (tour_dir() / f"{name}-not-ready.png").write_bytes(png(shot))
+    said = "" if program is None else (f"; the program ({program.popen.poll()=}) said last:\n"
+                                       + "".join(program.out[-10:] + program.err[-20:]))
     raise AssertionError(f"{title!r} never showed what {name} should show"
-                         + ("" if shot is not None else " (never mapped)"))
+                         + (f" (its last shot: {tour_dir() / name}-not-ready.png)" if shot is not None
+                            else " (never mapped)") + said)
 
 
 def count(shot: Screenshot, colour: tuple[int, int, int], step: int = 2) -> int:
