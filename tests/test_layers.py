@@ -182,6 +182,8 @@ LAYERS: dict[str, int] = {
     "kame.rosbridge.graph": 4,
     "kame.rosbridge.server": 4,  # rosbridge_websocket: the node and its WebSocket listener
     "kame.rosbridge.rosapi": 4,  # rosapi_node
+    "kame.rosbridge.rosauth": 4,  # rosauth's ros_mac_authentication
+    "kame.rosbridge.auth": 4,  # ~authenticate: a client's auth op checked by /authenticate
     "kame.nav.amcl_node": 4,  # amcl on kame.client and kame.tf_ros
     "kame.nav.move_base_node": 4,
     "kame.nav.costmap_ros": 4,  # move_base's costmaps on kame.client and kame.tf_ros

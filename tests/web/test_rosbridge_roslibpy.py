@@ -306,7 +306,7 @@ def test_debians_tools_hear_and_call_what_roslibpy_provides(ros: Any, graph: Gra
         service.unadvertise()
 
 
-@pytest.mark.parametrize("param,words", [("_authenticate:=true", "rosauth"), ("_bson_only_mode:=true", "BSON")])
+@pytest.mark.parametrize("param,words", [("_bson_only_mode:=true", "BSON")])
 def test_what_the_bridge_cannot_do_it_refuses_to_start_with(graph: Graph, param: str, words: str) -> None:
     done = subprocess.run([sys.executable, "-m", "kame.cli.rosrun", "rosbridge_server", "rosbridge_websocket",
                            f"__name:=refused_{words.lower()}", "_port:=0", param], env=graph.env, capture_output=True,

@@ -6,8 +6,9 @@ one, published as ~actual_port), ~address ("" or 0.0.0.0: every interface, as ro
 listens), ~ssl with ~certfile and ~keyfile (wss://), ~max_message_size (the largest frame a
 client may send; "None" is kame's bound, 10 MiB), ~topics_glob and ~services_glob; kame's own:
 ~max_queue_frames and ~max_queue_bytes, each client's bound of frames waiting to go out.
-~authenticate is rosauth's MAC handshake, which kame does not have: asked for, the node says so
-and stops rather than serve without the check that was asked for; so does ~bson_only_mode (BSON).
+~authenticate: each client's first op must be rosauth's auth, checked by the /authenticate
+service (rosauth's ros_mac_authentication; kame.rosbridge.auth). ~bson_only_mode (BSON) is not
+kame's: asked for, the node says so and stops rather than serve clients set up for it.
 """
 
 from __future__ import annotations
@@ -43,9 +44,10 @@ class Bridge:
     """The listener and what its clients share; `close()` ends every client and thread."""
 
     def __init__(self, address: str, port: int, limits: Limits, tls: tuple[str, str] | None,
-                 topics_glob: tuple[str, ...] | None = None, services_glob: tuple[str, ...] | None = None) -> None:
+                 topics_glob: tuple[str, ...] | None = None, services_glob: tuple[str, ...] | None = None,
+                 authenticate: bool = False) -> None:
         self.shared = Shared(Graph(), Latest(), Pacer(), ThreadPoolExecutor(CALL_WORKERS, "kame-rosbridge-call"),
-                             limits.max_message_size, topics_glob, services_glob)
+                             limits.max_message_size, topics_glob, services_glob, authenticate)
         try:
             self.listener = WebSocketListener("" if address == "0.0.0.0" else address, port, self._open,
                                               limits=limits, tls=tls, where="rosbridge websocket server")
@@ -57,6 +59,8 @@ class Bridge:
 
     def _open(self, client: Client) -> Session:
         log.emit(log.INFO, "Client connected. %d clients total.", (len(self.listener.clients()),))
+        if self.shared.authenticate:
+            log.emit(log.INFO, "Awaiting proper authentication...", ())
         return _Logged(self.shared, client, self.listener)
 
     def start(self) -> None:
@@ -70,7 +74,7 @@ class Bridge:
 
 class _Logged(Session):
     def __init__(self, shared: Shared, client: Client, listener: WebSocketListener) -> None:
-        super().__init__(shared, client.send, client.peer)
+        super().__init__(shared, client.send, client.peer, client.close)
         self._listener = listener
         self._client = client
 
@@ -84,10 +88,6 @@ class _Logged(Session):
 def main(argv: Sequence[str] | None = None) -> int:
     argv = list(sys.argv if argv is None else argv)
     init_node("rosbridge_websocket", argv)
-    if _flag(get_param("~authenticate", False)):
-        log.emit(log.FATAL, "~authenticate: rosauth's MAC handshake is not part of kame; refusing to serve "
-                 "without the authentication that was asked for", ())
-        return 1
     if _flag(get_param("~bson_only_mode", False)):
         log.emit(log.FATAL, "~bson_only_mode: kame's bridge speaks JSON and CBOR, not BSON; refusing to serve "
                  "clients that were set up for BSON only", ())
@@ -103,7 +103,7 @@ def main(argv: Sequence[str] | None = None) -> int:
                     max_bytes=_number(get_param("~max_queue_bytes", None), defaults.max_bytes))
     try:
         bridge = Bridge(address, port, limits, tls, globs.parse(get_param("~topics_glob", None)),
-                        globs.parse(get_param("~services_glob", None)))
+                        globs.parse(get_param("~services_glob", None)), _flag(get_param("~authenticate", False)))
     except OSError as exc:
         log.emit(log.FATAL, "Unable to start the rosbridge WebSocket server on %s:%s: %s", (address, port, exc))
         return 1

@@ -5,6 +5,8 @@ which runs on the bridge's worker pool (a call may wait on a service this same c
 Whatever goes wrong with one op (malformed frame, unknown op, wrong field kinds, a type that does
 not exist, a message that does not fit its type, a refused call) is a status error to that client,
 echoing the op's id; the client and everyone else go on being served.
+With ~authenticate, a client's ops wait for its auth op (kame.rosbridge.auth): any other op
+first, or a MAC that /authenticate refuses, closes the connection, as Noetic's bridge does.
 """
 
 from __future__ import annotations
@@ -23,7 +25,7 @@ from kame.client.topics import Publisher
 from kame.msg.errors import MessageError
 from kame.msg.lookup import message_class, service_class
 from kame.msg.message import Message
-from kame.rosbridge import conversion, globs, protocol
+from kame.rosbridge import auth, conversion, globs, protocol
 from kame.rosbridge.graph import Graph
 from kame.rosbridge.services import AdvertisedService, call_service
 from kame.rosbridge.topics import ClientSubscription, Latest, Pacer, SubscribeOptions, ros_now
@@ -44,15 +46,19 @@ class Shared:
     max_message_size: int
     topics_glob: tuple[str, ...] | None = None
     services_glob: tuple[str, ...] | None = None
+    authenticate: bool = False  # ~authenticate: every client's first op must be a good auth
     advertised_services: dict[str, AdvertisedService] = field(default_factory=dict)
     lock: threading.Lock = field(default_factory=threading.Lock)
 
 
 class Session:
-    def __init__(self, shared: Shared, send: Callable[[str | bytes], bool], peer: str) -> None:
+    def __init__(self, shared: Shared, send: Callable[[str | bytes], bool], peer: str,
+                 close: Callable[[], None] | None = None) -> None:
         self.shared = shared
         self._send = send
+        self._close = close
         self.peer = peer
+        self.awaiting_auth = shared.authenticate
         self.status_level = protocol.DEFAULT_STATUS_LEVEL
         self.subscriptions: dict[str, ClientSubscription] = {}
         self.publishers: dict[str, Publisher] = {}
@@ -73,9 +79,21 @@ class Session:
     def on_frame(self, frame: str | bytes) -> None:
         try:
             op = protocol.decode_frame(frame)
-            self._dispatch(op)
+            if self.awaiting_auth:
+                self._authenticate(op)
+            else:
+                self._dispatch(op)
         except protocol.ProtocolError as exc:
             self.status("error", str(exc), exc.op_id)
+
+    def _authenticate(self, op: dict[str, Any]) -> None:
+        if op.get("op") == "auth" and auth.authenticated(op):
+            self.awaiting_auth = False
+            client_log.emit(client_log.INFO, "Client %s has authenticated.", (self.peer,))
+            return
+        client_log.emit(client_log.WARN, "Client %s did not authenticate. Closing connection.", (self.peer,))
+        if self._close is not None:
+            self._close()
 
     def _dispatch(self, op: dict[str, Any]) -> None:
         fields = protocol.Fields(op)
