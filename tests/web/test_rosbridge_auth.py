@@ -1,6 +1,6 @@
 """rosbridge_websocket.launch authenticate:=true with rosauth's ros_mac_authentication: roslibpy's
-authenticate() with a right MAC is served; a wrong MAC, or any op before auth, closes the
-connection; the rosauth node on its own answers `rosservice call /authenticate`.
+and roslibjs's (in Node) authenticate() with a right MAC are served; a wrong MAC, or any op
+before auth, closes the connection; the rosauth node on its own answers `rosservice call /authenticate`.
 
 The MACs here are worked out by hand as rosauth's C++ does: the lowercase hex SHA-512 of
 secret + client + dest + rand + t.secs + level + end.secs."""
@@ -10,7 +10,7 @@ from __future__ import annotations
 import hashlib
 import json
 import subprocess
-import threading
+import sys
 import time
 from collections.abc import Iterator
 from typing import Any
@@ -20,9 +20,9 @@ from websockets.exceptions import ConnectionClosed
 from websockets.sync.client import ClientConnection, connect
 
 from tests.support import Proc, kame_command
-from tests.web.rosbridge_graph import Graph, bridge_graph
+from tests.web.rosbridge_graph import WEB, Graph, bridge_graph, have_node_roslib
 
-roslibpy = pytest.importorskip("roslibpy")
+pytest.importorskip("roslibpy")
 
 pytestmark = pytest.mark.timeout(180)
 
@@ -65,28 +65,35 @@ def closed_without_answer(ws: ClientConnection) -> bool:
     raise AssertionError(f"expected the bridge to close the connection, got {frame!r}")
 
 
+# roslibpy runs in a process of its own: Twisted's reactor cannot start again once stopped, and a
+# second roslibpy client in one process cannot stop it (test_rosbridge_roslibpy has the one here)
+ROSLIBPY_CLIENT = """
+import json, sys, threading
+import roslibpy
+port, args = int(sys.argv[1]), json.loads(sys.argv[2])
+ros = roslibpy.Ros(host="127.0.0.1", port=port)
+ros.authenticate(*args)
+ros.run(timeout=20)
+got = threading.Event()
+poses = []
+pose = roslibpy.Topic(ros, "/turtle1/pose", "turtlesim/Pose")
+pose.subscribe(lambda msg: (poses.append(msg), got.set()))
+print(json.dumps(poses[0] if got.wait(20) else None), flush=True)
+ros.terminate()
+"""
+
+
 def test_roslibpy_with_the_right_mac_subscribes_and_receives(graph: Graph) -> None:
-    now = time.time()
+    now = time.time()  # roslibpy sends t and end as numbers of seconds, as its docs say
     end = now + 3600
-    ros = roslibpy.Ros(host="127.0.0.1", port=graph.port)
-    ros.authenticate(hand_mac("10.0.0.1", "10.0.0.2", "r4nd", int(now), "user", int(end)), "10.0.0.1", "10.0.0.2",
-                     "r4nd", now, "user", end)
-    ros.run(timeout=20)
-    try:
-        got = threading.Event()
-        poses: list[dict[str, Any]] = []
-
-        def on_pose(msg: dict[str, Any]) -> None:
-            poses.append(msg)
-            got.set()
-
-        pose = roslibpy.Topic(ros, "/turtle1/pose", "turtlesim/Pose")
-        pose.subscribe(on_pose)
-        assert got.wait(20), "no pose through the authenticated connection"
-        assert poses[0]["x"] == pytest.approx(5.544445, abs=1e-4)
-        pose.unsubscribe()
-    finally:
-        ros.terminate()
+    args = [hand_mac("10.0.0.1", "10.0.0.2", "r4nd", int(now), "user", int(end)), "10.0.0.1", "10.0.0.2", "r4nd",
+            now, "user", end]
+    done = subprocess.run([sys.executable, "-c", ROSLIBPY_CLIENT, str(graph.port), json.dumps(args)],
+                          capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stderr
+    pose = json.loads(done.stdout.strip().splitlines()[-1])
+    assert pose is not None, "no pose through the authenticated connection"
+    assert pose["x"] == pytest.approx(5.544445, abs=1e-4)
     graph.launch.wait_line("has authenticated", 20)
 
 
@@ -148,3 +155,19 @@ def test_a_secret_of_the_wrong_length_stops_the_node(graph: Graph, tmp_path: Any
                           env=graph.env, capture_output=True, text=True, timeout=60)
     assert done.returncode == 253  # rosauth's INVALID_SECRET, -3
     assert "Secret string not of length 16." in done.stderr + done.stdout
+
+
+@pytest.mark.skipif(not have_node_roslib(), reason="node or tests/web/node_modules missing "
+                    "(scripts/install-web-peers.sh)")
+def test_roslibjs_authenticate_in_node(graph: Graph) -> None:
+    now = int(time.time())
+    t, end = {"secs": now, "nsecs": 0}, {"secs": now + 600, "nsecs": 0}
+    good = [hand_mac("web", "robot", "s33d", now, "admin", now + 600), "web", "robot", "s33d", t, "admin", end]
+    bad = [hand_mac("web", "robot", "s33d", now, "admin", now + 600), "web", "robot", "other", t, "admin", end]
+    done = subprocess.run(["node", str(WEB / "rosbridge_roslibjs_auth.mjs"), graph.url,
+                           json.dumps({"good": good, "bad": bad})], cwd=WEB, capture_output=True, text=True,
+                          timeout=120)
+    assert done.returncode == 0, done.stderr
+    seen = json.loads(done.stdout.strip().splitlines()[-1])
+    assert seen["pose"]["x"] == pytest.approx(5.544445, abs=1e-4)
+    assert seen["badClosed"] is True
