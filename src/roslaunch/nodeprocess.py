@@ -209,6 +209,18 @@ class LocalProcess(Process):
     def is_alive(self) -> bool:
         if not self.started:
             return True
+        lock = self.lock
+        if lock is not None and not lock.acquire(blocking=False):
+            # being stopped (or started): stop() decides how it ended, as ROS's without an exit code;
+            # a poll here would catch the SIGINT's status first and report that instead
+            return True
+        try:
+            return self._still_running()
+        finally:
+            if lock is not None:
+                lock.release()
+
+    def _still_running(self) -> bool:
         if self.stopped or self.popen is None:
             if self.time_of_death is None:
                 self.time_of_death = time.time()

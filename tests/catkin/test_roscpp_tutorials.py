@@ -19,6 +19,7 @@ from kame.catkin.toolchain import Missing, find_toolchain
 from kame.roscpp_tutorials.build import program
 from tests.shell.shell_env import bash, clean_env, complete
 from tests.support import Proc, free_port, wait_for_master
+from tests.turtlesim.sim import wait_until
 
 BIN = Path(sys.executable).parent
 LINE = re.compile(r"^\[ (INFO|ERROR)\] \[\d+\.\d{9}\]: (.*)$")
@@ -100,7 +101,10 @@ def test_add_two_ints(master: tuple[str, dict[str, str]], kind: str) -> None:
     env = env_for(master, kind)
     server = rosrun(env, "add_two_ints_server")
     try:
-        subprocess.run([str(BIN / "rosservice"), "wait", "/add_two_ints"], env=env, timeout=30, capture_output=True)
+        # the client calls once, without waiting for the service (as the course's): it must be there
+        wait_until(lambda: "/add_two_ints" in subprocess.run([str(BIN / "rosservice"), "list"], env=env, timeout=30,
+                                                             capture_output=True, text=True).stdout,
+                   timeout=60, what="add_two_ints to be advertised")
         client = subprocess.run(["stdbuf", "-oL", str(BIN / "rosrun"), "roscpp_tutorials", "add_two_ints_client",
                                  "3", "4"], env=env, capture_output=True, text=True, timeout=30)
         assert client.returncode == 0, client.stderr

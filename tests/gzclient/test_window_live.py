@@ -142,7 +142,8 @@ def test_gazebo_runs_the_server_and_its_window_which_ends_with_it(tmp_path: Path
     with xvfb("1280x800") as display, master(tmp_path) as sim:
         server = sim.start("gazebo_ros", "gazebo", str(WORLD), env=dict(sim.env, DISPLAY=display),
                            wait="Finished loading Gazebo ROS API Plugin.")
-        shoot(display, "Gazebo", "gazebo_server_and_window", ready=lambda shot: red_pixels(shot) > 200)
+        shoot(display, "Gazebo", "gazebo_server_and_window", ready=lambda shot: red_pixels(shot) > 200,
+              program=server)
         server.stop()
         wait_until(lambda: find_window(display, "Gazebo") is None, timeout=30, what="the window to end with gazebo")
 
@@ -153,4 +154,5 @@ def test_empty_world_launch_with_gui_true_opens_the_window(tmp_path: Path) -> No
         launch = Proc([str(BIN / "roslaunch"), "gazebo_ros", "empty_world.launch", "gui:=true",
                        f"world_name:={WORLD}"], sim.env, cwd=tmp_path)
         sim.procs.append(launch)
-        shoot(display, "Gazebo", "empty_world_launch_gui", ready=lambda shot: red_pixels(shot) > 200)
+        shoot(display, "Gazebo", "empty_world_launch_gui", ready=lambda shot: red_pixels(shot) > 200,
+              program=launch)

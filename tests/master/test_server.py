@@ -227,9 +227,11 @@ def test_notifications_reach_nodes(master: Running) -> None:
         p.subscribeParam("/sub", node.uri, "/watched")
         p.setParam("/setter", "/watched", {"x": 1})
         p.deleteParam("/setter", "/watched")
-        calls = node.wait_calls(3)
-        assert calls[1:] == [("paramUpdate", ("/master", "/watched/", {"x": 1})),
-                             ("paramUpdate", ("/master", "/watched/", {}))]
+        was_set = ("paramUpdate", ("/master", "/watched/", {"x": 1}))
+        deleted = ("paramUpdate", ("/master", "/watched/", {}))
+        # a node's notifications not yet sent are coalesced, the newest value of a key winning: on a
+        # busy machine the set may be folded into the delete that follows it
+        assert node.wait_calls(3)[1:] in ([was_set, deleted], [deleted])
         # a second node taking the name: the first is told to shut down
         p.registerPublisher("/dup", "/u", "p/T", other.uri)
         p.registerPublisher("/dup", "/u", "p/T", "http://127.0.0.1:10/")

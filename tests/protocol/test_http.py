@@ -157,8 +157,14 @@ def test_no_other_module_speaks_http_or_sets_process_wide_socket_defaults() -> N
 
     banned = re.compile(r"setdefaulttimeout|^\s*(import|from)\s+(xmlrpc|http)\.(client|server)\b", re.M)
     root = Path(kame.__file__).parent
+    # kame.net.xmlrpc_servers is the one exception: the stdlib's XML-RPC server classes themselves, as
+    # rosgraph.xmlrpc's API hands them to ROS code that builds its own server; kame serves through none
+    # of them (nothing in kame imports that module: the second assertion)
+    api_for_users = "net/xmlrpc_servers.py"
     offenders = [str(path.relative_to(root)) for path in sorted(root.rglob("*.py")) if banned.search(path.read_text())]
-    assert offenders == []
+    assert offenders == [api_for_users]
+    assert not [str(path.relative_to(root)) for path in sorted(root.rglob("*.py"))
+                if "xmlrpc_servers" in path.read_text() and str(path.relative_to(root)) != api_for_users]
 
 
 def test_a_response_carries_the_date_it_is_given_and_the_reader_keeps_it() -> None:
