@@ -3,8 +3,13 @@
 Each Xvfb gets a random display number from a wide range, not the lowest free one that every
 server of two test runs side by side (and of other work) reaches for: a simulator's window test,
 run beside another suite, once found its fresh Xvfb on :0 unreachable ("could not connect to
-display :0"). It says it is ready through -displayfd, logs to a file (not a pipe nobody reads,
-which a chatty server could fill and stall on), and is stopped by its PID. Without Xvfb
+display :0"). It runs with -noreset: by default an X server resets whenever its last client
+disconnects, and a client connecting meanwhile is refused ("could not connect to display"). The
+tests' own probes (xwininfo, xwd, xdotool) connect and leave every few hundred milliseconds while
+the program under test starts, so a loaded machine's slower resets made a window's program abort
+now and then (measured: 17 of 300 connections refused beside xwininfo's, 0 with -noreset). It says
+it is ready through -displayfd, logs to a file (not a pipe nobody reads, which a chatty server could
+fill and stall on), and is stopped by its PID. Without Xvfb
 (or xwininfo of x11-utils, xwd of x11-apps) the tests that need them skip and say which is missing;
 scripts/install-gui-libs.sh --xvfb installs them.
 """
@@ -44,7 +49,8 @@ def xvfb(size: str = "800x600") -> Iterator[str]:
         with tempfile.TemporaryFile() as log:
             read, write = os.pipe()
             server = subprocess.Popen(["Xvfb", f":{number}", "-displayfd", str(write), "-screen", "0", f"{size}x24",
-                                       "-nolisten", "tcp"], pass_fds=(write,), stdout=subprocess.DEVNULL, stderr=log)
+                                       "-nolisten", "tcp", "-noreset"],
+                                      pass_fds=(write,), stdout=subprocess.DEVNULL, stderr=log)
             os.close(write)
             try:
                 with os.fdopen(read) as pipe:

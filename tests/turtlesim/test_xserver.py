@@ -1,0 +1,23 @@
+"""The window tests' X server: a program connecting while the tests' own probes come and go is
+never refused (an X server resets when its last client leaves, refusing whoever connects
+meanwhile, unless started with -noreset)."""
+
+from __future__ import annotations
+
+import os
+import subprocess
+
+from .xserver import xvfb
+
+
+def test_a_client_connecting_while_another_leaves_is_never_refused() -> None:
+    with xvfb() as display:
+        env = dict(os.environ, DISPLAY=display)
+        refused = 0
+        for _ in range(150):
+            leaving = subprocess.Popen(["xwininfo", "-root"], env=env, stdout=subprocess.DEVNULL,
+                                       stderr=subprocess.DEVNULL)
+            arriving = subprocess.run(["xwininfo", "-root"], env=env, capture_output=True, text=True, timeout=10)
+            refused += arriving.returncode != 0
+            leaving.wait(10)
+        assert refused == 0, f"{refused} of 150 connections refused: {arriving.stderr}"
