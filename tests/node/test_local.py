@@ -135,3 +135,29 @@ def test_unsubscribing_in_the_node_ends_the_publications_link(make_node: Any) ->
     assert pub.links == [] and pub.local_links == 0
     pub.publish_message(String("nobody"))
     assert got.objects == []
+
+
+def test_a_link_says_it_is_connected_only_once_the_publication_sends_to_it(make_node: Any,
+                                                                          monkeypatch: pytest.MonkeyPatch) -> None:
+    # actionlib's wait_for_server takes a connected link for one that hears the result: a result
+    # published while the link said connected but the publication had not taken it yet was lost
+    node = make_node("/waiter")
+    pub = node.advertise("/result", *STRING, queue_size=10)
+    taking, go_on = threading.Event(), threading.Event()
+    add_link = pub.add_link
+
+    def held_add_link(*args: Any, **kwargs: Any) -> bool:
+        taking.set()
+        go_on.wait(10)
+        return add_link(*args, **kwargs)
+
+    monkeypatch.setattr(pub, "add_link", held_add_link)
+    got = Received()
+    got.subscribe(node, "/result")
+    assert taking.wait(10)
+    sub = node.subscriptions["/result"]
+    assert sub.connection_count == 0
+    go_on.set()
+    assert wait_until(lambda: sub.connection_count == 1)
+    pub.publish_message(String("the result"))
+    assert wait_until(lambda: [m.data for m in got.objects] == ["the result"])

@@ -157,10 +157,13 @@ class LocalPublisherLink:
                 return
             self._sender = sender
             self._publication = (pub, link)
-            self.connected = True
         sender.start()
         if not pub.add_link(link, sender.send_message if sender._takes is not None else None):
             return
+        # connected once the publication sends to us, not before: a waiter that saw it earlier
+        # (actionlib's wait_for_server) could publish into the gap and lose the message
+        with self._lock:
+            self.connected = not (self.closed or self.ended)
         for callback in sub.on_connect:
             callback(self)
 
