@@ -105,20 +105,10 @@ def env(tmp_path: Path) -> Iterator[dict[str, str]]:
         master.stop()
 
 
-def _finish(proc: Proc, timeout: float = 60) -> str:
-    try:
-        proc.popen.wait(timeout)
-    except subprocess.TimeoutExpired:
-        pass
-    out, err = proc.stop()
-    assert proc.popen.returncode == 0, f"exit {proc.popen.returncode}\n{out}\n{err}"
-    return out
-
-
 def test_simple_marker_by_rosrun_serves_and_takes_rvizs_feedback(env: dict[str, str]) -> None:
     server = Proc([str(BIN / "rosrun"), "interactive_marker_tutorials", "simple_marker.py"], env)
     try:
-        out = _finish(Proc([sys.executable, "-c", textwrap.dedent(RVIZ_LIKE_CLIENT)], env))
+        out = Proc([sys.executable, "-c", textwrap.dedent(RVIZ_LIKE_CLIENT)], env).finish(60)[0]
         assert "init /simple_marker 1 ['my_marker']" in out, out
         assert "controls [('', 0), ('move_x', 3)]" in out
         assert "keep_alive /simple_marker 1" in out
@@ -131,7 +121,7 @@ def test_simple_marker_by_rosrun_serves_and_takes_rvizs_feedback(env: dict[str, 
 def test_basic_controls_serves_every_marker(env: dict[str, str]) -> None:
     server = Proc([str(BIN / "rosrun"), "interactive_marker_tutorials", "basic_controls.py"], env)
     try:
-        out = _finish(Proc([sys.executable, "-c", textwrap.dedent("""
+        out = Proc([sys.executable, "-c", textwrap.dedent("""
             import rospy
             from visualization_msgs.msg import InteractiveMarkerInit
             rospy.init_node('peek')
@@ -160,7 +150,7 @@ def test_basic_controls_serves_every_marker(env: dict[str, str]) -> None:
             display.build(scene, Frames(), 0.0)
             print('status', display.status.level, display.status.text)
             print('drawn', sum(1 for h in display.handles if len(h.triangles)), 'of', len(display.handles))
-        """)], env))
+        """)], env).finish(60)[0]
         assert "status Ok" in out, out
         # 45 controls, each with something to grab (the menu-only one: rviz's "Options" button)
         drawn, total = (int(n) for n in out.split("drawn ")[1].split()[::2])
@@ -181,7 +171,7 @@ def test_debians_server_feeds_kames_display_model(env: dict[str, str]) -> None:
     server = Proc([SYSTEM_PYTHON, "-c", textwrap.dedent(DEBIAN_SERVER)], env)
     try:
         server.wait_line("served", timeout=30)
-        out = _finish(Proc([sys.executable, "-c", textwrap.dedent(KAME_CLIENT_OF_DEBIAN)], env))
+        out = Proc([sys.executable, "-c", textwrap.dedent(KAME_CLIENT_OF_DEBIAN)], env).finish(60)[0]
         assert "seq 4 problem ''" in out, out
         assert "/debian_server first 0.0 0.0 ['First Entry']" in out
         assert "/debian_server second 1.0 4.0 []" in out
@@ -222,7 +212,7 @@ def test_a_debian_client_moves_kames_marker_and_sees_shutdown_erase_it(env: dict
     """)], env)
     try:
         server.wait_line("serving 1 False", timeout=30)
-        out = _finish(Proc([SYSTEM_PYTHON, "-c", textwrap.dedent("""
+        out = Proc([SYSTEM_PYTHON, "-c", textwrap.dedent("""
             import rospy
             from visualization_msgs.msg import InteractiveMarkerFeedback, InteractiveMarkerInit
             from visualization_msgs.msg import InteractiveMarkerUpdate
@@ -245,7 +235,7 @@ def test_a_debian_client_moves_kames_marker_and_sees_shutdown_erase_it(env: dict
             print('poses', [(p.name, p.pose.position.y) for u in updates for p in u.poses], flush=True)
             print('erases', [e for u in updates for e in u.erases], flush=True)
             print('keep alive', any(u.type == u.KEEP_ALIVE for u in updates), flush=True)
-        """)], env))
+        """)], env).finish(60)[0]
         assert "init /kame_server ['m']" in out, out
         assert "poses [('m', 1.5)]" in out and "erases ['m']" in out and "keep alive True" in out, out
         server.wait_line("moved /debian_rviz/InteractiveMarkers 1.5", timeout=10)

@@ -27,13 +27,7 @@ def env(tmp_path_factory: pytest.TempPathFactory) -> Iterator[dict[str, str]]:
 
 
 def run(env: dict[str, str], code: str, *args: str, timeout: float = 30) -> tuple[str, str]:
-    proc = Proc([sys.executable, "-c", textwrap.dedent(code), *args], env)
-    try:
-        proc.popen.wait(timeout)
-    finally:
-        out, err = proc.stop()
-    assert proc.popen.returncode == 0, f"exit {proc.popen.returncode}\n{out}\n{err}"
-    return out, err
+    return Proc([sys.executable, "-c", textwrap.dedent(code), *args], env).finish(timeout)
 
 
 def test_names_args_and_private_params(env: dict[str, str]) -> None:

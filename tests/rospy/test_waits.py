@@ -29,12 +29,7 @@ def env(tmp_path_factory: pytest.TempPathFactory) -> Iterator[dict[str, str]]:
 
 
 def run(env: dict[str, str], code: str, timeout: float = 30) -> str:
-    proc = Proc([sys.executable, "-c", textwrap.dedent(code)], env)
-    try:
-        proc.popen.wait(timeout)
-    finally:
-        out, err = proc.stop()
-    assert proc.popen.returncode == 0, f"exit {proc.popen.returncode}\n{out}\n{err}"
+    out, err = Proc([sys.executable, "-c", textwrap.dedent(code)], env).finish(timeout)
     assert "Traceback" not in err, err
     return out
 

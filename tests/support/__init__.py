@@ -89,6 +89,19 @@ class Proc:
             time.sleep(0.02)
         raise AssertionError(f"{text!r} not printed by {self.args}:\n{''.join(self.out)}\n{''.join(self.err)}")
 
+    def finish(self, timeout: float = 30.0) -> tuple[str, str]:
+        """Waits for a program that ends by itself, which must exit 0; returns (stdout, stderr).
+        One still running after `timeout` is stopped (SIGINT: a Python program's traceback then
+        says where it waited) and fails with what it said, as does a nonzero exit."""
+        late = ""
+        try:
+            self.popen.wait(timeout)
+        except subprocess.TimeoutExpired:
+            late = f"still running after {timeout:g} s, so stopped; "
+        out, err = self.stop()
+        assert not late and self.popen.returncode == 0, f"{late}exit {self.popen.returncode}\n{out}\n{err}"
+        return out, err
+
     def stop(self, timeout: float = 5.0) -> tuple[str, str]:
         """SIGINT, then SIGKILL after `timeout`; returns (stdout, stderr)."""
         if self.popen.poll() is None:

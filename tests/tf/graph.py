@@ -60,13 +60,7 @@ class Graph:
 
     def finish(self, proc: Proc, timeout: float = 30) -> str:
         """Wait for a program that ends by itself; its stdout (it must exit 0)."""
-        try:
-            proc.popen.wait(timeout)
-        except subprocess.TimeoutExpired:
-            pass
-        out, err = proc.stop()
-        assert proc.popen.returncode == 0, f"exit {proc.popen.returncode}\n{out}\n{err}"
-        return out
+        return proc.finish(timeout)[0]
 
     def stop(self) -> None:
         for proc in reversed(self.procs):
